@@ -1,0 +1,116 @@
+# bitrain — terrain on boards with no GPU.
+# The only two commands a user needs: `make run` and `make test`.
+# Other targets: all (default: ./bitrain + build/libbitrain.a), bench, fuzz, clean.
+#
+# Sources are found by folder, so adding a module is adding its .c/.h pair:
+#   core/*.c raster/*.c platform/*.c  -> build/libbitrain.a (platform/main.c -> ./bitrain)
+#   tests/test_*.c                    -> one test program each (tests/run.sh runs them)
+#   benchmarks/bench_*.c              -> one benchmark program each (make bench)
+#   tests/fuzz_*.c                    -> one libFuzzer harness each (make fuzz, clang)
+
+CC      ?= cc
+ifeq ($(origin CC),default)
+CC      = cc
+endif
+PKGS    = sdl2 libpng zlib
+OPT     ?= -O2
+# The warning set of ../shared/STYLE.md (Lua's).  -Wconversion in C also turns on
+# -Wsign-conversion; we keep the narrowing half and drop the sign half, which flags
+# every size_t/int mix without catching real bugs in this code base.
+WARN    = -Wall -Wextra -Wshadow -Wundef -Wwrite-strings -Wdouble-promotion \
+          -Wmissing-prototypes -Wstrict-prototypes -Wconversion -Wno-sign-conversion
+ifeq ($(CI),true)
+WARN   += -Werror
+endif
+PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+CFLAGS  ?= $(OPT) -g
+ALL_CFLAGS = -std=c99 $(WARN) $(CFLAGS) -I. -MMD -MP
+LDLIBS  = $(PKG_LIBS) -lm
+
+B       = build
+CORE_SRC   = $(sort $(wildcard core/*.c))
+RASTER_SRC = $(sort $(wildcard raster/*.c))
+PLAT_SRC   = $(sort $(filter-out platform/main.c,$(wildcard platform/*.c)))
+LIB_SRC    = $(CORE_SRC) $(RASTER_SRC) $(PLAT_SRC)
+TEST_SRC   = $(sort $(wildcard tests/test_*.c))
+BENCH_SRC  = $(sort $(wildcard benchmarks/bench_*.c))
+FUZZ_SRC   = $(sort $(wildcard tests/fuzz_*.c))
+SUPPORT_SRC= $(sort $(wildcard tests/support/*.c))
+
+LIB_OBJ    = $(LIB_SRC:%.c=$(B)/obj/%.o)
+TEST_BIN   = $(TEST_SRC:tests/%.c=$(B)/tests/%)
+BENCH_BIN  = $(BENCH_SRC:benchmarks/%.c=$(B)/bench/%)
+SUPPORT_OBJ= $(SUPPORT_SRC:%.c=$(B)/obj/%.o)
+
+# Sanitizer build of the same library and tests (make test runs both).
+SAN_FLAGS  = -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+SAN_LIB_OBJ= $(LIB_SRC:%.c=$(B)/san/%.o)
+SAN_SUP_OBJ= $(SUPPORT_SRC:%.c=$(B)/san/%.o)
+SAN_TEST_BIN = $(TEST_SRC:tests/%.c=$(B)/san-tests/%)
+
+.SECONDARY:
+.PHONY: all run test test-fast bench fuzz clean deps check-nofloat
+all: deps bitrain $(B)/libbitrain.a
+
+deps:
+	@sh mk/deps.sh
+
+# Re-read pkg-config flags after deps may have installed them.
+bitrain: $(B)/obj/platform/main.o $(B)/libbitrain.a
+	$(CC) $(ALL_CFLAGS) -o $@ $^ $(shell pkg-config --libs $(PKGS)) -lm
+
+$(B)/libbitrain.a: $(LIB_OBJ)
+	@mkdir -p $(@D)
+	rm -f $@ && ar rcs $@ $^
+
+$(B)/obj/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) $(if $(filter platform/% tests/% benchmarks/%,$<),$(shell pkg-config --cflags $(PKGS))) -c -o $@ $<
+
+$(B)/tests/%: tests/%.c $(SUPPORT_OBJ) $(B)/libbitrain.a
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) $(shell pkg-config --cflags $(PKGS)) -o $@ $< $(SUPPORT_OBJ) $(B)/libbitrain.a $(shell pkg-config --libs $(PKGS)) -lm
+
+$(B)/bench/%: benchmarks/%.c $(SUPPORT_OBJ) $(B)/libbitrain.a
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) $(shell pkg-config --cflags $(PKGS)) -o $@ $< $(SUPPORT_OBJ) $(B)/libbitrain.a $(shell pkg-config --libs $(PKGS)) -lm
+
+$(B)/san/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) -std=c99 $(WARN) $(SAN_FLAGS) -I. -MMD -MP $(shell pkg-config --cflags $(PKGS)) -c -o $@ $<
+
+$(B)/libbitrain-san.a: $(SAN_LIB_OBJ)
+	rm -f $@ && ar rcs $@ $^
+
+$(B)/san-tests/%: tests/%.c $(SAN_SUP_OBJ) $(B)/libbitrain-san.a
+	@mkdir -p $(@D)
+	$(CC) -std=c99 $(WARN) $(SAN_FLAGS) -I. $(shell pkg-config --cflags $(PKGS)) -o $@ $< $(SAN_SUP_OBJ) $(B)/libbitrain-san.a $(shell pkg-config --libs $(PKGS)) -lm
+
+# core/ and raster/ must not use floating point at all.  On x86-64 and AArch64,
+# -mgeneral-regs-only makes the compiler refuse any float or double; elsewhere we
+# fall back to scanning the objects for soft-float helper symbols.
+check-nofloat:
+	@sh mk/check-nofloat.sh $(CC) $(CORE_SRC) $(RASTER_SRC)
+
+# The default terrain: Lake Constance (SRTM3 N47E009), shipped zlib-compressed.
+RUN_DEM ?= assets/N47E009.hgt.gz
+run: all
+	./bitrain run $(RUN_DEM)
+
+test: deps
+	@$(MAKE) --no-print-directory bitrain $(TEST_BIN) $(SAN_TEST_BIN)
+	@sh tests/run.sh $(B)
+
+# Benchmarks print figures; they never fail on time.
+bench: all $(BENCH_BIN)
+	@sh benchmarks/run.sh $(B)
+
+FUZZ_SECONDS ?= 30
+fuzz: deps
+	@sh tests/fuzz.sh $(FUZZ_SECONDS)
+
+clean:
+	rm -rf $(B) bitrain tests/out benchmarks/out
+
+-include $(shell find $(B) -name '*.d' 2>/dev/null)

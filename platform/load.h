@@ -1,0 +1,30 @@
+/* platform/load.h — read elevation files into a heightfield (core/hf.h).
+ *
+ * The format is chosen by content (magic bytes, size) and extension:
+ *   SRTM .hgt (also .hgt.gz, .hgt.zip), PNG (16/8-bit grey, terrain-RGB,
+ *   Terrarium), ESRI ASCII grid .asc, VTP Binary Terrain .bt, GeoTIFF .tif,
+ *   XYZ text grids (.xyz, .txt).
+ * Every reader refuses bad input with a status and a message naming the file
+ * and the problem; absurd dimensions are refused before allocating.
+ * The heights buffer is malloc'd; free it with dem_free. */
+#ifndef BR_LOAD_H
+#define BR_LOAD_H
+#include "core/hf.h"
+#include "platform/err.h"
+
+enum { DEM_PNG_AUTO = 0, DEM_PNG_GREY, DEM_PNG_TERRAIN_RGB, DEM_PNG_TERRARIUM };
+
+typedef struct dem_opts {     /* zero = defaults */
+    int png_encoding;         /* DEM_PNG_*: AUTO = grey for grey PNGs, terrain-RGB for colour ones */
+    double png_scale;         /* grey PNG: metres per raw unit (0 = 1) */
+    double png_offset;        /* grey PNG: metres added after scaling */
+    int xyz_depth;            /* XYZ: third column is depth (positive down): heights = -z */
+} dem_opts;
+
+br_status dem_load(const char *path, const dem_opts *o, hf *out, br_err *err);
+/* Loads n files and, when n > 1, merges them by georeference (shared edges kept
+ * once; overlaps with different values or gaps are errors). */
+br_status dem_load_many(const char *const *paths, int n, const dem_opts *o, hf *out, br_err *err);
+void dem_free(hf *f);
+
+#endif

@@ -1,0 +1,35 @@
+#!/bin/sh
+# Run the whole suite: the no-floating-point check, every test program, and every
+# test program again under AddressSanitizer + UndefinedBehaviorSanitizer.
+# Each program ends with "N passed, N failed"; we add them up and end the same way.
+B=${1:-build}
+passed=0; failed=0
+count() { # $1 = label, $2 = output file, $3 = exit code
+  line=$(grep -E '^[0-9]+ passed, [0-9]+ failed' "$2" | tail -n 1)
+  if [ -n "$line" ]; then
+    p=${line%% passed*}; f=${line#*passed, }; f=${f%% failed*}
+  else p=0; f=0; fi
+  if [ "$3" != 0 ] && [ "$f" = 0 ]; then f=1; fi   # crashed or exited non-zero without saying why
+  passed=$((passed + p)); failed=$((failed + f))
+  if [ "$f" != 0 ]; then
+    echo "FAILED $1 (exit $3):"; tail -n 30 "$2" | sed 's/^/  /'
+  else echo "ok     $1: $p passed"; fi
+}
+mkdir -p tests/out
+log=tests/out/.log
+if sh mk/check-nofloat.sh "${CC:-cc}" core/*.c raster/*.c >$log 2>&1; then
+  echo "1 passed, 0 failed" >>$log; count "no floating point in core/ raster/" $log 0
+else
+  echo "0 passed, 1 failed" >>$log; count "no floating point in core/ raster/" $log 1
+fi
+for t in "$B"/tests/test_*; do
+  [ -x "$t" ] || continue
+  "$t" >$log 2>&1; rc=$?; count "$(basename "$t")" $log $rc
+done
+for t in "$B"/san-tests/test_*; do
+  [ -x "$t" ] || continue
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1 \
+    BITRAIN_SANITIZED=1 "$t" >$log 2>&1; rc=$?; count "$(basename "$t") [asan+ubsan]" $log $rc
+done
+echo "$passed passed, $failed failed"
+[ "$failed" = 0 ]

@@ -1,0 +1,35 @@
+/* tests/test.h — the tiny harness every test program uses.
+ *
+ * A test program is a main() that calls T_RUN(fn) for each test function; a
+ * test function uses CHECK/CHECK_EQ and returns.  The program prints one line per
+ * failed check, ends with "N passed, N failed" and exits non-zero on any failure.
+ * Counting is per test function: a function with any failed check counts once as
+ * failed.  Paths to the shared data are built with t_data("hgt/N47E009.hgt"). */
+#ifndef BR_TEST_H
+#define BR_TEST_H
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <stdint.h>
+
+extern int t_passed, t_failed, t_cur_failed;
+extern const char *t_cur_name;
+
+#define CHECK(cond) do { if (!(cond)) { t_cur_failed++; \
+    fprintf(stderr, "FAIL %s: %s:%d: %s\n", t_cur_name, __FILE__, __LINE__, #cond); } } while (0)
+#define CHECK_MSG(cond, ...) do { if (!(cond)) { t_cur_failed++; \
+    fprintf(stderr, "FAIL %s: %s:%d: %s: ", t_cur_name, __FILE__, __LINE__, #cond); \
+    fprintf(stderr, __VA_ARGS__); fputc('\n', stderr); } } while (0)
+#define CHECK_EQ(a, b) do { long long t_a_ = (long long)(a), t_b_ = (long long)(b); \
+    if (t_a_ != t_b_) { t_cur_failed++; fprintf(stderr, "FAIL %s: %s:%d: %s == %s (%lld != %lld)\n", \
+    t_cur_name, __FILE__, __LINE__, #a, #b, t_a_, t_b_); } } while (0)
+#define T_RUN(fn) t_run(#fn, fn)
+
+void t_run(const char *name, void (*fn)(void));
+int t_finish(void);                 /* prints the summary; returns the exit code */
+const char *t_data(const char *rel);/* "../shared/data/dem/" + rel (BITRAIN_DATA overrides) */
+const char *t_outdir(void);         /* tests/out, created on demand */
+unsigned char *t_read_file(const char *path, size_t *len); /* malloc'd, NULL on error */
+int t_write_file(const char *path, const void *p, size_t len);
+
+#endif
