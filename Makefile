@@ -56,9 +56,12 @@ all: deps bitrain $(B)/libbitrain.a
 deps:
 	@sh mk/deps.sh
 
-# Re-read pkg-config flags after deps may have installed them.
-bitrain: $(B)/obj/platform/main.o $(B)/libbitrain.a
+# pkg-config is asked again here: deps may have just installed the packages.
+$(B)/bitrain: $(B)/obj/platform/main.o $(B)/libbitrain.a
 	$(CC) $(ALL_CFLAGS) -o $@ $^ $(shell pkg-config --libs $(PKGS)) -lm
+
+bitrain: $(B)/bitrain
+	cp $< $@
 
 $(B)/libbitrain.a: $(LIB_OBJ)
 	@mkdir -p $(@D)
