@@ -22,6 +22,10 @@ typedef struct dem_opts {     /* zero = defaults */
 } dem_opts;
 
 br_status dem_load(const char *path, const dem_opts *o, hf *out, br_err *err);
+/* The same from bytes in memory (fuzzers, tests, archives): name is used for
+ * messages, the extension and SRTM tile names; bytes are not modified or kept. */
+br_status dem_load_mem(const char *name, const uint8_t *bytes, size_t len, const dem_opts *o,
+                       hf *out, br_err *err);
 /* Loads n files and, when n > 1, merges them by georeference (shared edges kept
  * once; overlaps with different values or gaps are errors). */
 br_status dem_load_many(const char *const *paths, int n, const dem_opts *o, hf *out, br_err *err);

@@ -1,0 +1,559 @@
+/* platform/load.c — choose a reader by content and extension, unpack .gz and
+ * .zip, load and merge several files (see load.h), and the helpers the readers
+ * share (load_internal.h).
+ *
+ * Containers: a gzip stream (1f 8b) is inflated and the name loses its ".gz";
+ * a zip archive (PK\3\4) is read through its central directory and the member
+ * that looks like heights (.hgt first, then the other height extensions) is
+ * inflated, CRC-checked and read under the name "archive/member".  Containers
+ * do not nest.  Decompressed sizes are capped (DEM_MAX_INFLATE). */
+#include <ctype.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <zlib.h>
+#include "platform/load.h"
+#include "platform/load_internal.h"
+#include "platform/merge.h"
+
+/* ---- helpers shared by the readers ---- */
+
+br_status dem_alloc(hf *out, int64_t w, int64_t h, const char *name, br_err *err)
+{
+    br_status s = hf_check_dims(w, h);
+    if (s == BR_E_TOO_BIG)
+        return br_err_set(err, s, name, "%lldx%lld samples is too big (limit %d per side, %ld in all)",
+                          (long long)w, (long long)h, BR_MAX_SIDE, (long)BR_MAX_SAMPLES);
+    if (s != BR_OK)
+        return br_err_set(err, BR_E_FORMAT, name, "bad dimensions %lldx%lld", (long long)w, (long long)h);
+    memset(out, 0, sizeof *out);
+    out->z = malloc((size_t)w * (size_t)h * sizeof(int32_t));
+    if (!out->z)
+        return br_err_set(err, BR_E_NOMEM, name, "out of memory for %lldx%lld samples", (long long)w, (long long)h);
+    out->w = (int32_t)w;
+    out->h = (int32_t)h;
+    out->z_num = out->z_den = 1;
+    out->dx_um = out->dy_um = 1000000;
+    out->geo.kind = HF_GEO_NONE;
+    return BR_OK;
+}
+
+void dem_m_per_degree(double lat_deg, double *m_lat, double *m_lon)
+{
+    double phi = lat_deg * (3.14159265358979323846 / 180.0);
+    *m_lat = 111132.954 - 559.822 * cos(2 * phi) + 1.175 * cos(4 * phi);
+    *m_lon = 111412.84 * cos(phi) - 93.5 * cos(3 * phi) + 0.118 * cos(5 * phi);
+}
+
+static br_status spacing_um(double metres, int32_t *out, const char *name, br_err *err)
+{
+    double um = floor(metres * 1e6 + 0.5);
+    if (!(um < 2147483647.0))
+        return br_err_set(err, BR_E_VALUE, name, "sample spacing %.6g m is too large (limit 2147 m)", metres);
+    *out = um < 1 ? 1 : (int32_t)um;
+    return BR_OK;
+}
+
+static double geo_centre_lat(const hf *f)
+{
+    return ((double)f->geo.y0 - (double)f->geo.sy * (f->h - 1) * 0.5) * 1e-9;
+}
+
+static br_status spacing_at(hf *f, double lat_c, double slon, double slat, const char *name, br_err *err)
+{
+    double m_lat, m_lon;
+    br_status s;
+    dem_m_per_degree(lat_c, &m_lat, &m_lon);
+    if (m_lon < 0) m_lon = 0;
+    s = spacing_um(m_lon * slon, &f->dx_um, name, err);
+    if (s == BR_OK) s = spacing_um(m_lat * slat, &f->dy_um, name, err);
+    return s;
+}
+
+br_status dem_geo_spacing(hf *f, const hf *like, const char *name, br_err *err)
+{
+    double lat_c, m_lat, m_lon, l_lat, l_lon;
+    if (f->geo.kind != HF_GEO_DEGREES) return BR_OK;
+    lat_c = geo_centre_lat(f);
+    if (!like) return spacing_at(f, lat_c, (double)f->geo.sx * 1e-9, (double)f->geo.sy * 1e-9, name, err);
+    /* scale like's spacing (computed from its exact step) to our centre latitude */
+    dem_m_per_degree(lat_c, &m_lat, &m_lon);
+    dem_m_per_degree(geo_centre_lat(like), &l_lat, &l_lon);
+    if (!(l_lon > 0) || !(l_lat > 0))
+        return spacing_at(f, lat_c, (double)f->geo.sx * 1e-9, (double)f->geo.sy * 1e-9, name, err);
+    if (m_lon < 0) m_lon = 0;
+    {
+        br_status s = spacing_um(like->dx_um * 1e-6 * m_lon / l_lon, &f->dx_um, name, err);
+        if (s == BR_OK) s = spacing_um(like->dy_um * 1e-6 * m_lat / l_lat, &f->dy_um, name, err);
+        return s;
+    }
+}
+
+static int fits_geo(double v) { return v == v && fabs(v) < 9.0e12; }
+
+br_status dem_geo_degrees(hf *f, double lon0, double lat0, double slon, double slat,
+                          const char *name, br_err *err)
+{
+    if (!fits_geo(lon0) || !fits_geo(lat0) || fabs(lat0) > 1000 || fabs(lon0) > 1000 ||
+        !(slon > 0 && slon < 360) || !(slat > 0 && slat < 180))
+        return br_err_set(err, BR_E_VALUE, name, "bad geographic georeference (%g, %g, step %g, %g)",
+                          lon0, lat0, slon, slat);
+    f->geo.kind = HF_GEO_DEGREES;
+    f->geo.x0 = (int64_t)llround(lon0 * 1e9);
+    f->geo.y0 = (int64_t)llround(lat0 * 1e9);
+    f->geo.sx = (int64_t)llround(slon * 1e9);
+    f->geo.sy = (int64_t)llround(slat * 1e9);
+    if (f->geo.sx < 1 || f->geo.sy < 1)
+        return br_err_set(err, BR_E_VALUE, name, "sample step below one nano-degree");
+    return spacing_at(f, lat0 - slat * (f->h - 1) * 0.5, slon, slat, name, err);
+}
+
+br_status dem_geo_projected(hf *f, double x0, double y0, double sx, double sy,
+                            const char *name, br_err *err)
+{
+    br_status s;
+    if (!fits_geo(x0 * 1e6) || !fits_geo(y0 * 1e6) || !(sx > 0 && sx < 1e7) || !(sy > 0 && sy < 1e7))
+        return br_err_set(err, BR_E_VALUE, name, "bad georeference (%g, %g, step %g, %g)", x0, y0, sx, sy);
+    f->geo.kind = HF_GEO_PROJECTED;
+    f->geo.x0 = (int64_t)llround(x0 * 1e6);
+    f->geo.y0 = (int64_t)llround(y0 * 1e6);
+    f->geo.sx = (int64_t)llround(sx * 1e6);
+    f->geo.sy = (int64_t)llround(sy * 1e6);
+    s = spacing_um(sx, &f->dx_um, name, err);
+    if (s == BR_OK) s = spacing_um(sy, &f->dy_um, name, err);
+    return s;
+}
+
+int32_t dem_float_den(double maxabs)
+{
+    static const int32_t dens[] = { 1000000, 100000, 10000, 1000 };
+    size_t i;
+    for (i = 0; i < sizeof dens / sizeof dens[0]; i++)
+        if (maxabs * dens[i] <= (double)(1L << 27)) return dens[i];
+    return 0;
+}
+
+int32_t dem_float_z(double h, int32_t den)
+{
+    return (int32_t)llround(h * den);
+}
+
+int dem_rational(double v, int64_t maxden, int64_t *num, int64_t *den)
+{
+    int64_t d, h0 = 0, h1 = 1, k0 = 1, k1 = 0;
+    double x, tol;
+    if (!(v == v) || fabs(v) > 1e12) return 0;
+    tol = fabs(v) * 1e-9 + 1e-12;
+    for (d = 1; d <= maxden; d *= 10) {
+        double nv = floor(v * (double)d + 0.5);
+        if (fabs(nv / (double)d - v) <= tol) { *num = (int64_t)nv; *den = d; return 1; }
+    }
+    /* continued fractions */
+    x = v;
+    for (;;) {
+        double a = floor(x), frac;
+        int64_t ai = (int64_t)a, h2, k2;
+        if (fabs(a) > 1e12) return 0;
+        h2 = ai * h1 + h0;
+        k2 = ai * k1 + k0;
+        if (k2 > maxden) return 0;
+        h0 = h1; h1 = h2; k0 = k1; k1 = k2;
+        if (fabs((double)h1 / (double)k1 - v) <= tol) { *num = h1; *den = k1; return 1; }
+        frac = x - a;
+        if (frac < 1e-15) return 0;
+        x = 1.0 / frac;
+    }
+}
+
+const char *dem_basename(const char *name)
+{
+    const char *b = name, *p;
+    for (p = name; *p; p++)
+        if (*p == '/' || *p == '\\') b = p + 1;
+    return b;
+}
+
+int dem_has_ext(const char *name, const char *ext)
+{
+    size_t n = strlen(name), e = strlen(ext), i;
+    if (n < e) return 0;
+    for (i = 0; i < e; i++)
+        if (tolower((unsigned char)name[n - e + i]) != tolower((unsigned char)ext[i])) return 0;
+    return 1;
+}
+
+int dem_srtm_name(const char *name, int *lat, int *lon)
+{
+    const char *b = dem_basename(name);
+    for (; *b; b++) {
+        const char *p = b;
+        int ns = toupper((unsigned char)p[0]), ew;
+        if (ns != 'N' && ns != 'S') continue;
+        if (!isdigit((unsigned char)p[1]) || !isdigit((unsigned char)p[2])) continue;
+        ew = toupper((unsigned char)p[3]);
+        if (ew != 'E' && ew != 'W') continue;
+        if (!isdigit((unsigned char)p[4]) || !isdigit((unsigned char)p[5]) || !isdigit((unsigned char)p[6]))
+            continue;
+        *lat = (p[1] - '0') * 10 + (p[2] - '0');
+        *lon = (p[4] - '0') * 100 + (p[5] - '0') * 10 + (p[6] - '0');
+        if (*lat > 90 || *lon > 180) continue;
+        if (ns == 'S') *lat = -*lat;
+        if (ew == 'W') *lon = -*lon;
+        return 1;
+    }
+    return 0;
+}
+
+br_status dem_inflate_alloc(const char *name, const uint8_t *src, size_t n, int window_bits,
+                            size_t size_hint, uint8_t **out, size_t *outn, br_err *err)
+{
+    z_stream zs;
+    uint8_t *buf = NULL;
+    size_t cap, have = 0, in_left = n;
+    int r = Z_OK;
+    /* deflate cannot expand by more than ~1032x: a larger hint is a lie */
+    if (size_hint == 0 || size_hint / 1032 > n + 64) size_hint = n * 4 + 1024;
+    cap = size_hint < DEM_MAX_INFLATE ? size_hint + 1 : DEM_MAX_INFLATE;
+    memset(&zs, 0, sizeof zs);
+    if (inflateInit2(&zs, window_bits) != Z_OK)
+        return br_err_set(err, BR_E_NOMEM, name, "cannot start zlib");
+    buf = malloc(cap ? cap : 1);
+    if (!buf) { inflateEnd(&zs); return br_err_set(err, BR_E_NOMEM, name, "out of memory"); }
+    zs.next_in = (Bytef *)(uintptr_t)src;
+    for (;;) {
+        uInt chunk_in = in_left > (1u << 30) ? (1u << 30) : (uInt)in_left;
+        size_t room;
+        if (have == cap) {
+            size_t ncap;
+            uint8_t *nb;
+            if (cap >= DEM_MAX_INFLATE) {
+                free(buf); inflateEnd(&zs);
+                return br_err_set(err, BR_E_TOO_BIG, name, "decompresses to more than %zu bytes",
+                                  (size_t)DEM_MAX_INFLATE);
+            }
+            ncap = cap * 2 > DEM_MAX_INFLATE ? DEM_MAX_INFLATE : cap * 2;
+            nb = realloc(buf, ncap);
+            if (!nb) { free(buf); inflateEnd(&zs); return br_err_set(err, BR_E_NOMEM, name, "out of memory"); }
+            buf = nb; cap = ncap;
+        }
+        room = cap - have;
+        zs.avail_in = chunk_in;
+        zs.next_out = buf + have;
+        zs.avail_out = room > (1u << 30) ? (1u << 30) : (uInt)room;
+        {
+            uInt before_out = zs.avail_out;
+            r = inflate(&zs, Z_NO_FLUSH);
+            have += before_out - zs.avail_out;
+            in_left -= chunk_in - zs.avail_in;
+        }
+        if (r == Z_STREAM_END) break;
+        if (r == Z_NEED_DICT || r == Z_DATA_ERROR || r == Z_MEM_ERROR) {
+            free(buf); inflateEnd(&zs);
+            return br_err_set(err, r == Z_MEM_ERROR ? BR_E_NOMEM : BR_E_FORMAT, name,
+                              "corrupt compressed data (%s)", zs.msg ? zs.msg : "zlib error");
+        }
+        if (r == Z_BUF_ERROR || (r == Z_OK && in_left == 0 && zs.avail_out != 0)) {
+            if (in_left == 0 && zs.avail_out != 0) {
+                free(buf); inflateEnd(&zs);
+                return br_err_set(err, BR_E_TRUNCATED, name, "compressed data ends early");
+            }
+        }
+    }
+    inflateEnd(&zs);
+    *out = buf;
+    *outn = have;
+    return BR_OK;
+}
+
+br_status dem_inflate_into(const char *name, const uint8_t *src, size_t n, uint8_t *dst,
+                           size_t dn, br_err *err)
+{
+    z_stream zs;
+    int r;
+    if (n > UINT_MAX || dn > UINT_MAX)
+        return br_err_set(err, BR_E_TOO_BIG, name, "compressed block too large");
+    memset(&zs, 0, sizeof zs);
+    if (inflateInit(&zs) != Z_OK) return br_err_set(err, BR_E_NOMEM, name, "cannot start zlib");
+    zs.next_in = (Bytef *)(uintptr_t)src;
+    zs.avail_in = (uInt)n;
+    zs.next_out = dst;
+    zs.avail_out = (uInt)dn;
+    r = inflate(&zs, Z_FINISH);
+    inflateEnd(&zs);
+    if (r == Z_STREAM_END && zs.avail_out == 0) return BR_OK;
+    /* a stream that fills dst exactly but has trailing data is accepted as GDAL does */
+    if ((r == Z_OK || r == Z_BUF_ERROR) && zs.avail_out == 0) return BR_OK;
+    if (r == Z_STREAM_END || (r == Z_BUF_ERROR && zs.avail_in == 0))
+        return br_err_set(err, BR_E_TRUNCATED, name, "compressed block holds %zu of %zu bytes",
+                          dn - zs.avail_out, dn);
+    return br_err_set(err, BR_E_FORMAT, name, "corrupt deflate block");
+}
+
+/* ---- zip ---- */
+
+static int zip_rank(const char *member, size_t len)
+{
+    static const char *const ext[] = { ".asc", ".bt", ".tif", ".tiff", ".png", ".xyz", ".txt" };
+    char tmp[260];
+    size_t i;
+    if (len == 0 || len >= sizeof tmp || member[len - 1] == '/') return 0;
+    memcpy(tmp, member, len);
+    tmp[len] = 0;
+    if (!strncmp(tmp, "__MACOSX/", 9)) return 0;
+    if (dem_has_ext(tmp, ".hgt")) return 3;
+    for (i = 0; i < sizeof ext / sizeof ext[0]; i++)
+        if (dem_has_ext(tmp, ext[i])) return 2;
+    return 0;
+}
+
+static br_status load_mem_depth(const char *name, const uint8_t *p, size_t n, const dem_opts *o,
+                                hf *out, br_err *err, int depth);
+
+static br_status load_zip(const char *name, const uint8_t *p, size_t n, const dem_opts *o,
+                          hf *out, br_err *err, int depth)
+{
+    size_t eocd = 0, i, off, cd_off, cd_size, best_off = 0;
+    uint32_t entries, k, best_comp = 0, best_size = 0, best_crc = 0;
+    int found = 0, best_rank = 0, best_method = 0;
+    const uint8_t *best_name = NULL;
+    size_t best_nlen = 0;
+    char first[128] = "";
+    char inner[1024];
+    uint8_t *data = NULL;
+    size_t data_n = 0;
+    const uint8_t *src;
+    size_t lh_name, lh_extra, dpos;
+    br_status s;
+
+    if (n < 22) return br_err_set(err, BR_E_TRUNCATED, name, "zip archive too short");
+    for (i = n - 22 + 1; i-- > 0 && n - i <= 22 + 65535;) {
+        if (dem_le32(p + i) == 0x06054b50u) { eocd = i; found = 1; break; }
+    }
+    if (!found) return br_err_set(err, BR_E_TRUNCATED, name, "zip end-of-directory record missing");
+    entries = dem_le16(p + eocd + 10);
+    cd_size = dem_le32(p + eocd + 12);
+    cd_off = dem_le32(p + eocd + 16);
+    if (cd_off == 0xffffffffu || entries == 0xffff)
+        return br_err_set(err, BR_E_UNSUPPORTED, name, "zip64 archives are not supported");
+    if (cd_off > eocd || cd_size > eocd - cd_off)
+        return br_err_set(err, BR_E_FORMAT, name, "zip central directory out of bounds");
+    off = cd_off;
+    for (k = 0; k < entries; k++) {
+        uint32_t nlen, xlen, clen;
+        int rank;
+        if (eocd - off < 46 || dem_le32(p + off) != 0x02014b50u)
+            return br_err_set(err, BR_E_FORMAT, name, "zip central directory entry %u is corrupt", k);
+        nlen = dem_le16(p + off + 28);
+        xlen = dem_le16(p + off + 30);
+        clen = dem_le16(p + off + 32);
+        if (eocd - off - 46 < (size_t)nlen + xlen + clen)
+            return br_err_set(err, BR_E_FORMAT, name, "zip central directory entry %u is corrupt", k);
+        if (k == 0) {
+            size_t c = nlen < sizeof first - 1 ? nlen : sizeof first - 1;
+            memcpy(first, p + off + 46, c);
+            first[c] = 0;
+            for (i = 0; i < c; i++) if (!isprint((unsigned char)first[i])) first[i] = '?';
+        }
+        rank = zip_rank((const char *)p + off + 46, nlen);
+        if (rank > best_rank) {
+            best_rank = rank;
+            best_method = dem_le16(p + off + 10);
+            best_crc = dem_le32(p + off + 16);
+            best_comp = dem_le32(p + off + 20);
+            best_size = dem_le32(p + off + 24);
+            best_off = dem_le32(p + off + 42);
+            best_name = p + off + 46;
+            best_nlen = nlen;
+            if (dem_le16(p + off + 8) & 1)
+                return br_err_set(err, BR_E_UNSUPPORTED, name, "zip member is encrypted");
+        }
+        off += 46 + (size_t)nlen + xlen + clen;
+    }
+    if (!best_rank)
+        return br_err_set(err, BR_E_FORMAT, name, "zip archive has no height data among its %u member(s)%s%s",
+                          entries, entries ? " (first: " : "", entries ? first : "");
+    if (best_comp == 0xffffffffu || best_size == 0xffffffffu)
+        return br_err_set(err, BR_E_UNSUPPORTED, name, "zip64 members are not supported");
+    snprintf(inner, sizeof inner, "%s/%.*s", name, (int)best_nlen, (const char *)best_name);
+    for (i = strlen(name) + 1; inner[i]; i++) if (!isprint((unsigned char)inner[i])) inner[i] = '?';
+    if (best_off > n || n - best_off < 30 || dem_le32(p + best_off) != 0x04034b50u)
+        return br_err_set(err, BR_E_FORMAT, inner, "zip local header missing or out of bounds");
+    lh_name = dem_le16(p + best_off + 26);
+    lh_extra = dem_le16(p + best_off + 28);
+    dpos = best_off + 30 + lh_name + lh_extra;
+    if (dpos > n || n - dpos < best_comp)
+        return br_err_set(err, BR_E_TRUNCATED, inner, "zip member data runs past the end of the archive");
+    src = p + dpos;
+    if (best_method == 0) {
+        if (best_comp != best_size)
+            return br_err_set(err, BR_E_FORMAT, inner, "stored zip member sizes disagree");
+        if (crc32(0L, src, best_size) != best_crc)
+            return br_err_set(err, BR_E_FORMAT, inner, "zip member fails its CRC check");
+        return load_mem_depth(inner, src, best_size, o, out, err, depth + 1);
+    }
+    if (best_method != 8)
+        return br_err_set(err, BR_E_UNSUPPORTED, inner, "zip compression method %d (only stored and deflate)",
+                          best_method);
+    s = dem_inflate_alloc(inner, src, best_comp, -15, best_size, &data, &data_n, err);
+    if (s != BR_OK) return s;
+    if (data_n != best_size) {
+        free(data);
+        return br_err_set(err, BR_E_FORMAT, inner, "zip member inflates to %zu bytes, directory says %u",
+                          data_n, best_size);
+    }
+    if (crc32(0L, data, (uInt)data_n) != best_crc) {
+        free(data);
+        return br_err_set(err, BR_E_FORMAT, inner, "zip member fails its CRC check");
+    }
+    s = load_mem_depth(inner, data, data_n, o, out, err, depth + 1);
+    free(data);
+    return s;
+}
+
+/* ---- dispatch ---- */
+
+static int is_text_start(const uint8_t *p, size_t n, const char *word)
+{
+    size_t i = 0, k;
+    while (i < n && (p[i] == ' ' || p[i] == '\t' || p[i] == '\r' || p[i] == '\n')) i++;
+    for (k = 0; word[k]; k++, i++)
+        if (i >= n || tolower(p[i]) != word[k]) return 0;
+    return 1;
+}
+
+static int is_numeric_start(const uint8_t *p, size_t n)
+{
+    size_t i = 0;
+    while (i < n && (p[i] == ' ' || p[i] == '\t' || p[i] == '\r' || p[i] == '\n')) i++;
+    return i < n && (isdigit(p[i]) || p[i] == '-' || p[i] == '+' || p[i] == '.');
+}
+
+static int is_square_hgt(size_t n)
+{
+    size_t k;
+    if (n < 8 || n % 2) return 0;
+    k = (size_t)sqrt((double)(n / 2));
+    while (k * k > n / 2) k--;
+    while ((k + 1) * (k + 1) <= n / 2) k++;
+    return k * k * 2 == n;
+}
+
+static br_status load_mem_depth(const char *name, const uint8_t *p, size_t n, const dem_opts *o,
+                                hf *out, br_err *err, int depth)
+{
+    static const dem_opts zero;
+    dem_reader *rd = NULL;
+    if (!o) o = &zero;
+    if (n >= 2 && p[0] == 0x1f && p[1] == 0x8b) {
+        char inner[1024];
+        uint8_t *data;
+        size_t dn, len = strlen(name);
+        br_status s;
+        if (depth) return br_err_set(err, BR_E_UNSUPPORTED, name, "nested compressed archives are not read");
+        snprintf(inner, sizeof inner, "%.*s", (int)(dem_has_ext(name, ".gz") ? len - 3 : len), name);
+        s = dem_inflate_alloc(name, p, n, 15 + 16, n >= 4 ? dem_le32(p + n - 4) : 0, &data, &dn, err);
+        if (s != BR_OK) return s;
+        s = load_mem_depth(inner, data, dn, o, out, err, depth + 1);
+        free(data);
+        return s;
+    }
+    if (n >= 4 && dem_le32(p) == 0x04034b50u) {
+        if (depth) return br_err_set(err, BR_E_UNSUPPORTED, name, "nested compressed archives are not read");
+        return load_zip(name, p, n, o, out, err, depth);
+    }
+    if (dem_has_ext(name, ".gz") || dem_has_ext(name, ".zip"))
+        return br_err_set(err, BR_E_FORMAT, name, "not a %s archive (wrong magic)",
+                          dem_has_ext(name, ".gz") ? "gzip" : "zip");
+    if (n >= 8 && !memcmp(p, "\x89PNG\r\n\x1a\n", 8)) rd = dem_read_png;
+    else if (n >= 4 && (!memcmp(p, "II", 2) || !memcmp(p, "MM", 2)) &&
+             (dem_le16(p + 2) == 42 || dem_be16(p + 2) == 42 || dem_le16(p + 2) == 43 || dem_be16(p + 2) == 43))
+        rd = dem_read_tif;
+    else if (n >= 7 && !memcmp(p, "binterr", 7)) rd = dem_read_bt;
+    else if (dem_has_ext(name, ".hgt")) rd = dem_read_hgt;
+    else if (dem_has_ext(name, ".png")) rd = dem_read_png;
+    else if (dem_has_ext(name, ".tif") || dem_has_ext(name, ".tiff")) rd = dem_read_tif;
+    else if (dem_has_ext(name, ".bt")) rd = dem_read_bt;
+    else if (dem_has_ext(name, ".asc")) rd = dem_read_asc;
+    else if (dem_has_ext(name, ".xyz") || dem_has_ext(name, ".txt")) rd = dem_read_xyz;
+    else if (is_text_start(p, n, "ncols") || is_text_start(p, n, "nrows")) rd = dem_read_asc;
+    else if (is_square_hgt(n)) rd = dem_read_hgt;
+    else if (is_numeric_start(p, n)) rd = dem_read_xyz;
+    else return br_err_set(err, BR_E_FORMAT, name, "unknown elevation format (%zu bytes)", n);
+    return rd(name, p, n, o, out, err);
+}
+
+br_status dem_load_mem(const char *name, const uint8_t *bytes, size_t len, const dem_opts *o,
+                       hf *out, br_err *err)
+{
+    if (!name) name = "(memory)";
+    if (!out || (!bytes && len)) return br_err_set(err, BR_E_ARG, name, "no output or no data");
+    if (!bytes) bytes = (const uint8_t *)"";
+    return load_mem_depth(name, bytes, len, o, out, err, 0);
+}
+
+static br_status read_file(const char *path, uint8_t **data, size_t *n, br_err *err)
+{
+    FILE *f = fopen(path, "rb");
+    uint8_t *buf = NULL;
+    size_t cap = 0, have = 0;
+    if (!f) return br_err_set(err, BR_E_IO, path, "cannot open");
+    if (fseek(f, 0, SEEK_END) == 0) {
+        long sz = ftell(f);
+        if (sz >= 0) cap = (size_t)sz + 1;
+        if (fseek(f, 0, SEEK_SET) != 0) cap = 0;
+    }
+    if (cap == 0) cap = 1 << 16;
+    buf = malloc(cap);
+    if (!buf) { fclose(f); return br_err_set(err, BR_E_NOMEM, path, "out of memory reading the file"); }
+    for (;;) {
+        size_t got = fread(buf + have, 1, cap - have, f);
+        have += got;
+        if (have < cap) break;
+        {
+            uint8_t *nb = realloc(buf, cap * 2);
+            if (!nb) { free(buf); fclose(f); return br_err_set(err, BR_E_NOMEM, path, "out of memory reading the file"); }
+            buf = nb; cap *= 2;
+        }
+    }
+    if (ferror(f)) { free(buf); fclose(f); return br_err_set(err, BR_E_IO, path, "read error"); }
+    fclose(f);
+    *data = buf;
+    *n = have;
+    return BR_OK;
+}
+
+br_status dem_load(const char *path, const dem_opts *o, hf *out, br_err *err)
+{
+    uint8_t *data;
+    size_t n;
+    br_status s = read_file(path, &data, &n, err);
+    if (s != BR_OK) return s;
+    s = dem_load_mem(path, data, n, o, out, err);
+    free(data);
+    return s;
+}
+
+br_status dem_load_many(const char *const *paths, int n, const dem_opts *o, hf *out, br_err *err)
+{
+    hf *tiles;
+    int i, k;
+    br_status s = BR_OK;
+    if (n < 1 || !paths) return br_err_set(err, BR_E_ARG, NULL, "no input files");
+    if (n == 1) return dem_load(paths[0], o, out, err);
+    tiles = calloc((size_t)n, sizeof *tiles);
+    if (!tiles) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
+    for (i = 0; i < n && s == BR_OK; i++) s = dem_load(paths[i], o, &tiles[i], err);
+    if (s == BR_OK) s = dem_merge(tiles, paths, n, out, err);
+    for (k = 0; k < n; k++) dem_free(&tiles[k]);
+    free(tiles);
+    return s;
+}
+
+void dem_free(hf *f)
+{
+    if (!f) return;
+    free(f->z);
+    f->z = NULL;
+}

@@ -1,0 +1,75 @@
+/* platform/load_internal.h — what the readers behind platform/load.h share.
+ *
+ * Every reader works on a whole file in memory (p, n) and a display name used
+ * for messages, extension checks and SRTM tile names.  A reader fills *out only
+ * on success (out->z malloc'd); on failure it frees what it allocated, leaves
+ * *out untouched and returns the status it set in err.
+ * Platform code: double is allowed here (core/ stays integer). */
+#ifndef BR_LOAD_INTERNAL_H
+#define BR_LOAD_INTERNAL_H
+#include <stddef.h>
+#include <stdint.h>
+#include "platform/load.h"
+
+/* Largest decompressed .gz file or .zip member we accept, in bytes (a 16385^2
+ * HGT is 537 MB).  The fuzz build lowers it so a zip bomb stays cheap. */
+#ifndef DEM_MAX_INFLATE
+#define DEM_MAX_INFLATE ((size_t)1 << 30)
+#endif
+
+typedef br_status dem_reader(const char *name, const uint8_t *p, size_t n,
+                             const dem_opts *o, hf *out, br_err *err);
+
+dem_reader dem_read_hgt, dem_read_png, dem_read_asc, dem_read_bt, dem_read_tif, dem_read_xyz;
+
+/* Checks w x h against core/hf.h's limits (before allocating), mallocs the
+ * heights and sets defaults: unit 1 m, spacing 1 m, no georeference. */
+br_status dem_alloc(hf *out, int64_t w, int64_t h, const char *name, br_err *err);
+
+/* Georeference with sample (0,0)'s centre at (lon0, lat0) degrees and steps
+ * slon east, slat south per column/row; sets geo (nano-degrees) and the ground
+ * spacing in micrometres at the grid's centre latitude (WGS84 series). */
+br_status dem_geo_degrees(hf *f, double lon0, double lat0, double slon, double slat,
+                          const char *name, br_err *err);
+/* Same for projected coordinates in metres (geo in micrometres). */
+br_status dem_geo_projected(hf *f, double x0, double y0, double sx, double sy,
+                            const char *name, br_err *err);
+/* Metres per degree of latitude and of longitude at latitude lat_deg (WGS84). */
+void dem_m_per_degree(double lat_deg, double *m_lat, double *m_lon);
+/* Recomputes dx_um/dy_um of a geographic heightfield for its centre latitude
+ * (after a merge): from like's spacing when given (same steps), else from geo. */
+br_status dem_geo_spacing(hf *f, const hf *like, const char *name, br_err *err);
+
+/* Float sources: the largest den in {1000, 10^4, 10^5, 10^6} with
+ * maxabs*den <= 2^27; 0 when even 1000 does not fit (|h| > 134 km). */
+int32_t dem_float_den(double maxabs);
+/* Rounds a finite height (metres) to units of 1/den; caller checked the range. */
+int32_t dem_float_z(double h, int32_t den);
+
+/* v ~ num/den with den <= maxden (powers of ten first, then continued
+ * fractions); returns 0 if no approximation within 1e-9 relative exists. */
+int dem_rational(double v, int64_t maxden, int64_t *num, int64_t *den);
+
+const char *dem_basename(const char *name);
+/* 1 if name ends with ext (".hgt"), case-insensitive. */
+int dem_has_ext(const char *name, const char *ext);
+/* SRTM tile name (N50E008...) in the basename: lower-left corner in degrees. */
+int dem_srtm_name(const char *name, int *lat, int *lon);
+
+/* Inflates src into a malloc'd buffer (windowBits as zlib: 15+16 gzip,
+ * -15 raw deflate); at most DEM_MAX_INFLATE bytes. */
+br_status dem_inflate_alloc(const char *name, const uint8_t *src, size_t n, int window_bits,
+                            size_t size_hint, uint8_t **out, size_t *outn, br_err *err);
+/* Inflates a zlib stream into exactly dn bytes of dst (GeoTIFF deflate tiles). */
+br_status dem_inflate_into(const char *name, const uint8_t *src, size_t n, uint8_t *dst,
+                           size_t dn, br_err *err);
+
+/* Little- and big-endian reads (no alignment needed). */
+static inline uint16_t dem_le16(const uint8_t *p) { return (uint16_t)(p[0] | p[1] << 8); }
+static inline uint16_t dem_be16(const uint8_t *p) { return (uint16_t)(p[0] << 8 | p[1]); }
+static inline uint32_t dem_le32(const uint8_t *p)
+{ return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24; }
+static inline uint32_t dem_be32(const uint8_t *p)
+{ return (uint32_t)p[3] | (uint32_t)p[2] << 8 | (uint32_t)p[1] << 16 | (uint32_t)p[0] << 24; }
+
+#endif
