@@ -82,7 +82,7 @@ uint8_t shade_hill_value(const fx_q14 n[3], const fx_q14 l[3])
 {
     int64_t dot = (int64_t)n[0] * l[0] + (int64_t)n[1] * l[1] + (int64_t)n[2] * l[2]; /* Q28 */
     if (dot <= 0) return 1;
-    dot = 1 + ((254 * dot) >> 28);
+    dot = 1 + ((254 * dot + ((int64_t)1 << 27)) >> 28); /* rounded, as gdaldem's byte output */
     return (uint8_t)(dot > 255 ? 255 : dot);
 }
 
