@@ -14,6 +14,7 @@
 #   RUNS=5         process runs per renderer and configuration
 #   FRAMES=30      timed frames per process run (after 3 warm-up frames)
 #   CULL=0         1: back-face culling on for llvmpipe (bench_osmesa --cull)
+#   COLOUR=float   llvmpipe vertex colours: float (3 floats, as PEERS.md measured) or ubyte (RGBA8)
 #   CALLGRIND=1    0: skip the instruction counts (valgrind --tool=callgrind, slow: ~20 s each)
 #   BITRAIN=./bitrain            the bitrain binary to compare
 #   BITRAIN_ARGS=                extra arguments for `bitrain bench` (e.g. a culling switch)
@@ -23,6 +24,7 @@ cd "$(dirname "$0")/.." || exit 1
 RUNS=${RUNS:-5}
 FRAMES=${FRAMES:-30}
 CULL=${CULL:-0}
+COLOUR=${COLOUR:-float}
 CALLGRIND=${CALLGRIND:-1}
 BITRAIN=${BITRAIN:-./bitrain}
 BITRAIN_ARGS=${BITRAIN_ARGS:-}
@@ -42,8 +44,8 @@ if [ $rc != 0 ]; then echo "osmesa.sh: building bench_osmesa failed" >&2; exit 1
 LP="$OUT/bench_osmesa"
 [ -r "$DEM" ] || { echo "osmesa.sh: $DEM not found (run from the repo root next to ../shared)" >&2; exit 1; }
 
-cull_flag=""
-[ "$CULL" = 1 ] && cull_flag="--cull"
+lp_flags="--colour $COLOUR"
+[ "$CULL" = 1 ] && lp_flags="$lp_flags --cull"
 
 # Does bitrain's peer benchmark work?  It must print a ms-per-frame figure we can parse.
 # Accepted forms (first match wins): "ms/frame=12.3", "ms/frame: 12.3", "12.3 ms/frame",
@@ -73,7 +75,7 @@ TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 
 echo "peer scene (PEERS.md), llvmpipe: $($LP --dem "$DEM" --frames 1 --warmup 0 | sed -n 's/.*renderer="\([^"]*\)" version="\([^"]*\)".*/\1, \2/p')"
-echo "runs=$RUNS frames=$FRAMES cull=$CULL LP_NUM_THREADS=$LP_NUM_THREADS $(nproc 2>/dev/null || echo ?) CPUs, load $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
+echo "runs=$RUNS frames=$FRAMES cull=$CULL colour=$COLOUR LP_NUM_THREADS=$LP_NUM_THREADS $(nproc 2>/dev/null || echo ?) CPUs, load $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
 [ $have_bitrain = 1 ] || echo "bitrain column: not measured: $why_no_bitrain"
 
 # Timing: interleave renderers and configurations so drift hits both alike.
@@ -81,7 +83,7 @@ r=1
 while [ $r -le "$RUNS" ]; do
     for c in $CONFIGS; do
         cam=${c%%:*}; size=${c#*:}
-        "$LP" --dem "$DEM" --camera "$cam" --size "$size" --frames "$FRAMES" $cull_flag \
+        "$LP" --dem "$DEM" --camera "$cam" --size "$size" --frames "$FRAMES" $lp_flags \
             -o "$OUT/llvmpipe_${cam}_${size}.png" >"$TMP/out" 2>&1 || { cat "$TMP/out" >&2; exit 1; }
         parse_ms <"$TMP/out" >>"$TMP/lp_$cam$size"
         if [ $have_bitrain = 1 ]; then
@@ -103,7 +105,7 @@ for c in $CONFIGS; do
     cam=${c%%:*}; size=${c#*:}
     lpi="-"; bri="-"
     if [ $have_cg = 1 ]; then
-        n=$(cg_total --toggle-collect=timed_frame "$LP" --dem "$DEM" --camera "$cam" --size "$size" --frames $CGF --warmup 1 $cull_flag)
+        n=$(cg_total --toggle-collect=timed_frame "$LP" --dem "$DEM" --camera "$cam" --size "$size" --frames $CGF --warmup 1 $lp_flags)
         [ -n "$n" ] && lpi=$(awk -v n="$n" -v f=$CGF 'BEGIN { printf "%.1f", n / f / 1e6 }')
         if [ $have_bitrain = 1 ]; then
             n1=$(cg_total "$BITRAIN" bench --scene peer --camera "$cam" --size "$size" --frames 1 $BITRAIN_ARGS)
