@@ -167,6 +167,64 @@ int dem_rational(double v, int64_t maxden, int64_t *num, int64_t *den)
     }
 }
 
+static int is_sep(uint8_t c, int commas)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v' ||
+           (commas && (c == ',' || c == ';'));
+}
+
+int dem_scan_number(const uint8_t *p, size_t n, size_t *pos, int commas, double *v,
+                    const uint8_t **tok, size_t *toklen)
+{
+    size_t i = *pos, b, len, k;
+    char buf[72], *end;
+    while (i < n && is_sep(p[i], commas)) i++;
+    if (i >= n) { *pos = i; return 0; }
+    b = i;
+    while (i < n && !is_sep(p[i], commas)) i++;
+    *pos = i;
+    len = i - b;
+    *tok = p + b;
+    *toklen = len;
+    /* fast path: plain integers of up to 9 digits */
+    k = p[b] == '-' || p[b] == '+';
+    if (len > k && len - k <= 9) {
+        int32_t a = 0;
+        size_t j;
+        for (j = b + k; j < i && p[j] >= '0' && p[j] <= '9'; j++) a = a * 10 + (p[j] - '0');
+        if (j == i) { *v = p[b] == '-' ? -(double)a : (double)a; return 1; }
+    }
+    if (len >= sizeof buf) return -1;
+    for (k = 0; k < len; k++) {
+        uint8_t c = p[b + k];
+        /* strtod would also take hex floats and "nan(...)": keep to decimal notation */
+        if (!((c >= '0' && c <= '9') || c == '.' || c == '-' || c == '+' || c == 'e' || c == 'E' ||
+              c == 'n' || c == 'N' || c == 'a' || c == 'A' || c == 'i' || c == 'I' || c == 'f' || c == 'F' ||
+              c == 't' || c == 'T' || c == 'y' || c == 'Y'))
+            return -1;
+        buf[k] = (char)c;
+    }
+    buf[len] = 0;
+    *v = strtod(buf, &end);
+    if (end != buf + len) return -1;
+    if (!isfinite(*v)) return -2;
+    return 1;
+}
+
+void dem_token_str(const uint8_t *tok, size_t len, char out[32])
+{
+    size_t i, m = len > 24 ? 24 : len;
+    for (i = 0; i < m; i++) out[i] = isprint(tok[i]) ? (char)tok[i] : '?';
+    if (len > m) { out[m] = '.'; out[m + 1] = '.'; out[m + 2] = '.'; m += 3; }
+    out[m] = 0;
+}
+
+int dem_looks_degrees(double xmin, double ymin, double xmax, double ymax, double sx, double sy)
+{
+    return sx <= 0.1 && sy <= 0.1 && xmin >= -360 && xmax <= 360 && ymin >= -90 && ymax <= 90 &&
+           !(xmin == 0 && ymin == 0);
+}
+
 const char *dem_basename(const char *name)
 {
     const char *b = name, *p;

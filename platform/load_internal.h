@@ -50,6 +50,19 @@ int32_t dem_float_z(double h, int32_t den);
  * fractions); returns 0 if no approximation within 1e-9 relative exists. */
 int dem_rational(double v, int64_t maxden, int64_t *num, int64_t *den);
 
+/* Text: skips separators (white space; also ',' and ';' when commas) from *pos
+ * up to n and reads one number token.  Returns 1 with *v set, 0 at the end of
+ * data, -1 for a token that is not a number, -2 for NaN or infinity; *tok and
+ * *toklen give the token (for messages).  *pos ends after the token. */
+int dem_scan_number(const uint8_t *p, size_t n, size_t *pos, int commas, double *v,
+                    const uint8_t **tok, size_t *toklen);
+/* Copies a token for a message: at most 24 printable characters. */
+void dem_token_str(const uint8_t *tok, size_t len, char out[32]);
+
+/* Coordinates that look geographic: a step of at most 0.1 and a grid inside
+ * [-360, 360] x [-90, 90] whose first corner is not (0, 0). */
+int dem_looks_degrees(double xmin, double ymin, double xmax, double ymax, double sx, double sy);
+
 const char *dem_basename(const char *name);
 /* 1 if name ends with ext (".hgt"), case-insensitive. */
 int dem_has_ext(const char *name, const char *ext);

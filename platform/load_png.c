@@ -1,9 +1,200 @@
-/* platform/load_png.c — reader not written yet. */
+/* platform/load_png.c — PNG heights through libpng's low-level API.
+ *
+ * No gamma or colour conversion touches the samples (we never call the gamma
+ * or rgb-to-grey transforms); only bit depths below 8 and palettes are
+ * expanded, and 16-bit samples are read as stored (big-endian).
+ * Encodings (dem_opts.png_encoding):
+ *   grey        8/16-bit grey (+alpha): metres = raw * scale + offset, kept
+ *               exactly in units of a rational g/D (scale 0.1 -> 1/10 m);
+ *   terrain-RGB Mapbox: metres = -10000 + (R*65536 + G*256 + B) * 0.1, unit 1/10 m;
+ *   Terrarium   metres = R*256 + G + B/256 - 32768, unit 1/256 m.
+ * AUTO is grey for grey PNGs and terrain-RGB for colour ones.  A sample whose
+ * alpha is 0 is a void. */
+#include <png.h>
+#include <setjmp.h>
+#include <stdlib.h>
+#include <string.h>
 #include "platform/load_internal.h"
+
+typedef struct png_src {
+    const uint8_t *p;
+    size_t n, pos;
+    char msg[200];
+    uint8_t *img;            /* decoded image, freed by the caller */
+    png_bytep *rows;
+    int64_t za, zb;          /* grey: z = raw*za + zb */
+    int32_t num, den;        /* unit of z */
+} png_src;
+
+static void read_fn(png_structp png, png_bytep dst, size_t len)
+{
+    png_src *s = png_get_io_ptr(png);
+    if (len > s->n - s->pos) png_error(png, "file truncated");
+    memcpy(dst, s->p + s->pos, len);
+    s->pos += len;
+}
+
+static void error_fn(png_structp png, png_const_charp msg)
+{
+    png_src *s = png_get_error_ptr(png);
+    snprintf(s->msg, sizeof s->msg, "%s", msg);
+    png_longjmp(png, 1);
+}
+
+static void warn_fn(png_structp png, png_const_charp msg) { (void)png; (void)msg; }
+
+static int64_t gcd64(int64_t a, int64_t b)
+{
+    if (a < 0) a = -a;
+    if (b < 0) b = -b;
+    while (b) { int64_t t = a % b; a = b; b = t; }
+    return a;
+}
+
+/* grey unit: raw*scale + offset = (raw*A + B) * g / D metres with z = raw*A/g' + B/g' */
+static br_status grey_unit(const dem_opts *o, int bits, int64_t *za, int64_t *zb,
+                           int32_t *num, int32_t *den, const char *name, br_err *err)
+{
+    double sc = o->png_scale == 0 ? 1.0 : o->png_scale, of = o->png_offset;
+    int64_t a, d1, b, d2, D, A, B, g, maxraw = (1LL << bits) - 1, gd;
+    if (!dem_rational(sc, 1000000, &a, &d1) || a == 0)
+        return br_err_set(err, BR_E_ARG, name, "PNG scale %g cannot be kept exactly (need a fraction with denominator <= 10^6)", sc);
+    if (!dem_rational(of, 1000000, &b, &d2))
+        return br_err_set(err, BR_E_ARG, name, "PNG offset %g cannot be kept exactly", of);
+    D = d1 / gcd64(d1, d2) * d2;
+    if (D > 1000000000LL) return br_err_set(err, BR_E_ARG, name, "PNG scale and offset need too fine a unit");
+    A = a * (D / d1);
+    B = b * (D / d2);
+    g = gcd64(A, B);
+    A /= g;
+    B /= g;
+    if ((A < 0 ? -A : A) * maxraw + (B < 0 ? -B : B) > BR_Z_LIMIT)
+        return br_err_set(err, BR_E_ARG, name, "PNG scale %g and offset %g give heights beyond the integer range", sc, of);
+    gd = gcd64(g, D);
+    if (g / gd > INT32_MAX || D / gd > INT32_MAX)
+        return br_err_set(err, BR_E_ARG, name, "PNG scale and offset need too fine a unit");
+    *za = A;
+    *zb = B;
+    *num = (int32_t)(g / gd);
+    *den = (int32_t)(D / gd);
+    return BR_OK;
+}
+
+static br_status decode(const char *name, png_src *s, const dem_opts *o, hf *out, br_err *err)
+{
+    png_structp png;
+    png_infop info;
+    png_uint_32 w, h, y;
+    int bits, ctype, enc, ch, x;
+    size_t rowbytes;
+    br_status st;
+
+    png = png_create_read_struct(PNG_LIBPNG_VER_STRING, s, error_fn, warn_fn);
+    if (!png) return br_err_set(err, BR_E_NOMEM, name, "cannot start libpng");
+    info = png_create_info_struct(png);
+    if (!info) { png_destroy_read_struct(&png, NULL, NULL); return br_err_set(err, BR_E_NOMEM, name, "cannot start libpng"); }
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_read_struct(&png, &info, NULL);
+        if (out->z) dem_free(out);
+        return br_err_set(err, strstr(s->msg, "truncated") || strstr(s->msg, "Not enough") ? BR_E_TRUNCATED : BR_E_FORMAT,
+                          name, "bad PNG: %s", s->msg);
+    }
+    png_set_read_fn(png, s, read_fn);
+    png_set_user_limits(png, BR_MAX_SIDE, BR_MAX_SIDE);
+    png_set_crc_action(png, PNG_CRC_ERROR_QUIT, PNG_CRC_ERROR_QUIT);
+    png_read_info(png, info);
+    w = png_get_image_width(png, info);
+    h = png_get_image_height(png, info);
+    bits = png_get_bit_depth(png, info);
+    ctype = png_get_color_type(png, info);
+    enc = o->png_encoding;
+    if (enc == DEM_PNG_AUTO)
+        enc = (ctype == PNG_COLOR_TYPE_GRAY || ctype == PNG_COLOR_TYPE_GRAY_ALPHA) ? DEM_PNG_GREY : DEM_PNG_TERRAIN_RGB;
+    if (enc == DEM_PNG_GREY) {
+        if (ctype != PNG_COLOR_TYPE_GRAY && ctype != PNG_COLOR_TYPE_GRAY_ALPHA) {
+            png_destroy_read_struct(&png, &info, NULL);
+            return br_err_set(err, BR_E_UNSUPPORTED, name, "grey heights asked for, but the PNG is in colour");
+        }
+        if (bits < 8) png_set_expand_gray_1_2_4_to_8(png);
+        st = grey_unit(o, bits < 8 ? 8 : bits, &s->za, &s->zb, &s->num, &s->den, name, err);
+        if (st != BR_OK) { png_destroy_read_struct(&png, &info, NULL); return st; }
+    } else if (enc == DEM_PNG_TERRAIN_RGB || enc == DEM_PNG_TERRARIUM) {
+        if (ctype == PNG_COLOR_TYPE_GRAY || ctype == PNG_COLOR_TYPE_GRAY_ALPHA || bits != 8) {
+            png_destroy_read_struct(&png, &info, NULL);
+            return br_err_set(err, BR_E_UNSUPPORTED, name, "%s needs an 8-bit colour PNG (this one: type %d, %d bits)",
+                              enc == DEM_PNG_TERRARIUM ? "Terrarium" : "terrain-RGB", ctype, bits);
+        }
+        if (ctype == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);
+        s->num = 1;
+        s->den = enc == DEM_PNG_TERRARIUM ? 256 : 10;
+    } else {
+        png_destroy_read_struct(&png, &info, NULL);
+        return br_err_set(err, BR_E_ARG, name, "unknown PNG encoding %d", o->png_encoding);
+    }
+    (void)png_set_interlace_handling(png);
+    png_read_update_info(png, info);
+    ch = png_get_channels(png, info);
+    rowbytes = png_get_rowbytes(png, info);
+    bits = png_get_bit_depth(png, info);
+    if (rowbytes != (size_t)w * (size_t)ch * (size_t)(bits / 8) || (bits != 8 && bits != 16)) {
+        png_destroy_read_struct(&png, &info, NULL);
+        return br_err_set(err, BR_E_UNSUPPORTED, name, "unexpected PNG layout (%d channels, %d bits)", ch, bits);
+    }
+    st = dem_alloc(out, w, h, name, err);
+    if (st != BR_OK) { png_destroy_read_struct(&png, &info, NULL); return st; }
+    s->img = malloc(rowbytes * h);
+    s->rows = malloc(sizeof *s->rows * h);
+    if (!s->img || !s->rows) {
+        png_destroy_read_struct(&png, &info, NULL);
+        dem_free(out);
+        return br_err_set(err, BR_E_NOMEM, name, "out of memory for %ux%u pixels", (unsigned)w, (unsigned)h);
+    }
+    for (y = 0; y < h; y++) s->rows[y] = s->img + (size_t)y * rowbytes;
+    png_read_image(png, s->rows);
+    png_read_end(png, NULL);
+    png_destroy_read_struct(&png, &info, NULL);
+    out->z_num = s->num;
+    out->z_den = s->den;
+    for (y = 0; y < h; y++) {
+        const uint8_t *r = s->rows[y];
+        int32_t *z = out->z + (size_t)y * w;
+        for (x = 0; x < (int)w; x++) {
+            if (enc == DEM_PNG_GREY) {
+                int64_t raw, alpha = 1;
+                if (bits == 16) {
+                    raw = r[x * ch * 2] << 8 | r[x * ch * 2 + 1];
+                    if (ch == 2) alpha = r[x * 4 + 2] << 8 | r[x * 4 + 3];
+                } else {
+                    raw = r[x * ch];
+                    if (ch == 2) alpha = r[x * 2 + 1];
+                }
+                z[x] = alpha ? (int32_t)(raw * s->za + s->zb) : HF_NODATA;
+            } else {
+                const uint8_t *px = r + x * ch;
+                int32_t v = px[0] << 16 | px[1] << 8 | px[2];
+                if (ch == 4 && px[3] == 0) z[x] = HF_NODATA;
+                else z[x] = enc == DEM_PNG_TERRARIUM ? v - 8388608 : v - 100000;
+            }
+        }
+    }
+    return BR_OK;
+}
 
 br_status dem_read_png(const char *name, const uint8_t *p, size_t n, const dem_opts *o,
                        hf *out, br_err *err)
 {
-    (void)p; (void)n; (void)o; (void)out;
-    return br_err_set(err, BR_E_UNSUPPORTED, name, "this format's reader is not written yet");
+    png_src s;
+    hf f;
+    br_status st;
+    memset(&s, 0, sizeof s);
+    memset(&f, 0, sizeof f);
+    s.p = p;
+    s.n = n;
+    if (n < 8 || png_sig_cmp(p, 0, 8))
+        return br_err_set(err, BR_E_FORMAT, name, "not a PNG file (wrong magic)");
+    st = decode(name, &s, o, &f, err);
+    free(s.img);
+    free(s.rows);
+    if (st == BR_OK) *out = f;
+    return st;
 }
