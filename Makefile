@@ -101,7 +101,12 @@ RUN_DEM ?= assets/N47E009.hgt.gz
 run: all
 	./bitrain run $(RUN_DEM)
 
+# What the suite adds beyond the build: clang (second compiler), and the cross
+# compilers + qemu-user that run the determinism probe on 32-bit ARM, AArch64 and
+# big-endian PowerPC.  Optional: without them those checks are skipped.
+TEST_PKGS = clang qemu-user gcc-arm-linux-gnueabihf gcc-aarch64-linux-gnu gcc-powerpc-linux-gnu
 test: deps
+	@sh mk/deps.sh --optional $(TEST_PKGS)
 	@$(MAKE) --no-print-directory bitrain $(TEST_BIN) $(SAN_TEST_BIN)
 	@sh tests/run.sh $(B)
 

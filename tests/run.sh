@@ -31,5 +31,6 @@ for t in "$B"/san-tests/test_*; do
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1 \
     BITRAIN_SANITIZED=1 "$t" >$log 2>&1; rc=$?; count "$(basename "$t") [asan+ubsan]" $log $rc
 done
+sh tests/cross/run.sh >$log 2>&1; rc=$?; count "cross-architecture determinism (tests/cross)" $log $rc
 echo "$passed passed, $failed failed"
 [ "$failed" = 0 ]
