@@ -37,10 +37,11 @@ DEM=${DEM:-../shared/data/dem/png/fuji.png}
 export GLIBC_TUNABLES=glibc.malloc.mmap_threshold=33554432:glibc.malloc.trim_threshold=2147483647
 export LP_NUM_THREADS=0
 
-sh benchmarks/osmesa/build.sh "$OUT" 2>/dev/null
+mkdir -p "$OUT"
+sh benchmarks/osmesa/build.sh "$OUT" 2>"$OUT/build.log"
 rc=$?
 if [ $rc = 2 ]; then echo "skipped: OSMesa not available"; exit 0; fi
-if [ $rc != 0 ]; then echo "osmesa.sh: building bench_osmesa failed" >&2; exit 1; fi
+if [ $rc != 0 ]; then cat "$OUT/build.log" >&2; echo "osmesa.sh: building bench_osmesa failed" >&2; exit 1; fi
 LP="$OUT/bench_osmesa"
 [ -r "$DEM" ] || { echo "osmesa.sh: $DEM not found (run from the repo root next to ../shared)" >&2; exit 1; }
 
