@@ -1,0 +1,140 @@
+/* raster/raster.h — the integer software rasteriser: vertex arrays + triangle
+ * strips/lists in, exact pixels out, a whole frame or one band of rows at a time.
+ *
+ * CONVENTIONS
+ * - World: int32 x east, y north, z up, in the scene's world unit; |coord| <= CAM_COORD_MAX.
+ *   The camera is core/cam.h (gluLookAt/gluPerspective conventions, square pixels).
+ * - Screen: origin at the top-left corner, x right, y DOWN; row 0 is the top row and
+ *   bands run top to bottom.  Pixel (i, j) is sampled at its centre (i + 1/2, j + 1/2).
+ * - Sub-pixel precision: RS_SUBPIX_BITS = 4 (vertices snap to 1/16 pixel, rounded).
+ *   Guard band: vertices within RS_GUARD_PX = 2^14 pixels of the screen centre are
+ *   drawn unclipped; screen coordinates then stay below 2^18 sub-pixels, so edge
+ *   functions (products of two differences < 2^19) need 39 bits (int64) and never
+ *   overflow.  Largest viewport: RS_MAX_DIM = 8192 x 8192 (must lie inside the guard band).
+ * - Fill rule: top-left, on pixel centres: a centre exactly on an edge belongs to the
+ *   triangle when that edge is a left edge or a horizontal top edge; so triangles
+ *   sharing an edge cover every centre exactly once.  Zero-area (line, degenerate)
+ *   triangles draw nothing.
+ * - Orientation / culling: front faces are counter-clockwise seen from the camera
+ *   (OpenGL default; the terrain's triangles are CCW seen from +z).  Back faces are
+ *   culled unless rs_frame.no_cull is set.
+ * - Near plane: triangles are clipped in camera (homogeneous) space against
+ *   zc >= znear BEFORE the divide (terrain cameras sit on the ground), and against
+ *   the guard band; a clipped polygon has at most 3 + 5 = 8 vertices (each of the 5
+ *   planes adds at most one), the fixed clip buffer size.  Far plane: the depth buffer
+ *   is cleared to the depth of zfar, so every pixel beyond zfar fails the depth test
+ *   (a per-pixel far cut-off); triangles wholly beyond zfar are rejected early.
+ * - Depth: d = D * znear / zc with D = 2^30 - 2^18 (1/w, "reversed": larger is nearer,
+ *   the near plane maps to D).  1/w is affine in screen space, so linear interpolation
+ *   is exact up to rounding, and its resolution is finest near the camera and falls
+ *   off as zc^2: with 32-bit depth the step at distance zc is zc^2 / (znear * 2^30)
+ *   (peer camera B, znear 0.25: 0.0004 units at 300 units; 0.004 units at 1000 units),
+ *   far below the spacing of terrain surfaces that overlap on screen.  The 16-bit
+ *   buffer keeps d >> 14 (step zc^2 / (znear * 2^16)); it is for small screens with a
+ *   near plane that is not tiny relative to the far distance.  Depth test: greater wins.
+ * - Colour: per-vertex 0xRRGGBB, Gouraud-interpolated affinely in screen space with
+ *   16 fraction bits, rounded to nearest; RGB565 takes the top 5/6/5 bits of the same
+ *   8-bit values, so an RGB565 frame equals the RGB888 frame reduced.
+ * - Bands: a band is rows [y0, y0 + rows) of the frame.  Triangle set-up depends only
+ *   on the transformed vertices, and every pixel value is computed from the
+ *   triangle's own reference point (never from the band's first row), so any band
+ *   height gives exactly the pixels of the full frame.
+ *
+ * MEMORY (caller-owned; nothing is allocated here)
+ * - vertex cache: rs_cache_mem_size(nv) = 16 bytes per vertex (one transform per vertex
+ *   per frame, shared by all bands);
+ * - band: rs_band_mem_size(w, rows, fmt, depth) = w * rows * (2 or 4 colour + 2 or 4 depth).
+ *   320x240 RGB565 with 16-bit depth, bands of 16 rows: 20,480 bytes (+ 16 per vertex);
+ *   with 32-bit depth 30,720 bytes.
+ *
+ * Not checked in the hot path (debug asserts only): indices < nv, band inside the frame.
+ */
+#ifndef BR_RASTER_H
+#define BR_RASTER_H
+#include <stddef.h>
+#include <stdint.h>
+#include "core/cam.h"
+#include "core/status.h"
+
+#define RS_SUBPIX_BITS 4
+#define RS_GUARD_PX (1 << 14)
+#define RS_MAX_DIM 8192
+#define RS_DEPTH_ONE ((1u << 30) - (1u << 18))
+#define RS_CLIP_MAX 8   /* 3 vertices + one per clip plane (near, 4 guard-band sides) */
+
+enum { RS_FMT_XRGB8888 = 0, RS_FMT_RGB565 = 1 };
+enum { RS_DEPTH32 = 0, RS_DEPTH16 = 1 };
+enum { RS_STRIP = 0, RS_LIST = 1 };
+
+/* Input vertex: world position and colour 0x00RRGGBB (shaded per vertex by the caller
+ * or by raster/shade.h). */
+typedef struct rs_vertex {
+    int32_t p[3];
+    uint32_t rgb;
+} rs_vertex;
+
+/* A generalised triangle strip (GL convention: triangle k = s[k], s[k+1], s[k+2], the
+ * first two swapped for odd k) or a plain list (triangle k = s[3k..3k+2]). */
+typedef struct rs_prim {
+    int32_t kind;               /* RS_STRIP or RS_LIST */
+    uint32_t n;                 /* number of indices */
+    const uint32_t *idx;
+} rs_prim;
+
+/* Vertex cache entry (16 bytes): screen position in sub-pixels, depth, colour and
+ * the outcode in the top byte of c. */
+typedef struct rs_cvert {
+    int32_t x, y;
+    uint32_t d;
+    uint32_t c;
+} rs_cvert;
+
+/* Outcode bits (in rs_cvert.c >> 24). */
+enum {
+    RS_OUT_LEFT = 1, RS_OUT_RIGHT = 2, RS_OUT_TOP = 4, RS_OUT_BOTTOM = 8,
+    RS_OUT_FAR = 16,            /* zc > zfar */
+    RS_OUT_NEAR = 32,           /* zc < znear: x, y, d invalid */
+    RS_OUT_GUARD = 64           /* outside the guard band: x, y invalid */
+};
+
+/* One frame.  Zero-initialise, fill the inputs, call rs_frame_prepare, then render
+ * (whole frame or bands).  Zero fields mean defaults. */
+typedef struct rs_frame {
+    int32_t w, h;               /* viewport, 1 .. RS_MAX_DIM */
+    int32_t fmt;                /* RS_FMT_* */
+    int32_t depth;              /* RS_DEPTH32 or RS_DEPTH16 */
+    int32_t no_cull;            /* 1: draw back faces too */
+    uint32_t clear_rgb;         /* background (sky) colour 0xRRGGBB */
+    const rs_vertex *v;         /* nv vertices */
+    uint32_t nv;
+    rs_cvert *cache;            /* caller memory, rs_cache_mem_size(nv) bytes */
+    const rs_prim *prims;
+    int32_t nprims;
+    cam_vp vp;                  /* from cam_viewproj; the camera's w, h must equal w, h */
+    /* statistics of the last render (over all bands) */
+    uint32_t stat_tris, stat_clipped, stat_pixels;
+} rs_frame;
+
+/* Called with each finished band: rows [y0, y0+rows) of the frame, pixels in the
+ * frame's format, stride bytes apart.  Return BR_OK to continue. */
+typedef br_status (*rs_sink)(void *user, int32_t y0, int32_t rows, const void *pixels, size_t stride);
+
+size_t rs_cache_mem_size(uint32_t nv);
+size_t rs_band_mem_size(int32_t w, int32_t rows, int32_t fmt, int32_t depth);
+
+/* Checks the frame and transforms every vertex once into the cache (per frame). */
+br_status rs_frame_prepare(rs_frame *f);
+
+/* Renders rows [y0, y0+rows) into caller buffers: colour (stride bytes per row) and a
+ * depth buffer of w*rows entries (uint32 or uint16).  Clears both first. */
+br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth);
+
+/* Renders the whole frame as successive bands of band_rows rows (the last may be
+ * shorter) in mem (rs_band_mem_size(w, band_rows, ...) bytes, suitably aligned),
+ * handing each to sink. */
+br_status rs_render(rs_frame *f, int32_t band_rows, void *mem, rs_sink sink, void *user);
+
+/* XRGB8888 or RGB565 pixel rows to RGB888 bytes (RGB565 expanded by bit replication). */
+void rs_to_rgb888(int32_t fmt, const void *src, int32_t n, uint8_t *rgb);
+
+#endif
