@@ -1,10 +1,161 @@
-/* platform/cmd_info.c — bitrain info (not built yet). */
+/* platform/cmd_info.c — bitrain info: size, heights, voids, spacing and
+ * origin of elevation files (or of their merge), as text or JSON lines.
+ * Heights are printed in metres exactly (our units are n/2^a5^b metres). */
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 #include "platform/cmd.h"
+#include "platform/load.h"
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: bitrain info [--json] [--merge] [--png-encoding grey|terrain-rgb|terrarium]\n"
+               "                    [--scale S] [--offset O] [--depth] FILE...\n"
+               "  --json          one JSON object per file (or per merge) per line\n"
+               "  --merge         merge the files by georeference and report the result\n"
+               "  --png-encoding  how PNG pixels hold heights (default: grey for grey PNGs,\n"
+               "                  terrain-rgb for colour ones)\n"
+               "  --scale S, --offset O  grey PNG: metres = raw * S + O (default 1, 0)\n"
+               "  --depth         XYZ: the third column is depth (positive down)\n");
+}
+
+/* z * num / den metres as an exact decimal when den divides a power of ten <= 10^9 */
+static void fmt_m(char *buf, size_t bn, int64_t z, int32_t num, int32_t den)
+{
+    int64_t p10 = 1, v, ip, fp;
+    int k;
+    for (k = 0; k <= 9; k++, p10 *= 10) {
+        if ((int64_t)num * p10 % den == 0) break;
+    }
+    if (k > 9) { snprintf(buf, bn, "%.9g", (double)z * num / den); return; }
+    v = z * ((int64_t)num * p10 / den);
+    ip = (v < 0 ? -v : v) / p10;
+    fp = (v < 0 ? -v : v) % p10;
+    if (k == 0 || fp == 0) { snprintf(buf, bn, "%s%lld", v < 0 ? "-" : "", (long long)ip); return; }
+    while (fp % 10 == 0) { fp /= 10; k--; }
+    snprintf(buf, bn, "%s%lld.%0*lld", v < 0 ? "-" : "", (long long)ip, k, (long long)fp);
+}
+
+static void json_str(const char *s)
+{
+    putchar('"');
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\') printf("\\%c", c);
+        else if (c < 0x20) printf("\\u%04x", c);
+        else putchar(c);
+    }
+    putchar('"');
+}
+
+static void report(const char *label, const hf *f, int json)
+{
+    hf_stats st;
+    char mn[48], mx[48], unit[48];
+    const char *kind = f->geo.kind == HF_GEO_DEGREES ? "degrees" : f->geo.kind == HF_GEO_PROJECTED ? "projected" : "none";
+    double gs = f->geo.kind == HF_GEO_DEGREES ? 1e-9 : 1e-6;
+    hf_stats_get(f, &st);
+    fmt_m(mn, sizeof mn, st.zmin, f->z_num, f->z_den);
+    fmt_m(mx, sizeof mx, st.zmax, f->z_num, f->z_den);
+    fmt_m(unit, sizeof unit, 1, f->z_num, f->z_den);
+    if (json) {
+        int all_void = st.voids == (int64_t)f->w * f->h;
+        printf("{\"file\":");
+        json_str(label);
+        printf(",\"width\":%d,\"height\":%d,\"min\":%s,\"max\":%s,\"voids\":%lld,"
+               "\"unit\":%s,\"z_num\":%d,\"z_den\":%d,\"spacing\":{\"dx\":%.6f,\"dy\":%.6f},"
+               "\"origin\":{\"kind\":\"%s\"",
+               f->w, f->h, all_void ? "null" : mn, all_void ? "null" : mx, (long long)st.voids, unit,
+               f->z_num, f->z_den, f->dx_um * 1e-6, f->dy_um * 1e-6, kind);
+        if (f->geo.kind != HF_GEO_NONE)
+            printf(",\"x\":%.9f,\"y\":%.9f,\"sx\":%.9f,\"sy\":%.9f", (double)f->geo.x0 * gs,
+                   (double)f->geo.y0 * gs, (double)f->geo.sx * gs, (double)f->geo.sy * gs);
+        printf("}}\n");
+        return;
+    }
+    printf("%s: %dx%d samples\n", label, f->w, f->h);
+    if (st.voids == (int64_t)f->w * f->h) printf("  heights: all void\n");
+    else printf("  heights: %s .. %s m (kept in units of %s m)\n", mn, mx, unit);
+    printf("  voids:   %lld\n", (long long)st.voids);
+    printf("  spacing: %.6f x %.6f m\n", f->dx_um * 1e-6, f->dy_um * 1e-6);
+    if (f->geo.kind == HF_GEO_DEGREES)
+        printf("  origin:  sample (0,0) centre at lon %.9f, lat %.9f; step %.9f x %.9f degrees\n",
+               (double)f->geo.x0 * gs, (double)f->geo.y0 * gs, (double)f->geo.sx * gs, (double)f->geo.sy * gs);
+    else if (f->geo.kind == HF_GEO_PROJECTED)
+        printf("  origin:  sample (0,0) centre at x %.6f, y %.6f m; step %.6f x %.6f m\n",
+               (double)f->geo.x0 * gs, (double)f->geo.y0 * gs, (double)f->geo.sx * gs, (double)f->geo.sy * gs);
+    else printf("  origin:  none (no georeference in the file)\n");
+}
+
+static int num_arg(const char *opt, const char *v, double *out)
+{
+    char *end;
+    if (!v) { fprintf(stderr, "bitrain info: %s needs a value\n", opt); return 0; }
+    *out = strtod(v, &end);
+    if (end == v || *end || *out != *out) { fprintf(stderr, "bitrain info: %s: '%s' is not a number\n", opt, v); return 0; }
+    return 1;
+}
 
 int cmd_info(int argc, char **argv)
 {
-    (void)argc; (void)argv;
-    fprintf(stderr, "bitrain info: not implemented yet\n");
-    return 1;
+    dem_opts o;
+    int json = 0, merge = 0, i, nf = 0, rc = 0;
+    const char **files = calloc((size_t)(argc > 0 ? argc : 1), sizeof *files);
+    memset(&o, 0, sizeof o);
+    if (!files) { fprintf(stderr, "bitrain info: out of memory\n"); return 1; }
+    for (i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--json")) json = 1;
+        else if (!strcmp(a, "--merge")) merge = 1;
+        else if (!strcmp(a, "--depth")) o.xyz_depth = 1;
+        else if (!strcmp(a, "--scale") || !strcmp(a, "--offset")) {
+            if (!num_arg(a, i + 1 < argc ? argv[i + 1] : NULL, a[2] == 's' ? &o.png_scale : &o.png_offset)) {
+                free(files);
+                return 2;
+            }
+            i++;
+        } else if (!strcmp(a, "--png-encoding")) {
+            const char *v = i + 1 < argc ? argv[++i] : "";
+            if (!strcmp(v, "grey") || !strcmp(v, "gray")) o.png_encoding = DEM_PNG_GREY;
+            else if (!strcmp(v, "terrain-rgb")) o.png_encoding = DEM_PNG_TERRAIN_RGB;
+            else if (!strcmp(v, "terrarium")) o.png_encoding = DEM_PNG_TERRARIUM;
+            else {
+                fprintf(stderr, "bitrain info: --png-encoding must be grey, terrain-rgb or terrarium\n");
+                free(files);
+                return 2;
+            }
+        } else if (!strcmp(a, "-h") || !strcmp(a, "--help")) { usage(stdout); free(files); return 0; }
+        else if (a[0] == '-' && a[1]) {
+            fprintf(stderr, "bitrain info: unknown option '%s'\n", a);
+            usage(stderr);
+            free(files);
+            return 2;
+        } else files[nf++] = a;
+    }
+    if (nf == 0) { usage(stderr); free(files); return 2; }
+    if (merge) {
+        hf f;
+        br_err e;
+        if (dem_load_many(files, nf, &o, &f, &e) != BR_OK) {
+            fprintf(stderr, "bitrain info: %s\n", e.msg);
+            rc = 1;
+        } else {
+            report(nf == 1 ? files[0] : "merged", &f, json);
+            dem_free(&f);
+        }
+    } else {
+        for (i = 0; i < nf; i++) {
+            hf f;
+            br_err e;
+            if (dem_load(files[i], &o, &f, &e) != BR_OK) {
+                fprintf(stderr, "bitrain info: %s\n", e.msg);
+                rc = 1;
+                continue;
+            }
+            report(files[i], &f, json);
+            dem_free(&f);
+        }
+    }
+    free(files);
+    return rc;
 }
