@@ -3,14 +3,15 @@
 #include "tests/test.h"
 #include "platform/load.h"
 #include "platform/merge.h"
+#include "tests/zipmk.h"
 
-static void expect(const char *rel, const dem_opts *o, int w, int h, int num, int den,
-                   long long zmin, long long zmax, long long voids)
+static void expect_path(const char *rel, const dem_opts *o, int w, int h, int num, int den,
+                        long long zmin, long long zmax, long long voids)
 {
     hf f;
     hf_stats st;
     br_err e;
-    br_status s = dem_load(t_data(rel), o, &f, &e);
+    br_status s = dem_load(rel, o, &f, &e);
     CHECK_MSG(s == BR_OK, "%s: %s", rel, s ? e.msg : "");
     if (s) return;
     CHECK_EQ(hf_validate(&f), BR_OK);
@@ -25,6 +26,12 @@ static void expect(const char *rel, const dem_opts *o, int w, int h, int num, in
     dem_free(&f);
 }
 
+static void expect(const char *rel, const dem_opts *o, int w, int h, int num, int den,
+                   long long zmin, long long zmax, long long voids)
+{
+    expect_path(t_data(rel), o, w, h, num, den, zmin, zmax, voids);
+}
+
 static void test_hgt(void)
 {
     expect("hgt/N47E009.hgt", NULL, 1201, 1201, 1, 1, 388, 2937, 0);
@@ -32,6 +39,194 @@ static void test_hgt(void)
     expect("hgt/N50E009.hgt", NULL, 1201, 1201, 1, 1, 98, 950, 12);
     expect("hgt/N50E010.hgt", NULL, 1201, 1201, 1, 1, 185, 983, 28);
     expect("hgt/N57E011.hgt", NULL, 1201, 1201, 1, 1, -6, 163, 0);
+}
+
+/* sample (x, y) of a file, counted from the NW corner */
+static int32_t at(const char *rel, const dem_opts *o, int x, int y)
+{
+    hf f;
+    br_err e;
+    int32_t v;
+    if (dem_load(t_data(rel), o, &f, &e) != BR_OK) return INT32_MAX;
+    v = f.z[(size_t)y * f.w + x];
+    dem_free(&f);
+    return v;
+}
+
+static void test_png(void)
+{
+    dem_opts o;
+    memset(&o, 0, sizeof o);
+    /* 16-bit grey, raw units by default, 0.1 m with --scale 0.1 */
+    expect("png/ps_height_1k.png", NULL, 1025, 1025, 1, 1, 0, 43798, 0);
+    o.png_scale = 0.1;
+    expect("png/ps_height_1k.png", &o, 1025, 1025, 1, 10, 0, 43798, 0);
+    /* scale 0.5 and offset -100.25: unit 1/4 m, z = raw*2 - 401 */
+    o.png_scale = 0.5;
+    o.png_offset = -100.25;
+    expect("png/ps_height_1k.png", &o, 1025, 1025, 1, 4, -401, 43798 * 2 - 401, 0);
+    /* terrain-RGB (auto for a colour PNG): 13.7 .. 3751.0 m in 0.1 m */
+    expect("png/fuji.png", NULL, 512, 512, 1, 10, 137, 37510, 0);
+    /* gdallocationinfo fuji.png 100 200 -> R,G,B = 1,160,238: -10000 + 106734 * 0.1 */
+    CHECK_EQ(at("png/fuji.png", NULL, 100, 200), 6734);
+    /* the same pixels read as Terrarium: R*256 + G + B/256 - 32768 in 1/256 m */
+    memset(&o, 0, sizeof o);
+    o.png_encoding = DEM_PNG_TERRARIUM;
+    CHECK_EQ(at("png/fuji.png", &o, 100, 200), (1 * 65536 + 160 * 256 + 238) - 32768 * 256);
+    /* grey asked for a colour PNG is refused */
+    {
+        hf f;
+        br_err e;
+        o.png_encoding = DEM_PNG_GREY;
+        CHECK_EQ(dem_load(t_data("png/fuji.png"), &o, &f, &e), BR_E_UNSUPPORTED);
+    }
+}
+
+static void test_asc(void)
+{
+    hf f;
+    br_err e;
+    expect("asc/colorado_front_range.asc", NULL, 240, 144, 1, 1, 1943, 3286, 0);
+    expect("asc/hugo_site.asc", NULL, 76, 55, 1, 1, 1660, 1711, 2028);
+    /* gdallocationinfo values */
+    CHECK_EQ(at("asc/hugo_site.asc", NULL, 40, 30), 1684);
+    CHECK_EQ(at("asc/colorado_front_range.asc", NULL, 239, 143), 2028);
+    CHECK_EQ(dem_load(t_data("asc/colorado_front_range.asc"), NULL, &f, &e), BR_OK);
+    CHECK_EQ(f.geo.kind, HF_GEO_DEGREES);
+    CHECK_EQ(f.geo.x0, -105550000000LL);        /* xllcorner + cellsize/2 */
+    CHECK_EQ(f.geo.y0, 40210000000LL);          /* yllcorner + 144 cells - cellsize/2 */
+    CHECK_EQ(f.geo.sx, 833333);
+    dem_free(&f);
+    CHECK_EQ(dem_load(t_data("asc/hugo_site.asc"), NULL, &f, &e), BR_OK);
+    CHECK_EQ(f.geo.kind, HF_GEO_PROJECTED);
+    CHECK_EQ(f.geo.x0, 5000000);                /* metres in micrometres */
+    CHECK_EQ(f.geo.y0, 545000000);
+    CHECK_EQ(f.dx_um, 10000000);
+    dem_free(&f);
+}
+
+static void test_bt(void)
+{
+    hf f;
+    br_err e;
+    /* float32: 1524 .. 2478 m kept in 1e-4 m (2478e5 would pass 2^27) */
+    expect("bt/crater_0513.bt", NULL, 513, 513, 1, 10000, 15240000, 24780000, 0);
+    /* column-major, south first in the file; gdallocationinfo (x, y from NW) */
+    CHECK_EQ(at("bt/crater_0513.bt", NULL, 0, 0), 16250000);
+    CHECK_EQ(at("bt/crater_0513.bt", NULL, 512, 0), 20540000);
+    CHECK_EQ(at("bt/crater_0513.bt", NULL, 7, 500), 16850000);
+    CHECK_EQ(dem_load(t_data("bt/crater_0513.bt"), NULL, &f, &e), BR_OK);
+    CHECK_EQ(f.geo.kind, HF_GEO_PROJECTED);
+    CHECK_EQ(f.geo.x0, 561133125000LL);         /* UTM metres, extents are sample positions */
+    CHECK_EQ(f.geo.y0, 4760971500000LL);
+    CHECK_EQ(f.dx_um, 20182251);                /* (571466.4375 - 561133.125) / 512 */
+    CHECK_EQ(f.dy_um, 27304688);
+    dem_free(&f);
+}
+
+static void test_tif(void)
+{
+    hf f, r, v;
+    br_err e;
+    int k, x, y;
+    static const char *const variants[] = {
+        "tests/data/tif/lzw_pred2_tiled.tif", "tests/data/tif/deflate_be_strips.tif",
+        "tests/data/tif/lzw_pred2_be_int32.tif"
+    };
+    expect("tif/mt_rainier_90m.tif", NULL, 1201, 1201, 1, 1, 263, 4371, 9033);
+    CHECK_EQ(at("tif/mt_rainier_90m.tif", NULL, 600, 300), 1388);
+    CHECK_EQ(dem_load(t_data("tif/mt_rainier_90m.tif"), NULL, &f, &e), BR_OK);
+    CHECK_EQ(f.geo.kind, HF_GEO_DEGREES);
+    CHECK_EQ(f.geo.x0, -122000000000LL);        /* tie point corner + half a pixel */
+    CHECK_EQ(f.geo.y0, 47000000000LL);
+    /* GDAL-written crops (840, 5, 67x45) in other encodings equal the window */
+    CHECK_EQ(dem_load("tests/data/tif/ref_int16.tif", NULL, &r, &e), BR_OK);
+    CHECK_EQ(r.w, 67);
+    CHECK_EQ(r.h, 45);
+    for (y = 0; y < 45; y++)
+        for (x = 0; x < 67; x++)
+            if (r.z[y * 67 + x] != f.z[(size_t)(5 + y) * 1201 + 840 + x]) { CHECK_EQ(x * 1000 + y, -1); y = 45; break; }
+    for (k = 0; k < 3; k++) {
+        br_status s = dem_load(variants[k], NULL, &v, &e);
+        CHECK_MSG(s == BR_OK, "%s", s ? e.msg : "");
+        if (s) continue;
+        CHECK_EQ(v.w, 67);
+        CHECK_EQ(v.h, 45);
+        CHECK_EQ(v.geo.x0, r.geo.x0);
+        CHECK_EQ(v.geo.y0, r.geo.y0);
+        CHECK(memcmp(v.z, r.z, 67 * 45 * sizeof(int32_t)) == 0);
+        dem_free(&v);
+    }
+    /* uint16, deflate + predictor: raw = h + 32768, nodata 0 */
+    CHECK_EQ(dem_load("tests/data/tif/deflate_pred2_uint16.tif", NULL, &v, &e), BR_OK);
+    for (k = 0; k < 67 * 45; k++)
+        if ((r.z[k] == HF_NODATA) != (v.z[k] == HF_NODATA) ||
+            (r.z[k] != HF_NODATA && v.z[k] != r.z[k] + 32768)) { CHECK_EQ(k, -1); break; }
+    dem_free(&v);
+    dem_free(&r);
+    dem_free(&f);
+    /* float32, tiled deflate, heights / 10 (gdal: 99.7 .. 201.39999 m, nodata -9999) */
+    expect_path("tests/data/tif/deflate_float32.tif", NULL, 41, 31, 1, 100000, 9970000, 20139999, 19);
+}
+
+static void test_xyz(void)
+{
+    dem_opts o;
+    hf f;
+    br_err e;
+    /* z column as heights: -0.125 .. 0.13535 m, kept in micrometres */
+    expect("xyz/monai_valley_bathymetry.txt", NULL, 393, 244, 1, 1000000, -125000, 135350, 0);
+    memset(&o, 0, sizeof o);
+    o.xyz_depth = 1;
+    expect("xyz/monai_valley_bathymetry.txt", &o, 393, 244, 1, 1000000, -135350, 125000, 0);
+    /* first line of the file: x 0, y 0 (south-west), z 0.13535 */
+    CHECK_EQ(at("xyz/monai_valley_bathymetry.txt", NULL, 0, 243), 135350);
+    CHECK_EQ(dem_load(t_data("xyz/monai_valley_bathymetry.txt"), NULL, &f, &e), BR_OK);
+    CHECK_EQ(f.geo.kind, HF_GEO_PROJECTED);
+    CHECK_EQ(f.dx_um, 14000);
+    CHECK_EQ(f.geo.y0, 3402000);
+    dem_free(&f);
+}
+
+static void test_containers(void)
+{
+    size_t n = 0, zn = 0;
+    unsigned char *raw = t_read_file(t_data("hgt/N47E009.hgt"), &n);
+    unsigned char *gz;
+    hf a, b;
+    br_err e;
+    CHECK(raw != NULL);
+    if (!raw) return;
+    CHECK_EQ(dem_load_mem("N47E009.hgt", raw, n, NULL, &a, &e), BR_OK);
+    gz = t_gzip(raw, n, &zn);
+    CHECK_EQ(dem_load_mem("N47E009.hgt.gz", gz, zn, NULL, &b, &e), BR_OK);
+    CHECK(memcmp(a.z, b.z, 1201 * 1201 * 4) == 0);
+    CHECK_EQ(b.geo.y0, 48000000000LL);          /* the tile name survives ".gz" */
+    dem_free(&b);
+    free(gz);
+    gz = t_zip("N47E009.hgt", raw, n, 1, &zn);
+    CHECK_EQ(dem_load_mem("N47E009.hgt.zip", gz, zn, NULL, &b, &e), BR_OK);
+    CHECK(memcmp(a.z, b.z, 1201 * 1201 * 4) == 0);
+    CHECK_EQ(b.geo.x0, 9000000000LL);
+    dem_free(&b);
+    free(gz);
+    gz = t_zip("N47E009.hgt", raw, n, 0, &zn);  /* stored, not deflated */
+    CHECK_EQ(dem_load_mem("x.zip", gz, zn, NULL, &b, &e), BR_OK);
+    CHECK_EQ(b.geo.x0, 9000000000LL);           /* the member's name gives the tile */
+    dem_free(&b);
+    free(gz);
+    /* the shipped default terrain, if present */
+    {
+        FILE *f = fopen("assets/N47E009.hgt.gz", "rb");
+        if (f) {
+            fclose(f);
+            CHECK_EQ(dem_load("assets/N47E009.hgt.gz", NULL, &b, &e), BR_OK);
+            CHECK(memcmp(a.z, b.z, 1201 * 1201 * 4) == 0);
+            dem_free(&b);
+        }
+    }
+    dem_free(&a);
+    free(raw);
 }
 
 static void test_hgt_geo(void)
@@ -137,6 +332,12 @@ int main(void)
 {
     T_RUN(test_hgt);
     T_RUN(test_hgt_geo);
+    T_RUN(test_png);
+    T_RUN(test_asc);
+    T_RUN(test_bt);
+    T_RUN(test_tif);
+    T_RUN(test_xyz);
+    T_RUN(test_containers);
     T_RUN(test_merge_n50);
     T_RUN(test_merge_errors);
     return t_finish();
