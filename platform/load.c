@@ -503,17 +503,17 @@ static br_status load_mem_depth(const char *name, const uint8_t *p, size_t n, co
 {
     static const dem_opts zero;
     dem_reader *rd = NULL;
+    char ext[1024];
+    const char *en = name;   /* the name whose extension selects the reader */
     if (!o) o = &zero;
     if (n >= 2 && p[0] == 0x1f && p[1] == 0x8b) {
-        char inner[1024];
         uint8_t *data;
-        size_t dn, len = strlen(name);
+        size_t dn;
         br_status s;
         if (depth) return br_err_set(err, BR_E_UNSUPPORTED, name, "nested compressed archives are not read");
-        snprintf(inner, sizeof inner, "%.*s", (int)(dem_has_ext(name, ".gz") ? len - 3 : len), name);
         s = dem_inflate_alloc(name, p, n, 15 + 16, n >= 4 ? dem_le32(p + n - 4) : 0, &data, &dn, err);
         if (s != BR_OK) return s;
-        s = load_mem_depth(inner, data, dn, o, out, err, depth + 1);
+        s = load_mem_depth(name, data, dn, o, out, err, depth + 1);
         free(data);
         return s;
     }
@@ -521,20 +521,25 @@ static br_status load_mem_depth(const char *name, const uint8_t *p, size_t n, co
         if (depth) return br_err_set(err, BR_E_UNSUPPORTED, name, "nested compressed archives are not read");
         return load_zip(name, p, n, o, out, err, depth);
     }
-    if (dem_has_ext(name, ".gz") || dem_has_ext(name, ".zip"))
+    if (!depth && (dem_has_ext(name, ".gz") || dem_has_ext(name, ".zip")))
         return br_err_set(err, BR_E_FORMAT, name, "not a %s archive (wrong magic)",
                           dem_has_ext(name, ".gz") ? "gzip" : "zip");
+    /* inside a .gz the extension that counts is the one before ".gz" */
+    if (dem_has_ext(name, ".gz")) {
+        size_t len = strlen(name);
+        if (len - 3 < sizeof ext) { memcpy(ext, name, len - 3); ext[len - 3] = 0; en = ext; }
+    }
     if (n >= 8 && !memcmp(p, "\x89PNG\r\n\x1a\n", 8)) rd = dem_read_png;
     else if (n >= 4 && (!memcmp(p, "II", 2) || !memcmp(p, "MM", 2)) &&
              (dem_le16(p + 2) == 42 || dem_be16(p + 2) == 42 || dem_le16(p + 2) == 43 || dem_be16(p + 2) == 43))
         rd = dem_read_tif;
     else if (n >= 7 && !memcmp(p, "binterr", 7)) rd = dem_read_bt;
-    else if (dem_has_ext(name, ".hgt")) rd = dem_read_hgt;
-    else if (dem_has_ext(name, ".png")) rd = dem_read_png;
-    else if (dem_has_ext(name, ".tif") || dem_has_ext(name, ".tiff")) rd = dem_read_tif;
-    else if (dem_has_ext(name, ".bt")) rd = dem_read_bt;
-    else if (dem_has_ext(name, ".asc")) rd = dem_read_asc;
-    else if (dem_has_ext(name, ".xyz") || dem_has_ext(name, ".txt")) rd = dem_read_xyz;
+    else if (dem_has_ext(en, ".hgt")) rd = dem_read_hgt;
+    else if (dem_has_ext(en, ".png")) rd = dem_read_png;
+    else if (dem_has_ext(en, ".tif") || dem_has_ext(en, ".tiff")) rd = dem_read_tif;
+    else if (dem_has_ext(en, ".bt")) rd = dem_read_bt;
+    else if (dem_has_ext(en, ".asc")) rd = dem_read_asc;
+    else if (dem_has_ext(en, ".xyz") || dem_has_ext(en, ".txt")) rd = dem_read_xyz;
     else if (is_text_start(p, n, "ncols") || is_text_start(p, n, "nrows")) rd = dem_read_asc;
     else if (is_square_hgt(n)) rd = dem_read_hgt;
     else if (is_numeric_start(p, n)) rd = dem_read_xyz;

@@ -54,6 +54,7 @@ br_status dem_read_asc(const char *name, const uint8_t *p, size_t n, const dem_o
         pos = b;
         while (pos < n && !isspace(p[pos])) pos++;
         k = key_of(p + b, pos - b);
+        if (k < 0 && have[K_NCOLS] && have[K_NROWS]) { pos = b; break; }  /* "nan" etc.: a value */
         if (k < 0) {
             dem_token_str(p + b, pos - b, ts);
             return br_err_set(err, BR_E_FORMAT, name, "unknown ASC header keyword '%s'", ts);

@@ -100,7 +100,7 @@ static br_status decode(const char *name, png_src *s, const dem_opts *o, hf *out
                           name, "bad PNG: %s", s->msg);
     }
     png_set_read_fn(png, s, read_fn);
-    png_set_user_limits(png, BR_MAX_SIDE, BR_MAX_SIDE);
+    png_set_user_limits(png, 0x7fffffffU, 0x7fffffffU); /* our own limit is checked below */
     png_set_crc_action(png, PNG_CRC_ERROR_QUIT, PNG_CRC_ERROR_QUIT);
     png_read_info(png, info);
     w = png_get_image_width(png, info);

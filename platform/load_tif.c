@@ -186,7 +186,8 @@ br_status dem_read_tif(const char *name, const uint8_t *p, size_t n, const dem_o
     if (rd16(&t, p + 2) == 43) return br_err_set(err, BR_E_UNSUPPORTED, name, "BigTIFF is not supported");
     if (rd16(&t, p + 2) != 42) return br_err_set(err, BR_E_FORMAT, name, "not a TIFF file (wrong magic)");
     ifd = rd32(&t, p + 4);
-    if (ifd < 8 || ifd > n - 2) return br_err_set(err, BR_E_FORMAT, name, "TIFF directory offset %u out of bounds", ifd);
+    if (ifd < 8) return br_err_set(err, BR_E_FORMAT, name, "TIFF directory offset %u is bad", ifd);
+    if (ifd > n - 2) return br_err_set(err, BR_E_TRUNCATED, name, "TIFF directory at %u is past the end (%zu bytes)", ifd, n);
     nent = rd16(&t, p + ifd);
     if ((size_t)nent * 12 > n - ifd - 2)
         return br_err_set(err, BR_E_TRUNCATED, name, "TIFF directory of %u entries runs past the end", nent);
