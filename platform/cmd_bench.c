@@ -106,7 +106,7 @@ int cmd_bench(int argc, char **argv)
     }
     if (cam_look_at(&c, eye, tg, fovy, w, h, zn, zf) != BR_OK) { fprintf(stderr, "bitrain bench: bad camera\n"); return 1; }
     f.w = w; f.h = h; f.fmt = fmt; f.depth = depth; f.no_cull = !cull;
-    f.clear_rgb = 0x87ceeb;   /* light blue sky */
+    f.clear_rgb = 0x99ccff;   /* light blue sky (153, 204, 255), as bench_osmesa */
     f.v = v; f.nv = PEER_NV; f.prims = prims; f.nprims = PEER_NSTRIP;
     cam_viewproj(&c, &f.vp);
     if (bands > 0) {

@@ -22,6 +22,21 @@
 #define SUBONE (1 << SUB)
 #define HALF (SUBONE / 2)
 #define NARROW 8          /* bounding boxes narrower than this are scanned pixel by pixel */
+#define TINY 3            /* bounding boxes of at most TINY x TINY centres: per-pixel weights */
+/* Colour is interpolated in one uint64 with three 21-bit fields (R at bit 42, G at 21,
+ * B at 0), each 8 integer + 13 fraction bits.  Sums and products of packed values are
+ * exact modulo 2^64, so a packed value whose true fields are all in [0, 2^21) unpacks
+ * exactly even if intermediate fields (differences, gradients) were negative or large.
+ * RS_CBIAS adds one half in each field: rounding to nearest and a margin of 0.5 for
+ * the gradient rounding (<= 0.5 LSB per pixel step, spans <= RS_MAX_DIM = 4096 px:
+ * < 0.25 colour units), so fields stay in range inside every triangle. */
+#define RS_CBIAS (((uint64_t)1 << 54) | ((uint64_t)1 << 33) | ((uint64_t)1 << 12))
+
+static uint64_t rs_pack_rgb(uint32_t rgb)
+{
+    return ((uint64_t)((rgb >> 16) & 255) << 42) | ((uint64_t)((rgb >> 8) & 255) << 21)
+           | (uint64_t)(rgb & 255);
+}
 #define SMALL (1 << 10)   /* triangles smaller than 64 px use a reciprocal for gradients */
 
 typedef struct band {
@@ -107,182 +122,84 @@ br_status rs_frame_prepare(rs_frame *f)
             }
         }
         o->c = (v->rgb & 0xffffffu) | (oc << 24);
+        o->cp = rs_pack_rgb(v->rgb);
     }
     return BR_OK;
 }
 
-/* ---------------------------------------------------------------- spans */
-
-/* A span: n pixels starting at colour row pointer cp / depth row pointer zp, with
- * depth z and colours r, g, b (Q16, rounding bias included) and their x-steps.
- * Accumulators are uint32 and wrap (defined behaviour); inside a triangle the values
- * stay in range, and a step past the last pixel is never used. */
-typedef void (*span_fn)(void *cp, void *zp, int32_t n, uint32_t z, uint32_t r, uint32_t g,
-                        uint32_t b, uint32_t gz, uint32_t gr, uint32_t gg, uint32_t gb);
-
-#define PACK888 ((r & 0xff0000u) | ((g >> 8) & 0xff00u) | ((b >> 16) & 0xffu))
-#define PACK565 ((uint16_t)(((r >> 8) & 0xf800u) | ((g >> 13) & 0x07e0u) | ((b >> 19) & 0x001fu)))
-
-#define SPAN_FN(name, PIX_T, Z_T, ZSHIFT, PACK)                                        \
-    static void name(void *cpv, void *zpv, int32_t n, uint32_t z, uint32_t r,          \
-                     uint32_t g, uint32_t b, uint32_t gz, uint32_t gr, uint32_t gg,    \
-                     uint32_t gb)                                                      \
-    {                                                                                  \
-        PIX_T *cp = (PIX_T *)cpv;                                                      \
-        Z_T *zp = (Z_T *)zpv;                                                          \
-        int32_t i;                                                                     \
-        for (i = 0; i < n; i++) {                                                      \
-            Z_T zz = (Z_T)(z >> ZSHIFT);                                               \
-            if (zz > zp[i]) { zp[i] = zz; cp[i] = PACK; }                              \
-            z += gz; r += gr; g += gg; b += gb;                                        \
-        }                                                                              \
-    }
-
-SPAN_FN(span_888_z32, uint32_t, uint32_t, 0, PACK888)
-SPAN_FN(span_888_z16, uint32_t, uint16_t, 14, PACK888)
-SPAN_FN(span_565_z32, uint16_t, uint32_t, 0, PACK565)
-SPAN_FN(span_565_z16, uint16_t, uint16_t, 14, PACK565)
-
-/* ---------------------------------------------------------------- triangle set-up */
-
-static int64_t clamp30(int64_t v)
-{
-    const int64_t lim = (int64_t)1 << 30;
-    return v > lim ? lim : (v < -lim ? -lim : v);
-}
+/* ---------------------------------------------------------------- set-up helpers */
 
 #define MIN3(a, b, c) ((a) < (b) ? ((a) < (c) ? (a) : (c)) : ((b) < (c) ? (b) : (c)))
 #define MAX3(a, b, c) ((a) > (b) ? ((a) > (c) ? (a) : (c)) : ((b) > (c) ? (b) : (c)))
 
-/* Draws the screen-space triangle a, b, c (valid positions) into the band. */
-static void tri_raster(band *bd, span_fn span, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
+/* Narrows [*xl, *xr] to the centres px where K + 16 A px >= 0 (one edge, one row).
+ * Returns 0 when the row is empty for this edge. */
+static int span_limits(int64_t A, int64_t K, int32_t px0, int32_t px1, int32_t *xl, int32_t *xr)
 {
-    int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1, py, bpp;
-    int64_t dx1, dy1, dx2, dy2, area2, A[3], B[3], C[3];
-    int64_t gx[4], gy[4], a0[4];
-    int32_t k;
-
-    ymin = MIN3(a->y, b->y, c->y);
-    ymax = MAX3(a->y, b->y, c->y);
-    py0 = (ymin + HALF - 1) >> SUB;   /* first row whose centre is >= ymin */
-    py1 = (ymax - HALF) >> SUB;       /* last row whose centre is <= ymax */
-    if (py0 < bd->y0) py0 = bd->y0;
-    if (py1 >= bd->y1) py1 = bd->y1 - 1;
-    if (py0 > py1) return;
-    xmin = MIN3(a->x, b->x, c->x);
-    xmax = MAX3(a->x, b->x, c->x);
-    px0 = (xmin + HALF - 1) >> SUB;
-    px1 = (xmax - HALF) >> SUB;
-    if (px0 < 0) px0 = 0;
-    if (px1 >= bd->w) px1 = bd->w - 1;
-    if (px0 > px1) return;
-
-    dx1 = (int64_t)b->x - a->x; dy1 = (int64_t)b->y - a->y;
-    dx2 = (int64_t)c->x - a->x; dy2 = (int64_t)c->y - a->y;
-    area2 = dx1 * dy2 - dx2 * dy1;
-    /* y points down: counter-clockwise as seen (front) has area2 < 0 */
-    if (area2 >= 0) {
-        if (area2 == 0 || bd->cull) return;
-    } else {
-        const rs_cvert *t = b; b = c; c = t;
-        dx1 = (int64_t)b->x - a->x; dy1 = (int64_t)b->y - a->y;
-        dx2 = (int64_t)c->x - a->x; dy2 = (int64_t)c->y - a->y;
-        area2 = -area2;
-    }
-    bd->tris++;
-    /* Edge P->Q: E = A X + B Y + C, >= 0 inside; top-left edges keep E == 0. */
-    {
-        const rs_cvert *P[3], *Q[3];
-        P[0] = a; Q[0] = b; P[1] = b; Q[1] = c; P[2] = c; Q[2] = a;
-        for (k = 0; k < 3; k++) {
-            A[k] = (int64_t)P[k]->y - Q[k]->y;
-            B[k] = (int64_t)Q[k]->x - P[k]->x;
-            C[k] = -(A[k] * P[k]->x + B[k] * P[k]->y);
-            if (!(A[k] > 0 || (A[k] == 0 && B[k] > 0))) C[k] -= 1;
-        }
-    }
-    /* Attribute planes (Cramer): per-pixel gradients, colour Q16, depth Q0. */
-    {
-        int64_t da1[4], da2[4];
-        uint32_t ca = a->c, cb = b->c, cc = c->c;
-        a0[0] = a->d;
-        da1[0] = (int64_t)b->d - a->d; da2[0] = (int64_t)c->d - a->d;
-        for (k = 1; k < 4; k++) {
-            int sh = 24 - 8 * k;
-            int64_t va = (ca >> sh) & 255, vb = (cb >> sh) & 255, vc = (cc >> sh) & 255;
-            a0[k] = (va << 16) + 0x8000;
-            da1[k] = vb - va; da2[k] = vc - va;
-        }
-        if (xmax - xmin < SMALL && ymax - ymin < SMALL) {
-            /* area2 < 2^21, |colour num| < 2^19: num * inv < 2^59 */
-            int64_t inv = ((int64_t)1 << 40) / area2;
-            for (k = 1; k < 4; k++) {
-                gx[k] = clamp30(((da1[k] * dy2 - da2[k] * dy1) * inv) >> 20);
-                gy[k] = clamp30(((dx1 * da2[k] - dx2 * da1[k]) * inv) >> 20);
-            }
-            {
-                int64_t nx = da1[0] * dy2 - da2[0] * dy1, ny = dx1 * da2[0] - dx2 * da1[0];
-                const int64_t lim = (int64_t)1 << 22;
-                if (nx < lim && nx > -lim && ny < lim && ny > -lim) {
-                    gx[0] = (nx * inv) >> 36;
-                    gy[0] = (ny * inv) >> 36;
-                } else {
-                    gx[0] = clamp30(nx * SUBONE / area2);
-                    gy[0] = clamp30(ny * SUBONE / area2);
-                }
-            }
-        } else {
-            for (k = 1; k < 4; k++) {
-                gx[k] = clamp30(((da1[k] * dy2 - da2[k] * dy1) << 20) / area2);
-                gy[k] = clamp30(((dx1 * da2[k] - dx2 * da1[k]) << 20) / area2);
-            }
-            gx[0] = clamp30((da1[0] * dy2 - da2[0] * dy1) * SUBONE / area2);
-            gy[0] = clamp30((dx1 * da2[0] - dx2 * da1[0]) * SUBONE / area2);
-        }
-    }
-    bpp = bd->f->fmt == RS_FMT_RGB565 ? 2 : 4;
-    for (py = py0; py <= py1; py++) {
-        int64_t yc = (int64_t)py * SUBONE + HALF, K[3];
-        int32_t xl = px0, xr = px1;
-        for (k = 0; k < 3; k++) K[k] = B[k] * yc + C[k] + A[k] * HALF;
-        if (px1 - px0 < NARROW) {
-            /* e_k(px) = K_k + 16 A_k px; scan for the first and last inside centre */
-            int64_t e0 = K[0] + A[0] * SUBONE * px0, e1 = K[1] + A[1] * SUBONE * px0,
-                    e2 = K[2] + A[2] * SUBONE * px0;
-            int64_t s0 = A[0] * SUBONE, s1 = A[1] * SUBONE, s2 = A[2] * SUBONE;
-            while (xl <= px1 && (e0 | e1 | e2) < 0) { xl++; e0 += s0; e1 += s1; e2 += s2; }
-            if (xl > px1) continue;
-            xr = xl;
-            e0 += s0; e1 += s1; e2 += s2;
-            while (xr < px1 && (e0 | e1 | e2) >= 0) { xr++; e0 += s0; e1 += s1; e2 += s2; }
-        } else {
-            int empty = 0;
-            for (k = 0; k < 3; k++) {
-                if (A[k] > 0) {
-                    int64_t x = fx_div_ceil(-K[k], A[k] * SUBONE);
-                    if (x > xl) xl = x > px1 ? px1 + 1 : (int32_t)x;
-                } else if (A[k] < 0) {
-                    int64_t x = fx_div_floor(K[k], -A[k] * SUBONE);
-                    if (x < xr) xr = x < px0 ? px0 - 1 : (int32_t)x;
-                } else if (K[k] < 0) empty = 1;
-            }
-            if (empty || xl > xr) continue;
-        }
-        {
-            /* values at the centre of (xl, py), from the triangle's reference vertex a */
-            int64_t ox = (int64_t)xl * SUBONE + HALF - a->x, oy = yc - a->y;
-            uint32_t v[4];
-            for (k = 0; k < 4; k++) v[k] = (uint32_t)(a0[k] + ((gx[k] * ox + gy[k] * oy) >> SUB));
-            span(bd->color + (size_t)(py - bd->y0) * bd->stride + (size_t)xl * (size_t)bpp,
-                 bd->f->depth == RS_DEPTH16
-                     ? (void *)((uint16_t *)bd->depth + (size_t)(py - bd->y0) * (size_t)bd->w + (size_t)xl)
-                     : (void *)((uint32_t *)bd->depth + (size_t)(py - bd->y0) * (size_t)bd->w + (size_t)xl),
-                 xr - xl + 1, v[0], v[1], v[2], v[3],
-                 (uint32_t)gx[0], (uint32_t)gx[1], (uint32_t)gx[2], (uint32_t)gx[3]);
-            bd->pixels += (uint32_t)(xr - xl + 1);
-        }
-    }
+    if (A > 0) {
+        int64_t x = fx_div_ceil(-K, A * SUBONE);
+        if (x > *xl) *xl = x > px1 ? px1 + 1 : (int32_t)x;
+    } else if (A < 0) {
+        int64_t x = fx_div_floor(K, -A * SUBONE);
+        if (x < *xr) *xr = x < px0 ? px0 - 1 : (int32_t)x;
+    } else if (K < 0) return 0;
+    return 1;
 }
+
+typedef void (*tri_fn)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c);
+static void tri_clip(band *bd, tri_fn draw, uint32_t ia, uint32_t ib, uint32_t ic);
+
+#define REJECT ((uint32_t)(RS_OUT_LEFT | RS_OUT_RIGHT | RS_OUT_TOP | RS_OUT_BOTTOM | RS_OUT_FAR | RS_OUT_NEAR) << 24)
+#define SLOW ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)
+
+/* Pixel packing from the 21-bit colour fields (R at bit 42, G at 21, B at 0; each
+ * 8 integer + 13 fraction bits). */
+#define PACK888(v) ((uint32_t)((((v) >> 39) & 0xff0000u) | (((v) >> 26) & 0xff00u) | (((v) >> 13) & 0xffu)))
+#define PACK565(v) ((uint16_t)((((v) >> 47) & 0xf800u) | (((v) >> 31) & 0x07e0u) | (((v) >> 16) & 0x001fu)))
+
+#define RS_FN(n) n##_888_z32
+#define RS_PIX uint32_t
+#define RS_Z uint32_t
+#define RS_ZSH 0
+#define RS_PACK PACK888
+#define RS_COUNT 0
+#include "raster/raster_tmpl.h"
+#undef RS_FN
+#undef RS_Z
+#undef RS_ZSH
+#define RS_FN(n) n##_888_z16
+#define RS_Z uint16_t
+#define RS_ZSH 14
+#include "raster/raster_tmpl.h"
+#undef RS_FN
+#undef RS_PIX
+#undef RS_PACK
+#define RS_FN(n) n##_565_z16
+#define RS_PIX uint16_t
+#define RS_PACK PACK565
+#include "raster/raster_tmpl.h"
+#undef RS_FN
+#undef RS_Z
+#undef RS_ZSH
+#define RS_FN(n) n##_565_z32
+#define RS_Z uint32_t
+#define RS_ZSH 0
+#include "raster/raster_tmpl.h"
+#undef RS_FN
+#undef RS_PIX
+#undef RS_PACK
+#undef RS_COUNT
+#define RS_FN(n) n##_count
+#define RS_PIX uint32_t
+#define RS_PACK PACK888
+#define RS_COUNT 1
+#include "raster/raster_tmpl.h"
+#undef RS_FN
+#undef RS_PIX
+#undef RS_Z
+#undef RS_ZSH
+#undef RS_PACK
+#undef RS_COUNT
 
 /* ---------------------------------------------------------------- clipping */
 
@@ -319,7 +236,7 @@ static void intersect(const clipv *P, const clipv *Q, int64_t dp, int64_t dq, in
     if (plane == 0 || o->c[2] < znear) o->c[2] = znear;
 }
 
-static void tri_clip(band *bd, span_fn span, uint32_t ia, uint32_t ib, uint32_t ic)
+static void tri_clip(band *bd, tri_fn draw, uint32_t ia, uint32_t ib, uint32_t ic)
 {
     const rs_frame *f = bd->f;
     const cam_vp *vp = &f->vp;
@@ -361,49 +278,14 @@ static void tri_clip(band *bd, span_fn span, uint32_t ia, uint32_t ib, uint32_t 
         const clipv *v = &buf[cur][i];
         project(vp, f8, v->c, f->w, f->h, &sv[i]);
         sv[i].c = ((uint32_t)v->col[0] << 16) | ((uint32_t)v->col[1] << 8) | (uint32_t)v->col[2];
+        sv[i].cp = rs_pack_rgb(sv[i].c);
     }
-    for (i = 1; i + 1 < n; i++) tri_raster(bd, span, &sv[0], &sv[i], &sv[i + 1]);
-}
-
-/* ---------------------------------------------------------------- primitives */
-
-#define REJECT ((uint32_t)(RS_OUT_LEFT | RS_OUT_RIGHT | RS_OUT_TOP | RS_OUT_BOTTOM | RS_OUT_FAR | RS_OUT_NEAR) << 24)
-#define SLOW ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)
-
-static void tri(band *bd, span_fn span, uint32_t ia, uint32_t ib, uint32_t ic)
-{
-    const rs_cvert *cache = bd->f->cache;
-    const rs_cvert *a = &cache[ia], *b = &cache[ib], *c = &cache[ic];
-    uint32_t oa = a->c, ob = b->c, oc = c->c;
-    if (oa & ob & oc & REJECT) return;
-    if ((oa | ob | oc) & SLOW) { tri_clip(bd, span, ia, ib, ic); return; }
-    tri_raster(bd, span, a, b, c);
-}
-
-static void draw_prims(band *bd, span_fn span)
-{
-    const rs_frame *f = bd->f;
-    int32_t p;
-    for (p = 0; p < f->nprims; p++) {
-        const rs_prim *pr = &f->prims[p];
-        const uint32_t *s = pr->idx;
-        uint32_t k;
-        if (pr->n < 3) continue;
-        if (pr->kind == RS_STRIP) {
-            for (k = 0; k + 2 < pr->n; k++) {
-                if (k & 1) tri(bd, span, s[k + 1], s[k], s[k + 2]);
-                else tri(bd, span, s[k], s[k + 1], s[k + 2]);
-            }
-        } else {
-            for (k = 0; k + 2 < pr->n; k += 3) tri(bd, span, s[k], s[k + 1], s[k + 2]);
-        }
-    }
+    for (i = 1; i + 1 < n; i++) draw(bd, &sv[0], &sv[i], &sv[i + 1]);
 }
 
 br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth)
 {
     band bd;
-    span_fn span;
     int32_t y, x;
     uint32_t dfar;
     if (!f->cache || !color || !depth || y0 < 0 || rows < 1 || y0 + rows > f->h) return BR_E_ARG;
@@ -411,30 +293,42 @@ br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, siz
     bd.f = f; bd.y0 = y0; bd.y1 = y0 + rows; bd.w = f->w;
     bd.color = (uint8_t *)color; bd.stride = stride; bd.depth = depth;
     bd.cull = !f->no_cull;
-    /* clear: colour to the sky, depth to the far plane's depth (per-pixel far cut-off) */
+    /* clear: colour to the sky, depth to the far plane's depth (per-pixel far cut-off);
+     * one row is filled, the others copied */
     dfar = (uint32_t)((int64_t)RS_DEPTH_ONE * f->vp.znear / f->vp.zfar);
-    for (y = 0; y < rows; y++) {
-        uint8_t *row = bd.color + (size_t)y * stride;
-        if (f->fmt == RS_FMT_RGB565) {
+    {
+        int32_t w = f->w;
+        size_t zrow = (size_t)w * (f->depth == RS_DEPTH16 ? 2u : 4u), crow = (size_t)w * (f->fmt == RS_FMT_RGB565 ? 2u : 4u);
+        uint8_t *c0 = bd.color, *z0 = (uint8_t *)depth;
+        if (f->debug_count) {
+            memset(c0, 0, crow);
+        } else if (f->fmt == RS_FMT_RGB565) {
             uint32_t c = f->clear_rgb;
             uint16_t v = (uint16_t)(((c >> 8) & 0xf800u) | ((c >> 5) & 0x07e0u) | ((c >> 3) & 0x1fu));
-            for (x = 0; x < f->w; x++) ((uint16_t *)row)[x] = v;
+            uint16_t *r = (uint16_t *)(void *)c0;
+            for (x = 0; x < w; x++) r[x] = v;
         } else {
-            for (x = 0; x < f->w; x++) ((uint32_t *)row)[x] = f->clear_rgb & 0xffffffu;
+            uint32_t v = f->clear_rgb & 0xffffffu, *r = (uint32_t *)(void *)c0;
+            for (x = 0; x < w; x++) r[x] = v;
+        }
+        if (f->depth == RS_DEPTH16) {
+            uint16_t v = (uint16_t)(dfar >> 14), *r = (uint16_t *)(void *)z0;
+            for (x = 0; x < w; x++) r[x] = v;
+        } else {
+            uint32_t *r = (uint32_t *)(void *)z0;
+            for (x = 0; x < w; x++) r[x] = dfar;
+        }
+        for (y = 1; y < rows; y++) {
+            memcpy(c0 + (size_t)y * stride, c0, crow);
+            memcpy(z0 + (size_t)y * zrow, z0, zrow);
         }
     }
-    if (f->depth == RS_DEPTH16) {
-        uint16_t *z = (uint16_t *)depth, v = (uint16_t)(dfar >> 14);
-        size_t i, n = (size_t)f->w * (size_t)rows;
-        for (i = 0; i < n; i++) z[i] = v;
-        span = f->fmt == RS_FMT_RGB565 ? span_565_z16 : span_888_z16;
+    if (f->debug_count) draw_count(&bd);
+    else if (f->fmt == RS_FMT_RGB565) {
+        if (f->depth == RS_DEPTH16) draw_565_z16(&bd); else draw_565_z32(&bd);
     } else {
-        uint32_t *z = (uint32_t *)depth;
-        size_t i, n = (size_t)f->w * (size_t)rows;
-        for (i = 0; i < n; i++) z[i] = dfar;
-        span = f->fmt == RS_FMT_RGB565 ? span_565_z32 : span_888_z32;
+        if (f->depth == RS_DEPTH16) draw_888_z16(&bd); else draw_888_z32(&bd);
     }
-    draw_prims(&bd, span);
     f->stat_tris += bd.tris;
     f->stat_clipped += bd.clipped;
     f->stat_pixels += bd.pixels;

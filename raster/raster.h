@@ -10,7 +10,8 @@
  *   Guard band: vertices within RS_GUARD_PX = 2^14 pixels of the screen centre are
  *   drawn unclipped; screen coordinates then stay below 2^18 sub-pixels, so edge
  *   functions (products of two differences < 2^19) need 39 bits (int64) and never
- *   overflow.  Largest viewport: RS_MAX_DIM = 8192 x 8192 (must lie inside the guard band).
+ *   overflow.  Largest viewport: RS_MAX_DIM = 4096 x 4096 (inside the guard band;
+ *   also bounds the colour rounding drift along a span, see raster.c).
  * - Fill rule: top-left, on pixel centres: a centre exactly on an edge belongs to the
  *   triangle when that edge is a left edge or a horizontal top edge; so triangles
  *   sharing an edge cover every centre exactly once.  Zero-area (line, degenerate)
@@ -41,10 +42,10 @@
  *   height gives exactly the pixels of the full frame.
  *
  * MEMORY (caller-owned; nothing is allocated here)
- * - vertex cache: rs_cache_mem_size(nv) = 16 bytes per vertex (one transform per vertex
+ * - vertex cache: rs_cache_mem_size(nv) = 24 bytes per vertex (one transform per vertex
  *   per frame, shared by all bands);
  * - band: rs_band_mem_size(w, rows, fmt, depth) = w * rows * (2 or 4 colour + 2 or 4 depth).
- *   320x240 RGB565 with 16-bit depth, bands of 16 rows: 20,480 bytes (+ 16 per vertex);
+ *   320x240 RGB565 with 16-bit depth, bands of 16 rows: 20,480 bytes (+ 24 per vertex);
  *   with 32-bit depth 30,720 bytes.
  *
  * Not checked in the hot path (debug asserts only): indices < nv, band inside the frame.
@@ -58,7 +59,7 @@
 
 #define RS_SUBPIX_BITS 4
 #define RS_GUARD_PX (1 << 14)
-#define RS_MAX_DIM 8192
+#define RS_MAX_DIM 4096
 #define RS_DEPTH_ONE ((1u << 30) - (1u << 18))
 #define RS_CLIP_MAX 8   /* 3 vertices + one per clip plane (near, 4 guard-band sides) */
 
@@ -81,12 +82,14 @@ typedef struct rs_prim {
     const uint32_t *idx;
 } rs_prim;
 
-/* Vertex cache entry (16 bytes): screen position in sub-pixels, depth, colour and
- * the outcode in the top byte of c. */
+/* Vertex cache entry (24 bytes): screen position in sub-pixels, depth, colour with
+ * the outcode in the top byte of c, and the colour in the rasteriser's packed
+ * interpolation form (8-bit R, G, B at bits 42, 21, 0, see raster.c). */
 typedef struct rs_cvert {
     int32_t x, y;
     uint32_t d;
     uint32_t c;
+    uint64_t cp;
 } rs_cvert;
 
 /* Outcode bits (in rs_cvert.c >> 24). */
@@ -111,6 +114,8 @@ typedef struct rs_frame {
     const rs_prim *prims;
     int32_t nprims;
     cam_vp vp;                  /* from cam_viewproj; the camera's w, h must equal w, h */
+    int32_t debug_count;        /* tests: colour must be XRGB8888; each covered pixel's
+                                   32-bit value counts the writes (no depth test, no sky) */
     /* statistics of the last render (over all bands) */
     uint32_t stat_tris, stat_clipped, stat_pixels;
 } rs_frame;

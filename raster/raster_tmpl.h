@@ -1,0 +1,201 @@
+/* raster/raster_tmpl.h — the per-triangle code, specialised per state set.
+ * Included by raster.c once per (pixel format, depth size) with:
+ *   RS_FN(name)   name suffixing, RS_PIX colour type, RS_Z depth type, RS_ZSH depth
+ *   shift (32-bit depth keeps d, 16-bit keeps d >> 14), RS_PACK(c) packed colour ->
+ *   pixel, RS_COUNT 1 for the write-counting test variant (no depth test; each
+ *   write adds 1 to a 32-bit pixel).
+ * No header guard on purpose.  See raster.c for the derivations. */
+
+static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
+{
+    int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1, py, px;
+    int64_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, C0, C1, C2;
+    const int32_t w = bd->w;
+
+    ymin = MIN3(a->y, b->y, c->y);
+    ymax = MAX3(a->y, b->y, c->y);
+    py0 = (ymin + HALF - 1) >> SUB;   /* first row whose centre is >= ymin */
+    py1 = (ymax - HALF) >> SUB;       /* last row whose centre is <= ymax */
+    if (py0 < bd->y0) py0 = bd->y0;
+    if (py1 >= bd->y1) py1 = bd->y1 - 1;
+    if (py0 > py1) return;
+    xmin = MIN3(a->x, b->x, c->x);
+    xmax = MAX3(a->x, b->x, c->x);
+    px0 = (xmin + HALF - 1) >> SUB;
+    px1 = (xmax - HALF) >> SUB;
+    if (px0 < 0) px0 = 0;
+    if (px1 >= w) px1 = w - 1;
+    if (px0 > px1) return;
+
+    dx1 = (int64_t)b->x - a->x; dy1 = (int64_t)b->y - a->y;
+    dx2 = (int64_t)c->x - a->x; dy2 = (int64_t)c->y - a->y;
+    area2 = dx1 * dy2 - dx2 * dy1;
+    /* y points down: counter-clockwise as seen (a front face) has area2 < 0 */
+    if (area2 >= 0) {
+        if (area2 == 0 || bd->cull) return;
+    } else {
+        const rs_cvert *t = b; b = c; c = t;
+        dx1 = (int64_t)b->x - a->x; dy1 = (int64_t)b->y - a->y;
+        dx2 = (int64_t)c->x - a->x; dy2 = (int64_t)c->y - a->y;
+        area2 = -area2;
+    }
+    bd->tris++;
+    /* Edge P->Q: E = A X + B Y + C >= 0 inside, evaluated at pixel centres; edges that
+     * are not top-left get C - 1 so that E == 0 there counts as outside.
+     * Edge 0 = a->b (weight of c), 1 = b->c (weight of a), 2 = c->a (weight of b). */
+    A0 = -dy1; B0 = dx1;
+    A1 = (int64_t)b->y - c->y; B1 = (int64_t)c->x - b->x;
+    A2 = dy2; B2 = -dx2;
+    C0 = -(A0 * a->x + B0 * a->y) - !(A0 > 0 || (A0 == 0 && B0 > 0));
+    C1 = -(A1 * b->x + B1 * b->y) - !(A1 > 0 || (A1 == 0 && B1 > 0));
+    C2 = -(A2 * c->x + B2 * c->y) - !(A2 > 0 || (A2 == 0 && B2 > 0));
+
+    if (px1 - px0 < TINY && py1 - py0 < TINY) {
+        /* Tiny bounding box: test each centre; at an inside centre the edge values are
+         * the barycentric weights (times area2), so attributes come straight from the
+         * vertices with no gradient set-up.  Extent < (TINY+1) px, area2 < 2^13. */
+        int64_t inv = ((int64_t)1 << 40) / area2;
+        int64_t dzb = (int64_t)b->d - a->d, dzc = (int64_t)c->d - a->d;
+        uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
+        for (py = py0; py <= py1; py++) {
+            int64_t Y = (int64_t)py * SUBONE + HALF, X = (int64_t)px0 * SUBONE + HALF;
+            int64_t e0 = A0 * X + B0 * Y + C0, e1 = A1 * X + B1 * Y + C1, e2 = A2 * X + B2 * Y + C2;
+            for (px = px0; px <= px1; px++, e0 += A0 * SUBONE, e1 += A1 * SUBONE, e2 += A2 * SUBONE) {
+                if ((e0 | e1 | e2) < 0) continue;
+                {
+                    int64_t w1 = (e2 * inv) >> 24, w2 = (e0 * inv) >> 24;    /* Q16 */
+                    uint32_t z = (uint32_t)((int64_t)a->d + ((dzb * w1 + dzc * w2) >> 16));
+                    RS_PIX *cp = (RS_PIX *)(void *)(bd->color + (size_t)(py - bd->y0) * bd->stride) + px;
+                    bd->pixels++;
+#if RS_COUNT
+                    (void)z; (void)ca; (void)db; (void)dc;
+                    *cp += 1;
+#else
+                    {
+                        RS_Z *zp = (RS_Z *)bd->depth + (size_t)(py - bd->y0) * (size_t)w + (size_t)px;
+                        RS_Z zz = (RS_Z)(z >> RS_ZSH);
+                        if (zz > *zp) {
+                            uint64_t col = ca + db * (uint64_t)(w1 >> 3) + dc * (uint64_t)(w2 >> 3);
+                            *zp = zz;
+                            *cp = RS_PACK(col);
+                        }
+                    }
+#endif
+                }
+            }
+        }
+        return;
+    }
+
+    {
+        /* General path.  x-gradients per pixel: colour per channel in Q13, packed into
+         * the 21-bit fields (exact modulo 2^64, see RS_CBIAS in raster.c); depth in Q0.
+         * Row starts are computed exactly from the barycentric weights at the first
+         * inside centre of the row (no stepping across rows), so a row's values do not
+         * depend on which band it is drawn in. */
+        int64_t gz, gzn, dzb = (int64_t)b->d - a->d, dzc = (int64_t)c->d - a->d, inv = 0;
+        int64_t dcb[3], dcc[3];
+        uint64_t gc = 0;
+        int small = xmax - xmin < SMALL && ymax - ymin < SMALL;
+        int k;
+        for (k = 0; k < 3; k++) {
+            int sh = 16 - 8 * k;
+            int64_t va = (a->c >> sh) & 255;
+            dcb[k] = (int64_t)((b->c >> sh) & 255) - va;
+            dcc[k] = (int64_t)((c->c >> sh) & 255) - va;
+        }
+        gzn = dzb * dy2 - dzc * dy1;
+        if (small) {
+            /* area2 < 2^21 and |colour numerator| < 2^19: products below 2^59 */
+            inv = ((int64_t)1 << 40) / area2;
+            for (k = 0; k < 3; k++)
+                gc += (uint64_t)(((dcb[k] * dy2 - dcc[k] * dy1) * inv) >> 23) << (42 - 21 * k);
+            if (gzn < ((int64_t)1 << 22) && gzn > -((int64_t)1 << 22)) gz = (gzn * inv) >> 36;
+            else gz = gzn * SUBONE / area2;
+        } else {
+            for (k = 0; k < 3; k++)
+                gc += (uint64_t)(((dcb[k] * dy2 - dcc[k] * dy1) << 17) / area2) << (42 - 21 * k);
+            gz = gzn * SUBONE / area2;
+        }
+        /* a span of two or more pixels bounds |gz| by the depth range (< 2^31); the clamp
+         * only affects one-pixel spans, where the step is never used */
+        if (gz > INT32_MAX) gz = INT32_MAX;
+        if (gz < -INT32_MAX) gz = -INT32_MAX;
+
+        for (py = py0; py <= py1; py++) {
+            int64_t Y = (int64_t)py * SUBONE + HALF;
+            int64_t K0 = B0 * Y + C0 + A0 * HALF, K1 = B1 * Y + C1 + A1 * HALF, K2 = B2 * Y + C2 + A2 * HALF;
+            int32_t xl = px0, xr = px1;
+            if (px1 - px0 < NARROW) {
+                int64_t e0 = K0 + A0 * SUBONE * px0, e1 = K1 + A1 * SUBONE * px0, e2 = K2 + A2 * SUBONE * px0;
+                while (xl <= px1 && (e0 | e1 | e2) < 0) { xl++; e0 += A0 * SUBONE; e1 += A1 * SUBONE; e2 += A2 * SUBONE; }
+                if (xl > px1) continue;
+                xr = xl;
+                e0 += A0 * SUBONE; e1 += A1 * SUBONE; e2 += A2 * SUBONE;
+                while (xr < px1 && (e0 | e1 | e2) >= 0) { xr++; e0 += A0 * SUBONE; e1 += A1 * SUBONE; e2 += A2 * SUBONE; }
+            } else {
+                if (!span_limits(A0, K0, px0, px1, &xl, &xr) || !span_limits(A1, K1, px0, px1, &xl, &xr)
+                    || !span_limits(A2, K2, px0, px1, &xl, &xr) || xl > xr)
+                    continue;
+            }
+            {
+                /* exact barycentric weights at (xl, py): b gets edge 2, c gets edge 0 (Q22) */
+                int64_t e0 = K0 + A0 * SUBONE * xl, e2 = K2 + A2 * SUBONE * xl, w1, w2;
+                uint64_t col;
+                uint32_t z, gzu = (uint32_t)gz;
+                RS_PIX *cp = (RS_PIX *)(void *)(bd->color + (size_t)(py - bd->y0) * bd->stride) + xl;
+                RS_Z *zp = (RS_Z *)bd->depth + (size_t)(py - bd->y0) * (size_t)w + (size_t)xl;
+                int32_t n = xr - xl + 1, i;
+                if (small) { w1 = (e2 * inv) >> 18; w2 = (e0 * inv) >> 18; }
+                else { w1 = (e2 << 22) / area2; w2 = (e0 << 22) / area2; }
+                z = (uint32_t)((int64_t)a->d + ((dzb * w1 + dzc * w2) >> 22));
+                col = (a->cp << 13) + RS_CBIAS;
+                for (k = 0; k < 3; k++)
+                    col += (uint64_t)((dcb[k] * w1 + dcc[k] * w2) >> 9) << (42 - 21 * k);
+                bd->pixels += (uint32_t)n;
+                for (i = 0; i < n; i++) {
+#if RS_COUNT
+                    (void)zp; (void)z; (void)gzu;
+                    cp[i] += 1;
+#else
+                    RS_Z zz = (RS_Z)(z >> RS_ZSH);
+                    if (zz > zp[i]) { zp[i] = zz; cp[i] = RS_PACK(col); }
+#endif
+                    z += gzu; col += gc;
+                }
+            }
+        }
+    }
+}
+
+static void RS_FN(draw)(band *bd)
+{
+    const rs_frame *f = bd->f;
+    const rs_cvert *cache = f->cache;
+    int32_t p;
+    for (p = 0; p < f->nprims; p++) {
+        const rs_prim *pr = &f->prims[p];
+        const uint32_t *s = pr->idx;
+        uint32_t k, n = pr->n;
+        if (n < 3) continue;
+        if (pr->kind == RS_STRIP) {
+            for (k = 0; k + 2 < n; k++) {
+                uint32_t ia = s[k], ib = s[k + 1], ic = s[k + 2];
+                const rs_cvert *va, *vb, *vc;
+                if (k & 1) { uint32_t t = ia; ia = ib; ib = t; }
+                va = &cache[ia]; vb = &cache[ib]; vc = &cache[ic];
+                if (va->c & vb->c & vc->c & REJECT) continue;
+                if ((va->c | vb->c | vc->c) & SLOW) { tri_clip(bd, RS_FN(tri_raster), ia, ib, ic); continue; }
+                RS_FN(tri_raster)(bd, va, vb, vc);
+            }
+        } else {
+            for (k = 0; k + 2 < n; k += 3) {
+                uint32_t ia = s[k], ib = s[k + 1], ic = s[k + 2];
+                const rs_cvert *va = &cache[ia], *vb = &cache[ib], *vc = &cache[ic];
+                if (va->c & vb->c & vc->c & REJECT) continue;
+                if ((va->c | vb->c | vc->c) & SLOW) { tri_clip(bd, RS_FN(tri_raster), ia, ib, ic); continue; }
+                RS_FN(tri_raster)(bd, va, vb, vc);
+            }
+        }
+    }
+}
