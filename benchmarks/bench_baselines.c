@@ -1,0 +1,293 @@
+/* benchmarks/bench_baselines.c — the baselines the bitree is measured against
+ * (issue 3), judged by the independent referee tests/support/meshcheck.h.
+ *
+ * 1. @mapbox/martini ported to C (benchmarks/martini_ref.h) on fuji.png padded to
+ *    513x513 (last row and column repeated, as martini's test does):
+ *    metric build times (median of 11), extraction at 10 m (median of 11),
+ *    triangles and the TRUE max error of martini's metric and of the sound bound
+ *    e_m + max(child bounds); the triangles martini's metric needs before its
+ *    mesh really holds 10 m (bisection on its threshold); the port's triangle
+ *    counts at a few thresholds, in the same format as benchmarks/martini_npm.
+ * 2. Table 1 of papers/002 on real 65x65 crops: restricted quadtree (QT) and
+ *    002's bitree rules (BT-002) from benchmarks/rqt_ref.h, beside the published
+ *    numbers.
+ *
+ * Run: make B=build bench   or   build/bench/bench_baselines [--quick]
+ * (from the repository root; data from ../shared/data/dem or $BITRAIN_DATA). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include "platform/load.h"
+#include "tests/support/meshcheck.h"
+#include "benchmarks/martini_ref.c"
+#include "benchmarks/rqt_ref.c"
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
+}
+
+static int cmp_d(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_d);
+    return v[n / 2];
+}
+
+static const char *data_path(const char *rel)
+{
+    static char buf[4][1024];
+    static int k;
+    const char *root = getenv("BITRAIN_DATA");
+    char *b = buf[k++ & 3];
+    snprintf(b, sizeof buf[0], "%s/%s", root ? root : "../shared/data/dem", rel);
+    return b;
+}
+
+/* ---- meshcheck glue -------------------------------------------------------- */
+
+static mc_vert *g_verts;     /* every grid sample as a vertex, index y*size + x */
+
+static void grid_verts(int32_t size, const int32_t *z)
+{
+    int64_t i, n = (int64_t)size * size;
+    free(g_verts);
+    g_verts = malloc((size_t)n * sizeof *g_verts);
+    for (i = 0; i < n; i++) {
+        g_verts[i].x = (int32_t)(i % size);
+        g_verts[i].y = (int32_t)(i / size);
+        g_verts[i].zq = z[i];
+    }
+}
+
+/* martini output (compact vertices) -> grid-index triangles */
+static int32_t *martini_tris(const mr_mesh *m, int32_t size)
+{
+    int32_t *t = malloc((size_t)(3 * m->nt + 1) * sizeof *t);
+    int64_t i;
+    for (i = 0; i < 3 * m->nt; i++) {
+        uint32_t v = m->tri[i];
+        t[i] = (int32_t)m->vert[2 * v + 1] * size + m->vert[2 * v];
+    }
+    return t;
+}
+
+static void judge(const int32_t *tri, int64_t nt, int32_t size, const int32_t *z, mc_report *r)
+{
+    mc_mesh mm;
+    mm.v = g_verts; mm.nv = size * size; mm.tri = tri; mm.nt = nt; mm.zbits = 0;
+    if (mc_check(&mm, size, size, z, NULL, r) < 0) { fprintf(stderr, "meshcheck: out of memory\n"); exit(1); }
+}
+
+/* ---- part 1: martini on fuji ------------------------------------------------ */
+
+static void martini_part(int quick)
+{
+    hf f;
+    br_err err;
+    int32_t size = 513, x, y, *z;
+    float *terrain, *errors;
+    uint32_t *e_mar, *e_snd;
+    mr_grid g;
+    mr_mesh m;
+    mc_report r;
+    double t[11], t_f32, t_int, t_snd, t_mesh;
+    int i, runs = quick ? 3 : 11;
+    int32_t *tri;
+    static const double thr[] = { 500, 50, 20, 10, 5, 1, 0 };
+    memset(&f, 0, sizeof f);
+    if (dem_load(data_path("png/fuji.png"), NULL, &f, &err) != BR_OK) {
+        printf("martini: skipped: %s\n", err.msg);
+        return;
+    }
+    z = malloc((size_t)size * size * sizeof *z);
+    for (y = 0; y < size; y++)
+        for (x = 0; x < size; x++) {
+            int32_t sx = x < f.w ? x : f.w - 1, sy = y < f.h ? y : f.h - 1;
+            z[y * size + x] = f.z[sy * f.w + sx];
+        }
+    terrain = malloc((size_t)size * size * sizeof *terrain);
+    errors = malloc((size_t)size * size * sizeof *errors);
+    e_mar = malloc((size_t)size * size * sizeof *e_mar);
+    e_snd = malloc((size_t)size * size * sizeof *e_snd);
+    for (i = 0; i < size * size; i++) terrain[i] = mr_terrain_rgb_f32(z[i] + 100000);
+    grid_verts(size, z);
+    if (mr_grid_init(&g, size) != 0 || mr_mesh_alloc(&g, &m) != 0) { printf("martini: no memory\n"); return; }
+
+    printf("martini (C port of @mapbox/martini 0.2.0) on fuji.png padded to 513x513, heights in dm\n");
+    for (i = 0; i < runs; i++) { double t0 = now_ms(); mr_errors_f32(&g, terrain, errors); t[i] = now_ms() - t0; }
+    t_f32 = median(t, runs);
+    for (i = 0; i < runs; i++) { double t0 = now_ms(); mr_errors_int(&g, z, e_mar, 0); t[i] = now_ms() - t0; }
+    t_int = median(t, runs);
+    for (i = 0; i < runs; i++) { double t0 = now_ms(); mr_errors_int(&g, z, e_snd, 1); t[i] = now_ms() - t0; }
+    t_snd = median(t, runs);
+    printf("  metric build, median of %d: martini f32 %.3f ms | martini int %.3f ms | sound bound int %.3f ms\n",
+           runs, t_f32, t_int, t_snd);
+
+    /* extraction at 10 m and the truth about each mesh */
+    for (i = 0; i < runs; i++) { double t0 = now_ms(); mr_mesh_f32(&g, errors, 10.0, &m); t[i] = now_ms() - t0; }
+    t_mesh = median(t, runs);
+    tri = martini_tris(&m, size);
+    judge(tri, m.nt, size, z, &r);
+    printf("  martini metric (f32) at 10 m: %lld triangles, %lld vertices, extraction %.3f ms (%.1f M triangles/s),"
+           " TRUE max error %.4f m at (%d,%d) = %.2fx the request, watertight %s\n",
+           (long long)m.nt, (long long)m.nv, t_mesh, (double)m.nt / t_mesh / 1e3,
+           (double)r.err_num / (double)r.err_den / 10.0, r.err_x, r.err_y,
+           (double)r.err_num / (double)r.err_den / 100.0, r.ok ? "yes" : "NO");
+    if (!r.ok) mc_report_print(stdout, &r);
+    free(tri);
+    for (i = 0; i < runs; i++) { double t0 = now_ms(); mr_mesh_int(&g, e_mar, 200, &m); t[i] = now_ms() - t0; }
+    t_mesh = median(t, runs);
+    tri = martini_tris(&m, size);
+    judge(tri, m.nt, size, z, &r);
+    printf("  martini metric (int, doubled dm) at 10 m: %lld triangles, extraction %.3f ms, TRUE max error %.4f m, watertight %s\n",
+           (long long)m.nt, t_mesh, (double)r.err_num / (double)r.err_den / 10.0, r.ok ? "yes" : "NO");
+    free(tri);
+    for (i = 0; i < runs; i++) { double t0 = now_ms(); mr_mesh_int(&g, e_snd, 200, &m); t[i] = now_ms() - t0; }
+    t_mesh = median(t, runs);
+    tri = martini_tris(&m, size);
+    judge(tri, m.nt, size, z, &r);
+    printf("  sound bound e_m + max(child) at 10 m: %lld triangles, extraction %.3f ms (%.1f M triangles/s), TRUE max error %.4f m (<= 10: %s), watertight %s\n",
+           (long long)m.nt, t_mesh, (double)m.nt / t_mesh / 1e3, (double)r.err_num / (double)r.err_den / 10.0,
+           mc_err_exceeds(&r, 100, 1) ? "NO" : "yes", r.ok ? "yes" : "NO");
+    free(tri);
+
+    /* How far must martini's threshold drop before its mesh really holds 10 m?
+     * Heights are decimetres, so every midpoint error is a multiple of 0.05 m (up
+     * to float32 rounding) and the mesh only changes there: try the thresholds
+     * 9.975, 9.925, ... (half-way between) downwards and stop at the first mesh
+     * whose TRUE error is <= 10 m.  (The true error is not monotone in the
+     * threshold, so this is the largest such threshold, not a bisection guess.) */
+    {
+        int k;
+        for (k = 199; k >= 0; k--) {
+            double th = (double)k * 0.05 + 0.025;
+            mc_mesh mm;
+            mr_mesh_f32(&g, errors, th, &m);
+            tri = martini_tris(&m, size);
+            mm.v = g_verts; mm.nv = size * size; mm.tri = tri; mm.nt = m.nt; mm.zbits = 0;
+            mc_max_error(&mm, size, size, z, &r);
+            free(tri);
+            if (!mc_err_exceeds(&r, 100, 1)) {
+                printf("  martini metric needs threshold %.3f m -> %lld triangles before its TRUE max error is <= 10 m"
+                       " (%.4f m)\n", th, (long long)m.nt, (double)r.err_num / (double)r.err_den / 10.0);
+                break;
+            }
+        }
+    }
+    /* the same lines as benchmarks/martini_npm/run.mjs prints, for a side-by-side diff */
+    for (i = 0; i < (int)(sizeof thr / sizeof thr[0]); i++) {
+        mc_mesh mm;
+        mr_mesh_f32(&g, errors, thr[i], &m);
+        tri = martini_tris(&m, size);
+        mm.v = g_verts; mm.nv = size * size; mm.tri = tri; mm.nt = m.nt; mm.zbits = 0;
+        mc_max_error(&mm, size, size, z, &r);
+        printf("martini_c max_error=%g triangles=%lld vertices=%lld true_max_error=%.4f at=(%d,%d)\n", thr[i],
+               (long long)m.nt, (long long)m.nv, (double)r.err_num / (double)r.err_den / 10.0, r.err_x, r.err_y);
+        free(tri);
+    }
+    mr_mesh_free(&m);
+    mr_grid_free(&g);
+    free(z); free(terrain); free(errors); free(e_mar); free(e_snd);
+    dem_free(&f);
+}
+
+/* ---- part 2: table 1 of 002 --------------------------------------------------- */
+
+typedef struct paper_row { const char *tol; int bt_add, qt_add, bt_tx, qt_tx, bt_tri, qt_tri, bt_ref, qt_ref; } paper_row;
+static const paper_row paper[8] = {   /* papers/002, tabla 1 (65x65, heights 0..1445 m) */
+    { "Orig.", 0, 0, 4225, 4225, 8192, 8192, 13655, 12972 },
+    { "0%", 215, 272, 2533, 2805, 5296, 5843, 8685, 8467 },
+    { "1%", 344, 407, 1235, 1642, 2899, 3184, 4643, 4788 },
+    { "2%", 281, 360, 704, 1064, 1736, 2041, 2803, 3049 },
+    { "7%", 161, 241, 229, 470, 647, 884, 1037, 1307 },
+    { "10%", 144, 202, 182, 384, 527, 715, 851, 1061 },
+    { "14%", 89, 142, 88, 230, 268, 418, 443, 601 },
+    { "50%", 10, 19, 9, 28, 23, 41, 37, 62 },
+};
+static const int pct[8] = { -1, 0, 1, 2, 7, 10, 14, 50 };
+
+typedef struct crop { const char *file; int png_grey_dm; int32_t x0, y0; const char *what; } crop;
+static const crop crops[] = {
+    { "png/ps_height_1k.png", 1, 160, 0, "Puget Sound shore: sea (22% at 0 m) to 1220 m" },
+    { "png/ps_height_1k.png", 1, 112, 48, "Puget Sound: 0 to 1317 m" },
+    { "hgt/N47E009.hgt", 0, 176, 1040, "Raetikon valley floor (26% flat at 419 m) to 2337 m" },
+};
+
+static void table_part(void)
+{
+    int c;
+    printf("\nTable 1 of papers/002 on real 65x65 crops (tolerance = %% of the crop's height range;"
+           " QT = restricted quadtree, BT-002 = 002's bitree rules, both benchmarks/rqt_ref.c;"
+           " refs = greedy single generalised strip, see rqt_ref.h)\n");
+    printf("paper (0..1445 m): tol | added BT QT | transmit BT QT | triangles BT QT | refs BT QT\n");
+    for (c = 0; c < 8; c++)
+        printf("  %-5s | %4d %4d | %4d %4d | %4d %4d | %5d %5d\n", paper[c].tol, paper[c].bt_add, paper[c].qt_add,
+               paper[c].bt_tx, paper[c].qt_tx, paper[c].bt_tri, paper[c].qt_tri, paper[c].bt_ref, paper[c].qt_ref);
+    for (c = 0; c < (int)(sizeof crops / sizeof crops[0]); c++) {
+        hf f;
+        br_err err;
+        dem_opts o;
+        int32_t z[65 * 65], x, y, zmin = INT32_MAX, zmax = INT32_MIN;
+        int k;
+        memset(&f, 0, sizeof f);
+        memset(&o, 0, sizeof o);
+        if (crops[c].png_grey_dm) { o.png_encoding = DEM_PNG_GREY; o.png_scale = 0.1; }
+        if (dem_load(data_path(crops[c].file), &o, &f, &err) != BR_OK) {
+            printf("crop %s: skipped: %s\n", crops[c].file, err.msg);
+            continue;
+        }
+        for (y = 0; y < 65; y++)
+            for (x = 0; x < 65; x++) {
+                int32_t v = f.z[(crops[c].y0 + y) * f.w + crops[c].x0 + x];
+                z[y * 65 + x] = v;
+                if (v < zmin) zmin = v;
+                if (v > zmax) zmax = v;
+            }
+        grid_verts(65, z);
+        printf("\n%s crop at column %d, row %d: %s; heights %.1f..%.1f m\n", crops[c].file, crops[c].x0, crops[c].y0,
+               crops[c].what, (double)zmin * f.z_num / f.z_den, (double)zmax * f.z_num / f.z_den);
+        printf("  tol   | selected | added BT-002 QT | transmit BT-002 QT | triangles BT-002 QT | refs BT-002 QT | line BT-002 QT | QT checks\n");
+        for (k = 0; k < 8; k++) {
+            static int32_t qtri[3 * 8192], qstrip[8 * 8192], btri[3 * 8192], bstrip[8 * 8192];
+            rq_mesh qm, bm;
+            rq_result r;
+            mc_report mr;
+            mc_strip_report sq, sb;
+            int64_t tol_num = pct[k] < 0 ? -1 : (int64_t)pct[k] * (zmax - zmin);
+            qm.tri = qtri; qm.strip = qstrip; bm.tri = btri; bm.strip = bstrip;
+            if (rq_run(z, 65, tol_num, 100, &r, &qm, &bm) != 0) { printf("  rq_run failed\n"); break; }
+            judge(qtri, qm.nt, 65, z, &mr);
+            mc_strip_compare(qstrip, qm.ns, qtri, qm.nt, g_verts, 65 * 65, &sq);
+            mc_strip_compare(bstrip, bm.ns, btri, bm.nt, g_verts, 65 * 65, &sb);
+            printf("  %-5s | %8lld | %5lld %5lld | %5lld %5lld | %5lld %5lld | %5lld %5lld | %5lld %5lld |"
+                   " watertight %s, strips decode %s/%s, max err %.1f m (tol %.1f m)\n",
+                   paper[k].tol, (long long)r.selected, (long long)r.bt.added, (long long)r.qt.added,
+                   (long long)r.bt.transmit, (long long)r.qt.transmit, (long long)r.bt.triangles,
+                   (long long)r.qt.triangles, (long long)r.bt.refs, (long long)r.qt.refs,
+                   (long long)r.bt.line, (long long)r.qt.line, mr.ok ? "yes" : "NO",
+                   sq.ok ? "ok" : "BAD", sb.ok ? "ok" : "BAD",
+                   (double)mr.err_num / (double)mr.err_den * f.z_num / f.z_den,
+                   pct[k] < 0 ? 0.0 : (double)tol_num / 100.0 * f.z_num / f.z_den);
+            if (!mr.ok) mc_report_print(stdout, &mr);
+        }
+        dem_free(&f);
+    }
+}
+
+int main(int argc, char **argv)
+{
+    int quick = argc > 1 && strcmp(argv[1], "--quick") == 0;
+    martini_part(quick);
+    table_part();
+    free(g_verts);
+    return 0;
+}

@@ -1,0 +1,83 @@
+/* benchmarks/rqt_ref.h — the restricted quadtree triangulation (Pajarola 98, as
+ * papers/002 section 2.2 and papers/001 section 2.1 describe it) over a
+ * (2^k+1)^2 grid, the baseline of table 1 of 002; and, beside it, 002's own
+ * bitree rules computed the same way, for reference.
+ *
+ * Benchmark code (malloc; integer arithmetic).  Uses the RTIN triangle numbering of
+ * benchmarks/martini_ref.h (include both .c files in the bench program).
+ *
+ * Hierarchy.  The grid is two right triangles split recursively at the midpoint of
+ * the hypotenuse (002 figure 2: the bitree; the quadtree blocks of 001/002 figure 1
+ * are two such levels).  Every grid point other than the 4 corners is the
+ * hypotenuse midpoint of one triangle (on the border) or two (inside): its
+ * "diamond".  The apex (right-angle vertex) of a diamond triangle is the midpoint
+ * of its parent.
+ *
+ * Selection (002 section 3.2): e(T) = max over the grid samples inside the closed
+ * triangle T of |plane_T - z| (vertical distance, exact rational); top-down from
+ * the two roots, T is split when e(T) > tol.  The midpoints of split triangles,
+ * plus the 4 corners, are the SELECTED points.  tol = tol_num / tol_den height
+ * units (tol_num = -1: split everything, the full grid); table 1 uses tol =
+ * pct% of the crop's height range.
+ *
+ * Restricted quadtree (002 fig. 6/7, Pajarola 98): a selected point depends on the
+ * apexes of both triangles of its diamond (equivalently: a block centre on the two
+ * opposite block corners, an edge midpoint on the centres of the two blocks
+ * sharing the edge); dependencies are selected too, transitively.  In triangle
+ * terms: split(T) => split(parent(T)) and split(partner(T)).  The result is a
+ * conforming mesh (no T-junctions).  ADDED = points in the closure that were not
+ * selected; TRANSMIT = all points of the mesh (all are real).
+ *
+ * 002's bitree rules (for comparison only; bitrain's core bitree is a separate,
+ * T-junction-free design): a selected point splits both triangles of its diamond;
+ * a triangle that must be split must exist, so its parent is split (its midpoint
+ * becomes a FICTITIOUS point if not selected, height interpolated on the
+ * hypotenuse, 002 fig. 9), but the fictitious point does not split the parent's
+ * partner: that partner keeps a T-junction whose vertex lies exactly on its edge
+ * (no crack, 002 section 2.2).  ADDED = fictitious points; TRANSMIT = selected.
+ *
+ * Triangles = 2 + number of split triangles (each split turns one into two).
+ *
+ * Strip references ("simplest honest count"): the leaves are visited in
+ * Sierpinski order (the recursive order that walks each triangle's hypotenuse
+ * from one end to the other, so consecutive leaves share a vertex and usually an
+ * edge) and appended to ONE generalised strip (GL convention, see
+ * tests/support/meshcheck.h), each with the fewest indices that make the strip
+ * produce exactly that triangle with the mesh's winding, every other triangle
+ * produced on the way being a line triangle (zero area: a repeated index or three
+ * collinear points); among the shortest and next-shortest ways, the one that
+ * leaves the cheapest start for the next leaf (one-triangle look-ahead).  Found by
+ * exhaustive search over appended indices drawn from the triangle's 3 vertices
+ * and the strip's last 2 (5 always suffice).  refs = strip length; line = line
+ * triangles in it.  Greedy in a fixed order, not 002's A/B/C sequences; the
+ * strip is checked to decode to the mesh by meshcheck in bench_baselines. */
+#ifndef BR_RQT_REF_H
+#define BR_RQT_REF_H
+#include <stdint.h>
+
+typedef struct rq_side {      /* one scheme's figures */
+    int64_t added;            /* points added against cracks (QT: dependencies; BT: fictitious) */
+    int64_t points;           /* vertices of the mesh (selected + added) */
+    int64_t transmit;         /* QT: points; BT: selected (fictitious ones are deducible) */
+    int64_t triangles;
+    int64_t refs, line;       /* strip length and line triangles in it */
+} rq_side;
+
+typedef struct rq_result {
+    int64_t selected;         /* including the 4 corners */
+    rq_side qt, bt;
+} rq_result;
+
+typedef struct rq_mesh {      /* optional outputs, grid indices y*size + x; NULL = not wanted */
+    int32_t *tri;             /* 3 per triangle, capacity 3 * 2 (size-1)^2 */
+    int64_t nt;
+    int32_t *strip;           /* capacity 8 * 2 (size-1)^2 */
+    int64_t ns;
+} rq_mesh;
+
+/* z: size*size int32 heights (size = 2^k + 1, 3..4097).  qt_out / bt_out may be NULL.
+ * Returns 0, or -1 on a bad size or no memory. */
+int rq_run(const int32_t *z, int32_t size, int64_t tol_num, int64_t tol_den,
+           rq_result *r, rq_mesh *qt_out, rq_mesh *bt_out);
+
+#endif
