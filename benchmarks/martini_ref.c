@@ -81,7 +81,7 @@ void mr_errors_f32(const mr_grid *g, const float *terrain, float *errors)
         double interp = ((double)terrain[ay * size + ax] + (double)terrain[by * size + bx]) / 2;
         int64_t mid = my * size + mx;
         double me = fabs(interp - (double)terrain[mid]);
-        double e = errors[mid];
+        double e = (double)errors[mid];
         if (me > e) e = me;
         errors[mid] = (float)e;
         if (i < g->nparent) {
