@@ -80,6 +80,20 @@ static br_status grey_unit(const dem_opts *o, int bits, int64_t *za, int64_t *zb
     return BR_OK;
 }
 
+/* Sum of the IDAT chunk lengths (walking the chunk list in memory). */
+static uint64_t idat_bytes(const uint8_t *p, size_t n)
+{
+    size_t pos = 8;
+    uint64_t sum = 0;
+    while (n - pos >= 12) {
+        uint32_t len = dem_be32(p + pos);
+        if (!memcmp(p + pos + 4, "IDAT", 4)) sum += len;
+        if (!memcmp(p + pos + 4, "IEND", 4) || len > n - pos - 12) break;
+        pos += 12 + (size_t)len;
+    }
+    return sum;
+}
+
 static br_status decode(const char *name, png_src *s, const dem_opts *o, hf *out, br_err *err)
 {
     png_structp png;
@@ -107,6 +121,16 @@ static br_status decode(const char *name, png_src *s, const dem_opts *o, hf *out
     h = png_get_image_height(png, info);
     bits = png_get_bit_depth(png, info);
     ctype = png_get_color_type(png, info);
+    {
+        /* a header that lies about the size is caught before allocating: deflate
+         * expands at most ~1032 times, so the IDAT chunks bound the pixel data */
+        uint64_t raw = (uint64_t)h * (1 + ((uint64_t)w * png_get_channels(png, info) * (uint64_t)bits + 7) / 8);
+        if (hf_check_dims(w, h) == BR_OK && raw > idat_bytes(s->p, s->n) * 1032 + 1024) {
+            png_destroy_read_struct(&png, &info, NULL);
+            return br_err_set(err, BR_E_TRUNCATED, name, "PNG image data is far too short for %ux%u pixels",
+                              (unsigned)w, (unsigned)h);
+        }
+    }
     enc = o->png_encoding;
     if (enc == DEM_PNG_AUTO)
         enc = (ctype == PNG_COLOR_TYPE_GRAY || ctype == PNG_COLOR_TYPE_GRAY_ALPHA) ? DEM_PNG_GREY : DEM_PNG_TERRAIN_RGB;

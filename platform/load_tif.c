@@ -264,8 +264,24 @@ br_status dem_read_tif(const char *name, const uint8_t *p, size_t n, const dem_o
             return br_err_set(err, BR_E_FORMAT, name, "TIFF lists %u offsets and %u byte counts for %u blocks",
                               go->count, gc->count, nblocks);
     }
-    if (g[G_SCALE].present || g[G_TIE].present) {
-        /* validated below */
+    /* check every block against the file before allocating: a header that
+     * lies about the image size cannot make us allocate more than the data
+     * could fill (deflate expands at most ~1032x, LZW at most 4096x) */
+    for (b = 0; b < nblocks; b++) {
+        uint32_t off = tag_uint(&t, &g[tiled ? G_TOFF : G_SOFF], b, &ok);
+        uint32_t bc = tag_uint(&t, &g[tiled ? G_TBC : G_SBC], b, &ok);
+        uint32_t by = (b / across) * bh, rows = bh;
+        uint64_t need, can;
+        if (!tiled && by + rows > h) rows = h - by;
+        need = (uint64_t)bw * rows * bpsb;
+        can = comp == 1 ? bc : comp == 5 ? (uint64_t)bc * 4096 + 64 : (uint64_t)bc * 1032 + 64;
+        if (!ok) return br_err_set(err, BR_E_FORMAT, name, "TIFF block offsets of the wrong type");
+        if (off > n || bc > n - off)
+            return br_err_set(err, BR_E_TRUNCATED, name, "TIFF block %u at %u (+%u bytes) runs past the end (%zu)",
+                              b, off, bc, n);
+        if (can < need)
+            return br_err_set(err, BR_E_TRUNCATED, name, "TIFF block %u has %u bytes, too few for %llu bytes of samples",
+                              b, bc, (unsigned long long)need);
     }
     have_nodata = parse_nodata(&t, &g[G_NODATA], &nodata, &nodata_nan);
     if (g[G_GEOKEYS].present && g[G_GEOKEYS].type == T_SHORT && g[G_GEOKEYS].count >= 4) {

@@ -188,6 +188,35 @@ static void test_xyz(void)
     dem_free(&f);
 }
 
+/* crops written by GDAL (tests/data/README.md) equal the window of the real file */
+static void same_window(const char *crop, const char *rel, int x0, int y0)
+{
+    hf c, f;
+    br_err e;
+    int x, y, bad = 0;
+    br_status s1 = dem_load(crop, NULL, &c, &e), s2;
+    CHECK_MSG(s1 == BR_OK, "%s", e.msg);
+    if (s1) return;
+    s2 = dem_load(t_data(rel), NULL, &f, &e);
+    CHECK_MSG(s2 == BR_OK, "%s", e.msg);
+    if (s2 == BR_OK) {
+        CHECK_EQ(c.z_num * f.z_den, f.z_num * c.z_den);
+        for (y = 0; y < c.h; y++)
+            for (x = 0; x < c.w; x++)
+                bad += c.z[y * c.w + x] != f.z[(size_t)(y0 + y) * f.w + x0 + x];
+        CHECK_EQ(bad, 0);
+        dem_free(&f);
+    }
+    dem_free(&c);
+}
+
+static void test_gdal_crops(void)
+{
+    same_window("tests/data/png/ps_height_crop.png", "png/ps_height_1k.png", 500, 400);
+    same_window("tests/data/png/fuji_crop.png", "png/fuji.png", 100, 200);
+    same_window("tests/data/bt/crater_crop.bt", "bt/crater_0513.bt", 40, 60);   /* BT 1.3 */
+}
+
 static void test_containers(void)
 {
     size_t n = 0, zn = 0;
@@ -338,6 +367,7 @@ int main(void)
     T_RUN(test_tif);
     T_RUN(test_xyz);
     T_RUN(test_containers);
+    T_RUN(test_gdal_crops);
     T_RUN(test_merge_n50);
     T_RUN(test_merge_errors);
     return t_finish();
