@@ -1,0 +1,180 @@
+/* core/bitree.h — the fixed-point bitree (right-triangle binary tree, RTIN)
+ * triangulator: heightfield in, crack-free adaptive mesh + one generalised
+ * triangle strip out.  Papers (../shared/papers, Spanish): 002 (bitree,
+ * fictitious points, strips), 004 (S/F vertex states, line triangles),
+ * 001 (curvature indicator), 000 (screen-space error, nodata), 003 (budget,
+ * hysteresis).  Integer only; all memory is the caller's.
+ *
+ * ===========================================================================
+ * OUTPUT MESH CONTRACT (what the rasteriser and the exporters consume)
+ * ===========================================================================
+ * bt_mesh.v[0 .. nv): unique vertices, array of struct bt_vert:
+ *   x, y    grid column (east) and row (south; row 0 = north), the sample
+ *           indices of the input heightfield (0 <= x < w, 0 <= y < h);
+ *   z       height in heightfield units (hf.z_num/hf.z_den metres) AFTER
+ *           geomorphing: z = zf + ((zs - zf) * morph + 2^14) >> 15, where zs is
+ *           the sample's real height and zf the interpolated ("fictitious")
+ *           height (average of the two ends of the hypotenuse the vertex
+ *           splits, themselves geomorphed; rounded down);
+ *   morph   geomorph weight, Q15: 32768 = real height, 0 = fictitious height;
+ *   state   BT_S (selected: real height, morph 32768) or BT_F (fictitious:
+ *           morph < 32768, the height is (partly) interpolated; 002 2.2, 004 3).
+ *   Vertices are never on a void sample.  No two vertices share (x, y).
+ * bt_mesh.strip[0 .. ns): ONE generalised triangle strip of uint32 indices into
+ *   v, GL convention: triangle k = (s[k], s[k+1], s[k+2]) for even k and
+ *   (s[k+1], s[k], s[k+2]) for odd k.  Every non-degenerate triangle is
+ *   COUNTER-CLOCKWISE SEEN FROM +z with x east and y north (in grid (x, y) with
+ *   y = row that is cross((p1-p0),(p2-p0)) < 0: meshcheck orientation -1, the
+ *   OBJ/GL convention).  Degenerate ("line") triangles (a repeated index:
+ *   swaps and restarts) draw nothing; nline counts them, ntri the real ones,
+ *   ns - 2 = ntri + nline when ns >= 3.
+ * The real triangles form a conforming mesh: watertight (each interior edge in
+ * exactly two triangles), no T-junctions, void samples never inside or on a
+ * triangle, the void's boundary is a mesh boundary.
+ *
+ * ===========================================================================
+ * TREE AND ERRORS
+ * ===========================================================================
+ * The heightfield is padded VIRTUALLY to n x n, n = 2^k + 1 >= max(w, h): the
+ * samples outside w x h are voids.  Two root triangles split the square along
+ * (0,0)-(n-1,n-1); a triangle splits at the midpoint of its hypotenuse (002 2.1).
+ * Every sample except the 4 corners is the midpoint of exactly one DIAMOND (the
+ * one or two triangles sharing that hypotenuse), so per-diamond data is stored
+ * per sample:
+ *   err   uint16 error code: BT_METRIC_EXACT: a TRUE upper bound, in
+ *         heightfield units, of |plane - z| over every grid sample of each
+ *         triangle of the diamond AND of every descendant diamond (max, so the
+ *         hierarchy is monotone); BT_METRIC_CURVATURE: the accumulated 001
+ *         curvature indicator (sum over the triangle's samples, see bt_err.c),
+ *         made monotone the same way.  Code BT_CODE_SPLIT: a triangle of the
+ *         diamond covers voids and valid samples (always split; 000's nodata).
+ *         Codes decode with bt_code_value (exact below 4096, then 12-bit
+ *         mantissa, rounded UP so the bound stays a bound).
+ *   zlo, zhi  uint8 quantised height range of the diamond's nested bounding
+ *         volume (range of its triangles +- error, union with its children).
+ *   st    uint8 per-vertex frame state (hysteresis / budget marks).
+ * Memory: 5 bytes per padded sample (bt_mem_size); build scratch 10 bytes per
+ * heightfield sample (bt_scratch_size), only during bt_build.
+ * Monotone + shared per diamond => splitting every diamond whose value exceeds a
+ * threshold gives a conforming mesh (no T-junctions, no cracks).
+ *
+ * Not checked in the hot paths (debug asserts only): that the tree was built
+ * from the heightfield it is used with, and that the hf was not changed.
+ */
+#ifndef BR_BITREE_H
+#define BR_BITREE_H
+#include <stddef.h>
+#include <stdint.h>
+#include "core/hf.h"
+#include "core/cam.h"
+#include "core/status.h"
+
+enum { BT_METRIC_EXACT = 0, BT_METRIC_CURVATURE = 1 };
+enum { BT_S = 0, BT_F = 1 };
+#define BT_CODE_SPLIT 0xFFFFu
+#define BT_MORPH_ONE 32768
+
+typedef struct bt_tree {
+    const hf *f;           /* the heightfield (caller keeps it alive and unchanged) */
+    int32_t n, k;          /* padded side n = 2^k + 1 */
+    int32_t metric;        /* BT_METRIC_* */
+    int32_t zmin, zmax;    /* over valid samples (0, 0 if none) */
+    int64_t nvalid;        /* valid samples */
+    uint16_t *err;         /* n*n error codes, per diamond centre */
+    uint8_t *zlo, *zhi;    /* n*n quantised height range of the diamond's volume */
+    uint8_t *st;           /* n*n frame state bits */
+} bt_tree;
+
+/* Bytes of mem for bt_build (5 per padded sample); 0 if w, h are invalid. */
+size_t bt_mem_size(int32_t w, int32_t h);
+/* Bytes of build scratch (freed by the caller after bt_build). */
+size_t bt_scratch_size(int32_t w, int32_t h);
+/* Builds the error hierarchy of f with metric (BT_METRIC_*).  BR_E_ARG on a bad
+ * hf, bad metric or too small buffers (t is then unchanged). */
+br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
+                   void *mem, size_t mem_bytes, void *scratch, size_t scratch_bytes);
+
+/* Value (heightfield units for the exact metric) of an error code; BT_CODE_SPLIT
+ * gives INT64_MAX. */
+int64_t bt_code_value(uint16_t code);
+/* Smallest code whose value is >= v (v >= 0): the encoding rounds up. */
+uint16_t bt_code_encode(int64_t v);
+/* Threshold in millimetres to heightfield units (floor): an exact-metric error
+ * <= this many units is <= max_err_mm millimetres. */
+int64_t bt_mm_to_units(const hf *f, int64_t mm);
+
+/* ---------------------------------------------------------------- output */
+typedef struct bt_vert {
+    int32_t x, y;          /* grid column (east), row (south) */
+    int32_t z;             /* height after geomorph, heightfield units */
+    uint16_t morph;        /* Q15 geomorph weight (BT_MORPH_ONE = real height) */
+    uint8_t state;         /* BT_S or BT_F */
+    uint8_t pad_;
+} bt_vert;
+
+typedef struct bt_mesh {
+    bt_vert *v;            /* vertices, capacity cap_v */
+    uint32_t nv, cap_v;
+    uint32_t *strip;       /* strip indices into v, capacity cap_s */
+    uint32_t ns, cap_s;
+    uint32_t ntri;         /* real (non-degenerate) triangles */
+    uint32_t nline;        /* line (degenerate) triangles in the strip */
+    uint32_t nfict;        /* vertices with state BT_F */
+    uint32_t max_tri;      /* capacity in triangles */
+    uint32_t *hash;        /* vertex dedup table (internal), hmask + 1 entries */
+    uint32_t hmask;
+    uint32_t *splits;      /* diamonds split this frame (internal: hysteresis) */
+    uint32_t nsplits;
+    int32_t overflow;      /* 1 if the last extraction had to fall back to the budget */
+} bt_mesh;
+
+/* Bytes for a mesh that holds up to max_tri triangles (>= 2). */
+size_t bt_mesh_mem_size(uint32_t max_tri);
+br_status bt_mesh_init(bt_mesh *m, uint32_t max_tri, void *mem, size_t mem_bytes);
+
+/* ---------------------------------------------------------------- selection */
+enum { BT_FIDELITY = 0, BT_VIEW = 1, BT_BUDGET = 2 };
+
+/* Grid to world (core/cam.h units): wx = ox + x*sx, wy = oy - y*sy (north up),
+ * wz = oz + (z*sz_q16 >> 16).  sx, sy in world units per grid step (> 0). */
+typedef struct bt_frame {
+    int32_t ox, oy, oz;
+    int32_t sx, sy;
+    int32_t sz_q16;
+} bt_frame;
+
+typedef struct bt_params {
+    int32_t mode;          /* BT_FIDELITY, BT_VIEW or BT_BUDGET */
+    int64_t max_err;       /* BT_FIDELITY: threshold in heightfield units (bt_mm_to_units) */
+    const cam *c;          /* BT_VIEW, BT_BUDGET: the camera */
+    bt_frame fr;           /* BT_VIEW, BT_BUDGET: grid -> world */
+    int32_t pixel_err_q8;  /* BT_VIEW: screen-space threshold, 1/256 pixel (0 = 1 px) */
+    int32_t hyst_q8;       /* BT_VIEW: hysteresis, 1/256 of the threshold: a diamond split in
+                              the previous frame stays split while its error exceeds
+                              threshold * (1 - hyst/256) (003); 0 = none */
+    int32_t morph_q8;      /* BT_VIEW/BUDGET: geomorph range, 1/256 of the threshold: a
+                              vertex rises from fictitious (at threshold) to real height
+                              (at threshold * (1 + morph/256)); 0 = no geomorph */
+    uint32_t budget;       /* BT_BUDGET: at most this many triangles */
+    int32_t no_cull;       /* 1: no frustum culling */
+} bt_params;
+
+/* Counts the triangles the selection p would produce (fidelity and view modes;
+ * for BT_BUDGET returns the budget).  Nothing is written except *ntri. */
+br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri);
+
+/* Selects and emits the mesh into m.  If the selection needs more triangles than
+ * m holds, it falls back to budget mode with m's capacity (screen-space priority
+ * in view mode, error priority in fidelity mode) and sets m->overflow = 1: a
+ * coarser but still conforming mesh.  bt_extract updates the per-vertex state
+ * used by hysteresis (call it once per frame).  Returns BR_E_ARG on bad params. */
+br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m);
+
+/* Budget mode scratch: bt_extract with BT_BUDGET (or a fallback) needs a heap;
+ * it is carved from m (bt_mesh_mem_size includes it). */
+
+/* Projected (screen-space) error of diamond (x, y), 1/256 pixel, for tests and
+ * the renderer's statistics; 0 when culled. */
+int64_t bt_screen_error_q8(const bt_tree *t, const bt_params *p, int32_t x, int32_t y);
+
+#endif

@@ -1,0 +1,617 @@
+/* core/bt_mesh.c — selection (fidelity, view-dependent, budget, hysteresis,
+ * geomorph) and the strip emitter of the bitree (contract: core/bitree.h).
+ *
+ * Selection.  A diamond (sample) is SPLIT when its value exceeds the threshold:
+ *   fidelity  err code > largest code whose value <= max_err (exact compare);
+ *   view      rho > tau, rho = projected error (000): object error E (world
+ *             units) * f / d, d = a lower bound of the distance from the eye to
+ *             the diamond's nested bounding volume (box of half-side 3h / 2h
+ *             around the centre x quantised height range), so rho is an upper
+ *             bound of the error seen on screen.  Diamonds whose volume lies
+ *             outside a frustum plane are culled: neither split nor emitted.
+ *             Hysteresis (003): a diamond split in the previous frame stays
+ *             split while rho > tau * (1 - hyst).
+ *   budget    (003) diamonds are split in decreasing rho order (a heap; ties
+ *             coarser first) while the nominal triangle count stays <= budget.
+ * E and the volume are monotone up the tree, so every rule splits a set closed
+ * under "parent of": the mesh is conforming (002 2.2, no T-junctions).
+ *
+ * Geomorph (002 3.3): a split vertex's height moves from the fictitious height
+ * (average of its hypotenuse ends) at rho = tau to its real height at
+ * rho = tau * (1 + morph), so refinements rise instead of popping.
+ *
+ * Strip (002 section 4, figures 10-12; 004 figure 2).  Leaves are visited in the
+ * recursive order left child (a, m, c) then right child (c, m, b), which makes
+ * every leaf share an edge with the next one: it is entered through its leg
+ * a-c and left through its leg c-b (the "pivot" c).  Each leaf appends one
+ * index; when two consecutive leaves have the same pivot (a fan) the strip
+ * needs a swap: the older index is repeated, one line triangle (002 figure 10).
+ * A leaf that does not touch the previous one (after a void or a culled
+ * subtree) restarts with 4 line triangles.  Winding: the first triangle is
+ * written counter-clockwise seen from +z (x east, y north); the GL parity rule
+ * keeps every later edge-adjacent triangle the same. */
+#include <string.h>
+#include "core/bitree.h"
+
+enum { ST_PREV = 1, ST_SPLIT = 2, ST_PUSHED = 4, ST_CUR = 8 };
+
+typedef struct pt { int32_t x, y, z; uint16_t morph; } pt;
+
+typedef struct heap_ent { int64_t key; uint32_t id; uint32_t pad_; } heap_ent;
+
+typedef struct em {
+    bt_tree *t;
+    const bt_params *p;
+    bt_mesh *m;
+    int count_only;
+    uint64_t count;
+    int32_t S, n;
+    uint16_t cthr;          /* fidelity: split iff code > cthr */
+    /* view */
+    cam_plane pl[CAM_NPLANES];
+    int64_t fq8;            /* f in Q8 pixels (f_q16 >> 8) */
+    int64_t tau;            /* q8 pixels */
+    int64_t tau_lo;         /* with hysteresis */
+    int64_t morph_span;     /* q8 pixels: tau * morph/256 */
+    int full;               /* mesh full: stop emitting */
+    int rec_splits;         /* record this frame's splits (view mode, hysteresis) */
+    int lost;               /* the split list overflowed */
+} em;
+
+/* ------------------------------------------------------------ mesh memory */
+static uint32_t hash_size(uint32_t cap_v)
+{
+    uint32_t s = 16;
+    while (s < 2 * cap_v && s < 0x80000000u) s <<= 1;
+    return s;
+}
+
+size_t bt_mesh_mem_size(uint32_t max_tri)
+{
+    uint64_t cap_v, cap_s, hs, heap, sz;
+    if (max_tri < 2 || max_tri > 0x10000000u) return 0;
+    cap_v = 3ull * max_tri + 3;
+    cap_s = 5ull * max_tri + 8;
+    hs = hash_size((uint32_t)cap_v);
+    heap = 4ull * max_tri + 8;
+    sz = cap_v * sizeof(bt_vert) + cap_s * 4 + hs * 4 + heap * sizeof(heap_ent) + heap * 4 + 64;
+    return (size_t)sz;
+}
+
+br_status bt_mesh_init(bt_mesh *m, uint32_t max_tri, void *mem, size_t mem_bytes)
+{
+    uint8_t *p = (uint8_t *)mem;
+    uint32_t cap_v, cap_s, hs;
+    if (!m || !mem || max_tri < 2 || max_tri > 0x10000000u) return BR_E_ARG;
+    if (mem_bytes < bt_mesh_mem_size(max_tri)) return BR_E_ARG;
+    if (((uintptr_t)mem & 7) != 0) return BR_E_ARG;
+    memset(m, 0, sizeof *m);
+    cap_v = 3 * max_tri + 3;
+    cap_s = 5 * max_tri + 8;
+    hs = hash_size(cap_v);
+    m->max_tri = max_tri;
+    m->v = (bt_vert *)(void *)p; p += (size_t)cap_v * sizeof(bt_vert);
+    m->cap_v = cap_v;
+    m->hash = (uint32_t *)(void *)p; p += (size_t)hs * 4;
+    m->hmask = hs - 1;
+    m->strip = (uint32_t *)(void *)p; p += (size_t)cap_s * 4;
+    m->cap_s = cap_s;
+    p += (8 - ((uintptr_t)p & 7)) & 7;
+    m->splits = (uint32_t *)(void *)p;   /* heap entries + id list share this tail */
+    return BR_OK;
+}
+
+static heap_ent *heap_of(const bt_mesh *m) { return (heap_ent *)(void *)m->splits; }
+static uint32_t heap_cap(const bt_mesh *m) { return 4 * m->max_tri + 8; }
+static uint32_t *ids_of(const bt_mesh *m) { return (uint32_t *)(void *)(heap_of(m) + heap_cap(m)); }
+
+/* ------------------------------------------------------------ samples */
+static int valid(const bt_tree *t, int32_t x, int32_t y)
+{
+    const hf *f = t->f;
+    if (x >= f->w || y >= f->h) return 0;
+    return f->z[(size_t)y * f->w + x] != HF_NODATA;
+}
+
+static int32_t zreal(const bt_tree *t, int32_t x, int32_t y)
+{
+    const hf *f = t->f;
+    if (x >= f->w || y >= f->h) return 0;
+    {
+        int32_t v = f->z[(size_t)y * f->w + x];
+        return v == HF_NODATA ? 0 : v;
+    }
+}
+
+/* diamond geometry: scale h and type (1 = D) of sample (x, y), not a corner */
+static int32_t dscale(int32_t x, int32_t y, int32_t S, int *typeD)
+{
+    uint32_t u = (uint32_t)(x | y);
+    int32_t h;
+    if (u == 0) u = (uint32_t)S;
+    h = (int32_t)(u & (~u + 1u));
+    if (x == 0) h = (int32_t)((uint32_t)y & (~(uint32_t)y + 1u));
+    if (y == 0) h = (int32_t)((uint32_t)x & (~(uint32_t)x + 1u));
+    if (x == 0 && y == 0) h = S;
+    *typeD = ((x / h) & 1) && ((y / h) & 1);
+    return h;
+}
+
+/* ------------------------------------------------------------ view */
+static int64_t isat_mul(int64_t a, int64_t b)
+{
+    if (a == 0 || b == 0) return 0;
+    if (a > INT64_MAX / b) return INT64_MAX;
+    return a * b;
+}
+
+/* Lower bound of the distance from the eye to the box [lo, hi] (world units):
+ * max(|dmax|, (|dx|+|dy|+|dz|) * 147/256), 147/256 < 1/sqrt(3). */
+static int64_t box_dist(const int32_t eye[3], const int64_t lo[3], const int64_t hi[3])
+{
+    int64_t d[3], mx = 0, s = 0, l1;
+    int i;
+    for (i = 0; i < 3; i++) {
+        int64_t e = eye[i];
+        d[i] = e < lo[i] ? lo[i] - e : (e > hi[i] ? e - hi[i] : 0);
+        if (d[i] > mx) mx = d[i];
+        s += d[i];
+    }
+    l1 = (s * 147) >> 8;
+    return l1 > mx ? l1 : mx;
+}
+
+static void dvolume(const em *e, int32_t x, int32_t y, int64_t lo[3], int64_t hi[3])
+{
+    const bt_tree *t = e->t;
+    const bt_frame *fr = &e->p->fr;
+    int typeD;
+    int32_t h = dscale(x, y, e->S, &typeD);
+    int32_t r = typeD ? 3 * h : 2 * h;
+    int32_t x0 = x - r < 0 ? 0 : x - r, x1 = x + r > e->S ? e->S : x + r;
+    int32_t y0 = y - r < 0 ? 0 : y - r, y1 = y + r > e->S ? e->S : y + r;
+    size_t idx = (size_t)y * e->n + x;
+    int64_t range = (int64_t)t->zmax - t->zmin;
+    int64_t zl = t->zmin + (range * t->zlo[idx]) / 255;
+    int64_t zh = t->zmin + (range * t->zhi[idx] + 254) / 255;
+    lo[0] = fr->ox + (int64_t)x0 * fr->sx;
+    hi[0] = fr->ox + (int64_t)x1 * fr->sx;
+    lo[1] = fr->oy - (int64_t)y1 * fr->sy;
+    hi[1] = fr->oy - (int64_t)y0 * fr->sy;
+    lo[2] = fr->oz + ((zl * fr->sz_q16) >> 16);
+    hi[2] = fr->oz + ((zh * fr->sz_q16 + 65535) >> 16);
+}
+
+static int culled(const em *e, const int64_t lo[3], const int64_t hi[3])
+{
+    int i, k;
+    if (e->p->no_cull) return 0;
+    for (i = 0; i < CAM_NPLANES; i++) {
+        int64_t s = e->pl[i].d;
+        for (k = 0; k < 3; k++) {
+            int64_t c = e->pl[i].n[k] >= 0 ? hi[k] : lo[k];
+            s += (int64_t)e->pl[i].n[k] * c;
+        }
+        if (s < 0) return 1;
+    }
+    return 0;
+}
+
+/* rho in q8 pixels; -1 when culled */
+static int64_t rho_q8(const em *e, int32_t x, int32_t y)
+{
+    const bt_tree *t = e->t;
+    int64_t lo[3], hi[3], d, ew;
+    uint16_t code = t->err[(size_t)y * e->n + x];
+    if (t->zlo[(size_t)y * e->n + x] > t->zhi[(size_t)y * e->n + x]) return -1; /* all void */
+    dvolume(e, x, y, lo, hi);
+    if (culled(e, lo, hi)) return -1;
+    if (code == BT_CODE_SPLIT) return INT64_MAX;
+    ew = isat_mul(bt_code_value(code), e->p->fr.sz_q16);
+    ew = ew == INT64_MAX ? ew : (ew + 65535) >> 16;
+    d = box_dist(e->p->c->eye, lo, hi);
+    if (d <= 0) return ew > 0 ? INT64_MAX : 0;
+    return isat_mul(ew, e->fq8) / d;
+}
+
+int64_t bt_screen_error_q8(const bt_tree *t, const bt_params *p, int32_t x, int32_t y)
+{
+    em e;
+    int64_t r;
+    memset(&e, 0, sizeof e);
+    e.t = (bt_tree *)t; e.p = p; e.n = t->n; e.S = t->n - 1;
+    if (!p->c) return 0;
+    cam_frustum(p->c, e.pl);
+    e.fq8 = p->c->f_q16 >> 8;
+    r = rho_q8(&e, x, y);
+    return r < 0 ? 0 : r;
+}
+
+/* ------------------------------------------------------------ split rule */
+/* returns 1 split, 0 leaf, -1 drop (culled) ; *morph set for split vertices */
+static int decide(em *e, int32_t x, int32_t y, uint16_t *morph)
+{
+    bt_tree *t = e->t;
+    size_t idx = (size_t)y * e->n + x;
+    *morph = BT_MORPH_ONE;
+    if (e->p->mode == BT_FIDELITY && e->tau >= 0) return t->err[idx] > e->cthr;
+    if (e->p->mode == BT_BUDGET || e->tau < 0) {
+        if (t->st[idx] & ST_SPLIT) {
+            if (e->morph_span > 0) {
+                int64_t r = rho_q8(e, x, y) - e->tau;
+                if (r < 0) r = 0;
+                if (r < e->morph_span) *morph = (uint16_t)((r * BT_MORPH_ONE) / e->morph_span);
+            }
+            return 1;
+        }
+        if (e->p->mode == BT_VIEW || e->p->mode == BT_BUDGET) {
+            if (e->p->no_cull) return 0;
+            return rho_q8(e, x, y) < 0 ? -1 : 0;
+        }
+        return 0;
+    }
+    {
+        int64_t r = rho_q8(e, x, y);
+        int sp;
+        if (r < 0) return -1;
+        sp = r > e->tau || ((t->st[idx] & ST_PREV) && r > e->tau_lo);
+        if (sp && e->morph_span > 0) {
+            int64_t q = r - e->tau;
+            if (q < 0) q = 0;
+            if (q < e->morph_span) *morph = (uint16_t)((q * BT_MORPH_ONE) / e->morph_span);
+        }
+        return sp;
+    }
+}
+
+/* ------------------------------------------------------------ strip */
+static uint32_t vid(em *e, const pt *q)
+{
+    bt_mesh *m = e->m;
+    uint32_t key = (uint32_t)q->y * (uint32_t)e->n + (uint32_t)q->x;
+    uint32_t h = (key * 2654435761u) & m->hmask;
+    for (;;) {
+        uint32_t s = m->hash[h];
+        if (s == 0) break;
+        if (m->v[s - 1].x == q->x && m->v[s - 1].y == q->y) return s - 1;
+        h = (h + 1) & m->hmask;
+    }
+    {
+        uint32_t i = m->nv++;
+        bt_vert *v = &m->v[i];
+        v->x = q->x; v->y = q->y; v->z = q->z;
+        v->morph = q->morph;
+        v->state = q->morph == BT_MORPH_ONE ? BT_S : BT_F;
+        v->pad_ = 0;
+        if (v->state == BT_F) m->nfict++;
+        m->hash[h] = i + 1;
+        return i;
+    }
+}
+
+static int64_t cross3(const pt *a, const pt *b, const pt *c)
+{
+    return (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(b->y - a->y) * (c->x - a->x);
+}
+
+static void push(bt_mesh *m, uint32_t i) { m->strip[m->ns++] = i; }
+
+/* Leaf (a, c, b), apex c.  It is entered through edge {a, c} (or the hypotenuse
+ * {a, b} when in_hyp) and left through {c, b} (or {a, b} when out_hyp). */
+static void leaf(em *e, const pt *a, const pt *c, const pt *b, int in_hyp, int out_hyp)
+{
+    bt_mesh *m = e->m;
+    uint32_t ia, ic, ib, o0, o1, other;
+    e->count++;
+    if (e->count_only) return;
+    if (e->full || m->nv + 3 > m->cap_v || m->ns + 5 > m->cap_s || m->ntri >= m->max_tri) {
+        e->full = 1;
+        return;
+    }
+    ia = vid(e, a); ic = vid(e, c); ib = vid(e, b);
+    m->ntri++;
+    if (out_hyp) { o0 = ia; o1 = ib; other = ic; }
+    else { o0 = ic; o1 = ib; other = ia; }
+    (void)in_hyp;
+    if (m->ns >= 2) {
+        uint32_t p = m->strip[m->ns - 2], q = m->strip[m->ns - 1];
+        int hp = p == ia || p == ic || p == ib, hq = q == ia || q == ic || q == ib;
+        if (hp && hq && p != q) {
+            uint32_t z = (p != ia && q != ia) ? ia : ((p != ic && q != ic) ? ic : ib);
+            /* want the last two to be the exit edge {o0, o1}; z is in it unless the
+             * entry edge is the exit edge (cannot happen in a conforming walk) */
+            int qin = q == o0 || q == o1, pin = p == o0 || p == o1;
+            if (!qin && pin) { push(m, p); m->nline++; }
+            push(m, z);
+            return;
+        }
+    }
+    {
+        /* (re)start: (other, v2, v3) drawn at index i counter-clockwise from +z, i.e.
+         * grid cross < 0 for even i, > 0 for odd i (odd triangles are swapped) */
+        const pt *po = out_hyp ? c : a, *p0 = out_hyp ? a : c;
+        int64_t cr = cross3(po, p0, b);
+        uint32_t i0;
+        uint32_t v2 = o0, v3 = o1;
+        if (m->ns > 0) {
+            push(m, m->strip[m->ns - 1]);
+            push(m, other);
+            m->nline += 4;
+        }
+        i0 = m->ns;
+        if (((i0 & 1) == 0) != (cr < 0)) { v2 = o1; v3 = o0; }
+        push(m, other); push(m, v2); push(m, v3);
+    }
+}
+
+static void rec(em *e, const pt *a, const pt *c, const pt *b, int in_hyp, int out_hyp)
+{
+    int32_t dx = b->x - a->x, dy = b->y - a->y;
+    pt mm;
+    int sp;
+    if (e->full) return;
+    if ((dx == 1 || dx == -1) && (dy == 1 || dy == -1)) {
+        if (valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y))
+            leaf(e, a, c, b, in_hyp, out_hyp);
+        return;
+    }
+    mm.x = a->x + (dx >> 1);
+    mm.y = a->y + (dy >> 1);
+    sp = decide(e, mm.x, mm.y, &mm.morph);
+    if (sp < 0) return;
+    if (!sp) {
+        if (valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y))
+            leaf(e, a, c, b, in_hyp, out_hyp);
+        return;
+    }
+    if (e->rec_splits) {
+        /* record for the next frame's hysteresis (a diamond is reached twice) */
+        size_t idx = (size_t)mm.y * e->n + mm.x;
+        if (!(e->t->st[idx] & ST_CUR)) {
+            if (e->m->nsplits < heap_cap(e->m)) {
+                e->t->st[idx] |= ST_CUR;
+                ids_of(e->m)[e->m->nsplits++] = (uint32_t)idx;
+            } else e->lost = 1;
+        }
+    }
+    {
+        int32_t zs = zreal(e->t, mm.x, mm.y);
+        int64_t zf = ((int64_t)a->z + b->z) >> 1;
+        mm.z = mm.morph == BT_MORPH_ONE ? zs
+             : (int32_t)(zf + ((((int64_t)zs - zf) * mm.morph + (1 << 14)) >> 15));
+    }
+    rec(e, a, &mm, c, !in_hyp, 0);
+    rec(e, c, &mm, b, 0, !out_hyp);
+}
+
+static void corner(const bt_tree *t, int32_t x, int32_t y, pt *q)
+{
+    q->x = x; q->y = y; q->z = zreal(t, x, y); q->morph = BT_MORPH_ONE;
+}
+
+static void run(em *e)
+{
+    pt A, B, C, D;
+    int32_t S = e->S;
+    corner(e->t, 0, 0, &A); corner(e->t, S, 0, &B);
+    corner(e->t, S, S, &C); corner(e->t, 0, S, &D);
+    rec(e, &A, &B, &C, 0, 1);
+    rec(e, &C, &D, &A, 1, 0);
+}
+
+/* ------------------------------------------------------------ budget */
+static int64_t prio(em *e, int32_t x, int32_t y)
+{
+    int typeD;
+    int32_t h = dscale(x, y, e->S, &typeD);
+    int32_t j = 0;
+    int64_t r;
+    while (((int32_t)1 << j) < h) j++;
+    if (e->p->mode == BT_FIDELITY) {
+        uint16_t c = e->t->err[(size_t)y * e->n + x];
+        r = c == BT_CODE_SPLIT ? ((int64_t)1 << 50) : (int64_t)c;
+    } else {
+        r = rho_q8(e, x, y);
+        if (r < 0) return -1;
+        if (r > ((int64_t)1 << 50)) r = (int64_t)1 << 50;
+    }
+    return (r << 8) | (int64_t)(2 * j + typeD);
+}
+
+static void hpush(heap_ent *hp, uint32_t *n, int64_t key, uint32_t id)
+{
+    uint32_t i = (*n)++;
+    while (i > 0) {
+        uint32_t par = (i - 1) >> 1;
+        if (hp[par].key > key || (hp[par].key == key && hp[par].id < id)) break;
+        hp[i] = hp[par];
+        i = par;
+    }
+    hp[i].key = key; hp[i].id = id; hp[i].pad_ = 0;
+}
+
+static heap_ent hpop(heap_ent *hp, uint32_t *n)
+{
+    heap_ent top = hp[0], last = hp[--(*n)];
+    uint32_t i = 0;
+    for (;;) {
+        uint32_t l = 2 * i + 1, r = l + 1, b = i;
+        const heap_ent *bb = &last;
+        if (l < *n && (hp[l].key > bb->key || (hp[l].key == bb->key && hp[l].id < bb->id))) { b = l; bb = &hp[l]; }
+        if (r < *n && (hp[r].key > bb->key || (hp[r].key == bb->key && hp[r].id < bb->id))) { b = r; bb = &hp[r]; }
+        if (b == i) break;
+        hp[i] = hp[b];
+        i = b;
+    }
+    if (*n > 0) hp[i] = last;
+    return top;
+}
+
+/* Marks ST_SPLIT on the diamonds a budget of `budget` nominal triangles buys.
+ * Returns the number of ids recorded (to clear afterwards) in ids. Sets e->tau
+ * to the last split's rho (for geomorph). */
+static uint32_t budget_mark(em *e, uint32_t budget, uint32_t *nid)
+{
+    bt_tree *t = e->t;
+    heap_ent *hp = heap_of(e->m);
+    uint32_t *ids = ids_of(e->m);
+    uint32_t nh = 0, ni = 0, cap = heap_cap(e->m);
+    uint64_t count = 2;
+    int32_t S = e->S, n = e->n;
+    int64_t last = 0;
+    {
+        uint32_t root = (uint32_t)((S / 2) * n + S / 2);
+        int64_t k = prio(e, S / 2, S / 2);
+        if (k >= 0) { hpush(hp, &nh, k, root); t->st[root] |= ST_PUSHED; ids[ni++] = root; }
+    }
+    while (nh > 0) {
+        heap_ent he = hpop(hp, &nh);
+        int32_t x = (int32_t)(he.id % (uint32_t)n), y = (int32_t)(he.id / (uint32_t)n);
+        int typeD, i, add = 0;
+        int32_t h = dscale(x, y, S, &typeD);
+        int32_t cx[4], cy[4];
+        if ((he.key >> 8) <= 0 && e->p->mode != BT_FIDELITY) break;  /* nothing to gain */
+        if (e->p->mode == BT_FIDELITY && (he.key >> 8) <= (int64_t)e->cthr) break;
+        /* triangles of the diamond */
+        if (typeD) add = 2;
+        else if ((x / h) & 1) add = (y - h >= 0) + (y + h <= S);
+        else add = (x - h >= 0) + (x + h <= S);
+        if (count + (uint64_t)add > budget) break;
+        if (ni + 4 > cap) break;
+        count += (uint64_t)add;
+        t->st[he.id] |= ST_SPLIT;
+        last = he.key >> 8;
+        if (typeD) {
+            cx[0] = x - h; cy[0] = y; cx[1] = x + h; cy[1] = y;
+            cx[2] = x; cy[2] = y - h; cx[3] = x; cy[3] = y + h;
+        } else if (h >= 2) {
+            int32_t g = h >> 1;
+            cx[0] = x - g; cy[0] = y - g; cx[1] = x + g; cy[1] = y - g;
+            cx[2] = x - g; cy[2] = y + g; cx[3] = x + g; cy[3] = y + g;
+        } else continue;
+        for (i = 0; i < 4; i++) {
+            uint32_t cid;
+            int64_t k;
+            if (cx[i] < 0 || cy[i] < 0 || cx[i] > S || cy[i] > S) continue;
+            cid = (uint32_t)(cy[i] * n + cx[i]);
+            if (t->st[cid] & ST_PUSHED) continue;
+            k = prio(e, cx[i], cy[i]);
+            t->st[cid] |= ST_PUSHED;
+            ids[ni++] = cid;
+            if (k >= 0) hpush(hp, &nh, k, cid);
+        }
+    }
+    if (e->p->mode != BT_FIDELITY) e->tau = last;
+    *nid = ni;
+    return ni;
+}
+
+/* ------------------------------------------------------------ public */
+static br_status setup(em *e, bt_tree *t, const bt_params *p)
+{
+    memset(e, 0, sizeof *e);
+    if (!t || !p || !t->err) return BR_E_ARG;
+    e->t = t; e->p = p; e->n = t->n; e->S = t->n - 1;
+    if (p->mode == BT_FIDELITY) {
+        int64_t thr = p->max_err;
+        uint16_t lo = 0, hi = BT_CODE_SPLIT - 1;
+        if (thr < 0) return BR_E_ARG;
+        /* largest code with value <= thr */
+        if (bt_code_value(hi) <= thr) e->cthr = hi;
+        else {
+            while (lo + 1 < hi) {
+                uint16_t mid = (uint16_t)((lo + hi) / 2);
+                if (bt_code_value(mid) <= thr) lo = mid; else hi = mid;
+            }
+            e->cthr = lo;
+        }
+        return BR_OK;
+    }
+    if (p->mode != BT_VIEW && p->mode != BT_BUDGET) return BR_E_ARG;
+    if (!p->c || p->fr.sx <= 0 || p->fr.sy <= 0 || p->fr.sz_q16 <= 0) return BR_E_ARG;
+    cam_frustum(p->c, e->pl);
+    e->fq8 = p->c->f_q16 >> 8;
+    e->tau = p->pixel_err_q8 > 0 ? p->pixel_err_q8 : 256;
+    e->tau_lo = p->hyst_q8 > 0 ? (e->tau * (256 - (p->hyst_q8 > 256 ? 256 : p->hyst_q8))) >> 8 : e->tau;
+    e->morph_span = (e->tau * p->morph_q8) >> 8;
+    return BR_OK;
+}
+
+br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri)
+{
+    em e;
+    br_status s = setup(&e, t, p);
+    if (s != BR_OK) return s;
+    if (p->mode == BT_BUDGET) { *ntri = p->budget; return BR_OK; }
+    e.count_only = 1;
+    e.tau_lo = e.tau;           /* counting ignores hysteresis state */
+    if (p->mode == BT_VIEW) {   /* and must not touch it: ST_PREV read only */
+        e.tau_lo = e.tau;
+    }
+    run(&e);
+    *ntri = e.count;
+    return BR_OK;
+}
+
+static void reset_mesh(bt_mesh *m)
+{
+    m->nv = 0; m->ns = 0; m->ntri = 0; m->nline = 0; m->nfict = 0; m->overflow = 0;
+    memset(m->hash, 0, ((size_t)m->hmask + 1) * 4);
+}
+
+br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
+{
+    em e;
+    br_status s = setup(&e, t, p);
+    uint32_t i, nid = 0, nprev, *ids;
+    uint32_t *old;
+    int32_t ov = 0;
+    if (s != BR_OK) return s;
+    if (!m || !m->v) return BR_E_ARG;
+    e.m = m;
+    ids = ids_of(m);
+    old = (uint32_t *)(void *)heap_of(m);
+    /* hysteresis bookkeeping: ids[0..nsplits) are the previous frame's splits
+     * (ST_PREV set).  Move them aside (the heap area) before anything reuses ids. */
+    nprev = m->nsplits;
+    memmove(old, ids, (size_t)nprev * 4);
+    m->nsplits = 0;
+    if (p->mode != BT_VIEW) {
+        for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
+        nprev = 0;
+    }
+    if (p->mode == BT_BUDGET) {
+        budget_mark(&e, p->budget < m->max_tri ? p->budget : m->max_tri, &nid);
+        e.tau = -1;
+    } else {
+        em c2 = e;
+        c2.count_only = 1;
+        run(&c2);
+        if (c2.count > m->max_tri) {
+            /* defined downgrade: spend the capacity by priority (budget rule) */
+            for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
+            nprev = 0;
+            budget_mark(&e, m->max_tri, &nid);
+            e.tau = -1;
+            ov = 1;
+        }
+    }
+    reset_mesh(m);
+    m->overflow = ov;
+    e.rec_splits = p->mode == BT_VIEW && e.tau >= 0;
+    run(&e);
+    if (e.rec_splits) {
+        /* previous frame's marks go; this frame's ST_CUR become ST_PREV */
+        for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
+        if (e.lost) {
+            size_t nn = (size_t)t->n * t->n, k;
+            for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_PREV);
+            m->nsplits = 0;
+        } else {
+            for (i = 0; i < m->nsplits; i++)
+                t->st[ids[i]] = (uint8_t)((t->st[ids[i]] & ~ST_CUR) | ST_PREV);
+        }
+    }
+    for (i = 0; i < nid; i++) t->st[ids[i]] &= (uint8_t)~(ST_SPLIT | ST_PUSHED);
+    return e.full ? BR_E_NOMEM : BR_OK;
+}
