@@ -190,8 +190,10 @@ static void martini_part(int quick)
         tri = martini_tris(&m, size);
         mm.v = g_verts; mm.nv = size * size; mm.tri = tri; mm.nt = m.nt; mm.zbits = 0;
         mc_max_error(&mm, size, size, z, &r);
-        printf("martini_c max_error=%g triangles=%lld vertices=%lld true_max_error=%.4f at=(%d,%d)\n", thr[i],
+        printf("martini_c max_error=%g triangles=%lld vertices=%lld true_max_error=%.4f at=(%d,%d)", thr[i],
                (long long)m.nt, (long long)m.nv, (double)r.err_num / (double)r.err_den / 10.0, r.err_x, r.err_y);
+        if (thr[i] > 0) printf(" (%.2fx)", (double)r.err_num / (double)r.err_den / 10.0 / thr[i]);
+        printf("\n");
         free(tri);
     }
     mr_mesh_free(&m);
@@ -227,7 +229,7 @@ static void table_part(void)
     int c;
     printf("\nTable 1 of papers/002 on real 65x65 crops (tolerance = %% of the crop's height range;"
            " QT = restricted quadtree, BT-002 = 002's bitree rules, both benchmarks/rqt_ref.c;"
-           " refs = greedy single generalised strip, see rqt_ref.h)\n");
+           " refs = one generalised strip, optimal for the Sierpinski leaf order, see rqt_ref.h)\n");
     printf("paper (0..1445 m): tol | added BT QT | transmit BT QT | triangles BT QT | refs BT QT\n");
     for (c = 0; c < 8; c++)
         printf("  %-5s | %4d %4d | %4d %4d | %4d %4d | %5d %5d\n", paper[c].tol, paper[c].bt_add, paper[c].qt_add,

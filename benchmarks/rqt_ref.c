@@ -96,144 +96,144 @@ static int32_t partner(const rq_ctx *c, int64_t i)
 
 /* ---- strips ------------------------------------------------------------- */
 
-typedef struct strip_st {
-    int32_t *s;               /* may be NULL: count only */
-    int32_t last[2];          /* the strip's last two indices */
-    int64_t n, line;
-    int32_t size;
-} strip_st;
-
 static int64_t pcross(int32_t size, int32_t a, int32_t b, int32_t c)
 {
     return cross3(a % size, a / size, b % size, b / size, c % size, c / size);
 }
 
-static void strip_push(strip_st *st, int32_t v)
-{
-    if (st->s) st->s[st->n] = v;
-    st->n++;
-    st->last[0] = st->last[1];
-    st->last[1] = v;
-}
+/* The strip is built by dynamic programming over the fixed leaf order.  After a
+ * leaf is produced the strip's state is (p, q, par): its last two indices and the
+ * parity of its length; each leaf has at most 12 such end states (an ordered pair
+ * of its vertices x 2 parities).  A transition appends a sequence that produces
+ * only line triangles and then, with its last index, the leaf itself with the
+ * mesh's winding; its cost is its length.  Sequences use the leaf's vertices and
+ * the current p, q; 5 indices always suffice (q, a, a, b, c or q, b, b, a, c). */
+#define DP_MAXS 12
+#define DP_MAXLEN 5
 
-/* Search over sequences of exactly len indices from cand[] that make the strip
- * produce triangle t (orientation sign) once and otherwise only line triangles.
- * p, q = the strip's last two indices, k = number of the next strip triangle.
- * With nx == NULL: returns 1 at the first solution (kept in seq).  Otherwise every
- * solution is scored by len + the fewest indices the NEXT triangle nx then needs,
- * and the best goes to best_seq / *best_cost. */
-typedef struct seq_q {
+typedef struct dp_st {
+    int32_t p, q;
+    int32_t from;            /* index of the source state in the previous leaf's row */
+    int32_t par;
+    int64_t cost;
+    int32_t len, seq[DP_MAXLEN];
+} dp_st;
+
+typedef struct dp_ctx {
     int32_t size;
-    const int32_t *cand;
-    int nc;
     const int32_t *t;
     int sign;
-    const int32_t *nx;         /* next triangle or NULL */
-    int nx_sign;
-    int total;                 /* len of the sequence being enumerated */
-    int32_t seq[8];
-    int32_t best_seq[8];
-    int best_cost;
-} seq_q;
+    int32_t cand[5];
+    int nc;
+    int32_t seq[DP_MAXLEN];
+    dp_st *row;              /* target row (DP_MAXS states) */
+    int *nrow;
+    int32_t from;
+    int64_t base;
+} dp_ctx;
 
-static int min_len(int32_t size, const int32_t *t, int sign, int32_t p, int32_t q, int64_t k);
-
-static int seq_search(seq_q *s, int32_t p, int32_t q, int64_t k, int len, int produced)
+static void dp_offer(dp_ctx *d, int32_t p, int32_t q, int32_t par, int len)
 {
-    int i, depth = s->total - len;
-    if (len == 0) {
-        int cost;
-        if (!produced) return 0;
-        if (!s->nx) { memcpy(s->best_seq, s->seq, sizeof s->seq); return 1; }
-        cost = s->total + min_len(s->size, s->nx, s->nx_sign, p, q, k);
-        if (cost < s->best_cost) { s->best_cost = cost; memcpy(s->best_seq, s->seq, sizeof s->seq); }
-        return 0;
+    int i;
+    int64_t cost = d->base + len;
+    for (i = 0; i < *d->nrow; i++) {
+        dp_st *x = &d->row[i];
+        if (x->p == p && x->q == q && x->par == par) {
+            if (cost < x->cost) break;
+            return;
+        }
     }
-    for (i = 0; i < s->nc; i++) {
-        int32_t r = s->cand[i], a = p, b = q;
+    if (i == *d->nrow) {
+        if (*d->nrow == DP_MAXS) return;   /* cannot happen: <= 6 pairs x 2 parities */
+        (*d->nrow)++;
+    }
+    d->row[i].p = p; d->row[i].q = q; d->row[i].par = par; d->row[i].cost = cost;
+    d->row[i].from = d->from; d->row[i].len = len;
+    memcpy(d->row[i].seq, d->seq, sizeof d->seq);
+}
+
+/* k = number of the next strip triangle (its parity decides the winding). */
+static void dp_dfs(dp_ctx *d, int32_t p, int32_t q, int64_t k, int depth)
+{
+    int i;
+    if (depth == DP_MAXLEN) return;
+    for (i = 0; i < d->nc; i++) {
+        int32_t r = d->cand[i], a = p, b = q;
         int64_t cr;
-        int prod = produced;
         if (k & 1) { a = q; b = p; }
-        cr = pcross(s->size, a, b, r);
+        cr = pcross(d->size, a, b, r);
+        d->seq[depth] = r;
         if (a == b || b == r || a == r || cr == 0) {
-            /* a line triangle */
+            dp_dfs(d, q, r, k + 1, depth + 1);          /* a line triangle */
         } else {
-            const int32_t *t = s->t;
+            const int32_t *t = d->t;
             int in = (a == t[0] || a == t[1] || a == t[2]) && (b == t[0] || b == t[1] || b == t[2]) &&
                      (r == t[0] || r == t[1] || r == t[2]);
-            if (!in || produced || (cr > 0 ? 1 : -1) != s->sign) continue;
-            prod = 1;
+            if (in && (cr > 0 ? 1 : -1) == d->sign)
+                dp_offer(d, q, r, (int32_t)((k + 3) & 1), depth + 1);   /* strip length n = k + 3 */
         }
-        s->seq[depth] = r;
-        if (seq_search(s, q, r, k + 1, len - 1, prod)) return 1;
     }
-    return 0;
 }
 
-static int make_cand(const int32_t *t, int32_t p, int32_t q, int32_t *cand)
+/* Optimal strip for leaves[0..nt) in this order; writes it to out (if not NULL).
+ * Returns the strip length; *line gets its line triangles.  -1 on no memory. */
+static int64_t strip_dp(int32_t size, const int32_t *leaves, int64_t nt, int32_t *out, int64_t *line)
 {
-    int32_t all[5];
-    int nc = 0, i, j;
-    all[0] = t[0]; all[1] = t[1]; all[2] = t[2]; all[3] = p; all[4] = q;
-    for (i = 0; i < 5; i++) {
-        for (j = 0; j < nc; j++) if (cand[j] == all[i]) break;
-        if (j == nc) cand[nc++] = all[i];
+    dp_st *rows;
+    int *nrows;
+    int64_t j, best = -1, n;
+    int i, bi = 0;
+    *line = 0;
+    if (nt == 0) return 0;
+    rows = malloc((size_t)nt * DP_MAXS * sizeof *rows);
+    nrows = calloc((size_t)nt, sizeof *nrows);
+    if (!rows || !nrows) { free(rows); free(nrows); return -1; }
+    {   /* first leaf: its three rotations at the start of the strip */
+        const int32_t *t = leaves;
+        for (i = 0; i < 3; i++) {
+            dp_st *x = &rows[nrows[0]++];
+            x->seq[0] = t[i]; x->seq[1] = t[(i + 1) % 3]; x->seq[2] = t[(i + 2) % 3];
+            x->p = x->seq[1]; x->q = x->seq[2]; x->par = 1; x->cost = 3; x->len = 3; x->from = -1;
+        }
     }
-    return nc;
-}
-
-/* Fewest indices that append t (5 always suffice: q, a, a, b, c or q, b, b, a, c). */
-static int min_len(int32_t size, const int32_t *t, int sign, int32_t p, int32_t q, int64_t k)
-{
-    int32_t cand[5];
-    seq_q s;
-    memset(&s, 0, sizeof s);
-    s.size = size; s.cand = cand; s.nc = make_cand(t, p, q, cand); s.t = t; s.sign = sign;
-    for (s.total = 1; s.total <= 5; s.total++)
-        if (seq_search(&s, p, q, k, s.total, 0)) return s.total;
-    return 6;
-}
-
-static int tri_sign(int32_t size, const int32_t *t)
-{
-    return pcross(size, t[0], t[1], t[2]) > 0 ? 1 : -1;
-}
-
-/* Appends triangle t, choosing among the shortest and next-shortest ways the one
- * that leaves the cheapest start for nx (may be NULL). */
-static void strip_add(strip_st *st, const int32_t *t, const int32_t *nx)
-{
-    int32_t cand[5];
-    seq_q s;
-    int lmin, len, i, best_len = 0;
-    if (st->n < 2) {          /* first triangle: even position keeps (a, b, c) */
-        strip_push(st, t[0]); strip_push(st, t[1]); strip_push(st, t[2]);
-        return;
-    }
-    memset(&s, 0, sizeof s);
-    s.size = st->size; s.cand = cand; s.nc = make_cand(t, st->last[0], st->last[1], cand);
-    s.t = t; s.sign = tri_sign(st->size, t);
-    lmin = min_len(st->size, t, s.sign, st->last[0], st->last[1], st->n - 2);
-    if (nx) {
-        int32_t best[8];
-        int best_cost = 1 << 30;
-        s.nx = nx; s.nx_sign = tri_sign(st->size, nx);
-        for (len = lmin; len <= lmin + 1 && len <= 6; len++) {
-            s.total = len;
-            s.best_cost = best_cost;
-            seq_search(&s, st->last[0], st->last[1], st->n - 2, len, 0);
-            if (s.best_cost < best_cost) {
-                best_cost = s.best_cost; best_len = len;
-                memcpy(best, s.best_seq, sizeof best);
+    for (j = 1; j < nt; j++) {
+        dp_ctx d;
+        const int32_t *t = leaves + 3 * j;
+        memset(&d, 0, sizeof d);
+        d.size = size; d.t = t;
+        d.sign = pcross(size, t[0], t[1], t[2]) > 0 ? 1 : -1;
+        d.row = rows + j * DP_MAXS; d.nrow = &nrows[j];
+        for (i = 0; i < nrows[j - 1]; i++) {
+            const dp_st *src = &rows[(j - 1) * DP_MAXS + i];
+            int32_t all[5];
+            int u, v;
+            all[0] = t[0]; all[1] = t[1]; all[2] = t[2]; all[3] = src->p; all[4] = src->q;
+            d.nc = 0;
+            for (u = 0; u < 5; u++) {
+                for (v = 0; v < d.nc; v++) if (d.cand[v] == all[u]) break;
+                if (v == d.nc) d.cand[d.nc++] = all[u];
             }
+            d.from = i; d.base = src->cost;
+            /* next strip triangle number k = n - 2, n = src->cost; parity from par */
+            dp_dfs(&d, src->p, src->q, src->cost - 2, 0);
         }
-        memcpy(s.best_seq, best, sizeof best);
-    } else {
-        s.total = best_len = lmin;
-        seq_search(&s, st->last[0], st->last[1], st->n - 2, lmin, 0);
     }
-    for (i = 0; i < best_len; i++) strip_push(st, s.best_seq[i]);
-    st->line += best_len - 1;
+    for (i = 0; i < nrows[nt - 1]; i++)
+        if (best < 0 || rows[(nt - 1) * DP_MAXS + i].cost < best) { best = rows[(nt - 1) * DP_MAXS + i].cost; bi = i; }
+    n = best;
+    if (out) {   /* backtrack, writing each leaf's sequence at its end position */
+        int64_t pos = n;
+        int cur = bi;
+        for (j = nt - 1; j >= 0; j--) {
+            const dp_st *x = &rows[j * DP_MAXS + cur];
+            pos -= x->len;
+            memcpy(out + pos, x->seq, (size_t)x->len * sizeof *out);
+            cur = x->from;
+        }
+    }
+    *line = n - 2 - nt;
+    free(rows); free(nrows);
+    return n;
 }
 
 /* ---- mesh emission --------------------------------------------------------- */
@@ -276,7 +276,6 @@ static void scheme(rq_ctx *c, int qt, const unsigned char *is_sel, int64_t nsel,
     int64_t i, n = (int64_t)c->size * c->size, nsplit = 0, nvert = 0;
     int32_t max = c->size - 1;
     emit_st e;
-    strip_st st;
     memset(c->need, 0, (size_t)g->ntri);
     for (i = 0; i < g->ntri; i++)
         if (is_sel[mid_of(g, i)]) c->need[i] = 1;     /* both diamond triangles of a selected point */
@@ -308,16 +307,10 @@ static void scheme(rq_ctx *c, int qt, const unsigned char *is_sel, int64_t nsel,
     e.leaves = c->leaves;
     emit_rec(&e, 3, 0, 0, max, max, max, 0, 1);   /* (0,0) -> (max,max) */
     emit_rec(&e, 2, max, max, 0, 0, 0, max, 1);   /* and back to (0,0) */
-    memset(&st, 0, sizeof st);
-    st.s = out ? out->strip : NULL;
-    st.size = c->size;
-    for (i = 0; i < e.nt; i++)
-        strip_add(&st, e.leaves + 3 * i, i + 1 < e.nt ? e.leaves + 3 * (i + 1) : NULL);
-    side->refs = st.n;
-    side->line = st.line;
+    side->refs = strip_dp(c->size, e.leaves, e.nt, out ? out->strip : NULL, &side->line);
     if (out) {
         out->nt = e.nt;
-        out->ns = st.n;
+        out->ns = side->refs;
         if (out->tri) memcpy(out->tri, e.leaves, (size_t)(3 * e.nt) * sizeof *out->tri);
     }
 }
