@@ -93,36 +93,48 @@ br_status rs_frame_prepare(rs_frame *f)
         || vp->zfar <= vp->znear || vp->cx_q16 != w * (FX_Q16_ONE / 2)
         || vp->cy_q16 != h * (FX_Q16_ONE / 2) || f8 <= 0 || f8 >= ((int64_t)1 << 28))
         return BR_E_ARG;
-    for (i = 0; i < f->nv; i++) {
-        const rs_vertex *v = &f->v[i];
-        rs_cvert *o = &f->cache[i];
-        int64_t c[3];
-        uint32_t oc = 0;
-        to_camera(vp, v->p, c);
-        if (c[2] < vp->znear) {
-            oc = RS_OUT_NEAR;
-            o->x = o->y = 0; o->d = 0;
-        } else {
-            int64_t lim = g8 * c[2], ax = f8 * c[0], ay = f8 * c[1];
-            if (c[2] > vp->zfar) oc |= RS_OUT_FAR;
-            if (ax > lim || -ax > lim || ay > lim || -ay > lim) {
-                oc |= RS_OUT_GUARD;
+    {
+        const int64_t r00 = vp->r[0][0], r01 = vp->r[0][1], r02 = vp->r[0][2], t0 = vp->t[0];
+        const int64_t r10 = vp->r[1][0], r11 = vp->r[1][1], r12 = vp->r[1][2], t1 = vp->t[1];
+        const int64_t r20 = vp->r[2][0], r21 = vp->r[2][1], r22 = vp->r[2][2], t2 = vp->t[2];
+        const int64_t zn = vp->znear, zf = vp->zfar, kd = (int64_t)RS_DEPTH_ONE * vp->znear;
+        const int32_t cx = w * HALF, cy = h * HALF;
+        const rs_vertex *v = f->v;
+        rs_cvert *o = f->cache;
+        for (i = 0; i < f->nv; i++, v++, o++) {
+            int64_t x = v->p[0], y = v->p[1], z = v->p[2], c0, c1, c2, lim, ax, ay;
+            uint32_t oc = 0;
+            o->cp = rs_pack_rgb(v->rgb);
+            c2 = (r20 * x + r21 * y + r22 * z + t2) >> 30;
+            if (c2 < zn) {
                 o->x = o->y = 0; o->d = 0;
+                o->c = (v->rgb & 0xffffffu) | ((uint32_t)RS_OUT_NEAR << 24);
+                continue;
+            }
+            c0 = (r00 * x + r01 * y + r02 * z + t0) >> 30;
+            c1 = (r10 * x + r11 * y + r12 * z + t1) >> 30;
+            if (c2 > zf) oc |= RS_OUT_FAR;
+            lim = g8 * c2; ax = f8 * c0; ay = f8 * c1;
+            if (ax > lim || -ax > lim || ay > lim || -ay > lim) {
                 /* beyond the guard band on one side is outside the screen on that side */
+                oc |= RS_OUT_GUARD;
                 if (ax > lim) oc |= RS_OUT_RIGHT;
                 if (-ax > lim) oc |= RS_OUT_LEFT;
                 if (ay > lim) oc |= RS_OUT_TOP;
                 if (-ay > lim) oc |= RS_OUT_BOTTOM;
+                o->x = o->y = 0; o->d = 0;
             } else {
-                project(vp, f8, c, w, h, o);
-                if (o->x < HALF) oc |= RS_OUT_LEFT;
-                if (o->x > xmax) oc |= RS_OUT_RIGHT;
-                if (o->y < HALF) oc |= RS_OUT_TOP;
-                if (o->y > ymax) oc |= RS_OUT_BOTTOM;
+                /* the same arithmetic as project() */
+                int32_t sx = cx + (int32_t)((ax / c2 + 8) >> 4), sy = cy - (int32_t)((ay / c2 + 8) >> 4);
+                o->x = sx; o->y = sy;
+                o->d = (uint32_t)(kd / c2);
+                if (sx < HALF) oc |= RS_OUT_LEFT;
+                if (sx > xmax) oc |= RS_OUT_RIGHT;
+                if (sy < HALF) oc |= RS_OUT_TOP;
+                if (sy > ymax) oc |= RS_OUT_BOTTOM;
             }
+            o->c = (v->rgb & 0xffffffu) | (oc << 24);
         }
-        o->c = (v->rgb & 0xffffffu) | (oc << 24);
-        o->cp = rs_pack_rgb(v->rgb);
     }
     return BR_OK;
 }
@@ -132,15 +144,15 @@ br_status rs_frame_prepare(rs_frame *f)
 #define MIN3(a, b, c) ((a) < (b) ? ((a) < (c) ? (a) : (c)) : ((b) < (c) ? (b) : (c)))
 #define MAX3(a, b, c) ((a) > (b) ? ((a) > (c) ? (a) : (c)) : ((b) > (c) ? (b) : (c)))
 
-/* Narrows [*xl, *xr] to the centres px where K + 16 A px >= 0 (one edge, one row).
- * Returns 0 when the row is empty for this edge. */
-static int span_limits(int64_t A, int64_t K, int32_t px0, int32_t px1, int32_t *xl, int32_t *xr)
+/* Narrows [*xl, *xr] to the centres px where K + s px >= 0 (one edge on one row;
+ * s = 16 A is the edge's step per pixel).  Returns 0 when the row is empty. */
+static int span_limits(int64_t s, int64_t K, int32_t px0, int32_t px1, int32_t *xl, int32_t *xr)
 {
-    if (A > 0) {
-        int64_t x = fx_div_ceil(-K, A * SUBONE);
+    if (s > 0) {
+        int64_t x = fx_div_ceil(-K, s);
         if (x > *xl) *xl = x > px1 ? px1 + 1 : (int32_t)x;
-    } else if (A < 0) {
-        int64_t x = fx_div_floor(K, -A * SUBONE);
+    } else if (s < 0) {
+        int64_t x = fx_div_floor(K, -s);
         if (x < *xr) *xr = x < px0 ? px0 - 1 : (int32_t)x;
     } else if (K < 0) return 0;
     return 1;

@@ -9,7 +9,8 @@
 static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
 {
     int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1, py, px;
-    int64_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, C0, C1, C2;
+    int64_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, S, e0r, e2r, sx0, sx2, sy0, sy2;
+    int32_t bias0, bias1, bias2;
     const int32_t w = bd->w;
 
     ymin = MIN3(a->y, b->y, c->y);
@@ -34,45 +35,58 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
     if (area2 >= 0) {
         if (area2 == 0 || bd->cull) return;
     } else {
-        const rs_cvert *t = b; b = c; c = t;
-        dx1 = (int64_t)b->x - a->x; dy1 = (int64_t)b->y - a->y;
-        dx2 = (int64_t)c->x - a->x; dy2 = (int64_t)c->y - a->y;
+        const rs_cvert *t = b;
+        int64_t u;
+        b = c; c = t;
+        u = dx1; dx1 = dx2; dx2 = u;
+        u = dy1; dy1 = dy2; dy2 = u;
         area2 = -area2;
     }
     bd->tris++;
-    /* Edge P->Q: E = A X + B Y + C >= 0 inside, evaluated at pixel centres; edges that
-     * are not top-left get C - 1 so that E == 0 there counts as outside.
-     * Edge 0 = a->b (weight of c), 1 = b->c (weight of a), 2 = c->a (weight of b). */
+    /* Edge P->Q: E = A (X - P.x) + B (Y - P.y) >= 0 inside, at pixel centres.  Edge 0 =
+     * a->b (the weight of c), 1 = b->c (weight of a), 2 = c->a (weight of b); since
+     * E0 + E1 + E2 = area2 everywhere, E1 is never evaluated.  Edges that are not
+     * top-left (A > 0, or A == 0 and B > 0) are biased by -1 so that E == 0 there is
+     * outside: e_k = E_k - bias_k, inside iff all e_k >= 0, and e1 = S - e0 - e2. */
     A0 = -dy1; B0 = dx1;
-    A1 = (int64_t)b->y - c->y; B1 = (int64_t)c->x - b->x;
     A2 = dy2; B2 = -dx2;
-    C0 = -(A0 * a->x + B0 * a->y) - !(A0 > 0 || (A0 == 0 && B0 > 0));
-    C1 = -(A1 * b->x + B1 * b->y) - !(A1 > 0 || (A1 == 0 && B1 > 0));
-    C2 = -(A2 * c->x + B2 * c->y) - !(A2 > 0 || (A2 == 0 && B2 > 0));
+    A1 = -(A0 + A2); B1 = -(B0 + B2);
+    bias0 = (2 * A0 + (B0 > 0)) <= 0;
+    bias1 = (2 * A1 + (B1 > 0)) <= 0;
+    bias2 = (2 * A2 + (B2 > 0)) <= 0;
+    S = area2 - bias0 - bias1 - bias2;
+    {
+        int64_t ox = (int64_t)px0 * SUBONE + HALF - a->x, oy = (int64_t)py0 * SUBONE + HALF - a->y;
+        e0r = A0 * ox + B0 * oy - bias0;
+        e2r = A2 * ox + B2 * oy - bias2;
+    }
+    sx0 = A0 * SUBONE; sx2 = A2 * SUBONE; sy0 = B0 * SUBONE; sy2 = B2 * SUBONE;
 
     if (px1 - px0 < TINY && py1 - py0 < TINY) {
         /* Tiny bounding box: test each centre; at an inside centre the edge values are
          * the barycentric weights (times area2), so attributes come straight from the
-         * vertices with no gradient set-up.  Extent < (TINY+1) px, area2 < 2^13. */
+         * vertices with no gradient set-up.  Extent < (TINY+1) px, so area2 < 2^13. */
         int64_t inv = ((int64_t)1 << 40) / area2;
         int64_t dzb = (int64_t)b->d - a->d, dzc = (int64_t)c->d - a->d;
         uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
-        for (py = py0; py <= py1; py++) {
-            int64_t Y = (int64_t)py * SUBONE + HALF, X = (int64_t)px0 * SUBONE + HALF;
-            int64_t e0 = A0 * X + B0 * Y + C0, e1 = A1 * X + B1 * Y + C1, e2 = A2 * X + B2 * Y + C2;
-            for (px = px0; px <= px1; px++, e0 += A0 * SUBONE, e1 += A1 * SUBONE, e2 += A2 * SUBONE) {
+        uint8_t *crow = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
+        RS_Z *zrow = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)w;
+        for (py = py0; py <= py1; py++, e0r += sy0, e2r += sy2, crow += bd->stride, zrow += w) {
+            int64_t e0 = e0r, e2 = e2r;
+            for (px = px0; px <= px1; px++, e0 += sx0, e2 += sx2) {
+                int64_t e1 = S - e0 - e2;
                 if ((e0 | e1 | e2) < 0) continue;
                 {
                     int64_t w1 = (e2 * inv) >> 24, w2 = (e0 * inv) >> 24;    /* Q16 */
                     uint32_t z = (uint32_t)((int64_t)a->d + ((dzb * w1 + dzc * w2) >> 16));
-                    RS_PIX *cp = (RS_PIX *)(void *)(bd->color + (size_t)(py - bd->y0) * bd->stride) + px;
+                    RS_PIX *cp = (RS_PIX *)(void *)crow + px;
                     bd->pixels++;
 #if RS_COUNT
-                    (void)z; (void)ca; (void)db; (void)dc;
+                    (void)z; (void)ca; (void)db; (void)dc; (void)zrow;
                     *cp += 1;
 #else
                     {
-                        RS_Z *zp = (RS_Z *)bd->depth + (size_t)(py - bd->y0) * (size_t)w + (size_t)px;
+                        RS_Z *zp = zrow + px;
                         RS_Z zz = (RS_Z)(z >> RS_ZSH);
                         if (zz > *zp) {
                             uint64_t col = ca + db * (uint64_t)(w1 >> 3) + dc * (uint64_t)(w2 >> 3);
@@ -122,25 +136,34 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
         if (gz > INT32_MAX) gz = INT32_MAX;
         if (gz < -INT32_MAX) gz = -INT32_MAX;
 
-        for (py = py0; py <= py1; py++) {
-            int64_t Y = (int64_t)py * SUBONE + HALF;
-            int64_t K0 = B0 * Y + C0 + A0 * HALF, K1 = B1 * Y + C1 + A1 * HALF, K2 = B2 * Y + C2 + A2 * HALF;
+        for (py = py0; py <= py1; py++, e0r += sy0, e2r += sy2) {
             int32_t xl = px0, xr = px1;
+            int64_t e0, e2;
             if (px1 - px0 < NARROW) {
-                int64_t e0 = K0 + A0 * SUBONE * px0, e1 = K1 + A1 * SUBONE * px0, e2 = K2 + A2 * SUBONE * px0;
-                while (xl <= px1 && (e0 | e1 | e2) < 0) { xl++; e0 += A0 * SUBONE; e1 += A1 * SUBONE; e2 += A2 * SUBONE; }
+                int64_t e1;
+                e0 = e0r; e2 = e2r; e1 = S - e0 - e2;
+                while ((e0 | e1 | e2) < 0) {
+                    if (++xl > px1) break;
+                    e0 += sx0; e2 += sx2; e1 = S - e0 - e2;
+                }
                 if (xl > px1) continue;
-                xr = xl;
-                e0 += A0 * SUBONE; e1 += A1 * SUBONE; e2 += A2 * SUBONE;
-                while (xr < px1 && (e0 | e1 | e2) >= 0) { xr++; e0 += A0 * SUBONE; e1 += A1 * SUBONE; e2 += A2 * SUBONE; }
+                {
+                    int64_t f0 = e0 + sx0, f2 = e2 + sx2, f1 = S - f0 - f2;
+                    xr = xl;
+                    while (xr < px1 && (f0 | f1 | f2) >= 0) { xr++; f0 += sx0; f2 += sx2; f1 = S - f0 - f2; }
+                }
             } else {
-                if (!span_limits(A0, K0, px0, px1, &xl, &xr) || !span_limits(A1, K1, px0, px1, &xl, &xr)
-                    || !span_limits(A2, K2, px0, px1, &xl, &xr) || xl > xr)
+                /* e_k(px) = e_kr + sx_k (px - px0); e1 = S - e0 - e2 */
+                int64_t s1 = -(sx0 + sx2), e1r = S - e0r - e2r;
+                if (!span_limits(sx0, e0r - sx0 * px0, px0, px1, &xl, &xr)
+                    || !span_limits(s1, e1r - s1 * px0, px0, px1, &xl, &xr)
+                    || !span_limits(sx2, e2r - sx2 * px0, px0, px1, &xl, &xr) || xl > xr)
                     continue;
+                e0 = e0r + sx0 * (xl - px0); e2 = e2r + sx2 * (xl - px0);
             }
             {
                 /* exact barycentric weights at (xl, py): b gets edge 2, c gets edge 0 (Q22) */
-                int64_t e0 = K0 + A0 * SUBONE * xl, e2 = K2 + A2 * SUBONE * xl, w1, w2;
+                int64_t w1, w2;
                 uint64_t col;
                 uint32_t z, gzu = (uint32_t)gz;
                 RS_PIX *cp = (RS_PIX *)(void *)(bd->color + (size_t)(py - bd->y0) * bd->stride) + xl;
@@ -179,14 +202,22 @@ static void RS_FN(draw)(band *bd)
         uint32_t k, n = pr->n;
         if (n < 3) continue;
         if (pr->kind == RS_STRIP) {
-            for (k = 0; k + 2 < n; k++) {
-                uint32_t ia = s[k], ib = s[k + 1], ic = s[k + 2];
-                const rs_cvert *va, *vb, *vc;
-                if (k & 1) { uint32_t t = ia; ia = ib; ib = t; }
-                va = &cache[ia]; vb = &cache[ib]; vc = &cache[ic];
-                if (va->c & vb->c & vc->c & REJECT) continue;
-                if ((va->c | vb->c | vc->c) & SLOW) { tri_clip(bd, RS_FN(tri_raster), ia, ib, ic); continue; }
-                RS_FN(tri_raster)(bd, va, vb, vc);
+            /* sliding window: one new vertex per triangle */
+            uint32_t i0 = s[0], i1 = s[1];
+            const rs_cvert *v0 = &cache[i0], *v1 = &cache[i1];
+            uint32_t o0 = v0->c, o1 = v1->c;
+            for (k = 2; k < n; k++) {
+                uint32_t i2 = s[k];
+                const rs_cvert *v2 = &cache[i2];
+                uint32_t o2 = v2->c;
+                if (!(o0 & o1 & o2 & REJECT)) {
+                    if ((o0 | o1 | o2) & SLOW) {
+                        if (k & 1) tri_clip(bd, RS_FN(tri_raster), i1, i0, i2);
+                        else tri_clip(bd, RS_FN(tri_raster), i0, i1, i2);
+                    } else if (k & 1) RS_FN(tri_raster)(bd, v1, v0, v2);   /* odd triangle k-2 */
+                    else RS_FN(tri_raster)(bd, v0, v1, v2);
+                }
+                i0 = i1; i1 = i2; v0 = v1; v1 = v2; o0 = o1; o1 = o2;
             }
         } else {
             for (k = 0; k + 2 < n; k += 3) {
