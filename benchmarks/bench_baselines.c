@@ -14,6 +14,7 @@
  *
  * Run: make B=build bench   or   build/bench/bench_baselines [--quick]
  * (from the repository root; data from ../shared/data/dem or $BITRAIN_DATA). */
+#define _POSIX_C_SOURCE 200809L   /* clock_gettime under -std=c99 */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

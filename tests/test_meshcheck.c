@@ -409,6 +409,40 @@ static void test_void(void)
     /* removed: triangle 0, cell (0,0)'s upper half: two border edges and one
      * interior edge, which is a crack */
     CHECK_EQ(r.bad_boundary_edges, 1);
+    CHECK_EQ(r.uncovered, 1);          /* (0,0) was only in that triangle */
+    CHECK_EQ(r.uncovered_far, 1);
+    {
+        mc_opts o = { 0, 1, 0 };       /* allowing uncovered samples does not excuse this one */
+        CHECK_EQ(mc_check(&mm, 9, 9, zv, &o, &r), 0);
+        CHECK_EQ(r.uncovered_far, 1);
+    }
+}
+
+static void test_uncovered_beside_void(void)
+{
+    /* 3x3 corner of the crop with its centre void: no cell has 4 valid corners;
+     * an empty mesh leaves 8 valid samples uncovered, all beside the void */
+    static int32_t z3[9];
+    mc_mesh mm;
+    mc_report r;
+    mc_opts o = { 0, 1, 0 };
+    int x, y;
+    for (y = 0; y < 3; y++) for (x = 0; x < 3; x++) z3[y * 3 + x] = g_crop9[y * 9 + x];
+    z3[4] = MC_VOID;
+    verts_all(&g_m, 3, z3, 0);
+    mm = as_mesh(&g_m, 0);
+    CHECK_EQ(mc_check(&mm, 3, 3, z3, NULL, &r), 0);
+    CHECK_EQ(r.uncovered, 8);
+    CHECK_EQ(r.uncovered_far, 0);
+    CHECK_EQ(r.area2_max, 4);
+    CHECK_EQ(mc_check(&mm, 3, 3, z3, &o, &r), 1);
+    /* one legal half cell: (0,0),(0,1),(1,0) */
+    add_tri(&g_m, 0, 3, 1);
+    mm = as_mesh(&g_m, 0);
+    CHECK_EQ(mc_check(&mm, 3, 3, z3, &o, &r), 1);
+    CHECK_EQ(r.uncovered, 5);
+    CHECK_EQ(r.bad_boundary_edges, 0);
+    CHECK_EQ(r.area2, 1);
 }
 
 /* Row strip with joins: rows of cells, the strip alternates top and bottom
@@ -636,6 +670,7 @@ int main(void)
     T_RUN(test_flipped_is_caught);
     T_RUN(test_degenerate_and_bad_index);
     T_RUN(test_void);
+    T_RUN(test_uncovered_beside_void);
     T_RUN(test_strip);
     T_RUN(test_martini_fuji);
     T_RUN(test_rqt);

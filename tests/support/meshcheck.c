@@ -283,7 +283,31 @@ int mc_check(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z,
             ne++;
         }
     }
-    qsort(e, (size_t)ne, sizeof *e, edge_cmp);
+    /* sort by (lo, hi, dir): counting sort on lo, then each (small) bucket */
+    {
+        int64_t *start = calloc((size_t)n + 1, sizeof *start), k;
+        edge_rec *e2 = malloc((size_t)(ne + 1) * sizeof *e2);
+        if (!start || !e2) {
+            free(start); free(e2); free(vid); free(cover); free(inner); free(ok_tri); free(e);
+            return -1;
+        }
+        for (k = 0; k < ne; k++) start[e[k].lo + 1]++;
+        for (k = 0; k < n; k++) start[k + 1] += start[k];
+        for (k = 0; k < ne; k++) e2[start[e[k].lo]++] = e[k];
+        /* start[v] is now the end of bucket v */
+        for (k = 0; k < n; k++) {
+            int64_t b = k ? start[k - 1] : 0, end = start[k], u, q;
+            if (end - b > 32) { qsort(e2 + b, (size_t)(end - b), sizeof *e2, edge_cmp); continue; }
+            for (u = b + 1; u < end; u++) {
+                edge_rec cur = e2[u];
+                for (q = u; q > b && edge_cmp(&e2[q - 1], &cur) > 0; q--) e2[q] = e2[q - 1];
+                e2[q] = cur;
+            }
+        }
+        free(start);
+        free(e);
+        e = e2;
+    }
     for (i = 0; i < ne;) {
         int64_t j = i;
         int32_t ax = e[i].lo % w, ay = e[i].lo / w, bx = e[i].hi % w, by = e[i].hi / w;
@@ -324,8 +348,15 @@ int mc_check(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z,
             if (z[i] == MC_VOID) {
                 if (cover[i]) { r->void_covered++; set_bad(r, xx, yy, "void sample covered"); }
             } else if (!cover[i]) {
+                int near = 0, dx, dy;
                 r->uncovered++;
-                if (!o->allow_uncovered) set_bad(r, xx, yy, "valid sample not covered");
+                for (dy = -1; dy <= 1; dy++)
+                    for (dx = -1; dx <= 1; dx++) {
+                        int32_t nx = xx + dx, ny = yy + dy;
+                        if (nx >= 0 && ny >= 0 && nx < w && ny < h && z[(int64_t)ny * w + nx] == MC_VOID) near = 1;
+                    }
+                if (!near) { r->uncovered_far++; set_bad(r, xx, yy, "valid sample far from voids not covered"); }
+                else if (!o->allow_uncovered) set_bad(r, xx, yy, "valid sample not covered");
             }
             if (inner[i] && cover[i] >= 2) { r->overlap_samples++; set_bad(r, xx, yy, "overlap"); }
         }
@@ -334,7 +365,7 @@ int mc_check(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z,
     r->ok = !(r->bad_vertex || r->split_vertex || r->degenerate || r->flipped ||
               r->nonmanifold_edges || r->same_dir_edges || r->bad_boundary_edges ||
               r->tjunctions || r->overlap_samples || r->void_covered || r->range_errors ||
-              (r->uncovered && !o->allow_uncovered));
+              r->uncovered_far || (r->uncovered && !o->allow_uncovered));
     if (r->voids == 0 ? r->area2 != r->area2_max : r->area2 > r->area2_max) {
         r->ok = 0; set_bad(r, -1, -1, "area differs from the domain's");
     }
@@ -382,9 +413,10 @@ void mc_report_print(FILE *f, const mc_report *r)
     fprintf(f, "  edges %lld boundary %lld nonmanifold %lld same_dir %lld bad_boundary %lld tjunctions %lld\n",
             (long long)r->edges, (long long)r->boundary_edges, (long long)r->nonmanifold_edges,
             (long long)r->same_dir_edges, (long long)r->bad_boundary_edges, (long long)r->tjunctions);
-    fprintf(f, "  area2 %lld (max %lld, voids %lld) overlap_samples %lld uncovered %lld void_covered %lld range %lld\n",
+    fprintf(f, "  area2 %lld (max %lld, voids %lld) overlap_samples %lld uncovered %lld (far from voids %lld) void_covered %lld range %lld\n",
             (long long)r->area2, (long long)r->area2_max, (long long)r->voids,
-            (long long)r->overlap_samples, (long long)r->uncovered, (long long)r->void_covered,
+            (long long)r->overlap_samples, (long long)r->uncovered, (long long)r->uncovered_far,
+            (long long)r->void_covered,
             (long long)r->range_errors);
     fprintf(f, "  max error %lld/%lld (<= %lld/1024) at (%d,%d) triangle %lld\n",
             (long long)r->err_num, (long long)r->err_den, (long long)r->err_q10,

@@ -62,10 +62,12 @@
  *                 expect_area2 >= 0 in mc_check's options, area2 == expect_area2.
  * overlap_samples samples strictly inside one triangle and covered (closed) by
  *                 another one as well.
- * uncovered       valid samples covered by no triangle.  With voids, a valid sample
- *                 may legitimately be left out only when no cell around it can be
- *                 triangulated; the count is reported, and it is an error only when
- *                 the grid has no voids or opts.allow_uncovered == 0 (the default).
+ * uncovered       valid samples covered by no triangle: an error unless
+ *                 opts.allow_uncovered = 1 (for grids with voids, where a valid sample
+ *                 beside a void may be left out when every half cell around it, in the
+ *                 mesher's diagonal pattern, touches the void).
+ * uncovered_far   those of them with no void among their 8 neighbours: ALWAYS an
+ *                 error (a hole), whatever allow_uncovered says.
  * void_covered    void samples inside (closed) some triangle.
  * range_errors    triangles whose |vertex height| or |sample height| times their
  *                 doubled area would overflow int64 (then their error is not
@@ -79,7 +81,7 @@
  *     err_q10            ceil(1024 * err) : conservative, in 1/1024 units
  *     err_x, err_y, err_tri  where it happens (the first in scan order on ties)
  * ok = 1 when every error count above is zero (uncovered per the rule above) and
- *   the area rule holds.  The error is reported, not judged: compare it with
+ *   the area rule holds.  bad_x, bad_y, bad_what name the first defect found.  The error is reported, not judged: compare it with
  *   mc_err_exceeds().  mc_check returns ok (or -1 if memory runs out).
  *   Cost: O(w*h) bytes x 9 of scratch, O(T log T) for edges, O(sum of triangle
  *   bounding boxes) for the raster pass, O(sum of edge lengths) for T-junctions.
@@ -130,7 +132,7 @@ typedef struct mc_report {
     int64_t edges, boundary_edges, nonmanifold_edges, same_dir_edges, bad_boundary_edges;
     int64_t tjunctions;
     int64_t area2, area2_max, voids;
-    int64_t overlap_samples, uncovered, void_covered, range_errors;
+    int64_t overlap_samples, uncovered, uncovered_far, void_covered, range_errors;
     int64_t err_num, err_den, err_q10;
     int32_t err_x, err_y;
     int64_t err_tri;
