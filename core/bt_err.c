@@ -99,7 +99,8 @@ size_t bt_scratch_size(int32_t w, int32_t h)
     /* sanitised heights (int32) + per-row void prefix counts (uint16, w+1 per row) */
     /* sanitised heights (int32), per-row void prefix counts (uint16, w+1 per row),
      * curvature per sample (int32, curvature metric only) */
-    return (size_t)w * (size_t)h * 8 + (size_t)(w + 1) * (size_t)h * 2 + 16;
+    return (size_t)w * (size_t)h * 8 + (size_t)(w + 1) * (size_t)h * 2 + 16
+         + (size_t)(((int32_t)1 << padded_k(w, h)) + 1) * 12;
 }
 
 /* ------------------------------------------------------------ build */
@@ -109,6 +110,9 @@ typedef struct ctx {
     const uint16_t *vp;    /* void prefix counts, (w+1)*h, or NULL if no voids */
     const int32_t *kap;    /* curvature per sample (curvature metric), else NULL */
     int32_t metric;
+    int32_t narrow;        /* 1: the exact metric fits int32 (see bt_build) */
+    int32_t *ry, *rx0, *rx1; /* row spans of the triangle being evaluated (n each) */
+    int64_t qr, qm;        /* height quantisation: range R and floor(255 * 2^24 / R) */
 } ctx;
 
 typedef struct tri_res {
@@ -117,78 +121,151 @@ typedef struct tri_res {
     int32_t zlo, zhi;      /* own volume (full triangles only) */
 } tri_res;
 
-/* Number of void samples in row y, columns [x0, x1] (inclusive, inside the domain). */
-static int32_t row_voids(const ctx *c, int32_t y, int32_t x0, int32_t x1)
-{
-    const uint16_t *p;
-    if (!c->vp) return 0;
-    p = c->vp + (size_t)y * (size_t)(c->w + 1);
-    return (int32_t)p[x1 + 1] - (int32_t)p[x0];
-}
-
 static int64_t max64(int64_t a, int64_t b) { return a > b ? a : b; }
 static int64_t min64(int64_t a, int64_t b) { return a < b ? a : b; }
 
-/* The span of row y (absolute) of the triangle (a, c, b), apex c.  Returns 0 if
- * the row is outside the triangle.  Triangles here are right isosceles with
- * axis or diagonal legs, so each edge bounds x by a line of slope 0 or +-1. */
-static int span_of(const int32_t a[2], const int32_t cc[2], const int32_t b[2], int32_t y,
-                   int32_t *x0, int32_t *x1)
+/* Row spans of the triangle (a, c, b), apex c, into c->ry/rx0/rx1 (no division:
+ * the legs are axis-parallel (type D) or diagonal (type A)).  Returns the row count. */
+static int32_t spans(const ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2])
 {
-    const int32_t *p[3];
-    int32_t lo = INT32_MIN, hi = INT32_MAX, i;
-    int32_t ymin, ymax;
-    p[0] = a; p[1] = cc; p[2] = b;
-    ymin = a[1]; if (b[1] < ymin) ymin = b[1]; if (cc[1] < ymin) ymin = cc[1];
-    ymax = a[1]; if (b[1] > ymax) ymax = b[1]; if (cc[1] > ymax) ymax = cc[1];
-    if (y < ymin || y > ymax) return 0;
-    for (i = 0; i < 3; i++) {
-        const int32_t *e0 = p[i], *e1 = p[(i + 1) % 3], *o = p[(i + 2) % 3];
-        int32_t dx = e1[0] - e0[0], dy = e1[1] - e0[1];
-        /* side of o: sign of cross(e1 - e0, o - e0) */
-        int64_t so = (int64_t)dx * (o[1] - e0[1]) - (int64_t)dy * (o[0] - e0[0]);
-        if (dy == 0) {
-            /* horizontal edge: bounds y only, already within [ymin, ymax] */
-            continue;
+    int32_t *ry = c->ry, *r0 = c->rx0, *r1 = c->rx1, nr = 0, t;
+    if (a[0] != cc[0] && a[1] != cc[1]) {
+        /* diagonal legs: hypotenuse a-b is axis-parallel, apex at distance h */
+        if (a[1] == b[1]) {           /* horizontal hypotenuse */
+            int32_t xm = (a[0] + b[0]) >> 1, h = cc[1] - a[1], sg = h < 0 ? -1 : 1;
+            if (h < 0) h = -h;
+            for (t = 0; t <= h; t++) { ry[nr] = a[1] + sg * t; r0[nr] = xm - h + t; r1[nr] = xm + h - t; nr++; }
+        } else {                      /* vertical hypotenuse */
+            int32_t ym = (a[1] + b[1]) >> 1, h = cc[0] - a[0], d;
+            int32_t h2 = h < 0 ? -h : h;
+            for (d = -h2; d <= h2; d++) {
+                int32_t w = h2 - (d < 0 ? -d : d);
+                ry[nr] = ym + d;
+                if (h > 0) { r0[nr] = a[0]; r1[nr] = a[0] + w; } else { r0[nr] = a[0] - w; r1[nr] = a[0]; }
+                nr++;
+            }
         }
-        /* point (X, y) is on o's side when sign(dx*(y-e0y) - dy*(X-e0x)) == sign(so).
-         * |dy| == |dx| or dx == 0, so the boundary X = e0x + dx*(y-e0y)/dy is exact. */
-        {
-            int64_t num = (int64_t)dx * (y - e0[1]);
-            int32_t xb = e0[0] + (int32_t)(num / dy);
-            /* f(X) = dx*(y-e0y) - dy*(X - e0x): decreasing in X if dy > 0 */
-            int inside_right = (so > 0) ? (dy < 0) : (dy > 0);
-            if (inside_right) { if (xb > lo) lo = xb; }
-            else { if (xb < hi) hi = xb; }
+    } else {
+        /* axis legs: one of a, b shares cc's row, the other its column */
+        const int32_t *px = a[1] == cc[1] ? a : b, *py = a[1] == cc[1] ? b : a;
+        int32_t L = px[0] - cc[0], sx = L < 0 ? -1 : 1, sy = py[1] > cc[1] ? 1 : -1;
+        if (L < 0) L = -L;
+        for (t = 0; t <= L; t++) {
+            ry[nr] = cc[1] + sy * t;
+            if (sx > 0) { r0[nr] = cc[0]; r1[nr] = cc[0] + (L - t); }
+            else { r0[nr] = cc[0] - (L - t); r1[nr] = cc[0]; }
+            nr++;
         }
     }
-    if (lo > hi) return 0;
-    *x0 = lo; *x1 = hi;
+    return nr;
+}
+
+/* max |P(x) - (z[x] << k)| over a row, P(x0) = p, step A: int32 version, blocked
+ * by 8 so compilers vectorise it with plain SSE2/NEON (callers guarantee the
+ * int32 range, see bt_build). */
+static void row32(const int32_t *zr, int32_t n, int32_t p, int32_t A, int k,
+                  int32_t *mx, int32_t *mn)
+{
+    int32_t vmx[8], vmn[8], ramp[8], i, x = 0;
+    int32_t lmx = *mx, lmn = *mn;
+    if (n >= 8) {
+        for (i = 0; i < 8; i++) { vmx[i] = lmx; vmn[i] = lmn; ramp[i] = A * i; }
+        for (; x + 8 <= n; x += 8) {
+            for (i = 0; i < 8; i++) {
+                int32_t d = p + ramp[i] - (zr[x + i] << k);
+                vmx[i] = d > vmx[i] ? d : vmx[i];
+                vmn[i] = d < vmn[i] ? d : vmn[i];
+            }
+            p += 8 * A;
+        }
+        for (i = 0; i < 8; i++) {
+            lmx = vmx[i] > lmx ? vmx[i] : lmx;
+            lmn = vmn[i] < lmn ? vmn[i] : lmn;
+        }
+    }
+    for (; x < n; x++) {
+        int32_t d = p - (zr[x] << k);
+        lmx = d > lmx ? d : lmx;
+        lmn = d < lmn ? d : lmn;
+        p += A;
+    }
+    *mx = lmx; *mn = lmn;
+}
+
+/* height of sample (x, y) (biased) into *z; 0 if it is a void or outside w x h */
+static int samp(const ctx *c, int32_t x, int32_t y, int32_t *z)
+{
+    if (x >= c->w || y >= c->h) return 0;
+    if (c->vp) {
+        const uint16_t *pr = c->vp + (size_t)y * (size_t)(c->w + 1);
+        if (pr[x + 1] != pr[x]) return 0;
+    }
+    *z = c->z[(size_t)y * c->w + x];
     return 1;
 }
+
+static int32_t iabs32(int32_t v) { return v < 0 ? -v : v; }
+
+/* The two finest diamond levels in closed form (they are 3/4 of all triangles):
+ * hypotenuse 2 on an axis (samples a, b, c and the midpoint m: only m is off
+ * the plane) or on a diagonal (also the two leg midpoints). */
+static int tri_small(const ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2],
+                     tri_res *r)
+{
+    int32_t dx = b[0] - a[0], dy = b[1] - a[1];
+    int32_t px[6], py[6], z[6], np, i, nv = 0, e2;
+    if (!((iabs32(dx) == 2 && dy == 0) || (dx == 0 && iabs32(dy) == 2) ||
+          (iabs32(dx) == 2 && iabs32(dy) == 2))) return 0;
+    px[0] = a[0]; py[0] = a[1]; px[1] = b[0]; py[1] = b[1]; px[2] = cc[0]; py[2] = cc[1];
+    px[3] = (a[0] + b[0]) >> 1; py[3] = (a[1] + b[1]) >> 1;
+    np = 4;
+    if (dx != 0 && dy != 0) {
+        px[4] = (a[0] + cc[0]) >> 1; py[4] = (a[1] + cc[1]) >> 1;
+        px[5] = (b[0] + cc[0]) >> 1; py[5] = (b[1] + cc[1]) >> 1;
+        np = 6;
+    }
+    for (i = 0; i < np; i++) nv += samp(c, px[i], py[i], &z[i]);
+    r->err = 0; r->zlo = 0; r->zhi = 0;
+    if (nv != np) { r->cls = nv > 0 ? 1 : 2; return 1; }
+    r->cls = 0;
+    e2 = iabs32(z[0] + z[1] - 2 * z[3]);
+    if (np == 6) {
+        int32_t e4 = iabs32(z[2] + z[0] - 2 * z[4]), e5 = iabs32(z[2] + z[1] - 2 * z[5]);
+        if (e4 > e2) e2 = e4;
+        if (e5 > e2) e2 = e5;
+    }
+    r->err = (e2 + 1) >> 1;
+    {
+        int32_t zl = z[0], zh = z[0];
+        for (i = 1; i < 3; i++) { if (z[i] < zl) zl = z[i]; if (z[i] > zh) zh = z[i]; }
+        r->zlo = zl - (int32_t)r->err; if (r->zlo < 0) r->zlo = 0;
+        r->zhi = zh + (int32_t)r->err;
+    }
+    return 1;
+}
+
+static int32_t sgn32(int32_t v) { return (v > 0) - (v < 0); }
 
 static void tri_eval(const ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2],
                      tri_res *r)
 {
-    int32_t ymin, ymax, y, x0, x1;
+    int32_t nr, i;
     int64_t valid = 0, voids = 0;
+    if (c->metric == BT_METRIC_EXACT && c->narrow && tri_small(c, a, cc, b, r)) return;
     r->err = 0; r->cls = 0; r->zlo = 0; r->zhi = 0;
-    ymin = a[1]; if (b[1] < ymin) ymin = b[1]; if (cc[1] < ymin) ymin = cc[1];
-    ymax = a[1]; if (b[1] > ymax) ymax = b[1]; if (cc[1] > ymax) ymax = cc[1];
-    /* pass 1: classify */
-    for (y = ymin; y <= ymax; y++) {
-        int32_t cx0, cx1, len;
-        if (!span_of(a, cc, b, y, &x0, &x1)) continue;
-        len = x1 - x0 + 1;
-        if (y >= c->h) { voids += len; continue; }
-        cx0 = x0; cx1 = x1 < c->w - 1 ? x1 : c->w - 1;
-        if (cx1 < cx0) { voids += len; continue; }
-        voids += len - (cx1 - cx0 + 1);
-        {
-            int32_t v = row_voids(c, y, cx0, cx1);
+    nr = spans(c, a, cc, b);
+    /* pass 1: classify (samples outside w x h are voids) */
+    for (i = 0; i < nr; i++) {
+        int32_t y = c->ry[i], x0 = c->rx0[i], x1 = c->rx1[i], cx1, len = x1 - x0 + 1;
+        if (y >= c->h || x0 >= c->w) { voids += len; continue; }
+        cx1 = x1 < c->w - 1 ? x1 : c->w - 1;
+        voids += len - (cx1 - x0 + 1);
+        if (c->vp) {
+            const uint16_t *pr = c->vp + (size_t)y * (size_t)(c->w + 1);
+            int32_t v = (int32_t)pr[cx1 + 1] - (int32_t)pr[x0];
             voids += v;
-            valid += (cx1 - cx0 + 1) - v;
-        }
+            valid += (cx1 - x0 + 1) - v;
+        } else valid += cx1 - x0 + 1;
     }
     if (voids > 0) { r->cls = valid > 0 ? 1 : 2; return; }
     {
@@ -200,81 +277,81 @@ static void tri_eval(const ctx *c, const int32_t a[2], const int32_t cc[2], cons
         if (zc > zh) zh = zc;
         if (c->metric == BT_METRIC_CURVATURE) {
             int64_t sum = 0;
-            for (y = ymin; y <= ymax; y++) {
-                const int32_t *kr;
+            int32_t lo = zl, hi = zh;
+            for (i = 0; i < nr; i++) {
+                const int32_t *kr = c->kap + (size_t)c->ry[i] * c->w;
+                const int32_t *zr = c->z + (size_t)c->ry[i] * c->w;
                 int32_t x;
-                if (!span_of(a, cc, b, y, &x0, &x1)) continue;
-                kr = c->kap + (size_t)y * c->w;
-                for (x = x0; x <= x1; x++) sum += kr[x];
-            }
-            r->err = sum;
-            r->zlo = zl; r->zhi = zh;   /* curvature is no height bound: volume from vertices */
-            /* widen by the true vertical error of the plane is unknown here; use the
-             * sample range instead (exact, computed below) */
-            {
-                int32_t lo = zl, hi = zh;
-                for (y = ymin; y <= ymax; y++) {
-                    const int32_t *zr;
-                    int32_t x;
-                    if (!span_of(a, cc, b, y, &x0, &x1)) continue;
-                    zr = c->z + (size_t)y * c->w;
-                    for (x = x0; x <= x1; x++) {
-                        if (zr[x] < lo) lo = zr[x];
-                        if (zr[x] > hi) hi = zr[x];
-                    }
+                for (x = c->rx0[i]; x <= c->rx1[i]; x++) {
+                    sum += kr[x];
+                    if (zr[x] < lo) lo = zr[x];
+                    if (zr[x] > hi) hi = zr[x];
                 }
-                r->zlo = lo; r->zhi = hi;
             }
+            r->err = sum; r->zlo = lo; r->zhi = hi;
             return;
         }
         {
+            /* plane * D: P(x, y) = D zc + (x - cx) A + (y - cy) B, D = cross(u, v) / m,
+             * u = a - c, v = b - c, m = max |u component| (so u/m, v/m are in
+             * {-1, 0, 1}); normalised to D > 0 (D is then a power of two, 2^k). */
             int32_t ux = a[0] - cc[0], uy = a[1] - cc[1], vx = b[0] - cc[0], vy = b[1] - cc[1];
-            int32_t m = ux < 0 ? -ux : ux;
-            int64_t D, dza = (int64_t)za - zc, dzb = (int64_t)zb - zc, A;
-            int64_t mx = 0, mn = 0, e;
-            if ((uy < 0 ? -uy : uy) > m) m = uy < 0 ? -uy : uy;
-            D = ((int64_t)ux * vy - (int64_t)uy * vx) / m;
-            A = ((int64_t)vy * dza - (int64_t)uy * dzb) / m;
-            for (y = ymin; y <= ymax; y++) {
-                const int32_t *zr;
-                int64_t s, t, p;
-                int32_t x;
-                if (!span_of(a, cc, b, y, &x0, &x1)) continue;
-                s = ((int64_t)(x0 - cc[0]) * vy - (int64_t)(y - cc[1]) * vx) / m;
-                t = ((int64_t)ux * (y - cc[1]) - (int64_t)uy * (x0 - cc[0])) / m;
-                p = D * zc + s * dza + t * dzb;
-                zr = c->z + (size_t)y * c->w;
-                for (x = x0; x <= x1; x++) {
-                    int64_t d = p - D * zr[x];
-                    mx = d > mx ? d : mx;
-                    mn = d < mn ? d : mn;
-                    p += A;
+            int32_t k = 0;
+            int64_t D, A, B, dza = (int64_t)za - zc, dzb = (int64_t)zb - zc, e;
+            /* u/m and v/m are the signs of the components (each is 0 or +-m) */
+            D = (int64_t)ux * sgn32(vy) - (int64_t)uy * sgn32(vx);
+            A = (int64_t)sgn32(vy) * dza - (int64_t)sgn32(uy) * dzb;
+            B = -(int64_t)sgn32(vx) * dza + (int64_t)sgn32(ux) * dzb;
+            if (D < 0) { D = -D; A = -A; B = -B; }
+            while (((int64_t)1 << k) < D) k++;
+            if (c->narrow) {
+                int32_t mx = 0, mn = 0;
+                for (i = 0; i < nr; i++) {
+                    int32_t y = c->ry[i], x0 = c->rx0[i];
+                    int64_t p = D * zc + (int64_t)(x0 - cc[0]) * A + (int64_t)(y - cc[1]) * B;
+                    row32(c->z + (size_t)y * c->w + x0, c->rx1[i] - x0 + 1, (int32_t)p, (int32_t)A, k,
+                          &mx, &mn);
                 }
+                e = max64(mx, -(int64_t)mn);
+            } else {
+                int64_t mx = 0, mn = 0;
+                for (i = 0; i < nr; i++) {
+                    int32_t y = c->ry[i], x0 = c->rx0[i], x;
+                    const int32_t *zr = c->z + (size_t)y * c->w;
+                    int64_t p = D * zc + (int64_t)(x0 - cc[0]) * A + (int64_t)(y - cc[1]) * B;
+                    for (x = x0; x <= c->rx1[i]; x++) {
+                        int64_t d = p - ((int64_t)zr[x] << k);
+                        mx = d > mx ? d : mx;
+                        mn = d < mn ? d : mn;
+                        p += A;
+                    }
+                }
+                e = max64(mx, -mn);
             }
-            if (D < 0) D = -D;
-            e = max64(mx, -mn);
-            r->err = (e + D - 1) / D;
-            r->zlo = (int32_t)max64((int64_t)zl - r->err, INT32_MIN + 1);
+            r->err = (e + D - 1) >> k;
+            r->zlo = (int32_t)max64((int64_t)zl - r->err, 0);
             r->zhi = (int32_t)min64((int64_t)zh + r->err, INT32_MAX);
         }
     }
 }
 
-/* quantise a height to the tree's 8-bit range, rounding down (lo) or up (hi) */
-static uint8_t q_lo(const bt_tree *t, int64_t z)
+/* quantise a biased height (0 .. R = zmax - zmin) to 8 bits, rounding down (lo)
+ * or up (hi), by a multiply: qm = floor(255 * 2^24 / R), so the estimate is at
+ * most 1 below the exact floor (lo, conservative) and hi adds 1 (>= the ceiling). */
+static uint8_t q_lo(const ctx *c, int64_t z)
 {
-    int64_t r = (int64_t)t->zmax - t->zmin;
-    if (z <= t->zmin || r <= 0) return 0;
-    if (z >= t->zmax) return 255;
-    return (uint8_t)(((z - t->zmin) * 255) / r);
+    if (z <= 0 || c->qr <= 0) return 0;
+    if (z >= c->qr) return 255;
+    return (uint8_t)((z * c->qm) >> 24);
 }
-static uint8_t q_hi(const bt_tree *t, int64_t z)
+static uint8_t q_hi(const ctx *c, int64_t z)
 {
-    int64_t r = (int64_t)t->zmax - t->zmin;
-    if (r <= 0) return 255;
-    if (z <= t->zmin) return 0;
-    if (z >= t->zmax) return 255;
-    return (uint8_t)(((z - t->zmin) * 255 + r - 1) / r);
+    int64_t q;
+    if (c->qr <= 0) return 255;
+    if (z <= 0) return 0;
+    if (z >= c->qr) return 255;
+    q = ((z * c->qm) >> 24) + 1;
+    return (uint8_t)(q > 255 ? 255 : q);
 }
 
 static void diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int typeD)
@@ -307,7 +384,7 @@ static void diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, i
         if (r.cls == 1) code = BT_CODE_SPLIT;
         else if (r.cls == 0) {
             uint16_t e = bt_code_encode(r.err);
-            uint8_t l = q_lo(t, r.zlo), u = q_hi(t, r.zhi);
+            uint8_t l = q_lo(c, r.zlo), u = q_hi(c, r.zhi);
             if (e > code) code = e;
             if (l < lo) lo = l;
             if (u > hi) hi = u;
@@ -387,22 +464,21 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
     nt.zhi = nt.zlo + nn;
     nt.st = nt.zhi + nn;
     memset(mem, 0, nn * 5);
-    /* sanitised heights, stats */
+    /* stats and void prefix counts, then heights biased by zmin (>= 0: shifts of
+     * non-negative values only), voids = 0 */
     zs = (int32_t *)scratch;
     vp = (uint16_t *)((uint8_t *)scratch + (size_t)w * h * 4);
     {
         int first = 1;
         for (y = 0; y < h; y++) {
             const int32_t *zr = f->z + (size_t)y * w;
-            int32_t *sr = zs + (size_t)y * w;
             uint16_t *pr = vp + (size_t)y * (w + 1);
             uint16_t cnt = 0;
             pr[0] = 0;
             for (x = 0; x < w; x++) {
                 int32_t v = zr[x];
-                if (v == HF_NODATA) { sr[x] = 0; cnt++; voids++; }
+                if (v == HF_NODATA) { cnt++; voids++; }
                 else {
-                    sr[x] = v;
                     if (first) { nt.zmin = nt.zmax = v; first = 0; }
                     if (v < nt.zmin) nt.zmin = v;
                     if (v > nt.zmax) nt.zmax = v;
@@ -410,17 +486,33 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
                 pr[x + 1] = cnt;
             }
         }
+        for (y = 0; y < h; y++) {
+            const int32_t *zr = f->z + (size_t)y * w;
+            int32_t *sr = zs + (size_t)y * w;
+            for (x = 0; x < w; x++) sr[x] = zr[x] == HF_NODATA ? 0 : zr[x] - nt.zmin;
+        }
     }
     nt.nvalid = (int64_t)w * h - voids;
     c.w = w; c.h = h; c.n = n; c.z = zs; c.vp = voids ? vp : NULL; c.metric = metric;
     c.kap = NULL;
-    if (metric == BT_METRIC_CURVATURE) {
-        int32_t *kap = (int32_t *)(void *)((uint8_t *)vp + (size_t)(w + 1) * h * 2 + 8);
-        kap = (int32_t *)(void *)((uintptr_t)kap & ~(uintptr_t)3);
-        for (y = 0; y < h; y++)
-            for (x = 0; x < w; x++)
-                kap[(size_t)y * w + x] = kappa_at(f->z, w, h, x, y);
-        c.kap = kap;
+    /* int32 is enough when |N| <= 2 D R + 16 |A| < 2^31 with D <= S, |A| <= 2R */
+    c.qr = (int64_t)nt.zmax - nt.zmin;
+    c.qm = c.qr > 0 ? (255LL << 24) / c.qr : 0;
+    c.narrow = (int64_t)(2 * (int64_t)S + 64) * ((int64_t)nt.zmax - nt.zmin) < ((int64_t)1 << 31);
+    {
+        uint8_t *q = (uint8_t *)vp + (size_t)(w + 1) * h * 2;
+        q += (4 - ((uintptr_t)q & 3)) & 3;
+        c.ry = (int32_t *)(void *)q;
+        c.rx0 = c.ry + n;
+        c.rx1 = c.rx0 + n;
+        q = (uint8_t *)(c.rx1 + n);
+        if (metric == BT_METRIC_CURVATURE) {
+            int32_t *kap = (int32_t *)(void *)q;
+            for (y = 0; y < h; y++)
+                for (x = 0; x < w; x++)
+                    kap[(size_t)y * w + x] = kappa_at(f->z, w, h, x, y);
+            c.kap = kap;
+        }
     }
     *t = nt;
     for (j = 0; j < nt.k; j++) {

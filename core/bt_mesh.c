@@ -35,7 +35,11 @@
 
 enum { ST_PREV = 1, ST_SPLIT = 2, ST_PUSHED = 4, ST_CUR = 8 };
 
-typedef struct pt { int32_t x, y, z; uint16_t morph; } pt;
+/* A vertex on its way down the recursion; idx caches its output index (the
+ * children of a split share their parent's pt instances, so most lookups are
+ * answered here and only the first use per instance goes to the hash). */
+typedef struct pt { int32_t x, y, z; uint32_t idx; uint16_t morph; } pt;
+#define NO_IDX 0xFFFFFFFFu
 
 typedef struct heap_ent { int64_t key; uint32_t id; uint32_t pad_; } heap_ent;
 
@@ -56,6 +60,7 @@ typedef struct em {
     int full;               /* mesh full: stop emitting */
     int rec_splits;         /* record this frame's splits (view mode, hysteresis) */
     int lost;               /* the split list overflowed */
+    int nonvoid;            /* the padded grid has no void sample: skip the checks */
 } em;
 
 /* ------------------------------------------------------------ mesh memory */
@@ -72,7 +77,7 @@ size_t bt_mesh_mem_size(uint32_t max_tri)
     if (max_tri < 2 || max_tri > 0x10000000u) return 0;
     cap_v = 3ull * max_tri + 3;
     cap_s = 5ull * max_tri + 8;
-    hs = hash_size((uint32_t)cap_v);
+    hs = hash_size(2 * max_tri + 16);
     heap = 4ull * max_tri + 8;
     sz = cap_v * sizeof(bt_vert) + cap_s * 4 + hs * 4 + heap * sizeof(heap_ent) + heap * 4 + 64;
     return (size_t)sz;
@@ -88,7 +93,7 @@ br_status bt_mesh_init(bt_mesh *m, uint32_t max_tri, void *mem, size_t mem_bytes
     memset(m, 0, sizeof *m);
     cap_v = 3 * max_tri + 3;
     cap_s = 5 * max_tri + 8;
-    hs = hash_size(cap_v);
+    hs = hash_size(2 * max_tri + 16);
     m->max_tri = max_tri;
     m->v = (bt_vert *)(void *)p; p += (size_t)cap_v * sizeof(bt_vert);
     m->cap_v = cap_v;
@@ -265,15 +270,16 @@ static int decide(em *e, int32_t x, int32_t y, uint16_t *morph)
 }
 
 /* ------------------------------------------------------------ strip */
-static uint32_t vid(em *e, const pt *q)
+static uint32_t vid(em *e, pt *q)
 {
     bt_mesh *m = e->m;
+    if (q->idx != NO_IDX) return q->idx;
     uint32_t key = (uint32_t)q->y * (uint32_t)e->n + (uint32_t)q->x;
     uint32_t h = (key * 2654435761u) & m->hmask;
     for (;;) {
         uint32_t s = m->hash[h];
         if (s == 0) break;
-        if (m->v[s - 1].x == q->x && m->v[s - 1].y == q->y) return s - 1;
+        if (m->v[s - 1].x == q->x && m->v[s - 1].y == q->y) return q->idx = s - 1;
         h = (h + 1) & m->hmask;
     }
     {
@@ -285,7 +291,7 @@ static uint32_t vid(em *e, const pt *q)
         v->pad_ = 0;
         if (v->state == BT_F) m->nfict++;
         m->hash[h] = i + 1;
-        return i;
+        return q->idx = i;
     }
 }
 
@@ -298,13 +304,14 @@ static void push(bt_mesh *m, uint32_t i) { m->strip[m->ns++] = i; }
 
 /* Leaf (a, c, b), apex c.  It is entered through edge {a, c} (or the hypotenuse
  * {a, b} when in_hyp) and left through {c, b} (or {a, b} when out_hyp). */
-static void leaf(em *e, const pt *a, const pt *c, const pt *b, int in_hyp, int out_hyp)
+static void leaf(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
 {
     bt_mesh *m = e->m;
     uint32_t ia, ic, ib, o0, o1, other;
     e->count++;
     if (e->count_only) return;
-    if (e->full || m->nv + 3 > m->cap_v || m->ns + 5 > m->cap_s || m->ntri >= m->max_tri) {
+    if (e->full || m->nv + 3 > m->cap_v || m->ns + 5 > m->cap_s || m->ntri >= m->max_tri ||
+        m->nv + 3 > m->hmask - (m->hmask >> 2)) {
         e->full = 1;
         return;
     }
@@ -344,23 +351,24 @@ static void leaf(em *e, const pt *a, const pt *c, const pt *b, int in_hyp, int o
     }
 }
 
-static void rec(em *e, const pt *a, const pt *c, const pt *b, int in_hyp, int out_hyp)
+static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
 {
     int32_t dx = b->x - a->x, dy = b->y - a->y;
     pt mm;
     int sp;
     if (e->full) return;
     if ((dx == 1 || dx == -1) && (dy == 1 || dy == -1)) {
-        if (valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y))
+        if (e->nonvoid || (valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y)))
             leaf(e, a, c, b, in_hyp, out_hyp);
         return;
     }
+    mm.idx = NO_IDX;
     mm.x = a->x + (dx >> 1);
     mm.y = a->y + (dy >> 1);
     sp = decide(e, mm.x, mm.y, &mm.morph);
     if (sp < 0) return;
     if (!sp) {
-        if (valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y))
+        if (e->nonvoid || (valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y)))
             leaf(e, a, c, b, in_hyp, out_hyp);
         return;
     }
@@ -386,7 +394,7 @@ static void rec(em *e, const pt *a, const pt *c, const pt *b, int in_hyp, int ou
 
 static void corner(const bt_tree *t, int32_t x, int32_t y, pt *q)
 {
-    q->x = x; q->y = y; q->z = zreal(t, x, y); q->morph = BT_MORPH_ONE;
+    q->x = x; q->y = y; q->z = zreal(t, x, y); q->morph = BT_MORPH_ONE; q->idx = NO_IDX;
 }
 
 static void run(em *e)
@@ -512,6 +520,7 @@ static br_status setup(em *e, bt_tree *t, const bt_params *p)
     memset(e, 0, sizeof *e);
     if (!t || !p || !t->err) return BR_E_ARG;
     e->t = t; e->p = p; e->n = t->n; e->S = t->n - 1;
+    e->nonvoid = t->nvalid == (int64_t)t->n * t->n;
     if (p->mode == BT_FIDELITY) {
         int64_t thr = p->max_err;
         uint16_t lo = 0, hi = BT_CODE_SPLIT - 1;
@@ -565,7 +574,6 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
     br_status s = setup(&e, t, p);
     uint32_t i, nid = 0, nprev, *ids;
     uint32_t *old;
-    int32_t ov = 0;
     if (s != BR_OK) return s;
     if (!m || !m->v) return BR_E_ARG;
     e.m = m;
@@ -580,38 +588,44 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
         nprev = 0;
     }
+    reset_mesh(m);
     if (p->mode == BT_BUDGET) {
         budget_mark(&e, p->budget < m->max_tri ? p->budget : m->max_tri, &nid);
         e.tau = -1;
     } else {
-        em c2 = e;
-        c2.count_only = 1;
-        run(&c2);
-        if (c2.count > m->max_tri) {
-            /* defined downgrade: spend the capacity by priority (budget rule) */
-            for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
-            nprev = 0;
-            budget_mark(&e, m->max_tri, &nid);
-            e.tau = -1;
-            ov = 1;
+        e.rec_splits = p->mode == BT_VIEW;
+        run(&e);
+        if (!e.full) {
+            if (e.rec_splits) {
+                /* previous frame's marks go; this frame's ST_CUR become ST_PREV */
+                for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
+                if (e.lost) {
+                    size_t nn = (size_t)t->n * t->n, k;
+                    for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_PREV);
+                    m->nsplits = 0;
+                } else {
+                    for (i = 0; i < m->nsplits; i++)
+                        t->st[ids[i]] = (uint8_t)((t->st[ids[i]] & ~ST_CUR) | ST_PREV);
+                }
+            }
+            return BR_OK;
         }
-    }
-    reset_mesh(m);
-    m->overflow = ov;
-    e.rec_splits = p->mode == BT_VIEW && e.tau >= 0;
-    run(&e);
-    if (e.rec_splits) {
-        /* previous frame's marks go; this frame's ST_CUR become ST_PREV */
+        /* defined downgrade: the selection needs more than m holds; spend the
+         * capacity by priority (the budget rule) instead */
         for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
+        for (i = 0; i < m->nsplits; i++) t->st[ids[i]] &= (uint8_t)~(ST_CUR | ST_PREV);
         if (e.lost) {
             size_t nn = (size_t)t->n * t->n, k;
             for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_PREV);
-            m->nsplits = 0;
-        } else {
-            for (i = 0; i < m->nsplits; i++)
-                t->st[ids[i]] = (uint8_t)((t->st[ids[i]] & ~ST_CUR) | ST_PREV);
         }
+        m->nsplits = 0;
+        reset_mesh(m);
+        e.full = 0; e.rec_splits = 0; e.lost = 0;
+        budget_mark(&e, m->max_tri, &nid);
+        e.tau = -1;
+        m->overflow = 1;
     }
+    run(&e);
     for (i = 0; i < nid; i++) t->st[ids[i]] &= (uint8_t)~(ST_SPLIT | ST_PUSHED);
     return e.full ? BR_E_NOMEM : BR_OK;
 }
