@@ -33,7 +33,7 @@ br_status dem_merge(const hf *tiles, const char *const *names, int n, hf *out, b
     int i;
     int64_t xmin, ymax, sx, sy, W = 0, H = 0, G = 0, L = 1;
     int64_t *cx = NULL, *ry = NULL, *fac = NULL;
-    uint16_t *owner = NULL;
+    uint8_t *seen = NULL;   /* one bit per merged sample: covered yet (page faults cost, so not a byte) */
     hf m;
     br_status s = BR_OK;
     size_t k, cnt;
@@ -103,8 +103,8 @@ br_status dem_merge(const hf *tiles, const char *const *names, int n, hf *out, b
     s = dem_alloc(&m, W, H, "merged tiles", err);
     if (s != BR_OK) goto done;
     cnt = (size_t)W * (size_t)H;
-    owner = calloc(cnt, sizeof *owner);
-    if (!owner) { dem_free(&m); s = br_err_set(err, BR_E_NOMEM, NULL, "out of memory merging"); goto done; }
+    seen = calloc(cnt / 8 + 1, 1);
+    if (!seen) { dem_free(&m); s = br_err_set(err, BR_E_NOMEM, NULL, "out of memory merging"); goto done; }
     for (i = 0; i < n && s == BR_OK; i++) {
         const hf *t = &tiles[i];
         int32_t r, c;
@@ -113,25 +113,30 @@ br_status dem_merge(const hf *tiles, const char *const *names, int n, hf *out, b
             size_t base = (size_t)(ry[i] + r) * (size_t)W + (size_t)cx[i];
             for (c = 0; c < t->w; c++) {
                 int32_t v = src[c] == HF_NODATA ? HF_NODATA : (int32_t)(src[c] * fac[i]);
-                if (owner[base + c]) {
-                    if (m.z[base + c] != v) {
-                        int j = owner[base + c] - 1;
+                size_t q = base + c;
+                if (seen[q >> 3] & (1u << (q & 7))) {
+                    if (m.z[q] != v) {
+                        int j = 0;     /* an earlier tile that covers this sample */
+                        while (j < i && !(cx[i] + c >= cx[j] && cx[i] + c < cx[j] + tiles[j].w &&
+                                          ry[i] + r >= ry[j] && ry[i] + r < ry[j] + tiles[j].h)) j++;
                         s = br_err_set(err, BR_E_MERGE, nm(names, i),
                                        "overlaps %s with different heights at merged sample (%lld, %lld)",
                                        nm(names, j), (long long)(cx[i] + c), (long long)(ry[i] + r));
                         break;
                     }
                 } else {
-                    owner[base + c] = (uint16_t)(i + 1);
-                    m.z[base + c] = v;
+                    seen[q >> 3] = (uint8_t)(seen[q >> 3] | (1u << (q & 7)));
+                    m.z[q] = v;
                 }
             }
         }
     }
     for (k = 0; k < cnt && s == BR_OK; k++)
-        if (!owner[k])
-            s = br_err_set(err, BR_E_MERGE, nm(names, 0),
-                           "the tiles leave a gap: no tile covers merged sample (%lld, %lld) of %lldx%lld",
+        if (!(seen[k >> 3] & (1u << (k & 7))))
+            s = br_err_set(err, BR_E_MERGE, NULL,
+                           "%s%s%s%s%s: the tiles leave a gap: no tile covers merged sample (%lld, %lld) of %lldx%lld",
+                           nm(names, 0), n > 1 ? ", " : "", n > 1 ? nm(names, 1) : "", n > 2 ? ", " : "",
+                           n > 2 ? (n > 3 ? "..." : nm(names, 2)) : "",
                            (long long)(k % (size_t)W), (long long)(k / (size_t)W), (long long)W, (long long)H);
     if (s == BR_OK) {
         m.z_num = (int32_t)G;
@@ -146,7 +151,7 @@ br_status dem_merge(const hf *tiles, const char *const *names, int n, hf *out, b
     if (s == BR_OK) *out = m;
     else dem_free(&m);
 done:
-    free(owner);
+    free(seen);
     free(cx);
     free(ry);
     free(fac);
