@@ -225,6 +225,12 @@ static const crop crops[] = {
     { "hgt/N47E009.hgt", 0, 176, 1040, "Raetikon valley floor (26% flat at 419 m) to 2337 m" },
 };
 
+/* 002's "ahorro": how much fewer BT needs than QT, in % of QT */
+static double save(int64_t bt, int64_t qt)
+{
+    return qt ? 100.0 * (double)(qt - bt) / (double)qt : 0.0;
+}
+
 static void table_part(void)
 {
     int c;
@@ -240,7 +246,7 @@ static void table_part(void)
         br_err err;
         dem_opts o;
         int32_t z[65 * 65], x, y, zmin = INT32_MAX, zmax = INT32_MIN;
-        int k;
+        int k, mode, m3;
         memset(&f, 0, sizeof f);
         memset(&o, 0, sizeof o);
         if (crops[c].png_grey_dm) { o.png_encoding = DEM_PNG_GREY; o.png_scale = 0.1; }
@@ -258,29 +264,42 @@ static void table_part(void)
         grid_verts(65, z);
         printf("\n%s crop at column %d, row %d: %s; heights %.1f..%.1f m\n", crops[c].file, crops[c].x0, crops[c].y0,
                crops[c].what, (double)zmin * f.z_num / f.z_den, (double)zmax * f.z_num / f.z_den);
-        printf("  tol   | selected | added BT-002 QT | transmit BT-002 QT | triangles BT-002 QT | refs BT-002 QT | line BT-002 QT | QT checks\n");
-        for (k = 0; k < 8; k++) {
-            static int32_t qtri[3 * 8192], qstrip[8 * 8192], btri[3 * 8192], bstrip[8 * 8192];
-            rq_mesh qm, bm;
-            rq_result r;
-            mc_report mr;
-            mc_strip_report sq, sb;
-            int64_t tol_num = pct[k] < 0 ? -1 : (int64_t)pct[k] * (zmax - zmin);
-            qm.tri = qtri; qm.strip = qstrip; bm.tri = btri; bm.strip = bstrip;
-            if (rq_run(z, 65, tol_num, 100, &r, &qm, &bm) != 0) { printf("  rq_run failed\n"); break; }
-            judge(qtri, qm.nt, 65, z, &mr);
-            mc_strip_compare(qstrip, qm.ns, qtri, qm.nt, g_verts, 65 * 65, &sq);
-            mc_strip_compare(bstrip, bm.ns, btri, bm.nt, g_verts, 65 * 65, &sb);
-            printf("  %-5s | %8lld | %5lld %5lld | %5lld %5lld | %5lld %5lld | %5lld %5lld | %5lld %5lld |"
-                   " watertight %s, strips decode %s/%s, max err %.1f m (tol %.1f m)\n",
-                   paper[k].tol, (long long)r.selected, (long long)r.bt.added, (long long)r.qt.added,
-                   (long long)r.bt.transmit, (long long)r.qt.transmit, (long long)r.bt.triangles,
-                   (long long)r.qt.triangles, (long long)r.bt.refs, (long long)r.qt.refs,
-                   (long long)r.bt.line, (long long)r.qt.line, mr.ok ? "yes" : "NO",
-                   sq.ok ? "ok" : "BAD", sb.ok ? "ok" : "BAD",
-                   (double)mr.err_num / (double)mr.err_den * f.z_num / f.z_den,
-                   pct[k] < 0 ? 0.0 : (double)tol_num / 100.0 * f.z_num / f.z_den);
-            if (!mr.ok) mc_report_print(stdout, &mr);
+        for (m3 = 0; m3 < 3; m3++) {
+            static const int order[3] = { RQ_SEL_VERTEX, RQ_SEL_EACH, RQ_SEL_TOPDOWN };
+            mode = order[m3];
+            printf("  selection %s\n", mode == RQ_SEL_EACH ? "RQ_SEL_EACH (002: every triangle of the hierarchy judged on its own)"
+                                    : mode == RQ_SEL_TOPDOWN ? "RQ_SEL_TOPDOWN (split from the roots while e(T) > tol)"
+                                    : "RQ_SEL_VERTEX (a point by its own midpoint error |z_m - (z_a + z_b)/2|)");
+            printf("  tol   | selected | added BT-002 QT | transmit BT-002 QT | triangles BT-002 QT | refs BT-002 QT | line BT-002 QT |"
+                   " BT-002 saves tx/tri/refs (paper) | QT checks\n");
+            for (k = 0; k < 8; k++) {
+                static int32_t qtri[3 * 8192], qstrip[8 * 8192], btri[3 * 8192], bstrip[8 * 8192];
+                rq_mesh qm, bm;
+                rq_result r;
+                mc_report mr;
+                mc_strip_report sq, sb;
+                int64_t tol_num = pct[k] < 0 ? -1 : (int64_t)pct[k] * (zmax - zmin);
+                qm.tri = qtri; qm.strip = qstrip; bm.tri = btri; bm.strip = bstrip;
+                if (rq_run(z, 65, tol_num, 100, mode, &r, &qm, &bm) != 0) { printf("  rq_run failed\n"); break; }
+                judge(qtri, qm.nt, 65, z, &mr);
+                mc_strip_compare(qstrip, qm.ns, qtri, qm.nt, g_verts, 65 * 65, &sq);
+                mc_strip_compare(bstrip, bm.ns, btri, bm.nt, g_verts, 65 * 65, &sb);
+                printf("  %-5s | %8lld | %5lld %5lld | %5lld %5lld | %5lld %5lld | %5lld %5lld | %5lld %5lld |"
+                       " %3.0f%% %3.0f%% %3.0f%% (%3.0f%% %3.0f%% %3.0f%%) |"
+                       " watertight %s, strips decode %s/%s, max err %.1f m (tol %.1f m)\n",
+                       paper[k].tol, (long long)r.selected, (long long)r.bt.added, (long long)r.qt.added,
+                       (long long)r.bt.transmit, (long long)r.qt.transmit, (long long)r.bt.triangles,
+                       (long long)r.qt.triangles, (long long)r.bt.refs, (long long)r.qt.refs,
+                       (long long)r.bt.line, (long long)r.qt.line,
+                       save(r.bt.transmit, r.qt.transmit), save(r.bt.triangles, r.qt.triangles),
+                       save(r.bt.refs, r.qt.refs), save(paper[k].bt_tx, paper[k].qt_tx),
+                       save(paper[k].bt_tri, paper[k].qt_tri), save(paper[k].bt_ref, paper[k].qt_ref),
+                       mr.ok ? "yes" : "NO",
+                       sq.ok ? "ok" : "BAD", sb.ok ? "ok" : "BAD",
+                       (double)mr.err_num / (double)mr.err_den * f.z_num / f.z_den,
+                       pct[k] < 0 ? 0.0 : (double)tol_num / 100.0 * f.z_num / f.z_den);
+                if (!mr.ok) mc_report_print(stdout, &mr);
+            }
         }
         dem_free(&f);
     }

@@ -315,7 +315,7 @@ static void scheme(rq_ctx *c, int qt, const unsigned char *is_sel, int64_t nsel,
     }
 }
 
-int rq_run(const int32_t *z, int32_t size, int64_t tol_num, int64_t tol_den,
+int rq_run(const int32_t *z, int32_t size, int64_t tol_num, int64_t tol_den, int sel_mode,
            rq_result *r, rq_mesh *qt_out, rq_mesh *bt_out)
 {
     mr_grid g;
@@ -325,7 +325,7 @@ int rq_run(const int32_t *z, int32_t size, int64_t tol_num, int64_t tol_den,
     unsigned char *is_sel = NULL, *is_vert = NULL;
     int rc = -1;
     memset(r, 0, sizeof *r);
-    if (size > 4097 || tol_den <= 0 || tol_num < -1 || mr_grid_init(&g, size) != 0) return -1;
+    if (sel_mode < RQ_SEL_EACH || sel_mode > RQ_SEL_VERTEX || size > 4097 || tol_den <= 0 || tol_num < -1 || mr_grid_init(&g, size) != 0) return -1;
     memset(&c, 0, sizeof c);
     c.z = z; c.size = size; c.tol_num = tol_num; c.tol_den = tol_den; c.g = &g;
     c.split_err = calloc((size_t)g.ntri, 1);
@@ -341,8 +341,26 @@ int rq_run(const int32_t *z, int32_t size, int64_t tol_num, int64_t tol_den,
         int32_t m = mid_of(&g, i);
         if (c.mate0[m] < 0) c.mate0[m] = (int32_t)i; else c.mate1[m] = (int32_t)i;
     }
-    select_rec(&c, 3, 0, 0, max, max, max, 0);
-    select_rec(&c, 2, max, max, 0, 0, 0, max);
+    if (sel_mode == RQ_SEL_TOPDOWN) {
+        select_rec(&c, 3, 0, 0, max, max, max, 0);
+        select_rec(&c, 2, max, max, 0, 0, 0, max);
+    } else if (sel_mode == RQ_SEL_VERTEX) {   /* each point by its own midpoint error */
+        for (i = 0; i < g.ntri; i++) {
+            const uint16_t *k = g.coords + 4 * i;
+            int32_t ax = k[0], ay = k[1], bx = k[2], by = k[3];
+            int32_t mx = (ax + bx) >> 1, my = (ay + by) >> 1;
+            int64_t d = (int64_t)z[ay * size + ax] + z[by * size + bx] - 2 * (int64_t)z[my * size + mx];
+            if (d < 0) d = -d;
+            c.split_err[i] = (unsigned char)(d * tol_den > 2 * tol_num);
+        }
+    } else {            /* every triangle of the hierarchy on its own */
+        for (i = 0; i < g.ntri; i++) {
+            const uint16_t *k = g.coords + 4 * i;
+            int32_t ax = k[0], ay = k[1], bx = k[2], by = k[3];
+            int32_t mx = (ax + bx) >> 1, my = (ay + by) >> 1;
+            c.split_err[i] = (unsigned char)exceeds(&c, ax, ay, bx, by, mx + my - ay, my + ax - mx);
+        }
+    }
     is_sel[0] = is_sel[max] = is_sel[(int64_t)max * size] = is_sel[n - 1] = 1;
     for (i = 0; i < g.ntri; i++)
         if (c.split_err[i]) is_sel[mid_of(&g, i)] = 1;
