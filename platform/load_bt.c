@@ -60,7 +60,7 @@ br_status dem_read_bt(const char *name, const uint8_t *p, size_t n, const dem_op
         float v = le_float(p + 62);
         if (!isfinite(v) || v < 0)
             return br_err_set(err, BR_E_VALUE, name, "BT vertical scale %g is not a positive number", (double)v);
-        if (v > 0) vscale = v;
+        if (v > 0) vscale = (double)v;
     }
     if (cols < 1 || rows < 1)
         return br_err_set(err, BR_E_FORMAT, name, "BT dimensions %dx%d are not positive", cols, rows);
@@ -93,7 +93,7 @@ br_status dem_read_bt(const char *name, const uint8_t *p, size_t n, const dem_op
             if (!isfinite(fv))
                 return br_err_set(err, BR_E_VALUE, name, "BT sample %zu (column %zu) is not finite", i, i / (size_t)rows);
             if (fv == -32768.0f) continue;
-            v = fv;
+            v = (double)fv;
         } else {
             int32_t iv = dsize == 2 ? (int16_t)dem_le16(q) : (int32_t)dem_le32(q);
             if (iv == -32768) continue;

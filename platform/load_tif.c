@@ -79,7 +79,7 @@ static double tag_double(const tif *t, const tag *g, uint32_t i, int *ok)
         uint32_t u = rd32(t, q + 4 * (size_t)i);
         float f;
         memcpy(&f, &u, sizeof f);
-        return f;
+        return (double)f;
     }
     return tag_uint(t, g, i, ok);
 }
@@ -356,7 +356,7 @@ br_status dem_read_tif(const char *name, const uint8_t *p, size_t n, const dem_o
 
     /* pass over the samples: check, find the range, then convert */
 #define SAMPLE(i, v, isnan_out) do { const uint8_t *q_ = raw + (i) * bpsb; \
-        if (sfmt == 3) { uint32_t u_ = rd32(&t, q_); float f_; memcpy(&f_, &u_, 4); v = f_; } \
+        if (sfmt == 3) { uint32_t u_ = rd32(&t, q_); float f_; memcpy(&f_, &u_, 4); v = (double)f_; } \
         else if (bpsb == 1) v = q_[0]; \
         else if (bpsb == 2) v = sfmt == 2 ? (double)(int16_t)rd16(&t, q_) : (double)rd16(&t, q_); \
         else v = sfmt == 2 ? (double)(int32_t)rd32(&t, q_) : (double)rd32(&t, q_); \

@@ -165,7 +165,7 @@ static void test_png(void)
     o.png_encoding = DEM_PNG_GREY;
     BAD("fuji.png", fuji, fuji_n, &o, BR_E_UNSUPPORTED);
     o.png_encoding = 0;
-    o.png_scale = NAN;
+    o.png_scale = (double)NAN;
     BAD("ps_height_1k.png", png, png_n, &o, BR_E_ARG);
     o.png_scale = 1e-6;                                         /* unit 1e-6 m: 5000 m + 65535 um overflow */
     o.png_offset = 5000;
