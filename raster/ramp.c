@@ -1,0 +1,71 @@
+/* raster/ramp.c — hypsometric ramp and lighting (see ramp.h). */
+#include "raster/ramp.h"
+
+void rs_ramp_default(rs_ramp *r, int64_t zmin_mm, int64_t zmax_mm)
+{
+    /* land part in 1/1000 of [max(zmin, 0), zmax] */
+    static const int32_t pos[] = { 0, 150, 350, 550, 750, 900, 1000 };
+    static const uint32_t col[] = { 0x3c7a3cu, 0x5a9646u, 0x9aa760u, 0xb49a6eu, 0x8c7460u, 0xbdbdbdu, 0xffffffu };
+    int64_t lo = zmin_mm > 0 ? zmin_mm : 0, hi = zmax_mm > lo ? zmax_mm : lo + 1;
+    int32_t i, k = 0;
+    if (zmin_mm < 0) {   /* bathymetry: deep blue to light blue at the shore */
+        r->z_mm[k] = zmin_mm; r->rgb[k++] = 0x1a3c78u;
+        r->z_mm[k] = -1;      r->rgb[k++] = 0x5a96c8u;
+    }
+    for (i = 0; i < 7; i++) {
+        r->z_mm[k] = lo + (hi - lo) * pos[i] / 1000;
+        r->rgb[k++] = col[i];
+    }
+    r->n = k;
+    r->has_nv = 1;
+    r->nv_rgb = 0x000000u;
+}
+
+uint32_t rs_ramp_rgb(const rs_ramp *r, int64_t z_mm)
+{
+    int32_t i;
+    if (r->n <= 0) return 0x808080u;
+    if (z_mm <= r->z_mm[0]) return r->rgb[0];
+    for (i = 1; i < r->n; i++) {
+        if (z_mm <= r->z_mm[i]) {
+            int64_t z0 = r->z_mm[i - 1], z1 = r->z_mm[i], t, out = 0;
+            int k;
+            /* t in Q16; (z - z0) < 2^48 for any sane elevation so the product fits */
+            t = z1 > z0 ? ((z_mm - z0) << 16) / (z1 - z0) : 65536;
+            for (k = 16; k >= 0; k -= 8) {
+                int64_t c0 = (r->rgb[i - 1] >> k) & 255, c1 = (r->rgb[i] >> k) & 255;
+                int64_t c = c0 + (((c1 - c0) * t + 32768) >> 16);
+                out |= c << k;
+            }
+            return (uint32_t)out;
+        }
+    }
+    return r->rgb[r->n - 1];
+}
+
+void rs_sun_dir(int32_t az_mdeg, int32_t alt_mdeg, fx_q14 out[3])
+{
+    fx_q30 sa, ca, se, ce;
+    fx_sincos(fx_angle_from_mdeg(az_mdeg), &sa, &ca);
+    fx_sincos(fx_angle_from_mdeg(alt_mdeg), &se, &ce);
+    out[0] = (fx_q14)(((int64_t)sa * ce + ((int64_t)1 << 45)) >> 46);
+    out[1] = (fx_q14)(((int64_t)ca * ce + ((int64_t)1 << 45)) >> 46);
+    out[2] = (fx_q14)((se + (1 << 15)) >> 16);
+}
+
+uint32_t rs_light_rgb(uint32_t rgb, const fx_q14 n[3], const fx_q14 l[3], int32_t ambient_q14)
+{
+    int64_t d = (int64_t)n[0] * l[0] + (int64_t)n[1] * l[1] + (int64_t)n[2] * l[2]; /* Q28 */
+    int64_t s;
+    uint32_t out = 0;
+    int k;
+    if (d < 0) d = 0;
+    /* s = ambient + (1 - ambient) * d, Q14 */
+    s = ambient_q14 + ((((int64_t)FX_Q14_ONE - ambient_q14) * (d >> 14) + (1 << 13)) >> 14);
+    for (k = 16; k >= 0; k -= 8) {
+        int64_t c = ((((int64_t)(rgb >> k) & 255) * s) + (1 << 13)) >> 14;
+        if (c > 255) c = 255;
+        out |= (uint32_t)c << k;
+    }
+    return out;
+}

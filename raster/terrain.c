@@ -1,0 +1,77 @@
+/* raster/terrain.c — heightfield / bitree mesh to raster vertices (see terrain.h). */
+#include "raster/terrain.h"
+
+br_status rt_scene_init(rt_scene *s, const hf *f, const rs_ramp *ramp, const fx_q14 sun[3],
+                        int32_t ambient_q14)
+{
+    hf_stats st;
+    int64_t ext_mm, ex, ey, ez;
+    int32_t shift;
+    if (hf_validate(f) != BR_OK || shade_init(&s->sc, f) != BR_OK) return BR_E_ARG;
+    hf_stats_get(f, &st);
+    ex = (int64_t)f->w * f->dx_um / 1000;
+    ey = (int64_t)f->h * f->dy_um / 1000;
+    ez = hf_z_to_mm(f, st.zmax);
+    if (-hf_z_to_mm(f, st.zmin) > ez) ez = -hf_z_to_mm(f, st.zmin);
+    ext_mm = ex > ey ? ex : ey;
+    if (ez > ext_mm) ext_mm = ez;
+    if (ext_mm < 1) ext_mm = 1;
+    /* largest shift with ext_mm * 2^shift / 1000 <= 2^27 */
+    for (shift = 16; shift > -8; shift--) {
+        int64_t v = shift >= 0 ? (ext_mm << shift) / 1000 : (ext_mm >> -shift) / 1000;
+        if (v <= ((int64_t)1 << 27)) break;
+    }
+    s->f = f;
+    s->shift = shift;
+    s->ramp = ramp;
+    s->sun[0] = sun[0]; s->sun[1] = sun[1]; s->sun[2] = sun[2];
+    s->ambient_q14 = ambient_q14;
+    s->fr.ox = 0; s->fr.oz = 0;
+    {
+        int64_t sx, sy, sz;
+        if (shift >= 0) {
+            sx = (((int64_t)f->dx_um << shift) + 500000) / 1000000;
+            sy = (((int64_t)f->dy_um << shift) + 500000) / 1000000;
+            sz = (((int64_t)f->z_num << (shift + 16)) + f->z_den / 2) / f->z_den;
+        } else {
+            sx = ((int64_t)f->dx_um + (500000LL << -shift)) / (1000000LL << -shift);
+            sy = ((int64_t)f->dy_um + (500000LL << -shift)) / (1000000LL << -shift);
+            sz = (((int64_t)f->z_num << (16 + shift > 0 ? 16 + shift : 0)) + f->z_den / 2) / f->z_den;
+        }
+        s->fr.sx = (int32_t)(sx < 1 ? 1 : sx);
+        s->fr.sy = (int32_t)(sy < 1 ? 1 : sy);
+        s->fr.sz_q16 = (int32_t)(sz < 1 ? 1 : (sz > INT32_MAX ? INT32_MAX : sz));
+    }
+    s->fr.oy = (f->h - 1) * s->fr.sy;
+    return BR_OK;
+}
+
+int64_t rt_mm_to_world(const rt_scene *s, int64_t mm)
+{
+    if (s->shift >= 0) return fx_div_round(mm * ((int64_t)1 << s->shift), 1000);
+    return fx_div_round(mm, (int64_t)1000 << -s->shift);
+}
+
+void rt_vertex(const rt_scene *s, int32_t x, int32_t y, int32_t z, rs_vertex *out)
+{
+    const hf *f = s->f;
+    fx_q14 n[3];
+    int32_t zs = f->z[(size_t)y * (size_t)f->w + (size_t)x];
+    uint32_t rgb;
+    out->p[0] = s->fr.ox + x * s->fr.sx;
+    out->p[1] = s->fr.oy - y * s->fr.sy;
+    out->p[2] = s->fr.oz + (int32_t)(((int64_t)z * s->fr.sz_q16) >> 16);
+    if (zs == HF_NODATA) {
+        out->rgb = s->ramp->has_nv ? s->ramp->nv_rgb : 0;
+        return;
+    }
+    rgb = rs_ramp_rgb(s->ramp, hf_z_to_mm(f, z));
+    shade_normal(&s->sc, x, y, n);
+    out->rgb = rs_light_rgb(rgb, n, s->sun, s->ambient_q14);
+}
+
+void rt_from_mesh(const rt_scene *s, const bt_mesh *m, rs_vertex *out)
+{
+    uint32_t i;
+    for (i = 0; i < m->nv; i++) rt_vertex(s, m->v[i].x, m->v[i].y, m->v[i].z, &out[i]);
+}

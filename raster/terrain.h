@@ -1,0 +1,46 @@
+/* raster/terrain.h — the adapter from a heightfield and its bitree mesh (core/bitree.h)
+ * to the rasteriser's vertices (raster/raster.h), and the world frame of a scene.
+ *
+ * World frame: the world unit is 2^-shift metres, shift chosen per heightfield as
+ * the largest in [-8, 16] for which the terrain's extent (width, depth and |height|,
+ * in metres) times 2^shift stays <= 2^27, so the scene and cameras up to several
+ * extents away fit CAM_COORD_MAX (2^30) with headroom.  x east from the west edge
+ * (column 0), y north from the south edge (last row), z up from 0 m (sea level):
+ *   wx = x * sx, wy = (h - 1 - y) * sy, wz = z * sz_q16 >> 16   (bt_frame form)
+ * with sx = dx_um * 2^shift / 10^6 rounded (>= 1; for a DEM of up to 16385 columns
+ * the extent bound makes sx >= 2^27 / 16385 / 2 > 4000 units unless the DEM is smaller
+ * than 2^27 units at shift 16, so the rounding error is below 2^-13 of a step),
+ * sz_q16 = z_num / z_den * 2^(shift + 16) rounded. */
+#ifndef BR_TERRAIN_H
+#define BR_TERRAIN_H
+#include <stdint.h>
+#include "core/hf.h"
+#include "core/bitree.h"
+#include "core/shade.h"
+#include "raster/raster.h"
+#include "raster/ramp.h"
+
+typedef struct rt_scene {
+    const hf *f;
+    bt_frame fr;             /* grid -> world */
+    int32_t shift;           /* world unit = 2^-shift m */
+    const rs_ramp *ramp;
+    fx_q14 sun[3];           /* towards the sun, Q14 */
+    int32_t ambient_q14;
+    shade_ctx sc;
+} rt_scene;
+
+/* Chooses the world frame for f and prepares shading; BR_E_ARG on a bad hf. */
+br_status rt_scene_init(rt_scene *s, const hf *f, const rs_ramp *ramp, const fx_q14 sun[3],
+                        int32_t ambient_q14);
+
+/* Millimetres to world units (rounded to nearest). */
+int64_t rt_mm_to_world(const rt_scene *s, int64_t mm);
+
+/* Vertex of grid sample (x, y) with height z (heightfield units), shaded. */
+void rt_vertex(const rt_scene *s, int32_t x, int32_t y, int32_t z, rs_vertex *out);
+
+/* The bitree mesh's vertices (m->nv of them) into out. */
+void rt_from_mesh(const rt_scene *s, const bt_mesh *m, rs_vertex *out);
+
+#endif
