@@ -46,7 +46,8 @@ LP="$OUT/bench_osmesa"
 [ -r "$DEM" ] || { echo "osmesa.sh: $DEM not found (run from the repo root next to ../shared)" >&2; exit 1; }
 
 lp_flags="--colour $COLOUR"
-[ "$CULL" = 1 ] && lp_flags="$lp_flags --cull"
+br_flags="$BITRAIN_ARGS"
+[ "$CULL" = 1 ] && { lp_flags="$lp_flags --cull"; br_flags="$br_flags --cull"; }
 
 # Does bitrain's peer benchmark work?  It must print a ms-per-frame figure we can parse.
 # Accepted forms (first match wins): "ms/frame=12.3", "ms/frame: 12.3", "12.3 ms/frame",
@@ -60,7 +61,7 @@ parse_ms() {
 have_bitrain=0
 why_no_bitrain="$BITRAIN not found (run make first)"
 if [ -x "$BITRAIN" ]; then
-    probe=$("$BITRAIN" bench --scene peer --camera A --size 320x240 --frames 2 $BITRAIN_ARGS 2>&1)
+    probe=$("$BITRAIN" bench --scene peer --camera A --size 320x240 --frames 2 $br_flags 2>&1)
     prc=$?
     if [ $prc = 0 ] && [ -n "$(printf '%s\n' "$probe" | parse_ms)" ]; then
         have_bitrain=1
@@ -88,7 +89,9 @@ while [ $r -le "$RUNS" ]; do
             -o "$OUT/llvmpipe_${cam}_${size}.png" >"$TMP/out" 2>&1 || { cat "$TMP/out" >&2; exit 1; }
         parse_ms <"$TMP/out" >>"$TMP/lp_$cam$size"
         if [ $have_bitrain = 1 ]; then
-            "$BITRAIN" bench --scene peer --camera "$cam" --size "$size" --frames "$FRAMES" $BITRAIN_ARGS \
+            png=""
+            [ $r = 1 ] && png="-o $OUT/bitrain_${cam}_${size}.png"
+            "$BITRAIN" bench --scene peer --camera "$cam" --size "$size" --frames "$FRAMES" $br_flags $png \
                 >"$TMP/out" 2>&1 && parse_ms <"$TMP/out" >>"$TMP/br_$cam$size"
         fi
     done
@@ -97,7 +100,8 @@ done
 
 # Instructions per frame.  llvmpipe: callgrind counts only inside timed_frame() (the warm-up
 # frame that JIT-compiles the shaders is excluded), divided by the timed frames.  bitrain:
-# (count of 1+K frames - count of 1 frame) / K, so loading and set-up cancel out.
+# likewise inside bench_frame() (vertex transform + clear + draw); if that symbol is not
+# there, (count of 1+K frames - count of 1 frame) / K, so loading and set-up cancel out.
 cg_total() { valgrind --tool=callgrind --callgrind-out-file=/dev/null "$@" 2>&1 | sed -n 's/.*Collected : *\([0-9]*\).*/\1/p' | tail -n 1; }
 have_cg=0
 if [ "$CALLGRIND" = 1 ] && command -v valgrind >/dev/null 2>&1; then have_cg=1; fi
@@ -109,9 +113,14 @@ for c in $CONFIGS; do
         n=$(cg_total --toggle-collect=timed_frame "$LP" --dem "$DEM" --camera "$cam" --size "$size" --frames $CGF --warmup 1 $lp_flags)
         [ -n "$n" ] && lpi=$(awk -v n="$n" -v f=$CGF 'BEGIN { printf "%.1f", n / f / 1e6 }')
         if [ $have_bitrain = 1 ]; then
-            n1=$(cg_total "$BITRAIN" bench --scene peer --camera "$cam" --size "$size" --frames 1 $BITRAIN_ARGS)
-            nk=$(cg_total "$BITRAIN" bench --scene peer --camera "$cam" --size "$size" --frames $((1 + CGF)) $BITRAIN_ARGS)
-            [ -n "$n1" ] && [ -n "$nk" ] && bri=$(awk -v a="$n1" -v b="$nk" -v f=$CGF 'BEGIN { printf "%.1f", (b - a) / f / 1e6 }')
+            n=$(cg_total --toggle-collect=bench_frame "$BITRAIN" bench --scene peer --camera "$cam" --size "$size" --frames $CGF $br_flags)
+            if [ -n "$n" ] && [ "$n" != 0 ]; then
+                bri=$(awk -v n="$n" -v f=$CGF 'BEGIN { printf "%.1f", n / f / 1e6 }')
+            else
+                n1=$(cg_total "$BITRAIN" bench --scene peer --camera "$cam" --size "$size" --frames 1 $br_flags)
+                nk=$(cg_total "$BITRAIN" bench --scene peer --camera "$cam" --size "$size" --frames $((1 + CGF)) $br_flags)
+                [ -n "$n1" ] && [ -n "$nk" ] && bri=$(awk -v a="$n1" -v b="$nk" -v f=$CGF 'BEGIN { printf "%.1f", (b - a) / f / 1e6 }')
+            fi
         fi
     fi
     echo "$lpi" >"$TMP/lpi_$cam$size"; echo "$bri" >"$TMP/bri_$cam$size"
@@ -147,5 +156,14 @@ echo "ms/frame: median over $RUNS process runs of each run's median of $FRAMES f
 echo "Mtri/s counts all 131,072 submitted triangles per frame; Mpix/s = frame pixels per second."
 [ $have_cg = 1 ] || echo "instructions: not measured (valgrind missing or CALLGRIND=0)"
 [ $have_bitrain = 1 ] || echo "bitrain column empty: $why_no_bitrain"
-echo "last frames: $OUT/llvmpipe_<camera>_<size>.png"
+if [ $have_bitrain = 1 ]; then
+    echo "pictures, llvmpipe vs bitrain (last frames in $OUT/{llvmpipe,bitrain}_<camera>_<size>.png):"
+    for c in $CONFIGS; do
+        cam=${c%%:*}; size=${c#*:}
+        [ -r "$OUT/bitrain_${cam}_${size}.png" ] || continue
+        echo "  $cam $size: $("$LP" --compare "$OUT/llvmpipe_${cam}_${size}.png" "$OUT/bitrain_${cam}_${size}.png")"
+    done
+else
+    echo "last frames: $OUT/llvmpipe_<camera>_<size>.png"
+fi
 exit 0

@@ -22,6 +22,7 @@
  *
  * Usage: bench_osmesa [--camera A|B] [--size WxH] [--frames N] [--warmup N] [--cull]
  *                     [--colour ubyte|float] [--dem fuji.png] [-o last.png] [--check scene.bin]
+ *        bench_osmesa --compare a.png b.png   (pixel difference of two renderers' frames)
  * Prints one line per run: `llvmpipe camera=A size=320x240 cull=0 frames=N ms/frame=M ...`
  * (median over the N timed frames; each frame = clear + 256 strips + glFinish).
  * The timed frames run inside timed_frame(), warm-up frames (shader JIT) inside
@@ -269,6 +270,39 @@ static int check_scene(const char *path, const scene_t *s)
     return bad;
 }
 
+/* ---- --compare a.png b.png: how far two renderers' pictures are apart ---- */
+static int compare_png(const char *pa, const char *pb)
+{
+    int wa, ha, ba, wb, hb, bb;
+    unsigned char *a = read_png(pa, &wa, &ha, &ba), *b = read_png(pb, &wb, &hb, &bb);
+    if (wa != wb || ha != hb) {
+        printf("compare: sizes differ (%dx%d vs %dx%d)\n", wa, ha, wb, hb);
+        return 1;
+    }
+    long n = (long)wa * ha, diff = 0, diff8 = 0, diff32 = 0, sky_a = 0, sky_b = 0;
+    double sum = 0;
+    for (long k = 0; k < n; k++) {
+        const unsigned char *x = a + k * ba, *y = b + k * bb;
+        int m = 0;
+        for (int c = 0; c < 3; c++) {
+            int d = abs(x[c] - y[c]);
+            sum += d;
+            if (d > m) m = d;
+        }
+        diff += m > 0;
+        diff8 += m > 8;
+        diff32 += m > 32;
+        sky_a += x[0] == 153 && x[1] == 204 && x[2] == 255;
+        sky_b += y[0] == 153 && y[1] == 204 && y[2] == 255;
+    }
+    printf("compare %dx%d: pixels differing %.2f %%, by >8 %.2f %%, by >32 %.2f %%, mean |d| %.2f per channel; "
+           "sky pixels %ld vs %ld\n", wa, ha, 100.0 * (double)diff / (double)n, 100.0 * (double)diff8 / (double)n,
+           100.0 * (double)diff32 / (double)n, sum / (3.0 * (double)n), sky_a, sky_b);
+    free(a);
+    free(b);
+    return 0;
+}
+
 /* ---- matrices: gluPerspective and gluLookAt by hand (column-major, like GL) ---- */
 static void perspective(double fovy_deg, double aspect, double zn, double zf, double m[16])
 {
@@ -360,6 +394,10 @@ int main(int argc, char **argv)
     for (int a = 1; a < argc; a++) {
         const char *o = argv[a], *v = a + 1 < argc ? argv[a + 1] : NULL;
         if (!strcmp(o, "--cull")) { cull = 1; continue; }
+        if (!strcmp(o, "--compare")) {
+            if (a + 2 >= argc) die("--compare needs two PNG files", NULL);
+            return compare_png(argv[a + 1], argv[a + 2]);
+        }
         if (!v) die("missing value after", o);
         if (!strcmp(o, "--camera")) cam = v[0];
         else if (!strcmp(o, "--size")) { if (sscanf(v, "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > 8192 || h > 8192) die("bad --size", v); }
