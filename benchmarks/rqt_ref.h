@@ -29,9 +29,11 @@
  *    few points are added against cracks).
  * The 4 corners are always selected.  tol = tol_num / tol_den height units
  * (tol_num = -1: select everything, the full grid); table 1 uses tol = pct% of
- * the crop's height range.  None of these makes the QT mesh's true error <= tol
- * (forced splits put real heights where a plane was good enough); bench_baselines
- * prints the true error of each QT mesh.
+ * the crop's height range.  With RQ_SEL_EACH every leaf of the QT mesh has
+ * e(T) <= tol (its midpoint was not selected), so the QT mesh holds the tolerance:
+ * it is the exact per-triangle metric with the conforming closure.  The other two
+ * readings do not bound the error (forced splits put real heights where a plane
+ * was good enough); bench_baselines prints the true error of each QT mesh.
 
  * Restricted quadtree (002 fig. 6/7, Pajarola 98): a selected point depends on the
  * apexes of both triangles of its diamond (equivalently: a block centre on the two
