@@ -152,6 +152,17 @@ for c in $CONFIGS; do
     echo "| $cam $size | $lp | $br | $ratio | $(cat "$TMP/lpi_$k") | $(cat "$TMP/bri_$k") | $lpt | $brt | $brp | $(peer_ref "$k") |"
 done
 echo
+echo "spread over the $RUNS process runs (min..max of the per-run medians; paired = median of the"
+echo "ratios of back-to-back llvmpipe/bitrain runs, the figure least disturbed by other load):"
+for c in $CONFIGS; do
+    cam=${c%%:*}; size=${c#*:}; k=$cam$size
+    line="  $cam $size: llvmpipe $(sort -n "$TMP/lp_$k" | awk 'NR == 1 { a = $1 } { b = $1 } END { printf "%.2f..%.2f", a, b }')"
+    if [ -s "$TMP/br_$k" ] && [ "$(wc -l <"$TMP/br_$k")" = "$(wc -l <"$TMP/lp_$k")" ]; then
+        line="$line, bitrain $(sort -n "$TMP/br_$k" | awk 'NR == 1 { a = $1 } { b = $1 } END { printf "%.2f..%.2f", a, b }')"
+        line="$line, paired ratio $(paste "$TMP/lp_$k" "$TMP/br_$k" | awk '{ print $1 / $2 }' | median)"
+    fi
+    echo "$line"
+done
 echo "ms/frame: median over $RUNS process runs of each run's median of $FRAMES frames (clear + draw + finish)."
 echo "Mtri/s counts all 131,072 submitted triangles per frame; Mpix/s = frame pixels per second."
 [ $have_cg = 1 ] || echo "instructions: not measured (valgrind missing or CALLGRIND=0)"
