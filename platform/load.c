@@ -506,7 +506,7 @@ static br_status load_mem_depth(const char *name, const uint8_t *p, size_t n, co
     char ext[1024];
     const char *en = name;   /* the name whose extension selects the reader */
     if (!o) o = &zero;
-    if (n >= 2 && p[0] == 0x1f && p[1] == 0x8b) {
+    if (n >= 3 && p[0] == 0x1f && p[1] == 0x8b && p[2] == 8) {
         uint8_t *data;
         size_t dn;
         br_status s;

@@ -357,6 +357,52 @@ static void test_merge_errors(void)
     dem_free(&f);
 }
 
+/* four projected ASC tiles in a 2x2 square sharing their middle row and
+ * column, one with decimals: placed by corners, units unified */
+static void test_merge_asc(void)
+{
+    static const char nw[] = "ncols 3\nnrows 2\nxllcorner 100\nyllcorner 210\ncellsize 10\n1 2 3\n4 5 6\n";
+    static const char ne[] = "ncols 3\nnrows 2\nxllcorner 120\nyllcorner 210\ncellsize 10\n3 7.5 8\n6 9 10\n";
+    static const char sw[] = "ncols 3\nnrows 2\nxllcorner 100\nyllcorner 200\ncellsize 10\n4 5 6\n11 12 13\n";
+    static const char se[] = "ncols 3\nnrows 2\nxllcorner 120\nyllcorner 200\ncellsize 10\n6 9 10\n13 14 -99\n";
+    static const char se_bad[] = "ncols 3\nnrows 2\nxllcorner 120\nyllcorner 200\ncellsize 10\n6 9.001 10\n13 14 15\n";
+    static const char off[] = "ncols 3\nnrows 2\nxllcorner 125\nyllcorner 200\ncellsize 10\n6 9 10\n13 14 15\n";
+    const char *src[4] = { se, nw, sw, ne };
+    const char *names[4] = { "se.asc", "nw.asc", "sw.asc", "ne.asc" };
+    hf t[4], m;
+    br_err e;
+    br_status s;
+    int i;
+    static const int32_t want[15] = { 1000, 2000, 3000, 7500, 8000,
+                                      4000, 5000, 6000, 9000, 10000,
+                                      11000, 12000, 13000, 14000, -99000 };
+    for (i = 0; i < 4; i++)
+        CHECK_EQ(dem_load_mem(names[i], (const uint8_t *)src[i], strlen(src[i]), NULL, &t[i], &e), BR_OK);
+    CHECK_EQ(t[1].z_den, 1);
+    CHECK_EQ(t[3].z_den, 1000000);
+    s = dem_merge(t, names, 4, &m, &e);
+    CHECK_MSG(s == BR_OK, "%s", e.msg);
+    if (s != BR_OK) { for (i = 0; i < 4; i++) dem_free(&t[i]); return; }
+    CHECK_EQ(m.w, 5);
+    CHECK_EQ(m.h, 3);
+    CHECK_EQ(m.z_num, 1);
+    CHECK_EQ(m.z_den, 1000000);                /* the finest unit among the tiles */
+    for (i = 0; i < 15; i++) CHECK_EQ(m.z[i], want[i] * 1000LL);
+    CHECK_EQ(m.geo.x0, 105000000);             /* centre of the NW sample, micrometres */
+    CHECK_EQ(m.geo.y0, 225000000);
+    dem_free(&m);
+    dem_free(&t[0]);
+    /* the shared column disagrees by 1 mm */
+    CHECK_EQ(dem_load_mem("se.asc", (const uint8_t *)se_bad, strlen(se_bad), NULL, &t[0], &e), BR_OK);
+    CHECK_EQ(dem_merge(t, names, 4, &m, &e), BR_E_MERGE);
+    dem_free(&t[0]);
+    /* half a cell off the grid */
+    CHECK_EQ(dem_load_mem("se.asc", (const uint8_t *)off, strlen(off), NULL, &t[0], &e), BR_OK);
+    CHECK_EQ(dem_merge(t, names, 4, &m, &e), BR_E_MERGE);
+    dem_free(&t[0]);
+    for (i = 1; i < 4; i++) dem_free(&t[i]);
+}
+
 int main(void)
 {
     T_RUN(test_hgt);
@@ -370,5 +416,6 @@ int main(void)
     T_RUN(test_gdal_crops);
     T_RUN(test_merge_n50);
     T_RUN(test_merge_errors);
+    T_RUN(test_merge_asc);
     return t_finish();
 }
