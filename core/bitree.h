@@ -177,4 +177,22 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m);
  * the renderer's statistics; 0 when culled. */
 int64_t bt_screen_error_q8(const bt_tree *t, const bt_params *p, int32_t x, int32_t y);
 
+/* ---------------------------------------------------------------- utilities (bt_util.c) */
+/* A world frame for f: world unit 2^-u metres with the largest u <= 10 that keeps
+ * the grid (and heights) inside +-2^29 units; x east from column 0, y north from
+ * the SOUTH row (row h-1 has y = 0), z up from 0 m.  *unit_shift = u. */
+br_status bt_frame_auto(const hf *f, bt_frame *fr, int32_t *unit_shift);
+
+/* Decodes m's strip into a triangle list (3 indices per triangle, winding kept),
+ * dropping line triangles by 004's collinearity test (zero grid area), so a
+ * consumer that wants no line triangles at all can draw the list.  out needs
+ * 3 * ntri entries; returns the number of triangles written. */
+uint32_t bt_strip_to_list(const bt_mesh *m, uint32_t *out);
+
+/* TRUE maximum vertical error of m against the heightfield: max over every
+ * triangle and every grid sample in it (closed) of |plane - z|, in 1/65536
+ * heightfield units, rounded up; *at_x, *at_y (may be NULL) where it occurs.
+ * Cost: the triangles' bounding boxes. */
+int64_t bt_true_error_q16(const bt_tree *t, const bt_mesh *m, int32_t *at_x, int32_t *at_y);
+
 #endif

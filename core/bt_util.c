@@ -1,0 +1,97 @@
+/* core/bt_util.c — helpers around the bitree's output (core/bitree.h): a world
+ * frame for the camera, the strip decoded into a list without line triangles
+ * (004's collinearity test), and the true error of a mesh. */
+#include <string.h>
+#include "core/bitree.h"
+
+br_status bt_frame_auto(const hf *f, bt_frame *fr, int32_t *unit_shift)
+{
+    int32_t u;
+    if (!f || !fr || hf_validate(f) != BR_OK) return BR_E_ARG;
+    for (u = 10; u >= -6; u--) {
+        /* extents in world units: w*dx, h*dy (um -> 2^-u m), |z| <= BR_Z_LIMIT units */
+        int64_t ex = u >= 0 ? ((int64_t)f->w * f->dx_um << u) / 1000000 : ((int64_t)f->w * f->dx_um >> -u) / 1000000;
+        int64_t ey = u >= 0 ? ((int64_t)f->h * f->dy_um << u) / 1000000 : ((int64_t)f->h * f->dy_um >> -u) / 1000000;
+        int64_t sx = u >= 0 ? (((int64_t)f->dx_um << u) + 500000) / 1000000 : 0;
+        int64_t sy = u >= 0 ? (((int64_t)f->dy_um << u) + 500000) / 1000000 : 0;
+        /* heights: metres = z * num / den; the loaders keep |z| * num / den under 2^16 m
+         * for real terrain, so 2^16 m * 2^u must stay below 2^29 */
+        int64_t ez = u >= 0 ? (int64_t)11000 << u : 11000 >> -u;
+        if (ex < ((int64_t)1 << 29) && ey < ((int64_t)1 << 29) && ez < ((int64_t)1 << 29) && sx > 0 && sy > 0) {
+            fr->sx = (int32_t)sx;
+            fr->sy = (int32_t)sy;
+            fr->ox = 0;
+            fr->oy = (int32_t)((int64_t)(f->h - 1) * sy);
+            fr->oz = 0;
+            /* world z = z * num / den * 2^u, as Q16 */
+            fr->sz_q16 = (int32_t)((((int64_t)f->z_num << (u + 16)) + f->z_den / 2) / f->z_den);
+            if (fr->sz_q16 <= 0) continue;
+            if (unit_shift) *unit_shift = u;
+            return BR_OK;
+        }
+    }
+    return BR_E_TOO_BIG;
+}
+
+static int64_t cross_v(const bt_vert *a, const bt_vert *b, const bt_vert *c)
+{
+    return (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(b->y - a->y) * (c->x - a->x);
+}
+
+uint32_t bt_strip_to_list(const bt_mesh *m, uint32_t *out)
+{
+    uint32_t k, n = 0;
+    if (m->ns < 3) return 0;
+    for (k = 0; k + 2 < m->ns; k++) {
+        uint32_t i0 = m->strip[k], i1 = m->strip[k + 1], i2 = m->strip[k + 2];
+        if (k & 1) { uint32_t tmp = i0; i0 = i1; i1 = tmp; }
+        if (cross_v(&m->v[i0], &m->v[i1], &m->v[i2]) == 0) continue;   /* line triangle */
+        out[3 * n] = i0; out[3 * n + 1] = i1; out[3 * n + 2] = i2;
+        n++;
+    }
+    return n;
+}
+
+/* ceil(num * 65536 / den), num >= 0, den > 0, without overflow for num < 2^62 */
+static int64_t q16_ceil(int64_t num, int64_t den)
+{
+    int64_t q = num / den, r = num % den;
+    return q * 65536 + (r * 65536 + den - 1) / den;
+}
+
+int64_t bt_true_error_q16(const bt_tree *t, const bt_mesh *m, int32_t *at_x, int32_t *at_y)
+{
+    const hf *f = t->f;
+    int64_t best = 0;
+    uint32_t k;
+    int32_t bx = 0, by = 0;
+    for (k = 0; k + 2 < m->ns; k++) {
+        const bt_vert *p0 = &m->v[m->strip[k]], *p1 = &m->v[m->strip[k + 1]], *p2 = &m->v[m->strip[k + 2]];
+        int64_t D = cross_v(p0, p1, p2), ad;
+        int32_t x0, x1, y0, y1, x, y;
+        if (D == 0) continue;
+        ad = D < 0 ? -D : D;
+        x0 = p0->x; if (p1->x < x0) x0 = p1->x; if (p2->x < x0) x0 = p2->x;
+        x1 = p0->x; if (p1->x > x1) x1 = p1->x; if (p2->x > x1) x1 = p2->x;
+        y0 = p0->y; if (p1->y < y0) y0 = p1->y; if (p2->y < y0) y0 = p2->y;
+        y1 = p0->y; if (p1->y > y1) y1 = p1->y; if (p2->y > y1) y1 = p2->y;
+        for (y = y0; y <= y1; y++)
+            for (x = x0; x <= x1; x++) {
+                /* barycentric weights times D: b0 for p0 etc., all >= 0 (D > 0) or <= 0 */
+                int64_t b0 = (int64_t)(p1->x - x) * (p2->y - y) - (int64_t)(p1->y - y) * (p2->x - x);
+                int64_t b1 = (int64_t)(p2->x - x) * (p0->y - y) - (int64_t)(p2->y - y) * (p0->x - x);
+                int64_t b2 = D - b0 - b1, num, e;
+                int32_t zs;
+                if (D > 0 ? (b0 < 0 || b1 < 0 || b2 < 0) : (b0 > 0 || b1 > 0 || b2 > 0)) continue;
+                zs = f->z[(size_t)y * f->w + x];
+                if (zs == HF_NODATA) continue;
+                num = b0 * p0->z + b1 * p1->z + b2 * p2->z - D * (int64_t)zs;
+                if (num < 0) num = -num;
+                e = q16_ceil(num, ad);
+                if (e > best) { best = e; bx = x; by = y; }
+            }
+    }
+    if (at_x) *at_x = bx;
+    if (at_y) *at_y = by;
+    return best;
+}
