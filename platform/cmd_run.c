@@ -1,37 +1,39 @@
 /* platform/cmd_run.c — bitrain run [IN...]: what `make run` does.
  *
- * Shows the terrain (default: the bundled Lake Constance tile).  Until the 3D
- * view lands this writes a shaded-relief PNG into out/ and prints its path. */
+ * Shows the terrain (default: the bundled Lake Constance tile) in the viewer
+ * when there is a display; without one (no DISPLAY/WAYLAND_DISPLAY, or SDL
+ * cannot open it) renders one 3D frame to out/terrain.png and prints the path. */
+#include <SDL.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include "platform/cmd.h"
-#include "platform/hillshade.h"
-#include "platform/load.h"
 
 #define RUN_DEFAULT_DEM "assets/N47E009.hgt.gz"
+#define RUN_PNG "out/terrain.png"
+
+static int have_display(void)
+{
+    const char *x = getenv("DISPLAY"), *wl = getenv("WAYLAND_DISPLAY");
+    int ok;
+    if ((!x || !*x) && (!wl || !*wl)) return 0;
+    ok = SDL_Init(SDL_INIT_VIDEO) == 0;
+    SDL_Quit();
+    return ok;
+}
 
 int cmd_run(int argc, char **argv)
 {
-    const char *def = RUN_DEFAULT_DEM;
-    const char *const *in = argc > 0 ? (const char *const *)argv : &def;
-    int n = argc > 0 ? argc : 1;
-    const char *out = "out/terrain_hillshade.png";
-    dem_opts o;
-    hf f;
-    br_err err;
-    fx_q14 l[3];
-    memset(&o, 0, sizeof o);
-    if (dem_load_many(in, n, &o, &f, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); return 1; }
+    char *args[80];
+    char def[] = RUN_DEFAULT_DEM, o[] = "-o", png[] = RUN_PNG, size[] = "--size", wh[] = "1280x720";
+    int n = 0, i;
+    if (argc > 64) { fprintf(stderr, "bitrain run: too many files\n"); return 2; }
+    if (argc == 0) args[n++] = def;
+    for (i = 0; i < argc; i++) args[n++] = argv[i];
+    if (have_display()) return cmd_view(n, args);
+    printf("bitrain run: no display here; rendering one frame to %s instead\n", RUN_PNG);
     mkdir("out", 0777);
-    hillshade_light(315, 45, l);
-    if (hillshade_write_png(&f, l, out, &err) != BR_OK) {
-        fprintf(stderr, "bitrain: %s\n", err.msg);
-        dem_free(&f);
-        return 1;
-    }
-    printf("bitrain: %dx%d heightfield from %s%s; shaded relief written to %s\n",
-           f.w, f.h, in[0], n > 1 ? " (merged)" : "", out);
-    dem_free(&f);
-    return 0;
+    args[n++] = o; args[n++] = png; args[n++] = size; args[n++] = wh;
+    return cmd_render(n, args);
 }
