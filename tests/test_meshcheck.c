@@ -391,7 +391,7 @@ static void test_void(void)
     CHECK_EQ(r.bad_boundary_edges, 0);
     /* expecting the full-possible area flags the missing halves */
     {
-        mc_opts o = { 124, 0, 0 };
+        mc_opts o = { 124, 0, 0, 0 };
         CHECK_EQ(mc_check(&mm, 9, 9, zv, &o, &r), 0);
     }
     /* a triangle over the void */
@@ -412,10 +412,50 @@ static void test_void(void)
     CHECK_EQ(r.uncovered, 1);          /* (0,0) was only in that triangle */
     CHECK_EQ(r.uncovered_far, 1);
     {
-        mc_opts o = { 0, 1, 0 };       /* allowing uncovered samples does not excuse this one */
+        mc_opts o = { 0, 1, 0, 0 };    /* allowing uncovered samples does not excuse this one */
         CHECK_EQ(mc_check(&mm, 9, 9, zv, &o, &r), 0);
         CHECK_EQ(r.uncovered_far, 1);
     }
+}
+
+/* A frustum-culled mesh covers part of the grid on purpose: with opts.partial
+ * its holes are not errors, but a T-junction or an overlap still is. */
+static void test_partial(void)
+{
+    mc_mesh mm;
+    mc_report r;
+    mc_opts o;
+    int x, y;
+    memset(&o, 0, sizeof o);
+    o.partial = 1;
+    verts_all(&g_m, 17, g_crop17, 0);
+    for (y = 0; y < 16; y += 2)
+        for (x = 0; x < 16; x += 2)
+            if (x + y < 16) add_block(&g_m, 17, x, y, 2);      /* the north-west half */
+    mm = as_mesh(&g_m, 0);
+    CHECK_EQ(mc_check(&mm, 17, 17, g_crop17, NULL, &r), 0);
+    CHECK(r.bad_boundary_edges > 0 && r.uncovered > 0);
+    CHECK_EQ(mc_check(&mm, 17, 17, g_crop17, &o, &r), 1);
+    CHECK_EQ(r.tjunctions, 0);
+    /* the 2-block at (0,0) (triangles 0, 1) refined into 1-blocks beside unrefined
+     * neighbours: (2,1) and (1,2) are T-junctions */
+    memcpy(g_m.t, g_m.t + 3 * (g_m.nt - 2), 6 * sizeof g_m.t[0]);
+    g_m.nt -= 2;
+    add_block(&g_m, 17, 0, 0, 1); add_block(&g_m, 17, 1, 0, 1);
+    add_block(&g_m, 17, 0, 1, 1); add_block(&g_m, 17, 1, 1, 1);
+    mm = as_mesh(&g_m, 0);
+    CHECK_EQ(mc_check(&mm, 17, 17, g_crop17, &o, &r), 0);
+    CHECK_EQ(r.tjunctions, 2);
+    CHECK_EQ(r.overlap_samples, 0);
+    /* an overlapping extra triangle */
+    verts_all(&g_m, 17, g_crop17, 0);
+    for (y = 0; y < 16; y += 2)
+        for (x = 0; x < 16; x += 2)
+            if (x + y < 16) add_block(&g_m, 17, x, y, 2);
+    add_tri(&g_m, 0, 4 * 17, 4);
+    mm = as_mesh(&g_m, 0);
+    CHECK_EQ(mc_check(&mm, 17, 17, g_crop17, &o, &r), 0);
+    CHECK(r.overlap_samples > 0);
 }
 
 static void test_uncovered_beside_void(void)
@@ -425,7 +465,7 @@ static void test_uncovered_beside_void(void)
     static int32_t z3[9];
     mc_mesh mm;
     mc_report r;
-    mc_opts o = { 0, 1, 0 };
+    mc_opts o = { 0, 1, 0, 0 };
     int x, y;
     for (y = 0; y < 3; y++) for (x = 0; x < 3; x++) z3[y * 3 + x] = g_crop9[y * 9 + x];
     z3[4] = MC_VOID;
@@ -631,12 +671,12 @@ static void test_rqt(void)
     v = grid_verts(65, z);
     qm.tri = qt; qm.strip = qs; bm.tri = bt; bm.strip = bs;
     /* full grid: 8192 triangles; the DP strip needs 12290 references */
-    CHECK_EQ(rq_run(z, 65, -1, 100, &res, &qm, &bm), 0);
+    CHECK_EQ(rq_run(z, 65, -1, 100, RQ_SEL_EACH, &res, &qm, &bm), 0);
     CHECK_EQ(res.qt.triangles, 8192);
     CHECK_EQ(res.qt.refs, 12290);
     CHECK_EQ(mc_strip_compare(qs, qm.ns, qt, qm.nt, v, 65 * 65, &sr), 1);
     /* 2% of the range */
-    CHECK_EQ(rq_run(z, 65, 2LL * (zmax - zmin), 100, &res, &qm, &bm), 0);
+    CHECK_EQ(rq_run(z, 65, 2LL * (zmax - zmin), 100, RQ_SEL_EACH, &res, &qm, &bm), 0);
     CHECK(res.qt.added > res.bt.added);
     CHECK(res.qt.triangles > res.bt.triangles);
     CHECK_EQ(res.qt.triangles, qm.nt);
@@ -671,6 +711,7 @@ int main(void)
     T_RUN(test_degenerate_and_bad_index);
     T_RUN(test_void);
     T_RUN(test_uncovered_beside_void);
+    T_RUN(test_partial);
     T_RUN(test_strip);
     T_RUN(test_martini_fuji);
     T_RUN(test_rqt);

@@ -363,10 +363,11 @@ int mc_check(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z,
     }
 
     r->ok = !(r->bad_vertex || r->split_vertex || r->degenerate || r->flipped ||
-              r->nonmanifold_edges || r->same_dir_edges || r->bad_boundary_edges ||
-              r->tjunctions || r->overlap_samples || r->void_covered || r->range_errors ||
-              r->uncovered_far || (r->uncovered && !o->allow_uncovered));
-    if (r->voids == 0 ? r->area2 != r->area2_max : r->area2 > r->area2_max) {
+              r->nonmanifold_edges || r->same_dir_edges ||
+              r->tjunctions || r->overlap_samples || r->void_covered || r->range_errors);
+    if (!o->partial && (r->bad_boundary_edges || r->uncovered_far ||
+                        (r->uncovered && !o->allow_uncovered))) r->ok = 0;
+    if ((r->voids == 0 && !o->partial) ? r->area2 != r->area2_max : r->area2 > r->area2_max) {
         r->ok = 0; set_bad(r, -1, -1, "area differs from the domain's");
     }
     if (o->expect_area2 > 0 && r->area2 != o->expect_area2) {

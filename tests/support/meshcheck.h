@@ -124,6 +124,12 @@ typedef struct mc_opts {        /* zero = defaults */
     int64_t expect_area2;       /* 0 = no check beyond the area2_max rule; > 0 = area2 must equal it */
     int allow_uncovered;        /* 1: valid samples left uncovered are not an error */
     int skip_error;             /* 1: topology only (no error evaluation) */
+    int partial;                /* 1: the mesh covers only part of the grid on purpose
+                                   (frustum-culled view meshes): boundary edges inside
+                                   the domain and uncovered samples are counted but are
+                                   not errors, and area2 <= area2_max is the only area
+                                   rule; T-junctions, overlaps, edges used thrice or
+                                   twice the same way, flips etc. still are errors */
 } mc_opts;
 
 typedef struct mc_report {
