@@ -81,6 +81,18 @@ static void to_camera(const cam_vp *vp, const int32_t p[3], int64_t c[3])
                 + (int64_t)vp->r[i][2] * p[2] + vp->t[i]) >> 30;
 }
 
+void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint32_t d, uint32_t rgb)
+{
+    uint32_t oc = 0;
+    if (x < HALF) oc |= RS_OUT_LEFT;
+    if (x > w * SUBONE - HALF) oc |= RS_OUT_RIGHT;
+    if (y < HALF) oc |= RS_OUT_TOP;
+    if (y > h * SUBONE - HALF) oc |= RS_OUT_BOTTOM;
+    o->x = x; o->y = y; o->d = d;
+    o->c = (rgb & 0xffffffu) | (oc << 24);
+    o->cp = rs_pack_rgb(rgb);
+}
+
 br_status rs_frame_prepare(rs_frame *f)
 {
     const cam_vp *vp = &f->vp;
@@ -307,7 +319,7 @@ br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, siz
     bd.cull = !f->no_cull;
     /* clear: colour to the sky, depth to the far plane's depth (per-pixel far cut-off);
      * one row is filled, the others copied */
-    dfar = (uint32_t)((int64_t)RS_DEPTH_ONE * f->vp.znear / f->vp.zfar);
+    dfar = f->vp.zfar > 0 ? (uint32_t)((int64_t)RS_DEPTH_ONE * f->vp.znear / f->vp.zfar) : 0;
     {
         int32_t w = f->w;
         size_t zrow = (size_t)w * (f->depth == RS_DEPTH16 ? 2u : 4u), crow = (size_t)w * (f->fmt == RS_FMT_RGB565 ? 2u : 4u);

@@ -127,6 +127,12 @@ typedef br_status (*rs_sink)(void *user, int32_t y0, int32_t rows, const void *p
 size_t rs_cache_mem_size(uint32_t nv);
 size_t rs_band_mem_size(int32_t w, int32_t rows, int32_t fmt, int32_t depth);
 
+/* Fills one cache entry from screen-space data (sub-pixels, depth d <= RS_DEPTH_ONE,
+ * colour 0xRRGGBB), for callers that project themselves (tests, 2D overlays): such a
+ * frame skips rs_frame_prepare.  |x|, |y| must stay within the guard band
+ * (< RS_GUARD_PX * 16 from the screen centre); the clipper is never needed. */
+void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint32_t d, uint32_t rgb);
+
 /* Checks the frame and transforms every vertex once into the cache (per frame). */
 br_status rs_frame_prepare(rs_frame *f);
 

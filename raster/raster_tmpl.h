@@ -10,23 +10,28 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
 {
     int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1, py, px;
     int64_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, S, e0r, e2r, sx0, sx2, sy0, sy2;
-    int32_t bias0, bias1, bias2;
+    int32_t bias0, bias1, bias2, tiny;
     const int32_t w = bd->w;
 
-    ymin = MIN3(a->y, b->y, c->y);
-    ymax = MAX3(a->y, b->y, c->y);
-    py0 = (ymin + HALF - 1) >> SUB;   /* first row whose centre is >= ymin */
-    py1 = (ymax - HALF) >> SUB;       /* last row whose centre is <= ymax */
-    if (py0 < bd->y0) py0 = bd->y0;
-    if (py1 >= bd->y1) py1 = bd->y1 - 1;
-    if (py0 > py1) return;
-    xmin = MIN3(a->x, b->x, c->x);
-    xmax = MAX3(a->x, b->x, c->x);
-    px0 = (xmin + HALF - 1) >> SUB;
-    px1 = (xmax - HALF) >> SUB;
-    if (px0 < 0) px0 = 0;
-    if (px1 >= w) px1 = w - 1;
-    if (px0 > px1) return;
+    {
+        int32_t lo, hi;
+        ymin = MIN3(a->y, b->y, c->y);
+        ymax = MAX3(a->y, b->y, c->y);
+        lo = (ymin + HALF - 1) >> SUB;    /* first row whose centre is >= ymin */
+        hi = (ymax - HALF) >> SUB;        /* last row whose centre is <= ymax */
+        py0 = lo < bd->y0 ? bd->y0 : lo;
+        py1 = hi >= bd->y1 ? bd->y1 - 1 : hi;
+        if (py0 > py1) return;
+        xmin = MIN3(a->x, b->x, c->x);
+        xmax = MAX3(a->x, b->x, c->x);
+        px0 = (xmin + HALF - 1) >> SUB;
+        px1 = (xmax - HALF) >> SUB;
+        /* the path choice depends on the triangle only (not on the band or screen clip) */
+        tiny = px1 - px0 < TINY && hi - lo < TINY;
+        if (px0 < 0) px0 = 0;
+        if (px1 >= w) px1 = w - 1;
+        if (px0 > px1) return;
+    }
 
     dx1 = (int64_t)b->x - a->x; dy1 = (int64_t)b->y - a->y;
     dx2 = (int64_t)c->x - a->x; dy2 = (int64_t)c->y - a->y;
@@ -62,7 +67,7 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
     }
     sx0 = A0 * SUBONE; sx2 = A2 * SUBONE; sy0 = B0 * SUBONE; sy2 = B2 * SUBONE;
 
-    if (px1 - px0 < TINY && py1 - py0 < TINY) {
+    if (tiny) {
         /* Tiny bounding box: test each centre; at an inside centre the edge values are
          * the barycentric weights (times area2), so attributes come straight from the
          * vertices with no gradient set-up.  Extent < (TINY+1) px, so area2 < 2^13. */
@@ -128,7 +133,7 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
             else gz = gzn * SUBONE / area2;
         } else {
             for (k = 0; k < 3; k++)
-                gc += (uint64_t)(((dcb[k] * dy2 - dcc[k] * dy1) << 17) / area2) << (42 - 21 * k);
+                gc += (uint64_t)(((dcb[k] * dy2 - dcc[k] * dy1) * ((int64_t)1 << 17)) / area2) << (42 - 21 * k);
             gz = gzn * SUBONE / area2;
         }
         /* a span of two or more pixels bounds |gz| by the depth range (< 2^31); the clamp
@@ -170,7 +175,7 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
                 RS_Z *zp = (RS_Z *)bd->depth + (size_t)(py - bd->y0) * (size_t)w + (size_t)xl;
                 int32_t n = xr - xl + 1, i;
                 if (small) { w1 = (e2 * inv) >> 18; w2 = (e0 * inv) >> 18; }
-                else { w1 = (e2 << 22) / area2; w2 = (e0 << 22) / area2; }
+                else { w1 = e2 * ((int64_t)1 << 22) / area2; w2 = e0 * ((int64_t)1 << 22) / area2; }
                 z = (uint32_t)((int64_t)a->d + ((dzb * w1 + dzc * w2) >> 22));
                 col = (a->cp << 13) + RS_CBIAS;
                 for (k = 0; k < 3; k++)
