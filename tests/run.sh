@@ -5,7 +5,7 @@
 B=${1:-build}
 passed=0; failed=0
 count() { # $1 = label, $2 = output file, $3 = exit code
-  line=$(grep -E '^[0-9]+ passed, [0-9]+ failed' "$2" | tail -n 1)
+  line=$(grep -aE '^[0-9]+ passed, [0-9]+ failed' "$2" | tail -n 1)
   if [ -n "$line" ]; then
     p=${line%% passed*}; f=${line#*passed, }; f=${f%% failed*}
   else p=0; f=0; fi
