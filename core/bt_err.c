@@ -78,6 +78,8 @@ int64_t bt_mm_to_units(const hf *f, int64_t mm)
 }
 
 /* ------------------------------------------------------------ sizes */
+#define TAB_MAX 48   /* samples per small-level table (D4: 45 - 3 vertices) */
+
 static int32_t padded_k(int32_t w, int32_t h)
 {
     int32_t m = w > h ? w : h, k = 1;
@@ -99,7 +101,7 @@ size_t bt_scratch_size(int32_t w, int32_t h)
     /* sanitised heights (int32) + per-row void prefix counts (uint16, w+1 per row) */
     /* sanitised heights (int32), per-row void prefix counts (uint16, w+1 per row),
      * curvature per sample (int32, curvature metric only) */
-    return (size_t)w * (size_t)h * 8 + (size_t)(w + 1) * (size_t)h * 2 + 16
+    return (size_t)w * (size_t)h * 8 + (size_t)(w + 1) * (size_t)h * 2 + 64 + 16 * TAB_MAX * 12
          + (size_t)(((int32_t)1 << padded_k(w, h)) + 1) * 12;
 }
 
@@ -113,6 +115,11 @@ typedef struct ctx {
     int32_t narrow;        /* 1: the exact metric fits int32 (see bt_build) */
     int32_t *ry, *rx0, *rx1; /* row spans of the triangle being evaluated (n each) */
     int64_t qr, qm;        /* height quantisation: range R and floor(255 * 2^24 / R) */
+    /* sample tables of the small levels (h = 2, 4): per shape (8 apex
+     * directions x 2 sizes) the samples off the vertices as (offset, dx, dy)
+     * from the apex; used for triangles inside the domain of void-free grids */
+    int32_t *tab;          /* 16 tables of TAB_MAX entries x 3 */
+    int32_t tabn[16];
 } ctx;
 
 typedef struct tri_res {
@@ -160,36 +167,26 @@ static int32_t spans(const ctx *c, const int32_t a[2], const int32_t cc[2], cons
     return nr;
 }
 
-/* max |P(x) - (z[x] << k)| over a row, P(x0) = p, step A: int32 version, blocked
- * by 8 so compilers vectorise it with plain SSE2/NEON (callers guarantee the
- * int32 range, see bt_build). */
-static void row32(const int32_t *zr, int32_t n, int32_t p, int32_t A, int k,
-                  int32_t *mx, int32_t *mn)
+/* Accumulates max and min of P(x) - (z[x] << k) over a row of n samples into the
+ * 8 lanes vmx/vmn, P(x0) = p, ramp[i] = A * i; int32 (callers guarantee the
+ * range, see bt_build).  Whole blocks of 8 with the lanes past the end masked to
+ * 0 (neutral: the lanes start at 0), so short rows cost one block and compilers
+ * vectorise it with plain SSE2/NEON.  Reading up to 7 samples past the row is
+ * safe: the sanitised copy has 8 spare entries at its end. */
+static void row32(const int32_t *zr, int32_t n, int32_t p, int32_t A8, const int32_t *ramp, int k,
+                  int32_t *vmx, int32_t *vmn)
 {
-    int32_t vmx[8], vmn[8], ramp[8], i, x = 0;
-    int32_t lmx = *mx, lmn = *mn;
-    if (n >= 8) {
-        for (i = 0; i < 8; i++) { vmx[i] = lmx; vmn[i] = lmn; ramp[i] = A * i; }
-        for (; x + 8 <= n; x += 8) {
-            for (i = 0; i < 8; i++) {
-                int32_t d = p + ramp[i] - (zr[x + i] << k);
-                vmx[i] = d > vmx[i] ? d : vmx[i];
-                vmn[i] = d < vmn[i] ? d : vmn[i];
-            }
-            p += 8 * A;
-        }
+    int32_t i, x;
+    for (x = 0; x < n; x += 8) {
+        int32_t rem = n - x;
         for (i = 0; i < 8; i++) {
-            lmx = vmx[i] > lmx ? vmx[i] : lmx;
-            lmn = vmn[i] < lmn ? vmn[i] : lmn;
+            int32_t d = p + ramp[i] - (zr[x + i] << k);
+            d = i < rem ? d : 0;
+            vmx[i] = d > vmx[i] ? d : vmx[i];
+            vmn[i] = d < vmn[i] ? d : vmn[i];
         }
+        p += A8;
     }
-    for (; x < n; x++) {
-        int32_t d = p - (zr[x] << k);
-        lmx = d > lmx ? d : lmx;
-        lmn = d < lmn ? d : lmn;
-        p += A;
-    }
-    *mx = lmx; *mn = lmn;
 }
 
 /* height of sample (x, y) (biased) into *z; 0 if it is a void or outside w x h */
@@ -205,6 +202,7 @@ static int samp(const ctx *c, int32_t x, int32_t y, int32_t *z)
 }
 
 static int32_t iabs32(int32_t v) { return v < 0 ? -v : v; }
+static int32_t sgn32(int32_t v) { return (v > 0) - (v < 0); }
 
 /* The two finest diamond levels in closed form (they are 3/4 of all triangles):
  * hypotenuse 2 on an axis (samples a, b, c and the midpoint m: only m is off
@@ -244,7 +242,43 @@ static int tri_small(const ctx *c, const int32_t a[2], const int32_t cc[2], cons
     return 1;
 }
 
-static int32_t sgn32(int32_t v) { return (v > 0) - (v < 0); }
+
+
+/* table index of triangle (a, cc, b) of a small level, or -1 */
+static int tab_index(const int32_t a[2], const int32_t cc[2], const int32_t b[2])
+{
+    int32_t mx2 = a[0] + b[0] - 2 * cc[0], my2 = a[1] + b[1] - 2 * cc[1]; /* 2 (mid - apex) */
+    int32_t len = iabs32(a[0] - b[0]) + iabs32(a[1] - b[1]);           /* 2h*2 (D) or 2h (A) */
+    int dir, lv;
+    if (a[0] != cc[0] && a[1] != cc[1]) {            /* type A: diagonal legs, hyp 2h */
+        if (len == 4) lv = 0; else if (len == 8) lv = 1; else return -1;
+        dir = my2 < 0 ? 0 : my2 > 0 ? 1 : mx2 < 0 ? 2 : 3;
+    } else {                                         /* type D: axis legs 2h, diagonal hyp */
+        if (len == 8) lv = 0; else if (len == 16) lv = 1; else return -1;
+        dir = 4 + (mx2 > 0) + 2 * (my2 > 0);
+    }
+    return lv * 8 + dir;
+}
+
+static void tab_build(ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2])
+{
+    int ti = tab_index(a, cc, b), nr, i, n = 0;
+    int32_t x, *e;
+    if (ti < 0 || c->tabn[ti] >= 0) return;
+    e = c->tab + (size_t)ti * TAB_MAX * 3;
+    nr = spans(c, a, cc, b);
+    for (i = 0; i < nr; i++)
+        for (x = c->rx0[i]; x <= c->rx1[i]; x++) {
+            int32_t y = c->ry[i];
+            if ((x == a[0] && y == a[1]) || (x == b[0] && y == b[1]) || (x == cc[0] && y == cc[1])) continue;
+            if (n >= TAB_MAX) return;
+            e[3 * n] = (y - cc[1]) * c->w + (x - cc[0]);
+            e[3 * n + 1] = x - cc[0];
+            e[3 * n + 2] = y - cc[1];
+            n++;
+        }
+    c->tabn[ti] = n;
+}
 
 static void tri_eval(const ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2],
                      tri_res *r)
@@ -252,10 +286,49 @@ static void tri_eval(const ctx *c, const int32_t a[2], const int32_t cc[2], cons
     int32_t nr, i;
     int64_t valid = 0, voids = 0;
     if (c->metric == BT_METRIC_EXACT && c->narrow && tri_small(c, a, cc, b, r)) return;
+    if (c->metric == BT_METRIC_EXACT && c->narrow && !c->vp) {
+        int ti = tab_index(a, cc, b);
+        int32_t bx = a[0] > b[0] ? a[0] : b[0], by = a[1] > b[1] ? a[1] : b[1];
+        if (cc[0] > bx) bx = cc[0];
+        if (cc[1] > by) by = cc[1];
+        if (ti >= 0 && c->tabn[ti] > 0 && bx < c->w && by < c->h) {
+            const int32_t *e = c->tab + (size_t)ti * TAB_MAX * 3;
+            const int32_t *zc0 = c->z + (size_t)cc[1] * c->w + cc[0];
+            int32_t za = c->z[(size_t)a[1] * c->w + a[0]], zb = c->z[(size_t)b[1] * c->w + b[0]], zc = *zc0;
+            int32_t ux = a[0] - cc[0], uy = a[1] - cc[1], vx = b[0] - cc[0], vy = b[1] - cc[1];
+            int32_t D = ux * sgn32(vy) - uy * sgn32(vx), dza = za - zc, dzb = zb - zc;
+            int32_t A = sgn32(vy) * dza - sgn32(uy) * dzb, B = -sgn32(vx) * dza + sgn32(ux) * dzb;
+            int32_t k = 0, mx = 0, mn = 0, base, n = c->tabn[ti], zl, zh, err;
+            if (D < 0) { D = -D; A = -A; B = -B; }
+            while ((1 << k) < D) k++;
+            base = D * zc;
+            for (i = 0; i < n; i++) {
+                int32_t d = base + e[3 * i + 1] * A + e[3 * i + 2] * B - (zc0[e[3 * i]] << k);
+                mx = d > mx ? d : mx;
+                mn = d < mn ? d : mn;
+            }
+            if (-mn > mx) mx = -mn;
+            err = (mx + D - 1) >> k;
+            zl = za < zb ? za : zb; zh = za > zb ? za : zb;
+            if (zc < zl) zl = zc;
+            if (zc > zh) zh = zc;
+            r->cls = 0; r->err = err;
+            r->zlo = zl - err < 0 ? 0 : zl - err;
+            r->zhi = zh + err;
+            return;
+        }
+    }
     r->err = 0; r->cls = 0; r->zlo = 0; r->zhi = 0;
     nr = spans(c, a, cc, b);
     /* pass 1: classify (samples outside w x h are voids) */
-    for (i = 0; i < nr; i++) {
+    if (!c->vp) {
+        int32_t bx = a[0] > b[0] ? a[0] : b[0], by = a[1] > b[1] ? a[1] : b[1];
+        if (cc[0] > bx) bx = cc[0];
+        if (cc[1] > by) by = cc[1];
+        if (bx < c->w && by < c->h) nr = -nr;    /* wholly inside: full */
+    }
+    if (nr < 0) nr = -nr;
+    else for (i = 0; i < nr; i++) {
         int32_t y = c->ry[i], x0 = c->rx0[i], x1 = c->rx1[i], cx1, len = x1 - x0 + 1;
         if (y >= c->h || x0 >= c->w) { voids += len; continue; }
         cx1 = x1 < c->w - 1 ? x1 : c->w - 1;
@@ -305,13 +378,15 @@ static void tri_eval(const ctx *c, const int32_t a[2], const int32_t cc[2], cons
             if (D < 0) { D = -D; A = -A; B = -B; }
             while (((int64_t)1 << k) < D) k++;
             if (c->narrow) {
-                int32_t mx = 0, mn = 0;
+                int32_t mx = 0, mn = 0, vmx[8], vmn[8], ramp[8], l;
+                for (l = 0; l < 8; l++) { vmx[l] = 0; vmn[l] = 0; ramp[l] = (int32_t)A * l; }
                 for (i = 0; i < nr; i++) {
                     int32_t y = c->ry[i], x0 = c->rx0[i];
-                    int64_t p = D * zc + (int64_t)(x0 - cc[0]) * A + (int64_t)(y - cc[1]) * B;
-                    row32(c->z + (size_t)y * c->w + x0, c->rx1[i] - x0 + 1, (int32_t)p, (int32_t)A, k,
-                          &mx, &mn);
+                    int32_t p = (int32_t)(D * zc + (int64_t)(x0 - cc[0]) * A + (int64_t)(y - cc[1]) * B);
+                    row32(c->z + (size_t)y * c->w + x0, c->rx1[i] - x0 + 1, p, 8 * (int32_t)A, ramp, k,
+                          vmx, vmn);
                 }
+                for (l = 0; l < 8; l++) { mx = vmx[l] > mx ? vmx[l] : mx; mn = vmn[l] < mn ? vmn[l] : mn; }
                 e = max64(mx, -(int64_t)mn);
             } else {
                 int64_t mx = 0, mn = 0;
@@ -363,13 +438,13 @@ static void diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, i
     int lo = 255, hi = 0;
     size_t idx = (size_t)y * n + x;
     if (typeD) {
-        int diag = (((x >> 1) / h + (y >> 1) / h) & 1) == 0; /* (x>>(j+1)) + (y>>(j+1)) even */
+        int diag = ((x ^ y) & (2 * h)) == 0; /* (x>>(j+1)) + (y>>(j+1)) even; h = 2^j */
         if (diag) { a[0] = x - h; a[1] = y - h; b[0] = x + h; b[1] = y + h;
                     ap[0][0] = x + h; ap[0][1] = y - h; ap[1][0] = x - h; ap[1][1] = y + h; }
         else      { a[0] = x - h; a[1] = y + h; b[0] = x + h; b[1] = y - h;
                     ap[0][0] = x - h; ap[0][1] = y - h; ap[1][0] = x + h; ap[1][1] = y + h; }
         na = 2;
-    } else if ((x / h) & 1) {      /* horizontal edge */
+    } else if (x & h) {            /* horizontal edge (x/h odd) */
         a[0] = x - h; a[1] = y; b[0] = x + h; b[1] = y;
         if (y - h >= 0) { ap[na][0] = x; ap[na][1] = y - h; na++; }
         if (y + h <= S) { ap[na][0] = x; ap[na][1] = y + h; na++; }
@@ -380,6 +455,7 @@ static void diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, i
     }
     for (i = 0; i < na; i++) {
         tri_res r;
+        if (h <= 4 && h >= 2) tab_build((ctx *)c, a, ap[i], b);
         tri_eval(c, a, ap[i], b, &r);
         if (r.cls == 1) code = BT_CODE_SPLIT;
         else if (r.cls == 0) {
@@ -436,6 +512,83 @@ static int32_t kappa_at(const int32_t *z, int32_t w, int32_t h, int32_t x, int32
     return (int32_t)(fx_isqrt64((uint64_t)s) / 8);
 }
 
+static uint16_t enc_small(int64_t e) { return e < 4096 ? (uint16_t)e : bt_code_encode(e); }
+
+/* Interior A1 diamond (hypotenuse a-b of length 2 through m, apexes p and q):
+ * only m is off the planes, so e = ceil(|za + zb - 2 zm| / 2) for both halves. */
+static void a1_fast(bt_tree *t, const ctx *c, size_t idx, int32_t za, int32_t zb, int32_t zm,
+                    int32_t zp, int32_t zq)
+{
+    int32_t e = (iabs32(za + zb - 2 * zm) + 1) >> 1;
+    int32_t lo = za < zb ? za : zb, hi = za > zb ? za : zb;
+    if (zp < lo) lo = zp;
+    if (zp > hi) hi = zp;
+    if (zq < lo) lo = zq;
+    if (zq > hi) hi = zq;
+    t->err[idx] = enc_small(e);
+    t->zlo[idx] = q_lo(c, (int64_t)lo - e);
+    t->zhi[idx] = q_hi(c, (int64_t)hi + e);
+}
+
+/* The finest level (h = 1) for grids without voids, as stencils: A1 diamonds
+ * (one odd coordinate) and D1 diamonds (both odd).  A D1 triangle's samples
+ * off its plane are the centre and its two leg midpoints, which are the D1
+ * diamond's children (A1 centres, whose exact errors are those leg terms), so
+ * E(D1) = max(ceil(|za + zb - 2 zm| / 2), children) is exact.  Diamonds on the
+ * domain's edge go through the general path. */
+static void level1(bt_tree *t, const ctx *c)
+{
+    int32_t n = t->n, S = n - 1, w = c->w, h = c->h, x, y;
+    const int32_t *z = c->z;
+#define ZZ(X, Y) z[(size_t)(Y) * w + (X)]
+    /* A1, horizontal hypotenuse: y even, x odd */
+    for (y = 0; y <= S; y += 2)
+        for (x = 1; x < S; x += 2) {
+            if (y >= 1 && y + 1 < h && y + 1 <= S && x + 1 < w)
+                a1_fast(t, c, (size_t)y * n + x, ZZ(x - 1, y), ZZ(x + 1, y), ZZ(x, y), ZZ(x, y - 1), ZZ(x, y + 1));
+            else diamond(t, c, x, y, 1, 0);
+        }
+    /* A1, vertical hypotenuse: y odd, x even */
+    for (y = 1; y < S; y += 2)
+        for (x = 0; x <= S; x += 2) {
+            if (x >= 1 && x + 1 < w && x + 1 <= S && y + 1 < h)
+                a1_fast(t, c, (size_t)y * n + x, ZZ(x, y - 1), ZZ(x, y + 1), ZZ(x, y), ZZ(x - 1, y), ZZ(x + 1, y));
+            else diamond(t, c, x, y, 1, 0);
+        }
+    /* D1: x, y odd; diagonal (1,1) when (x>>1) + (y>>1) is even */
+    for (y = 1; y < S; y += 2)
+        for (x = 1; x < S; x += 2) {
+            size_t idx = (size_t)y * n + x;
+            if (x + 1 < w && y + 1 < h) {
+                int32_t z00 = ZZ(x - 1, y - 1), z20 = ZZ(x + 1, y - 1), z02 = ZZ(x - 1, y + 1), z22 = ZZ(x + 1, y + 1);
+                int32_t zm = ZZ(x, y), e, lo, hi, k;
+                uint16_t code;
+                size_t ch[4];
+                int lq, hq;
+                if ((((x >> 1) + (y >> 1)) & 1) == 0) e = (iabs32(z00 + z22 - 2 * zm) + 1) >> 1;
+                else e = (iabs32(z20 + z02 - 2 * zm) + 1) >> 1;
+                code = enc_small(e);
+                ch[0] = idx - 1; ch[1] = idx + 1; ch[2] = idx - (size_t)n; ch[3] = idx + (size_t)n;
+                for (k = 0; k < 4; k++) if (t->err[ch[k]] > code) code = t->err[ch[k]];
+                lo = z00; hi = z00;
+                lo = z20 < lo ? z20 : lo; hi = z20 > hi ? z20 : hi;
+                lo = z02 < lo ? z02 : lo; hi = z02 > hi ? z02 : hi;
+                lo = z22 < lo ? z22 : lo; hi = z22 > hi ? z22 : hi;
+                e = (int32_t)bt_code_value(code);
+                lq = q_lo(c, (int64_t)lo - e);
+                hq = q_hi(c, (int64_t)hi + e);
+                for (k = 0; k < 4; k++) {
+                    if (t->zlo[ch[k]] < lq) lq = t->zlo[ch[k]];
+                    if (t->zhi[ch[k]] > hq) hq = t->zhi[ch[k]];
+                }
+                t->err[idx] = code;
+                t->zlo[idx] = (uint8_t)lq;
+                t->zhi[idx] = (uint8_t)hq;
+            } else diamond(t, c, x, y, 1, 1);
+        }
+#undef ZZ
+}
+
 br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
                    void *mem, size_t mem_bytes, void *scratch, size_t scratch_bytes)
 {
@@ -467,7 +620,8 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
     /* stats and void prefix counts, then heights biased by zmin (>= 0: shifts of
      * non-negative values only), voids = 0 */
     zs = (int32_t *)scratch;
-    vp = (uint16_t *)((uint8_t *)scratch + (size_t)w * h * 4);
+    vp = (uint16_t *)((uint8_t *)scratch + (size_t)w * h * 4 + 32);
+    memset((uint8_t *)scratch + (size_t)w * h * 4, 0, 32);   /* row32 reads up to 7 past the end */
     {
         int first = 1;
         for (y = 0; y < h; y++) {
@@ -505,7 +659,9 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
         c.ry = (int32_t *)(void *)q;
         c.rx0 = c.ry + n;
         c.rx1 = c.rx0 + n;
-        q = (uint8_t *)(c.rx1 + n);
+        c.tab = c.rx1 + n;
+        for (j = 0; j < 16; j++) c.tabn[j] = -1;
+        q = (uint8_t *)(c.tab + 16 * TAB_MAX * 3);
         if (metric == BT_METRIC_CURVATURE) {
             int32_t *kap = (int32_t *)(void *)q;
             for (y = 0; y < h; y++)
@@ -517,6 +673,7 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
     *t = nt;
     for (j = 0; j < nt.k; j++) {
         int32_t hh = (int32_t)1 << j;
+        if (j == 0 && metric == BT_METRIC_EXACT && !c.vp && c.narrow) { level1(t, &c); continue; }
         /* type A at h: horizontal edges (x odd multiple of h, y multiple of 2h) */
         for (y = 0; y <= S; y += 2 * hh)
             for (x = hh; x < S; x += 2 * hh) diamond(t, &c, x, y, hh, 0);

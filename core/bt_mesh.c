@@ -138,7 +138,7 @@ static int32_t dscale(int32_t x, int32_t y, int32_t S, int *typeD)
     if (x == 0) h = (int32_t)((uint32_t)y & (~(uint32_t)y + 1u));
     if (y == 0) h = (int32_t)((uint32_t)x & (~(uint32_t)x + 1u));
     if (x == 0 && y == 0) h = S;
-    *typeD = ((x / h) & 1) && ((y / h) & 1);
+    *typeD = (x & h) && (y & h);      /* h is a power of two */
     return h;
 }
 
@@ -482,7 +482,7 @@ static uint32_t budget_mark(em *e, uint32_t budget, uint32_t *nid)
         if (e->p->mode == BT_FIDELITY && (he.key >> 8) <= (int64_t)e->cthr) break;
         /* triangles of the diamond */
         if (typeD) add = 2;
-        else if ((x / h) & 1) add = (y - h >= 0) + (y + h <= S);
+        else if (x & h) add = (y - h >= 0) + (y + h <= S);
         else add = (x - h >= 0) + (x + h <= S);
         if (count + (uint64_t)add > budget) break;
         if (ni + 4 > cap) break;
