@@ -105,6 +105,7 @@ br_status rs_frame_prepare(rs_frame *f)
         || vp->zfar <= vp->znear || vp->cx_q16 != w * (FX_Q16_ONE / 2)
         || vp->cy_q16 != h * (FX_Q16_ONE / 2) || f8 <= 0 || f8 >= ((int64_t)1 << 28))
         return BR_E_ARG;
+    f->stat_tris = f->stat_clipped = f->stat_pixels = 0;
     {
         const int64_t r00 = vp->r[0][0], r01 = vp->r[0][1], r02 = vp->r[0][2], t0 = vp->t[0];
         const int64_t r10 = vp->r[1][0], r11 = vp->r[1][1], r12 = vp->r[1][2], t1 = vp->t[1];
@@ -365,7 +366,6 @@ br_status rs_render(rs_frame *f, int32_t band_rows, void *mem, rs_sink sink, voi
     size_t bpp = f->fmt == RS_FMT_RGB565 ? 2 : 4;
     if (band_rows < 1 || !mem || !sink) return BR_E_ARG;
     if (band_rows > f->h) band_rows = f->h;
-    f->stat_tris = f->stat_clipped = f->stat_pixels = 0;
     for (y0 = 0; y0 < f->h; y0 += band_rows) {
         int32_t rows = f->h - y0 < band_rows ? f->h - y0 : band_rows;
         uint8_t *color = (uint8_t *)mem;

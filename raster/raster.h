@@ -116,7 +116,7 @@ typedef struct rs_frame {
     cam_vp vp;                  /* from cam_viewproj; the camera's w, h must equal w, h */
     int32_t debug_count;        /* tests: colour must be XRGB8888; each covered pixel's
                                    32-bit value counts the writes (no depth test, no sky) */
-    /* statistics of the last render (over all bands) */
+    /* statistics since rs_frame_prepare (summed over the bands rendered) */
     uint32_t stat_tris, stat_clipped, stat_pixels;
 } rs_frame;
 

@@ -1,0 +1,87 @@
+/* benchmarks/bench_raster.c — bitrain's integer rasteriser on the peer scene of
+ * ../shared/bench/PEERS.md (fuji.png, 257x257 grid, 131,072 triangles as 256 strips):
+ * cameras A and B at 320x240 and 640x480, back-face culling off (as the peers' table)
+ * and on, XRGB8888 + 32-bit depth, single thread.  Prints per configuration the median
+ * ms per frame over FRAMES frames (default 30; env BENCH_FRAMES), triangles/s
+ * (submitted) and pixels/s (w*h per frame), plus the band-mode memory of 320x240
+ * RGB565.  Instructions per frame: one configuration per process with callgrind,
+ *   valgrind --tool=callgrind --toggle-collect=bench_frame \
+ *       ./bitrain bench --scene peer --camera A --size 640x480 --frames 10
+ * (total Ir / 10), see docs/raster.md.  Figures only; never fails on time. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include "benchmarks/peer_scene.h"
+#include "core/cam.h"
+#include "raster/raster.h"
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
+}
+
+static int cmp_d(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+int main(void)
+{
+    static const struct { char cam; int w, h; } cfg[] = {
+        { 'A', 320, 240 }, { 'B', 320, 240 }, { 'A', 640, 480 }, { 'B', 640, 480 } };
+    const char *e = getenv("BENCH_FRAMES");
+    int frames = e ? atoi(e) : 30, i, k, cull;
+    peer_scene *ps = malloc(sizeof *ps);
+    rs_vertex *v = malloc(sizeof *v * PEER_NV);
+    rs_cvert *cache = malloc(rs_cache_mem_size(PEER_NV));
+    void *color = malloc(640 * 480 * 4), *zbuf = malloc(640 * 480 * 4);
+    double *ms = malloc(sizeof(double) * (size_t)(frames > 0 ? frames : 1));
+    rs_prim prims[PEER_NSTRIP];
+    if (frames < 1) frames = 1;
+    if (!ps || !v || !cache || !color || !zbuf || !ms) { printf("bench_raster: out of memory\n"); return 0; }
+    if (peer_scene_build("../shared/data/dem/png/fuji.png", ps) != 0) {
+        printf("bench_raster: skipped (fuji.png not found; run from the repo root)\n");
+        return 0;
+    }
+    for (i = 0; i < PEER_NV; i++) {
+        v[i].p[0] = ps->ipos[3 * i]; v[i].p[1] = ps->ipos[3 * i + 1]; v[i].p[2] = ps->ipos[3 * i + 2];
+        v[i].rgb = ((uint32_t)ps->rgba[4 * i] << 16) | ((uint32_t)ps->rgba[4 * i + 1] << 8) | ps->rgba[4 * i + 2];
+    }
+    for (i = 0; i < PEER_NSTRIP; i++) {
+        prims[i].kind = RS_STRIP; prims[i].n = PEER_STRIP_LEN; prims[i].idx = ps->strip + i * PEER_STRIP_LEN;
+    }
+    printf("bitrain raster, peer scene, %d frames per configuration (median), XRGB8888 + depth32:\n", frames);
+    for (cull = 0; cull < 2; cull++)
+        for (k = 0; k < 4; k++) {
+            rs_frame f;
+            cam c;
+            int32_t eye[3], tg[3], fovy, zn, zf;
+            double med;
+            peer_camera(cfg[k].cam, NULL, eye, tg, &fovy, &zn, &zf);
+            cam_look_at(&c, eye, tg, fovy, cfg[k].w, cfg[k].h, zn, zf);
+            memset(&f, 0, sizeof f);
+            f.w = cfg[k].w; f.h = cfg[k].h; f.no_cull = !cull; f.clear_rgb = 0x99ccffu;
+            f.v = v; f.nv = PEER_NV; f.cache = cache; f.prims = prims; f.nprims = PEER_NSTRIP;
+            cam_viewproj(&c, &f.vp);
+            for (i = 0; i < frames; i++) {
+                double t0 = now_ms();
+                rs_frame_prepare(&f);
+                rs_render_band(&f, 0, f.h, color, (size_t)f.w * 4, zbuf);
+                ms[i] = now_ms() - t0;
+            }
+            qsort(ms, (size_t)frames, sizeof *ms, cmp_d);
+            med = ms[frames / 2];
+            printf("  camera %c %dx%d cull=%d: %.2f ms/frame, %.1f Mtri/s, %.1f Mpix/s (%u triangles set up, %u clipped)\n",
+                   cfg[k].cam, cfg[k].w, cfg[k].h, cull, med, PEER_NTRI / med / 1e3,
+                   (double)cfg[k].w * cfg[k].h / med / 1e3, f.stat_tris, f.stat_clipped);
+        }
+    printf("band mode 320x240 RGB565: 16-row band %zu bytes (16-bit depth) / %zu bytes (32-bit depth) + vertex cache %zu bytes\n",
+           rs_band_mem_size(320, 16, RS_FMT_RGB565, RS_DEPTH16), rs_band_mem_size(320, 16, RS_FMT_RGB565, RS_DEPTH32),
+           rs_cache_mem_size(PEER_NV));
+    free(ps); free(v); free(cache); free(color); free(zbuf); free(ms);
+    return 0;
+}
