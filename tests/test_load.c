@@ -217,6 +217,30 @@ static void test_gdal_crops(void)
     same_window("tests/data/bt/crater_crop.bt", "bt/crater_0513.bt", 40, 60);   /* BT 1.3 */
 }
 
+/* 8-bit grey with scale and offset: fuji's green channel (GDAL band 2 crop) */
+static void test_png_grey8(void)
+{
+    dem_opts o;
+    hf g, f;
+    br_err e;
+    int x, y, bad = 0;
+    memset(&o, 0, sizeof o);
+    o.png_scale = 0.5;
+    o.png_offset = 100;
+    CHECK_EQ(dem_load("tests/data/png/fuji_green_crop.png", &o, &g, &e), BR_OK);
+    CHECK_EQ(g.z_num, 1);                      /* 0.5 m: z = raw + 200 */
+    CHECK_EQ(g.z_den, 2);
+    CHECK_EQ(dem_load(t_data("png/fuji.png"), NULL, &f, &e), BR_OK);
+    for (y = 0; y < g.h; y++)
+        for (x = 0; x < g.w; x++) {
+            int32_t rgb = f.z[(size_t)(200 + y) * f.w + 100 + x] + 100000;
+            bad += g.z[y * g.w + x] != ((rgb >> 8) & 255) + 200;
+        }
+    CHECK_EQ(bad, 0);
+    dem_free(&f);
+    dem_free(&g);
+}
+
 static void test_containers(void)
 {
     size_t n = 0, zn = 0;
@@ -414,6 +438,7 @@ int main(void)
     T_RUN(test_xyz);
     T_RUN(test_containers);
     T_RUN(test_gdal_crops);
+    T_RUN(test_png_grey8);
     T_RUN(test_merge_n50);
     T_RUN(test_merge_errors);
     T_RUN(test_merge_asc);
