@@ -1,6 +1,9 @@
 /* tests/test_load.c — every real file in ../shared/data/dem through the loaders:
  * dimensions, units, min/max, voids, spacing and georeference, and merging. */
+#define _POSIX_C_SOURCE 200809L   /* dup, dup2, fileno: to capture `bitrain info` output */
+#include <unistd.h>
 #include "tests/test.h"
+#include "platform/cmd.h"
 #include "platform/load.h"
 #include "platform/merge.h"
 #include "tests/zipmk.h"
@@ -427,6 +430,57 @@ static void test_merge_asc(void)
     for (i = 1; i < 4; i++) dem_free(&t[i]);
 }
 
+/* `bitrain info --json` over every real file: the keys and figures the issue asks for */
+static void test_info_json(void)
+{
+    static const struct { const char *file, *want; } rows[] = {
+        { "hgt/N47E009.hgt", "\"width\":1201,\"height\":1201,\"min\":388,\"max\":2937,\"voids\":0," },
+        { "hgt/N50E008.hgt", "\"width\":1201,\"height\":1201,\"min\":62,\"max\":885,\"voids\":50," },
+        { "hgt/N50E009.hgt", "\"width\":1201,\"height\":1201,\"min\":98,\"max\":950,\"voids\":12," },
+        { "hgt/N50E010.hgt", "\"width\":1201,\"height\":1201,\"min\":185,\"max\":983,\"voids\":28," },
+        { "hgt/N57E011.hgt", "\"width\":1201,\"height\":1201,\"min\":-6,\"max\":163,\"voids\":0," },
+        { "png/fuji.png", "\"width\":512,\"height\":512,\"min\":13.7,\"max\":3751,\"voids\":0," },
+        { "asc/colorado_front_range.asc", "\"width\":240,\"height\":144,\"min\":1943,\"max\":3286,\"voids\":0," },
+        { "asc/hugo_site.asc", "\"width\":76,\"height\":55,\"min\":1660,\"max\":1711,\"voids\":2028," },
+        { "bt/crater_0513.bt", "\"width\":513,\"height\":513,\"min\":1524,\"max\":2478,\"voids\":0," },
+        { "tif/mt_rainier_90m.tif", "\"width\":1201,\"height\":1201,\"min\":263,\"max\":4371,\"voids\":9033," },
+        { "xyz/monai_valley_bathymetry.txt", "\"width\":393,\"height\":244,\"min\":-0.125,\"max\":0.13535,\"voids\":0," },
+    };
+    const size_t nrows = sizeof rows / sizeof rows[0];
+    char *argv[32], path[512], files[16][512], *out;
+    int argc = 0, rc, saved;
+    size_t i, n = 0;
+    FILE *f;
+    snprintf(path, sizeof path, "%s/info.json", t_outdir());
+    argv[argc++] = (char *)"--json";
+    for (i = 0; i < nrows; i++) {      /* t_data's buffers rotate: keep copies */
+        snprintf(files[i], sizeof files[i], "%s", t_data(rows[i].file));
+        argv[argc++] = files[i];
+    }
+    fflush(stdout);
+    saved = dup(fileno(stdout));
+    f = fopen(path, "w");
+    CHECK(f != NULL && saved >= 0);
+    if (!f || saved < 0) return;
+    dup2(fileno(f), fileno(stdout));
+    rc = cmd_info(argc, argv);
+    fflush(stdout);
+    dup2(saved, fileno(stdout));
+    close(saved);
+    fclose(f);
+    CHECK_EQ(rc, 0);
+    out = (char *)t_read_file(path, &n);
+    CHECK(out != NULL);
+    if (!out) return;
+    out[n] = 0;
+    for (i = 0; i < nrows; i++) CHECK_MSG(strstr(out, rows[i].want) != NULL, "%s: %s", rows[i].file, rows[i].want);
+    CHECK(strstr(out, "\"spacing\":{\"dx\":59.124512,\"dy\":92.698903}") != NULL);
+    CHECK(strstr(out, "\"origin\":{\"kind\":\"degrees\",\"x\":-122.000000000,\"y\":47.000000000") != NULL);
+    for (i = 0, n = 0; out[i]; i++) n += out[i] == '\n';
+    CHECK_EQ(n, nrows);                        /* one object per file per line */
+    free(out);
+}
+
 int main(void)
 {
     T_RUN(test_hgt);
@@ -439,6 +493,7 @@ int main(void)
     T_RUN(test_containers);
     T_RUN(test_gdal_crops);
     T_RUN(test_png_grey8);
+    T_RUN(test_info_json);
     T_RUN(test_merge_n50);
     T_RUN(test_merge_errors);
     T_RUN(test_merge_asc);
