@@ -549,6 +549,18 @@ static void test_strip(void)
         CHECK_EQ(line[1], 0);
         CHECK_EQ(line[2], 2);
     }
+    /* far-apart and negative positions (the sort falls back to qsort) */
+    {
+        static const mc_vert fv[4] = { { -100000, -5, 0 }, { 100000, -5, 0 }, { -100000, 90000, 0 }, { 100000, 90000, 0 } };
+        int32_t s4[4] = { 0, 2, 1, 3 }, t4[6] = { 0, 2, 1, 1, 2, 3 };
+        mc_strip_report fr;
+        CHECK_EQ(mc_strip_compare(s4, 4, t4, 2, fv, 4, &fr), 1);
+        CHECK_EQ(fr.decoded, 2);
+        t4[5] = 0;
+        CHECK_EQ(mc_strip_compare(s4, 4, t4, 2, fv, 4, &fr), 0);
+        CHECK_EQ(fr.missing, 1);
+        CHECK_EQ(fr.extra, 1);
+    }
     /* a bad index */
     {
         int32_t s3[3] = { 0, 1, 81 };

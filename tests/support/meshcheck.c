@@ -144,18 +144,17 @@ static void raster_pass(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z
 
 /* ---- mc_check ------------------------------------------------------------ */
 
+/* One directed use of an edge, kept in the bucket of its lower end position. */
 typedef struct edge_rec {
-    int32_t lo, hi;     /* positions y*w+x, lo < hi */
-    int32_t dir;        /* +1: triangle walks lo->hi, -1: hi->lo */
-    int32_t third;      /* position of the triangle's third vertex */
+    int32_t hi;         /* the higher end position y*w+x */
+    int32_t td;         /* 2 * (third vertex position) + (1 if walked lo->hi) */
 } edge_rec;
 
 static int edge_cmp(const void *pa, const void *pb)
 {
     const edge_rec *a = pa, *b = pb;
-    if (a->lo != b->lo) return a->lo < b->lo ? -1 : 1;
     if (a->hi != b->hi) return a->hi < b->hi ? -1 : 1;
-    return (a->dir > b->dir) - (a->dir < b->dir);
+    return ((a->td & 1) > (b->td & 1)) - ((a->td & 1) < (b->td & 1));
 }
 
 /* A boundary edge off the grid border must have a void sample in the closed square
@@ -206,7 +205,7 @@ int mc_check(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z,
              const mc_opts *o, mc_report *r)
 {
     static const mc_opts defaults;
-    int64_t n = (int64_t)w * h, i, t, pos = 0, neg = 0, ne = 0;
+    int64_t n = (int64_t)w * h, i, t, pos = 0, neg = 0, *start = NULL;
     int32_t *vid = NULL;
     unsigned char *ok_tri = NULL, *cover = NULL, *inner = NULL;
     edge_rec *e = NULL;
@@ -268,76 +267,75 @@ int mc_check(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z,
     r->orientation = (pos || neg) ? (pos >= neg ? 1 : -1) : 0;
     r->flipped = pos >= neg ? neg : pos;
 
-    /* edges */
+    /* edges: bucket every directed use by its lower end (two passes over the
+     * triangles), sort each small bucket, then walk the groups */
+    start = calloc((size_t)n + 1, sizeof *start);
+    if (!start) { free(vid); free(cover); free(inner); free(ok_tri); free(e); return -1; }
+    for (t = 0; t < m->nt; t++) {
+        int k;
+        if (!ok_tri[t]) continue;
+        for (k = 0; k < 3; k++) {
+            const mc_vert *a = &m->v[m->tri[3 * t + k]], *b = &m->v[m->tri[3 * t + (k + 1) % 3]];
+            int32_t pa = a->y * w + a->x, pb = b->y * w + b->x;
+            start[(pa < pb ? pa : pb) + 1]++;
+        }
+    }
+    for (i = 0; i < n; i++) start[i + 1] += start[i];
     for (t = 0; t < m->nt; t++) {
         int k;
         if (!ok_tri[t]) continue;
         for (k = 0; k < 3; k++) {
             const mc_vert *a = &m->v[m->tri[3 * t + k]], *b = &m->v[m->tri[3 * t + (k + 1) % 3]];
             const mc_vert *c = &m->v[m->tri[3 * t + (k + 2) % 3]];
-            int32_t pa = a->y * w + a->x, pb = b->y * w + b->x;
-            e[ne].lo = pa < pb ? pa : pb;
-            e[ne].hi = pa < pb ? pb : pa;
-            e[ne].dir = pa < pb ? 1 : -1;
-            e[ne].third = c->y * w + c->x;
-            ne++;
+            int32_t pa = a->y * w + a->x, pb = b->y * w + b->x, lo = pa < pb ? pa : pb;
+            edge_rec *er = &e[start[lo]++];
+            er->hi = pa < pb ? pb : pa;
+            er->td = 2 * (c->y * w + c->x) + (pa < pb);
         }
     }
-    /* sort by (lo, hi, dir): counting sort on lo, then each (small) bucket */
-    {
-        int64_t *start = calloc((size_t)n + 1, sizeof *start), k;
-        edge_rec *e2 = malloc((size_t)(ne + 1) * sizeof *e2);
-        if (!start || !e2) {
-            free(start); free(e2); free(vid); free(cover); free(inner); free(ok_tri); free(e);
-            return -1;
-        }
-        for (k = 0; k < ne; k++) start[e[k].lo + 1]++;
-        for (k = 0; k < n; k++) start[k + 1] += start[k];
-        for (k = 0; k < ne; k++) e2[start[e[k].lo]++] = e[k];
-        /* start[v] is now the end of bucket v */
-        for (k = 0; k < n; k++) {
-            int64_t b = k ? start[k - 1] : 0, end = start[k], u, q;
-            if (end - b > 32) { qsort(e2 + b, (size_t)(end - b), sizeof *e2, edge_cmp); continue; }
-            for (u = b + 1; u < end; u++) {
-                edge_rec cur = e2[u];
-                for (q = u; q > b && edge_cmp(&e2[q - 1], &cur) > 0; q--) e2[q] = e2[q - 1];
-                e2[q] = cur;
+    /* start[v] is now the end of bucket v, which begins at start[v - 1] */
+    for (i = 0; i < n; i++) {
+        int64_t b0 = i ? start[i - 1] : 0, end = start[i], u, q, j;
+        int32_t ax = (int32_t)(i % w), ay = (int32_t)(i / w);
+        if (end - b0 > 32) qsort(e + b0, (size_t)(end - b0), sizeof *e, edge_cmp);
+        else
+            for (u = b0 + 1; u < end; u++) {
+                edge_rec cur = e[u];
+                for (q = u; q > b0 && edge_cmp(&e[q - 1], &cur) > 0; q--) e[q] = e[q - 1];
+                e[q] = cur;
             }
-        }
-        free(start);
-        free(e);
-        e = e2;
-    }
-    for (i = 0; i < ne;) {
-        int64_t j = i;
-        int32_t ax = e[i].lo % w, ay = e[i].lo / w, bx = e[i].hi % w, by = e[i].hi / w;
-        while (j < ne && e[j].lo == e[i].lo && e[j].hi == e[i].hi) j++;
-        r->edges++;
-        if (j - i > 2) { r->nonmanifold_edges++; set_bad(r, ax, ay, "edge used by more than two triangles"); }
-        else if (j - i == 2 && e[i].dir == e[i + 1].dir) {
-            r->same_dir_edges++; set_bad(r, ax, ay, "edge walked twice in the same direction");
-        } else if (j - i == 1) {
-            r->boundary_edges++;
-            if (!on_border(w, h, ax, ay, bx, by) &&
-                !void_next_to(w, h, z, ax, ay, bx, by, e[i].third % w, e[i].third / w)) {
-                r->bad_boundary_edges++;
-                set_bad(r, ax, ay, "boundary edge inside the domain (crack)");
+        for (u = b0; u < end; u = j) {
+            int32_t bx = e[u].hi % w, by = e[u].hi / w;
+            j = u;
+            while (j < end && e[j].hi == e[u].hi) j++;
+            r->edges++;
+            if (j - u > 2) { r->nonmanifold_edges++; set_bad(r, ax, ay, "edge used by more than two triangles"); }
+            else if (j - u == 2 && (e[u].td & 1) == (e[u + 1].td & 1)) {
+                r->same_dir_edges++; set_bad(r, ax, ay, "edge walked twice in the same direction");
+            } else if (j - u == 1) {
+                int32_t third = e[u].td >> 1;
+                r->boundary_edges++;
+                if (!on_border(w, h, ax, ay, bx, by) &&
+                    !void_next_to(w, h, z, ax, ay, bx, by, third % w, third / w)) {
+                    r->bad_boundary_edges++;
+                    set_bad(r, ax, ay, "boundary edge inside the domain (crack)");
+                }
             }
-        }
-        /* T-junctions: lattice points strictly inside the segment */
-        {
-            int64_t dx = bx - ax, dy = by - ay;
-            int64_t g = (int64_t)gcd64((uint64_t)abs64(dx), (uint64_t)abs64(dy)), k;
-            for (k = 1; k < g; k++) {
-                int64_t px = ax + dx / g * k, py = ay + dy / g * k;
-                if (vid[py * w + px] >= 0) {
-                    r->tjunctions++;
-                    set_bad(r, (int32_t)px, (int32_t)py, "T-junction");
+            /* T-junctions: lattice points strictly inside the segment */
+            {
+                int64_t dx = bx - ax, dy = by - ay;
+                int64_t g = (int64_t)gcd64((uint64_t)abs64(dx), (uint64_t)abs64(dy)), k;
+                for (k = 1; k < g; k++) {
+                    int64_t px = ax + dx / g * k, py = ay + dy / g * k;
+                    if (vid[py * w + px] >= 0) {
+                        r->tjunctions++;
+                        set_bad(r, (int32_t)px, (int32_t)py, "T-junction");
+                    }
                 }
             }
         }
-        i = j;
     }
+    free(start);
 
     /* raster pass: error and coverage */
     memset(inner, 0, (size_t)n);
@@ -464,15 +462,54 @@ static int key_cmp(const void *pa, const void *pb)
 static void make_key(const mc_vert *v, int32_t a, int32_t b, int32_t c, tri_key *out)
 {
     int64_t p[3], tmp;
-    p[0] = ((int64_t)v[a].y << 32) | (uint32_t)v[a].x;
-    p[1] = ((int64_t)v[b].y << 32) | (uint32_t)v[b].x;
-    p[2] = ((int64_t)v[c].y << 32) | (uint32_t)v[c].x;
+    /* y * 2^32 + (x as unsigned 32-bit): a multiply, as << of a negative y is undefined */
+    p[0] = (int64_t)v[a].y * 4294967296LL + (int64_t)(uint32_t)v[a].x;
+    p[1] = (int64_t)v[b].y * 4294967296LL + (int64_t)(uint32_t)v[b].x;
+    p[2] = (int64_t)v[c].y * 4294967296LL + (int64_t)(uint32_t)v[c].x;
     if (p[0] > p[1]) { tmp = p[0]; p[0] = p[1]; p[1] = tmp; }
     if (p[1] > p[2]) { tmp = p[1]; p[1] = p[2]; p[2] = tmp; }
     if (p[0] > p[1]) { tmp = p[0]; p[0] = p[1]; p[1] = tmp; }
     memcpy(out->p, p, sizeof p);
     tmp = vcross(&v[a], &v[b], &v[c]);
     out->sign = tmp > 0 ? 1 : tmp < 0 ? -1 : 0;
+}
+
+/* Sorts keys by (p0, p1, p2): counting sort on p0 over the vertices' bounding
+ * box, then insertion sort of each (small) bucket; qsort when the box is huge. */
+static int sort_keys(tri_key *k, int64_t n, const mc_vert *v, int32_t nv)
+{
+    int64_t minx = INT32_MAX, maxx = INT32_MIN, miny = INT32_MAX, maxy = INT32_MIN, W, span, i, *start;
+    tri_key *tmp;
+    for (i = 0; i < nv; i++) {
+        minx = min64(minx, v[i].x); maxx = max64(maxx, v[i].x);
+        miny = min64(miny, v[i].y); maxy = max64(maxy, v[i].y);
+    }
+    if (n < 2) return 0;
+    W = maxx - minx + 1;
+    span = W * (maxy - miny + 1);
+    if (span > ((int64_t)1 << 26) || span > 16 * (n + nv)) {
+        qsort(k, (size_t)n, sizeof *k, key_cmp);
+        return 0;
+    }
+    start = calloc((size_t)span + 1, sizeof *start);
+    tmp = malloc((size_t)n * sizeof *tmp);
+    if (!start || !tmp) { free(start); free(tmp); return -1; }
+#define KEY_IX(p) ((((p) >> 32) - miny) * W + ((int64_t)(int32_t)(uint32_t)((p) & 0xffffffff) - minx))
+    for (i = 0; i < n; i++) start[KEY_IX(k[i].p[0]) + 1]++;
+    for (i = 0; i < span; i++) start[i + 1] += start[i];
+    for (i = 0; i < n; i++) tmp[start[KEY_IX(k[i].p[0])]++] = k[i];
+#undef KEY_IX
+    for (i = 0; i < span; i++) {
+        int64_t b = i ? start[i - 1] : 0, end = start[i], u, q;
+        for (u = b + 1; u < end; u++) {
+            tri_key cur = tmp[u];
+            for (q = u; q > b && key_cmp(&tmp[q - 1], &cur) > 0; q--) tmp[q] = tmp[q - 1];
+            tmp[q] = cur;
+        }
+    }
+    memcpy(k, tmp, (size_t)n * sizeof *k);
+    free(start); free(tmp);
+    return 0;
 }
 
 int mc_strip_compare(const int32_t *s, int64_t n, const int32_t *tri, int64_t nt,
@@ -499,8 +536,10 @@ int mc_strip_compare(const int32_t *s, int64_t n, const int32_t *tri, int64_t nt
         else if (ka[i].sign != r->orientation) r->winding_mixed++;
     }
     for (i = 0; i < nt; i++) make_key(v, tri[3 * i], tri[3 * i + 1], tri[3 * i + 2], &kb[i]);
-    qsort(ka, (size_t)nd, sizeof *ka, key_cmp);
-    qsort(kb, (size_t)nt, sizeof *kb, key_cmp);
+    if (sort_keys(ka, nd, v, nv) != 0 || sort_keys(kb, nt, v, nv) != 0) {
+        free(dec); free(ka); free(kb);
+        return -1;
+    }
     for (i = 0, j = 0; i < nd || j < nt;) {
         int c = i >= nd ? 1 : j >= nt ? -1 : key_cmp(&ka[i], &kb[j]);
         if (c < 0) { r->extra++; i++; }
