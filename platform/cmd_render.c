@@ -3,15 +3,17 @@
  *   bitrain render IN... -o out.png [--size WxH] [--camera EX,EY,EZ,TX,TY,TZ] [--fov DEG]
  *          [--max-error M | --pixel-error P | --full [STEP]] [--bands ROWS]
  *          [--format rgb565|rgb888] [--depth 32|16] [--colors FILE] [--no-cull]
- *          [--sun AZ,ALT] [--ambient A]
+ *          [--sun AZ,ALT] [--ambient A] [--zscale F]
  * Camera in the heightfield's metres: x east from the west edge, y north from the
- * south edge, z height above 0 m.  Default camera: from the south-west, above the
+ * south edge, z height above 0 m (times --zscale).  Default camera: from the south-west, above the
  * terrain, looking at its centre.  Mesh: the bitree (core/bitree.h), by default
  * view-dependent with a 1 pixel screen-space error; --max-error M selects the
  * fidelity mode (true vertical error <= M metres); --full [STEP] draws the full grid
  * (every STEP-th sample) as row strips instead.  Colours: a gdaldem color-relief file
  * (--colors) or the built-in ramp, lit by a sun (azimuth 315, altitude 45 by default)
- * with 30 % ambient.  The frame is rendered in bands of ROWS rows (default: whole
+ * with 30 % ambient.  --zscale F multiplies heights (default 1; grids without
+ * georeference whose relief exceeds half their extent get an automatic scale, since
+ * the loader can only assume 1 m spacing for them).  The frame is rendered in bands of ROWS rows (default: whole
  * frame) and streamed to the PNG band by band. */
 #include <ctype.h>
 #include <math.h>
@@ -133,7 +135,7 @@ static int usage(void)
             "usage: bitrain render IN... -o out.png [--size WxH] [--camera EX,EY,EZ,TX,TY,TZ] [--fov DEG]\n"
             "         [--max-error M | --pixel-error P | --full [STEP]] [--bands ROWS]\n"
             "         [--format rgb565|rgb888] [--depth 32|16] [--colors FILE] [--no-cull]\n"
-            "         [--sun AZ,ALT] [--ambient A]\n"
+            "         [--sun AZ,ALT] [--ambient A] [--zscale F]\n"
             "  camera in metres: x east from the west edge, y north from the south edge, z height\n");
     return 2;
 }
@@ -143,7 +145,7 @@ int cmd_render(int argc, char **argv)
     const char *in[64], *out = NULL, *colors = NULL;
     int nin = 0, i, w = 800, h = 600, have_cam = 0, mode = BT_VIEW, full_step = 0, bands = 0;
     int fmt = RS_FMT_XRGB8888, depth = RS_DEPTH32, no_cull = 0;
-    double camv[6], fov = 60, max_err = 0, pix_err = 1, sun_az = 315, sun_alt = 45, ambient = 0.3;
+    double camv[6], fov = 50, max_err = 0, pix_err = 1, sun_az = 315, sun_alt = 45, ambient = 0.3, zscale = 0;
     dem_opts o;
     hf f;
     br_err err;
@@ -197,12 +199,14 @@ int cmd_render(int argc, char **argv)
         } else if (!strcmp(a, "--no-cull")) no_cull = 1;
         else if (!strcmp(a, "--sun") && n) { if (sscanf(n, "%lf,%lf", &sun_az, &sun_alt) != 2) return usage(); i++; }
         else if (!strcmp(a, "--ambient") && n) { ambient = atof(n); i++; }
+        else if (!strcmp(a, "--zscale") && n) { zscale = atof(n); i++; }
         else if (!strcmp(a, "-h") || !strcmp(a, "--help")) { usage(); return 0; }
         else if (a[0] == '-' && a[1]) { fprintf(stderr, "bitrain render: unknown option '%s'\n", a); return usage(); }
         else if (nin < 64) in[nin++] = a;
     }
     if (!nin || !out || w < 1 || h < 1 || w > RS_MAX_DIM || h > RS_MAX_DIM || !(fov >= 1 && fov <= 170)
-        || full_step < 0 || bands < 0 || !(ambient >= 0 && ambient <= 1) || !(pix_err > 0) || max_err < 0)
+        || full_step < 0 || bands < 0 || !(ambient >= 0 && ambient <= 1) || !(pix_err > 0) || max_err < 0
+        || !(zscale >= 0 && zscale <= 1000))
         return usage();
     if (bands == 0 || bands > h) bands = h;
 
@@ -221,14 +225,45 @@ int cmd_render(int argc, char **argv)
         goto done;
     }
 
+    /* vertical scale: --zscale, or automatic for grids without georeference whose
+     * relief dwarfs their extent at the loader's default 1 m spacing */
+    {
+        double W = (double)(f.w - 1) * f.dx_um / 1e6, H = (double)(f.h - 1) * f.dy_um / 1e6;
+        double relief = (double)(hf_z_to_mm(&f, st.zmax) - hf_z_to_mm(&f, st.zmin)) / 1000;
+        double ext = W > H ? W : H;
+        if (zscale == 0) {
+            zscale = 1;
+            if (f.geo.kind == HF_GEO_NONE && relief > 0.5 * ext && relief > 0) {
+                zscale = ext / (4 * relief);
+                printf("%s: no georeference and %.0f m of relief over %.0f m (1 m spacing assumed): "
+                       "vertical scale %.4g (override with --zscale)\n", in[0], relief, ext, zscale);
+            }
+        }
+        if (zscale != 1) {
+            sc.fr.sz_q16 = (int32_t)fmax(1, fmin((double)INT32_MAX, sc.fr.sz_q16 * zscale));
+            /* the normals follow the scaled heights (core/shade.h: n = (-gx kx, -gy ky, kz);
+             * scale down only, so the constants stay below 2^24) */
+            if (zscale < 1) {
+                sc.sc.kx = (int64_t)fmax(1, (double)llround((double)sc.sc.kx * zscale));
+                sc.sc.ky = (int64_t)fmax(1, (double)llround((double)sc.sc.ky * zscale));
+            } else sc.sc.kz = (int64_t)fmax(1, (double)llround((double)sc.sc.kz / zscale));
+        }
+    }
+
     /* camera (metres -> world units) */
     {
         double W = (double)(f.w - 1) * f.dx_um / 1e6, H = (double)(f.h - 1) * f.dy_um / 1e6;
-        double zmin = (double)hf_z_to_mm(&f, st.zmin) / 1000, zmax = (double)hf_z_to_mm(&f, st.zmax) / 1000;
+        double zmin = (double)hf_z_to_mm(&f, st.zmin) / 1000 * zscale, zmax = (double)hf_z_to_mm(&f, st.zmax) / 1000 * zscale;
         double ext = W > H ? W : H, dist, scale = ldexp(1.0, sc.shift);
         if (!have_cam) {
-            camv[0] = -0.15 * W; camv[1] = -0.15 * H; camv[2] = zmax + 0.35 * ext;
-            camv[3] = 0.5 * W;   camv[4] = 0.5 * H;   camv[5] = 0.5 * (zmin + zmax);
+            /* from the south-west at 35 degrees elevation, far enough for the terrain's
+             * bounding sphere to fit the vertical field of view */
+            double R = 0.5 * sqrt(W * W + H * H + (zmax - zmin) * (zmax - zmin));
+            double d = 1.05 * R / sin(fov / 2 * 3.14159265358979323846 / 180);
+            double el = 35 * 3.14159265358979323846 / 180;
+            camv[3] = 0.5 * W; camv[4] = 0.5 * H; camv[5] = 0.5 * (zmin + zmax);
+            camv[0] = camv[3] - d * cos(el) * 0.7071; camv[1] = camv[4] - d * cos(el) * 0.7071;
+            camv[2] = camv[5] + d * sin(el);
         }
         for (i = 0; i < 3; i++) {
             double e = camv[i] * scale, tt = camv[3 + i] * scale;
