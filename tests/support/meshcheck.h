@@ -59,7 +59,7 @@
  *                 corners are valid, 1 if exactly three are (one half cell), else 0.
  *                 With no voids area2 must EQUAL area2_max = 2(w-1)(h-1); with voids
  *                 area2 <= area2_max is required and, when the caller passes
- *                 expect_area2 >= 0 in mc_check's options, area2 == expect_area2.
+ *                 expect_area2 > 0 in mc_check's options, area2 == expect_area2.
  * overlap_samples samples strictly inside one triangle and covered (closed) by
  *                 another one as well.
  * uncovered       valid samples covered by no triangle: an error unless
@@ -81,10 +81,15 @@
  *     err_q10            ceil(1024 * err) : conservative, in 1/1024 units
  *     err_x, err_y, err_tri  where it happens (the first in scan order on ties)
  * ok = 1 when every error count above is zero (uncovered per the rule above) and
- *   the area rule holds.  bad_x, bad_y, bad_what name the first defect found.  The error is reported, not judged: compare it with
- *   mc_err_exceeds().  mc_check returns ok (or -1 if memory runs out).
- *   Cost: O(w*h) bytes x 9 of scratch, O(T log T) for edges, O(sum of triangle
- *   bounding boxes) for the raster pass, O(sum of edge lengths) for T-junctions.
+ *   the area rule holds; with opts.partial = 1 bad_boundary_edges, uncovered and
+ *   uncovered_far are not errors and area2 <= area2_max is the only area rule.
+ *   bad_x, bad_y, bad_what name the first defect found.  The error is reported,
+ *   not judged: compare it with mc_err_exceeds().  mc_check returns ok (or -1 if
+ *   memory runs out).
+ *   Cost: 14 bytes of scratch per grid sample and 8 per triangle edge use; time
+ *   O(w*h + T) for the edges (bucketed by lower end), O(sum of triangle bounding
+ *   boxes) for the raster pass, O(sum of edge lengths) for T-junctions: about
+ *   0.45 s for 2 million triangles over 1025x1025 on the development machine.
  *
  * ---------------------------------------------------------------------------
  * STRIPS (GL convention)
