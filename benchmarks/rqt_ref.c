@@ -175,9 +175,7 @@ static void dp_dfs(dp_ctx *d, int32_t p, int32_t q, int64_t k, int depth)
     }
 }
 
-/* Optimal strip for leaves[0..nt) in this order; writes it to out (if not NULL).
- * Returns the strip length; *line gets its line triangles.  -1 on no memory. */
-static int64_t strip_dp(int32_t size, const int32_t *leaves, int64_t nt, int32_t *out, int64_t *line)
+int64_t rq_strip_dp(int32_t size, const int32_t *leaves, int64_t nt, int32_t *out, int64_t *line)
 {
     dp_st *rows;
     int *nrows;
@@ -307,7 +305,7 @@ static void scheme(rq_ctx *c, int qt, const unsigned char *is_sel, int64_t nsel,
     e.leaves = c->leaves;
     emit_rec(&e, 3, 0, 0, max, max, max, 0, 1);   /* (0,0) -> (max,max) */
     emit_rec(&e, 2, max, max, 0, 0, 0, max, 1);   /* and back to (0,0) */
-    side->refs = strip_dp(c->size, e.leaves, e.nt, out ? out->strip : NULL, &side->line);
+    side->refs = rq_strip_dp(c->size, e.leaves, e.nt, out ? out->strip : NULL, &side->line);
     if (out) {
         out->nt = e.nt;
         out->ns = side->refs;

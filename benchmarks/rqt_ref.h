@@ -99,4 +99,12 @@ enum { RQ_SEL_EACH = 0, RQ_SEL_TOPDOWN = 1, RQ_SEL_VERTEX = 2 };
 int rq_run(const int32_t *z, int32_t size, int64_t tol_num, int64_t tol_den, int sel_mode,
            rq_result *r, rq_mesh *qt_out, rq_mesh *bt_out);
 
+/* The strip count above, for any triangle list: the shortest single GL strip that
+ * produces leaves[0..nt) (grid indices y*size + x, 3 per triangle, all of one
+ * winding) in THIS order, every other triangle being a line triangle.  out (may be
+ * NULL) gets the strip, capacity 5 * nt + 3.  Returns its length (refs) and sets
+ * *line; -1 on no memory.  Give it the leaves in Sierpinski order to compare a
+ * strip emitter with the best strip for that order. */
+int64_t rq_strip_dp(int32_t size, const int32_t *leaves, int64_t nt, int32_t *out, int64_t *line);
+
 #endif
