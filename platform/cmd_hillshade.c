@@ -11,6 +11,7 @@
 #include <string.h>
 #include "core/shade.h"
 #include "platform/cmd.h"
+#include "platform/dem_args.h"
 #include "platform/hillshade.h"
 #include "platform/load.h"
 #include "platform/png_io.h"
@@ -51,7 +52,7 @@ br_status hillshade_write_png(const hf *f, const fx_q14 l[3], const char *out, b
 int cmd_hillshade(int argc, char **argv)
 {
     const char *out = NULL, *in[64];
-    int n = 0, i;
+    int n = 0, i, r;
     double az = 315, alt = 45;
     dem_opts o;
     hf f;
@@ -62,10 +63,12 @@ int cmd_hillshade(int argc, char **argv)
         if (!strcmp(argv[i], "-o") && i + 1 < argc) out = argv[++i];
         else if (!strcmp(argv[i], "--azimuth") && i + 1 < argc) az = atof(argv[++i]);
         else if (!strcmp(argv[i], "--altitude") && i + 1 < argc) alt = atof(argv[++i]);
-        else if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
+        else if ((r = dem_args_parse(&o, argc, argv, &i, "hillshade")) != 0) {
+            if (r < 0) return 2;
+        } else if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
             printf("usage: bitrain hillshade IN... -o OUT.png [--azimuth DEG] [--altitude DEG]\n"
                    "  shaded relief (gdaldem defaults: azimuth 315, altitude 45, z-factor 1);\n"
-                   "  several adjacent tiles are merged first.\n");
+                   "  several adjacent tiles are merged first.\n" DEM_ARGS_USAGE);
             return 0;
         } else if (argv[i][0] == '-' && argv[i][1]) {
             fprintf(stderr, "bitrain hillshade: unknown option '%s'\n", argv[i]);

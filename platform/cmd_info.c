@@ -5,18 +5,19 @@
 #include <stdlib.h>
 #include <string.h>
 #include "platform/cmd.h"
+#include "platform/dem_args.h"
 #include "platform/load.h"
 
 static void usage(FILE *f)
 {
     fprintf(f, "usage: bitrain info [--json] [--merge] [--png-encoding grey|terrain-rgb|terrarium]\n"
-               "                    [--scale S] [--offset O] [--depth] FILE...\n"
+               "                    [--scale S] [--offset O] [--xyz-depth] FILE...\n"
                "  --json          one JSON object per file (or per merge) per line\n"
                "  --merge         merge the files by georeference and report the result\n"
                "  --png-encoding  how PNG pixels hold heights (default: grey for grey PNGs,\n"
                "                  terrain-rgb for colour ones)\n"
                "  --scale S, --offset O  grey PNG: metres = raw * S + O (default 1, 0)\n"
-               "  --depth         XYZ: the third column is depth (positive down)\n");
+               "  --xyz-depth     XYZ: the third column is depth (positive down); also --depth\n");
 }
 
 /* z * num / den metres as an exact decimal when den divides a power of ten <= 10^9 */
@@ -87,19 +88,10 @@ static void report(const char *label, const hf *f, int json)
     else printf("  origin:  none (no georeference in the file)\n");
 }
 
-static int num_arg(const char *opt, const char *v, double *out)
-{
-    char *end;
-    if (!v) { fprintf(stderr, "bitrain info: %s needs a value\n", opt); return 0; }
-    *out = strtod(v, &end);
-    if (end == v || *end || *out != *out) { fprintf(stderr, "bitrain info: %s: '%s' is not a number\n", opt, v); return 0; }
-    return 1;
-}
-
 int cmd_info(int argc, char **argv)
 {
     dem_opts o;
-    int json = 0, merge = 0, i, nf = 0, rc = 0;
+    int json = 0, merge = 0, i, nf = 0, rc = 0, r;
     const char **files = calloc((size_t)(argc > 0 ? argc : 1), sizeof *files);
     memset(&o, 0, sizeof o);
     if (!files) { fprintf(stderr, "bitrain info: out of memory\n"); return 1; }
@@ -108,22 +100,8 @@ int cmd_info(int argc, char **argv)
         if (!strcmp(a, "--json")) json = 1;
         else if (!strcmp(a, "--merge")) merge = 1;
         else if (!strcmp(a, "--depth")) o.xyz_depth = 1;
-        else if (!strcmp(a, "--scale") || !strcmp(a, "--offset")) {
-            if (!num_arg(a, i + 1 < argc ? argv[i + 1] : NULL, a[2] == 's' ? &o.png_scale : &o.png_offset)) {
-                free(files);
-                return 2;
-            }
-            i++;
-        } else if (!strcmp(a, "--png-encoding")) {
-            const char *v = i + 1 < argc ? argv[++i] : "";
-            if (!strcmp(v, "grey") || !strcmp(v, "gray")) o.png_encoding = DEM_PNG_GREY;
-            else if (!strcmp(v, "terrain-rgb")) o.png_encoding = DEM_PNG_TERRAIN_RGB;
-            else if (!strcmp(v, "terrarium")) o.png_encoding = DEM_PNG_TERRARIUM;
-            else {
-                fprintf(stderr, "bitrain info: --png-encoding must be grey, terrain-rgb or terrarium\n");
-                free(files);
-                return 2;
-            }
+        else if ((r = dem_args_parse(&o, argc, argv, &i, "info")) != 0) {
+            if (r < 0) { free(files); return 2; }
         } else if (!strcmp(a, "-h") || !strcmp(a, "--help")) { usage(stdout); free(files); return 0; }
         else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "bitrain info: unknown option '%s'\n", a);

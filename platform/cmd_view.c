@@ -15,6 +15,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include "platform/cmd.h"
+#include "platform/dem_args.h"
 #include "platform/png_io.h"
 #include "platform/scene.h"
 
@@ -61,14 +62,14 @@ static int usage(void)
             "  --frames N: quit after N frames (with --screenshot: save the last one)\n"
             "controls: mouse drag look, W/S forward/back, A/D left/right, E/Q up/down, arrows turn,\n"
             "  Shift faster, +/- pixel error, H hysteresis, G geomorph, C culling, P screenshot,\n"
-            "  Space reset view, Esc quit\n");
+            "  Space reset view, Esc quit\n" DEM_ARGS_USAGE);
     return 2;
 }
 
 int cmd_view(int argc, char **argv)
 {
     const char *in[64], *shot = NULL;
-    int nin = 0, i, w = 1024, h = 640, have_cam = 0, frames = 0, nframe = 0, shots = 0, rc = 1, quit = 0;
+    int r, nin = 0, i, w = 1024, h = 640, have_cam = 0, frames = 0, nframe = 0, shots = 0, rc = 1, quit = 0;
     double camv[6];
     view_state v;
     scene s;
@@ -95,6 +96,8 @@ int cmd_view(int argc, char **argv)
             if (sscanf(n, "%lf,%lf,%lf,%lf,%lf,%lf", &camv[0], &camv[1], &camv[2], &camv[3], &camv[4], &camv[5]) != 6)
                 return usage();
             have_cam = 1; i++;
+        } else if ((r = dem_args_parse(&so.dem, argc, argv, &i, "view")) != 0) {
+            if (r < 0) return 2;
         } else if (!strcmp(a, "-h") || !strcmp(a, "--help")) { usage(); return 0; }
         else if (a[0] == '-' && a[1]) { fprintf(stderr, "bitrain view: unknown option '%s'\n", a); return usage(); }
         else if (nin < 64) in[nin++] = a;
