@@ -22,7 +22,7 @@
 #define SUBONE (1 << SUB)
 #define HALF (SUBONE / 2)
 #define NARROW 8          /* bounding boxes narrower than this are scanned pixel by pixel */
-#define TINY 3            /* bounding boxes of at most TINY x TINY centres: per-pixel weights */
+#define TINY 4            /* bounding boxes of at most TINY x TINY centres: coverage mask + per-pixel weights */
 /* Colour is interpolated in one uint64 with three 21-bit fields (R at bit 42, G at 21,
  * B at 0), each 8 integer + 13 fraction bits.  Sums and products of packed values are
  * exact modulo 2^64, so a packed value whose true fields are all in [0, 2^21) unpacks
@@ -169,6 +169,18 @@ static int span_limits(int64_t s, int64_t K, int32_t px0, int32_t px1, int32_t *
         if (x < *xr) *xr = x < px0 ? px0 - 1 : (int32_t)x;
     } else if (K < 0) return 0;
     return 1;
+}
+
+/* Index of the lowest set bit of m (m != 0). */
+static int32_t ctz32(uint32_t m)
+{
+#if defined(__GNUC__)
+    return __builtin_ctz(m);
+#else
+    int32_t k = 0;
+    while (!(m & 1u)) { m >>= 1; k++; }
+    return k;
+#endif
 }
 
 typedef void (*tri_fn)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c);

@@ -8,22 +8,23 @@
 
 static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
 {
-    int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1, py, px;
+    int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1, py;
     int64_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, S, e0r, e2r, sx0, sx2, sy0, sy2;
     int32_t bias0, bias1, bias2, tiny;
     const int32_t w = bd->w;
 
     {
-        int32_t lo, hi;
-        ymin = MIN3(a->y, b->y, c->y);
-        ymax = MAX3(a->y, b->y, c->y);
+        const int32_t ax = a->x, ay = a->y, bx = b->x, by = b->y, cx = c->x, cy = c->y;
+        int32_t lo, hi, t;
+        t = ay < by ? ay : by; ymin = t < cy ? t : cy;
+        t = ay > by ? ay : by; ymax = t > cy ? t : cy;
         lo = (ymin + HALF - 1) >> SUB;    /* first row whose centre is >= ymin */
         hi = (ymax - HALF) >> SUB;        /* last row whose centre is <= ymax */
         py0 = lo < bd->y0 ? bd->y0 : lo;
         py1 = hi >= bd->y1 ? bd->y1 - 1 : hi;
         if (py0 > py1) return;
-        xmin = MIN3(a->x, b->x, c->x);
-        xmax = MAX3(a->x, b->x, c->x);
+        t = ax < bx ? ax : bx; xmin = t < cx ? t : cx;
+        t = ax > bx ? ax : bx; xmax = t > cx ? t : cx;
         px0 = (xmin + HALF - 1) >> SUB;
         px1 = (xmax - HALF) >> SUB;
         /* the path choice depends on the triangle only (not on the band or screen clip) */
@@ -68,40 +69,69 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
     sx0 = A0 * SUBONE; sx2 = A2 * SUBONE; sy0 = B0 * SUBONE; sy2 = B2 * SUBONE;
 
     if (tiny) {
-        /* Tiny bounding box: test each centre; at an inside centre the edge values are
-         * the barycentric weights (times area2), so attributes come straight from the
-         * vertices with no gradient set-up.  Extent < (TINY+1) px, so area2 < 2^13. */
-        int64_t inv = ((int64_t)1 << 40) / area2;
-        int64_t dzb = (int64_t)b->d - a->d, dzc = (int64_t)c->d - a->d;
-        uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
-        uint8_t *crow = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
-        RS_Z *zrow = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)w;
-        for (py = py0; py <= py1; py++, e0r += sy0, e2r += sy2, crow += bd->stride, zrow += w) {
-            int64_t e0 = e0r, e2 = e2r;
-            for (px = px0; px <= px1; px++, e0 += sx0, e2 += sx2) {
-                int64_t e1 = S - e0 - e2;
-                if ((e0 | e1 | e2) < 0) continue;
-                {
-                    int64_t w1 = (e2 * inv) >> 24, w2 = (e0 * inv) >> 24;    /* Q16 */
-                    uint32_t z = (uint32_t)((int64_t)a->d + ((dzb * w1 + dzc * w2) >> 16));
-                    RS_PIX *cp = (RS_PIX *)(void *)crow + px;
-                    bd->pixels++;
-#if RS_COUNT
-                    (void)z; (void)ca; (void)db; (void)dc; (void)zrow;
-                    *cp += 1;
-#else
-                    {
-                        RS_Z *zp = zrow + px;
-                        RS_Z zz = (RS_Z)(z >> RS_ZSH);
-                        if (zz > *zp) {
-                            uint64_t col = ca + db * (uint64_t)(w1 >> 3) + dc * (uint64_t)(w2 >> 3);
-                            *zp = zz;
-                            *cp = RS_PACK(col);
-                        }
-                    }
-#endif
-                }
+        /* Tiny bounding box (at most TINY x TINY candidate centres).  Phase 1: the
+         * coverage mask (bit 4 j + i for centre (px0 + i, py0 + j)), no attribute work,
+         * so the many triangles that cover no centre stop here.  Phase 2: at an inside
+         * centre the edge values are the barycentric weights times area2, so attributes
+         * come straight from the vertices with no gradient set-up.  Extent < (TINY+1)
+         * px, so area2 < 2^15 and e * inv < 2^41. */
+        uint32_t mask = 0;
+        int32_t nx = px1 - px0 + 1, ny = py1 - py0 + 1, i, j, npix = 0;
+        if (nx <= 2 && ny <= 2) {
+            /* the common case, unrolled: candidates (0,0) (1,0) (0,1) (1,1) -> bits 0 1 4 5 */
+            int64_t e0b = e0r + sx0, e2b = e2r + sx2, e0c = e0r + sy0, e2c = e2r + sy2;
+            int64_t e0d = e0c + sx0, e2d = e2c + sx2;
+            uint32_t valid = (nx == 2 ? 3u : 1u) * (ny == 2 ? 0x11u : 1u);
+            mask = (uint32_t)((e0r | (S - e0r - e2r) | e2r) >= 0)
+                 | (uint32_t)((e0b | (S - e0b - e2b) | e2b) >= 0) << 1
+                 | (uint32_t)((e0c | (S - e0c - e2c) | e2c) >= 0) << 4
+                 | (uint32_t)((e0d | (S - e0d - e2d) | e2d) >= 0) << 5;
+            mask &= valid;
+        } else {
+            int64_t r0 = e0r, r2 = e2r;
+            for (j = 0; j < ny; j++, r0 += sy0, r2 += sy2) {
+                int64_t e0 = r0, e2 = r2;
+                for (i = 0; i < nx; i++, e0 += sx0, e2 += sx2)
+                    mask |= (uint32_t)((e0 | (S - e0 - e2) | e2) >= 0) << (4 * j + i);
             }
+        }
+        if (!mask) return;
+        {
+            const int64_t inv = ((int64_t)1 << 40) / area2, ad = a->d;
+            const int64_t dzb = (int64_t)b->d - ad, dzc = (int64_t)c->d - ad;
+            const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
+            const size_t stride = bd->stride, zw = (size_t)w;
+            uint8_t *crow0 = bd->color + (size_t)(py0 - bd->y0) * stride;
+            RS_Z *zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw;
+            while (mask) {
+                int32_t k = ctz32(mask);
+                int64_t e0, e2, w1, w2;
+                uint32_t z;
+                RS_PIX *cp;
+                mask &= mask - 1;
+                i = k & 3; j = k >> 2;
+                e0 = e0r + i * sx0 + j * sy0;
+                e2 = e2r + i * sx2 + j * sy2;
+                w1 = (e2 * inv) >> 24; w2 = (e0 * inv) >> 24;    /* Q16 */
+                z = (uint32_t)(ad + ((dzb * w1 + dzc * w2) >> 16));
+                cp = (RS_PIX *)(void *)(crow0 + (size_t)j * stride) + px0 + i;
+                npix++;
+#if RS_COUNT
+                (void)z; (void)ca; (void)db; (void)dc; (void)zrow0;
+                *cp += 1;
+#else
+                {
+                    RS_Z *zp = zrow0 + (size_t)j * zw + px0 + i;
+                    RS_Z zz = (RS_Z)(z >> RS_ZSH);
+                    if (zz > *zp) {
+                        uint64_t col = ca + db * (uint64_t)(w1 >> 3) + dc * (uint64_t)(w2 >> 3);
+                        *zp = zz;
+                        *cp = RS_PACK(col);
+                    }
+                }
+#endif
+            }
+            bd->pixels += (uint32_t)npix;
         }
         return;
     }
