@@ -61,6 +61,7 @@ typedef struct em {
     int rec_splits;         /* record this frame's splits (view mode, hysteresis) */
     int lost;               /* the split list overflowed */
     int nonvoid;            /* the padded grid has no void sample: skip the checks */
+    int64_t wz_lo[256], wz_hi[256]; /* world z of the quantised height codes (floor, ceil) */
 } em;
 
 /* ------------------------------------------------------------ mesh memory */
@@ -99,6 +100,7 @@ br_status bt_mesh_init(bt_mesh *m, uint32_t max_tri, void *mem, size_t mem_bytes
     m->cap_v = cap_v;
     m->hash = (uint32_t *)(void *)p; p += (size_t)hs * 4;
     m->hmask = hs - 1;
+    memset(m->hash, 0, (size_t)hs * 4);
     m->strip = (uint32_t *)(void *)p; p += (size_t)cap_s * 4;
     m->cap_s = cap_s;
     p += (8 - ((uintptr_t)p & 7)) & 7;
@@ -176,95 +178,118 @@ static void dvolume(const em *e, int32_t x, int32_t y, int64_t lo[3], int64_t hi
     int32_t x0 = x - r < 0 ? 0 : x - r, x1 = x + r > e->S ? e->S : x + r;
     int32_t y0 = y - r < 0 ? 0 : y - r, y1 = y + r > e->S ? e->S : y + r;
     size_t idx = (size_t)y * e->n + x;
-    int64_t range = (int64_t)t->zmax - t->zmin;
-    int64_t zl = t->zmin + (range * t->zlo[idx]) / 255;
-    int64_t zh = t->zmin + (range * t->zhi[idx] + 254) / 255;
     lo[0] = fr->ox + (int64_t)x0 * fr->sx;
     hi[0] = fr->ox + (int64_t)x1 * fr->sx;
     lo[1] = fr->oy - (int64_t)y1 * fr->sy;
     hi[1] = fr->oy - (int64_t)y0 * fr->sy;
-    lo[2] = fr->oz + ((zl * fr->sz_q16) >> 16);
-    hi[2] = fr->oz + ((zh * fr->sz_q16 + 65535) >> 16);
+    lo[2] = e->wz_lo[t->zlo[idx]];
+    hi[2] = e->wz_hi[t->zhi[idx]];
+    (void)t;
 }
 
-static int culled(const em *e, const int64_t lo[3], const int64_t hi[3])
+/* Frustum test of a box against the planes in *mask: 1 when it lies wholly
+ * outside one of them (culled); planes it lies wholly inside are removed from
+ * *mask, so descendants (whose volumes nest inside) skip them. */
+static int culled(const em *e, const int64_t lo[3], const int64_t hi[3], unsigned *mask)
 {
     int i, k;
-    if (e->p->no_cull) return 0;
+    if (e->p->no_cull) { *mask = 0; return 0; }
     for (i = 0; i < CAM_NPLANES; i++) {
-        int64_t s = e->pl[i].d;
+        int64_t sp, sn;
+        if (!(*mask & (1u << i))) continue;
+        sp = sn = e->pl[i].d;
         for (k = 0; k < 3; k++) {
-            int64_t c = e->pl[i].n[k] >= 0 ? hi[k] : lo[k];
-            s += (int64_t)e->pl[i].n[k] * c;
+            int64_t nk = e->pl[i].n[k];
+            sp += nk * (nk >= 0 ? hi[k] : lo[k]);
+            sn += nk * (nk >= 0 ? lo[k] : hi[k]);
         }
-        if (s < 0) return 1;
+        if (sp < 0) return 1;
+        if (sn >= 0) *mask &= ~(1u << i);
     }
+    return 0;
+}
+
+/* Screen-space error of diamond (x, y): *ew = object error in world units
+ * (rounded up), *d = lower bound of the distance to its volume.  Returns -1 when
+ * culled (all void or outside the frustum), 1 when the error is unbounded (mixed
+ * voids, or the eye inside the volume with a nonzero error), 0 otherwise. */
+static int view_err(const em *e, int32_t x, int32_t y, unsigned *mask, int64_t *ew, int64_t *d)
+{
+    const bt_tree *t = e->t;
+    size_t idx = (size_t)y * e->n + x;
+    int64_t lo[3], hi[3];
+    uint16_t code = t->err[idx];
+    if (t->zlo[idx] > t->zhi[idx]) return -1; /* all void */
+    dvolume(e, x, y, lo, hi);
+    if (*mask && culled(e, lo, hi, mask)) return -1;
+    if (code == BT_CODE_SPLIT) return 1;
+    *ew = isat_mul(bt_code_value(code), e->p->fr.sz_q16);
+    *ew = *ew == INT64_MAX ? *ew : (*ew + 65535) >> 16;
+    *d = box_dist(e->p->c->eye, lo, hi);
+    if (*d <= 0) { *d = 0; return *ew > 0 ? 1 : 0; }
     return 0;
 }
 
 /* rho in q8 pixels; -1 when culled */
 static int64_t rho_q8(const em *e, int32_t x, int32_t y)
 {
-    const bt_tree *t = e->t;
-    int64_t lo[3], hi[3], d, ew;
-    uint16_t code = t->err[(size_t)y * e->n + x];
-    if (t->zlo[(size_t)y * e->n + x] > t->zhi[(size_t)y * e->n + x]) return -1; /* all void */
-    dvolume(e, x, y, lo, hi);
-    if (culled(e, lo, hi)) return -1;
-    if (code == BT_CODE_SPLIT) return INT64_MAX;
-    ew = isat_mul(bt_code_value(code), e->p->fr.sz_q16);
-    ew = ew == INT64_MAX ? ew : (ew + 65535) >> 16;
-    d = box_dist(e->p->c->eye, lo, hi);
-    if (d <= 0) return ew > 0 ? INT64_MAX : 0;
+    unsigned mask = 0x3f;
+    int64_t ew = 0, d = 0;
+    int r = view_err(e, x, y, &mask, &ew, &d);
+    if (r < 0) return -1;
+    if (r > 0) return INT64_MAX;
+    if (d == 0) return 0;
     return isat_mul(ew, e->fq8) / d;
 }
+
+static br_status setup(em *e, bt_tree *t, const bt_params *p);
 
 int64_t bt_screen_error_q8(const bt_tree *t, const bt_params *p, int32_t x, int32_t y)
 {
     em e;
     int64_t r;
-    memset(&e, 0, sizeof e);
-    e.t = (bt_tree *)t; e.p = p; e.n = t->n; e.S = t->n - 1;
-    if (!p->c) return 0;
-    cam_frustum(p->c, e.pl);
-    e.fq8 = p->c->f_q16 >> 8;
+    if (!p || p->mode == BT_FIDELITY || setup(&e, (bt_tree *)t, p) != BR_OK) return 0;
     r = rho_q8(&e, x, y);
     return r < 0 ? 0 : r;
 }
 
 /* ------------------------------------------------------------ split rule */
-/* returns 1 split, 0 leaf, -1 drop (culled) ; *morph set for split vertices */
-static int decide(em *e, int32_t x, int32_t y, uint16_t *morph)
+static uint16_t morph_of(const em *e, int64_t rho)
+{
+    int64_t q = rho - e->tau;
+    if (e->morph_span <= 0) return BT_MORPH_ONE;
+    if (q < 0) q = 0;
+    if (q >= e->morph_span) return BT_MORPH_ONE;
+    return (uint16_t)((q * BT_MORPH_ONE) / e->morph_span);
+}
+
+/* returns 1 split, 0 leaf, -1 drop (culled); *morph set for split vertices;
+ * *mask: frustum planes still to test (view and budget modes) */
+static int decide(em *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
 {
     bt_tree *t = e->t;
     size_t idx = (size_t)y * e->n + x;
+    int64_t ew = 0, d = 0;
+    int r;
     *morph = BT_MORPH_ONE;
     if (e->p->mode == BT_FIDELITY && e->tau >= 0) return t->err[idx] > e->cthr;
     if (e->p->mode == BT_BUDGET || e->tau < 0) {
-        if (t->st[idx] & ST_SPLIT) {
-            if (e->morph_span > 0) {
-                int64_t r = rho_q8(e, x, y) - e->tau;
-                if (r < 0) r = 0;
-                if (r < e->morph_span) *morph = (uint16_t)((r * BT_MORPH_ONE) / e->morph_span);
-            }
-            return 1;
-        }
-        if (e->p->mode == BT_VIEW || e->p->mode == BT_BUDGET) {
-            if (e->p->no_cull) return 0;
-            return rho_q8(e, x, y) < 0 ? -1 : 0;
-        }
-        return 0;
-    }
-    {
-        int64_t r = rho_q8(e, x, y);
-        int sp;
+        if (e->p->mode == BT_FIDELITY) return (t->st[idx] & ST_SPLIT) != 0;
+        r = view_err(e, x, y, mask, &ew, &d);
         if (r < 0) return -1;
-        sp = r > e->tau || ((t->st[idx] & ST_PREV) && r > e->tau_lo);
-        if (sp && e->morph_span > 0) {
-            int64_t q = r - e->tau;
-            if (q < 0) q = 0;
-            if (q < e->morph_span) *morph = (uint16_t)((q * BT_MORPH_ONE) / e->morph_span);
-        }
+        if (!(t->st[idx] & ST_SPLIT)) return 0;
+        if (e->morph_span > 0 && r == 0 && d > 0) *morph = morph_of(e, isat_mul(ew, e->fq8) / d);
+        return 1;
+    }
+    r = view_err(e, x, y, mask, &ew, &d);
+    if (r < 0) return -1;
+    if (r > 0) return 1;
+    {
+        /* rho = ew * f / d > tau  <=>  ew * f > tau * d (no division) */
+        int64_t lhs = isat_mul(ew, e->fq8);
+        int sp = lhs > isat_mul(e->tau, d) ||
+                 ((t->st[idx] & ST_PREV) && lhs > isat_mul(e->tau_lo, d));
+        if (sp && e->morph_span > 0) *morph = morph_of(e, d > 0 ? lhs / d : INT64_MAX);
         return sp;
     }
 }
@@ -351,7 +376,7 @@ static void leaf(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
     }
 }
 
-static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
+static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned mask)
 {
     int32_t dx = b->x - a->x, dy = b->y - a->y;
     pt mm;
@@ -365,7 +390,7 @@ static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
     mm.idx = NO_IDX;
     mm.x = a->x + (dx >> 1);
     mm.y = a->y + (dy >> 1);
-    sp = decide(e, mm.x, mm.y, &mm.morph);
+    sp = decide(e, mm.x, mm.y, &mask, &mm.morph);
     if (sp < 0) return;
     if (!sp) {
         if (e->nonvoid || (valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y)))
@@ -388,8 +413,8 @@ static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
         mm.z = mm.morph == BT_MORPH_ONE ? zs
              : (int32_t)(zf + ((((int64_t)zs - zf) * mm.morph + (1 << 14)) >> 15));
     }
-    rec(e, a, &mm, c, !in_hyp, 0);
-    rec(e, c, &mm, b, 0, !out_hyp);
+    rec(e, a, &mm, c, !in_hyp, 0, mask);
+    rec(e, c, &mm, b, 0, !out_hyp, mask);
 }
 
 static void corner(const bt_tree *t, int32_t x, int32_t y, pt *q)
@@ -403,8 +428,8 @@ static void run(em *e)
     int32_t S = e->S;
     corner(e->t, 0, 0, &A); corner(e->t, S, 0, &B);
     corner(e->t, S, S, &C); corner(e->t, 0, S, &D);
-    rec(e, &A, &B, &C, 0, 1);
-    rec(e, &C, &D, &A, 1, 0);
+    rec(e, &A, &B, &C, 0, 1, 0x3f);
+    rec(e, &C, &D, &A, 1, 0, 0x3f);
 }
 
 /* ------------------------------------------------------------ budget */
@@ -540,6 +565,15 @@ static br_status setup(em *e, bt_tree *t, const bt_params *p)
     if (!p->c || p->fr.sx <= 0 || p->fr.sy <= 0 || p->fr.sz_q16 <= 0) return BR_E_ARG;
     cam_frustum(p->c, e->pl);
     e->fq8 = p->c->f_q16 >> 8;
+    {
+        int64_t range = (int64_t)t->zmax - t->zmin;
+        int i;
+        for (i = 0; i < 256; i++) {
+            int64_t zl = t->zmin + (range * i) / 255, zh = t->zmin + (range * i + 254) / 255;
+            e->wz_lo[i] = p->fr.oz + ((zl * p->fr.sz_q16) >> 16);
+            e->wz_hi[i] = p->fr.oz + ((zh * p->fr.sz_q16 + 65535) >> 16);
+        }
+    }
     e->tau = p->pixel_err_q8 > 0 ? p->pixel_err_q8 : 256;
     e->tau_lo = p->hyst_q8 > 0 ? (e->tau * (256 - (p->hyst_q8 > 256 ? 256 : p->hyst_q8))) >> 8 : e->tau;
     e->morph_span = (e->tau * p->morph_q8) >> 8;
@@ -562,10 +596,20 @@ br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri)
     return BR_OK;
 }
 
-static void reset_mesh(bt_mesh *m)
+/* Empties the vertex hash by walking from each vertex's home slot to the end of
+ * its cluster (cheaper than clearing the whole table when nv is small; every
+ * occupied slot lies in a cluster run that starts at or before its home). */
+static void reset_mesh(bt_mesh *m, int32_t n)
 {
+    uint32_t i;
+    if (m->nv > (m->hmask >> 3)) memset(m->hash, 0, ((size_t)m->hmask + 1) * 4);
+    else
+        for (i = 0; i < m->nv; i++) {
+            uint32_t key = (uint32_t)m->v[i].y * (uint32_t)n + (uint32_t)m->v[i].x;
+            uint32_t h = (key * 2654435761u) & m->hmask;
+            while (m->hash[h]) { m->hash[h] = 0; h = (h + 1) & m->hmask; }
+        }
     m->nv = 0; m->ns = 0; m->ntri = 0; m->nline = 0; m->nfict = 0; m->overflow = 0;
-    memset(m->hash, 0, ((size_t)m->hmask + 1) * 4);
 }
 
 br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
@@ -588,7 +632,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
         nprev = 0;
     }
-    reset_mesh(m);
+    reset_mesh(m, t->n);
     if (p->mode == BT_BUDGET) {
         budget_mark(&e, p->budget < m->max_tri ? p->budget : m->max_tri, &nid);
         e.tau = -1;
@@ -619,7 +663,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
             for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_PREV);
         }
         m->nsplits = 0;
-        reset_mesh(m);
+        reset_mesh(m, t->n);
         e.full = 0; e.rec_splits = 0; e.lost = 0;
         budget_mark(&e, m->max_tri, &nid);
         e.tau = -1;
