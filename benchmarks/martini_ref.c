@@ -120,6 +120,50 @@ void mr_errors_int(const mr_grid *g, const int32_t *z, uint32_t *err2, int sound
     }
 }
 
+void mr_errors_tight(const mr_grid *g, const int32_t *z, uint32_t *tb, uint32_t *err2)
+{
+    int64_t i, size = g->size;
+    const uint16_t *coords = g->coords;
+    memset(err2, 0, (size_t)(size * size) * sizeof *err2);
+    /* pass 1: per-triangle bounds, finest level first.  Tree ids (index + 2) of a
+     * level are [lv, 2 lv); martini reads the path from the low bits, so the
+     * children of id are 2 lv + (id - lv) ((b,c,m)) and 3 lv + (id - lv) ((c,a,m)). */
+    {
+        int64_t lv = 1;
+        while (2 * lv + 2 <= g->ntri + 2) lv *= 2;      /* the finest level */
+        for (; lv >= 2; lv /= 2) {
+            int64_t id;
+            for (id = 2 * lv - 1; id >= lv; id--) {
+                int64_t k = id - 2;
+                int32_t ax = coords[4 * k], ay = coords[4 * k + 1], bx = coords[4 * k + 2], by = coords[4 * k + 3];
+                int32_t mx = (ax + bx) >> 1, my = (ay + by) >> 1;
+                int64_t d = (int64_t)z[ay * size + ax] + z[by * size + bx] - 2 * (int64_t)z[my * size + mx];
+                uint32_t me = (uint32_t)(d < 0 ? -d : d), c = 0, e;
+                if (k < g->nparent) {
+                    uint32_t l = tb[3 * lv + (id - lv) - 2], r = tb[2 * lv + (id - lv) - 2];
+                    c = l > r ? l : r;
+                }
+                e = me + c;
+                if (e < me) e = UINT32_MAX;
+                tb[k] = e;
+                if (e > err2[my * size + mx]) err2[my * size + mx] = e;
+            }
+        }
+    }
+    /* pass 2: martini's max propagation of the diamond values keeps the
+     * extraction crack-free (a split child forces its parents' diamonds) */
+    for (i = g->nparent - 1; i >= 0; i--) {
+        int32_t ax = coords[4 * i], ay = coords[4 * i + 1], bx = coords[4 * i + 2], by = coords[4 * i + 3];
+        int32_t mx = (ax + bx) >> 1, my = (ay + by) >> 1;
+        int32_t cx = mx + my - ay, cy = my + ax - mx;
+        int64_t mid = my * size + mx;
+        int64_t l = ((ay + cy) >> 1) * size + ((ax + cx) >> 1);
+        int64_t r = ((by + cy) >> 1) * size + ((bx + cx) >> 1);
+        if (err2[l] > err2[mid]) err2[mid] = err2[l];
+        if (err2[r] > err2[mid]) err2[mid] = err2[r];
+    }
+}
+
 /* getMesh's two recursive passes, once per error type. */
 #define MR_GETMESH(NAME, ETYPE, TTYPE, SPLIT)                                                  \
 typedef struct NAME##_st {                                                                     \

@@ -24,6 +24,8 @@
  * bound)), e_m = |(z_a + z_b)/2 - z_m|.  The parent plane and a child's plane agree
  * on the child's two other vertices and differ by e_m at m, so |parent - z| <=
  * e_m + |child - z| everywhere in the child: a true upper bound, O(n) to build.
+ * (Here a child's bound is its diamond's, the max over it and its neighbour across
+ * the hypotenuse; mr_errors_tight keeps per-triangle bounds and is tighter.)
  *
  * Two arithmetic flavours:
  *  - f32 (faithful): heights float32, errors float32, midpoint errors in double,
@@ -77,6 +79,12 @@ void mr_mesh_f32(mr_grid *g, const float *errors, double max_error, mr_mesh *out
  * doubled errors.  sound = 0: martini's max(midpoint, children) metric;
  * sound = 1: the true bound e_m + max(child bounds). */
 void mr_errors_int(const mr_grid *g, const int32_t *z, uint32_t *err2, int sound);
+/* A tighter sound bound, still O(n): per-triangle bounds B(T) = e_m + max(B of its
+ * two children) (tb: ntri uint32 scratch), err2[m] = the larger B of the diamond
+ * at m, then martini's max propagation of err2 so the extraction stays crack-free.
+ * Emitted triangles have B(T) <= thr2, a true bound (docs/baselines.md). */
+void mr_errors_tight(const mr_grid *g, const int32_t *z, uint32_t *tb, uint32_t *err2);
+
 /* getMesh on doubled errors: triangles until err2[m] <= thr2. */
 void mr_mesh_int(mr_grid *g, const uint32_t *err2, int64_t thr2, mr_mesh *out);
 
