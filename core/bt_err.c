@@ -98,10 +98,11 @@ size_t bt_mem_size(int32_t w, int32_t h)
 size_t bt_scratch_size(int32_t w, int32_t h)
 {
     if (hf_check_dims(w, h) != BR_OK || w < 2 || h < 2) return 0;
-    /* sanitised heights (int32) + per-row void prefix counts (uint16, w+1 per row) */
     /* sanitised heights (int32), per-row void prefix counts (uint16, w+1 per row),
-     * curvature per sample (int32, curvature metric only) */
-    return (size_t)w * (size_t)h * 8 + (size_t)(w + 1) * (size_t)h * 2 + 64 + 16 * TAB_MAX * 12
+     * then per-diamond half bounds (exact metric: 2 x int32 per padded sample) or
+     * curvature (int32 per sample), whichever is used, plus the row spans */
+    size_t n = (size_t)(((int32_t)1 << padded_k(w, h)) + 1);
+    return (size_t)w * (size_t)h * 4 + n * n * 8 + (size_t)(w + 1) * (size_t)h * 2 + 64 + 16 * TAB_MAX * 12
          + (size_t)(((int32_t)1 << padded_k(w, h)) + 1) * 12;
 }
 
@@ -119,6 +120,7 @@ typedef struct ctx {
      * directions x 2 sizes) the samples off the vertices as (offset, dx, dy)
      * from the apex; used for triangles inside the domain of void-free grids */
     int32_t *tab;          /* 16 tables of TAB_MAX entries x 3 */
+    int32_t *ub;           /* 2 per diamond: upper bound of each half's error (exact metric) */
     int32_t tabn[16];
 } ctx;
 
@@ -410,6 +412,14 @@ static void tri_eval(const ctx *c, const int32_t a[2], const int32_t cc[2], cons
     }
 }
 
+#define UB_INF INT32_MAX
+
+/* which half of diamond (cx, cy) has its apex at (px, py): 1 = below / right */
+static size_t half_of(int32_t cx, int32_t cy, int32_t px, int32_t py)
+{
+    return (py > cy) || (py == cy && px > cx);
+}
+
 /* quantise a biased height (0 .. R = zmax - zmin) to 8 bits, rounding down (lo)
  * or up (hi), by a multiply: qm = floor(255 * 2^24 / R), so the estimate is at
  * most 1 below the exact floor (lo, conservative) and hi adds 1 (>= the ceiling). */
@@ -429,6 +439,13 @@ static uint8_t q_hi(const ctx *c, int64_t z)
     return (uint8_t)(q > 255 ? 255 : q);
 }
 
+
+/* Per-triangle upper bounds ub (exact when scanned) let most triangles skip the
+ * scan: |plane_T - z| <= e_m + |plane_C - z| on each child C (the planes agree
+ * on C's other two vertices and differ by e_m at the midpoint m), so
+ * e(T) <= sb = e_m + max(ub(C1), ub(C2)).  When sb is already <= the children's
+ * maximum (which the diamond takes anyway), the diamond's value is the same as
+ * with the exact e(T): no scan.  The result equals the exact hierarchy. */
 static void diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int typeD)
 {
     int32_t n = t->n, S = n - 1;
@@ -437,6 +454,8 @@ static void diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, i
     uint16_t code = 0;
     int lo = 255, hi = 0;
     size_t idx = (size_t)y * n + x;
+    int64_t em = -1, cmax;
+    int32_t za = 0, zb = 0, zm = 0;
     if (typeD) {
         int diag = ((x ^ y) & (2 * h)) == 0; /* (x>>(j+1)) + (y>>(j+1)) even; h = 2^j */
         if (diag) { a[0] = x - h; a[1] = y - h; b[0] = x + h; b[1] = y + h;
@@ -453,20 +472,7 @@ static void diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, i
         if (x - h >= 0) { ap[na][0] = x - h; ap[na][1] = y; na++; }
         if (x + h <= S) { ap[na][0] = x + h; ap[na][1] = y; na++; }
     }
-    for (i = 0; i < na; i++) {
-        tri_res r;
-        if (h <= 4 && h >= 2) tab_build((ctx *)c, a, ap[i], b);
-        tri_eval(c, a, ap[i], b, &r);
-        if (r.cls == 1) code = BT_CODE_SPLIT;
-        else if (r.cls == 0) {
-            uint16_t e = bt_code_encode(r.err);
-            uint8_t l = q_lo(c, r.zlo), u = q_hi(c, r.zhi);
-            if (e > code) code = e;
-            if (l < lo) lo = l;
-            if (u > hi) hi = u;
-        }
-    }
-    /* children */
+    /* children first: their maximum decides whether the halves need a scan */
     {
         int32_t cx[4], cy[4];
         int nc = 0;
@@ -485,6 +491,44 @@ static void diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, i
             if (t->err[ci] > code) code = t->err[ci];
             if (t->zlo[ci] < lo) lo = t->zlo[ci];
             if (t->zhi[ci] > hi) hi = t->zhi[ci];
+        }
+    }
+    cmax = bt_code_value(code);
+    if (c->ub && h >= 2 && c->metric == BT_METRIC_EXACT &&
+        samp(c, a[0], a[1], &za) && samp(c, b[0], b[1], &zb) && samp(c, x, y, &zm))
+        em = (iabs32(za + zb - 2 * zm) + 1) >> 1;
+    for (i = 0; i < na; i++) {
+        tri_res r;
+        size_t hv = 2 * idx + half_of(x, y, ap[i][0], ap[i][1]);
+        if (em >= 0 && code != BT_CODE_SPLIT) {
+            int32_t m1x = (a[0] + ap[i][0]) >> 1, m1y = (a[1] + ap[i][1]) >> 1;
+            int32_t m2x = (b[0] + ap[i][0]) >> 1, m2y = (b[1] + ap[i][1]) >> 1;
+            int64_t u1 = c->ub[2 * ((size_t)m1y * n + m1x) + half_of(m1x, m1y, x, y)];
+            int64_t u2 = c->ub[2 * ((size_t)m2y * n + m2x) + half_of(m2x, m2y, x, y)];
+            int64_t sb = em + (u1 > u2 ? u1 : u2);
+            if (u1 != UB_INF && u2 != UB_INF && sb <= cmax) {
+                int32_t zp = c->z[(size_t)ap[i][1] * c->w + ap[i][0]];
+                int32_t zl = za < zb ? za : zb, zh = za > zb ? za : zb;
+                uint8_t l, u;
+                if (zp < zl) zl = zp;
+                if (zp > zh) zh = zp;
+                l = q_lo(c, (int64_t)zl - sb); u = q_hi(c, (int64_t)zh + sb);
+                if (l < lo) lo = l;
+                if (u > hi) hi = u;
+                c->ub[hv] = (int32_t)sb;
+                continue;
+            }
+        }
+        if (h <= 4 && h >= 2) tab_build((ctx *)c, a, ap[i], b);
+        tri_eval(c, a, ap[i], b, &r);
+        if (c->ub) c->ub[hv] = r.cls == 0 && r.err < UB_INF ? (int32_t)r.err : UB_INF;
+        if (r.cls == 1) code = BT_CODE_SPLIT;
+        else if (r.cls == 0) {
+            uint16_t e = bt_code_encode(r.err);
+            uint8_t l = q_lo(c, r.zlo), u = q_hi(c, r.zhi);
+            if (e > code) code = e;
+            if (l < lo) lo = l;
+            if (u > hi) hi = u;
         }
     }
     t->err[idx] = code;
@@ -528,6 +572,19 @@ static void a1_fast(bt_tree *t, const ctx *c, size_t idx, int32_t za, int32_t zb
     t->err[idx] = enc_small(e);
     t->zlo[idx] = q_lo(c, (int64_t)lo - e);
     t->zhi[idx] = q_hi(c, (int64_t)hi + e);
+    if (c->ub) c->ub[2 * idx] = c->ub[2 * idx + 1] = e;
+}
+
+/* exact error of the D1 half with apex (px, py) (both hypotenuse-end legs
+ * hold one A1 child whose half towards (x, y) has its exact error in ub) */
+static int32_t d1_half(const ctx *c, int32_t n, int32_t x, int32_t y, int32_t px, int32_t py, int32_t ec)
+{
+    int32_t m1x = px, m1y = y, m2x = x, m2y = py, u1, u2;   /* legs are axis-parallel */
+    u1 = c->ub[2 * ((size_t)m1y * n + m1x) + half_of(m1x, m1y, x, y)];
+    u2 = c->ub[2 * ((size_t)m2y * n + m2x) + half_of(m2x, m2y, x, y)];
+    if (u1 > ec) ec = u1;
+    if (u2 > ec) ec = u2;
+    return ec;
 }
 
 /* The finest level (h = 1) for grids without voids, as stencils: A1 diamonds
@@ -565,8 +622,19 @@ static void level1(bt_tree *t, const ctx *c)
                 uint16_t code;
                 size_t ch[4];
                 int lq, hq;
-                if ((((x >> 1) + (y >> 1)) & 1) == 0) e = (iabs32(z00 + z22 - 2 * zm) + 1) >> 1;
-                else e = (iabs32(z20 + z02 - 2 * zm) + 1) >> 1;
+                if ((((x >> 1) + (y >> 1)) & 1) == 0) {
+                    e = (iabs32(z00 + z22 - 2 * zm) + 1) >> 1;
+                    if (c->ub) {   /* apexes (x+1, y-1): half 0, (x-1, y+1): half 1 */
+                        c->ub[2 * idx] = d1_half(c, n, x, y, x + 1, y - 1, e);
+                        c->ub[2 * idx + 1] = d1_half(c, n, x, y, x - 1, y + 1, e);
+                    }
+                } else {
+                    e = (iabs32(z20 + z02 - 2 * zm) + 1) >> 1;
+                    if (c->ub) {   /* apexes (x-1, y-1): half 0, (x+1, y+1): half 1 */
+                        c->ub[2 * idx] = d1_half(c, n, x, y, x - 1, y - 1, e);
+                        c->ub[2 * idx + 1] = d1_half(c, n, x, y, x + 1, y + 1, e);
+                    }
+                }
                 code = enc_small(e);
                 ch[0] = idx - 1; ch[1] = idx + 1; ch[2] = idx - (size_t)n; ch[3] = idx + (size_t)n;
                 for (k = 0; k < 4; k++) if (t->err[ch[k]] > code) code = t->err[ch[k]];
@@ -662,6 +730,7 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
         c.tab = c.rx1 + n;
         for (j = 0; j < 16; j++) c.tabn[j] = -1;
         q = (uint8_t *)(c.tab + 16 * TAB_MAX * 3);
+        c.ub = metric == BT_METRIC_EXACT ? (int32_t *)(void *)q : NULL;
         if (metric == BT_METRIC_CURVATURE) {
             int32_t *kap = (int32_t *)(void *)q;
             for (y = 0; y < h; y++)
