@@ -77,16 +77,20 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
          * px, so area2 < 2^15 and e * inv < 2^41. */
         uint32_t mask = 0;
         int32_t nx = px1 - px0 + 1, ny = py1 - py0 + 1, i, j, npix = 0;
-        if (nx <= 2 && ny <= 2) {
-            /* the common case, unrolled: candidates (0,0) (1,0) (0,1) (1,1) -> bits 0 1 4 5 */
-            int64_t e0b = e0r + sx0, e2b = e2r + sx2, e0c = e0r + sy0, e2c = e2r + sy2;
-            int64_t e0d = e0c + sx0, e2d = e2c + sx2;
-            uint32_t valid = (nx == 2 ? 3u : 1u) * (ny == 2 ? 0x11u : 1u);
+        int64_t e0b = 0, e2b = 0, e0c = 0, e2c = 0, e0d = 0, e2d = 0;
+        int small2 = nx <= 2 && ny <= 2;
+        if (small2) {
+            /* the common case, unrolled: candidates (0,0) (1,0) (0,1) (1,1) -> bits 0 1 4 5;
+             * a candidate past px1 or py1 is outside the triangle anyway unless px1/py1
+             * were clipped to the screen or band, hence the masks */
+            e0b = e0r + sx0; e2b = e2r + sx2; e0c = e0r + sy0; e2c = e2r + sy2;
+            e0d = e0c + sx0; e2d = e2c + sx2;
             mask = (uint32_t)((e0r | (S - e0r - e2r) | e2r) >= 0)
                  | (uint32_t)((e0b | (S - e0b - e2b) | e2b) >= 0) << 1
                  | (uint32_t)((e0c | (S - e0c - e2c) | e2c) >= 0) << 4
                  | (uint32_t)((e0d | (S - e0d - e2d) | e2d) >= 0) << 5;
-            mask &= valid;
+            if (nx < 2) mask &= 0x11u;
+            if (ny < 2) mask &= 0x03u;
         } else {
             int64_t r0 = e0r, r2 = e2r;
             for (j = 0; j < ny; j++, r0 += sy0, r2 += sy2) {
@@ -103,34 +107,44 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
             const size_t stride = bd->stride, zw = (size_t)w;
             uint8_t *crow0 = bd->color + (size_t)(py0 - bd->y0) * stride;
             RS_Z *zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw;
-            while (mask) {
-                int32_t k = ctz32(mask);
-                int64_t e0, e2, w1, w2;
-                uint32_t z;
-                RS_PIX *cp;
-                mask &= mask - 1;
-                i = k & 3; j = k >> 2;
-                e0 = e0r + i * sx0 + j * sy0;
-                e2 = e2r + i * sx2 + j * sy2;
-                w1 = (e2 * inv) >> 24; w2 = (e0 * inv) >> 24;    /* Q16 */
-                z = (uint32_t)(ad + ((dzb * w1 + dzc * w2) >> 16));
-                cp = (RS_PIX *)(void *)(crow0 + (size_t)j * stride) + px0 + i;
-                npix++;
+            /* shade the centre (px0 + I, py0 + J) whose edge values are E0, E2 */
 #if RS_COUNT
-                (void)z; (void)ca; (void)db; (void)dc; (void)zrow0;
-                *cp += 1;
+#define TINY_SHADE(E0, E2, I, J) do {                                                  \
+                (void)inv; (void)ad; (void)dzb; (void)dzc; (void)db; (void)dc; (void)ca; \
+                (void)zrow0; (void)(E0); (void)(E2);                                   \
+                ((RS_PIX *)(void *)(crow0 + (size_t)(J) * stride))[px0 + (I)] += 1;    \
+                npix++;                                                                \
+            } while (0)
 #else
-                {
-                    RS_Z *zp = zrow0 + (size_t)j * zw + px0 + i;
-                    RS_Z zz = (RS_Z)(z >> RS_ZSH);
-                    if (zz > *zp) {
-                        uint64_t col = ca + db * (uint64_t)(w1 >> 3) + dc * (uint64_t)(w2 >> 3);
-                        *zp = zz;
-                        *cp = RS_PACK(col);
-                    }
-                }
+#define TINY_SHADE(E0, E2, I, J) do {                                                  \
+                int64_t w1_ = ((E2) * inv) >> 24, w2_ = ((E0) * inv) >> 24; /* Q16 */    \
+                RS_Z *zp_ = zrow0 + (size_t)(J) * zw + px0 + (I);                        \
+                RS_Z zz_ = (RS_Z)((uint32_t)(ad + ((dzb * w1_ + dzc * w2_) >> 16)) >> RS_ZSH); \
+                npix++;                                                                \
+                if (zz_ > *zp_) {                                                      \
+                    uint64_t col_ = ca + db * (uint64_t)(w1_ >> 3) + dc * (uint64_t)(w2_ >> 3); \
+                    *zp_ = zz_;                                                        \
+                    ((RS_PIX *)(void *)(crow0 + (size_t)(J) * stride))[px0 + (I)] = RS_PACK(col_); \
+                }                                                                      \
+            } while (0)
 #endif
+            if (small2) {
+                if (mask & 0x01u) TINY_SHADE(e0r, e2r, 0, 0);
+                if (mask & 0x02u) TINY_SHADE(e0b, e2b, 1, 0);
+                if (mask & 0x10u) TINY_SHADE(e0c, e2c, 0, 1);
+                if (mask & 0x20u) TINY_SHADE(e0d, e2d, 1, 1);
+            } else {
+                while (mask) {
+                    int32_t k = ctz32(mask);
+                    int64_t e0, e2;
+                    mask &= mask - 1;
+                    i = k & 3; j = k >> 2;
+                    e0 = e0r + i * sx0 + j * sy0;
+                    e2 = e2r + i * sx2 + j * sy2;
+                    TINY_SHADE(e0, e2, i, j);
+                }
             }
+#undef TINY_SHADE
             bd->pixels += (uint32_t)npix;
         }
         return;
