@@ -283,13 +283,12 @@ static void tab_build(ctx *c, const int32_t a[2], const int32_t cc[2], const int
 }
 
 static void tri_eval(const ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2],
-                     tri_res *r)
+                     int ti, tri_res *r)
 {
     int32_t nr, i;
     int64_t valid = 0, voids = 0;
     if (c->metric == BT_METRIC_EXACT && c->narrow && tri_small(c, a, cc, b, r)) return;
     if (c->metric == BT_METRIC_EXACT && c->narrow && !c->vp) {
-        int ti = tab_index(a, cc, b);
         int32_t bx = a[0] > b[0] ? a[0] : b[0], by = a[1] > b[1] ? a[1] : b[1];
         if (cc[0] > bx) bx = cc[0];
         if (cc[1] > by) by = cc[1];
@@ -494,9 +493,16 @@ static void diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, i
         }
     }
     cmax = bt_code_value(code);
-    if (c->ub && h >= 2 && c->metric == BT_METRIC_EXACT &&
-        samp(c, a[0], a[1], &za) && samp(c, b[0], b[1], &zb) && samp(c, x, y, &zm))
-        em = (iabs32(za + zb - 2 * zm) + 1) >> 1;
+    if (c->ub && h >= 2 && code != BT_CODE_SPLIT) {
+        int ok;
+        if (!c->vp && a[0] < c->w && b[0] < c->w && a[1] < c->h && b[1] < c->h) {
+            za = c->z[(size_t)a[1] * c->w + a[0]];
+            zb = c->z[(size_t)b[1] * c->w + b[0]];
+            zm = c->z[(size_t)y * c->w + x];
+            ok = 1;
+        } else ok = samp(c, a[0], a[1], &za) && samp(c, b[0], b[1], &zb) && samp(c, x, y, &zm);
+        if (ok) em = (iabs32(za + zb - 2 * zm) + 1) >> 1;
+    }
     for (i = 0; i < na; i++) {
         tri_res r;
         size_t hv = 2 * idx + half_of(x, y, ap[i][0], ap[i][1]);
@@ -519,8 +525,14 @@ static void diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, i
                 continue;
             }
         }
-        if (h <= 4 && h >= 2) tab_build((ctx *)c, a, ap[i], b);
-        tri_eval(c, a, ap[i], b, &r);
+        {
+            int ti = -1;
+            if (h <= 4 && h >= 2) {
+                ti = tab_index(a, ap[i], b);
+                if (c->tabn[ti] < 0) tab_build((ctx *)c, a, ap[i], b);
+            }
+            tri_eval(c, a, ap[i], b, ti, &r);
+        }
         if (c->ub) c->ub[hv] = r.cls == 0 && r.err < UB_INF ? (int32_t)r.err : UB_INF;
         if (r.cls == 1) code = BT_CODE_SPLIT;
         else if (r.cls == 0) {
