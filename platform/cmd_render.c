@@ -256,10 +256,12 @@ int cmd_render(int argc, char **argv)
         double zmin = (double)hf_z_to_mm(&f, st.zmin) / 1000 * zscale, zmax = (double)hf_z_to_mm(&f, st.zmax) / 1000 * zscale;
         double ext = W > H ? W : H, dist, scale = ldexp(1.0, sc.shift);
         if (!have_cam) {
-            /* from the south-west at 35 degrees elevation, far enough for the terrain's
-             * bounding sphere to fit the vertical field of view */
+            /* from the south-west at 35 degrees elevation, at 3/4 of the distance at which
+             * the terrain's bounding sphere would fit the vertical field of view (the
+             * sphere is loose for a flat tile: this fills the frame, the nearest corner
+             * may touch the bottom edge) */
             double R = 0.5 * sqrt(W * W + H * H + (zmax - zmin) * (zmax - zmin));
-            double d = 1.05 * R / sin(fov / 2 * 3.14159265358979323846 / 180);
+            double d = 0.75 * R / sin(fov / 2 * 3.14159265358979323846 / 180);
             double el = 35 * 3.14159265358979323846 / 180;
             camv[3] = 0.5 * W; camv[4] = 0.5 * H; camv[5] = 0.5 * (zmin + zmax);
             camv[0] = camv[3] - d * cos(el) * 0.7071; camv[1] = camv[4] - d * cos(el) * 0.7071;
