@@ -410,6 +410,10 @@ static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned ma
     {
         int32_t zs = zreal(e->t, mm.x, mm.y);
         int64_t zf = ((int64_t)a->z + b->z) >> 1;
+        /* a vertex whose real height IS the interpolation of its hypotenuse ends
+         * (in every mode) carries topology but no information: fictitious (002:
+         * deducible, never transmitted); its height is the same either way */
+        if (2 * (int64_t)zs == (int64_t)a->z + b->z) mm.morph = 0;
         mm.z = mm.morph == BT_MORPH_ONE ? zs
              : (int32_t)(zf + ((((int64_t)zs - zf) * mm.morph + (1 << 14)) >> 15));
     }
