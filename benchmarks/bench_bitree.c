@@ -278,7 +278,7 @@ static void part_dems(void)
         "xyz/monai_valley_bathymetry.txt"
     };
     size_t i;
-    printf("\nEvery DEM: fidelity at 0.5%% of the height range\n");
+    printf("\nEvery DEM: fidelity at 0.5%% of the height range (second build / extraction, warm memory)\n");
     for (i = 0; i < sizeof dems / sizeof dems[0]; i++) {
         hf f;
         br_err err;
@@ -294,6 +294,7 @@ static void part_dems(void)
         memset(&b, 0, sizeof b);
         if (dem_load(data_path(dems[i]), &o, &f, &err) != BR_OK) { printf("  %s skipped\n", dems[i]); continue; }
         hf_stats_get(&f, &st);
+        tree_build(&b, &f, BT_METRIC_EXACT);   /* first touch of fresh memory: not timed */
         t0 = now_ms();
         tree_build(&b, &f, BT_METRIC_EXACT);
         tb = now_ms() - t0;
@@ -302,6 +303,7 @@ static void part_dems(void)
         p.max_err = ((int64_t)st.zmax - st.zmin) / 200;
         bt_count(&b.t, &p, &cnt);
         mesh_new(&m, (uint32_t)cnt, &mem);
+        bt_extract(&b.t, &p, &m);
         t0 = now_ms();
         bt_extract(&b.t, &p, &m);
         te = now_ms() - t0;

@@ -103,6 +103,7 @@ size_t bt_scratch_size(int32_t w, int32_t h)
      * curvature (int32 per sample), whichever is used, plus the row spans */
     size_t n = (size_t)(((int32_t)1 << padded_k(w, h)) + 1);
     return (size_t)w * (size_t)h * 4 + n * n * 8 + (size_t)(w + 1) * (size_t)h * 2 + 64 + 16 * TAB_MAX * 12
+         + (size_t)(w / 16 + 1) * (size_t)(h / 16 + 1)
          + (size_t)(((int32_t)1 << padded_k(w, h)) + 1) * 12;
 }
 
@@ -121,6 +122,8 @@ typedef struct ctx {
      * from the apex; used for triangles inside the domain of void-free grids */
     int32_t *tab;          /* 16 tables of TAB_MAX entries x 3 */
     int32_t *ub;           /* 2 per diamond: upper bound of each half's error (exact metric) */
+    const uint8_t *vblk;   /* per 16 x 16 block of the domain: 1 if it holds a void (NULL: none) */
+    int32_t bw;            /* blocks per row */
     int32_t tabn[16];
 } ctx;
 
@@ -200,6 +203,19 @@ static int samp(const ctx *c, int32_t x, int32_t y, int32_t *z)
         if (pr[x + 1] != pr[x]) return 0;
     }
     *z = c->z[(size_t)y * c->w + x];
+    return 1;
+}
+
+/* 1 when the box [x0, x1] x [y0, y1] (x0, y0 >= 0) lies inside w x h and touches
+ * no 16 x 16 block that holds a void: every sample in it is valid */
+static int clean(const ctx *c, int32_t x0, int32_t y0, int32_t x1, int32_t y1)
+{
+    int32_t bx, by;
+    if (x1 >= c->w || y1 >= c->h) return 0;
+    if (!c->vblk) return 1;
+    for (by = y0 >> 4; by <= y1 >> 4; by++)
+        for (bx = x0 >> 4; bx <= x1 >> 4; bx++)
+            if (c->vblk[(size_t)by * c->bw + bx]) return 0;
     return 1;
 }
 
@@ -288,11 +304,14 @@ static void tri_eval(const ctx *c, const int32_t a[2], const int32_t cc[2], cons
     int32_t nr, i;
     int64_t valid = 0, voids = 0;
     if (c->metric == BT_METRIC_EXACT && c->narrow && tri_small(c, a, cc, b, r)) return;
-    if (c->metric == BT_METRIC_EXACT && c->narrow && !c->vp) {
+    if (c->metric == BT_METRIC_EXACT && c->narrow && ti >= 0 && c->tabn[ti] > 0) {
         int32_t bx = a[0] > b[0] ? a[0] : b[0], by = a[1] > b[1] ? a[1] : b[1];
+        int32_t lx = a[0] < b[0] ? a[0] : b[0], ly = a[1] < b[1] ? a[1] : b[1];
         if (cc[0] > bx) bx = cc[0];
         if (cc[1] > by) by = cc[1];
-        if (ti >= 0 && c->tabn[ti] > 0 && bx < c->w && by < c->h) {
+        if (cc[0] < lx) lx = cc[0];
+        if (cc[1] < ly) ly = cc[1];
+        if (clean(c, lx, ly, bx, by)) {
             const int32_t *e = c->tab + (size_t)ti * TAB_MAX * 3;
             const int32_t *zc0 = c->z + (size_t)cc[1] * c->w + cc[0];
             int32_t za = c->z[(size_t)a[1] * c->w + a[0]], zb = c->z[(size_t)b[1] * c->w + b[0]], zc = *zc0;
@@ -322,11 +341,15 @@ static void tri_eval(const ctx *c, const int32_t a[2], const int32_t cc[2], cons
     r->err = 0; r->cls = 0; r->zlo = 0; r->zhi = 0;
     nr = spans(c, a, cc, b);
     /* pass 1: classify (samples outside w x h are voids) */
-    if (!c->vp) {
+    {
         int32_t bx = a[0] > b[0] ? a[0] : b[0], by = a[1] > b[1] ? a[1] : b[1];
+        int32_t lx = a[0] < b[0] ? a[0] : b[0], ly = a[1] < b[1] ? a[1] : b[1];
         if (cc[0] > bx) bx = cc[0];
         if (cc[1] > by) by = cc[1];
-        if (bx < c->w && by < c->h) nr = -nr;    /* wholly inside: full */
+        if (cc[0] < lx) lx = cc[0];
+        if (cc[1] < ly) ly = cc[1];
+        if (lx >= c->w || ly >= c->h) { r->cls = 2; return; }   /* wholly outside: void */
+        if (clean(c, lx, ly, bx, by)) nr = -nr;                 /* wholly valid: full */
     }
     if (nr < 0) nr = -nr;
     else for (i = 0; i < nr; i++) {
@@ -495,7 +518,8 @@ static void diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, i
     cmax = bt_code_value(code);
     if (c->ub && h >= 2 && code != BT_CODE_SPLIT) {
         int ok;
-        if (!c->vp && a[0] < c->w && b[0] < c->w && a[1] < c->h && b[1] < c->h) {
+        if (clean(c, a[0] < b[0] ? a[0] : b[0], a[1] < b[1] ? a[1] : b[1],
+                  a[0] > b[0] ? a[0] : b[0], a[1] > b[1] ? a[1] : b[1]) && clean(c, x, y, x, y)) {
             za = c->z[(size_t)a[1] * c->w + a[0]];
             zb = c->z[(size_t)b[1] * c->w + b[0]];
             zm = c->z[(size_t)y * c->w + x];
@@ -607,20 +631,20 @@ static int32_t d1_half(const ctx *c, int32_t n, int32_t x, int32_t y, int32_t px
  * domain's edge go through the general path. */
 static void level1(bt_tree *t, const ctx *c)
 {
-    int32_t n = t->n, S = n - 1, w = c->w, h = c->h, x, y;
+    int32_t n = t->n, S = n - 1, w = c->w, x, y;
     const int32_t *z = c->z;
 #define ZZ(X, Y) z[(size_t)(Y) * w + (X)]
     /* A1, horizontal hypotenuse: y even, x odd */
     for (y = 0; y <= S; y += 2)
         for (x = 1; x < S; x += 2) {
-            if (y >= 1 && y + 1 < h && y + 1 <= S && x + 1 < w)
+            if (y >= 1 && y + 1 <= S && clean(c, x - 1, y - 1, x + 1, y + 1))
                 a1_fast(t, c, (size_t)y * n + x, ZZ(x - 1, y), ZZ(x + 1, y), ZZ(x, y), ZZ(x, y - 1), ZZ(x, y + 1));
             else diamond(t, c, x, y, 1, 0);
         }
     /* A1, vertical hypotenuse: y odd, x even */
     for (y = 1; y < S; y += 2)
         for (x = 0; x <= S; x += 2) {
-            if (x >= 1 && x + 1 < w && x + 1 <= S && y + 1 < h)
+            if (x >= 1 && x + 1 <= S && clean(c, x - 1, y - 1, x + 1, y + 1))
                 a1_fast(t, c, (size_t)y * n + x, ZZ(x, y - 1), ZZ(x, y + 1), ZZ(x, y), ZZ(x - 1, y), ZZ(x + 1, y));
             else diamond(t, c, x, y, 1, 0);
         }
@@ -628,7 +652,7 @@ static void level1(bt_tree *t, const ctx *c)
     for (y = 1; y < S; y += 2)
         for (x = 1; x < S; x += 2) {
             size_t idx = (size_t)y * n + x;
-            if (x + 1 < w && y + 1 < h) {
+            if (clean(c, x - 1, y - 1, x + 1, y + 1)) {
                 int32_t z00 = ZZ(x - 1, y - 1), z20 = ZZ(x + 1, y - 1), z02 = ZZ(x - 1, y + 1), z22 = ZZ(x + 1, y + 1);
                 int32_t zm = ZZ(x, y), e, lo, hi, k;
                 uint16_t code;
@@ -743,6 +767,16 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
         for (j = 0; j < 16; j++) c.tabn[j] = -1;
         q = (uint8_t *)(c.tab + 16 * TAB_MAX * 3);
         c.ub = metric == BT_METRIC_EXACT ? (int32_t *)(void *)q : NULL;
+        c.vblk = NULL;
+        c.bw = w / 16 + 1;
+        if (voids) {   /* void block map after the bounds / curvature region */
+            uint8_t *vb = q + (size_t)n * n * 8;
+            memset(vb, 0, (size_t)c.bw * (size_t)(h / 16 + 1));
+            for (y = 0; y < h; y++)
+                for (x = 0; x < w; x++)
+                    if (f->z[(size_t)y * w + x] == HF_NODATA) vb[(size_t)(y >> 4) * c.bw + (x >> 4)] = 1;
+            c.vblk = vb;
+        }
         if (metric == BT_METRIC_CURVATURE) {
             int32_t *kap = (int32_t *)(void *)q;
             for (y = 0; y < h; y++)
@@ -754,7 +788,7 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
     *t = nt;
     for (j = 0; j < nt.k; j++) {
         int32_t hh = (int32_t)1 << j;
-        if (j == 0 && metric == BT_METRIC_EXACT && !c.vp && c.narrow) { level1(t, &c); continue; }
+        if (j == 0 && metric == BT_METRIC_EXACT && c.narrow) { level1(t, &c); continue; }
         /* type A at h: horizontal edges (x odd multiple of h, y multiple of 2h) */
         for (y = 0; y <= S; y += 2 * hh)
             for (x = hh; x < S; x += 2 * hh) diamond(t, &c, x, y, hh, 0);
