@@ -2,7 +2,7 @@
  *
  *   bitrain render IN... -o out.png [--size WxH] [--camera EX,EY,EZ,TX,TY,TZ] [--fov DEG]
  *          [--max-error M | --pixel-error P | --full [STEP]] [--bands ROWS]
- *          [--format rgb565|rgb888] [--depth 32|16] [--colors FILE] [--no-cull]
+ *          [--format rgb565|rgb888] [--depth 32|16] [--colors FILE] [--texture PNG] [--no-cull]
  *          [--sun AZ,ALT] [--ambient A] [--zscale F]
  * Camera in the heightfield's metres: x east from the west edge, y north from the
  * south edge, z height above 0 m (times --zscale).  Default camera: from the south-west, above the
@@ -14,7 +14,8 @@
  * with 30 % ambient.  --zscale F multiplies heights (default 1; grids without
  * georeference whose relief exceeds half their extent get an automatic scale, since
  * the loader can only assume 1 m spacing for them).  The frame is rendered in bands of ROWS rows (default: whole
- * frame) and streamed to the PNG band by band. */
+ * frame) and streamed to the PNG band by band.  --texture PNG stretches a colour map or
+ * orthophoto over the whole grid (perspective-correct, nearest texel), lit by the sun. */
 #include <ctype.h>
 #include <math.h>
 #include <stdio.h>
@@ -134,7 +135,7 @@ static int usage(void)
     fprintf(stderr,
             "usage: bitrain render IN... -o out.png [--size WxH] [--camera EX,EY,EZ,TX,TY,TZ] [--fov DEG]\n"
             "         [--max-error M | --pixel-error P | --full [STEP]] [--bands ROWS]\n"
-            "         [--format rgb565|rgb888] [--depth 32|16] [--colors FILE] [--no-cull]\n"
+            "         [--format rgb565|rgb888] [--depth 32|16] [--colors FILE] [--texture PNG] [--no-cull]\n"
             "         [--sun AZ,ALT] [--ambient A] [--zscale F]\n"
             "  camera in metres: x east from the west edge, y north from the south edge, z height\n");
     return 2;
@@ -142,7 +143,9 @@ static int usage(void)
 
 int cmd_render(int argc, char **argv)
 {
-    const char *in[64], *out = NULL, *colors = NULL;
+    const char *in[64], *out = NULL, *colors = NULL, *texture = NULL;
+    rs_texture tex;
+    uint32_t *texpx = NULL;
     int nin = 0, i, w = 800, h = 600, have_cam = 0, mode = BT_VIEW, full_step = 0, bands = 0;
     int fmt = RS_FMT_XRGB8888, depth = RS_DEPTH32, no_cull = 0;
     double camv[6], fov = 50, max_err = 0, pix_err = 1, sun_az = 315, sun_alt = 45, ambient = 0.3, zscale = 0;
@@ -193,10 +196,8 @@ int cmd_render(int argc, char **argv)
             i++;
         } else if (!strcmp(a, "--depth") && n) { depth = atoi(n) == 16 ? RS_DEPTH16 : RS_DEPTH32; i++; }
         else if (!strcmp(a, "--colors") && n) { colors = n; i++; }
-        else if (!strcmp(a, "--texture") && n) {
-            fprintf(stderr, "bitrain render: --texture is not implemented yet\n");
-            return 2;
-        } else if (!strcmp(a, "--no-cull")) no_cull = 1;
+        else if (!strcmp(a, "--texture") && n) { texture = n; i++; }
+        else if (!strcmp(a, "--no-cull")) no_cull = 1;
         else if (!strcmp(a, "--sun") && n) { if (sscanf(n, "%lf,%lf", &sun_az, &sun_alt) != 2) return usage(); i++; }
         else if (!strcmp(a, "--ambient") && n) { ambient = atof(n); i++; }
         else if (!strcmp(a, "--zscale") && n) { zscale = atof(n); i++; }
@@ -223,6 +224,24 @@ int cmd_render(int argc, char **argv)
     if (rt_scene_init(&sc, &f, &ramp, sun, (int32_t)lround(ambient * FX_Q14_ONE)) != BR_OK) {
         fprintf(stderr, "bitrain: %s: invalid heightfield\n", in[0]);
         goto done;
+    }
+    if (texture) {   /* a colour map / orthophoto stretched over the whole grid */
+        int tw, th;
+        uint8_t *rgb = NULL;
+        size_t k;
+        if (png_read_rgb(texture, &tw, &th, &rgb, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
+        if (tw < 1 || th < 1 || tw > RS_MAX_TEX || th > RS_MAX_TEX) {
+            free(rgb);
+            fprintf(stderr, "bitrain: %s: texture of %dx%d texels (at most %d a side)\n", texture, tw, th, RS_MAX_TEX);
+            goto done;
+        }
+        texpx = malloc(sizeof *texpx * (size_t)tw * (size_t)th);
+        if (!texpx) { free(rgb); fprintf(stderr, "bitrain: out of memory\n"); goto done; }
+        for (k = 0; k < (size_t)tw * (size_t)th; k++)
+            texpx[k] = (uint32_t)rgb[3 * k] << 16 | (uint32_t)rgb[3 * k + 1] << 8 | rgb[3 * k + 2];
+        free(rgb);
+        tex.w = tw; tex.h = th; tex.px = texpx;
+        sc.tex_w = tw; sc.tex_h = th;
     }
 
     /* vertical scale: --zscale, or automatic for grids without georeference whose
@@ -354,6 +373,7 @@ int cmd_render(int argc, char **argv)
     memset(&fr, 0, sizeof fr);
     fr.w = w; fr.h = h; fr.fmt = fmt; fr.depth = depth; fr.no_cull = no_cull;
     fr.clear_rgb = 0x99ccffu;
+    fr.tex = texture ? &tex : NULL;
     fr.v = verts; fr.nv = nv; fr.prims = prims; fr.nprims = nprims;
     fr.cache = malloc(rs_cache_mem_size(nv ? nv : 1));
     bandmem = malloc(rs_band_mem_size(w, bands, fmt, depth));
@@ -377,6 +397,7 @@ int cmd_render(int argc, char **argv)
            rs_band_mem_size(w, bands, fmt, depth), rs_cache_mem_size(nv));
     rc = 0;
 done:
+    free(texpx);
     free(verts); free(idx); free(prims); free(fr.cache); free(bandmem); free(ps.rgb); free(tmem); free(mmem);
     dem_free(&f);
     return rc;

@@ -91,6 +91,7 @@ void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint3
     o->x = x; o->y = y; o->d = d;
     o->c = (rgb & 0xffffffu) | (oc << 24);
     o->cp = rs_pack_rgb(rgb);
+    o->u = o->v = 0;
 }
 
 br_status rs_frame_prepare(rs_frame *f)
@@ -103,7 +104,9 @@ br_status rs_frame_prepare(rs_frame *f)
         || (f->fmt != RS_FMT_XRGB8888 && f->fmt != RS_FMT_RGB565)
         || (f->depth != RS_DEPTH32 && f->depth != RS_DEPTH16) || vp->znear <= 0
         || vp->zfar <= vp->znear || vp->cx_q16 != w * (FX_Q16_ONE / 2)
-        || vp->cy_q16 != h * (FX_Q16_ONE / 2) || f8 <= 0 || f8 >= ((int64_t)1 << 28))
+        || vp->cy_q16 != h * (FX_Q16_ONE / 2) || f8 <= 0 || f8 >= ((int64_t)1 << 28)
+        || (f->tex && (!f->tex->px || f->tex->w < 1 || f->tex->h < 1 || f->tex->w > RS_MAX_TEX
+                       || f->tex->h > RS_MAX_TEX)))
         return BR_E_ARG;
     f->stat_tris = f->stat_clipped = f->stat_pixels = 0;
     {
@@ -118,6 +121,7 @@ br_status rs_frame_prepare(rs_frame *f)
             int64_t x = v->p[0], y = v->p[1], z = v->p[2], c0, c1, c2, lim, ax, ay;
             uint32_t oc = 0;
             o->cp = rs_pack_rgb(v->rgb);
+            o->u = v->uv[0]; o->v = v->uv[1];
             c2 = (r20 * x + r21 * y + r22 * z + t2) >> 30;
             if (c2 < zn) {
                 o->x = o->y = 0; o->d = 0;
@@ -194,6 +198,50 @@ static void tri_clip(band *bd, tri_fn draw, uint32_t ia, uint32_t ib, uint32_t i
 #define PACK888(v) ((uint32_t)((((v) >> 39) & 0xff0000u) | (((v) >> 26) & 0xff00u) | (((v) >> 13) & 0xffu)))
 #define PACK565(v) ((uint16_t)((((v) >> 47) & 0xf800u) | (((v) >> 31) & 0x07e0u) | (((v) >> 16) & 0x001fu)))
 
+/* ---------------------------------------------------------------- texture helpers */
+
+/* Shift that brings the largest of three depths below 2^16 (1/w weights). */
+static int32_t tex_shift(uint32_t da, uint32_t db, uint32_t dc)
+{
+    uint32_t m = da > db ? da : db;
+    int32_t s = 0;
+    if (dc > m) m = dc;
+    while ((m >> s) >= 65536u) s++;
+    return s;
+}
+
+/* num / den for the perspective divide (Q8 texels); den <= 0 only for degenerate
+ * weights, which give 0. */
+static int64_t tex_div(int64_t num, int64_t den) { return den > 0 ? num / den : 0; }
+
+/* Nearest texel at (u, v) in Q8 texels, clamped to the edge. */
+static uint32_t tex_fetch(const rs_texture *t, int64_t u, int64_t v)
+{
+    int64_t x = u >> 8, y = v >> 8;
+    if (x < 0) x = 0;
+    if (x >= t->w) x = t->w - 1;
+    if (y < 0) y = 0;
+    if (y >= t->h) y = t->h - 1;
+    return t->px[(size_t)y * (size_t)t->w + (size_t)x] & 0xffffffu;
+}
+
+/* texel * Gouraud colour / 255 per channel (rounded; colour from the packed fields). */
+static uint32_t tex_mod(uint32_t texel, uint64_t col)
+{
+    uint32_t out = 0, k;
+    for (k = 0; k < 3; k++) {
+        uint32_t s = (uint32_t)(col >> (55 - 21 * k)) & 255u, t = (texel >> (16 - 8 * k)) & 255u;
+        uint32_t p = t * s + 128u;
+        out |= ((p + (p >> 8)) >> 8) << (16 - 8 * k);
+    }
+    return out;
+}
+
+#define PACK24_888(x) (x)
+#define PACK24_565(x) ((uint16_t)((((x) >> 8) & 0xf800u) | (((x) >> 5) & 0x07e0u) | (((x) >> 3) & 0x001fu)))
+
+#define RS_TEX 0
+#define RS_PACK24 PACK24_888
 #define RS_FN(n) n##_888_z32
 #define RS_PIX uint32_t
 #define RS_Z uint32_t
@@ -211,9 +259,11 @@ static void tri_clip(band *bd, tri_fn draw, uint32_t ia, uint32_t ib, uint32_t i
 #undef RS_FN
 #undef RS_PIX
 #undef RS_PACK
+#undef RS_PACK24
 #define RS_FN(n) n##_565_z16
 #define RS_PIX uint16_t
 #define RS_PACK PACK565
+#define RS_PACK24 PACK24_565
 #include "raster/raster_tmpl.h"
 #undef RS_FN
 #undef RS_Z
@@ -222,13 +272,42 @@ static void tri_clip(band *bd, tri_fn draw, uint32_t ia, uint32_t ib, uint32_t i
 #define RS_Z uint32_t
 #define RS_ZSH 0
 #include "raster/raster_tmpl.h"
+/* textured variants */
+#undef RS_TEX
+#define RS_TEX 1
+#undef RS_FN
+#define RS_FN(n) n##_565_z32_tex
+#include "raster/raster_tmpl.h"
+#undef RS_FN
+#undef RS_Z
+#undef RS_ZSH
+#define RS_FN(n) n##_565_z16_tex
+#define RS_Z uint16_t
+#define RS_ZSH 14
+#include "raster/raster_tmpl.h"
 #undef RS_FN
 #undef RS_PIX
 #undef RS_PACK
+#undef RS_PACK24
+#define RS_FN(n) n##_888_z16_tex
+#define RS_PIX uint32_t
+#define RS_PACK PACK888
+#define RS_PACK24 PACK24_888
+#include "raster/raster_tmpl.h"
+#undef RS_FN
+#undef RS_Z
+#undef RS_ZSH
+#define RS_FN(n) n##_888_z32_tex
+#define RS_Z uint32_t
+#define RS_ZSH 0
+#include "raster/raster_tmpl.h"
+#undef RS_TEX
+#define RS_TEX 0
+#undef RS_FN
+#undef RS_PIX
 #undef RS_COUNT
 #define RS_FN(n) n##_count
 #define RS_PIX uint32_t
-#define RS_PACK PACK888
 #define RS_COUNT 1
 #include "raster/raster_tmpl.h"
 #undef RS_FN
@@ -236,13 +315,16 @@ static void tri_clip(band *bd, tri_fn draw, uint32_t ia, uint32_t ib, uint32_t i
 #undef RS_Z
 #undef RS_ZSH
 #undef RS_PACK
+#undef RS_PACK24
 #undef RS_COUNT
+#undef RS_TEX
 
 /* ---------------------------------------------------------------- clipping */
 
 typedef struct clipv {
     int64_t c[3];         /* camera space, world units */
     int32_t col[3];       /* 0..255 */
+    int32_t uv[2];        /* texels Q8 */
 } clipv;
 
 /* Signed distance-like value of plane p (>= 0 inside): 0 near, 1..4 guard band. */
@@ -270,6 +352,8 @@ static void intersect(const clipv *P, const clipv *Q, int64_t dp, int64_t dq, in
     for (k = 0; k < 3; k++) o->c[k] = P->c[k] + (((Q->c[k] - P->c[k]) * t) >> 24);
     for (k = 0; k < 3; k++)
         o->col[k] = P->col[k] + (int32_t)((((int64_t)Q->col[k] - P->col[k]) * t) >> 24);
+    for (k = 0; k < 2; k++)
+        o->uv[k] = P->uv[k] + (int32_t)((((int64_t)Q->uv[k] - P->uv[k]) * t) >> 24);
     if (plane == 0 || o->c[2] < znear) o->c[2] = znear;
 }
 
@@ -287,6 +371,8 @@ static void tri_clip(band *bd, tri_fn draw, uint32_t ia, uint32_t ib, uint32_t i
         uint32_t rgb = f->v[idx[i]].rgb;
         to_camera(vp, f->v[idx[i]].p, buf[0][i].c);
         for (k = 0; k < 3; k++) buf[0][i].col[k] = (int32_t)((rgb >> (16 - 8 * k)) & 255);
+        buf[0][i].uv[0] = f->v[idx[i]].uv[0];
+        buf[0][i].uv[1] = f->v[idx[i]].uv[1];
     }
     for (p = 0; p < 5; p++) {
         clipv *in = buf[cur], *out = buf[cur ^ 1];
@@ -316,6 +402,7 @@ static void tri_clip(band *bd, tri_fn draw, uint32_t ia, uint32_t ib, uint32_t i
         project(vp, f8, v->c, f->w, f->h, &sv[i]);
         sv[i].c = ((uint32_t)v->col[0] << 16) | ((uint32_t)v->col[1] << 8) | (uint32_t)v->col[2];
         sv[i].cp = rs_pack_rgb(sv[i].c);
+        sv[i].u = v->uv[0]; sv[i].v = v->uv[1];
     }
     for (i = 1; i + 1 < n; i++) draw(bd, &sv[0], &sv[i], &sv[i + 1]);
 }
@@ -361,7 +448,13 @@ br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, siz
         }
     }
     if (f->debug_count) draw_count(&bd);
-    else if (f->fmt == RS_FMT_RGB565) {
+    else if (f->tex) {
+        if (f->fmt == RS_FMT_RGB565) {
+            if (f->depth == RS_DEPTH16) draw_565_z16_tex(&bd); else draw_565_z32_tex(&bd);
+        } else {
+            if (f->depth == RS_DEPTH16) draw_888_z16_tex(&bd); else draw_888_z32_tex(&bd);
+        }
+    } else if (f->fmt == RS_FMT_RGB565) {
         if (f->depth == RS_DEPTH16) draw_565_z16(&bd); else draw_565_z32(&bd);
     } else {
         if (f->depth == RS_DEPTH16) draw_888_z16(&bd); else draw_888_z32(&bd);

@@ -42,10 +42,10 @@
  *   height gives exactly the pixels of the full frame.
  *
  * MEMORY (caller-owned; nothing is allocated here)
- * - vertex cache: rs_cache_mem_size(nv) = 24 bytes per vertex (one transform per vertex
+ * - vertex cache: rs_cache_mem_size(nv) = 32 bytes per vertex (one transform per vertex
  *   per frame, shared by all bands);
  * - band: rs_band_mem_size(w, rows, fmt, depth) = w * rows * (2 or 4 colour + 2 or 4 depth).
- *   320x240 RGB565 with 16-bit depth, bands of 16 rows: 20,480 bytes (+ 24 per vertex);
+ *   320x240 RGB565 with 16-bit depth, bands of 16 rows: 20,480 bytes (+ 32 per vertex);
  *   with 32-bit depth 30,720 bytes.
  *
  * Not checked in the hot path (debug asserts only): indices < nv, band inside the frame.
@@ -67,12 +67,28 @@ enum { RS_FMT_XRGB8888 = 0, RS_FMT_RGB565 = 1 };
 enum { RS_DEPTH32 = 0, RS_DEPTH16 = 1 };
 enum { RS_STRIP = 0, RS_LIST = 1 };
 
-/* Input vertex: world position and colour 0x00RRGGBB (shaded per vertex by the caller
- * or by raster/shade.h). */
+/* Input vertex: world position, colour 0x00RRGGBB (shaded per vertex by the caller or
+ * by raster/ramp.h) and, for textured frames, texture coordinates in texels, Q8
+ * (0 .. tex.w * 256; v = 0 is the texture's top row). */
 typedef struct rs_vertex {
     int32_t p[3];
     uint32_t rgb;
+    int32_t uv[2];
 } rs_vertex;
+
+/* A texture (colour map, orthophoto): w x h XRGB8888 texels, row 0 at the top,
+ * 1 .. RS_MAX_TEX texels a side.  Sampling: nearest texel, coordinates clamped to the
+ * edge.  A textured pixel is the texel times the Gouraud colour / 255 (so a vertex
+ * colour of white shows the texel unchanged and the lighting can be baked as grey).
+ * Perspective: u/w, v/w and 1/w are interpolated linearly and divided per pixel; the
+ * 1/w weights keep 16 significant bits relative to the triangle's nearest vertex, so
+ * the texel position error is below 2^-16 of the triangle's texel extent times its
+ * depth ratio (far vertex / near vertex), plus the rounding to 1/256 texel. */
+#define RS_MAX_TEX 16384
+typedef struct rs_texture {
+    int32_t w, h;
+    const uint32_t *px;
+} rs_texture;
 
 /* A generalised triangle strip (GL convention: triangle k = s[k], s[k+1], s[k+2], the
  * first two swapped for odd k) or a plain list (triangle k = s[3k..3k+2]). */
@@ -82,14 +98,16 @@ typedef struct rs_prim {
     const uint32_t *idx;
 } rs_prim;
 
-/* Vertex cache entry (24 bytes): screen position in sub-pixels, depth, colour with
- * the outcode in the top byte of c, and the colour in the rasteriser's packed
- * interpolation form (8-bit R, G, B at bits 42, 21, 0, see raster.c). */
+/* Vertex cache entry (32 bytes): screen position in sub-pixels, depth, colour with
+ * the outcode in the top byte of c, the colour in the rasteriser's packed
+ * interpolation form (8-bit R, G, B at bits 42, 21, 0, see raster.c), texture
+ * coordinates. */
 typedef struct rs_cvert {
     int32_t x, y;
     uint32_t d;
     uint32_t c;
     uint64_t cp;
+    int32_t u, v;       /* texture coordinates, texels Q8 (textured frames) */
 } rs_cvert;
 
 /* Outcode bits (in rs_cvert.c >> 24). */
@@ -114,6 +132,7 @@ typedef struct rs_frame {
     const rs_prim *prims;
     int32_t nprims;
     cam_vp vp;                  /* from cam_viewproj; the camera's w, h must equal w, h */
+    const rs_texture *tex;      /* NULL: Gouraud colour only */
     int32_t debug_count;        /* tests: colour must be XRGB8888; each covered pixel's
                                    32-bit value counts the writes (no depth test, no sky) */
     /* statistics since rs_frame_prepare (summed over the bands rendered) */

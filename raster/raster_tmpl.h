@@ -2,8 +2,9 @@
  * Included by raster.c once per (pixel format, depth size) with:
  *   RS_FN(name)   name suffixing, RS_PIX colour type, RS_Z depth type, RS_ZSH depth
  *   shift (32-bit depth keeps d, 16-bit keeps d >> 14), RS_PACK(c) packed colour ->
- *   pixel, RS_COUNT 1 for the write-counting test variant (no depth test; each
- *   write adds 1 to a 32-bit pixel).
+ *   pixel, RS_PACK24(rgb) 0xRRGGBB -> pixel, RS_TEX 1 for textured frames
+ *   (perspective-correct texel times the Gouraud colour), RS_COUNT 1 for the
+ *   write-counting test variant (no depth test; each write adds 1 to a 32-bit pixel).
  * No header guard on purpose.  See raster.c for the derivations. */
 
 static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
@@ -107,6 +108,14 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
             const size_t stride = bd->stride, zw = (size_t)w;
             uint8_t *crow0 = bd->color + (size_t)(py0 - bd->y0) * stride;
             RS_Z *zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw;
+#if RS_TEX
+            /* perspective: 1/w weights d >> tsh (16 bits for the nearest vertex) */
+            const rs_texture *tx = bd->f->tex;
+            int32_t tsh = tex_shift(a->d, b->d, c->d);
+            const int64_t qa = a->d >> tsh, qb = b->d >> tsh, qc = c->d >> tsh;
+            const int64_t ua = qa * a->u, ub = qb * b->u, uc = qc * c->u;
+            const int64_t va = qa * a->v, vb = qb * b->v, vc = qc * c->v;
+#endif
             /* shade the centre (px0 + I, py0 + J) whose edge values are E0, E2 */
 #if RS_COUNT
 #define TINY_SHADE(E0, E2, I, J) do {                                                  \
@@ -124,9 +133,18 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
                 if (zz_ > *zp_) {                                                      \
                     uint64_t col_ = ca + db * (uint64_t)(w1_ >> 3) + dc * (uint64_t)(w2_ >> 3); \
                     *zp_ = zz_;                                                        \
-                    ((RS_PIX *)(void *)(crow0 + (size_t)(J) * stride))[px0 + (I)] = RS_PACK(col_); \
+                    ((RS_PIX *)(void *)(crow0 + (size_t)(J) * stride))[px0 + (I)] = TINY_PIX(col_, w1_, w2_); \
                 }                                                                      \
             } while (0)
+#if RS_TEX
+#define TINY_PIX(COL, W1, W2) RS_PACK24(tex_mod(tex_fetch(tx,                          \
+                tex_div(((65536 - (W1) - (W2)) * ua + (W1) * ub + (W2) * uc),           \
+                        ((65536 - (W1) - (W2)) * qa + (W1) * qb + (W2) * qc)),          \
+                tex_div(((65536 - (W1) - (W2)) * va + (W1) * vb + (W2) * vc),           \
+                        ((65536 - (W1) - (W2)) * qa + (W1) * qb + (W2) * qc))), (COL)))
+#else
+#define TINY_PIX(COL, W1, W2) RS_PACK(COL)
+#endif
 #endif
             if (small2) {
                 if (mask & 0x01u) TINY_SHADE(e0r, e2r, 0, 0);
@@ -145,6 +163,7 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
                 }
             }
 #undef TINY_SHADE
+#undef TINY_PIX
             bd->pixels += (uint32_t)npix;
         }
         return;
@@ -180,6 +199,19 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
                 gc += (uint64_t)(((dcb[k] * dy2 - dcc[k] * dy1) * ((int64_t)1 << 17)) / area2) << (42 - 21 * k);
             gz = gzn * SUBONE / area2;
         }
+#if RS_TEX
+        /* u d, v d and d (d >> tsh, <= 2^16; u, v <= 2^22): x-gradients per pixel by
+         * division (products < 2^61) and exact row starts from the weights, like z */
+        const rs_texture *tx = bd->f->tex;
+        int32_t tsh = tex_shift(a->d, b->d, c->d);
+        const int64_t qa = a->d >> tsh, ua = qa * a->u, va = qa * a->v;
+        const int64_t dqb = (b->d >> tsh) - qa, dqc = (c->d >> tsh) - qa;
+        const int64_t dub = (b->d >> tsh) * b->u - ua, duc = (c->d >> tsh) * c->u - ua;
+        const int64_t dvb = (b->d >> tsh) * b->v - va, dvc = (c->d >> tsh) * c->v - va;
+        const int64_t gq = (dqb * dy2 - dqc * dy1) * SUBONE / area2;
+        const int64_t gu = (dub * dy2 - duc * dy1) * SUBONE / area2;
+        const int64_t gv = (dvb * dy2 - dvc * dy1) * SUBONE / area2;
+#endif
         /* a span of two or more pixels bounds |gz| by the depth range (< 2^31); the clamp
          * only affects one-pixel spans, where the step is never used */
         if (gz > INT32_MAX) gz = INT32_MAX;
@@ -225,15 +257,32 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
                 for (k = 0; k < 3; k++)
                     col += (uint64_t)((dcb[k] * w1 + dcc[k] * w2) >> 9) << (42 - 21 * k);
                 bd->pixels += (uint32_t)n;
-                for (i = 0; i < n; i++) {
-#if RS_COUNT
-                    (void)zp; (void)z; (void)gzu;
-                    cp[i] += 1;
-#else
-                    RS_Z zz = (RS_Z)(z >> RS_ZSH);
-                    if (zz > zp[i]) { zp[i] = zz; cp[i] = RS_PACK(col); }
+                {
+#if RS_TEX
+                    int64_t tq = qa + ((dqb * w1 + dqc * w2) >> 22);
+                    int64_t tu = ua + ((dub * w1 + duc * w2) >> 22);
+                    int64_t tv = va + ((dvb * w1 + dvc * w2) >> 22);
 #endif
-                    z += gzu; col += gc;
+                    for (i = 0; i < n; i++) {
+#if RS_COUNT
+                        (void)zp; (void)z; (void)gzu;
+                        cp[i] += 1;
+#else
+                        RS_Z zz = (RS_Z)(z >> RS_ZSH);
+                        if (zz > zp[i]) {
+                            zp[i] = zz;
+#if RS_TEX
+                            cp[i] = RS_PACK24(tex_mod(tex_fetch(tx, tex_div(tu, tq), tex_div(tv, tq)), col));
+#else
+                            cp[i] = RS_PACK(col);
+#endif
+                        }
+#endif
+                        z += gzu; col += gc;
+#if RS_TEX
+                        tq += gq; tu += gu; tv += gv;
+#endif
+                    }
                 }
             }
         }

@@ -26,6 +26,7 @@ br_status rt_scene_init(rt_scene *s, const hf *f, const rs_ramp *ramp, const fx_
     s->ramp = ramp;
     s->sun[0] = sun[0]; s->sun[1] = sun[1]; s->sun[2] = sun[2];
     s->ambient_q14 = ambient_q14;
+    s->tex_w = s->tex_h = 0;
     s->fr.ox = 0; s->fr.oz = 0;
     {
         int64_t sx, sy, sz;
@@ -61,11 +62,16 @@ void rt_vertex(const rt_scene *s, int32_t x, int32_t y, int32_t z, rs_vertex *ou
     out->p[0] = s->fr.ox + x * s->fr.sx;
     out->p[1] = s->fr.oy - y * s->fr.sy;
     out->p[2] = s->fr.oz + (int32_t)(((int64_t)z * s->fr.sz_q16) >> 16);
+    out->uv[0] = out->uv[1] = 0;
+    if (s->tex_w > 0 && s->tex_h > 0) {
+        out->uv[0] = f->w > 1 ? (int32_t)((int64_t)x * s->tex_w * 256 / (f->w - 1)) : 0;
+        out->uv[1] = f->h > 1 ? (int32_t)((int64_t)y * s->tex_h * 256 / (f->h - 1)) : 0;
+    }
     if (zs == HF_NODATA) {
         out->rgb = s->ramp->has_nv ? s->ramp->nv_rgb : 0;
         return;
     }
-    rgb = rs_ramp_rgb(s->ramp, hf_z_to_mm(f, z));
+    rgb = s->tex_w > 0 ? 0xffffffu : rs_ramp_rgb(s->ramp, hf_z_to_mm(f, z));
     shade_normal(&s->sc, x, y, n);
     out->rgb = rs_light_rgb(rgb, n, s->sun, s->ambient_q14);
 }

@@ -28,6 +28,10 @@ typedef struct rt_scene {
     fx_q14 sun[3];           /* towards the sun, Q14 */
     int32_t ambient_q14;
     shade_ctx sc;
+    int32_t tex_w, tex_h;    /* 0: no texture; else a texture of this size covers the
+                                grid (sample (0,0) at texel (0,0), sample (w-1,h-1) at
+                                texel (tex_w, tex_h)) and the vertex colour is the
+                                lighting alone (lit white) */
 } rt_scene;
 
 /* Chooses the world frame for f and prepares shading; BR_E_ARG on a bad hf. */
@@ -37,7 +41,8 @@ br_status rt_scene_init(rt_scene *s, const hf *f, const rs_ramp *ramp, const fx_
 /* Millimetres to world units (rounded to nearest). */
 int64_t rt_mm_to_world(const rt_scene *s, int64_t mm);
 
-/* Vertex of grid sample (x, y) with height z (heightfield units), shaded. */
+/* Vertex of grid sample (x, y) with height z (heightfield units), shaded; with a
+ * texture, uv = (x * tex_w / (w - 1), y * tex_h / (h - 1)) texels in Q8. */
 void rt_vertex(const rt_scene *s, int32_t x, int32_t y, int32_t z, rs_vertex *out);
 
 /* The bitree mesh's vertices (m->nv of them) into out. */

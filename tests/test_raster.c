@@ -379,8 +379,8 @@ static void test_far_outside_guard(void)
     /* a ground plane made of huge triangles reaching CAM_COORD_MAX, seen from 2 units up:
      * near-plane and guard-band clipping; every pixel below the horizon exactly once */
     const int32_t w = 96, h = 64, M = CAM_COORD_MAX;
-    rs_vertex v[5] = { { { -M, -M, 0 }, 0x00ff00u }, { { M, -M, 0 }, 0x00ff00u }, { { M, M, 0 }, 0x00ff00u },
-                       { { -M, M, 0 }, 0x00ff00u }, { { 0, 0, 0 }, 0xff0000u } };
+    rs_vertex v[5] = { { { -M, -M, 0 }, 0x00ff00u, { 0, 0 } }, { { M, -M, 0 }, 0x00ff00u, { 0, 0 } }, { { M, M, 0 }, 0x00ff00u, { 0, 0 } },
+                       { { -M, M, 0 }, 0x00ff00u, { 0, 0 } }, { { 0, 0, 0 }, 0xff0000u, { 0, 0 } } };
     uint32_t idx[12] = { 0, 1, 4,  1, 2, 4,  2, 3, 4,  3, 0, 4 };
     rs_prim pr = { RS_LIST, 12, idx };
     rs_cvert cache[5];
@@ -455,6 +455,89 @@ static void test_near_plane_grid(void)
     free(cnt); free(v); free(idx); free(cache);
 }
 
+/* A ground plane textured with a 64x64 map whose texel (tx, ty) has colour
+ * (4 tx, 4 ty, 0x55), seen obliquely; every pixel's texel is compared with the exact
+ * perspective mapping (ray / plane intersection in double precision): within one
+ * texel.  n = 1: two large triangles (general path); n = 48: a grid (tiny path). */
+static void texture_case(int32_t n, int fmt)
+{
+    const int32_t w = 160, h = 120, TS = 64;
+    const double X0 = -4000, X1 = 4000, Y0 = 200, Y1 = 12000;
+    uint32_t texel[64 * 64], *idx, k = 0;
+    rs_texture tex;
+    rs_vertex *v = calloc((size_t)(n + 1) * (size_t)(n + 1), sizeof *v);
+    rs_cvert *cache = calloc((size_t)(n + 1) * (size_t)(n + 1), sizeof *cache);
+    rs_prim pr;
+    rs_frame f;
+    cam c;
+    int32_t eye[3] = { 0, -500, 700 }, tg[3] = { 0, 4000, 0 }, x, y, bad = 0, checked = 0;
+    void *img;
+    idx = calloc((size_t)n * (size_t)n * 6, sizeof *idx);
+    for (y = 0; y < TS; y++) for (x = 0; x < TS; x++) texel[y * TS + x] = (uint32_t)(4 * x) << 16 | (uint32_t)(4 * y) << 8 | 0x55u;
+    tex.w = TS; tex.h = TS; tex.px = texel;
+    for (y = 0; y <= n; y++)
+        for (x = 0; x <= n; x++) {
+            rs_vertex *p = &v[y * (n + 1) + x];
+            p->p[0] = (int32_t)(X0 + (X1 - X0) * x / n); p->p[1] = (int32_t)(Y1 - (Y1 - Y0) * y / n); p->p[2] = 0;
+            p->rgb = 0xffffffu;
+            p->uv[0] = x * TS * 256 / n; p->uv[1] = y * TS * 256 / n;   /* row 0 = far (north) edge */
+        }
+    for (y = 0; y < n; y++)     /* CCW seen from +z (y row goes south) */
+        for (x = 0; x < n; x++) {
+            uint32_t a = (uint32_t)(y * (n + 1) + x), b = a + 1, cc = a + (uint32_t)n + 1, d = cc + 1;
+            idx[k++] = a; idx[k++] = cc; idx[k++] = b; idx[k++] = b; idx[k++] = cc; idx[k++] = d;
+        }
+    pr.kind = RS_LIST; pr.n = k; pr.idx = idx;
+    CHECK_EQ(cam_look_at(&c, eye, tg, 60000, w, h, 16, 100000), BR_OK);
+    memset(&f, 0, sizeof f);
+    f.w = w; f.h = h; f.fmt = fmt; f.v = v; f.nv = (uint32_t)((n + 1) * (n + 1)); f.cache = cache;
+    f.prims = &pr; f.nprims = 1; f.tex = &tex; f.clear_rgb = 0x000000u;
+    cam_viewproj(&c, &f.vp);
+    CHECK_EQ(rs_frame_prepare(&f), BR_OK);
+    img = render_full(&f);
+    {
+        double R[3][3], fo = (double)c.f_q16 / 65536.0;
+        int i;
+        for (i = 0; i < 3; i++) {
+            R[0][i] = c.right[i] / 1073741824.0; R[1][i] = c.up[i] / 1073741824.0; R[2][i] = c.fwd[i] / 1073741824.0;
+        }
+        for (y = h / 3; y < h; y++)
+            for (x = 0; x < w; x++) {
+                double dc[3] = { (x + 0.5 - w / 2.0) / fo, -(y + 0.5 - h / 2.0) / fo, 1 }, dw[3], t, wx, wy, u, vv;
+                uint32_t p;
+                int32_t tx, ty;
+                for (i = 0; i < 3; i++) dw[i] = R[0][i] * dc[0] + R[1][i] * dc[1] + R[2][i] * dc[2];
+                if (dw[2] >= 0) continue;
+                t = -eye[2] / dw[2]; wx = eye[0] + t * dw[0]; wy = eye[1] + t * dw[1];
+                if (wx < X0 + 300 || wx > X1 - 300 || wy < Y0 + 300 || wy > Y1 - 300) continue;
+                u = (wx - X0) / (X1 - X0) * TS; vv = (Y1 - wy) / (Y1 - Y0) * TS;
+                if (fmt == RS_FMT_RGB565) {
+                    uint16_t q = ((uint16_t *)img)[y * w + x];
+                    tx = (q >> 11) * 8 / 4; ty = ((q >> 5) & 63) * 4 / 4;
+                } else {
+                    p = ((uint32_t *)img)[y * w + x];
+                    tx = (int32_t)((p >> 16) & 255) / 4; ty = (int32_t)((p >> 8) & 255) / 4;
+                }
+                checked++;
+                if (fabs(tx + 0.5 - u) > (fmt == RS_FMT_RGB565 ? 2.5 : 1.5) || fabs(ty + 0.5 - vv) > 1.5) {
+                    if (bad < 3) fprintf(stderr, "  n=%d pixel (%d,%d): texel (%d,%d), expected (%.2f,%.2f)\n", n, x, y, tx, ty, u, vv);
+                    bad++;
+                }
+            }
+    }
+    if (getenv("BITRAIN_VERBOSE")) fprintf(stderr, "  texture n=%d fmt %d: %d pixels checked, %d off\n", n, fmt, checked, bad);
+    CHECK(checked > w * h / 3);
+    CHECK_MSG(bad == 0, "n=%d: %d of %d pixels off by more than a texel", n, bad, checked);
+    free(img); free(v); free(cache); free(idx);
+}
+
+static void test_texture(void)
+{
+    texture_case(1, RS_FMT_XRGB8888);
+    texture_case(48, RS_FMT_XRGB8888);
+    texture_case(1, RS_FMT_RGB565);
+}
+
 /* ------------------------------------------------------------- golden image */
 
 static void golden_compare(const char *name, const uint32_t *img, int32_t w, int32_t h)
@@ -519,6 +602,7 @@ int main(void)
     T_RUN(test_near_plane_and_inside);
     T_RUN(test_far_outside_guard);
     T_RUN(test_near_plane_grid);
+    T_RUN(test_texture);
     T_RUN(test_golden);
     if (T.ok) { free(T.f.z); free(T.v); free(T.idx); }
     return t_finish();
