@@ -13,12 +13,13 @@
 # Environment knobs:
 #   RUNS=5         process runs per renderer and configuration
 #   FRAMES=30      timed frames per process run (after 3 warm-up frames)
-#   CULL=0         1: back-face culling on for llvmpipe (bench_osmesa --cull)
+#   CULL=0         1: back-face culling on for both (bench_osmesa --cull, bitrain bench --cull)
 #   COLOUR=float   llvmpipe vertex colours: float (3 floats, as PEERS.md measured) or ubyte (RGBA8)
 #   CALLGRIND=1    0: skip the instruction counts (valgrind --tool=callgrind, slow: ~20 s each)
 #   BITRAIN=./bitrain            the bitrain binary to compare
-#   BITRAIN_ARGS=                extra arguments for `bitrain bench` (e.g. a culling switch)
+#   BITRAIN_ARGS=                extra arguments for `bitrain bench` (e.g. --format rgb565)
 #   OUT=benchmarks/out/osmesa    build and output directory (PNGs of the last frames land here)
+#   DEM=../shared/data/dem/png/fuji.png   the peer scene's height map (passed to both)
 set -u
 cd "$(dirname "$0")/.." || exit 1
 RUNS=${RUNS:-5}
@@ -46,7 +47,7 @@ LP="$OUT/bench_osmesa"
 [ -r "$DEM" ] || { echo "osmesa.sh: $DEM not found (run from the repo root next to ../shared)" >&2; exit 1; }
 
 lp_flags="--colour $COLOUR"
-br_flags="$BITRAIN_ARGS"
+br_flags="--dem $DEM $BITRAIN_ARGS"
 [ "$CULL" = 1 ] && { lp_flags="$lp_flags --cull"; br_flags="$br_flags --cull"; }
 
 # Does bitrain's peer benchmark work?  It must print a ms-per-frame figure we can parse.
