@@ -296,8 +296,19 @@ int cmd_render(int argc, char **argv)
         }
         dist = sqrt((camv[0] - camv[3]) * (camv[0] - camv[3]) + (camv[1] - camv[4]) * (camv[1] - camv[4])
                     + (camv[2] - camv[5]) * (camv[2] - camv[5]));
-        /* 1/w depth: near as large as the view allows (resolution ~ z^2 / near) */
-        znear = (int32_t)lround(fmax(0.5, dist / 2000) * scale);
+        /* 1/w depth: near as large as the view allows (resolution ~ z^2 / near):
+         * dist/2000, but at most half the eye's height above the ground below it (or
+         * above the highest sample when outside the grid), at least 5 cm */
+        {
+            double gx = camv[0] / ((double)f.dx_um / 1e6), gy = (double)(f.h - 1) - camv[1] / ((double)f.dy_um / 1e6);
+            double ground = zmax, nearm;
+            if (gx >= 0 && gy >= 0 && gx <= f.w - 1 && gy <= f.h - 1) {
+                int32_t zs = f.z[(size_t)lround(gy) * (size_t)f.w + (size_t)lround(gx)];
+                if (zs != HF_NODATA) ground = (double)hf_z_to_mm(&f, zs) / 1000 * zscale;
+            }
+            nearm = fmin(dist / 2000, 0.5 * fabs(camv[2] - ground));
+            znear = (int32_t)lround(fmax(0.05, nearm) * scale);
+        }
         zfar = (int32_t)fmin((double)CAM_COORD_MAX, (4 * (dist + ext) + fabs(zmax) + fabs(zmin)) * scale);
         if (znear < 1) znear = 1;
         if (zfar <= znear) zfar = znear + 1;
