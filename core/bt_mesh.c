@@ -62,6 +62,8 @@ typedef struct em {
     int lost;               /* the split list overflowed */
     int nonvoid;            /* the padded grid has no void sample: skip the checks */
     int64_t wz_lo[256], wz_hi[256]; /* world z of the quantised height codes (floor, ceil) */
+    struct pend_s { uint32_t ia, ic, ib, o0, o1, other; int ccw_first; } pend; /* see pend */
+    int has_pend;
 } em;
 
 /* ------------------------------------------------------------ mesh memory */
@@ -327,53 +329,110 @@ static int64_t cross3(const pt *a, const pt *b, const pt *c)
 
 static void push(bt_mesh *m, uint32_t i) { m->strip[m->ns++] = i; }
 
-/* Leaf (a, c, b), apex c.  It is entered through edge {a, c} (or the hypotenuse
- * {a, b} when in_hyp) and left through {c, b} (or {a, b} when out_hyp). */
-static void leaf(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
+/* A leaf waiting to be written: its vertex indices, exit edge {o0, o1} and the
+ * third vertex; and its (re)start orientation */
+typedef struct pend_s pend;
+
+static int collinear(const bt_mesh *m, uint32_t a, uint32_t b, uint32_t c)
+{
+    const bt_vert *A = &m->v[a], *B = &m->v[b], *C = &m->v[c];
+    return (int64_t)(B->x - A->x) * (C->y - A->y) == (int64_t)(B->y - A->y) * (C->x - A->x);
+}
+
+/* Writes leaf L (the next leaf N, if any, is known: one leaf of lookahead).
+ * Returns 1 when N was written too.  The strip's last two indices are kept equal
+ * to the written leaf's exit edge, so the next leaf shares them.  When L must
+ * swap (its pivot is the older index) and N turns around the same pivot with
+ * L's new vertex, the old one and N's new vertex collinear (a straight rim of
+ * the fan), the rim itself makes the line triangle (002 figure 10, 004's
+ * collinearity): "z r2 P" writes both leaves with one line triangle instead of
+ * two swaps, and leaves the pivot newest for N's successor. */
+static int write_leaf(em *e, const pend *L, const pend *N)
 {
     bt_mesh *m = e->m;
-    uint32_t ia, ic, ib, o0, o1, other;
-    e->count++;
-    if (e->count_only) return;
-    if (e->full || m->nv + 3 > m->cap_v || m->ns + 5 > m->cap_s || m->ntri >= m->max_tri ||
-        m->nv + 3 > m->hmask - (m->hmask >> 2)) {
-        e->full = 1;
-        return;
-    }
-    ia = vid(e, a); ic = vid(e, c); ib = vid(e, b);
-    m->ntri++;
-    if (out_hyp) { o0 = ia; o1 = ib; other = ic; }
-    else { o0 = ic; o1 = ib; other = ia; }
-    (void)in_hyp;
     if (m->ns >= 2) {
         uint32_t p = m->strip[m->ns - 2], q = m->strip[m->ns - 1];
-        int hp = p == ia || p == ic || p == ib, hq = q == ia || q == ic || q == ib;
+        int hp = p == L->ia || p == L->ic || p == L->ib, hq = q == L->ia || q == L->ic || q == L->ib;
         if (hp && hq && p != q) {
-            uint32_t z = (p != ia && q != ia) ? ia : ((p != ic && q != ic) ? ic : ib);
-            /* want the last two to be the exit edge {o0, o1}; z is in it unless the
-             * entry edge is the exit edge (cannot happen in a conforming walk) */
-            int qin = q == o0 || q == o1, pin = p == o0 || p == o1;
-            if (!qin && pin) { push(m, p); m->nline++; }
+            uint32_t z = (p != L->ia && q != L->ia) ? L->ia : ((p != L->ic && q != L->ic) ? L->ic : L->ib);
+            int qin = q == L->o0 || q == L->o1, pin = p == L->o0 || p == L->o1;
+            if (!qin && pin) {
+                /* swap needed: try the straight-rim pair with N (pivot p) */
+                if (N && ((N->o0 == p && N->o1 != z) || (N->o1 == p && N->o0 != z))) {
+                    uint32_t r2 = N->o0 == p ? N->o1 : N->o0;
+                    int nhas = (N->ia == p || N->ic == p || N->ib == p) && (N->ia == z || N->ic == z || N->ib == z);
+                    if (nhas && r2 != q && collinear(m, q, z, r2)) {
+                        push(m, z); push(m, r2); push(m, p);
+                        m->nline++;
+                        return 1;
+                    }
+                }
+                push(m, p); m->nline++;
+            }
             push(m, z);
-            return;
+            return 0;
         }
     }
     {
         /* (re)start: (other, v2, v3) drawn at index i counter-clockwise from +z, i.e.
          * grid cross < 0 for even i, > 0 for odd i (odd triangles are swapped) */
-        const pt *po = out_hyp ? c : a, *p0 = out_hyp ? a : c;
-        int64_t cr = cross3(po, p0, b);
-        uint32_t i0;
-        uint32_t v2 = o0, v3 = o1;
+        uint32_t i0, v2 = L->o0, v3 = L->o1;
+        if (m->ns > 0 && m->strip[m->ns - 1] == L->other) {
+            /* the strip already ends at the leaf's free vertex: repeat it once
+             * (2 line triangles) and the leaf follows */
+            push(m, L->other);
+            m->nline += 2;
+            i0 = m->ns - 1;
+            if (((i0 & 1) == 0) != L->ccw_first) { v2 = L->o1; v3 = L->o0; }
+            push(m, v2); push(m, v3);
+            return 0;
+        }
         if (m->ns > 0) {
             push(m, m->strip[m->ns - 1]);
-            push(m, other);
+            push(m, L->other);
             m->nline += 4;
         }
         i0 = m->ns;
-        if (((i0 & 1) == 0) != (cr < 0)) { v2 = o1; v3 = o0; }
-        push(m, other); push(m, v2); push(m, v3);
+        if (((i0 & 1) == 0) != L->ccw_first) { v2 = L->o1; v3 = L->o0; }
+        push(m, L->other); push(m, v2); push(m, v3);
     }
+    return 0;
+}
+
+/* Leaf (a, c, b), apex c.  It is entered through edge {a, c} (or the hypotenuse
+ * {a, b} when in_hyp) and left through {c, b} (or {a, b} when out_hyp). */
+static void leaf(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
+{
+    bt_mesh *m = e->m;
+    pend L;
+    e->count++;
+    if (e->count_only) return;
+    /* room for this leaf and the pending one */
+    if (e->full || m->nv + 6 > m->cap_v || m->ns + 10 > m->cap_s || m->ntri >= m->max_tri ||
+        m->nv + 6 > m->hmask - (m->hmask >> 2)) {
+        e->full = 1;
+        return;
+    }
+    L.ia = vid(e, a); L.ic = vid(e, c); L.ib = vid(e, b);
+    m->ntri++;
+    if (out_hyp) { L.o0 = L.ia; L.o1 = L.ib; L.other = L.ic; }
+    else { L.o0 = L.ic; L.o1 = L.ib; L.other = L.ia; }
+    {
+        const pt *po = out_hyp ? c : a, *p0 = out_hyp ? a : c;
+        L.ccw_first = cross3(po, p0, b) < 0;
+    }
+    (void)in_hyp;
+    if (e->has_pend) {
+        if (write_leaf(e, &e->pend, &L)) { e->has_pend = 0; return; }
+    }
+    e->pend = L;
+    e->has_pend = 1;
+}
+
+static void flush(em *e)
+{
+    if (e->has_pend && !e->count_only && !e->full) write_leaf(e, &e->pend, NULL);
+    e->has_pend = 0;
 }
 
 static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned mask)
@@ -432,8 +491,10 @@ static void run(em *e)
     int32_t S = e->S;
     corner(e->t, 0, 0, &A); corner(e->t, S, 0, &B);
     corner(e->t, S, S, &C); corner(e->t, 0, S, &D);
+    e->has_pend = 0;
     rec(e, &A, &B, &C, 0, 1, 0x3f);
     rec(e, &C, &D, &A, 1, 0, 0x3f);
+    flush(e);
 }
 
 /* ------------------------------------------------------------ budget */
