@@ -109,9 +109,10 @@ int cmd_bench(int argc, char **argv)
     f.clear_rgb = 0x99ccff;   /* light blue sky (153, 204, 255), as bench_osmesa */
     f.v = v; f.nv = PEER_NV; f.prims = prims; f.nprims = PEER_NSTRIP;
     cam_viewproj(&c, &f.vp);
-    if (bands > 0) {
+    if (bands > 0) {   /* band mode: with the chunk table, bands skip what misses them */
         mem = malloc(rs_band_mem_size(w, bands, fmt, depth));
-        if (!mem) return 1;
+        f.chunks = malloc(rs_chunk_mem_size(prims, PEER_NSTRIP));
+        if (!mem || !f.chunks) return 1;
     }
     for (i = 0; i < frames; i++) {
         double t0 = now_ms();
@@ -146,7 +147,7 @@ int cmd_bench(int argc, char **argv)
         }
         free(rgb);
     }
-    free(ps); free(v); free(f.cache); free(color); free(zbuf); free(ms); free(mem);
+    free(ps); free(v); free(f.cache); free(color); free(zbuf); free(ms); free(mem); free(f.chunks);
     return 0;
 usage:
     fprintf(stderr, "usage: bitrain bench --scene peer --camera A|B --size WxH --frames N [--cull]\n"

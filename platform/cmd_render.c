@@ -172,6 +172,9 @@ int cmd_render(int argc, char **argv)
     int rc = 1;
 
     memset(&o, 0, sizeof o);
+    memset(&fr, 0, sizeof fr);
+    memset(&ps, 0, sizeof ps);
+    memset(&f, 0, sizeof f);
     memset(&t, 0, sizeof t);
     memset(&m, 0, sizeof m);
     for (i = 0; i < argc; i++) {
@@ -381,12 +384,12 @@ int cmd_render(int argc, char **argv)
     t1 = ms_now();
 
     /* render in bands, streaming to the PNG */
-    memset(&fr, 0, sizeof fr);
     fr.w = w; fr.h = h; fr.fmt = fmt; fr.depth = depth; fr.no_cull = no_cull;
     fr.clear_rgb = 0x99ccffu;
     fr.tex = texture ? &tex : NULL;
     fr.v = verts; fr.nv = nv; fr.prims = prims; fr.nprims = nprims;
     fr.cache = malloc(rs_cache_mem_size(nv ? nv : 1));
+    fr.chunks = bands < h ? malloc(rs_chunk_mem_size(prims, nprims) + 4) : NULL;
     bandmem = malloc(rs_band_mem_size(w, bands, fmt, depth));
     ps.rgb = malloc((size_t)w * 3);
     if (!fr.cache || !bandmem || !ps.rgb) { fprintf(stderr, "bitrain: out of memory\n"); goto done; }
@@ -409,7 +412,7 @@ int cmd_render(int argc, char **argv)
     rc = 0;
 done:
     free(texpx);
-    free(verts); free(idx); free(prims); free(fr.cache); free(bandmem); free(ps.rgb); free(tmem); free(mmem);
+    free(verts); free(idx); free(prims); free(fr.cache); free(fr.chunks); free(bandmem); free(ps.rgb); free(tmem); free(mmem);
     dem_free(&f);
     return rc;
 }

@@ -52,6 +52,13 @@ typedef struct band {
 
 size_t rs_cache_mem_size(uint32_t nv) { return (size_t)nv * sizeof(rs_cvert); }
 
+/* Triangles of a primitive. */
+static uint32_t rs_prim_tris(const rs_prim *pr)
+{
+    if (pr->n < 3) return 0;
+    return pr->kind == RS_STRIP ? pr->n - 2 : pr->n / 3;
+}
+
 size_t rs_band_mem_size(int32_t w, int32_t rows, int32_t fmt, int32_t depth)
 {
     size_t px = (size_t)w * (size_t)rows;
@@ -79,6 +86,45 @@ static void to_camera(const cam_vp *vp, const int32_t p[3], int64_t c[3])
     for (i = 0; i < 3; i++)
         c[i] = ((int64_t)vp->r[i][0] * p[0] + (int64_t)vp->r[i][1] * p[1]
                 + (int64_t)vp->r[i][2] * p[2] + vp->t[i]) >> 30;
+}
+
+size_t rs_chunk_mem_size(const rs_prim *prims, int32_t nprims)
+{
+    size_t n = 0;
+    int32_t p;
+    for (p = 0; p < nprims; p++) n += (rs_prim_tris(&prims[p]) + RS_CHUNK - 1) / RS_CHUNK;
+    return n * 2 * sizeof(int16_t);
+}
+
+/* Rows [lo, hi] that chunks' triangles can touch (conservative: the pixel-centre rows
+ * of their vertices; everything when a vertex needs clipping). */
+static void chunk_rows(rs_frame *f)
+{
+    const uint32_t slow = (uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24;
+    int16_t *ch = f->chunks;
+    int32_t p;
+    for (p = 0; p < f->nprims; p++) {
+        const rs_prim *pr = &f->prims[p];
+        uint32_t nt = rs_prim_tris(pr), t0;
+        for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch += 2) {
+            uint32_t t1 = nt - t0 < RS_CHUNK ? nt : t0 + RS_CHUNK, i, i0, i1;
+            int32_t lo = INT32_MAX, hi = INT32_MIN, full = 0;
+            if (pr->kind == RS_STRIP) { i0 = t0; i1 = t1 + 2; } else { i0 = 3 * t0; i1 = 3 * t1; }
+            for (i = i0; i < i1; i++) {
+                const rs_cvert *v = &f->cache[pr->idx[i]];
+                if (v->c & slow) full = 1;
+                if (v->y < lo) lo = v->y;
+                if (v->y > hi) hi = v->y;
+            }
+            lo = (lo + HALF - 1) >> SUB;
+            hi = (hi - HALF) >> SUB;
+            if (full) { lo = -1; hi = f->h; }
+            if (lo < -1) lo = -1;
+            if (hi > f->h) hi = f->h;
+            ch[0] = (int16_t)lo;
+            ch[1] = (int16_t)hi;
+        }
+    }
 }
 
 void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint32_t d, uint32_t rgb)
@@ -153,6 +199,7 @@ br_status rs_frame_prepare(rs_frame *f)
             o->c = (v->rgb & 0xffffffu) | (oc << 24);
         }
     }
+    if (f->chunks) chunk_rows(f);
     return BR_OK;
 }
 

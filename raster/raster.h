@@ -44,7 +44,9 @@
  * MEMORY (caller-owned; nothing is allocated here)
  * - vertex cache: rs_cache_mem_size(nv) = 32 bytes per vertex (one transform per vertex
  *   per frame, shared by all bands);
- * - band: rs_band_mem_size(w, rows, fmt, depth) = w * rows * (2 or 4 colour + 2 or 4 depth).
+ * - band: rs_band_mem_size(w, rows, fmt, depth) = w * rows * (2 or 4 colour + 2 or 4 depth);
+ * - optional chunk table (band mode): rs_chunk_mem_size = 4 bytes per 64 triangles; without
+ *   it every band walks every triangle (cheap rejects, but (h / rows) times).
  *   320x240 RGB565 with 16-bit depth, bands of 16 rows: 20,480 bytes (+ 32 per vertex);
  *   with 32-bit depth 30,720 bytes.
  *
@@ -133,6 +135,9 @@ typedef struct rs_frame {
     int32_t nprims;
     cam_vp vp;                  /* from cam_viewproj; the camera's w, h must equal w, h */
     const rs_texture *tex;      /* NULL: Gouraud colour only */
+    int16_t *chunks;            /* optional, rs_chunk_mem_size bytes: per RS_CHUNK triangles
+                                   the rows they can touch, filled by rs_frame_prepare;
+                                   bands then skip chunks that miss them (band mode) */
     int32_t debug_count;        /* tests: colour must be XRGB8888; each covered pixel's
                                    32-bit value counts the writes (no depth test, no sky) */
     /* statistics since rs_frame_prepare (summed over the bands rendered) */
@@ -144,6 +149,9 @@ typedef struct rs_frame {
 typedef br_status (*rs_sink)(void *user, int32_t y0, int32_t rows, const void *pixels, size_t stride);
 
 size_t rs_cache_mem_size(uint32_t nv);
+/* Bytes for rs_frame.chunks: 4 per RS_CHUNK triangles of each primitive. */
+#define RS_CHUNK 64
+size_t rs_chunk_mem_size(const rs_prim *prims, int32_t nprims);
 size_t rs_band_mem_size(int32_t w, int32_t rows, int32_t fmt, int32_t depth);
 
 /* Fills one cache entry from screen-space data (sub-pixels, depth d <= RS_DEPTH_ONE,

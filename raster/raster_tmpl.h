@@ -293,38 +293,45 @@ static void RS_FN(draw)(band *bd)
 {
     const rs_frame *f = bd->f;
     const rs_cvert *cache = f->cache;
+    const int16_t *ch = f->chunks;     /* per chunk of RS_CHUNK triangles: rows touched */
     int32_t p;
     for (p = 0; p < f->nprims; p++) {
         const rs_prim *pr = &f->prims[p];
         const uint32_t *s = pr->idx;
-        uint32_t k, n = pr->n;
-        if (n < 3) continue;
-        if (pr->kind == RS_STRIP) {
-            /* sliding window: one new vertex per triangle */
-            uint32_t i0 = s[0], i1 = s[1];
-            const rs_cvert *v0 = &cache[i0], *v1 = &cache[i1];
-            uint32_t o0 = v0->c, o1 = v1->c;
-            for (k = 2; k < n; k++) {
-                uint32_t i2 = s[k];
-                const rs_cvert *v2 = &cache[i2];
-                uint32_t o2 = v2->c;
-                if (!(o0 & o1 & o2 & REJECT)) {
-                    if ((o0 | o1 | o2) & SLOW) {
-                        if (k & 1) tri_clip(bd, RS_FN(tri_raster), i1, i0, i2);
-                        else tri_clip(bd, RS_FN(tri_raster), i0, i1, i2);
-                    } else if (k & 1) RS_FN(tri_raster)(bd, v1, v0, v2);   /* odd triangle k-2 */
-                    else RS_FN(tri_raster)(bd, v0, v1, v2);
+        uint32_t k, n = pr->n, nt = rs_prim_tris(pr), t0;
+        if (nt == 0) continue;
+        for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch += ch ? 2 : 0) {
+            uint32_t t1 = nt - t0 < RS_CHUNK ? nt : t0 + RS_CHUNK;
+            if (ch && (ch[1] < bd->y0 || ch[0] >= bd->y1)) continue;   /* chunk misses the band */
+            if (pr->kind == RS_STRIP) {
+                /* sliding window: one new vertex per triangle; triangle t = (s[t], s[t+1],
+                 * s[t+2]), the first two swapped for odd t */
+                uint32_t i0 = s[t0], i1 = s[t0 + 1];
+                const rs_cvert *v0 = &cache[i0], *v1 = &cache[i1];
+                uint32_t o0 = v0->c, o1 = v1->c;
+                for (k = t0 + 2; k < t1 + 2; k++) {
+                    uint32_t i2 = s[k];
+                    const rs_cvert *v2 = &cache[i2];
+                    uint32_t o2 = v2->c;
+                    if (!(o0 & o1 & o2 & REJECT)) {
+                        if ((o0 | o1 | o2) & SLOW) {
+                            if (k & 1) tri_clip(bd, RS_FN(tri_raster), i1, i0, i2);
+                            else tri_clip(bd, RS_FN(tri_raster), i0, i1, i2);
+                        } else if (k & 1) RS_FN(tri_raster)(bd, v1, v0, v2);   /* odd triangle k-2 */
+                        else RS_FN(tri_raster)(bd, v0, v1, v2);
+                    }
+                    i0 = i1; i1 = i2; v0 = v1; v1 = v2; o0 = o1; o1 = o2;
                 }
-                i0 = i1; i1 = i2; v0 = v1; v1 = v2; o0 = o1; o1 = o2;
-            }
-        } else {
-            for (k = 0; k + 2 < n; k += 3) {
-                uint32_t ia = s[k], ib = s[k + 1], ic = s[k + 2];
-                const rs_cvert *va = &cache[ia], *vb = &cache[ib], *vc = &cache[ic];
-                if (va->c & vb->c & vc->c & REJECT) continue;
-                if ((va->c | vb->c | vc->c) & SLOW) { tri_clip(bd, RS_FN(tri_raster), ia, ib, ic); continue; }
-                RS_FN(tri_raster)(bd, va, vb, vc);
+            } else {
+                for (k = 3 * t0; k < 3 * t1; k += 3) {
+                    uint32_t ia = s[k], ib = s[k + 1], ic = s[k + 2];
+                    const rs_cvert *va = &cache[ia], *vb = &cache[ib], *vc = &cache[ic];
+                    if (va->c & vb->c & vc->c & REJECT) continue;
+                    if ((va->c | vb->c | vc->c) & SLOW) { tri_clip(bd, RS_FN(tri_raster), ia, ib, ic); continue; }
+                    RS_FN(tri_raster)(bd, va, vb, vc);
+                }
             }
         }
+        (void)n;
     }
 }
