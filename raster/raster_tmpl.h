@@ -265,7 +265,7 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
 #endif
                     for (i = 0; i < n; i++) {
 #if RS_COUNT
-                        (void)zp; (void)z; (void)gzu;
+                        (void)zp; (void)z; (void)gzu; (void)col;
                         cp[i] += 1;
 #else
                         RS_Z zz = (RS_Z)(z >> RS_ZSH);
