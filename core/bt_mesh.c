@@ -62,8 +62,10 @@ typedef struct em {
     int lost;               /* the split list overflowed */
     int nonvoid;            /* the padded grid has no void sample: skip the checks */
     int64_t wz_lo[256], wz_hi[256]; /* world z of the quantised height codes (floor, ceil) */
-    struct pend_s { uint32_t ia, ic, ib, o0, o1, other; int ccw_first; } pend; /* see pend */
+    struct pend_s { uint32_t ia, ic, ib, o0, o1, other; } pend; /* see pend */
     int has_pend;
+    uint32_t lim_nv, lim_ns;  /* room for two more leaves: vertices, strip indices */
+    int fid;                /* plain fidelity rule (no budget marks) */
 } em;
 
 /* ------------------------------------------------------------ mesh memory */
@@ -274,7 +276,7 @@ static int decide(em *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
     int64_t ew = 0, d = 0;
     int r;
     *morph = BT_MORPH_ONE;
-    if (e->p->mode == BT_FIDELITY && e->tau >= 0) return t->err[idx] > e->cthr;
+    if (e->fid) return t->err[idx] > e->cthr;
     if (e->p->mode == BT_BUDGET || e->tau < 0) {
         if (e->p->mode == BT_FIDELITY) return (t->st[idx] & ST_SPLIT) != 0;
         r = view_err(e, x, y, mask, &ew, &d);
@@ -322,15 +324,11 @@ static uint32_t vid(em *e, pt *q)
     }
 }
 
-static int64_t cross3(const pt *a, const pt *b, const pt *c)
-{
-    return (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(b->y - a->y) * (c->x - a->x);
-}
 
 static void push(bt_mesh *m, uint32_t i) { m->strip[m->ns++] = i; }
 
 /* A leaf waiting to be written: its vertex indices, exit edge {o0, o1} and the
- * third vertex; and its (re)start orientation */
+ * third vertex */
 typedef struct pend_s pend;
 
 static int collinear(const bt_mesh *m, uint32_t a, uint32_t b, uint32_t c)
@@ -377,13 +375,18 @@ static int write_leaf(em *e, const pend *L, const pend *N)
         /* (re)start: (other, v2, v3) drawn at index i counter-clockwise from +z, i.e.
          * grid cross < 0 for even i, > 0 for odd i (odd triangles are swapped) */
         uint32_t i0, v2 = L->o0, v3 = L->o1;
+        int ccw_first;
+        {
+            const bt_vert *A = &m->v[L->other], *B = &m->v[L->o0], *C = &m->v[L->o1];
+            ccw_first = (int64_t)(B->x - A->x) * (C->y - A->y) - (int64_t)(B->y - A->y) * (C->x - A->x) < 0;
+        }
         if (m->ns > 0 && m->strip[m->ns - 1] == L->other) {
             /* the strip already ends at the leaf's free vertex: repeat it once
              * (2 line triangles) and the leaf follows */
             push(m, L->other);
             m->nline += 2;
             i0 = m->ns - 1;
-            if (((i0 & 1) == 0) != L->ccw_first) { v2 = L->o1; v3 = L->o0; }
+            if (((i0 & 1) == 0) != ccw_first) { v2 = L->o1; v3 = L->o0; }
             push(m, v2); push(m, v3);
             return 0;
         }
@@ -393,7 +396,7 @@ static int write_leaf(em *e, const pend *L, const pend *N)
             m->nline += 4;
         }
         i0 = m->ns;
-        if (((i0 & 1) == 0) != L->ccw_first) { v2 = L->o1; v3 = L->o0; }
+        if (((i0 & 1) == 0) != ccw_first) { v2 = L->o1; v3 = L->o0; }
         push(m, L->other); push(m, v2); push(m, v3);
     }
     return 0;
@@ -408,8 +411,7 @@ static void leaf(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
     e->count++;
     if (e->count_only) return;
     /* room for this leaf and the pending one */
-    if (e->full || m->nv + 6 > m->cap_v || m->ns + 10 > m->cap_s || m->ntri >= m->max_tri ||
-        m->nv + 6 > m->hmask - (m->hmask >> 2)) {
+    if (e->full || m->nv > e->lim_nv || m->ns > e->lim_ns || m->ntri >= m->max_tri) {
         e->full = 1;
         return;
     }
@@ -417,10 +419,6 @@ static void leaf(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
     m->ntri++;
     if (out_hyp) { L.o0 = L.ia; L.o1 = L.ib; L.other = L.ic; }
     else { L.o0 = L.ic; L.o1 = L.ib; L.other = L.ia; }
-    {
-        const pt *po = out_hyp ? c : a, *p0 = out_hyp ? a : c;
-        L.ccw_first = cross3(po, p0, b) < 0;
-    }
     (void)in_hyp;
     if (e->has_pend) {
         if (write_leaf(e, &e->pend, &L)) { e->has_pend = 0; return; }
@@ -611,6 +609,7 @@ static br_status setup(em *e, bt_tree *t, const bt_params *p)
     if (!t || !p || !t->err) return BR_E_ARG;
     e->t = t; e->p = p; e->n = t->n; e->S = t->n - 1;
     e->nonvoid = t->nvalid == (int64_t)t->n * t->n;
+    e->fid = p->mode == BT_FIDELITY;
     if (p->mode == BT_FIDELITY) {
         int64_t thr = p->max_err;
         uint16_t lo = 0, hi = BT_CODE_SPLIT - 1;
@@ -686,6 +685,11 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
     if (s != BR_OK) return s;
     if (!m || !m->v) return BR_E_ARG;
     e.m = m;
+    {
+        uint32_t hl = m->hmask - (m->hmask >> 2);
+        e.lim_nv = (hl < m->cap_v ? hl : m->cap_v) - 6;
+        e.lim_ns = m->cap_s - 10;
+    }
     ids = ids_of(m);
     old = (uint32_t *)(void *)heap_of(m);
     /* hysteresis bookkeeping: ids[0..nsplits) are the previous frame's splits
@@ -701,6 +705,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
     if (p->mode == BT_BUDGET) {
         budget_mark(&e, p->budget < m->max_tri ? p->budget : m->max_tri, &nid);
         e.tau = -1;
+        e.fid = 0;
     } else {
         e.rec_splits = p->mode == BT_VIEW;
         run(&e);
@@ -732,6 +737,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         e.full = 0; e.rec_splits = 0; e.lost = 0;
         budget_mark(&e, m->max_tri, &nid);
         e.tau = -1;
+        e.fid = 0;
         m->overflow = 1;
     }
     run(&e);
