@@ -276,7 +276,7 @@ static int decide(em *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
     int64_t ew = 0, d = 0;
     int r;
     *morph = BT_MORPH_ONE;
-    if (e->fid) return t->err[idx] > e->cthr;
+    if (e->fid) return e->t->err[idx] > e->cthr;
     if (e->p->mode == BT_BUDGET || e->tau < 0) {
         if (e->p->mode == BT_FIDELITY) return (t->st[idx] & ST_SPLIT) != 0;
         r = view_err(e, x, y, mask, &ew, &d);
@@ -439,7 +439,7 @@ static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned ma
     pt mm;
     int sp;
     if (e->full) return;
-    if ((dx == 1 || dx == -1) && (dy == 1 || dy == -1)) {
+    if ((a->x + b->x) & 1) {     /* unit legs: the hypotenuse midpoint is no sample */
         if (e->nonvoid || (valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y)))
             leaf(e, a, c, b, in_hyp, out_hyp);
         return;
@@ -465,7 +465,7 @@ static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned ma
         }
     }
     {
-        int32_t zs = zreal(e->t, mm.x, mm.y);
+        int32_t zs = e->nonvoid ? e->t->f->z[(size_t)mm.y * (size_t)e->n + (size_t)mm.x] : zreal(e->t, mm.x, mm.y);
         int64_t zf = ((int64_t)a->z + b->z) >> 1;
         /* a vertex whose real height IS the interpolation of its hypotenuse ends
          * (in every mode) carries topology but no information: fictitious (002:
