@@ -222,6 +222,12 @@ static int span_limits(int64_t s, int64_t K, int32_t px0, int32_t px1, int32_t *
     return 1;
 }
 
+#if defined(__GNUC__)
+#define RS_NOINLINE __attribute__((noinline))
+#else
+#define RS_NOINLINE
+#endif
+
 /* Index of the lowest set bit of m (m != 0). */
 static int32_t ctz32(uint32_t m)
 {

@@ -7,33 +7,16 @@
  *   write-counting test variant (no depth test; each write adds 1 to a 32-bit pixel).
  * No header guard on purpose.  See raster.c for the derivations. */
 
-static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
+/* Triangles whose bounding box has more than TINY x TINY candidate centres (kept out
+ * of tri_raster so that the tiny path's code stays small). */
+RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                           int32_t xmin, int32_t xmax, int32_t ymin, int32_t ymax,
+                                           int32_t px0, int32_t px1, int32_t py0, int32_t py1)
 {
-    int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1, py;
+    int32_t py;
     int64_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, S, e0r, e2r, sx0, sx2, sy0, sy2;
-    int32_t bias0, bias1, bias2, tiny;
+    int32_t bias0, bias1, bias2;
     const int32_t w = bd->w;
-
-    {
-        const int32_t ax = a->x, ay = a->y, bx = b->x, by = b->y, cx = c->x, cy = c->y;
-        int32_t lo, hi, t;
-        t = ay < by ? ay : by; ymin = t < cy ? t : cy;
-        t = ay > by ? ay : by; ymax = t > cy ? t : cy;
-        lo = (ymin + HALF - 1) >> SUB;    /* first row whose centre is >= ymin */
-        hi = (ymax - HALF) >> SUB;        /* last row whose centre is <= ymax */
-        py0 = lo < bd->y0 ? bd->y0 : lo;
-        py1 = hi >= bd->y1 ? bd->y1 - 1 : hi;
-        if (py0 > py1) return;
-        t = ax < bx ? ax : bx; xmin = t < cx ? t : cx;
-        t = ax > bx ? ax : bx; xmax = t > cx ? t : cx;
-        px0 = (xmin + HALF - 1) >> SUB;
-        px1 = (xmax - HALF) >> SUB;
-        /* the path choice depends on the triangle only (not on the band or screen clip) */
-        tiny = px1 - px0 < TINY && hi - lo < TINY;
-        if (px0 < 0) px0 = 0;
-        if (px1 >= w) px1 = w - 1;
-        if (px0 > px1) return;
-    }
 
     dx1 = (int64_t)b->x - a->x; dy1 = (int64_t)b->y - a->y;
     dx2 = (int64_t)c->x - a->x; dy2 = (int64_t)c->y - a->y;
@@ -68,106 +51,6 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
         e2r = A2 * ox + B2 * oy - bias2;
     }
     sx0 = A0 * SUBONE; sx2 = A2 * SUBONE; sy0 = B0 * SUBONE; sy2 = B2 * SUBONE;
-
-    if (tiny) {
-        /* Tiny bounding box (at most TINY x TINY candidate centres).  Phase 1: the
-         * coverage mask (bit 4 j + i for centre (px0 + i, py0 + j)), no attribute work,
-         * so the many triangles that cover no centre stop here.  Phase 2: at an inside
-         * centre the edge values are the barycentric weights times area2, so attributes
-         * come straight from the vertices with no gradient set-up.  Extent < (TINY+1)
-         * px, so area2 < 2^15 and e * inv < 2^41. */
-        uint32_t mask = 0;
-        int32_t nx = px1 - px0 + 1, ny = py1 - py0 + 1, i, j, npix = 0;
-        int64_t e0b = 0, e2b = 0, e0c = 0, e2c = 0, e0d = 0, e2d = 0;
-        int small2 = nx <= 2 && ny <= 2;
-        if (small2) {
-            /* the common case, unrolled: candidates (0,0) (1,0) (0,1) (1,1) -> bits 0 1 4 5;
-             * a candidate past px1 or py1 is outside the triangle anyway unless px1/py1
-             * were clipped to the screen or band, hence the masks */
-            e0b = e0r + sx0; e2b = e2r + sx2; e0c = e0r + sy0; e2c = e2r + sy2;
-            e0d = e0c + sx0; e2d = e2c + sx2;
-            mask = (uint32_t)((e0r | (S - e0r - e2r) | e2r) >= 0)
-                 | (uint32_t)((e0b | (S - e0b - e2b) | e2b) >= 0) << 1
-                 | (uint32_t)((e0c | (S - e0c - e2c) | e2c) >= 0) << 4
-                 | (uint32_t)((e0d | (S - e0d - e2d) | e2d) >= 0) << 5;
-            if (nx < 2) mask &= 0x11u;
-            if (ny < 2) mask &= 0x03u;
-        } else {
-            int64_t r0 = e0r, r2 = e2r;
-            for (j = 0; j < ny; j++, r0 += sy0, r2 += sy2) {
-                int64_t e0 = r0, e2 = r2;
-                for (i = 0; i < nx; i++, e0 += sx0, e2 += sx2)
-                    mask |= (uint32_t)((e0 | (S - e0 - e2) | e2) >= 0) << (4 * j + i);
-            }
-        }
-        if (!mask) return;
-        {
-            const int64_t inv = ((int64_t)1 << 40) / area2, ad = a->d;
-            const int64_t dzb = (int64_t)b->d - ad, dzc = (int64_t)c->d - ad;
-            const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
-            const size_t stride = bd->stride, zw = (size_t)w;
-            uint8_t *crow0 = bd->color + (size_t)(py0 - bd->y0) * stride;
-            RS_Z *zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw;
-#if RS_TEX
-            /* perspective: 1/w weights d >> tsh (16 bits for the nearest vertex) */
-            const rs_texture *tx = bd->f->tex;
-            int32_t tsh = tex_shift(a->d, b->d, c->d);
-            const int64_t qa = a->d >> tsh, qb = b->d >> tsh, qc = c->d >> tsh;
-            const int64_t ua = qa * a->u, ub = qb * b->u, uc = qc * c->u;
-            const int64_t va = qa * a->v, vb = qb * b->v, vc = qc * c->v;
-#endif
-            /* shade the centre (px0 + I, py0 + J) whose edge values are E0, E2 */
-#if RS_COUNT
-#define TINY_SHADE(E0, E2, I, J) do {                                                  \
-                (void)inv; (void)ad; (void)dzb; (void)dzc; (void)db; (void)dc; (void)ca; \
-                (void)zrow0; (void)(E0); (void)(E2);                                   \
-                ((RS_PIX *)(void *)(crow0 + (size_t)(J) * stride))[px0 + (I)] += 1;    \
-                npix++;                                                                \
-            } while (0)
-#else
-#define TINY_SHADE(E0, E2, I, J) do {                                                  \
-                int64_t w1_ = ((E2) * inv) >> 24, w2_ = ((E0) * inv) >> 24; /* Q16 */    \
-                RS_Z *zp_ = zrow0 + (size_t)(J) * zw + px0 + (I);                        \
-                RS_Z zz_ = (RS_Z)((uint32_t)(ad + ((dzb * w1_ + dzc * w2_) >> 16)) >> RS_ZSH); \
-                npix++;                                                                \
-                if (zz_ > *zp_) {                                                      \
-                    uint64_t col_ = ca + db * (uint64_t)(w1_ >> 3) + dc * (uint64_t)(w2_ >> 3); \
-                    *zp_ = zz_;                                                        \
-                    ((RS_PIX *)(void *)(crow0 + (size_t)(J) * stride))[px0 + (I)] = TINY_PIX(col_, w1_, w2_); \
-                }                                                                      \
-            } while (0)
-#if RS_TEX
-#define TINY_PIX(COL, W1, W2) RS_PACK24(tex_mod(tex_fetch(tx,                          \
-                tex_div(((65536 - (W1) - (W2)) * ua + (W1) * ub + (W2) * uc),           \
-                        ((65536 - (W1) - (W2)) * qa + (W1) * qb + (W2) * qc)),          \
-                tex_div(((65536 - (W1) - (W2)) * va + (W1) * vb + (W2) * vc),           \
-                        ((65536 - (W1) - (W2)) * qa + (W1) * qb + (W2) * qc))), (COL)))
-#else
-#define TINY_PIX(COL, W1, W2) RS_PACK(COL)
-#endif
-#endif
-            if (small2) {
-                if (mask & 0x01u) TINY_SHADE(e0r, e2r, 0, 0);
-                if (mask & 0x02u) TINY_SHADE(e0b, e2b, 1, 0);
-                if (mask & 0x10u) TINY_SHADE(e0c, e2c, 0, 1);
-                if (mask & 0x20u) TINY_SHADE(e0d, e2d, 1, 1);
-            } else {
-                while (mask) {
-                    int32_t k = ctz32(mask);
-                    int64_t e0, e2;
-                    mask &= mask - 1;
-                    i = k & 3; j = k >> 2;
-                    e0 = e0r + i * sx0 + j * sy0;
-                    e2 = e2r + i * sx2 + j * sy2;
-                    TINY_SHADE(e0, e2, i, j);
-                }
-            }
-#undef TINY_SHADE
-#undef TINY_PIX
-            bd->pixels += (uint32_t)npix;
-        }
-        return;
-    }
 
     {
         /* General path.  x-gradients per pixel: colour per channel in Q13, packed into
@@ -287,6 +170,170 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
             }
         }
     }
+}
+
+static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
+{
+    int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1;
+    int64_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, S, e0r, e2r, sx0, sx2, sy0, sy2;
+    int32_t bias0, bias1, bias2, tiny;
+    const int32_t w = bd->w;
+
+    {
+        const int32_t ax = a->x, ay = a->y, bx = b->x, by = b->y, cx = c->x, cy = c->y;
+        int32_t lo, hi, t;
+        t = ay < by ? ay : by; ymin = t < cy ? t : cy;
+        t = ay > by ? ay : by; ymax = t > cy ? t : cy;
+        lo = (ymin + HALF - 1) >> SUB;    /* first row whose centre is >= ymin */
+        hi = (ymax - HALF) >> SUB;        /* last row whose centre is <= ymax */
+        py0 = lo < bd->y0 ? bd->y0 : lo;
+        py1 = hi >= bd->y1 ? bd->y1 - 1 : hi;
+        if (py0 > py1) return;
+        t = ax < bx ? ax : bx; xmin = t < cx ? t : cx;
+        t = ax > bx ? ax : bx; xmax = t > cx ? t : cx;
+        px0 = (xmin + HALF - 1) >> SUB;
+        px1 = (xmax - HALF) >> SUB;
+        /* the path choice depends on the triangle only (not on the band or screen clip) */
+        tiny = px1 - px0 < TINY && hi - lo < TINY;
+        if (px0 < 0) px0 = 0;
+        if (px1 >= w) px1 = w - 1;
+        if (px0 > px1) return;
+    }
+    if (!tiny) {
+        RS_FN(tri_general)(bd, a, b, c, xmin, xmax, ymin, ymax, px0, px1, py0, py1);
+        return;
+    }
+
+    dx1 = (int64_t)b->x - a->x; dy1 = (int64_t)b->y - a->y;
+    dx2 = (int64_t)c->x - a->x; dy2 = (int64_t)c->y - a->y;
+    area2 = dx1 * dy2 - dx2 * dy1;
+    /* y points down: counter-clockwise as seen (a front face) has area2 < 0 */
+    if (area2 >= 0) {
+        if (area2 == 0 || bd->cull) return;
+    } else {
+        const rs_cvert *t = b;
+        int64_t u;
+        b = c; c = t;
+        u = dx1; dx1 = dx2; dx2 = u;
+        u = dy1; dy1 = dy2; dy2 = u;
+        area2 = -area2;
+    }
+    bd->tris++;
+    /* Edge P->Q: E = A (X - P.x) + B (Y - P.y) >= 0 inside, at pixel centres.  Edge 0 =
+     * a->b (the weight of c), 1 = b->c (weight of a), 2 = c->a (weight of b); since
+     * E0 + E1 + E2 = area2 everywhere, E1 is never evaluated.  Edges that are not
+     * top-left (A > 0, or A == 0 and B > 0) are biased by -1 so that E == 0 there is
+     * outside: e_k = E_k - bias_k, inside iff all e_k >= 0, and e1 = S - e0 - e2. */
+    A0 = -dy1; B0 = dx1;
+    A2 = dy2; B2 = -dx2;
+    A1 = -(A0 + A2); B1 = -(B0 + B2);
+    bias0 = (2 * A0 + (B0 > 0)) <= 0;
+    bias1 = (2 * A1 + (B1 > 0)) <= 0;
+    bias2 = (2 * A2 + (B2 > 0)) <= 0;
+    S = area2 - bias0 - bias1 - bias2;
+    {
+        int64_t ox = (int64_t)px0 * SUBONE + HALF - a->x, oy = (int64_t)py0 * SUBONE + HALF - a->y;
+        e0r = A0 * ox + B0 * oy - bias0;
+        e2r = A2 * ox + B2 * oy - bias2;
+    }
+    sx0 = A0 * SUBONE; sx2 = A2 * SUBONE; sy0 = B0 * SUBONE; sy2 = B2 * SUBONE;
+
+        /* Tiny bounding box (at most TINY x TINY candidate centres).  Phase 1: the
+         * coverage mask (bit 4 j + i for centre (px0 + i, py0 + j)), no attribute work,
+         * so the many triangles that cover no centre stop here.  Phase 2: at an inside
+         * centre the edge values are the barycentric weights times area2, so attributes
+         * come straight from the vertices with no gradient set-up.  Extent < (TINY+1)
+         * px, so area2 < 2^15 and e * inv < 2^41. */
+        uint32_t mask = 0;
+        int32_t nx = px1 - px0 + 1, ny = py1 - py0 + 1, i, j, npix = 0;
+        int64_t e0b = 0, e2b = 0, e0c = 0, e2c = 0, e0d = 0, e2d = 0;
+        int small2 = nx <= 2 && ny <= 2;
+        if (small2) {
+            /* the common case, unrolled: candidates (0,0) (1,0) (0,1) (1,1) -> bits 0 1 4 5;
+             * a candidate past px1 or py1 is outside the triangle anyway unless px1/py1
+             * were clipped to the screen or band, hence the masks */
+            e0b = e0r + sx0; e2b = e2r + sx2; e0c = e0r + sy0; e2c = e2r + sy2;
+            e0d = e0c + sx0; e2d = e2c + sx2;
+            mask = (uint32_t)((e0r | (S - e0r - e2r) | e2r) >= 0)
+                 | (uint32_t)((e0b | (S - e0b - e2b) | e2b) >= 0) << 1
+                 | (uint32_t)((e0c | (S - e0c - e2c) | e2c) >= 0) << 4
+                 | (uint32_t)((e0d | (S - e0d - e2d) | e2d) >= 0) << 5;
+            if (nx < 2) mask &= 0x11u;
+            if (ny < 2) mask &= 0x03u;
+        } else {
+            int64_t r0 = e0r, r2 = e2r;
+            for (j = 0; j < ny; j++, r0 += sy0, r2 += sy2) {
+                int64_t e0 = r0, e2 = r2;
+                for (i = 0; i < nx; i++, e0 += sx0, e2 += sx2)
+                    mask |= (uint32_t)((e0 | (S - e0 - e2) | e2) >= 0) << (4 * j + i);
+            }
+        }
+        if (!mask) return;
+        {
+            const int64_t inv = ((int64_t)1 << 40) / area2, ad = a->d;
+            const int64_t dzb = (int64_t)b->d - ad, dzc = (int64_t)c->d - ad;
+            const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
+            const size_t stride = bd->stride, zw = (size_t)w;
+            uint8_t *crow0 = bd->color + (size_t)(py0 - bd->y0) * stride;
+            RS_Z *zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw;
+#if RS_TEX
+            /* perspective: 1/w weights d >> tsh (16 bits for the nearest vertex) */
+            const rs_texture *tx = bd->f->tex;
+            int32_t tsh = tex_shift(a->d, b->d, c->d);
+            const int64_t qa = a->d >> tsh, qb = b->d >> tsh, qc = c->d >> tsh;
+            const int64_t ua = qa * a->u, ub = qb * b->u, uc = qc * c->u;
+            const int64_t va = qa * a->v, vb = qb * b->v, vc = qc * c->v;
+#endif
+            /* shade the centre (px0 + I, py0 + J) whose edge values are E0, E2 */
+#if RS_COUNT
+#define TINY_SHADE(E0, E2, I, J) do {                                                  \
+                (void)inv; (void)ad; (void)dzb; (void)dzc; (void)db; (void)dc; (void)ca; \
+                (void)zrow0; (void)(E0); (void)(E2);                                   \
+                ((RS_PIX *)(void *)(crow0 + (size_t)(J) * stride))[px0 + (I)] += 1;    \
+                npix++;                                                                \
+            } while (0)
+#else
+#define TINY_SHADE(E0, E2, I, J) do {                                                  \
+                int64_t w1_ = ((E2) * inv) >> 24, w2_ = ((E0) * inv) >> 24; /* Q16 */    \
+                RS_Z *zp_ = zrow0 + (size_t)(J) * zw + px0 + (I);                        \
+                RS_Z zz_ = (RS_Z)((uint32_t)(ad + ((dzb * w1_ + dzc * w2_) >> 16)) >> RS_ZSH); \
+                npix++;                                                                \
+                if (zz_ > *zp_) {                                                      \
+                    uint64_t col_ = ca + db * (uint64_t)(w1_ >> 3) + dc * (uint64_t)(w2_ >> 3); \
+                    *zp_ = zz_;                                                        \
+                    ((RS_PIX *)(void *)(crow0 + (size_t)(J) * stride))[px0 + (I)] = TINY_PIX(col_, w1_, w2_); \
+                }                                                                      \
+            } while (0)
+#if RS_TEX
+#define TINY_PIX(COL, W1, W2) RS_PACK24(tex_mod(tex_fetch(tx,                          \
+                tex_div(((65536 - (W1) - (W2)) * ua + (W1) * ub + (W2) * uc),           \
+                        ((65536 - (W1) - (W2)) * qa + (W1) * qb + (W2) * qc)),          \
+                tex_div(((65536 - (W1) - (W2)) * va + (W1) * vb + (W2) * vc),           \
+                        ((65536 - (W1) - (W2)) * qa + (W1) * qb + (W2) * qc))), (COL)))
+#else
+#define TINY_PIX(COL, W1, W2) RS_PACK(COL)
+#endif
+#endif
+            if (small2) {
+                if (mask & 0x01u) TINY_SHADE(e0r, e2r, 0, 0);
+                if (mask & 0x02u) TINY_SHADE(e0b, e2b, 1, 0);
+                if (mask & 0x10u) TINY_SHADE(e0c, e2c, 0, 1);
+                if (mask & 0x20u) TINY_SHADE(e0d, e2d, 1, 1);
+            } else {
+                while (mask) {
+                    int32_t k = ctz32(mask);
+                    int64_t e0, e2;
+                    mask &= mask - 1;
+                    i = k & 3; j = k >> 2;
+                    e0 = e0r + i * sx0 + j * sy0;
+                    e2 = e2r + i * sx2 + j * sy2;
+                    TINY_SHADE(e0, e2, i, j);
+                }
+            }
+#undef TINY_SHADE
+#undef TINY_PIX
+            bd->pixels += (uint32_t)npix;
+        }
 }
 
 static void RS_FN(draw)(band *bd)
