@@ -41,7 +41,7 @@
  * Every sample except the 4 corners is the midpoint of exactly one DIAMOND (the
  * one or two triangles sharing that hypotenuse), so per-diamond data is stored
  * per sample:
- *   err   uint16 error code: BT_METRIC_EXACT: a TRUE upper bound, in
+ *   node  uint32: error code (low 16 bits), BT_METRIC_EXACT: a TRUE upper bound, in
  *         heightfield units, of |plane - z| over every grid sample of each
  *         triangle of the diamond AND of every descendant diamond (max, so the
  *         hierarchy is monotone); BT_METRIC_CURVATURE: the accumulated 001
@@ -50,8 +50,9 @@
  *         diamond covers voids and valid samples (always split; 000's nodata).
  *         Codes decode with bt_code_value (exact below 4096, then 12-bit
  *         mantissa, rounded UP so the bound stays a bound).
- *   zlo, zhi  uint8 quantised height range of the diamond's nested bounding
- *         volume (range of its triangles +- error, union with its children).
+ *         and (high 16 bits) the uint8 quantised height range zlo, zhi of the
+ *         diamond's nested bounding volume (its triangles' vertex range +- error,
+ *         union with its children): one load per diamond.
  *   st    uint8 per-vertex frame state (hysteresis / budget marks).
  * Memory: 5 bytes per padded sample (bt_mem_size); build scratch 10 bytes per
  * heightfield sample (bt_scratch_size), only during bt_build.
@@ -80,17 +81,23 @@ typedef struct bt_tree {
     int32_t metric;        /* BT_METRIC_* */
     int32_t zmin, zmax;    /* over valid samples (0, 0 if none) */
     int64_t nvalid;        /* valid samples */
-    uint16_t *err;         /* n*n error codes, per diamond centre */
-    uint8_t *zlo, *zhi;    /* n*n quantised height range of the diamond's volume */
+    uint32_t *node;        /* n*n per diamond centre: error code (bits 0-15), quantised
+                              height range of its volume: low (16-23), high (24-31) */
     uint8_t *st;           /* n*n frame state bits */
 } bt_tree;
+
+#define BT_NODE_ERR(v) ((uint16_t)((v) & 0xFFFFu))
+#define BT_NODE_ZLO(v) ((uint8_t)(((v) >> 16) & 0xFFu))
+#define BT_NODE_ZHI(v) ((uint8_t)((v) >> 24))
+#define BT_NODE(e, lo, hi) ((uint32_t)(e) | ((uint32_t)(lo) << 16) | ((uint32_t)(hi) << 24))
 
 /* Bytes of mem for bt_build (5 per padded sample); 0 if w, h are invalid. */
 size_t bt_mem_size(int32_t w, int32_t h);
 /* Bytes of build scratch (freed by the caller after bt_build). */
 size_t bt_scratch_size(int32_t w, int32_t h);
 /* Builds the error hierarchy of f with metric (BT_METRIC_*).  BR_E_ARG on a bad
- * hf, bad metric or too small buffers (t is then unchanged). */
+ * hf, bad metric, too small buffers or mem not 4-byte aligned (t is then
+ * unchanged). */
 br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
                    void *mem, size_t mem_bytes, void *scratch, size_t scratch_bytes);
 

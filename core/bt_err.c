@@ -510,9 +510,12 @@ static void diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, i
             size_t ci;
             if (cx[i] < 0 || cy[i] < 0 || cx[i] > S || cy[i] > S) continue;
             ci = (size_t)cy[i] * n + cx[i];
-            if (t->err[ci] > code) code = t->err[ci];
-            if (t->zlo[ci] < lo) lo = t->zlo[ci];
-            if (t->zhi[ci] > hi) hi = t->zhi[ci];
+            {
+                uint32_t v = t->node[ci];
+                if (BT_NODE_ERR(v) > code) code = BT_NODE_ERR(v);
+                if (BT_NODE_ZLO(v) < lo) lo = BT_NODE_ZLO(v);
+                if (BT_NODE_ZHI(v) > hi) hi = BT_NODE_ZHI(v);
+            }
         }
     }
     cmax = bt_code_value(code);
@@ -567,9 +570,7 @@ static void diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, i
             if (u > hi) hi = u;
         }
     }
-    t->err[idx] = code;
-    t->zlo[idx] = (uint8_t)lo;
-    t->zhi[idx] = (uint8_t)hi;
+    t->node[idx] = BT_NODE(code, lo, hi);
 }
 
 static int32_t kappa_at(const int32_t *z, int32_t w, int32_t h, int32_t x, int32_t y)
@@ -605,9 +606,7 @@ static void a1_fast(bt_tree *t, const ctx *c, size_t idx, int32_t za, int32_t zb
     if (zp > hi) hi = zp;
     if (zq < lo) lo = zq;
     if (zq > hi) hi = zq;
-    t->err[idx] = enc_small(e);
-    t->zlo[idx] = q_lo(c, (int64_t)lo - e);
-    t->zhi[idx] = q_hi(c, (int64_t)hi + e);
+    t->node[idx] = BT_NODE(enc_small(e), q_lo(c, (int64_t)lo - e), q_hi(c, (int64_t)hi + e));
     if (c->ub) c->ub[2 * idx] = c->ub[2 * idx + 1] = e;
 }
 
@@ -673,7 +672,11 @@ static void level1(bt_tree *t, const ctx *c)
                 }
                 code = enc_small(e);
                 ch[0] = idx - 1; ch[1] = idx + 1; ch[2] = idx - (size_t)n; ch[3] = idx + (size_t)n;
-                for (k = 0; k < 4; k++) if (t->err[ch[k]] > code) code = t->err[ch[k]];
+                uint32_t cv[4];
+                for (k = 0; k < 4; k++) {
+                    cv[k] = t->node[ch[k]];
+                    if (BT_NODE_ERR(cv[k]) > code) code = BT_NODE_ERR(cv[k]);
+                }
                 lo = z00; hi = z00;
                 lo = z20 < lo ? z20 : lo; hi = z20 > hi ? z20 : hi;
                 lo = z02 < lo ? z02 : lo; hi = z02 > hi ? z02 : hi;
@@ -682,12 +685,10 @@ static void level1(bt_tree *t, const ctx *c)
                 lq = q_lo(c, (int64_t)lo - e);
                 hq = q_hi(c, (int64_t)hi + e);
                 for (k = 0; k < 4; k++) {
-                    if (t->zlo[ch[k]] < lq) lq = t->zlo[ch[k]];
-                    if (t->zhi[ch[k]] > hq) hq = t->zhi[ch[k]];
+                    if (BT_NODE_ZLO(cv[k]) < lq) lq = BT_NODE_ZLO(cv[k]);
+                    if (BT_NODE_ZHI(cv[k]) > hq) hq = BT_NODE_ZHI(cv[k]);
                 }
-                t->err[idx] = code;
-                t->zlo[idx] = (uint8_t)lq;
-                t->zhi[idx] = (uint8_t)hq;
+                t->node[idx] = BT_NODE(code, lq, hq);
             } else diamond(t, c, x, y, 1, 1);
         }
 #undef ZZ
@@ -716,11 +717,10 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
     S = n - 1;
     nt.metric = metric;
     nn = (size_t)n * n;
-    nt.err = (uint16_t *)mem;
-    nt.zlo = (uint8_t *)mem + nn * 2;
-    nt.zhi = nt.zlo + nn;
-    nt.st = nt.zhi + nn;
-    memset(mem, 0, nn * 5);
+    if (((uintptr_t)mem & 3) != 0) return BR_E_ARG;
+    nt.node = (uint32_t *)mem;
+    nt.st = (uint8_t *)mem + nn * 4;
+    memset(nt.st, 0, nn);   /* every node is written below; corners are never read */
     /* stats and void prefix counts, then heights biased by zmin (>= 0: shifts of
      * non-negative values only), voids = 0 */
     zs = (int32_t *)scratch;

@@ -186,8 +186,8 @@ static void dvolume(const em *e, int32_t x, int32_t y, int64_t lo[3], int64_t hi
     hi[0] = fr->ox + (int64_t)x1 * fr->sx;
     lo[1] = fr->oy - (int64_t)y1 * fr->sy;
     hi[1] = fr->oy - (int64_t)y0 * fr->sy;
-    lo[2] = e->wz_lo[t->zlo[idx]];
-    hi[2] = e->wz_hi[t->zhi[idx]];
+    lo[2] = e->wz_lo[BT_NODE_ZLO(t->node[idx])];
+    hi[2] = e->wz_hi[BT_NODE_ZHI(t->node[idx])];
     (void)t;
 }
 
@@ -222,8 +222,9 @@ static int view_err(const em *e, int32_t x, int32_t y, unsigned *mask, int64_t *
     const bt_tree *t = e->t;
     size_t idx = (size_t)y * e->n + x;
     int64_t lo[3], hi[3];
-    uint16_t code = t->err[idx];
-    if (t->zlo[idx] > t->zhi[idx]) return -1; /* all void */
+    uint32_t nv = t->node[idx];
+    uint16_t code = BT_NODE_ERR(nv);
+    if (BT_NODE_ZLO(nv) > BT_NODE_ZHI(nv)) return -1; /* all void */
     dvolume(e, x, y, lo, hi);
     if (*mask && culled(e, lo, hi, mask)) return -1;
     if (code == BT_CODE_SPLIT) return 1;
@@ -276,7 +277,7 @@ static int decide(em *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
     int64_t ew = 0, d = 0;
     int r;
     *morph = BT_MORPH_ONE;
-    if (e->fid) return e->t->err[idx] > e->cthr;
+    if (e->fid) return BT_NODE_ERR(e->t->node[idx]) > e->cthr;
     if (e->p->mode == BT_BUDGET || e->tau < 0) {
         if (e->p->mode == BT_FIDELITY) return (t->st[idx] & ST_SPLIT) != 0;
         r = view_err(e, x, y, mask, &ew, &d);
@@ -504,7 +505,7 @@ static int64_t prio(em *e, int32_t x, int32_t y)
     int64_t r;
     while (((int32_t)1 << j) < h) j++;
     if (e->p->mode == BT_FIDELITY) {
-        uint16_t c = e->t->err[(size_t)y * e->n + x];
+        uint16_t c = BT_NODE_ERR(e->t->node[(size_t)y * e->n + x]);
         r = c == BT_CODE_SPLIT ? ((int64_t)1 << 50) : (int64_t)c;
     } else {
         r = rho_q8(e, x, y);
@@ -606,7 +607,7 @@ static uint32_t budget_mark(em *e, uint32_t budget, uint32_t *nid)
 static br_status setup(em *e, bt_tree *t, const bt_params *p)
 {
     memset(e, 0, sizeof *e);
-    if (!t || !p || !t->err) return BR_E_ARG;
+    if (!t || !p || !t->node) return BR_E_ARG;
     e->t = t; e->p = p; e->n = t->n; e->S = t->n - 1;
     e->nonvoid = t->nvalid == (int64_t)t->n * t->n;
     e->fid = p->mode == BT_FIDELITY;

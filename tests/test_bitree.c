@@ -391,14 +391,15 @@ static void test_bad_args(void)
     int32_t z[4] = { 1, 2, 3, 4 };
     hf f = { 2, 2, z, 1, 1, 1000000, 1000000, { 0, 0, 0, 0, 0 } };
     bt_tree t;
-    uint8_t mem[256];
+    uint32_t mem[64];
     uint8_t *scr = malloc(bt_scratch_size(2, 2));
     memset(&t, 0, sizeof t);
     CHECK(bt_mem_size(2, 2) <= sizeof mem);
     CHECK_EQ(bt_build(&t, &f, 7, mem, sizeof mem, scr, bt_scratch_size(2, 2)), BR_E_ARG);
     CHECK_EQ(bt_build(&t, &f, 0, mem, 3, scr, bt_scratch_size(2, 2)), BR_E_ARG);
     CHECK_EQ(bt_build(&t, &f, 0, mem, sizeof mem, scr, bt_scratch_size(2, 2) - 1), BR_E_ARG);
-    CHECK(t.err == NULL);                  /* a failed call leaves t as it was */
+    CHECK(t.node == NULL);                 /* a failed call leaves t as it was */
+    CHECK_EQ(bt_build(&t, &f, 0, (uint8_t *)mem + 1, sizeof mem - 1, scr, bt_scratch_size(2, 2)), BR_E_ARG);
     CHECK_EQ(bt_build(&t, &f, 0, mem, sizeof mem, scr, bt_scratch_size(2, 2)), BR_OK);
     CHECK_EQ(bt_mesh_mem_size(1), 0);
     free(scr);
