@@ -299,6 +299,43 @@ static void test_extremes(void)
     free(z);
 }
 
+/* A large grid (2049^2; 513^2 under the sanitizers) with heights in millimetres
+ * spanning -11000 m .. 9000 m: a steep paraboloid plus single-sample spikes of
+ * both extremes, so the exact metric runs its int64 path with large D; the mesh
+ * must hold its bound at every sample. */
+static void test_big_extremes(void)
+{
+    int32_t n = sanitized() ? 513 : 2049, x, y, c = n / 2;
+    int32_t *z = malloc((size_t)n * n * 4);
+    hf f;
+    built b;
+    omesh o;
+    bt_params p;
+    mc_report r;
+    mc_strip_report sr;
+    for (y = 0; y < n; y++)
+        for (x = 0; x < n; x++) {
+            int64_t d2 = (int64_t)(x - c) * (x - c) + (int64_t)(y - c) * (y - c);
+            int64_t v = -11000000 + (20000000 * d2) / (2 * (int64_t)c * c);
+            if (v > 9000000) v = 9000000;
+            if (((x * 7 + y * 13) % 997) == 0) v = (x & 1) ? 9000000 : -11000000;
+            z[(size_t)y * n + x] = (int32_t)v;
+        }
+    memset(&f, 0, sizeof f);
+    f.w = n; f.h = n; f.z = z; f.z_num = 1; f.z_den = 1000; f.dx_um = 30000000; f.dy_um = 30000000;
+    CHECK(build(&b, &f, BT_METRIC_EXACT) == 0);
+    memset(&p, 0, sizeof p);
+    p.mode = BT_FIDELITY;
+    p.max_err = 2000000;   /* 2 km: the spikes force local refinement */
+    CHECK(extract(&b, &p, 0, &o) == 0);
+    CHECK(o.m.ntri > 1000);
+    CHECK(judge(&f, &o, 0, 0, &r, &sr));
+    CHECK(!mc_err_exceeds(&r, p.max_err, 1));
+    free(o.mem);
+    unbuild(&b);
+    free(z);
+}
+
 static void test_curvature(void)
 {
     hf f;
@@ -352,6 +389,8 @@ static void test_view(void)
     for (i = 0; i < o.m.nv; i++) nf += o.m.v[i].state == BT_F;
     CHECK_EQ(nf, o.m.nfict);
     CHECK(nf > 0);                          /* some vertices are still morphing */
+    CHECK_EQ(o.m.ntri, 4250);
+    CHECK(mesh_hash(&o.m) == 13436433128611426805ull);  /* same bytes on every build */
     /* the same frame again: hysteresis keeps everything split, nothing is lost */
     {
         uint32_t t1 = o.m.ntri;
@@ -412,6 +451,7 @@ int main(void)
     T_RUN(test_fuji_10m);
     T_RUN(test_lossless_voids);
     T_RUN(test_extremes);
+    T_RUN(test_big_extremes);
     T_RUN(test_curvature);
     T_RUN(test_view);
     T_RUN(test_every_dem);
