@@ -17,12 +17,14 @@
  * Exact metric (issue 3): for each triangle, the maximum over every grid sample
  * in the closed triangle of |plane - z|.  With apex c, hypotenuse ends a and b,
  * u = a - c, v = b - c, m = max |component of u| and D = cross(u, v) / m
- * (+-2h or +-2h... a power of two), the integer
+ * (+-2h for both kinds of triangle: a power of two, so * D is a shift), the integer
  *     N(P) = D*(zc - zP) + s*(za - zc) + t*(zb - zc),
  *     s = cross(P - c, v) / m,  t = cross(u, P - c) / m  (exact integers),
  * is |D| times (plane - zP); along a row s and t change by constants, so a row
- * is a span over which N is a running sum (one add, one multiply-by-D and a
- * max/min per sample).  The triangle's error is ceil(max |N| / |D|), stored as
+ * is a span over which N is a running sum (one add, one shift and a max/min per
+ * sample, 8 lanes at a time).  The two finest levels are stencils, h = 2 and 4
+ * use per-shape sample tables, and a half whose sound bound e_m + max(child
+ * half bounds) is already below its children's maximum skips the scan.  The triangle's error is ceil(max |N| / |D|), stored as
  * a code that rounds up (bt_code_encode): a TRUE bound.  Diamond value =
  * max(its triangles, its children), so the hierarchy is monotone.
  *
@@ -33,49 +35,13 @@
  *
  * Curvature metric (001 eq. 2-4, 004): per sample the Frobenius norm of the
  * centred-difference Hessian, kappa = isqrt(kxx^2 + kxy^2 + kyx^2 + kyy^2) / 8
- * with k.. the doubled second differences over two grid steps (so kappa is in
- * height units, comparable to an interpolation error: for a quadric with second
- * derivative h'' per step, kappa = h''/2); per triangle the sum over its samples
+ * with k.. the second differences over two grid steps (kappa is in height units:
+ * for z = c x^2, kxx = 8c and kappa = c); per triangle the sum over its samples
  * (the extensive indicator K of 001 eq. 1).  Not a bound: the CLI prints the
  * true error of the result. */
 #include <string.h>
 #include "core/bitree.h"
 #include "core/fx.h"
-
-/* ------------------------------------------------------------ codes */
-int64_t bt_code_value(uint16_t code)
-{
-    if (code == BT_CODE_SPLIT) return INT64_MAX;
-    if (code < 4096) return code;
-    {
-        int e = (code >> 11) - 1;
-        int64_t mant = (int64_t)((code & 2047) | 2048);
-        return mant << e;
-    }
-}
-
-uint16_t bt_code_encode(int64_t v)
-{
-    int e = 0;
-    int64_t mant;
-    if (v <= 0) return 0;
-    if (v < 4096) return (uint16_t)v;
-    e = 1;
-    for (;;) {
-        mant = (v + ((int64_t)1 << e) - 1) >> e;
-        if (mant < 4096) break;
-        e++;
-    }
-    if (e > 30) return (uint16_t)(BT_CODE_SPLIT - 1);
-    return (uint16_t)(((e + 1) << 11) | (int)(mant & 2047));
-}
-
-int64_t bt_mm_to_units(const hf *f, int64_t mm)
-{
-    /* units * z_num / z_den metres <= mm / 1000  <=>  units <= mm * z_den / (1000 z_num) */
-    if (mm <= 0) return 0;
-    return (mm * f->z_den) / (1000LL * f->z_num);
-}
 
 /* ------------------------------------------------------------ sizes */
 #define TAB_MAX 48   /* samples per small-level table (D4: 45 - 3 vertices) */

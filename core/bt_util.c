@@ -1,8 +1,45 @@
-/* core/bt_util.c — helpers around the bitree's output (core/bitree.h): a world
- * frame for the camera, the strip decoded into a list without line triangles
- * (004's collinearity test), and the true error of a mesh. */
+/* core/bt_util.c — helpers around the bitree (core/bitree.h): error codes and
+ * units, a world frame for the camera, the strip decoded into a list without
+ * line triangles (004's collinearity test), and the true error of a mesh. */
 #include <string.h>
 #include "core/bitree.h"
+
+/* Error codes: exact below 4096, then a 12-bit mantissa and an exponent,
+ * always rounded up so that a bound stays a bound. */
+int64_t bt_code_value(uint16_t code)
+{
+    if (code == BT_CODE_SPLIT) return INT64_MAX;
+    if (code < 4096) return code;
+    {
+        int e = (code >> 11) - 1;
+        int64_t mant = (int64_t)((code & 2047) | 2048);
+        return mant << e;
+    }
+}
+
+uint16_t bt_code_encode(int64_t v)
+{
+    int e = 0;
+    int64_t mant;
+    if (v <= 0) return 0;
+    if (v < 4096) return (uint16_t)v;
+    e = 1;
+    for (;;) {
+        mant = (v + ((int64_t)1 << e) - 1) >> e;
+        if (mant < 4096) break;
+        e++;
+    }
+    if (e > 30) return (uint16_t)(BT_CODE_SPLIT - 1);
+    return (uint16_t)(((e + 1) << 11) | (int)(mant & 2047));
+}
+
+int64_t bt_mm_to_units(const hf *f, int64_t mm)
+{
+    /* units * z_num / z_den metres <= mm / 1000  <=>  units <= mm * z_den / (1000 z_num) */
+    if (mm <= 0) return 0;
+    return (mm * f->z_den) / (1000LL * f->z_num);
+}
+
 
 br_status bt_frame_auto(const hf *f, bt_frame *fr, int32_t *unit_shift)
 {
