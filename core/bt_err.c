@@ -660,6 +660,118 @@ static void level1(bt_tree *t, const ctx *c)
 #undef ZZ
 }
 
+/* Second level (h = 2) as stencils for diamonds whose 5 x 5 box is valid: the
+ * exact error of each half from its samples off the vertices, with plane x 4
+ * written out (A2: hypotenuse of length 4 and apex at distance 2; D2: axis legs
+ * of length 4), then the usual maximum with the children.  Others: diamond(). */
+static void level2_node(bt_tree *t, const ctx *c, size_t idx, const int32_t e[2], const int32_t zl[2],
+                        const int32_t zh[2], const size_t ch[4], int nh)
+{
+    uint16_t code = 0;
+    int lo = 255, hi = 0, i;
+    for (i = 0; i < nh; i++) {
+        uint16_t ce = enc_small(e[i]);
+        uint8_t l = q_lo(c, (int64_t)zl[i] - e[i]), u = q_hi(c, (int64_t)zh[i] + e[i]);
+        if (ce > code) code = ce;
+        if (l < lo) lo = l;
+        if (u > hi) hi = u;
+    }
+    for (i = 0; i < 4; i++) {
+        uint32_t v = t->node[ch[i]];
+        if (BT_NODE_ERR(v) > code) code = BT_NODE_ERR(v);
+        if (BT_NODE_ZLO(v) < lo) lo = BT_NODE_ZLO(v);
+        if (BT_NODE_ZHI(v) > hi) hi = BT_NODE_ZHI(v);
+    }
+    t->node[idx] = BT_NODE(code, lo, hi);
+}
+
+static int32_t max3i(int32_t a, int32_t b, int32_t c) { return a > b ? (a > c ? a : c) : (b > c ? b : c); }
+static int32_t min3i(int32_t a, int32_t b, int32_t c) { return a < b ? (a < c ? a : c) : (b < c ? b : c); }
+
+/* A2 half: hypotenuse values hv[3] (4 x plane - 4 z at the three inner
+ * hypotenuse samples), middle row through zr (samples x-1..x+1 of that row) */
+static int32_t a2_half(int32_t za, int32_t zb, int32_t zc, const int32_t hv[3], const int32_t *zr, ptrdiff_t st)
+{
+    int32_t m = 0, i;
+    for (i = -1; i <= 1; i++) {
+        int32_t v = za * (1 - i) + zb * (1 + i) + 2 * zc - 4 * zr[i * st];
+        v = v < 0 ? -v : v;
+        if (v > m) m = v;
+    }
+    for (i = 0; i < 3; i++) if (hv[i] > m) m = hv[i];
+    return (m + 3) >> 2;
+}
+
+static void level2(bt_tree *t, const ctx *c)
+{
+    int32_t n = t->n, S = n - 1, w = c->w, x, y, i, j;
+    const int32_t *z = c->z;
+#define ZZ(X, Y) z[(size_t)(Y) * w + (X)]
+    /* A2, horizontal (x = 2 mod 4, y = 0 mod 4) and vertical (transposed) */
+    for (j = 0; j < 2; j++)
+        for (y = j ? 2 : 0; y <= S; y += j ? 4 : 4)
+            for (x = j ? 0 : 2; x <= S; x += 4) {
+                size_t idx = (size_t)y * n + x, ch[4];
+                int32_t za, zb, hv[3], e[2], zl[2], zh[2], nh = 0, k;
+                ptrdiff_t along = j ? (ptrdiff_t)w : 1, across = j ? 1 : (ptrdiff_t)w;
+                const int32_t *zm;
+                int32_t px = j ? x : x, py = y;
+                if ((j == 0 && (x >= S || y - 2 < 0 || y + 2 > S)) || (j == 1 && (y >= S || x - 2 < 0 || x + 2 > S)) ||
+                    !clean(c, x - 2, y - 2, x + 2, y + 2)) {
+                    if ((j == 0 && x < S) || (j == 1 && y < S)) diamond(t, c, x, y, 2, 0);
+                    continue;
+                }
+                (void)px; (void)py;
+                zm = z + (size_t)y * w + x;
+                za = zm[-2 * along]; zb = zm[2 * along];
+                for (k = -1; k <= 1; k++) {
+                    int32_t v = za * (2 - k) + zb * (2 + k) - 4 * zm[k * along];
+                    hv[k + 1] = v < 0 ? -v : v;
+                }
+                for (k = -1; k <= 1; k += 2) {   /* apex at -2 (half 0) and +2 (half 1) across */
+                    int32_t zc = zm[2 * k * across];
+                    e[nh] = a2_half(za, zb, zc, hv, zm + k * across, along);
+                    zl[nh] = min3i(za, zb, zc); zh[nh] = max3i(za, zb, zc);
+                    if (c->ub) c->ub[2 * idx + (size_t)nh] = e[nh];
+                    nh++;
+                }
+                ch[0] = idx - (size_t)n - 1; ch[1] = idx - (size_t)n + 1;
+                ch[2] = idx + (size_t)n - 1; ch[3] = idx + (size_t)n + 1;
+                level2_node(t, c, idx, e, zl, zh, ch, 2);
+            }
+    /* D2: x, y = 2 mod 4; diagonal (1,1) when ((x ^ y) & 4) == 0 */
+    for (y = 2; y < S; y += 4)
+        for (x = 2; x < S; x += 4) {
+            size_t idx = (size_t)y * n + x, ch[4];
+            int32_t e[2], zl[2], zh[2], hh;
+            if (!clean(c, x - 2, y - 2, x + 2, y + 2)) { diamond(t, c, x, y, 2, 1); continue; }
+            for (hh = 0; hh < 2; hh++) {
+                /* apex of half hh: (x+2, y-2) / (x-2, y+2) on diagonal (1,1), else
+                 * (x-2, y-2) / (x+2, y+2); legs of 4 along the row and the column */
+                int32_t cx, cy, sx, sy, ii, jj, m = 0, zc, zr, zcol;
+                if (((x ^ y) & 4) == 0) { cx = hh ? x - 2 : x + 2; cy = hh ? y + 2 : y - 2; }
+                else { cx = hh ? x + 2 : x - 2; cy = hh ? y + 2 : y - 2; }
+                sx = cx < x ? 1 : -1; sy = cy < y ? 1 : -1;     /* towards the square */
+                zc = ZZ(cx, cy); zr = ZZ(cx + 4 * sx, cy); zcol = ZZ(cx, cy + 4 * sy);
+                for (jj = 0; jj <= 4; jj++)
+                    for (ii = 0; ii + jj <= 4; ii++) {
+                        int32_t v;
+                        if ((ii == 0 && jj == 0) || ii == 4 || jj == 4) continue;
+                        v = 4 * zc + ii * (zr - zc) + jj * (zcol - zc) - 4 * ZZ(cx + ii * sx, cy + jj * sy);
+                        v = v < 0 ? -v : v;
+                        if (v > m) m = v;
+                    }
+                e[hh] = (m + 3) >> 2;
+                zl[hh] = min3i(zc, zr, zcol); zh[hh] = max3i(zc, zr, zcol);
+                if (c->ub) c->ub[2 * idx + (size_t)hh] = e[hh];
+            }
+            ch[0] = idx - 2; ch[1] = idx + 2; ch[2] = idx - 2 * (size_t)n; ch[3] = idx + 2 * (size_t)n;
+            level2_node(t, c, idx, e, zl, zh, ch, 2);
+        }
+#undef ZZ
+    (void)i;
+}
+
 br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
                    void *mem, size_t mem_bytes, void *scratch, size_t scratch_bytes)
 {
@@ -755,6 +867,7 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
     for (j = 0; j < nt.k; j++) {
         int32_t hh = (int32_t)1 << j;
         if (j == 0 && metric == BT_METRIC_EXACT && c.narrow) { level1(t, &c); continue; }
+        if (j == 1 && metric == BT_METRIC_EXACT && c.narrow) { level2(t, &c); continue; }
         /* type A at h: horizontal edges (x odd multiple of h, y multiple of 2h) */
         for (y = 0; y <= S; y += 2 * hh)
             for (x = hh; x < S; x += 2 * hh) diamond(t, &c, x, y, hh, 0);
