@@ -42,9 +42,9 @@
 #include <string.h>
 #include "core/bitree.h"
 #include "core/fx.h"
+#include "core/bt_int.h"
 
 /* ------------------------------------------------------------ sizes */
-#define TAB_MAX 48   /* samples per small-level table (D4: 45 - 3 vertices) */
 
 static int32_t padded_k(int32_t w, int32_t h)
 {
@@ -74,24 +74,7 @@ size_t bt_scratch_size(int32_t w, int32_t h)
 }
 
 /* ------------------------------------------------------------ build */
-typedef struct ctx {
-    int32_t w, h, n;
-    const int32_t *z;      /* sanitised heights, w*h (voids = 0) */
-    const uint16_t *vp;    /* void prefix counts, (w+1)*h, or NULL if no voids */
-    const int32_t *kap;    /* curvature per sample (curvature metric), else NULL */
-    int32_t metric;
-    int32_t narrow;        /* 1: the exact metric fits int32 (see bt_build) */
-    int32_t *ry, *rx0, *rx1; /* row spans of the triangle being evaluated (n each) */
-    int64_t qr, qm;        /* height quantisation: range R and floor(255 * 2^24 / R) */
-    /* sample tables of the small levels (h = 2, 4): per shape (8 apex
-     * directions x 2 sizes) the samples off the vertices as (offset, dx, dy)
-     * from the apex; used for triangles inside the domain of void-free grids */
-    int32_t *tab;          /* 16 tables of TAB_MAX entries x 3 */
-    int32_t *ub;           /* 2 per diamond: upper bound of each half's error (exact metric) */
-    const uint8_t *vblk;   /* per 16 x 16 block of the domain: 1 if it holds a void (NULL: none) */
-    int32_t bw;            /* blocks per row */
-    int32_t tabn[16];
-} ctx;
+
 
 typedef struct tri_res {
     int64_t err;           /* exact error (ceil) or curvature sum */
@@ -172,20 +155,7 @@ static int samp(const ctx *c, int32_t x, int32_t y, int32_t *z)
     return 1;
 }
 
-/* 1 when the box [x0, x1] x [y0, y1] (x0, y0 >= 0) lies inside w x h and touches
- * no 16 x 16 block that holds a void: every sample in it is valid */
-static int clean(const ctx *c, int32_t x0, int32_t y0, int32_t x1, int32_t y1)
-{
-    int32_t bx, by;
-    if (x1 >= c->w || y1 >= c->h) return 0;
-    if (!c->vblk) return 1;
-    for (by = y0 >> 4; by <= y1 >> 4; by++)
-        for (bx = x0 >> 4; bx <= x1 >> 4; bx++)
-            if (c->vblk[(size_t)by * c->bw + bx]) return 0;
-    return 1;
-}
 
-static int32_t iabs32(int32_t v) { return v < 0 ? -v : v; }
 static int32_t sgn32(int32_t v) { return (v > 0) - (v < 0); }
 
 /* The two finest diamond levels in closed form (they are 3/4 of all triangles):
@@ -400,32 +370,8 @@ static void tri_eval(const ctx *c, const int32_t a[2], const int32_t cc[2], cons
     }
 }
 
-#define UB_INF INT32_MAX
 
-/* which half of diamond (cx, cy) has its apex at (px, py): 1 = below / right */
-static size_t half_of(int32_t cx, int32_t cy, int32_t px, int32_t py)
-{
-    return (py > cy) || (py == cy && px > cx);
-}
 
-/* quantise a biased height (0 .. R = zmax - zmin) to 8 bits, rounding down (lo)
- * or up (hi), by a multiply: qm = floor(255 * 2^24 / R), so the estimate is at
- * most 1 below the exact floor (lo, conservative) and hi adds 1 (>= the ceiling). */
-static uint8_t q_lo(const ctx *c, int64_t z)
-{
-    if (z <= 0 || c->qr <= 0) return 0;
-    if (z >= c->qr) return 255;
-    return (uint8_t)((z * c->qm) >> 24);
-}
-static uint8_t q_hi(const ctx *c, int64_t z)
-{
-    int64_t q;
-    if (c->qr <= 0) return 255;
-    if (z <= 0) return 0;
-    if (z >= c->qr) return 255;
-    q = ((z * c->qm) >> 24) + 1;
-    return (uint8_t)(q > 255 ? 255 : q);
-}
 
 
 /* Per-triangle upper bounds ub (exact when scanned) let most triangles skip the
@@ -434,7 +380,7 @@ static uint8_t q_hi(const ctx *c, int64_t z)
  * e(T) <= sb = e_m + max(ub(C1), ub(C2)).  When sb is already <= the children's
  * maximum (which the diamond takes anyway), the diamond's value is the same as
  * with the exact e(T): no scan.  The result equals the exact hierarchy. */
-static void diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int typeD)
+void bte_diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int typeD)
 {
     int32_t n = t->n, S = n - 1;
     int32_t ap[2][2], a[2], b[2];
@@ -559,218 +505,6 @@ static int32_t kappa_at(const int32_t *z, int32_t w, int32_t h, int32_t x, int32
     return (int32_t)(fx_isqrt64((uint64_t)s) / 8);
 }
 
-static uint16_t enc_small(int64_t e) { return e < 4096 ? (uint16_t)e : bt_code_encode(e); }
-
-/* Interior A1 diamond (hypotenuse a-b of length 2 through m, apexes p and q):
- * only m is off the planes, so e = ceil(|za + zb - 2 zm| / 2) for both halves. */
-static void a1_fast(bt_tree *t, const ctx *c, size_t idx, int32_t za, int32_t zb, int32_t zm,
-                    int32_t zp, int32_t zq)
-{
-    int32_t e = (iabs32(za + zb - 2 * zm) + 1) >> 1;
-    int32_t lo = za < zb ? za : zb, hi = za > zb ? za : zb;
-    if (zp < lo) lo = zp;
-    if (zp > hi) hi = zp;
-    if (zq < lo) lo = zq;
-    if (zq > hi) hi = zq;
-    t->node[idx] = BT_NODE(enc_small(e), q_lo(c, (int64_t)lo - e), q_hi(c, (int64_t)hi + e));
-    if (c->ub) c->ub[2 * idx] = c->ub[2 * idx + 1] = e;
-}
-
-/* exact error of the D1 half with apex (px, py) (both hypotenuse-end legs
- * hold one A1 child whose half towards (x, y) has its exact error in ub) */
-static int32_t d1_half(const ctx *c, int32_t n, int32_t x, int32_t y, int32_t px, int32_t py, int32_t ec)
-{
-    int32_t m1x = px, m1y = y, m2x = x, m2y = py, u1, u2;   /* legs are axis-parallel */
-    u1 = c->ub[2 * ((size_t)m1y * n + m1x) + half_of(m1x, m1y, x, y)];
-    u2 = c->ub[2 * ((size_t)m2y * n + m2x) + half_of(m2x, m2y, x, y)];
-    if (u1 > ec) ec = u1;
-    if (u2 > ec) ec = u2;
-    return ec;
-}
-
-/* The finest level (h = 1) for grids without voids, as stencils: A1 diamonds
- * (one odd coordinate) and D1 diamonds (both odd).  A D1 triangle's samples
- * off its plane are the centre and its two leg midpoints, which are the D1
- * diamond's children (A1 centres, whose exact errors are those leg terms), so
- * E(D1) = max(ceil(|za + zb - 2 zm| / 2), children) is exact.  Diamonds on the
- * domain's edge go through the general path. */
-static void level1(bt_tree *t, const ctx *c)
-{
-    int32_t n = t->n, S = n - 1, w = c->w, x, y;
-    const int32_t *z = c->z;
-#define ZZ(X, Y) z[(size_t)(Y) * w + (X)]
-    /* A1, horizontal hypotenuse: y even, x odd */
-    for (y = 0; y <= S; y += 2)
-        for (x = 1; x < S; x += 2) {
-            if (y >= 1 && y + 1 <= S && clean(c, x - 1, y - 1, x + 1, y + 1))
-                a1_fast(t, c, (size_t)y * n + x, ZZ(x - 1, y), ZZ(x + 1, y), ZZ(x, y), ZZ(x, y - 1), ZZ(x, y + 1));
-            else diamond(t, c, x, y, 1, 0);
-        }
-    /* A1, vertical hypotenuse: y odd, x even */
-    for (y = 1; y < S; y += 2)
-        for (x = 0; x <= S; x += 2) {
-            if (x >= 1 && x + 1 <= S && clean(c, x - 1, y - 1, x + 1, y + 1))
-                a1_fast(t, c, (size_t)y * n + x, ZZ(x, y - 1), ZZ(x, y + 1), ZZ(x, y), ZZ(x - 1, y), ZZ(x + 1, y));
-            else diamond(t, c, x, y, 1, 0);
-        }
-    /* D1: x, y odd; diagonal (1,1) when (x>>1) + (y>>1) is even */
-    for (y = 1; y < S; y += 2)
-        for (x = 1; x < S; x += 2) {
-            size_t idx = (size_t)y * n + x;
-            if (clean(c, x - 1, y - 1, x + 1, y + 1)) {
-                int32_t z00 = ZZ(x - 1, y - 1), z20 = ZZ(x + 1, y - 1), z02 = ZZ(x - 1, y + 1), z22 = ZZ(x + 1, y + 1);
-                int32_t zm = ZZ(x, y), e, lo, hi, k;
-                uint16_t code;
-                size_t ch[4];
-                int lq, hq;
-                if ((((x >> 1) + (y >> 1)) & 1) == 0) {
-                    e = (iabs32(z00 + z22 - 2 * zm) + 1) >> 1;
-                    if (c->ub) {   /* apexes (x+1, y-1): half 0, (x-1, y+1): half 1 */
-                        c->ub[2 * idx] = d1_half(c, n, x, y, x + 1, y - 1, e);
-                        c->ub[2 * idx + 1] = d1_half(c, n, x, y, x - 1, y + 1, e);
-                    }
-                } else {
-                    e = (iabs32(z20 + z02 - 2 * zm) + 1) >> 1;
-                    if (c->ub) {   /* apexes (x-1, y-1): half 0, (x+1, y+1): half 1 */
-                        c->ub[2 * idx] = d1_half(c, n, x, y, x - 1, y - 1, e);
-                        c->ub[2 * idx + 1] = d1_half(c, n, x, y, x + 1, y + 1, e);
-                    }
-                }
-                code = enc_small(e);
-                ch[0] = idx - 1; ch[1] = idx + 1; ch[2] = idx - (size_t)n; ch[3] = idx + (size_t)n;
-                uint32_t cv[4];
-                for (k = 0; k < 4; k++) {
-                    cv[k] = t->node[ch[k]];
-                    if (BT_NODE_ERR(cv[k]) > code) code = BT_NODE_ERR(cv[k]);
-                }
-                lo = z00; hi = z00;
-                lo = z20 < lo ? z20 : lo; hi = z20 > hi ? z20 : hi;
-                lo = z02 < lo ? z02 : lo; hi = z02 > hi ? z02 : hi;
-                lo = z22 < lo ? z22 : lo; hi = z22 > hi ? z22 : hi;
-                e = (int32_t)bt_code_value(code);
-                lq = q_lo(c, (int64_t)lo - e);
-                hq = q_hi(c, (int64_t)hi + e);
-                for (k = 0; k < 4; k++) {
-                    if (BT_NODE_ZLO(cv[k]) < lq) lq = BT_NODE_ZLO(cv[k]);
-                    if (BT_NODE_ZHI(cv[k]) > hq) hq = BT_NODE_ZHI(cv[k]);
-                }
-                t->node[idx] = BT_NODE(code, lq, hq);
-            } else diamond(t, c, x, y, 1, 1);
-        }
-#undef ZZ
-}
-
-/* Second level (h = 2) as stencils for diamonds whose 5 x 5 box is valid: the
- * exact error of each half from its samples off the vertices, with plane x 4
- * written out (A2: hypotenuse of length 4 and apex at distance 2; D2: axis legs
- * of length 4), then the usual maximum with the children.  Others: diamond(). */
-static void level2_node(bt_tree *t, const ctx *c, size_t idx, const int32_t e[2], const int32_t zl[2],
-                        const int32_t zh[2], const size_t ch[4], int nh)
-{
-    uint16_t code = 0;
-    int lo = 255, hi = 0, i;
-    for (i = 0; i < nh; i++) {
-        uint16_t ce = enc_small(e[i]);
-        uint8_t l = q_lo(c, (int64_t)zl[i] - e[i]), u = q_hi(c, (int64_t)zh[i] + e[i]);
-        if (ce > code) code = ce;
-        if (l < lo) lo = l;
-        if (u > hi) hi = u;
-    }
-    for (i = 0; i < 4; i++) {
-        uint32_t v = t->node[ch[i]];
-        if (BT_NODE_ERR(v) > code) code = BT_NODE_ERR(v);
-        if (BT_NODE_ZLO(v) < lo) lo = BT_NODE_ZLO(v);
-        if (BT_NODE_ZHI(v) > hi) hi = BT_NODE_ZHI(v);
-    }
-    t->node[idx] = BT_NODE(code, lo, hi);
-}
-
-static int32_t max3i(int32_t a, int32_t b, int32_t c) { return a > b ? (a > c ? a : c) : (b > c ? b : c); }
-static int32_t min3i(int32_t a, int32_t b, int32_t c) { return a < b ? (a < c ? a : c) : (b < c ? b : c); }
-
-/* A2 half: hypotenuse values hv[3] (4 x plane - 4 z at the three inner
- * hypotenuse samples), middle row through zr (samples x-1..x+1 of that row) */
-static int32_t a2_half(int32_t za, int32_t zb, int32_t zc, const int32_t hv[3], const int32_t *zr, ptrdiff_t st)
-{
-    int32_t m = 0, i;
-    for (i = -1; i <= 1; i++) {
-        int32_t v = za * (1 - i) + zb * (1 + i) + 2 * zc - 4 * zr[i * st];
-        v = v < 0 ? -v : v;
-        if (v > m) m = v;
-    }
-    for (i = 0; i < 3; i++) if (hv[i] > m) m = hv[i];
-    return (m + 3) >> 2;
-}
-
-static void level2(bt_tree *t, const ctx *c)
-{
-    int32_t n = t->n, S = n - 1, w = c->w, x, y, i, j;
-    const int32_t *z = c->z;
-#define ZZ(X, Y) z[(size_t)(Y) * w + (X)]
-    /* A2, horizontal (x = 2 mod 4, y = 0 mod 4) and vertical (transposed) */
-    for (j = 0; j < 2; j++)
-        for (y = j ? 2 : 0; y <= S; y += j ? 4 : 4)
-            for (x = j ? 0 : 2; x <= S; x += 4) {
-                size_t idx = (size_t)y * n + x, ch[4];
-                int32_t za, zb, hv[3], e[2], zl[2], zh[2], nh = 0, k;
-                ptrdiff_t along = j ? (ptrdiff_t)w : 1, across = j ? 1 : (ptrdiff_t)w;
-                const int32_t *zm;
-                int32_t px = j ? x : x, py = y;
-                if ((j == 0 && (x >= S || y - 2 < 0 || y + 2 > S)) || (j == 1 && (y >= S || x - 2 < 0 || x + 2 > S)) ||
-                    !clean(c, x - 2, y - 2, x + 2, y + 2)) {
-                    if ((j == 0 && x < S) || (j == 1 && y < S)) diamond(t, c, x, y, 2, 0);
-                    continue;
-                }
-                (void)px; (void)py;
-                zm = z + (size_t)y * w + x;
-                za = zm[-2 * along]; zb = zm[2 * along];
-                for (k = -1; k <= 1; k++) {
-                    int32_t v = za * (2 - k) + zb * (2 + k) - 4 * zm[k * along];
-                    hv[k + 1] = v < 0 ? -v : v;
-                }
-                for (k = -1; k <= 1; k += 2) {   /* apex at -2 (half 0) and +2 (half 1) across */
-                    int32_t zc = zm[2 * k * across];
-                    e[nh] = a2_half(za, zb, zc, hv, zm + k * across, along);
-                    zl[nh] = min3i(za, zb, zc); zh[nh] = max3i(za, zb, zc);
-                    if (c->ub) c->ub[2 * idx + (size_t)nh] = e[nh];
-                    nh++;
-                }
-                ch[0] = idx - (size_t)n - 1; ch[1] = idx - (size_t)n + 1;
-                ch[2] = idx + (size_t)n - 1; ch[3] = idx + (size_t)n + 1;
-                level2_node(t, c, idx, e, zl, zh, ch, 2);
-            }
-    /* D2: x, y = 2 mod 4; diagonal (1,1) when ((x ^ y) & 4) == 0 */
-    for (y = 2; y < S; y += 4)
-        for (x = 2; x < S; x += 4) {
-            size_t idx = (size_t)y * n + x, ch[4];
-            int32_t e[2], zl[2], zh[2], hh;
-            if (!clean(c, x - 2, y - 2, x + 2, y + 2)) { diamond(t, c, x, y, 2, 1); continue; }
-            for (hh = 0; hh < 2; hh++) {
-                /* apex of half hh: (x+2, y-2) / (x-2, y+2) on diagonal (1,1), else
-                 * (x-2, y-2) / (x+2, y+2); legs of 4 along the row and the column */
-                int32_t cx, cy, sx, sy, ii, jj, m = 0, zc, zr, zcol;
-                if (((x ^ y) & 4) == 0) { cx = hh ? x - 2 : x + 2; cy = hh ? y + 2 : y - 2; }
-                else { cx = hh ? x + 2 : x - 2; cy = hh ? y + 2 : y - 2; }
-                sx = cx < x ? 1 : -1; sy = cy < y ? 1 : -1;     /* towards the square */
-                zc = ZZ(cx, cy); zr = ZZ(cx + 4 * sx, cy); zcol = ZZ(cx, cy + 4 * sy);
-                for (jj = 0; jj <= 4; jj++)
-                    for (ii = 0; ii + jj <= 4; ii++) {
-                        int32_t v;
-                        if ((ii == 0 && jj == 0) || ii == 4 || jj == 4) continue;
-                        v = 4 * zc + ii * (zr - zc) + jj * (zcol - zc) - 4 * ZZ(cx + ii * sx, cy + jj * sy);
-                        v = v < 0 ? -v : v;
-                        if (v > m) m = v;
-                    }
-                e[hh] = (m + 3) >> 2;
-                zl[hh] = min3i(zc, zr, zcol); zh[hh] = max3i(zc, zr, zcol);
-                if (c->ub) c->ub[2 * idx + (size_t)hh] = e[hh];
-            }
-            ch[0] = idx - 2; ch[1] = idx + 2; ch[2] = idx - 2 * (size_t)n; ch[3] = idx + 2 * (size_t)n;
-            level2_node(t, c, idx, e, zl, zh, ch, 2);
-        }
-#undef ZZ
-    (void)i;
-}
 
 br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
                    void *mem, size_t mem_bytes, void *scratch, size_t scratch_bytes)
@@ -866,17 +600,17 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
     *t = nt;
     for (j = 0; j < nt.k; j++) {
         int32_t hh = (int32_t)1 << j;
-        if (j == 0 && metric == BT_METRIC_EXACT && c.narrow) { level1(t, &c); continue; }
-        if (j == 1 && metric == BT_METRIC_EXACT && c.narrow) { level2(t, &c); continue; }
+        if (j == 0 && metric == BT_METRIC_EXACT && c.narrow) { bte_level1(t, &c); continue; }
+        if (j == 1 && metric == BT_METRIC_EXACT && c.narrow) { bte_level2(t, &c); continue; }
         /* type A at h: horizontal edges (x odd multiple of h, y multiple of 2h) */
         for (y = 0; y <= S; y += 2 * hh)
-            for (x = hh; x < S; x += 2 * hh) diamond(t, &c, x, y, hh, 0);
+            for (x = hh; x < S; x += 2 * hh) bte_diamond(t, &c, x, y, hh, 0);
         /* vertical edges */
         for (y = hh; y < S; y += 2 * hh)
-            for (x = 0; x <= S; x += 2 * hh) diamond(t, &c, x, y, hh, 0);
+            for (x = 0; x <= S; x += 2 * hh) bte_diamond(t, &c, x, y, hh, 0);
         /* type D at h */
         for (y = hh; y < S; y += 2 * hh)
-            for (x = hh; x < S; x += 2 * hh) diamond(t, &c, x, y, hh, 1);
+            for (x = hh; x < S; x += 2 * hh) bte_diamond(t, &c, x, y, hh, 1);
     }
     return BR_OK;
 }

@@ -1,0 +1,80 @@
+/* core/bt_int.h — internals shared by the bitree's error hierarchy files
+ * (core/bt_err.c, core/bt_lvl.c); not part of the public contract (bitree.h). */
+#ifndef BR_BT_INT_H
+#define BR_BT_INT_H
+#include <stddef.h>
+#include <stdint.h>
+#include "core/bitree.h"
+
+#define TAB_MAX 48   /* samples per small-level table (D4: 45 - 3 vertices) */
+
+/* The build context: the heightfield prepared for the scans (biased heights,
+ * void bookkeeping), scratch rows and tables, and the per-half bounds. */
+typedef struct ctx {
+    int32_t w, h, n;
+    const int32_t *z;      /* sanitised heights, w*h (voids = 0) */
+    const uint16_t *vp;    /* void prefix counts, (w+1)*h, or NULL if no voids */
+    const int32_t *kap;    /* curvature per sample (curvature metric), else NULL */
+    int32_t metric;
+    int32_t narrow;        /* 1: the exact metric fits int32 (see bt_build) */
+    int32_t *ry, *rx0, *rx1; /* row spans of the triangle being evaluated (n each) */
+    int64_t qr, qm;        /* height quantisation: range R and floor(255 * 2^24 / R) */
+    /* sample tables of the small levels (h = 2, 4): per shape (8 apex
+     * directions x 2 sizes) the samples off the vertices as (offset, dx, dy)
+     * from the apex; used for triangles inside the domain of void-free grids */
+    int32_t *tab;          /* 16 tables of TAB_MAX entries x 3 */
+    int32_t *ub;           /* 2 per diamond: upper bound of each half's error (exact metric) */
+    const uint8_t *vblk;   /* per 16 x 16 block of the domain: 1 if it holds a void (NULL: none) */
+    int32_t bw;            /* blocks per row */
+    int32_t tabn[16];
+} ctx;
+
+#define UB_INF INT32_MAX
+
+static inline int32_t iabs32(int32_t v) { return v < 0 ? -v : v; }
+
+/* 1 when the box [x0, x1] x [y0, y1] (x0, y0 >= 0) lies inside w x h and touches
+ * no 16 x 16 block that holds a void: every sample in it is valid */
+static inline int clean(const ctx *c, int32_t x0, int32_t y0, int32_t x1, int32_t y1)
+{
+    int32_t bx, by;
+    if (x1 >= c->w || y1 >= c->h) return 0;
+    if (!c->vblk) return 1;
+    for (by = y0 >> 4; by <= y1 >> 4; by++)
+        for (bx = x0 >> 4; bx <= x1 >> 4; bx++)
+            if (c->vblk[(size_t)by * c->bw + bx]) return 0;
+    return 1;
+}
+
+/* which half of diamond (cx, cy) has its apex at (px, py): 1 = below / right */
+static inline size_t half_of(int32_t cx, int32_t cy, int32_t px, int32_t py)
+{
+    return (py > cy) || (py == cy && px > cx);
+}
+
+/* quantise a biased height (0 .. R = zmax - zmin) to 8 bits, rounding down (lo)
+ * or up (hi), by a multiply: qm = floor(255 * 2^24 / R), so the estimate is at
+ * most 1 below the exact floor (lo, conservative) and hi adds 1 (>= the ceiling). */
+static inline uint8_t q_lo(const ctx *c, int64_t z)
+{
+    if (z <= 0 || c->qr <= 0) return 0;
+    if (z >= c->qr) return 255;
+    return (uint8_t)((z * c->qm) >> 24);
+}
+static inline uint8_t q_hi(const ctx *c, int64_t z)
+{
+    int64_t q;
+    if (c->qr <= 0) return 255;
+    if (z <= 0) return 0;
+    if (z >= c->qr) return 255;
+    q = ((z * c->qm) >> 24) + 1;
+    return (uint8_t)(q > 255 ? 255 : q);
+}
+
+static inline uint16_t enc_small(int64_t e) { return e < 4096 ? (uint16_t)e : bt_code_encode(e); }
+
+void bte_diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int typeD);
+void bte_level1(bt_tree *t, const ctx *c);
+void bte_level2(bt_tree *t, const ctx *c);
+
+#endif
