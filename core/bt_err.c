@@ -539,23 +539,28 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
     vp = (uint16_t *)((uint8_t *)scratch + (size_t)w * h * 4 + 32);
     memset((uint8_t *)scratch + (size_t)w * h * 4, 0, 32);   /* row32 reads up to 7 past the end */
     {
-        int first = 1;
+        int32_t lo = INT32_MAX, hi = INT32_MIN;
         for (y = 0; y < h; y++) {
             const int32_t *zr = f->z + (size_t)y * w;
-            uint16_t *pr = vp + (size_t)y * (w + 1);
-            uint16_t cnt = 0;
-            pr[0] = 0;
+            int64_t nv = 0;
             for (x = 0; x < w; x++) {
                 int32_t v = zr[x];
-                if (v == HF_NODATA) { cnt++; voids++; }
-                else {
-                    if (first) { nt.zmin = nt.zmax = v; first = 0; }
-                    if (v < nt.zmin) nt.zmin = v;
-                    if (v > nt.zmax) nt.zmax = v;
-                }
-                pr[x + 1] = cnt;
+                int isv = v == HF_NODATA;
+                nv += isv;
+                lo = !isv && v < lo ? v : lo;
+                hi = !isv && v > hi ? v : hi;
             }
+            voids += nv;
         }
+        if (lo > hi) lo = hi = 0;          /* all void */
+        nt.zmin = lo; nt.zmax = hi;
+        if (voids)                         /* per-row prefix counts of voids */
+            for (y = 0; y < h; y++) {
+                const int32_t *zr = f->z + (size_t)y * w;
+                uint16_t *pr = vp + (size_t)y * (w + 1), cnt = 0;
+                pr[0] = 0;
+                for (x = 0; x < w; x++) { cnt = (uint16_t)(cnt + (zr[x] == HF_NODATA)); pr[x + 1] = cnt; }
+            }
         for (y = 0; y < h; y++) {
             const int32_t *zr = f->z + (size_t)y * w;
             int32_t *sr = zs + (size_t)y * w;
