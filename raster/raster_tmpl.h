@@ -83,17 +83,20 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
             gz = gzn * SUBONE / area2;
         }
 #if RS_TEX
-        /* u d, v d and d (d >> tsh, <= 2^16; u, v <= 2^22): x-gradients per pixel by
-         * division (products < 2^61) and exact row starts from the weights, like z */
+        /* Perspective-correct texture coordinates at every pixel from its exact edge
+         * values: with q = d >> tsh (1/w, <= 2^16) and the edge values e (barycentric
+         * weights times area2, shifted right by esh so that they stay below 2^20),
+         *   u = (e1 qa ua + e2 qb ub + e0 qc uc) / (e1 qa + e2 qb + e0 qc),
+         * products < 2^58 (u <= 2^22 texels Q8).  The edge values step exactly, so there
+         * is no drift along long spans; the only errors are the 2^-20 truncation of the
+         * weights and the 16 bits of q. */
         const rs_texture *tx = bd->f->tex;
-        int32_t tsh = tex_shift(a->d, b->d, c->d);
-        const int64_t qa = a->d >> tsh, ua = qa * a->u, va = qa * a->v;
-        const int64_t dqb = (b->d >> tsh) - qa, dqc = (c->d >> tsh) - qa;
-        const int64_t dub = (b->d >> tsh) * b->u - ua, duc = (c->d >> tsh) * c->u - ua;
-        const int64_t dvb = (b->d >> tsh) * b->v - va, dvc = (c->d >> tsh) * c->v - va;
-        const int64_t gq = (dqb * dy2 - dqc * dy1) * SUBONE / area2;
-        const int64_t gu = (dub * dy2 - duc * dy1) * SUBONE / area2;
-        const int64_t gv = (dvb * dy2 - dvc * dy1) * SUBONE / area2;
+        const int32_t tsh = tex_shift(a->d, b->d, c->d);
+        int32_t esh = 0;
+        const int64_t qa = a->d >> tsh, qb = b->d >> tsh, qc = c->d >> tsh;
+        const int64_t qua = qa * a->u, qub = qb * b->u, quc = qc * c->u;
+        const int64_t qva = qa * a->v, qvb = qb * b->v, qvc = qc * c->v;
+        while ((area2 >> esh) >= ((int64_t)1 << 20)) esh++;
 #endif
         /* a span of two or more pixels bounds |gz| by the depth range (< 2^31); the clamp
          * only affects one-pixel spans, where the step is never used */
@@ -142,9 +145,7 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                 bd->pixels += (uint32_t)n;
                 {
 #if RS_TEX
-                    int64_t tq = qa + ((dqb * w1 + dqc * w2) >> 22);
-                    int64_t tu = ua + ((dub * w1 + duc * w2) >> 22);
-                    int64_t tv = va + ((dvb * w1 + dvc * w2) >> 22);
+                    int64_t te0 = e0, te2 = e2;
 #endif
                     for (i = 0; i < n; i++) {
 #if RS_COUNT
@@ -155,7 +156,10 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                         if (zz > zp[i]) {
                             zp[i] = zz;
 #if RS_TEX
-                            cp[i] = RS_PACK24(tex_mod(tex_fetch(tx, tex_div(tu, tq), tex_div(tv, tq)), col));
+                            int64_t f0 = te0 >> esh, f2 = te2 >> esh, f1 = (S - te0 - te2) >> esh;
+                            int64_t den = f1 * qa + f2 * qb + f0 * qc;
+                            cp[i] = RS_PACK24(tex_mod(tex_fetch(tx, tex_div(f1 * qua + f2 * qub + f0 * quc, den),
+                                                                tex_div(f1 * qva + f2 * qvb + f0 * qvc, den)), col));
 #else
                             cp[i] = RS_PACK(col);
 #endif
@@ -163,7 +167,7 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
 #endif
                         z += gzu; col += gc;
 #if RS_TEX
-                        tq += gq; tu += gu; tv += gv;
+                        te0 += sx0; te2 += sx2;
 #endif
                     }
                 }
