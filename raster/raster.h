@@ -82,10 +82,10 @@ typedef struct rs_vertex {
  * 1 .. RS_MAX_TEX texels a side.  Sampling: nearest texel, coordinates clamped to the
  * edge.  A textured pixel is the texel times the Gouraud colour / 255 (so a vertex
  * colour of white shows the texel unchanged and the lighting can be baked as grey).
- * Perspective: u/w, v/w and 1/w are interpolated linearly and divided per pixel; the
- * 1/w weights keep 16 significant bits relative to the triangle's nearest vertex, so
- * the texel position error is below 2^-16 of the triangle's texel extent times its
- * depth ratio (far vertex / near vertex), plus the rounding to 1/256 texel. */
+ * Perspective: at every pixel u = sum(e_i q_i u_i) / sum(e_i q_i) from the pixel's exact
+ * edge values e_i (20 significant bits) and the vertices' 1/w q_i (16 bits relative to
+ * the triangle's nearest vertex): texel position error below (2^-20 + 2^-16 * the
+ * triangle's far/near depth ratio) of its texel extent, plus 1/256 texel rounding. */
 #define RS_MAX_TEX 16384
 typedef struct rs_texture {
     int32_t w, h;
