@@ -234,20 +234,14 @@ static void tab_build(ctx *c, const int32_t a[2], const int32_t cc[2], const int
     c->tabn[ti] = n;
 }
 
+/* dclean: the caller knows every sample of the triangle is valid (1), or not (0) */
 static void tri_eval(const ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2],
-                     int ti, tri_res *r)
+                     int ti, int dclean, tri_res *r)
 {
     int32_t nr, i;
     int64_t valid = 0, voids = 0;
-    if (c->metric == BT_METRIC_EXACT && c->narrow && tri_small(c, a, cc, b, r)) return;
     if (c->metric == BT_METRIC_EXACT && c->narrow && ti >= 0 && c->tabn[ti] > 0) {
-        int32_t bx = a[0] > b[0] ? a[0] : b[0], by = a[1] > b[1] ? a[1] : b[1];
-        int32_t lx = a[0] < b[0] ? a[0] : b[0], ly = a[1] < b[1] ? a[1] : b[1];
-        if (cc[0] > bx) bx = cc[0];
-        if (cc[1] > by) by = cc[1];
-        if (cc[0] < lx) lx = cc[0];
-        if (cc[1] < ly) ly = cc[1];
-        if (clean(c, lx, ly, bx, by)) {
+        if (dclean) {
             const int32_t *e = c->tab + (size_t)ti * TAB_MAX * 3;
             const int32_t *zc0 = c->z + (size_t)cc[1] * c->w + cc[0];
             int32_t za = c->z[(size_t)a[1] * c->w + a[0]], zb = c->z[(size_t)b[1] * c->w + b[0]], zc = *zc0;
@@ -274,6 +268,7 @@ static void tri_eval(const ctx *c, const int32_t a[2], const int32_t cc[2], cons
             return;
         }
     }
+    if (c->metric == BT_METRIC_EXACT && c->narrow && ti < 0 && tri_small(c, a, cc, b, r)) return;
     r->err = 0; r->cls = 0; r->zlo = 0; r->zhi = 0;
     nr = spans(c, a, cc, b);
     /* pass 1: classify (samples outside w x h are voids) */
@@ -390,6 +385,7 @@ void bte_diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int 
     size_t idx = (size_t)y * n + x;
     int64_t em = -1, cmax;
     int32_t za = 0, zb = 0, zm = 0;
+    int dclean;
     if (typeD) {
         int diag = ((x ^ y) & (2 * h)) == 0; /* (x>>(j+1)) + (y>>(j+1)) even; h = 2^j */
         if (diag) { a[0] = x - h; a[1] = y - h; b[0] = x + h; b[1] = y + h;
@@ -431,10 +427,10 @@ void bte_diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int 
         }
     }
     cmax = bt_code_value(code);
+    dclean = clean(c, x - h < 0 ? 0 : x - h, y - h < 0 ? 0 : y - h, x + h, y + h);
     if (c->ub && h >= 2 && code != BT_CODE_SPLIT) {
         int ok;
-        if (clean(c, a[0] < b[0] ? a[0] : b[0], a[1] < b[1] ? a[1] : b[1],
-                  a[0] > b[0] ? a[0] : b[0], a[1] > b[1] ? a[1] : b[1]) && clean(c, x, y, x, y)) {
+        if (dclean) {
             za = c->z[(size_t)a[1] * c->w + a[0]];
             zb = c->z[(size_t)b[1] * c->w + b[0]];
             zm = c->z[(size_t)y * c->w + x];
@@ -470,7 +466,7 @@ void bte_diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int 
                 ti = tab_index(a, ap[i], b);
                 if (c->tabn[ti] < 0) tab_build((ctx *)c, a, ap[i], b);
             }
-            tri_eval(c, a, ap[i], b, ti, &r);
+            tri_eval(c, a, ap[i], b, ti, dclean, &r);
         }
         if (c->ub) c->ub[hv] = r.cls == 0 && r.err < UB_INF ? (int32_t)r.err : UB_INF;
         if (r.cls == 1) code = BT_CODE_SPLIT;
