@@ -179,7 +179,8 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
 static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
 {
     int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1;
-    int64_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, S, e0r, e2r, sx0, sx2, sy0, sy2;
+    /* tiny triangles only: extent < 80 sub-pixels, so every set-up value fits 32 bits */
+    int32_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, S, e0r, e2r, sx0, sx2, sy0, sy2;
     int32_t bias0, bias1, bias2, tiny;
     const int32_t w = bd->w;
 
@@ -208,15 +209,15 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
         return;
     }
 
-    dx1 = (int64_t)b->x - a->x; dy1 = (int64_t)b->y - a->y;
-    dx2 = (int64_t)c->x - a->x; dy2 = (int64_t)c->y - a->y;
+    dx1 = b->x - a->x; dy1 = b->y - a->y;
+    dx2 = c->x - a->x; dy2 = c->y - a->y;
     area2 = dx1 * dy2 - dx2 * dy1;
     /* y points down: counter-clockwise as seen (a front face) has area2 < 0 */
     if (area2 >= 0) {
         if (area2 == 0 || bd->cull) return;
     } else {
         const rs_cvert *t = b;
-        int64_t u;
+        int32_t u;
         b = c; c = t;
         u = dx1; dx1 = dx2; dx2 = u;
         u = dy1; dy1 = dy2; dy2 = u;
@@ -236,7 +237,7 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
     bias2 = (2 * A2 + (B2 > 0)) <= 0;
     S = area2 - bias0 - bias1 - bias2;
     {
-        int64_t ox = (int64_t)px0 * SUBONE + HALF - a->x, oy = (int64_t)py0 * SUBONE + HALF - a->y;
+        int32_t ox = px0 * SUBONE + HALF - a->x, oy = py0 * SUBONE + HALF - a->y;
         e0r = A0 * ox + B0 * oy - bias0;
         e2r = A2 * ox + B2 * oy - bias2;
     }
@@ -250,7 +251,7 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
          * px, so area2 < 2^15 and e * inv < 2^41. */
         uint32_t mask = 0;
         int32_t nx = px1 - px0 + 1, ny = py1 - py0 + 1, i, j, npix = 0;
-        int64_t e0b = 0, e2b = 0, e0c = 0, e2c = 0, e0d = 0, e2d = 0;
+        int32_t e0b = 0, e2b = 0, e0c = 0, e2c = 0, e0d = 0, e2d = 0;
         int small2 = nx <= 2 && ny <= 2;
         if (small2) {
             /* the common case, unrolled: candidates (0,0) (1,0) (0,1) (1,1) -> bits 0 1 4 5;
@@ -265,9 +266,9 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
             if (nx < 2) mask &= 0x11u;
             if (ny < 2) mask &= 0x03u;
         } else {
-            int64_t r0 = e0r, r2 = e2r;
+            int32_t r0 = e0r, r2 = e2r;
             for (j = 0; j < ny; j++, r0 += sy0, r2 += sy2) {
-                int64_t e0 = r0, e2 = r2;
+                int32_t e0 = r0, e2 = r2;
                 for (i = 0; i < nx; i++, e0 += sx0, e2 += sx2)
                     mask |= (uint32_t)((e0 | (S - e0 - e2) | e2) >= 0) << (4 * j + i);
             }
@@ -326,7 +327,7 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
             } else {
                 while (mask) {
                     int32_t k = ctz32(mask);
-                    int64_t e0, e2;
+                    int32_t e0, e2;
                     mask &= mask - 1;
                     i = k & 3; j = k >> 2;
                     e0 = e0r + i * sx0 + j * sy0;
