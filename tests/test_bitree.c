@@ -261,6 +261,31 @@ static void test_lossless_voids(void)
     CHECK_EQ(r.err_num, 0);
     CHECK_EQ(r.void_covered, 0);
     free(o.mem);
+    {   /* view and budget modes over voids */
+        cam c;
+        int32_t u, eye[3], tgt[3];
+        CHECK_EQ(bt_frame_auto(&f, &p.fr, &u), BR_OK);
+        eye[0] = 10 << u; eye[1] = 10 << u; eye[2] = 1800 << u;
+        tgt[0] = 400 << u; tgt[1] = 300 << u; tgt[2] = 1680 << u;
+        CHECK_EQ(cam_look_at(&c, eye, tgt, 60000, 160, 120, 1 << u, 1 << 28), BR_OK);
+        p.c = &c;
+        p.mode = BT_VIEW;
+        p.pixel_err_q8 = 128;
+        p.morph_q8 = 256;
+        CHECK(extract(&b, &p, 20000, &o) == 0);
+        CHECK(o.m.ntri > 0);
+        CHECK(judge(&f, &o, 1, 0, &r, &sr) || r.uncovered > 0);
+        CHECK_EQ(r.tjunctions, 0);
+        CHECK_EQ(r.void_covered, 0);
+        p.mode = BT_BUDGET;
+        p.budget = 300;
+        CHECK(bt_extract(&b.t, &p, &o.m) == BR_OK);
+        CHECK(o.m.ntri <= 300);
+        CHECK(judge(&f, &o, 1, 0, &r, &sr) || r.uncovered > 0);
+        CHECK_EQ(r.tjunctions, 0);
+        CHECK_EQ(r.void_covered, 0);
+        free(o.mem);
+    }
     unbuild(&b);
     dem_free(&f);
 }
@@ -408,6 +433,16 @@ static void test_view(void)
     p.budget = 5000;
     CHECK(extract(&b, &p, 5000, &o3) == 0);
     CHECK(o3.m.ntri <= 5000 && o3.m.ntri > 4000);
+    CHECK(judge(&g, &o3, 1, 0, &r, &sr) || r.uncovered > 0);
+    CHECK_EQ(r.tjunctions, 0);
+    CHECK_EQ(r.nonmanifold_edges, 0);
+    /* view mode into a mesh too small: budget downgrade, twice (hysteresis state) */
+    free(o3.mem);
+    p.mode = BT_VIEW;
+    CHECK(extract(&b, &p, 2000, &o3) == 0);
+    CHECK_EQ(o3.m.overflow, 1);
+    CHECK(o3.m.ntri <= 2000 && o3.m.ntri > 1000);
+    CHECK(bt_extract(&b.t, &p, &o3.m) == BR_OK);
     CHECK(judge(&g, &o3, 1, 0, &r, &sr) || r.uncovered > 0);
     CHECK_EQ(r.tjunctions, 0);
     CHECK_EQ(r.nonmanifold_edges, 0);
