@@ -150,6 +150,15 @@ typedef struct bt_frame {
     int32_t sz_q16;
 } bt_frame;
 
+/* World position (core/cam.h units) of an output vertex: what the rasteriser
+ * transforms.  Exact integers; the frame comes from the caller (bt_frame_auto). */
+static inline void bt_world(const bt_frame *fr, const bt_vert *v, int32_t out[3])
+{
+    out[0] = (int32_t)(fr->ox + (int64_t)v->x * fr->sx);
+    out[1] = (int32_t)(fr->oy - (int64_t)v->y * fr->sy);
+    out[2] = (int32_t)(fr->oz + (((int64_t)v->z * fr->sz_q16) >> 16));
+}
+
 typedef struct bt_params {
     int32_t mode;          /* BT_FIDELITY, BT_VIEW or BT_BUDGET */
     int64_t max_err;       /* BT_FIDELITY: threshold in heightfield units (bt_mm_to_units) */
