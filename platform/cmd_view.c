@@ -20,6 +20,7 @@
 #include "platform/scene.h"
 
 #define VIEW_BAND_ROWS 64
+#define VIEW_MAX_TRI 2000000  /* beyond it the bitree falls back to its budget mode */
 
 typedef struct view_state {
     double pos[3], yaw, pitch;       /* metres; radians, yaw clockwise from north */
@@ -107,8 +108,13 @@ int cmd_view(int argc, char **argv)
         return usage();
 
     if (scene_open(&s, in, nin, &so, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); return 1; }
+    if (scene_tree(&s, &err) != BR_OK || scene_reserve(&s, VIEW_MAX_TRI, &err) != BR_OK) {
+        fprintf(stderr, "bitrain: %s: %s\n", in[0], err.msg);
+        scene_close(&s);
+        return 1;
+    }
     if (have_cam) look_from(&v, camv, camv + 3);
-    else { double e[3], t[3]; scene_default_view(&s, e, t); look_from(&v, e, t); }
+    else { double e[3], t[3]; scene_default_view(&s, v.fov, e, t); look_from(&v, e, t); }
 
     if (SDL_Init(SDL_INIT_VIDEO) != 0) {
         fprintf(stderr, "bitrain view: cannot open a display: %s\n", SDL_GetError());
@@ -154,7 +160,7 @@ int cmd_view(int argc, char **argv)
                 case SDLK_g: v.morph = !v.morph; break;
                 case SDLK_c: v.no_cull = !v.no_cull; break;
                 case SDLK_F1: usage(); break;
-                case SDLK_SPACE: { double e[3], t[3]; scene_default_view(&s, e, t); look_from(&v, e, t); } break;
+                case SDLK_SPACE: { double e[3], t[3]; scene_default_view(&s, v.fov, e, t); look_from(&v, e, t); } break;
                 case SDLK_p: {
                     char path[64];
                     mkdir("out", 0777);
@@ -178,6 +184,7 @@ int cmd_view(int argc, char **argv)
         if (v.pitch > 1.5) v.pitch = 1.5;
         if (v.pitch < -1.5) v.pitch = -1.5;
         ground = scene_ground(&s, v.pos[0], v.pos[1]);
+        if (isnan(ground)) ground = s.zmin_m;
         speed = fmax(20.0, 0.6 * (v.pos[2] - ground)) * ((k[SDL_SCANCODE_LSHIFT] || k[SDL_SCANCODE_RSHIFT]) ? 5 : 1);
         view_dir(&v, d);
         right[0] = cos(v.yaw); right[1] = -sin(v.yaw);
@@ -190,11 +197,11 @@ int cmd_view(int argc, char **argv)
         v.pos[2] += ((k[SDL_SCANCODE_E] || k[SDL_SCANCODE_PAGEUP] ? 1 : 0) -
                      (k[SDL_SCANCODE_Q] || k[SDL_SCANCODE_PAGEDOWN] ? 1 : 0)) * speed * dt;
         ground = scene_ground(&s, v.pos[0], v.pos[1]);
-        if (v.pos[2] < ground + 2) v.pos[2] = ground + 2;
+        if (!isnan(ground) && v.pos[2] < ground + 2) v.pos[2] = ground + 2;
         for (i = 0; i < 3; i++) tgt[i] = v.pos[i] + d[i] * 1000;
         if (scene_camera(&s, v.pos, tgt, v.fov, w, h, &c) != BR_OK) {
             double e[3], t[3];
-            scene_default_view(&s, e, t);   /* flew out of the world's range: back home */
+            scene_default_view(&s, v.fov, e, t);   /* flew out of the world's range: back home */
             look_from(&v, e, t);
             continue;
         }

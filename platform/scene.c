@@ -1,58 +1,191 @@
 /* platform/scene.c — see scene.h. */
 #include "platform/scene.h"
+#include <ctype.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "platform/png_io.h"
+
+#define SCENE_PI 3.14159265358979323846
+
+/* gdaldem color-relief text: `elevation r g b [a]` per line (separators: blanks,
+ * commas, tabs, colons), elevation may be `nv` (nodata) or a percentage `P%` of the
+ * [zmin, zmax] range; `#` starts a comment.  Entries are sorted by elevation. */
+static br_status read_colors(const char *path, rs_ramp *r, int64_t zmin_mm, int64_t zmax_mm, br_err *err)
+{
+    FILE *fp = fopen(path, "r");
+    char line[512];
+    int lineno = 0, i, j;
+    if (!fp) return br_err_set(err, BR_E_IO, path, "cannot open colour file");
+    r->n = 0;
+    r->has_nv = 0;
+    while (fgets(line, sizeof line, fp)) {
+        char *p = line, *tok[5];
+        int nt = 0;
+        double e;
+        long c[3];
+        lineno++;
+        if ((p = strchr(line, '#')) != NULL) *p = 0;
+        for (p = line; *p; p++) if (*p == ',' || *p == '\t' || *p == ':' || *p == '\r' || *p == '\n') *p = ' ';
+        p = strtok(line, " ");
+        while (p && nt < 5) { tok[nt++] = p; p = strtok(NULL, " "); }
+        if (nt == 0) continue;
+        if (nt < 4) { fclose(fp); return br_err_set(err, BR_E_FORMAT, path, "line %d: expected 'elevation r g b [a]'", lineno); }
+        for (i = 0; i < 3; i++) {
+            char *end;
+            c[i] = strtol(tok[1 + i], &end, 10);
+            if (*end || c[i] < 0 || c[i] > 255) {
+                fclose(fp);
+                return br_err_set(err, BR_E_VALUE, path, "line %d: colour component '%s' is not 0..255", lineno, tok[1 + i]);
+            }
+        }
+        if (!strcmp(tok[0], "nv")) {
+            r->has_nv = 1;
+            r->nv_rgb = (uint32_t)(c[0] << 16 | c[1] << 8 | c[2]);
+            continue;
+        }
+        {
+            char *end;
+            e = strtod(tok[0], &end);
+            if (end == tok[0] || !isfinite(e) || (*end && strcmp(end, "%"))) {
+                fclose(fp);
+                return br_err_set(err, BR_E_VALUE, path, "line %d: elevation '%s' is not a number", lineno, tok[0]);
+            }
+            if (*end == '%') e = ((double)zmin_mm + (double)(zmax_mm - zmin_mm) * e / 100.0) / 1000.0;
+            if (fabs(e) > 1e7) {
+                fclose(fp);
+                return br_err_set(err, BR_E_VALUE, path, "line %d: elevation %g m is out of range", lineno, e);
+            }
+        }
+        if (r->n >= RS_RAMP_MAX) { fclose(fp); return br_err_set(err, BR_E_TOO_BIG, path, "more than %d colour entries", RS_RAMP_MAX); }
+        r->z_mm[r->n] = (int64_t)llround(e * 1000.0);
+        r->rgb[r->n] = (uint32_t)(c[0] << 16 | c[1] << 8 | c[2]);
+        r->n++;
+    }
+    fclose(fp);
+    if (r->n == 0) return br_err_set(err, BR_E_FORMAT, path, "no colour entries");
+    for (i = 1; i < r->n; i++)           /* insertion sort by elevation */
+        for (j = i; j > 0 && r->z_mm[j - 1] > r->z_mm[j]; j--) {
+            int64_t tz = r->z_mm[j]; uint32_t tc = r->rgb[j];
+            r->z_mm[j] = r->z_mm[j - 1]; r->rgb[j] = r->rgb[j - 1];
+            r->z_mm[j - 1] = tz; r->rgb[j - 1] = tc;
+        }
+    return BR_OK;
+}
+
+static br_status load_texture(scene *s, const char *path, br_err *err)
+{
+    int tw, th;
+    uint8_t *rgb = NULL;
+    size_t k;
+    if (png_read_rgb(path, &tw, &th, &rgb, err) != BR_OK) return err ? err->code : BR_E_FORMAT;
+    if (tw < 1 || th < 1 || tw > RS_MAX_TEX || th > RS_MAX_TEX) {
+        free(rgb);
+        return br_err_set(err, BR_E_TOO_BIG, path, "texture of %dx%d texels (at most %d a side)", tw, th, RS_MAX_TEX);
+    }
+    s->texpx = malloc(sizeof *s->texpx * (size_t)tw * (size_t)th);
+    if (!s->texpx) { free(rgb); return br_err_set(err, BR_E_NOMEM, path, "out of memory"); }
+    for (k = 0; k < (size_t)tw * (size_t)th; k++)
+        s->texpx[k] = (uint32_t)rgb[3 * k] << 16 | (uint32_t)rgb[3 * k + 1] << 8 | rgb[3 * k + 2];
+    free(rgb);
+    s->tex.w = tw; s->tex.h = th; s->tex.px = s->texpx;
+    s->rt.tex_w = tw; s->rt.tex_h = th;
+    return BR_OK;
+}
+
+/* Vertical scale: o->zscale, or automatic for grids without georeference whose
+ * relief dwarfs their extent at the loader's default 1 m spacing. */
+static void apply_zscale(scene *s, const scene_opts *o, const char *name)
+{
+    double relief = s->zmax_m - s->zmin_m, ext = s->width_m > s->depth_m ? s->width_m : s->depth_m;
+    double zs = o->zscale;
+    if (zs == 0) {
+        zs = 1;
+        if (s->f.geo.kind == HF_GEO_NONE && relief > 0.5 * ext && relief > 0) {
+            zs = ext / (4 * relief);
+            if (!o->quiet)
+                printf("%s: no georeference and %.0f m of relief over %.0f m (1 m spacing assumed): "
+                       "vertical scale %.4g (override with --zscale)\n", name, relief, ext, zs);
+        }
+    }
+    if (zs != 1) {
+        s->rt.fr.sz_q16 = (int32_t)fmax(1, fmin((double)INT32_MAX, s->rt.fr.sz_q16 * zs));
+        /* the normals follow the scaled heights (core/shade.h: n = (-gx kx, -gy ky, kz);
+         * scale down only, so the constants stay below 2^24) */
+        if (zs < 1) {
+            s->rt.sc.kx = (int64_t)fmax(1, (double)llround((double)s->rt.sc.kx * zs));
+            s->rt.sc.ky = (int64_t)fmax(1, (double)llround((double)s->rt.sc.ky * zs));
+        } else s->rt.sc.kz = (int64_t)fmax(1, (double)llround((double)s->rt.sc.kz / zs));
+    }
+    s->zscale = zs;
+    s->zmin_m *= zs;
+    s->zmax_m *= zs;
+}
 
 br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o, br_err *err)
 {
     scene_opts d;
     fx_q14 sun[3];
-    void *scratch;
-    size_t tb, sb, mb;
-    uint32_t cap;
+    int def_sun;
     memset(s, 0, sizeof *s);
     memset(&d, 0, sizeof d);
     if (!o) o = &d;
+    if (!(o->zscale >= 0 && o->zscale <= 1000) || !(o->ambient >= 0 && o->ambient <= 1))
+        return br_err_set(err, BR_E_ARG, in[0], "vertical scale or ambient out of range");
     if (dem_load_many(in, n, &o->dem, &s->f, err) != BR_OK) return err ? err->code : BR_E_IO;
     hf_stats_get(&s->f, &s->st);
     s->zmin_m = (double)hf_z_to_mm(&s->f, s->st.zmin) / 1000;
     s->zmax_m = (double)hf_z_to_mm(&s->f, s->st.zmax) / 1000;
     s->width_m = (double)(s->f.w - 1) * s->f.dx_um / 1e6;
     s->depth_m = (double)(s->f.h - 1) * s->f.dy_um / 1e6;
-    rs_ramp_default(&s->ramp, hf_z_to_mm(&s->f, s->st.zmin), hf_z_to_mm(&s->f, s->st.zmax));
-    rs_sun_dir((int32_t)lround((o->sun_az != 0 || o->sun_alt != 0 ? o->sun_az : 315) * 1000),
-               (int32_t)lround((o->sun_az != 0 || o->sun_alt != 0 ? o->sun_alt : 45) * 1000), sun);
-    if (rt_scene_init(&s->rt, &s->f, &s->ramp, sun,
-                      (int32_t)lround((o->ambient > 0 ? o->ambient : 0.3) * FX_Q14_ONE)) != BR_OK) {
+    if (o->colors) {
+        if (read_colors(o->colors, &s->ramp, hf_z_to_mm(&s->f, s->st.zmin), hf_z_to_mm(&s->f, s->st.zmax), err) != BR_OK) {
+            scene_close(s);
+            return err ? err->code : BR_E_FORMAT;
+        }
+    } else rs_ramp_default(&s->ramp, hf_z_to_mm(&s->f, s->st.zmin), hf_z_to_mm(&s->f, s->st.zmax));
+    def_sun = o->sun_az == 0 && o->sun_alt == 0;
+    rs_sun_dir((int32_t)lround((def_sun ? 315 : o->sun_az) * 1000), (int32_t)lround((def_sun ? 45 : o->sun_alt) * 1000), sun);
+    if (rt_scene_init(&s->rt, &s->f, &s->ramp, sun, (int32_t)lround((o->ambient > 0 ? o->ambient : 0.3) * FX_Q14_ONE)) != BR_OK) {
         scene_close(s);
         return br_err_set(err, BR_E_ARG, in[0], "invalid heightfield");
     }
-    tb = bt_mem_size(s->f.w, s->f.h);
-    sb = bt_scratch_size(s->f.w, s->f.h);
-    cap = o->max_tri ? o->max_tri : 2000000;
-    mb = bt_mesh_mem_size(cap);
+    if (o->texture && load_texture(s, o->texture, err) != BR_OK) {
+        scene_close(s);
+        return err ? err->code : BR_E_FORMAT;
+    }
+    apply_zscale(s, o, in[0]);
+    return BR_OK;
+}
+
+br_status scene_tree(scene *s, br_err *err)
+{
+    size_t tb = bt_mem_size(s->f.w, s->f.h), sb = bt_scratch_size(s->f.w, s->f.h);
+    void *scratch;
+    br_status st;
     s->tree_mem = malloc(tb);
     scratch = malloc(sb);
-    s->mesh_mem = malloc(mb);
-    if (!s->tree_mem || !scratch || !s->mesh_mem) {
+    if (!s->tree_mem || !scratch) {
         free(scratch);
-        scene_close(s);
-        return br_err_set(err, BR_E_NOMEM, in[0], "out of memory for the bitree (%zu + %zu bytes)", tb, mb);
+        return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for the bitree (%zu + %zu bytes)", tb, sb);
     }
-    if (bt_build(&s->tree, &s->f, BT_METRIC_EXACT, s->tree_mem, tb, scratch, sb) != BR_OK ||
-        bt_mesh_init(&s->mesh, cap, s->mesh_mem, mb) != BR_OK) {
-        free(scratch);
-        scene_close(s);
-        return br_err_set(err, BR_E_ARG, in[0], "cannot build the bitree");
-    }
+    st = bt_build(&s->tree, &s->f, BT_METRIC_EXACT, s->tree_mem, tb, scratch, sb);
     free(scratch);
-    s->verts = malloc(sizeof *s->verts * s->mesh.cap_v);
-    s->cache = malloc(rs_cache_mem_size(s->mesh.cap_v));
-    if (!s->verts || !s->cache) {
-        scene_close(s);
-        return br_err_set(err, BR_E_NOMEM, in[0], "out of memory for %u vertices", s->mesh.cap_v);
-    }
+    if (st != BR_OK) return br_err_set(err, st, NULL, "cannot build the bitree");
+    return BR_OK;
+}
+
+br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err)
+{
+    size_t mb = bt_mesh_mem_size(max_tri);
+    s->mesh_mem = malloc(mb);
+    if (!s->mesh_mem || bt_mesh_init(&s->mesh, max_tri, s->mesh_mem, mb) != BR_OK)
+        return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for a mesh of %u triangles", max_tri);
+    s->verts = malloc(sizeof *s->verts * (s->mesh.cap_v ? s->mesh.cap_v : 1));
+    s->cache = malloc(rs_cache_mem_size(s->mesh.cap_v ? s->mesh.cap_v : 1));
+    if (!s->verts || !s->cache)
+        return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for %u vertices", s->mesh.cap_v);
     return BR_OK;
 }
 
@@ -62,46 +195,52 @@ void scene_close(scene *s)
     free(s->cache);
     free(s->tree_mem);
     free(s->mesh_mem);
+    free(s->texpx);
     dem_free(&s->f);
     memset(s, 0, sizeof *s);
 }
 
-void scene_default_view(const scene *s, double eye[3], double target[3])
+void scene_default_view(const scene *s, double fovy_deg, double eye[3], double target[3])
 {
-    double ext = s->width_m > s->depth_m ? s->width_m : s->depth_m;
-    eye[0] = -0.15 * s->width_m; eye[1] = -0.15 * s->depth_m; eye[2] = s->zmax_m + 0.35 * ext;
-    target[0] = 0.5 * s->width_m; target[1] = 0.5 * s->depth_m; target[2] = 0.5 * (s->zmin_m + s->zmax_m);
+    /* the sphere is loose for a flat tile: 3/4 of its fitting distance fills the
+     * frame; the nearest corner may touch the bottom edge */
+    double W = s->width_m, H = s->depth_m, Z = s->zmax_m - s->zmin_m;
+    double R = 0.5 * sqrt(W * W + H * H + Z * Z);
+    double d = 0.75 * R / sin(fovy_deg / 2 * SCENE_PI / 180), el = 35 * SCENE_PI / 180;
+    target[0] = 0.5 * W; target[1] = 0.5 * H; target[2] = 0.5 * (s->zmin_m + s->zmax_m);
+    eye[0] = target[0] - d * cos(el) * 0.7071;
+    eye[1] = target[1] - d * cos(el) * 0.7071;
+    eye[2] = target[2] + d * sin(el);
 }
 
 double scene_ground(const scene *s, double x, double y)
 {
-    long col = lround(x * 1e6 / s->f.dx_um), row = (long)(s->f.h - 1) - lround(y * 1e6 / s->f.dy_um);
+    double gx = x * 1e6 / s->f.dx_um, gy = (double)(s->f.h - 1) - y * 1e6 / s->f.dy_um;
     int32_t z;
-    if (col < 0 || row < 0 || col >= s->f.w || row >= s->f.h) return s->zmin_m;
-    z = s->f.z[(size_t)row * (size_t)s->f.w + (size_t)col];
-    return z == HF_NODATA ? s->zmin_m : (double)hf_z_to_mm(&s->f, z) / 1000;
+    if (!(gx >= 0 && gy >= 0 && gx <= s->f.w - 1 && gy <= s->f.h - 1)) return (double)NAN;
+    z = s->f.z[(size_t)lround(gy) * (size_t)s->f.w + (size_t)lround(gx)];
+    if (z == HF_NODATA) return (double)NAN;
+    return (double)hf_z_to_mm(&s->f, z) / 1000 * s->zscale;
 }
 
 br_status scene_camera(const scene *s, const double eye[3], const double target[3], double fovy_deg,
                        int32_t w, int32_t h, cam *out)
 {
     double scale = ldexp(1.0, s->rt.shift), ext = s->width_m > s->depth_m ? s->width_m : s->depth_m;
-    double agl = eye[2] - scene_ground(s, eye[0], eye[1]), dist, nearm, farm;
+    double ground = scene_ground(s, eye[0], eye[1]), dist = 0, nearm;
     int32_t e[3], t[3], znear, zfar;
     int i;
     for (i = 0; i < 3; i++) {
         if (!(fabs(eye[i] * scale) < CAM_COORD_MAX && fabs(target[i] * scale) < CAM_COORD_MAX)) return BR_E_ARG;
         e[i] = (int32_t)lround(eye[i] * scale);
         t[i] = (int32_t)lround(target[i] * scale);
+        dist += (eye[i] - target[i]) * (eye[i] - target[i]);
     }
-    dist = sqrt((eye[0] - 0.5 * s->width_m) * (eye[0] - 0.5 * s->width_m) +
-                (eye[1] - 0.5 * s->depth_m) * (eye[1] - 0.5 * s->depth_m));
-    /* 1/w depth resolves best with the near plane as far out as the view allows:
-     * a quarter of the height above the ground, at least 0.25 m */
-    nearm = agl > 1 ? agl / 4 : 0.25;
-    farm = 2 * (dist + ext) + (s->zmax_m - s->zmin_m);
-    znear = (int32_t)lround(nearm * scale);
-    zfar = (int32_t)fmin((double)CAM_COORD_MAX, farm * scale);
+    dist = sqrt(dist);
+    if (isnan(ground)) ground = s->zmax_m;
+    nearm = fmin(dist / 2000, 0.5 * fabs(eye[2] - ground));
+    znear = (int32_t)lround(fmax(0.05, nearm) * scale);
+    zfar = (int32_t)fmin((double)CAM_COORD_MAX, (4 * (dist + ext) + fabs(s->zmax_m) + fabs(s->zmin_m)) * scale);
     if (znear < 1) znear = 1;
     if (zfar <= znear) zfar = znear + 1;
     return cam_look_at(out, e, t, (int32_t)lround(fovy_deg * 1000), w, h, znear, zfar);
@@ -126,6 +265,7 @@ br_status scene_frame(scene *s, const cam *c, bt_params *p, rs_frame *fr, rs_pri
     fr->cache = s->cache;
     fr->prims = prim;
     fr->nprims = 1;
+    fr->tex = s->rt.tex_w > 0 ? &s->tex : NULL;
     cam_viewproj(c, &fr->vp);
     return rs_frame_prepare(fr);
 }

@@ -1,11 +1,13 @@
-/* platform/scene.h — one terrain scene for the interactive paths (view, run):
- * the loaded heightfield, its colour ramp and world frame (raster/terrain.h),
- * the bitree built once, and per frame a mesh for a camera turned into raster
- * vertices.  All allocation happens in scene_open; scene_frame allocates nothing.
+/* platform/scene.h — one terrain scene, shared by `render`, `view` and `run`:
+ * the loaded heightfield, its colour ramp (built-in or a gdaldem colour file),
+ * optional colour map / orthophoto, vertical scale, world frame
+ * (raster/terrain.h), the default camera and near/far choice, and, for the
+ * bitree paths, the tree built once plus mesh and vertex buffers allocated once,
+ * so a frame (scene_frame) allocates nothing.
  *
  * Positions are in metres in the scene's frame: x east from the west edge,
- * y north from the south edge, z height above sea level (the same frame as
- * `bitrain render --camera`). */
+ * y north from the south edge, z height above 0 m times the vertical scale (the
+ * frame of `--camera`). */
 #ifndef BR_SCENE_H
 #define BR_SCENE_H
 #include "core/bitree.h"
@@ -17,10 +19,13 @@
 
 typedef struct scene_opts {          /* zero = defaults */
     dem_opts dem;
-    double sun_az, sun_alt;          /* degrees (0, 0 = 315, 45) */
-    double ambient;                  /* 0..1 (0 = 0.3) */
-    uint32_t max_tri;                /* mesh capacity (0 = 2,000,000); beyond it the
-                                        bitree falls back to its budget mode */
+    const char *colors;              /* gdaldem color-relief file, or NULL for the built-in ramp */
+    const char *texture;             /* colour map / orthophoto PNG over the whole grid, or NULL */
+    double sun_az, sun_alt;          /* degrees (both 0: 315, 45) */
+    double ambient;                  /* 0..1 (0: 0.3) */
+    double zscale;                   /* vertical scale (0: 1, or automatic for grids without a
+                                        georeference whose relief dwarfs the assumed 1 m spacing) */
+    int quiet;                       /* do not print the automatic vertical scale */
 } scene_opts;
 
 typedef struct scene {
@@ -28,28 +33,44 @@ typedef struct scene {
     hf_stats st;
     rs_ramp ramp;
     rt_scene rt;
+    rs_texture tex;                  /* valid when rt.tex_w > 0 */
+    uint32_t *texpx;
+    double zscale;
+    double width_m, depth_m, zmin_m, zmax_m;  /* extent; heights times zscale */
+    /* bitree paths (scene_tree, scene_reserve) */
     bt_tree tree;
     bt_mesh mesh;
     rs_vertex *verts;                /* mesh.cap_v of them */
     rs_cvert *cache;                 /* vertex cache for the rasteriser */
     void *tree_mem, *mesh_mem;
-    double width_m, depth_m, zmin_m, zmax_m;
 } scene;
 
+/* Loads the files (merged when several), the ramp, texture and vertical scale. */
 br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o, br_err *err);
+/* Builds the bitree (exact metric) once. */
+br_status scene_tree(scene *s, br_err *err);
+/* Allocates the mesh (max_tri triangles; beyond it the bitree falls back to its
+ * budget mode), its raster vertices and the vertex cache. */
+br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err);
 void scene_close(scene *s);
 
-/* A view of the whole terrain from the south-west, above it, towards the centre. */
-void scene_default_view(const scene *s, double eye[3], double target[3]);
-/* Terrain height (metres) under (x, y) metres, nearest sample; zmin_m outside or on voids. */
+/* From the south-west at 35 degrees elevation towards the centre, at 3/4 of the
+ * distance at which the terrain's bounding sphere fits the vertical field of view. */
+void scene_default_view(const scene *s, double fovy_deg, double eye[3], double target[3]);
+/* Terrain height (metres, scaled) under (x, y), nearest sample; NAN outside the
+ * grid or on a void. */
 double scene_ground(const scene *s, double x, double y);
-/* Camera for eye/target in metres; near and far are chosen from the distance to
- * the ground and the terrain's extent.  BR_E_ARG when the camera is unusable. */
+/* Camera for eye/target in metres.  Near plane: as far out as the view allows
+ * (1/w depth resolves ~ distance^2 / near): the distance to the target / 2000, but
+ * at most half the eye's height above the ground below it (above the highest
+ * sample when outside the grid), at least 5 cm; far: well beyond the terrain.
+ * BR_E_ARG when the camera is unusable (too far away, eye == target). */
 br_status scene_camera(const scene *s, const double eye[3], const double target[3], double fovy_deg,
                        int32_t w, int32_t h, cam *out);
-/* The view-dependent mesh for c (pixel error, hysteresis and geomorph in p; the
- * mode, camera and frame are filled in here) and its raster vertices; sets up fr
- * (w, h, vertices, strip, cache, view-projection) ready for rs_render/rs_render_band. */
+/* The view-dependent mesh for c (pixel error, hysteresis, geomorph in p; the mode,
+ * camera and frame are filled in here) and its raster vertices; sets up fr (w, h,
+ * vertices, strip, cache, texture, view-projection) for rs_render/rs_render_band.
+ * Needs scene_tree and scene_reserve. */
 br_status scene_frame(scene *s, const cam *c, bt_params *p, rs_frame *fr, rs_prim *prim);
 
 #endif
