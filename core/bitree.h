@@ -25,8 +25,8 @@
  *   (s[k+1], s[k], s[k+2]) for odd k.  Every non-degenerate triangle is
  *   COUNTER-CLOCKWISE SEEN FROM +z with x east and y north (in grid (x, y) with
  *   y = row that is cross((p1-p0),(p2-p0)) < 0: meshcheck orientation -1, the
- *   OBJ/GL convention).  Degenerate ("line") triangles (a repeated index:
- *   swaps and restarts) draw nothing; nline counts them, ntri the real ones,
+ *   OBJ/GL convention).  Degenerate ("line") triangles (a repeated index, or
+ *   three collinear vertices) draw nothing; nline counts them, ntri the real ones,
  *   ns - 2 = ntri + nline when ns >= 3.
  * The real triangles form a conforming mesh: watertight (each interior edge in
  * exactly two triangles), no T-junctions, void samples never inside or on a
@@ -54,8 +54,8 @@
  *         diamond's nested bounding volume (its triangles' vertex range +- error,
  *         union with its children): one load per diamond.
  *   st    uint8 per-vertex frame state (hysteresis / budget marks).
- * Memory: 5 bytes per padded sample (bt_mem_size); build scratch 10 bytes per
- * heightfield sample (bt_scratch_size), only during bt_build.
+ * Memory: 5 bytes per padded sample (bt_mem_size); build scratch (only during
+ * bt_build) about 6 bytes per heightfield sample + 8 per padded sample.
  * Monotone + shared per diamond => splitting every diamond whose value exceeds a
  * threshold gives a conforming mesh (no T-junctions, no cracks).
  *
@@ -175,8 +175,9 @@ typedef struct bt_params {
     int32_t no_cull;       /* 1: no frustum culling */
 } bt_params;
 
-/* Counts the triangles the selection p would produce (fidelity and view modes;
- * for BT_BUDGET returns the budget).  Nothing is written except *ntri. */
+/* Counts the triangles the selection p would produce (fidelity and view modes,
+ * the latter without hysteresis; for BT_BUDGET returns the budget), e.g. to size
+ * a fidelity mesh exactly.  Nothing is written except *ntri. */
 br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri);
 
 /* Selects and emits the mesh into m.  If the selection needs more triangles than

@@ -25,9 +25,11 @@
  * every leaf share an edge with the next one: it is entered through its leg
  * a-c and left through its leg c-b (the "pivot" c).  Each leaf appends one
  * index; when two consecutive leaves have the same pivot (a fan) the strip
- * needs a swap: the older index is repeated, one line triangle (002 figure 10).
+ * needs a swap: the older index is repeated, one line triangle (002 figure 10);
+ * with one leaf of lookahead, a fan whose rim is straight gets one line
+ * triangle of three collinear vertices for two turns (004; see write_leaf).
  * A leaf that does not touch the previous one (after a void or a culled
- * subtree) restarts with 4 line triangles.  Winding: the first triangle is
+ * subtree) restarts with 2 or 4 line triangles.  Winding: the first triangle is
  * written counter-clockwise seen from +z (x east, y north); the GL parity rule
  * keeps every later edge-adjacent triangle the same. */
 #include <string.h>
