@@ -87,6 +87,7 @@ size_t bt_mesh_mem_size(uint32_t max_tri)
     hs = hash_size(2 * max_tri + 16);
     heap = 4ull * max_tri + 8;
     sz = cap_v * sizeof(bt_vert) + cap_s * 4 + hs * 4 + heap * sizeof(heap_ent) + heap * 4 + 64;
+    if (sz > (uint64_t)SIZE_MAX) return 0;      /* 32-bit hosts */
     return (size_t)sz;
 }
 
