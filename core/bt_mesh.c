@@ -22,8 +22,11 @@
  *
  * Strip (002 section 4, figures 10-12; 004 figure 2).  Leaves are visited in the
  * recursive order left child (a, m, c) then right child (c, m, b), which makes
- * every leaf share an edge with the next one: it is entered through its leg
- * a-c and left through its leg c-b (the "pivot" c).  Each leaf appends one
+ * every leaf share an edge with the next one.  A subtree is entered through a
+ * leg or its hypotenuse and left through a leg or its hypotenuse: 002's three
+ * sequence types, A = (leg in, leg out), B = (hypotenuse in, leg out),
+ * C = (leg in, hypotenuse out); the children of (in, out) are (!in, leg) and
+ * (leg, !out), i.e. A -> B + C, B -> A + C, C -> B + A, 002 figure 11.  Each leaf appends one
  * index; when two consecutive leaves have the same pivot (a fan) the strip
  * needs a swap: the older index is repeated, one line triangle (002 figure 10);
  * with one leaf of lookahead, a fan whose rim is straight gets one line
