@@ -457,6 +457,9 @@ static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned ma
     sp = decide(e, mm.x, mm.y, &mask, &mm.morph);
     if (sp < 0) return;
     if (!sp) {
+        /* a triangle over voids that a budget left unsplit is dropped, never
+         * drawn over the void (its corners may all be valid) */
+        if (!e->nonvoid && BT_NODE_ERR(e->t->node[(size_t)mm.y * e->n + mm.x]) == BT_CODE_SPLIT) return;
         if (e->nonvoid || (valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y)))
             leaf(e, a, c, b, in_hyp, out_hyp);
         return;
