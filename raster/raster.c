@@ -48,6 +48,10 @@ typedef struct band {
     void *depth;
     int32_t cull;
     uint32_t tris, clipped, pixels;
+    /* lane constants of the tiny path's coverage mask (raster_tmpl.h): 1 and 0, 1, 2, 3 in
+     * 16-bit lanes, read from here so that the compiler emits one multiply per broadcast
+     * instead of a shift-and-add chain */
+    uint64_t ones, steps;
 } band;
 
 size_t rs_cache_mem_size(uint32_t nv) { return (size_t)nv * sizeof(rs_cvert); }
@@ -224,15 +228,17 @@ static int span_limits(int64_t s, int64_t K, int32_t px0, int32_t px1, int32_t *
 
 #if defined(__GNUC__)
 #define RS_NOINLINE __attribute__((noinline))
+#define RS_INLINE inline __attribute__((always_inline))
 #else
 #define RS_NOINLINE
+#define RS_INLINE
 #endif
 
 /* Index of the lowest set bit of m (m != 0). */
-static int32_t ctz32(uint32_t m)
+static int32_t ctz64(uint64_t m)
 {
 #if defined(__GNUC__)
-    return __builtin_ctz(m);
+    return __builtin_ctzll(m);
 #else
     int32_t k = 0;
     while (!(m & 1u)) { m >>= 1; k++; }
@@ -470,6 +476,8 @@ br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, siz
     bd.f = f; bd.y0 = y0; bd.y1 = y0 + rows; bd.w = f->w;
     bd.color = (uint8_t *)color; bd.stride = stride; bd.depth = depth;
     bd.cull = !f->no_cull;
+    bd.ones = 0x0001000100010001u;
+    bd.steps = 0x0003000200010000u;
     /* clear: colour to the sky, depth to the far plane's depth (per-pixel far cut-off);
      * one row is filled, the others copied */
     dfar = f->vp.zfar > 0 ? (uint32_t)((int64_t)RS_DEPTH_ONE * f->vp.znear / f->vp.zfar) : 0;

@@ -176,7 +176,10 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
     }
 }
 
-static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
+/* One triangle (a, b, c as seen; either orientation).  Forced inline into the strip loop
+ * (its single call site there), so the per-triangle call costs nothing; tri_raster below
+ * is the out-of-line copy for lists and the clipper. */
+RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
 {
     int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1;
     /* tiny triangles only: extent < 80 sub-pixels, so every set-up value fits 32 bits */
@@ -243,44 +246,41 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
     }
     sx0 = A0 * SUBONE; sx2 = A2 * SUBONE; sy0 = B0 * SUBONE; sy2 = B2 * SUBONE;
 
+    {
         /* Tiny bounding box (at most TINY x TINY candidate centres).  Phase 1: the
-         * coverage mask (bit 4 j + i for centre (px0 + i, py0 + j)), no attribute work,
-         * so the many triangles that cover no centre stop here.  Phase 2: at an inside
-         * centre the edge values are the barycentric weights times area2, so attributes
-         * come straight from the vertices with no gradient set-up.  Extent < (TINY+1)
-         * px, so area2 < 2^15 and e * inv < 2^41. */
-        uint32_t mask = 0;
-        int32_t nx = px1 - px0 + 1, ny = py1 - py0 + 1, i, j, npix = 0;
-        int32_t e0b = 0, e2b = 0, e0c = 0, e2c = 0, e0d = 0, e2d = 0;
-        int small2 = nx <= 2 && ny <= 2;
-        if (small2) {
-            /* the common case, unrolled: candidates (0,0) (1,0) (0,1) (1,1) -> bits 0 1 4 5;
-             * a candidate past px1 or py1 is outside the triangle anyway unless px1/py1
-             * were clipped to the screen or band, hence the masks */
-            e0b = e0r + sx0; e2b = e2r + sx2; e0c = e0r + sy0; e2c = e2r + sy2;
-            e0d = e0c + sx0; e2d = e2c + sx2;
-            mask = (uint32_t)((e0r | (S - e0r - e2r) | e2r) >= 0)
-                 | (uint32_t)((e0b | (S - e0b - e2b) | e2b) >= 0) << 1
-                 | (uint32_t)((e0c | (S - e0c - e2c) | e2c) >= 0) << 4
-                 | (uint32_t)((e0d | (S - e0d - e2d) | e2d) >= 0) << 5;
-            if (nx < 2) mask &= 0x11u;
-            if (ny < 2) mask &= 0x03u;
-        } else {
-            int32_t r0 = e0r, r2 = e2r;
-            for (j = 0; j < ny; j++, r0 += sy0, r2 += sy2) {
-                int32_t e0 = r0, e2 = r2;
-                for (i = 0; i < nx; i++, e0 += sx0, e2 += sx2)
-                    mask |= (uint32_t)((e0 | (S - e0 - e2) | e2) >= 0) << (4 * j + i);
-            }
+         * coverage mask, no attribute work, so the many triangles that cover no centre
+         * stop here.  Phase 2: at an inside centre the edge values are the barycentric
+         * weights times area2, so attributes come straight from the vertices with no
+         * gradient set-up.  Extent < (TINY+1) px, so area2 < 2^15 and e * inv < 2^41.
+         *
+         * The mask is computed four candidates at a time (SWAR): one uint64 per row and
+         * edge holds e + 2^15 of the candidates px0 .. px0+3 in 16-bit lanes.  Every
+         * candidate lies within 3 px of the bounding box, whose extent is < 80
+         * sub-pixels, so |e| < 80 * 128 + 80 * 80 < 2^15 and each lane value is in
+         * [0, 2^16): the packed sums, computed modulo 2^64, are exact lane by lane, and
+         * the lane's top bit is set iff e >= 0.  Lanes past px1 (outside the triangle
+         * unless px1 was clipped to the screen) are masked off. */
+        const uint64_t ones = bd->ones, top = 0x8000800080008000u;
+        const uint64_t sy0w = (uint64_t)(int64_t)sy0 * ones, sy2w = (uint64_t)(int64_t)sy2 * ones;
+        const uint64_t k1 = (uint64_t)(int64_t)(S + 3 * 0x8000) * ones;
+        const uint64_t p0i = (uint64_t)(int64_t)(e0r + 0x8000) * ones + (uint64_t)(int64_t)sx0 * bd->steps;
+        const uint64_t p2i = (uint64_t)(int64_t)(e2r + 0x8000) * ones + (uint64_t)(int64_t)sx2 * bd->steps;
+        const int32_t nx = px1 - px0 + 1, ny = py1 - py0 + 1;
+        const uint64_t xm = top >> (64 - 16 * nx);
+        uint64_t mrow[TINY], p0 = p0i, p2 = p2i, any = 0;
+        int32_t j, npix = 0;
+        for (j = 0; j < ny; j++, p0 += sy0w, p2 += sy2w) {
+            mrow[j] = p0 & p2 & (k1 - p0 - p2) & xm;
+            any |= mrow[j];
         }
-        if (!mask) return;
+        if (!any) return;
         {
             const int64_t inv = ((int64_t)1 << 40) / area2, ad = a->d;
             const int64_t dzb = (int64_t)b->d - ad, dzc = (int64_t)c->d - ad;
             const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
             const size_t stride = bd->stride, zw = (size_t)w;
-            uint8_t *crow0 = bd->color + (size_t)(py0 - bd->y0) * stride;
-            RS_Z *zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw;
+            uint8_t *crow = bd->color + (size_t)(py0 - bd->y0) * stride;
+            RS_Z *zrow = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw;
 #if RS_TEX
             /* perspective: 1/w weights d >> tsh (16 bits for the nearest vertex) */
             const rs_texture *tx = bd->f->tex;
@@ -289,24 +289,24 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
             const int64_t ua = qa * a->u, ub = qb * b->u, uc = qc * c->u;
             const int64_t va = qa * a->v, vb = qb * b->v, vc = qc * c->v;
 #endif
-            /* shade the centre (px0 + I, py0 + J) whose edge values are E0, E2 */
+            /* shade the centre (px0 + I, current row) whose edge values are E0, E2 */
 #if RS_COUNT
-#define TINY_SHADE(E0, E2, I, J) do {                                                  \
+#define TINY_SHADE(E0, E2, I) do {                                                     \
                 (void)inv; (void)ad; (void)dzb; (void)dzc; (void)db; (void)dc; (void)ca; \
-                (void)zrow0; (void)(E0); (void)(E2);                                   \
-                ((RS_PIX *)(void *)(crow0 + (size_t)(J) * stride))[px0 + (I)] += 1;    \
+                (void)zrow; (void)(E0); (void)(E2);                                    \
+                ((RS_PIX *)(void *)crow)[px0 + (I)] += 1;                              \
                 npix++;                                                                \
             } while (0)
 #else
-#define TINY_SHADE(E0, E2, I, J) do {                                                  \
+#define TINY_SHADE(E0, E2, I) do {                                                     \
                 int64_t w1_ = ((E2) * inv) >> 24, w2_ = ((E0) * inv) >> 24; /* Q16 */    \
-                RS_Z *zp_ = zrow0 + (size_t)(J) * zw + px0 + (I);                        \
+                RS_Z *zp_ = zrow + px0 + (I);                                          \
                 RS_Z zz_ = (RS_Z)((uint32_t)(ad + ((dzb * w1_ + dzc * w2_) >> 16)) >> RS_ZSH); \
                 npix++;                                                                \
                 if (zz_ > *zp_) {                                                      \
                     uint64_t col_ = ca + db * (uint64_t)(w1_ >> 3) + dc * (uint64_t)(w2_ >> 3); \
                     *zp_ = zz_;                                                        \
-                    ((RS_PIX *)(void *)(crow0 + (size_t)(J) * stride))[px0 + (I)] = TINY_PIX(col_, w1_, w2_); \
+                    ((RS_PIX *)(void *)crow)[px0 + (I)] = TINY_PIX(col_, w1_, w2_);    \
                 }                                                                      \
             } while (0)
 #if RS_TEX
@@ -319,26 +319,27 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
 #define TINY_PIX(COL, W1, W2) RS_PACK(COL)
 #endif
 #endif
-            if (small2) {
-                if (mask & 0x01u) TINY_SHADE(e0r, e2r, 0, 0);
-                if (mask & 0x02u) TINY_SHADE(e0b, e2b, 1, 0);
-                if (mask & 0x10u) TINY_SHADE(e0c, e2c, 0, 1);
-                if (mask & 0x20u) TINY_SHADE(e0d, e2d, 1, 1);
-            } else {
-                while (mask) {
-                    int32_t k = ctz32(mask);
-                    int32_t e0, e2;
-                    mask &= mask - 1;
-                    i = k & 3; j = k >> 2;
-                    e0 = e0r + i * sx0 + j * sy0;
-                    e2 = e2r + i * sx2 + j * sy2;
-                    TINY_SHADE(e0, e2, i, j);
+            p0 = p0i; p2 = p2i;
+            for (j = 0; j < ny; j++, p0 += sy0w, p2 += sy2w, crow += stride, zrow += zw) {
+                uint64_t m = mrow[j];
+                while (m) {
+                    /* lane of the lowest set top bit: shift 16 * lane */
+                    int32_t sh = ctz64(m) - 15;
+                    int64_t e0 = (int64_t)(uint16_t)(p0 >> sh) - 0x8000, e2 = (int64_t)(uint16_t)(p2 >> sh) - 0x8000;
+                    m &= m - 1;
+                    TINY_SHADE(e0, e2, sh >> 4);
                 }
             }
 #undef TINY_SHADE
 #undef TINY_PIX
             bd->pixels += (uint32_t)npix;
         }
+    }
+}
+
+static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
+{
+    RS_FN(tri_body)(bd, a, b, c);
 }
 
 static void RS_FN(draw)(band *bd)
@@ -369,8 +370,11 @@ static void RS_FN(draw)(band *bd)
                         if ((o0 | o1 | o2) & SLOW) {
                             if (k & 1) tri_clip(bd, RS_FN(tri_raster), i1, i0, i2);
                             else tri_clip(bd, RS_FN(tri_raster), i0, i1, i2);
-                        } else if (k & 1) RS_FN(tri_raster)(bd, v1, v0, v2);   /* odd triangle k-2 */
-                        else RS_FN(tri_raster)(bd, v0, v1, v2);
+                        } else {
+                            /* odd triangle k-2: first two swapped (selects, one inlined body) */
+                            const rs_cvert *pa = k & 1 ? v1 : v0, *pb = k & 1 ? v0 : v1;
+                            RS_FN(tri_body)(bd, pa, pb, v2);
+                        }
                     }
                     i0 = i1; i1 = i2; v0 = v1; v1 = v2; o0 = o1; o1 = o2;
                 }
