@@ -81,7 +81,7 @@ int cmd_view(int argc, char **argv)
     SDL_Texture *tex = NULL;
     uint32_t *depth = NULL, *last = NULL;
     Uint64 t_prev;
-    double mesh_ms = 0, raster_ms = 0;
+    double mesh_ms = 0, raster_ms = 0, sum_mesh = 0, sum_raster = 0, sum_tri = 0;
 
     memset(&so, 0, sizeof so);
     memset(&v, 0, sizeof v);
@@ -228,14 +228,22 @@ int cmd_view(int argc, char **argv)
         tc = SDL_GetPerformanceCounter();
         SDL_RenderCopy(ren, tex, NULL, NULL);
         SDL_RenderPresent(ren);
-        mesh_ms = 0.9 * mesh_ms + 0.1 * 1e3 * (double)(tb - ta) / (double)SDL_GetPerformanceFrequency();
-        raster_ms = 0.9 * raster_ms + 0.1 * 1e3 * (double)(tc - tb) / (double)SDL_GetPerformanceFrequency();
+        {
+            double m_ms = 1e3 * (double)(tb - ta) / (double)SDL_GetPerformanceFrequency();
+            double r_ms = 1e3 * (double)(tc - tb) / (double)SDL_GetPerformanceFrequency();
+            mesh_ms = nframe ? 0.9 * mesh_ms + 0.1 * m_ms : m_ms;
+            raster_ms = nframe ? 0.9 * raster_ms + 0.1 * r_ms : r_ms;
+            sum_mesh += m_ms; sum_raster += r_ms; sum_tri += s.mesh.ntri;
+        }
         snprintf(title, sizeof title, "bitrain  %u triangles  mesh %.1f ms  raster %.1f ms  pixel error %.2f%s%s",
                  s.mesh.ntri, mesh_ms, raster_ms, v.pix_err, v.hyst ? "" : "  (no hysteresis)",
                  v.morph ? "" : "  (no geomorph)");
         SDL_SetWindowTitle(win, title);
-        if (frames && ++nframe >= frames) quit = 1;
+        if (++nframe >= frames && frames) quit = 1;
     }
+    if (nframe)
+        printf("bitrain view: %d frames, mean %.0f triangles, mesh %.2f ms, raster %.2f ms per frame\n",
+               nframe, sum_tri / nframe, sum_mesh / nframe, sum_raster / nframe);
     if (shot) {
         if (!save_png(shot, last, w, h, &err)) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
         printf("%s\n", shot);
