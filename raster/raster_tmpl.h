@@ -267,20 +267,29 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
         const uint64_t p2i = (uint64_t)(int64_t)(e2r + 0x8000) * ones + (uint64_t)(int64_t)sx2 * bd->steps;
         const int32_t nx = px1 - px0 + 1, ny = py1 - py0 + 1;
         const uint64_t xm = top >> (64 - 16 * nx);
-        uint64_t mrow[TINY], p0 = p0i, p2 = p2i, any = 0;
-        int32_t j, npix = 0;
-        for (j = 0; j < ny; j++, p0 += sy0w, p2 += sy2w) {
-            mrow[j] = p0 & p2 & (k1 - p0 - p2) & xm;
-            any |= mrow[j];
+        /* rows 0 .. ny-1 (ny <= TINY = 4), unrolled: most tiny boxes have one or two rows */
+        uint64_t m0, m1 = 0, m2 = 0, m3 = 0, p0 = p0i + sy0w, p2 = p2i + sy2w;
+        int32_t npix = 0;
+        m0 = p0i & p2i & (k1 - p0i - p2i) & xm;
+        if (ny > 1) {
+            m1 = p0 & p2 & (k1 - p0 - p2) & xm;
+            if (ny > 2) {
+                p0 += sy0w; p2 += sy2w;
+                m2 = p0 & p2 & (k1 - p0 - p2) & xm;
+                if (ny > 3) {
+                    p0 += sy0w; p2 += sy2w;
+                    m3 = p0 & p2 & (k1 - p0 - p2) & xm;
+                }
+            }
         }
-        if (!any) return;
+        if (!(m0 | m1 | m2 | m3)) return;
         {
             const int64_t inv = ((int64_t)1 << 40) / area2, ad = a->d;
             const int64_t dzb = (int64_t)b->d - ad, dzc = (int64_t)c->d - ad;
             const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
             const size_t stride = bd->stride, zw = (size_t)w;
-            uint8_t *crow = bd->color + (size_t)(py0 - bd->y0) * stride;
-            RS_Z *zrow = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw;
+            uint8_t *const crow0 = bd->color + (size_t)(py0 - bd->y0) * stride, *crow;
+            RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw, *zrow;
 #if RS_TEX
             /* perspective: 1/w weights d >> tsh (16 bits for the nearest vertex) */
             const rs_texture *tx = bd->f->tex;
@@ -319,17 +328,26 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
 #define TINY_PIX(COL, W1, W2) RS_PACK(COL)
 #endif
 #endif
-            p0 = p0i; p2 = p2i;
-            for (j = 0; j < ny; j++, p0 += sy0w, p2 += sy2w, crow += stride, zrow += zw) {
-                uint64_t m = mrow[j];
-                while (m) {
-                    /* lane of the lowest set top bit: shift 16 * lane */
-                    int32_t sh = ctz64(m) - 15;
-                    int64_t e0 = (int64_t)(uint16_t)(p0 >> sh) - 0x8000, e2 = (int64_t)(uint16_t)(p2 >> sh) - 0x8000;
-                    m &= m - 1;
-                    TINY_SHADE(e0, e2, sh >> 4);
-                }
+            /* the covered centres of row J: mask M, packed edge values P0, P2 */
+#define TINY_ROW(M, P0, P2, J) do {                                                    \
+                uint64_t m_ = (M);                                                     \
+                crow = crow0 + (J) * stride; zrow = zrow0 + (J) * zw;                   \
+                while (m_) {                                                           \
+                    /* lane of the lowest set top bit: shift 16 * lane */               \
+                    int32_t sh_ = ctz64(m_) - 15;                                      \
+                    int64_t e0_ = (int64_t)(uint16_t)((P0) >> sh_) - 0x8000;           \
+                    int64_t e2_ = (int64_t)(uint16_t)((P2) >> sh_) - 0x8000;           \
+                    m_ &= m_ - 1;                                                      \
+                    TINY_SHADE(e0_, e2_, sh_ >> 4);                                    \
+                }                                                                      \
+            } while (0)
+            if (m0) TINY_ROW(m0, p0i, p2i, 0);
+            if (m1) TINY_ROW(m1, p0i + sy0w, p2i + sy2w, 1);
+            if (m2 | m3) {
+                if (m2) TINY_ROW(m2, p0i + 2 * sy0w, p2i + 2 * sy2w, 2);
+                if (m3) TINY_ROW(m3, p0, p2, 3);
             }
+#undef TINY_ROW
 #undef TINY_SHADE
 #undef TINY_PIX
             bd->pixels += (uint32_t)npix;
