@@ -48,10 +48,10 @@ typedef struct band {
     void *depth;
     int32_t cull;
     uint32_t tris, clipped, pixels;
-    /* lane constants of the tiny path's coverage mask (raster_tmpl.h): 1 and 0, 1, 2, 3 in
-     * 16-bit lanes, read from here so that the compiler emits one multiply per broadcast
-     * instead of a shift-and-add chain */
-    uint64_t ones, steps;
+    /* lane constants of the tiny path's coverage mask (raster_tmpl.h): 1, and 0, 1, 2, 3
+     * in 16-bit lanes, and both times 16 (one pixel in sub-pixels); read from here so that
+     * the compiler emits one multiply per broadcast instead of a shift-and-add chain */
+    uint64_t ones, ones16, steps16;
 } band;
 
 size_t rs_cache_mem_size(uint32_t nv) { return (size_t)nv * sizeof(rs_cvert); }
@@ -478,7 +478,8 @@ br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, siz
     bd.color = (uint8_t *)color; bd.stride = stride; bd.depth = depth;
     bd.cull = !f->no_cull;
     bd.ones = 0x0001000100010001u;
-    bd.steps = 0x0003000200010000u;
+    bd.ones16 = 0x0010001000100010u;
+    bd.steps16 = 0x0030002000100000u;
     /* clear: colour to the sky, depth to the far plane's depth (per-pixel far cut-off);
      * one row is filled, the others copied */
     dfar = f->vp.zfar > 0 ? (uint32_t)((int64_t)RS_DEPTH_ONE * f->vp.znear / f->vp.zfar) : 0;

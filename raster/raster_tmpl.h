@@ -183,7 +183,7 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
 {
     int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1;
     /* tiny triangles only: extent < 80 sub-pixels, so every set-up value fits 32 bits */
-    int32_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, S, e0r, e2r, sx0, sx2, sy0, sy2;
+    int32_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, S, e0r, e2r;
     int32_t bias0, bias1, bias2, tiny;
     const int32_t w = bd->w;
 
@@ -235,16 +235,17 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
     A0 = -dy1; B0 = dx1;
     A2 = dy2; B2 = -dx2;
     A1 = -(A0 + A2); B1 = -(B0 + B2);
-    bias0 = (2 * A0 + (B0 > 0)) <= 0;
-    bias1 = (2 * A1 + (B1 > 0)) <= 0;
-    bias2 = (2 * A2 + (B2 > 0)) <= 0;
+    /* bias = (2 A + (B > 0)) <= 0, i.e. A < 0 or (A == 0 and B <= 0), i.e. (here
+     * |A|, |B| < 80) A 2^16 + B <= 0: the sign bit of A 2^16 + B - 1 */
+    bias0 = (int32_t)((uint32_t)(A0 * 65536 + B0 - 1) >> 31);
+    bias1 = (int32_t)((uint32_t)(A1 * 65536 + B1 - 1) >> 31);
+    bias2 = (int32_t)((uint32_t)(A2 * 65536 + B2 - 1) >> 31);
     S = area2 - bias0 - bias1 - bias2;
     {
         int32_t ox = px0 * SUBONE + HALF - a->x, oy = py0 * SUBONE + HALF - a->y;
         e0r = A0 * ox + B0 * oy - bias0;
         e2r = A2 * ox + B2 * oy - bias2;
     }
-    sx0 = A0 * SUBONE; sx2 = A2 * SUBONE; sy0 = B0 * SUBONE; sy2 = B2 * SUBONE;
 
     {
         /* Tiny bounding box (at most TINY x TINY candidate centres).  Phase 1: the
@@ -261,10 +262,11 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
          * the lane's top bit is set iff e >= 0.  Lanes past px1 (outside the triangle
          * unless px1 was clipped to the screen) are masked off. */
         const uint64_t ones = bd->ones, top = 0x8000800080008000u;
-        const uint64_t sy0w = (uint64_t)(int64_t)sy0 * ones, sy2w = (uint64_t)(int64_t)sy2 * ones;
+        /* per-pixel steps: sx = 16 A, sy = 16 B (the 16 is in ones16, steps16) */
+        const uint64_t sy0w = (uint64_t)(int64_t)B0 * bd->ones16, sy2w = (uint64_t)(int64_t)B2 * bd->ones16;
         const uint64_t k1 = (uint64_t)(int64_t)(S + 3 * 0x8000) * ones;
-        const uint64_t p0i = (uint64_t)(int64_t)(e0r + 0x8000) * ones + (uint64_t)(int64_t)sx0 * bd->steps;
-        const uint64_t p2i = (uint64_t)(int64_t)(e2r + 0x8000) * ones + (uint64_t)(int64_t)sx2 * bd->steps;
+        const uint64_t p0i = (uint64_t)(int64_t)(e0r + 0x8000) * ones + (uint64_t)(int64_t)A0 * bd->steps16;
+        const uint64_t p2i = (uint64_t)(int64_t)(e2r + 0x8000) * ones + (uint64_t)(int64_t)A2 * bd->steps16;
         const int32_t nx = px1 - px0 + 1, ny = py1 - py0 + 1;
         const uint64_t xm = top >> (64 - 16 * nx);
         /* rows 0 .. ny-1 (ny <= TINY = 4), unrolled: most tiny boxes have one or two rows */
