@@ -1,5 +1,6 @@
-/* core/bt_int.h — internals shared by the bitree's error hierarchy files
- * (core/bt_err.c, core/bt_lvl.c); not part of the public contract (bitree.h). */
+/* core/bt_int.h — internals shared by the bitree's files (error hierarchy:
+ * core/bt_err.c, core/bt_lvl.c; strip: core/bt_mesh.c, core/bt_strip.c); not
+ * part of the public contract (bitree.h). */
 #ifndef BR_BT_INT_H
 #define BR_BT_INT_H
 #include <stddef.h>
@@ -76,5 +77,12 @@ static inline uint16_t enc_small(int64_t e) { return e < 4096 ? (uint16_t)e : bt
 void bte_diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int typeD);
 void bte_level1(bt_tree *t, const ctx *c);
 void bte_level2(bt_tree *t, const ctx *c);
+
+/* Appends to m's strip the shortest run of line triangles that reaches leaf L
+ * (vertex indices) and draws it, chosen so that N (may be NULL: the last leaf)
+ * follows as cheaply as possible, preferring N's walk exit edge {ne0, ne1} last
+ * (core/bt_strip.c).  Needs m->ns >= 2; counts the line triangles in m->nline.
+ * Returns 0, or -1 (nothing written) if none was found or it does not fit. */
+int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0, uint32_t ne1);
 
 #endif

@@ -37,6 +37,7 @@
  * keeps every later edge-adjacent triangle the same. */
 #include <string.h>
 #include "core/bitree.h"
+#include "core/bt_int.h"
 
 enum { ST_PREV = 1, ST_SPLIT = 2, ST_PUSHED = 4, ST_CUR = 8 };
 
@@ -358,6 +359,15 @@ static int write_leaf(em *e, const pend *L, const pend *N)
     if (m->ns >= 2) {
         uint32_t p = m->strip[m->ns - 2], q = m->strip[m->ns - 1];
         int hp = p == L->ia || p == L->ic || p == L->ib, hq = q == L->ia || q == L->ic || q == L->ib;
+        int cont = !N || ((N->ia == L->o0 || N->ic == L->o0 || N->ib == L->o0) &&
+                          (N->ia == L->o1 || N->ic == L->o1 || N->ib == L->o1));
+        if (!(hp && hq && p != q && cont)) {
+            /* a break of the walk before L or after it: bridge it (bt_strip.c) */
+            uint32_t l3[3], n3[3];
+            l3[0] = L->ia; l3[1] = L->ic; l3[2] = L->ib;
+            if (N) { n3[0] = N->ia; n3[1] = N->ic; n3[2] = N->ib; }
+            if (bts_bridge(m, l3, N ? n3 : NULL, N ? N->o0 : 0, N ? N->o1 : 0) == 0) return 0;
+        }
         if (hp && hq && p != q) {
             uint32_t z = (p != L->ia && q != L->ia) ? L->ia : ((p != L->ic && q != L->ic) ? L->ic : L->ib);
             int qin = q == L->o0 || q == L->o1, pin = p == L->o0 || p == L->o1;

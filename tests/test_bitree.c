@@ -417,7 +417,7 @@ static void test_view(void)
     CHECK_EQ(nf, o.m.nfict);
     CHECK(nf > 0);                          /* some vertices are still morphing */
     CHECK_EQ(o.m.ntri, 4250);
-    CHECK(mesh_hash(&o.m) == 13436433128611426805ull);  /* same bytes on every build */
+    CHECK(mesh_hash(&o.m) == 12832302367714380740ull);  /* same bytes on every build */
     /* the same frame again: hysteresis keeps everything split, nothing is lost */
     {
         uint32_t t1 = o.m.ntri;
