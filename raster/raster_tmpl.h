@@ -379,25 +379,36 @@ static void RS_FN(draw)(band *bd)
             if (pr->kind == RS_STRIP) {
                 /* sliding window: one new vertex per triangle; triangle t = (s[t], s[t+1],
                  * s[t+2]), the first two swapped for odd t */
-                uint32_t i0 = s[t0], i1 = s[t0 + 1];
-                const rs_cvert *v0 = &cache[i0], *v1 = &cache[i1];
+                const rs_cvert *v0 = &cache[s[t0]], *v1 = &cache[s[t0 + 1]];
                 uint32_t o0 = v0->c, o1 = v1->c;
-                for (k = t0 + 2; k < t1 + 2; k++) {
-                    uint32_t i2 = s[k];
-                    const rs_cvert *v2 = &cache[i2];
-                    uint32_t o2 = v2->c;
-                    if (!(o0 & o1 & o2 & REJECT)) {
-                        if ((o0 | o1 | o2) & SLOW) {
-                            if (k & 1) tri_clip(bd, RS_FN(tri_raster), i1, i0, i2);
-                            else tri_clip(bd, RS_FN(tri_raster), i0, i1, i2);
-                        } else {
-                            /* odd triangle k-2: first two swapped (selects, one inlined body) */
-                            const rs_cvert *pa = k & 1 ? v1 : v0, *pb = k & 1 ? v0 : v1;
-                            RS_FN(tri_body)(bd, pa, pb, v2);
-                        }
-                    }
-                    i0 = i1; i1 = i2; v0 = v1; v1 = v2; o0 = o1; o1 = o2;
+                /* triangle k-2 = (P, Q, V), the new vertex V with outcode O; the clipper
+                 * gets the same order (indices IP, IQ) */
+#define STRIP_TRI(P, Q, V, OP, OQ, O, IP, IQ) do {                                     \
+                    if (!((OP) & (OQ) & (O) & REJECT)) {                               \
+                        if (((OP) | (OQ) | (O)) & SLOW)                                \
+                            tri_clip(bd, RS_FN(tri_raster), (IP), (IQ), s[k]);         \
+                        else RS_FN(tri_body)(bd, (P), (Q), (V));                       \
+                    }                                                                  \
+                } while (0)
+                /* two triangles per step (even, then odd with its first two swapped):
+                 * chunks start at even t0 */
+                for (k = t0 + 2; k + 1 < t1 + 2; k += 2) {
+                    const rs_cvert *v2 = &cache[s[k]], *v3;
+                    uint32_t o2 = v2->c, o3;
+                    STRIP_TRI(v0, v1, v2, o0, o1, o2, s[k - 2], s[k - 1]);
+                    v3 = &cache[s[k + 1]];
+                    o3 = v3->c;
+                    k++;
+                    STRIP_TRI(v2, v1, v3, o2, o1, o3, s[k - 1], s[k - 2]);
+                    k--;
+                    v0 = v2; v1 = v3; o0 = o2; o1 = o3;
                 }
+                if (k < t1 + 2) {
+                    const rs_cvert *v2 = &cache[s[k]];
+                    uint32_t o2 = v2->c;
+                    STRIP_TRI(v0, v1, v2, o0, o1, o2, s[k - 2], s[k - 1]);
+                }
+#undef STRIP_TRI
             } else {
                 for (k = 3 * t0; k < 3 * t1; k += 3) {
                     uint32_t ia = s[k], ib = s[k + 1], ic = s[k + 2];
