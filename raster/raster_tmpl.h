@@ -261,26 +261,36 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
          * [0, 2^16): the packed sums, computed modulo 2^64, are exact lane by lane, and
          * the lane's top bit is set iff e >= 0.  Lanes past px1 (outside the triangle
          * unless px1 was clipped to the screen) are masked off. */
-        const uint64_t ones = bd->ones, top = 0x8000800080008000u;
-        /* per-pixel steps: sx = 16 A, sy = 16 B (the 16 is in ones16, steps16) */
-        const uint64_t sy0w = (uint64_t)(int64_t)B0 * bd->ones16, sy2w = (uint64_t)(int64_t)B2 * bd->ones16;
-        const uint64_t k1 = (uint64_t)(int64_t)(S + 3 * 0x8000) * ones;
-        const uint64_t p0i = (uint64_t)(int64_t)(e0r + 0x8000) * ones + (uint64_t)(int64_t)A0 * bd->steps16;
-        const uint64_t p2i = (uint64_t)(int64_t)(e2r + 0x8000) * ones + (uint64_t)(int64_t)A2 * bd->steps16;
-        const int32_t nx = px1 - px0 + 1, ny = py1 - py0 + 1;
-        const uint64_t xm = top >> (64 - 16 * nx);
-        /* rows 0 .. ny-1 (ny <= TINY = 4), unrolled: most tiny boxes have one or two rows */
-        uint64_t m0, m1 = 0, m2 = 0, m3 = 0, p0 = p0i + sy0w, p2 = p2i + sy2w;
+        uint64_t m0, m1 = 0, m2 = 0, m3 = 0, p0i, p2i, p0 = 0, p2 = 0, sy0w = 0, sy2w = 0;
         int32_t npix = 0;
-        m0 = p0i & p2i & (k1 - p0i - p2i) & xm;
-        if (ny > 1) {
-            m1 = p0 & p2 & (k1 - p0 - p2) & xm;
-            if (ny > 2) {
-                p0 += sy0w; p2 += sy2w;
-                m2 = p0 & p2 & (k1 - p0 - p2) & xm;
-                if (ny > 3) {
+        if (!((px1 - px0) | (py1 - py0))) {
+            /* one candidate (the commonest box on small screens): lane 0 only */
+            if ((e0r | e2r | (S - e0r - e2r)) < 0) return;
+            p0i = (uint64_t)(int64_t)(e0r + 0x8000);
+            p2i = (uint64_t)(int64_t)(e2r + 0x8000);
+            m0 = 0x8000u;
+        } else {
+            const uint64_t ones = bd->ones, top = 0x8000800080008000u;
+            /* per-pixel steps: sx = 16 A, sy = 16 B (the 16 is in ones16, steps16) */
+            const uint64_t k1 = (uint64_t)(int64_t)(S + 3 * 0x8000) * ones;
+            const int32_t nx = px1 - px0 + 1, ny = py1 - py0 + 1;
+            const uint64_t xm = top >> (64 - 16 * nx);
+            sy0w = (uint64_t)(int64_t)B0 * bd->ones16;
+            sy2w = (uint64_t)(int64_t)B2 * bd->ones16;
+            p0i = (uint64_t)(int64_t)(e0r + 0x8000) * ones + (uint64_t)(int64_t)A0 * bd->steps16;
+            p2i = (uint64_t)(int64_t)(e2r + 0x8000) * ones + (uint64_t)(int64_t)A2 * bd->steps16;
+            /* rows 0 .. ny-1 (ny <= TINY = 4), unrolled: most tiny boxes have one or two rows */
+            m0 = p0i & p2i & (k1 - p0i - p2i) & xm;
+            if (ny > 1) {
+                p0 = p0i + sy0w; p2 = p2i + sy2w;
+                m1 = p0 & p2 & (k1 - p0 - p2) & xm;
+                if (ny > 2) {
                     p0 += sy0w; p2 += sy2w;
-                    m3 = p0 & p2 & (k1 - p0 - p2) & xm;
+                    m2 = p0 & p2 & (k1 - p0 - p2) & xm;
+                    if (ny > 3) {
+                        p0 += sy0w; p2 += sy2w;
+                        m3 = p0 & p2 & (k1 - p0 - p2) & xm;
+                    }
                 }
             }
         }
