@@ -262,7 +262,6 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
          * the lane's top bit is set iff e >= 0.  Lanes past px1 (outside the triangle
          * unless px1 was clipped to the screen) are masked off. */
         uint64_t m0, m1 = 0, m2 = 0, m3 = 0, p0i, p2i, p0 = 0, p2 = 0, sy0w = 0, sy2w = 0;
-        int32_t npix = 0;
         if (!((px1 - px0) | (py1 - py0))) {
             /* one candidate (the commonest box on small screens): lane 0 only */
             if ((e0r | e2r | (S - e0r - e2r)) < 0) return;
@@ -316,14 +315,14 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
                 (void)inv; (void)ad; (void)dzb; (void)dzc; (void)db; (void)dc; (void)ca; \
                 (void)zrow; (void)(E0); (void)(E2);                                    \
                 ((RS_PIX *)(void *)crow)[px0 + (I)] += 1;                              \
-                npix++;                                                                \
+                bd->pixels++;                                                          \
             } while (0)
 #else
 #define TINY_SHADE(E0, E2, I) do {                                                     \
                 int64_t w1_ = ((E2) * inv) >> 24, w2_ = ((E0) * inv) >> 24; /* Q16 */    \
                 RS_Z *zp_ = zrow + px0 + (I);                                          \
                 RS_Z zz_ = (RS_Z)((uint32_t)(ad + ((dzb * w1_ + dzc * w2_) >> 16)) >> RS_ZSH); \
-                npix++;                                                                \
+                bd->pixels++;                                                          \
                 if (zz_ > *zp_) {                                                      \
                     uint64_t col_ = ca + db * (uint64_t)(w1_ >> 3) + dc * (uint64_t)(w2_ >> 3); \
                     *zp_ = zz_;                                                        \
@@ -362,7 +361,6 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
 #undef TINY_ROW
 #undef TINY_SHADE
 #undef TINY_PIX
-            bd->pixels += (uint32_t)npix;
         }
     }
 }
