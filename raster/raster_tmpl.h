@@ -185,7 +185,6 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
     /* tiny triangles only: extent < 80 sub-pixels, so every set-up value fits 32 bits */
     int32_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, S, e0r, e2r;
     int32_t bias0, bias1, bias2, tiny;
-    const int32_t w = bd->w;
 
     {
         const int32_t ax = a->x, ay = a->y, bx = b->x, by = b->y, cx = c->x, cy = c->y;
@@ -204,7 +203,7 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
         /* the path choice depends on the triangle only (not on the band or screen clip) */
         tiny = px1 - px0 < TINY && hi - lo < TINY;
         if (px0 < 0) px0 = 0;
-        if (px1 >= w) px1 = w - 1;
+        if (px1 >= bd->w) px1 = bd->w - 1;
         if (px0 > px1) return;
     }
     if (!tiny) {
@@ -298,7 +297,7 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
             const int64_t inv = ((int64_t)1 << 40) / area2, ad = a->d;
             const int64_t dzb = (int64_t)b->d - ad, dzc = (int64_t)c->d - ad;
             const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
-            const size_t stride = bd->stride, zw = (size_t)w;
+            const size_t stride = bd->stride, zw = (size_t)bd->w;
             uint8_t *const crow0 = bd->color + (size_t)(py0 - bd->y0) * stride, *crow;
             RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw, *zrow;
 #if RS_TEX
