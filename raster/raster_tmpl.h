@@ -387,12 +387,11 @@ static void RS_FN(draw)(band *bd)
                 /* sliding window: one new vertex per triangle; triangle t = (s[t], s[t+1],
                  * s[t+2]), the first two swapped for odd t */
                 const rs_cvert *v0 = &cache[s[t0]], *v1 = &cache[s[t0 + 1]];
-                uint32_t o0 = v0->c, o1 = v1->c;
-                /* triangle k-2 = (P, Q, V), the new vertex V with outcode O; the clipper
-                 * gets the same order (indices IP, IQ) */
-#define STRIP_TRI(P, Q, V, OP, OQ, O, IP, IQ) do {                                     \
-                    if (!((OP) & (OQ) & (O) & REJECT)) {                               \
-                        if (((OP) | (OQ) | (O)) & SLOW)                                \
+                /* triangle k-2 = (P, Q, V), V the new vertex; outcodes read where tested
+                 * (fewer live registers); the clipper gets the same order (indices IP, IQ) */
+#define STRIP_TRI(P, Q, V, IP, IQ) do {                                                \
+                    if (!((P)->c & (Q)->c & (V)->c & REJECT)) {                        \
+                        if (((P)->c | (Q)->c | (V)->c) & SLOW)                         \
                             tri_clip(bd, RS_FN(tri_raster), (IP), (IQ), s[k]);         \
                         else RS_FN(tri_body)(bd, (P), (Q), (V));                       \
                     }                                                                  \
@@ -401,19 +400,16 @@ static void RS_FN(draw)(band *bd)
                  * chunks start at even t0 */
                 for (k = t0 + 2; k + 1 < t1 + 2; k += 2) {
                     const rs_cvert *v2 = &cache[s[k]], *v3;
-                    uint32_t o2 = v2->c, o3;
-                    STRIP_TRI(v0, v1, v2, o0, o1, o2, s[k - 2], s[k - 1]);
+                    STRIP_TRI(v0, v1, v2, s[k - 2], s[k - 1]);
                     v3 = &cache[s[k + 1]];
-                    o3 = v3->c;
                     k++;
-                    STRIP_TRI(v2, v1, v3, o2, o1, o3, s[k - 1], s[k - 2]);
+                    STRIP_TRI(v2, v1, v3, s[k - 1], s[k - 2]);
                     k--;
-                    v0 = v2; v1 = v3; o0 = o2; o1 = o3;
+                    v0 = v2; v1 = v3;
                 }
                 if (k < t1 + 2) {
                     const rs_cvert *v2 = &cache[s[k]];
-                    uint32_t o2 = v2->c;
-                    STRIP_TRI(v0, v1, v2, o0, o1, o2, s[k - 2], s[k - 1]);
+                    STRIP_TRI(v0, v1, v2, s[k - 2], s[k - 1]);
                 }
 #undef STRIP_TRI
             } else {
