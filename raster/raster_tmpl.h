@@ -143,6 +143,20 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                 for (k = 0; k < 3; k++)
                     col += (uint64_t)((dcb[k] * w1 + dcc[k] * w2) >> 9) << (42 - 21 * k);
                 bd->pixels += (uint32_t)n;
+#if !RS_TEX && !RS_COUNT
+                {
+                    /* the plain span: depth test, colour step, write */
+                    RS_Z *const ze = zp + n;
+                    RS_PIX *const ce = cp + n;
+                    ptrdiff_t j = -(ptrdiff_t)n;      /* n >= 1; one counter to 0 */
+                    (void)i;
+                    do {
+                        RS_Z zz = (RS_Z)(z >> RS_ZSH);
+                        if (zz > ze[j]) { ze[j] = zz; ce[j] = RS_PACK(col); }
+                        z += gzu; col += gc;
+                    } while (++j);
+                }
+#else
                 {
 #if RS_TEX
                     int64_t te0 = e0, te2 = e2;
@@ -171,6 +185,7 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
 #endif
                     }
                 }
+#endif
             }
         }
     }
