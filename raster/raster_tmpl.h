@@ -59,27 +59,26 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
          * inside centre of the row (no stepping across rows), so a row's values do not
          * depend on which band it is drawn in. */
         int64_t gz, gzn, dzb = (int64_t)b->d - a->d, dzc = (int64_t)c->d - a->d, inv = 0;
-        int64_t dcb[3], dcc[3];
-        uint64_t gc = 0;
+        /* colour differences per channel k (0 = R, 1 = G, 2 = B; straight-line, no arrays) */
+#define DCH(V, K) ((int64_t)(((V)->c >> (16 - 8 * (K))) & 255) - (int64_t)((a->c >> (16 - 8 * (K))) & 255))
+        const int64_t dcb0 = DCH(b, 0), dcb1 = DCH(b, 1), dcb2 = DCH(b, 2);
+        const int64_t dcc0 = DCH(c, 0), dcc1 = DCH(c, 1), dcc2 = DCH(c, 2);
+#undef DCH
+        uint64_t gc;
         int small = xmax - xmin < SMALL && ymax - ymin < SMALL;
-        int k;
-        for (k = 0; k < 3; k++) {
-            int sh = 16 - 8 * k;
-            int64_t va = (a->c >> sh) & 255;
-            dcb[k] = (int64_t)((b->c >> sh) & 255) - va;
-            dcc[k] = (int64_t)((c->c >> sh) & 255) - va;
-        }
         gzn = dzb * dy2 - dzc * dy1;
         if (small) {
             /* area2 < 2^21 and |colour numerator| < 2^19: products below 2^59 */
             inv = ((int64_t)1 << 40) / area2;
-            for (k = 0; k < 3; k++)
-                gc += (uint64_t)(((dcb[k] * dy2 - dcc[k] * dy1) * inv) >> 23) << (42 - 21 * k);
+#define GC(B, C, K) ((uint64_t)((((B) * dy2 - (C) * dy1) * inv) >> 23) << (42 - 21 * (K)))
+            gc = GC(dcb0, dcc0, 0) + GC(dcb1, dcc1, 1) + GC(dcb2, dcc2, 2);
+#undef GC
             if (gzn < ((int64_t)1 << 22) && gzn > -((int64_t)1 << 22)) gz = (gzn * inv) >> 36;
             else gz = gzn * SUBONE / area2;
         } else {
-            for (k = 0; k < 3; k++)
-                gc += (uint64_t)(((dcb[k] * dy2 - dcc[k] * dy1) * ((int64_t)1 << 17)) / area2) << (42 - 21 * k);
+#define GC(B, C, K) ((uint64_t)((((B) * dy2 - (C) * dy1) * ((int64_t)1 << 17)) / area2) << (42 - 21 * (K)))
+            gc = GC(dcb0, dcc0, 0) + GC(dcb1, dcc1, 1) + GC(dcb2, dcc2, 2);
+#undef GC
             gz = gzn * SUBONE / area2;
         }
 #if RS_TEX
@@ -139,9 +138,8 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                 if (small) { w1 = (e2 * inv) >> 18; w2 = (e0 * inv) >> 18; }
                 else { w1 = e2 * ((int64_t)1 << 22) / area2; w2 = e0 * ((int64_t)1 << 22) / area2; }
                 z = (uint32_t)((int64_t)a->d + ((dzb * w1 + dzc * w2) >> 22));
-                col = (a->cp << 13) + RS_CBIAS;
-                for (k = 0; k < 3; k++)
-                    col += (uint64_t)((dcb[k] * w1 + dcc[k] * w2) >> 9) << (42 - 21 * k);
+                col = (a->cp << 13) + RS_CBIAS + ((uint64_t)((dcb0 * w1 + dcc0 * w2) >> 9) << 42)
+                      + ((uint64_t)((dcb1 * w1 + dcc1 * w2) >> 9) << 21) + (uint64_t)((dcb2 * w1 + dcc2 * w2) >> 9);
                 bd->pixels += (uint32_t)n;
 #if !RS_TEX && !RS_COUNT
                 {
