@@ -72,6 +72,7 @@ typedef struct em {
     int has_pend;
     uint32_t lim_nv, lim_ns;  /* room for two more leaves: vertices, strip indices */
     int fid;                /* plain fidelity rule (no budget marks) */
+    int direct;             /* vertex hash slots by grid key (see home) */
 } em;
 
 /* ------------------------------------------------------------ mesh memory */
@@ -307,12 +308,20 @@ static int decide(em *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
 }
 
 /* ------------------------------------------------------------ strip */
+/* Home slot of grid key y n + x in the dedup hash: the key itself when the table
+ * has >= n^2 / 2 slots (<= 2 keys per slot; the walk's spatial coherence stays in
+ * the table's cache lines), else a multiplicative hash.  Only speed depends on it. */
+static uint32_t home(uint32_t key, uint32_t mask, int direct)
+{
+    return (direct ? key : key * 2654435761u) & mask;
+}
+
 static uint32_t vid(em *e, pt *q)
 {
     bt_mesh *m = e->m;
     if (q->idx != NO_IDX) return q->idx;
     uint32_t key = (uint32_t)q->y * (uint32_t)e->n + (uint32_t)q->x;
-    uint32_t h = (key * 2654435761u) & m->hmask;
+    uint32_t h = home(key, m->hmask, e->direct);
     for (;;) {
         uint32_t s = m->hash[h];
         if (s == 0) break;
@@ -498,6 +507,27 @@ static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned ma
     rec(e, c, &mm, b, 0, !out_hyp, mask);
 }
 
+/* rec for the plain fidelity rule without voids: the same leaves in the same order
+ * without the mode, mask, void and geomorph branches (morph 0 iff zs interpolates). */
+static void rec_fid(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
+{
+    pt mm;
+    size_t idx;
+    int32_t zs;
+    if (e->full) return;
+    if ((a->x + b->x) & 1) { leaf(e, a, c, b, in_hyp, out_hyp); return; }
+    mm.x = a->x + ((b->x - a->x) >> 1);
+    mm.y = a->y + ((b->y - a->y) >> 1);
+    idx = (size_t)mm.y * (size_t)e->n + (size_t)mm.x;
+    if (BT_NODE_ERR(e->t->node[idx]) <= e->cthr) { leaf(e, a, c, b, in_hyp, out_hyp); return; }
+    zs = e->t->f->z[idx];
+    mm.z = zs;
+    mm.morph = 2 * (int64_t)zs == (int64_t)a->z + b->z ? 0 : BT_MORPH_ONE;
+    mm.idx = NO_IDX;
+    rec_fid(e, a, &mm, c, !in_hyp, 0);
+    rec_fid(e, c, &mm, b, 0, !out_hyp);
+}
+
 static void corner(const bt_tree *t, int32_t x, int32_t y, pt *q)
 {
     q->x = x; q->y = y; q->z = zreal(t, x, y); q->morph = BT_MORPH_ONE; q->idx = NO_IDX;
@@ -510,8 +540,13 @@ static void run(em *e)
     corner(e->t, 0, 0, &A); corner(e->t, S, 0, &B);
     corner(e->t, S, S, &C); corner(e->t, 0, S, &D);
     e->has_pend = 0;
-    rec(e, &A, &B, &C, 0, 1, 0x3f);
-    rec(e, &C, &D, &A, 1, 0, 0x3f);
+    if (e->fid && e->nonvoid) {
+        rec_fid(e, &A, &B, &C, 0, 1);
+        rec_fid(e, &C, &D, &A, 1, 0);
+    } else {
+        rec(e, &A, &B, &C, 0, 1, 0x3f);
+        rec(e, &C, &D, &A, 1, 0, 0x3f);
+    }
     flush(e);
 }
 
@@ -671,10 +706,7 @@ br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri)
     if (s != BR_OK) return s;
     if (p->mode == BT_BUDGET) { *ntri = p->budget; return BR_OK; }
     e.count_only = 1;
-    e.tau_lo = e.tau;           /* counting ignores hysteresis state */
-    if (p->mode == BT_VIEW) {   /* and must not touch it: ST_PREV read only */
-        e.tau_lo = e.tau;
-    }
+    e.tau_lo = e.tau;   /* counting ignores (and never touches) hysteresis state */
     run(&e);
     *ntri = e.count;
     return BR_OK;
@@ -690,7 +722,7 @@ static void reset_mesh(bt_mesh *m, int32_t n)
     else
         for (i = 0; i < m->nv; i++) {
             uint32_t key = (uint32_t)m->v[i].y * (uint32_t)n + (uint32_t)m->v[i].x;
-            uint32_t h = (key * 2654435761u) & m->hmask;
+            uint32_t h = home(key, m->hmask, (uint64_t)n * (uint64_t)n <= 2 * ((uint64_t)m->hmask + 1));
             while (m->hash[h]) { m->hash[h] = 0; h = (h + 1) & m->hmask; }
         }
     m->nv = 0; m->ns = 0; m->ntri = 0; m->nline = 0; m->nfict = 0; m->overflow = 0;
@@ -705,6 +737,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
     if (s != BR_OK) return s;
     if (!m || !m->v) return BR_E_ARG;
     e.m = m;
+    e.direct = (uint64_t)t->n * (uint64_t)t->n <= 2 * ((uint64_t)m->hmask + 1);
     {
         uint32_t hl = m->hmask - (m->hmask >> 2);
         e.lim_nv = (hl < m->cap_v ? hl : m->cap_v) - 6;
