@@ -73,6 +73,7 @@ typedef struct em {
     uint32_t lim_nv, lim_ns;  /* room for two more leaves: vertices, strip indices */
     int fid;                /* plain fidelity rule (no budget marks) */
     int direct;             /* vertex hash slots by grid key (see home) */
+    uint32_t hbase;         /* vertex hash generation (see reset_mesh) */
 } em;
 
 /* ------------------------------------------------------------ mesh memory */
@@ -91,7 +92,7 @@ size_t bt_mesh_mem_size(uint32_t max_tri)
     cap_s = 5ull * max_tri + 8;
     hs = hash_size(2 * max_tri + 16);
     heap = 4ull * max_tri + 8;
-    sz = cap_v * sizeof(bt_vert) + cap_s * 4 + hs * 4 + heap * sizeof(heap_ent) + heap * 4 + 64;
+    sz = cap_v * sizeof(bt_vert) + cap_s * 4 + hs * 4 + 4 + heap * sizeof(heap_ent) + heap * 4 + 64;
     if (sz > (uint64_t)SIZE_MAX) return 0;      /* 32-bit hosts */
     return (size_t)sz;
 }
@@ -110,9 +111,9 @@ br_status bt_mesh_init(bt_mesh *m, uint32_t max_tri, void *mem, size_t mem_bytes
     m->max_tri = max_tri;
     m->v = (bt_vert *)(void *)p; p += (size_t)cap_v * sizeof(bt_vert);
     m->cap_v = cap_v;
-    m->hash = (uint32_t *)(void *)p; p += (size_t)hs * 4;
+    m->hash = (uint32_t *)(void *)p; p += (size_t)hs * 4 + 4;
     m->hmask = hs - 1;
-    memset(m->hash, 0, (size_t)hs * 4);
+    memset(m->hash, 0, (size_t)hs * 4 + 4);   /* + the generation word, see reset_mesh */
     m->strip = (uint32_t *)(void *)p; p += (size_t)cap_s * 4;
     m->cap_s = cap_s;
     p += (8 - ((uintptr_t)p & 7)) & 7;
@@ -323,8 +324,8 @@ static uint32_t vid(em *e, pt *q)
     uint32_t key = (uint32_t)q->y * (uint32_t)e->n + (uint32_t)q->x;
     uint32_t h = home(key, m->hmask, e->direct);
     for (;;) {
-        uint32_t s = m->hash[h];
-        if (s == 0) break;
+        uint32_t s = m->hash[h] - e->hbase;   /* 1 + index; <= 0 (wrapped): empty */
+        if (s == 0 || s > m->nv) break;
         if (m->v[s - 1].x == q->x && m->v[s - 1].y == q->y) return q->idx = s - 1;
         h = (h + 1) & m->hmask;
     }
@@ -336,7 +337,7 @@ static uint32_t vid(em *e, pt *q)
         v->state = q->morph == BT_MORPH_ONE ? BT_S : BT_F;
         v->pad_ = 0;
         if (v->state == BT_F) m->nfict++;
-        m->hash[h] = i + 1;
+        m->hash[h] = e->hbase + i + 1;
         return q->idx = i;
     }
 }
@@ -712,20 +713,19 @@ br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri)
     return BR_OK;
 }
 
-/* Empties the vertex hash by walking from each vertex's home slot to the end of
- * its cluster (cheaper than clearing the whole table when nv is small; every
- * occupied slot lies in a cluster run that starts at or before its home). */
-static void reset_mesh(bt_mesh *m, int32_t n)
+/* Empties the mesh.  The vertex hash is not cleared: a slot holds base + 1 +
+ * index, and the base (the word after the table) moves past every value of the
+ * previous extraction, so old slots read as empty; cleared only when the base
+ * would wrap. */
+static uint32_t reset_mesh(bt_mesh *m)
 {
-    uint32_t i;
-    if (m->nv > (m->hmask >> 3)) memset(m->hash, 0, ((size_t)m->hmask + 1) * 4);
-    else
-        for (i = 0; i < m->nv; i++) {
-            uint32_t key = (uint32_t)m->v[i].y * (uint32_t)n + (uint32_t)m->v[i].x;
-            uint32_t h = home(key, m->hmask, (uint64_t)n * (uint64_t)n <= 2 * ((uint64_t)m->hmask + 1));
-            while (m->hash[h]) { m->hash[h] = 0; h = (h + 1) & m->hmask; }
-        }
+    uint32_t *base = &m->hash[m->hmask + 1];
+    if (*base > 0xFFFFFFFFu - m->nv - m->cap_v - 1) {
+        memset(m->hash, 0, ((size_t)m->hmask + 1) * 4);
+        *base = 0;
+    } else *base += m->nv;
     m->nv = 0; m->ns = 0; m->ntri = 0; m->nline = 0; m->nfict = 0; m->overflow = 0;
+    return *base;
 }
 
 br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
@@ -754,7 +754,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
         nprev = 0;
     }
-    reset_mesh(m, t->n);
+    e.hbase = reset_mesh(m);
     if (p->mode == BT_BUDGET) {
         budget_mark(&e, p->budget < m->max_tri ? p->budget : m->max_tri, &nid);
         e.tau = -1;
@@ -786,7 +786,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
             for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_PREV);
         }
         m->nsplits = 0;
-        reset_mesh(m, t->n);
+        e.hbase = reset_mesh(m);
         e.full = 0; e.rec_splits = 0; e.lost = 0;
         budget_mark(&e, m->max_tri, &nid);
         e.tau = -1;
