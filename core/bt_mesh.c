@@ -317,10 +317,9 @@ static uint32_t home(uint32_t key, uint32_t mask, int direct)
     return (direct ? key : key * 2654435761u) & mask;
 }
 
-static uint32_t vid(em *e, pt *q)
+static uint32_t vid_find(em *e, pt *q)
 {
     bt_mesh *m = e->m;
-    if (q->idx != NO_IDX) return q->idx;
     uint32_t key = (uint32_t)q->y * (uint32_t)e->n + (uint32_t)q->x;
     uint32_t h = home(key, m->hmask, e->direct);
     for (;;) {
@@ -342,6 +341,9 @@ static uint32_t vid(em *e, pt *q)
     }
 }
 
+
+/* output index of q: cached in the pt instance after its first use */
+static uint32_t vid(em *e, pt *q) { return q->idx != NO_IDX ? q->idx : vid_find(e, q); }
 
 static void push(bt_mesh *m, uint32_t i) { m->strip[m->ns++] = i; }
 
