@@ -342,9 +342,7 @@ static uint32_t vid_find(em *e, pt *q)
 }
 
 
-/* output index of q: cached in the pt instance after its first use */
 static uint32_t vid(em *e, pt *q) { return q->idx != NO_IDX ? q->idx : vid_find(e, q); }
-
 static void push(bt_mesh *m, uint32_t i) { m->strip[m->ns++] = i; }
 
 /* A leaf waiting to be written: its vertex indices, exit edge {o0, o1} and the
@@ -543,10 +541,8 @@ static void run(em *e)
     corner(e->t, 0, 0, &A); corner(e->t, S, 0, &B);
     corner(e->t, S, S, &C); corner(e->t, 0, S, &D);
     e->has_pend = 0;
-    if (e->fid && e->nonvoid) {
-        rec_fid(e, &A, &B, &C, 0, 1);
-        rec_fid(e, &C, &D, &A, 1, 0);
-    } else {
+    if (e->fid && e->nonvoid) { rec_fid(e, &A, &B, &C, 0, 1); rec_fid(e, &C, &D, &A, 1, 0); }
+    else {
         rec(e, &A, &B, &C, 0, 1, 0x3f);
         rec(e, &C, &D, &A, 1, 0, 0x3f);
     }
