@@ -187,8 +187,12 @@ static void test_fuji_10m(void)
     free(g.z);
 }
 
-/* Every DEM: fidelity mesh at ~0.5 % of its height range, judged. */
-static void one_dem(const char *rel, int crop)
+/* Every DEM: fidelity mesh at ~0.5 % of its height range, judged.  refs_pm: the
+ * strip's references per triangle must be <= refs_pm / 1000 on the full grid:
+ * 1500 (issue 3's target) where it holds; where voids or an even-sided grid's
+ * void border break the recursive walk, the figure measured with the bridges of
+ * core/bt_strip.c (a regression bound, not the target). */
+static void one_dem(const char *rel, int crop, uint32_t refs_pm)
 {
     hf f, g;
     built b;
@@ -218,8 +222,9 @@ static void one_dem(const char *rel, int crop)
     p.max_err = thr;
     CHECK(extract(&b, &p, 0, &o) == 0);
     CHECK_MSG(judge(&g, &o, st.voids > 0, st.voids > 0 ? exact_area2(&g) : 0, &r, &sr), "%s", rel);
-    if (st.voids == 0 && !crop && (g.w & g.h & 1))  /* strip target where no void breaks the walk (odd sides: no 1-sample void border) */
-        CHECK_MSG(o.m.ns * 2 <= o.m.ntri * 3, "%s: %u refs for %u triangles", rel, o.m.ns, o.m.ntri);
+    if (!crop)
+        CHECK_MSG((uint64_t)o.m.ns * 1000 <= (uint64_t)o.m.ntri * refs_pm, "%s: %u refs for %u triangles > %u/1000",
+                  rel, o.m.ns, o.m.ntri, refs_pm);
     CHECK_MSG(!mc_err_exceeds(&r, thr, 1), "%s: error %lld/%lld > %lld", rel,
               (long long)r.err_num, (long long)r.err_den, (long long)thr);
     printf("%-34s %5dx%-5d thr %6lld: %7u tri %7u vert %.3f refs/tri, err %lld/%lld\n", rel, g.w, g.h,
@@ -233,13 +238,16 @@ static void one_dem(const char *rel, int crop)
 
 static void test_every_dem(void)
 {
-    static const char *const dems[] = {
-        "hgt/N47E009.hgt", "hgt/N50E008.hgt", "hgt/N50E009.hgt", "hgt/N50E010.hgt", "hgt/N57E011.hgt",
-        "png/fuji.png", "png/ps_height_1k.png", "asc/colorado_front_range.asc", "asc/hugo_site.asc",
-        "bt/crater_0513.bt", "tif/mt_rainier_90m.tif", "xyz/monai_valley_bathymetry.txt"
+    static const struct { const char *rel; uint32_t refs_pm; } dems[] = {
+        { "hgt/N47E009.hgt", 1500 }, { "hgt/N50E008.hgt", 1500 }, { "hgt/N50E009.hgt", 1500 },
+        { "hgt/N50E010.hgt", 1500 }, { "hgt/N57E011.hgt", 1500 }, { "png/ps_height_1k.png", 1500 },
+        { "bt/crater_0513.bt", 1500 },
+        /* not yet at 1.5 (breaks of the walk; before the bridges: 1.537, 1.512, 1.617, 1.523, 1.603) */
+        { "png/fuji.png", 1514 }, { "asc/colorado_front_range.asc", 1503 }, { "asc/hugo_site.asc", 1578 },
+        { "tif/mt_rainier_90m.tif", 1515 }, { "xyz/monai_valley_bathymetry.txt", 1546 }
     };
     size_t i;
-    for (i = 0; i < sizeof dems / sizeof dems[0]; i++) one_dem(dems[i], sanitized());
+    for (i = 0; i < sizeof dems / sizeof dems[0]; i++) one_dem(dems[i].rel, sanitized(), dems[i].refs_pm);
 }
 
 /* Lossless (max error 0) on a crop with voids: the mesh interpolates every sample. */
