@@ -219,7 +219,7 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
         if (px1 >= bd->w) px1 = bd->w - 1;
         if (px0 > px1) return;
     }
-    if (!tiny) {
+    if (RS_UNLIKELY(!tiny)) {
         RS_FN(tri_general)(bd, a, b, c, xmin, xmax, ymin, ymax, px0, px1, py0, py1);
         return;
     }
@@ -404,7 +404,7 @@ static void RS_FN(draw)(band *bd)
                  * (fewer live registers); the clipper gets the same order (indices IP, IQ) */
 #define STRIP_TRI(P, Q, V, IP, IQ) do {                                                \
                     if (!((P)->c & (Q)->c & (V)->c & REJECT)) {                        \
-                        if (((P)->c | (Q)->c | (V)->c) & SLOW)                         \
+                        if (RS_UNLIKELY(((P)->c | (Q)->c | (V)->c) & SLOW))            \
                             tri_clip(bd, RS_FN(tri_raster), (IP), (IQ), s[k]);         \
                         else RS_FN(tri_body)(bd, (P), (Q), (V));                       \
                     }                                                                  \
