@@ -189,55 +189,15 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
     }
 }
 
-/* One triangle (a, b, c as seen; either orientation).  Forced inline into the strip loop
- * (its single call site there), so the per-triangle call costs nothing; tri_raster below
- * is the out-of-line copy for lists and the clipper. */
-RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
+/* The tiny path of tri_body for a triangle a, b, c with area2 > 0 (b, c already swapped
+ * for front faces), candidate centres px0..px1 x py0..py1 (clipped to the band and the
+ * screen), b - a = (dx1, dy1), c - a = (dx2, dy2). */
+RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                      int32_t px0, int32_t px1, int32_t py0, int32_t py1,
+                                      int32_t dx1, int32_t dy1, int32_t dx2, int32_t dy2, int32_t area2)
 {
-    int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1;
     /* tiny triangles only: extent < 80 sub-pixels, so every set-up value fits 32 bits */
-    int32_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, S, e0r, e2r;
-    int32_t bias0, bias1, bias2, tiny;
-
-    {
-        const int32_t ax = a->x, ay = a->y, bx = b->x, by = b->y, cx = c->x, cy = c->y;
-        int32_t lo, hi, t;
-        t = ay < by ? ay : by; ymin = t < cy ? t : cy;
-        t = ay > by ? ay : by; ymax = t > cy ? t : cy;
-        lo = (ymin + HALF - 1) >> SUB;    /* first row whose centre is >= ymin */
-        hi = (ymax - HALF) >> SUB;        /* last row whose centre is <= ymax */
-        py0 = lo < bd->y0 ? bd->y0 : lo;
-        py1 = hi >= bd->y1 ? bd->y1 - 1 : hi;
-        if (py0 > py1) return;
-        t = ax < bx ? ax : bx; xmin = t < cx ? t : cx;
-        t = ax > bx ? ax : bx; xmax = t > cx ? t : cx;
-        px0 = (xmin + HALF - 1) >> SUB;
-        px1 = (xmax - HALF) >> SUB;
-        /* the path choice depends on the triangle only (not on the band or screen clip) */
-        tiny = px1 - px0 < TINY && hi - lo < TINY;
-        if (px0 < 0) px0 = 0;
-        if (px1 >= bd->w) px1 = bd->w - 1;
-        if (px0 > px1) return;
-    }
-    if (RS_UNLIKELY(!tiny)) {
-        RS_FN(tri_general)(bd, a, b, c, xmin, xmax, ymin, ymax, px0, px1, py0, py1);
-        return;
-    }
-
-    dx1 = b->x - a->x; dy1 = b->y - a->y;
-    dx2 = c->x - a->x; dy2 = c->y - a->y;
-    area2 = dx1 * dy2 - dx2 * dy1;
-    /* y points down: counter-clockwise as seen (a front face) has area2 < 0 */
-    if (area2 >= 0) {
-        if (area2 == 0 || bd->cull) return;
-    } else {
-        const rs_cvert *t = b;
-        int32_t u;
-        b = c; c = t;
-        u = dx1; dx1 = dx2; dx2 = u;
-        u = dy1; dy1 = dy2; dy2 = u;
-        area2 = -area2;
-    }
+    int32_t A0, A1, A2, B0, B1, B2, S, e0r, e2r, bias0, bias1, bias2;
     bd->tris++;
     /* Edge P->Q: E = A (X - P.x) + B (Y - P.y) >= 0 inside, at pixel centres.  Edge 0 =
      * a->b (the weight of c), 1 = b->c (weight of a), 2 = c->a (weight of b); since
@@ -374,6 +334,52 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
 #undef TINY_SHADE
 #undef TINY_PIX
         }
+    }
+}
+
+/* One triangle (a, b, c as seen; either orientation).  Forced inline into the strip loop
+ * (its single call site there), so the per-triangle call costs nothing; tri_raster below
+ * is the out-of-line copy for lists and the clipper. */
+RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
+{
+    int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1;
+    int32_t dx1, dy1, dx2, dy2, area2, tiny;
+
+    {
+        const int32_t ax = a->x, ay = a->y, bx = b->x, by = b->y, cx = c->x, cy = c->y;
+        int32_t lo, hi, t;
+        t = ay < by ? ay : by; ymin = t < cy ? t : cy;
+        t = ay > by ? ay : by; ymax = t > cy ? t : cy;
+        lo = (ymin + HALF - 1) >> SUB;    /* first row whose centre is >= ymin */
+        hi = (ymax - HALF) >> SUB;        /* last row whose centre is <= ymax */
+        py0 = lo < bd->y0 ? bd->y0 : lo;
+        py1 = hi >= bd->y1 ? bd->y1 - 1 : hi;
+        if (py0 > py1) return;
+        t = ax < bx ? ax : bx; xmin = t < cx ? t : cx;
+        t = ax > bx ? ax : bx; xmax = t > cx ? t : cx;
+        px0 = (xmin + HALF - 1) >> SUB;
+        px1 = (xmax - HALF) >> SUB;
+        /* the path choice depends on the triangle only (not on the band or screen clip) */
+        tiny = px1 - px0 < TINY && hi - lo < TINY;
+        if (px0 < 0) px0 = 0;
+        if (px1 >= bd->w) px1 = bd->w - 1;
+        if (px0 > px1) return;
+    }
+    if (RS_UNLIKELY(!tiny)) {
+        RS_FN(tri_general)(bd, a, b, c, xmin, xmax, ymin, ymax, px0, px1, py0, py1);
+        return;
+    }
+
+    dx1 = b->x - a->x; dy1 = b->y - a->y;
+    dx2 = c->x - a->x; dy2 = c->y - a->y;
+    area2 = dx1 * dy2 - dx2 * dy1;
+    /* y points down: counter-clockwise as seen (a front face) has area2 < 0 */
+    if (area2 >= 0) {
+        if (area2 == 0 || bd->cull) return;
+        RS_FN(tri_tiny)(bd, a, b, c, px0, px1, py0, py1, dx1, dy1, dx2, dy2, area2);
+    } else {
+        /* a front face: b and c swapped (one inlined copy per orientation, no moves) */
+        RS_FN(tri_tiny)(bd, a, c, b, px0, px1, py0, py1, dx2, dy2, dx1, dy1, -area2);
     }
 }
 
