@@ -22,27 +22,51 @@
 #define NKEY (NCAND * NCAND * 3 * 2)
 #define MAXD 14
 
-static int64_t cross3(const bt_mesh *m, uint32_t a, uint32_t b, uint32_t c)
-{
-    const bt_vert *A = &m->v[a], *B = &m->v[b], *C = &m->v[c];
-    return (int64_t)(B->x - A->x) * (C->y - A->y) - (int64_t)(B->y - A->y) * (C->x - A->x);
-}
-
-static int in3(const uint32_t t[3], uint32_t v) { return t[0] == v || t[1] == v || t[2] == v; }
-
 static int key_of(int a, int b, int ph, int par) { return ((a * NCAND + b) * 3 + ph) * 2 + par; }
 
-/* Triangle (s[k], s[k+1], r) appended at strip length len: 0 line triangle,
- * 1 it draws target tg with the right winding, -1 anything else. */
-static int step(const bt_mesh *m, uint32_t a, uint32_t b, uint32_t r, uint32_t len, const uint32_t *tg)
+/* The search's view of the candidates: positions, the leaves as bit masks of
+ * candidate slots, and the orientation of each triple (computed on first use). */
+typedef struct bsearch {
+    int32_t x[NCAND], y[NCAND];
+    unsigned lm, nm;                 /* candidates of L, of N */
+    int8_t sg[NCAND * NCAND * NCAND]; /* sign of cross(b - a, r - a); 2: not yet known */
+} bsearch;
+
+/* Triangle (a, b, r) of candidate slots appended at strip length len: 0 line
+ * triangle, 1 it draws the target (mask tm) with the right winding, -1 else. */
+static int step(bsearch *q, int a, int b, int r, uint32_t len, unsigned tm)
 {
-    int64_t cr;
+    int8_t *g = &q->sg[(a * NCAND + b) * NCAND + r];
+    int sgn;
     if (a == b || b == r || a == r) return 0;
-    cr = cross3(m, a, b, r);
-    if (cr == 0) return 0;
-    if (!tg || !in3(tg, a) || !in3(tg, b) || !in3(tg, r)) return -1;
-    if (len & 1) cr = -cr;          /* odd triangles are drawn (b, a, r) */
-    return cr < 0 ? 1 : -1;
+    if (*g == 2) {
+        int64_t cr = (int64_t)(q->x[b] - q->x[a]) * (q->y[r] - q->y[a]) -
+                     (int64_t)(q->y[b] - q->y[a]) * (q->x[r] - q->x[a]);
+        *g = (int8_t)((cr > 0) - (cr < 0));
+    }
+    sgn = *g;
+    if (sgn == 0) return 0;
+    if (((tm >> a) & (tm >> b) & (tm >> r) & 1u) == 0) return -1;
+    if (len & 1) sgn = -sgn;          /* odd triangles are drawn (b, a, r) */
+    return sgn < 0 ? 1 : -1;
+}
+
+static int pc8(unsigned v) { int c = 0; for (; v; v &= v - 1) c++; return c; }
+
+/* Lower bound of the indices still to append from state (a, b) in phase ph:
+ * every vertex of a leaf still to draw that is not among the last two must be
+ * appended, and each leaf needs at least its own drawing index. */
+static int hcost(const bsearch *q, int a, int b, int ph, int goal)
+{
+    unsigned ab = (1u << a) | (1u << b);
+    int h = 0, hn = goal == 2 ? pc8(q->nm & ~(ph == 0 ? q->lm : ab)) : 0;
+    if (ph >= goal) return 0;
+    if (ph == 0) {
+        h = pc8(q->lm & ~ab);
+        h = h < 1 ? 1 : h;
+    }
+    if (goal == 2) h += hn < 1 ? 1 : hn;
+    return h;
 }
 
 int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0, uint32_t ne1)
@@ -52,8 +76,9 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
     int16_t pred[NKEY];
     int8_t via[NKEY];
     int16_t cur[NKEY], nxt[NKEY];
-    int ncur = 0, nnxt;
+    int ncur = 0, nnxt, a0 = 0, b0 = 0, bound;
     uint32_t src[6];
+    bsearch q;
     if (m->ns < 2) return -1;
     src[0] = m->strip[m->ns - 2]; src[1] = m->strip[m->ns - 1];
     src[2] = L[0]; src[3] = L[1]; src[4] = L[2]; src[5] = 0;
@@ -68,39 +93,48 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
             for (k = 0; k < nc; k++) dup |= cand[k] == N[i];
             if (!dup) cand[nc++] = N[i];
         }
-    memset(pred, 0xff, sizeof pred);
-    {
-        int a = 0, b = 0, k0;
-        for (i = 0; i < nc; i++) { if (cand[i] == src[0]) a = i; if (cand[i] == src[1]) b = i; }
-        k0 = key_of(a, b, 0, (int)(len0 & 1));
+    memset(q.sg, 2, sizeof q.sg);
+    q.lm = q.nm = 0;
+    for (i = 0; i < nc; i++) {
+        q.x[i] = m->v[cand[i]].x; q.y[i] = m->v[cand[i]].y;
+        if (cand[i] == L[0] || cand[i] == L[1] || cand[i] == L[2]) q.lm |= 1u << i;
+        if (N && (cand[i] == N[0] || cand[i] == N[1] || cand[i] == N[2])) q.nm |= 1u << i;
+    }
+    for (i = 0; i < nc; i++) { if (cand[i] == src[0]) a0 = i; if (cand[i] == src[1]) b0 = i; }
+    /* breadth-first, one layer per appended index, pruned by a lower bound of
+     * the indices still needed (A*-style: bound = 1 + the previous one until a
+     * goal is reached, so the first goal layer is the optimum) */
+    for (bound = hcost(&q, a0, b0, 0, goal); bound <= MAXD && best < 0; bound++) {
+        int k0 = key_of(a0, b0, 0, (int)(len0 & 1));
+        memset(pred, 0xff, sizeof pred);
         pred[k0] = (int16_t)k0;
         via[k0] = -1;
+        ncur = 0;
         cur[ncur++] = (int16_t)k0;
-    }
-    /* breadth-first, one layer per appended index */
-    for (d = 0; d < MAXD && ncur > 0 && best < 0; d++) {
-        uint32_t len = len0 + (uint32_t)d;
-        nnxt = 0;
-        for (i = 0; i < ncur; i++) {
-            int k = cur[i], par = k & 1, ph = (k >> 1) % 3, ab = (k >> 1) / 3;
-            int a = ab / NCAND, b = ab % NCAND, r;
-            for (r = 0; r < nc; r++) {
-                int s = step(m, cand[a], cand[b], cand[r], len, ph == 0 ? L : (ph == 1 ? N : NULL));
-                int nph = ph + (s > 0), nk;
-                if (s < 0) continue;
-                nk = key_of(b, r, nph, par ^ 1);
-                if (pred[nk] >= 0) continue;
-                pred[nk] = (int16_t)k;
-                via[nk] = (int8_t)r;
-                nxt[nnxt++] = (int16_t)nk;
-                if (nph == goal) {
-                    int pref = (cand[b] == ne0 && cand[r] == ne1) || (cand[b] == ne1 && cand[r] == ne0);
-                    if (pref > bestpref) { best = nk; bestpref = pref; }
+        for (d = 0; d < bound && ncur > 0 && best < 0; d++) {
+            uint32_t len = len0 + (uint32_t)d;
+            nnxt = 0;
+            for (i = 0; i < ncur; i++) {
+                int k = cur[i], par = k & 1, ph = (k >> 1) % 3, ab = (k >> 1) / 3;
+                int a = ab / NCAND, b = ab % NCAND, r;
+                for (r = 0; r < nc; r++) {
+                    int s = step(&q, a, b, r, len, ph == 0 ? q.lm : (ph == 1 ? q.nm : 0u));
+                    int nph = ph + (s > 0), nk;
+                    if (s < 0) continue;
+                    nk = key_of(b, r, nph, par ^ 1);
+                    if (pred[nk] >= 0 || d + 1 + hcost(&q, b, r, nph, goal) > bound) continue;
+                    pred[nk] = (int16_t)k;
+                    via[nk] = (int8_t)r;
+                    nxt[nnxt++] = (int16_t)nk;
+                    if (nph == goal) {
+                        int pref = (cand[b] == ne0 && cand[r] == ne1) || (cand[b] == ne1 && cand[r] == ne0);
+                        if (pref > bestpref) { best = nk; bestpref = pref; }
+                    }
                 }
             }
+            memcpy(cur, nxt, (size_t)nnxt * sizeof cur[0]);
+            ncur = nnxt;
         }
-        memcpy(cur, nxt, (size_t)nnxt * sizeof cur[0]);
-        ncur = nnxt;
     }
     if (best < 0) return -1;
     {
