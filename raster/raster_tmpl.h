@@ -388,6 +388,14 @@ static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, co
     RS_FN(tri_body)(bd, a, b, c);
 }
 
+/* The strip loop inlines the triangle code for the plain variants; the textured and
+ * write-counting ones call it out of line (their speed matters less than code size). */
+#if RS_TEX || RS_COUNT
+#define RS_STRIP_TRI RS_FN(tri_raster)
+#else
+#define RS_STRIP_TRI RS_FN(tri_body)
+#endif
+
 static void RS_FN(draw)(band *bd)
 {
     const rs_frame *f = bd->f;
@@ -412,7 +420,7 @@ static void RS_FN(draw)(band *bd)
                     if (!((P)->c & (Q)->c & (V)->c & REJECT)) {                        \
                         if (RS_UNLIKELY(((P)->c | (Q)->c | (V)->c) & SLOW))            \
                             tri_clip(bd, RS_FN(tri_raster), (IP), (IQ), s[k]);         \
-                        else RS_FN(tri_body)(bd, (P), (Q), (V));                       \
+                        else RS_STRIP_TRI(bd, (P), (Q), (V));                          \
                     }                                                                  \
                 } while (0)
                 /* two triangles per step (even, then odd with its first two swapped):
@@ -444,3 +452,4 @@ static void RS_FN(draw)(band *bd)
         (void)n;
     }
 }
+#undef RS_STRIP_TRI
