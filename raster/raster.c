@@ -182,7 +182,8 @@ br_status rs_frame_prepare(rs_frame *f)
             c1 = (r10 * x + r11 * y + r12 * z + t1) >> 30;
             if (c2 > zf) oc |= RS_OUT_FAR;
             lim = g8 * c2; ax = f8 * c0; ay = f8 * c1;
-            /* |ax| > lim or |ay| > lim, one compare each: |ax| < 2^60, lim < 2^54 */
+            /* |ax| > lim or |ay| > lim, one unsigned compare each (lim > 0; |ax| < 2^61 and
+             * lim < 2^55, so ax + lim cannot overflow) */
             if ((uint64_t)(ax + lim) > (uint64_t)(2 * lim) || (uint64_t)(ay + lim) > (uint64_t)(2 * lim)) {
                 /* beyond the guard band on one side is outside the screen on that side */
                 oc |= RS_OUT_GUARD;

@@ -242,10 +242,10 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
             m0 = 0x8000u;
         } else {
             const uint64_t ones = bd->ones, top = 0x8000800080008000u;
-            /* per-pixel steps: sx = 16 A, sy = 16 B (the 16 is in ones16, steps16) */
             const uint64_t k1 = (uint64_t)(int64_t)(S + 3 * 0x8000) * ones;
             const int32_t nx = px1 - px0 + 1, ny = py1 - py0 + 1;
             const uint64_t xm = top >> (64 - 16 * nx);
+            /* per-pixel steps: sx = 16 A, sy = 16 B (the 16 is in ones16, steps16) */
             sy0w = (uint64_t)(int64_t)B0 * bd->ones16;
             sy2w = (uint64_t)(int64_t)B2 * bd->ones16;
             p0i = (uint64_t)(int64_t)(e0r + 0x8000) * ones + (uint64_t)(int64_t)A0 * bd->steps16;
@@ -338,8 +338,9 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
 }
 
 /* One triangle (a, b, c as seen; either orientation).  Forced inline into the strip loop
- * (its single call site there), so the per-triangle call costs nothing; tri_raster below
- * is the out-of-line copy for lists and the clipper. */
+ * of the plain variants (one copy for even, one for odd triangles), so the per-triangle
+ * call costs nothing; tri_raster below is the out-of-line copy for lists, the clipper and
+ * the textured and write-counting variants. */
 RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
 {
     int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1;
