@@ -21,37 +21,11 @@
 #include <time.h>
 #include "platform/load.h"
 #include "tests/support/meshcheck.h"
+#include "tests/support/timing.h"
+#include "tests/test.h"
 #include "benchmarks/martini_ref.c"
 #include "benchmarks/rqt_ref.c"
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_d);
-    return v[n / 2];
-}
-
-static const char *data_path(const char *rel)
-{
-    static char buf[4][1024];
-    static int k;
-    const char *root = getenv("BITRAIN_DATA");
-    char *b = buf[k++ & 3];
-    snprintf(b, sizeof buf[0], "%s/%s", root ? root : "../shared/data/dem", rel);
-    return b;
-}
 
 /* ---- meshcheck glue -------------------------------------------------------- */
 
@@ -105,7 +79,7 @@ static void martini_part(int quick)
     int32_t *tri;
     static const double thr[] = { 500, 50, 20, 10, 5, 1, 0 };
     memset(&f, 0, sizeof f);
-    if (dem_load(data_path("png/fuji.png"), NULL, &f, &err) != BR_OK) {
+    if (dem_load(t_data("png/fuji.png"), NULL, &f, &err) != BR_OK) {
         printf("martini: skipped: %s\n", err.msg);
         return;
     }
@@ -126,25 +100,25 @@ static void martini_part(int quick)
     printf("martini (C port of @mapbox/martini 0.2.0) on fuji.png padded to 513x513, heights in dm\n");
     /* interleaved, so a busy neighbour on this shared machine slows all three alike */
     for (i = 0; i < runs; i++) {
-        double t0 = now_ms();
+        double t0 = tm_now_ms();
         mr_errors_f32(&g, terrain, errors);
-        t[i] = now_ms() - t0;
-        t0 = now_ms();
+        t[i] = tm_now_ms() - t0;
+        t0 = tm_now_ms();
         mr_errors_int(&g, z, e_mar, 0);
-        t2[i] = now_ms() - t0;
-        t0 = now_ms();
+        t2[i] = tm_now_ms() - t0;
+        t0 = tm_now_ms();
         mr_errors_int(&g, z, e_snd, 1);
-        t3[i] = now_ms() - t0;
+        t3[i] = tm_now_ms() - t0;
     }
-    t_f32 = median(t, runs);
-    t_int = median(t2, runs);
-    t_snd = median(t3, runs);
+    t_f32 = tm_median(t, runs);
+    t_int = tm_median(t2, runs);
+    t_snd = tm_median(t3, runs);
     printf("  metric build, median of %d: martini f32 %.3f ms | martini int %.3f ms | sound bound int %.3f ms\n",
            runs, t_f32, t_int, t_snd);
 
     /* extraction at 10 m and the truth about each mesh */
-    for (i = 0; i < runs; i++) { double t0 = now_ms(); mr_mesh_f32(&g, errors, 10.0, &m); t[i] = now_ms() - t0; }
-    t_mesh = median(t, runs);
+    for (i = 0; i < runs; i++) { double t0 = tm_now_ms(); mr_mesh_f32(&g, errors, 10.0, &m); t[i] = tm_now_ms() - t0; }
+    t_mesh = tm_median(t, runs);
     tri = martini_tris(&m, size);
     judge(tri, m.nt, size, z, &r);
     printf("  martini metric (f32) at 10 m: %lld triangles, %lld vertices, extraction %.3f ms (%.1f M triangles/s),"
@@ -154,15 +128,15 @@ static void martini_part(int quick)
            (double)r.err_num / (double)r.err_den / 100.0, r.ok ? "yes" : "NO");
     if (!r.ok) mc_report_print(stdout, &r);
     free(tri);
-    for (i = 0; i < runs; i++) { double t0 = now_ms(); mr_mesh_int(&g, e_mar, 200, &m); t[i] = now_ms() - t0; }
-    t_mesh = median(t, runs);
+    for (i = 0; i < runs; i++) { double t0 = tm_now_ms(); mr_mesh_int(&g, e_mar, 200, &m); t[i] = tm_now_ms() - t0; }
+    t_mesh = tm_median(t, runs);
     tri = martini_tris(&m, size);
     judge(tri, m.nt, size, z, &r);
     printf("  martini metric (int, doubled dm) at 10 m: %lld triangles, extraction %.3f ms, TRUE max error %.4f m, watertight %s\n",
            (long long)m.nt, t_mesh, (double)r.err_num / (double)r.err_den / 10.0, r.ok ? "yes" : "NO");
     free(tri);
-    for (i = 0; i < runs; i++) { double t0 = now_ms(); mr_mesh_int(&g, e_snd, 200, &m); t[i] = now_ms() - t0; }
-    t_mesh = median(t, runs);
+    for (i = 0; i < runs; i++) { double t0 = tm_now_ms(); mr_mesh_int(&g, e_snd, 200, &m); t[i] = tm_now_ms() - t0; }
+    t_mesh = tm_median(t, runs);
     tri = martini_tris(&m, size);
     judge(tri, m.nt, size, z, &r);
     printf("  sound bound e_m + max(child) at 10 m: %lld triangles, extraction %.3f ms (%.1f M triangles/s), TRUE max error %.4f m (<= 10: %s), watertight %s\n",
@@ -174,20 +148,20 @@ static void martini_part(int quick)
         uint32_t *tb = malloc((size_t)g.ntri * sizeof *tb), *e_t = malloc((size_t)size * size * sizeof *e_t);
         double tt = 0;
         for (i = 0; i < runs; i++) {
-            double t0 = now_ms();
+            double t0 = tm_now_ms();
             mr_errors_tight(&g, z, tb, e_t);
-            t[i] = now_ms() - t0;
-            t0 = now_ms();
+            t[i] = tm_now_ms() - t0;
+            t0 = tm_now_ms();
             mr_errors_f32(&g, terrain, errors);     /* interleaved reference */
-            t2[i] = now_ms() - t0;
+            t2[i] = tm_now_ms() - t0;
         }
-        tt = median(t, runs);
+        tt = tm_median(t, runs);
         mr_mesh_int(&g, e_t, 200, &m);
         tri = martini_tris(&m, size);
         judge(tri, m.nt, size, z, &r);
         printf("  per-triangle sound bound + martini closure (mr_errors_tight) at 10 m: %lld triangles, build %.3f ms"
                " (martini f32 %.3f ms in the same loop), TRUE max error %.4f m (<= 10: %s), watertight %s\n",
-               (long long)m.nt, tt, median(t2, runs), (double)r.err_num / (double)r.err_den / 10.0,
+               (long long)m.nt, tt, tm_median(t2, runs), (double)r.err_num / (double)r.err_den / 10.0,
                mc_err_exceeds(&r, 100, 1) ? "NO" : "yes", r.ok ? "yes" : "NO");
         free(tri); free(tb); free(e_t);
     }
@@ -223,9 +197,9 @@ static void martini_part(int quick)
         mc_strip_report sr;
         qm.tri = malloc((size_t)6 * 512 * 512 * sizeof *qm.tri);
         qm.strip = malloc((size_t)16 * 512 * 512 * sizeof *qm.strip);
-        t0 = now_ms();
+        t0 = tm_now_ms();
         if (qm.tri && qm.strip && rq_run(z, size, 100, 1, RQ_SEL_EACH, &rr, &qm, NULL) == 0) {
-            double dt = now_ms() - t0;
+            double dt = tm_now_ms() - t0;
             judge(qm.tri, qm.nt, size, z, &r);
             mc_strip_compare(qm.strip, qm.ns, qm.tri, qm.nt, g_verts, size * size, &sr);
             printf("  exact per-triangle error + conforming closure (rqt_ref RQ_SEL_EACH QT) at 10 m: %lld triangles,"
@@ -301,7 +275,7 @@ static void table_part(void)
         memset(&f, 0, sizeof f);
         memset(&o, 0, sizeof o);
         if (crops[c].png_grey_dm) { o.png_encoding = DEM_PNG_GREY; o.png_scale = 0.1; }
-        if (dem_load(data_path(crops[c].file), &o, &f, &err) != BR_OK) {
+        if (dem_load(t_data(crops[c].file), &o, &f, &err) != BR_OK) {
             printf("crop %s: skipped: %s\n", crops[c].file, err.msg);
             continue;
         }

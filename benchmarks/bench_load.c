@@ -6,20 +6,8 @@
 #include <stdlib.h>
 #include <time.h>
 #include "platform/load.h"
+#include "tests/support/timing.h"
 #include "tests/test.h"
-
-static double now_ms(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
-}
-
-static int cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
 
 #define RUNS 9
 
@@ -30,14 +18,13 @@ static void bench(const char *label, const char *const *paths, int n)
     for (k = 0; k < RUNS; k++) {
         hf f;
         br_err e;
-        double t0 = now_ms();
+        double t0 = tm_now_ms();
         if (dem_load_many(paths, n, NULL, &f, &e) != BR_OK) { printf("%-34s error: %s\n", label, e.msg); return; }
-        t[k] = now_ms() - t0;
+        t[k] = tm_now_ms() - t0;
         if (k == 0) printf("%-34s %5dx%-5d ", label, f.w, f.h);
         dem_free(&f);
     }
-    qsort(t, RUNS, sizeof t[0], cmp);
-    printf("median %8.2f ms  (min %.2f)\n", t[RUNS / 2], t[0]);
+    printf("median %8.2f ms  (min %.2f)\n", tm_median(t, RUNS), t[0]);
 }
 
 int main(void)
