@@ -82,7 +82,15 @@ void bte_level2(bt_tree *t, const ctx *c);
  * (vertex indices) and draws it, chosen so that N (may be NULL: the last leaf)
  * follows as cheaply as possible, preferring N's walk exit edge {ne0, ne1} last
  * (core/bt_strip.c).  Needs m->ns >= 2; counts the line triangles in m->nline.
+ * The rest of the way (after L, drawing N) goes to plan[0 .. *nplan).
  * Returns 0, or -1 (nothing written) if none was found or it does not fit. */
-int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0, uint32_t ne1);
+#define BTS_PLAN 14
+int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0, uint32_t ne1,
+               uint32_t plan[BTS_PLAN], int *nplan);
+/* Follows the plan of the last bridge (which drew the leaf before L and planned
+ * the way to L) when it leaves L's walk exit edge {o0, o1} last and N (NULL: none)
+ * continues there: 1 (written), else 0.  Empties the plan either way. */
+int bts_follow(bt_mesh *m, const uint32_t plan[BTS_PLAN], int *nplan, uint32_t o0, uint32_t o1,
+               const uint32_t *N);
 
 #endif

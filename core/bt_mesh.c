@@ -31,8 +31,8 @@
  * needs a swap: the older index is repeated, one line triangle (002 figure 10);
  * with one leaf of lookahead, a fan whose rim is straight gets one line
  * triangle of three collinear vertices for two turns (004; see write_leaf).
- * A leaf that does not touch the previous one (after a void or a culled
- * subtree) restarts with 2 or 4 line triangles.  Winding: the first triangle is
+ * Where the walk breaks (after a void or a culled subtree) core/bt_strip.c
+ * bridges to the next leaf by the shortest run of line triangles.  Winding: the first triangle is
  * written counter-clockwise seen from +z (x east, y north); the GL parity rule
  * keeps every later edge-adjacent triangle the same. */
 #include <string.h>
@@ -70,6 +70,7 @@ typedef struct em {
     int64_t wz_lo[256], wz_hi[256]; /* world z of the quantised height codes (floor, ceil) */
     struct pend_s { uint32_t ia, ic, ib, o0, o1, other; } pend; /* see pend */
     int has_pend;
+    uint32_t plan[BTS_PLAN]; int nplan; /* a bridge's way on to the next leaf */
     uint32_t lim_nv, lim_ns;  /* room for two more leaves: vertices, strip indices */
     int fid;                /* plain fidelity rule (no budget marks) */
     int direct;             /* vertex hash slots by grid key (see home) */
@@ -366,6 +367,11 @@ static int collinear(const bt_mesh *m, uint32_t a, uint32_t b, uint32_t c)
 static int write_leaf(em *e, const pend *L, const pend *N)
 {
     bt_mesh *m = e->m;
+    uint32_t n3[3];
+    if (e->nplan > 0) {
+        if (N) { n3[0] = N->ia; n3[1] = N->ic; n3[2] = N->ib; }
+        if (bts_follow(m, e->plan, &e->nplan, L->o0, L->o1, N ? n3 : NULL)) return 0;
+    }
     if (m->ns >= 2) {
         uint32_t p = m->strip[m->ns - 2], q = m->strip[m->ns - 1];
         int hp = p == L->ia || p == L->ic || p == L->ib, hq = q == L->ia || q == L->ic || q == L->ib;
@@ -373,10 +379,10 @@ static int write_leaf(em *e, const pend *L, const pend *N)
                           (N->ia == L->o1 || N->ic == L->o1 || N->ib == L->o1));
         if (!(hp && hq && p != q && cont)) {
             /* a break of the walk before L or after it: bridge it (bt_strip.c) */
-            uint32_t l3[3], n3[3];
+            uint32_t l3[3];
             l3[0] = L->ia; l3[1] = L->ic; l3[2] = L->ib;
             if (N) { n3[0] = N->ia; n3[1] = N->ic; n3[2] = N->ib; }
-            if (bts_bridge(m, l3, N ? n3 : NULL, N ? N->o0 : 0, N ? N->o1 : 0) == 0) return 0;
+            if (bts_bridge(m, l3, N ? n3 : NULL, N ? N->o0 : 0, N ? N->o1 : 0, e->plan, &e->nplan) == 0) return 0;
         }
         if (hp && hq && p != q) {
             uint32_t z = (p != L->ia && q != L->ia) ? L->ia : ((p != L->ic && q != L->ic) ? L->ic : L->ib);
@@ -407,17 +413,7 @@ static int write_leaf(em *e, const pend *L, const pend *N)
             const bt_vert *A = &m->v[L->other], *B = &m->v[L->o0], *C = &m->v[L->o1];
             ccw_first = (int64_t)(B->x - A->x) * (C->y - A->y) - (int64_t)(B->y - A->y) * (C->x - A->x) < 0;
         }
-        if (m->ns > 0 && m->strip[m->ns - 1] == L->other) {
-            /* the strip already ends at the leaf's free vertex: repeat it once
-             * (2 line triangles) and the leaf follows */
-            push(m, L->other);
-            m->nline += 2;
-            i0 = m->ns - 1;
-            if (((i0 & 1) == 0) != ccw_first) { v2 = L->o1; v3 = L->o0; }
-            push(m, v2); push(m, v3);
-            return 0;
-        }
-        if (m->ns > 0) {
+        if (m->ns > 0) {    /* only if no bridge fits (bt_strip.c): 4 line triangles */
             push(m, m->strip[m->ns - 1]);
             push(m, L->other);
             m->nline += 4;
@@ -541,6 +537,7 @@ static void run(em *e)
     corner(e->t, 0, 0, &A); corner(e->t, S, 0, &B);
     corner(e->t, S, S, &C); corner(e->t, 0, S, &D);
     e->has_pend = 0;
+    e->nplan = 0;
     if (e->fid && e->nonvoid) { rec_fid(e, &A, &B, &C, 0, 1); rec_fid(e, &C, &D, &A, 1, 0); }
     else {
         rec(e, &A, &B, &C, 0, 1, 0x3f);

@@ -10,7 +10,8 @@
  * known) only line triangles and N, each with the contract's winding
  * (counter-clockwise seen from +z: grid cross < 0 in drawing order).  Only the
  * part up to L is written: N is written by the next call from the state that
- * part leaves, so it may still continue to its own successor.  Among shortest
+ * part leaves, so it may still continue to its own successor (or, when that
+ * successor continues N's walk exit edge where the rest ends, follow the rest).  Among shortest
  * sequences, one that leaves N's walk exit edge last is preferred (the walk
  * continues through it).  The useful indices are the strip's last two and the
  * leaves' vertices (at most 8), so the search has at most
@@ -20,7 +21,7 @@
 
 #define NCAND 8
 #define NKEY (NCAND * NCAND * 3 * 2)
-#define MAXD 14
+#define MAXD BTS_PLAN
 
 static int key_of(int a, int b, int ph, int par) { return ((a * NCAND + b) * 3 + ph) * 2 + par; }
 
@@ -51,7 +52,11 @@ static int step(bsearch *q, int a, int b, int r, uint32_t len, unsigned tm)
     return sgn < 0 ? 1 : -1;
 }
 
-static int pc8(unsigned v) { int c = 0; for (; v; v &= v - 1) c++; return c; }
+static int pc8(unsigned v)
+{
+    static const int8_t pc4[16] = { 0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4 };
+    return pc4[v & 15u] + pc4[(v >> 4) & 15u];
+}
 
 /* Lower bound of the indices still to append from state (a, b) in phase ph:
  * every vertex of a leaf still to draw that is not among the last two must be
@@ -69,7 +74,22 @@ static int hcost(const bsearch *q, int a, int b, int ph, int goal)
     return h;
 }
 
-int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0, uint32_t ne1)
+int bts_follow(bt_mesh *m, const uint32_t plan[BTS_PLAN], int *nplan, uint32_t o0, uint32_t o1, const uint32_t *N)
+{
+    uint32_t k = (uint32_t)*nplan, i, e1, e2;
+    *nplan = 0;
+    if (k == 0 || m->ns < 1 || m->ns + k > m->cap_s) return 0;
+    e1 = k >= 2 ? plan[k - 2] : m->strip[m->ns - 1];
+    e2 = plan[k - 1];
+    if (!((e1 == o0 && e2 == o1) || (e1 == o1 && e2 == o0))) return 0;
+    if (N && !((N[0] == o0 || N[1] == o0 || N[2] == o0) && (N[0] == o1 || N[1] == o1 || N[2] == o1))) return 0;
+    for (i = 0; i < k; i++) m->strip[m->ns++] = plan[i];
+    m->nline += k - 1;
+    return 1;
+}
+
+int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0, uint32_t ne1,
+               uint32_t plan[BTS_PLAN], int *nplan)
 {
     uint32_t cand[NCAND], len0 = m->ns;
     int nc = 0, i, goal = N ? 2 : 1, d, best = -1, bestpref = -1;
@@ -149,6 +169,8 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
         if (first_l < 0 || m->ns + (uint32_t)(np - first_l) > m->cap_s) return -1;
         for (j = np - 1; j >= first_l; j--) m->strip[m->ns++] = cand[(int)via[path[j]]];
         m->nline += (uint32_t)(np - 1 - first_l);
+        *nplan = 0;    /* the rest: the way on to N (the next call may follow it) */
+        for (j = first_l - 1; j >= 0; j--) plan[(*nplan)++] = cand[(int)via[path[j]]];
     }
     return 0;
 }
