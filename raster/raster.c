@@ -232,7 +232,9 @@ static int span_limits(int64_t s, int64_t K, int32_t px0, int32_t px1, int32_t *
 #define RS_NOINLINE __attribute__((noinline))
 #define RS_INLINE inline __attribute__((always_inline))
 #define RS_UNLIKELY(x) __builtin_expect(!!(x), 0)
+#define RS_LIKELY(x) __builtin_expect(!!(x), 1)
 #else
+#define RS_LIKELY(x) (x)
 #define RS_UNLIKELY(x) (x)
 #define RS_NOINLINE
 #define RS_INLINE

@@ -384,18 +384,67 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
     }
 }
 
-static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
+RS_NOINLINE static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
 {
     RS_FN(tri_body)(bd, a, b, c);
 }
 
+#if !(RS_TEX || RS_COUNT)
+/* One tiny triangle of a strip pair (see tri_pair): orientation, then tri_tiny over the
+ * pair's candidate box. */
+RS_INLINE static void RS_FN(tri_pair_one)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                          int32_t px0, int32_t px1, int32_t py0, int32_t py1)
+{
+    const int32_t dx1 = b->x - a->x, dy1 = b->y - a->y, dx2 = c->x - a->x, dy2 = c->y - a->y;
+    const int32_t area2 = dx1 * dy2 - dx2 * dy1;
+    if (area2 >= 0) {
+        if (area2 == 0 || bd->cull) return;
+        RS_FN(tri_tiny)(bd, a, b, c, px0, px1, py0, py1, dx1, dy1, dx2, dy2, area2);
+    } else {
+        RS_FN(tri_tiny)(bd, a, c, b, px0, px1, py0, py1, dx2, dy2, dx1, dy1, -area2);
+    }
+}
+
+/* Two consecutive strip triangles T1 = (v0, v1, v2) and T2 = (v2, v1, v3), neither needing
+ * the clipper nor rejected by outcodes.  When the pair's joint bounding
+ * box has at most TINY x TINY candidate centres, both are drawn by the tiny path over
+ * that joint box: one bounding box for two triangles.  The pixels are those of two
+ * separate tri_body calls: a triangle inside the joint box is tiny on its own (its own
+ * box is a sub-box), the candidates of the joint box outside its own box fail its edge
+ * tests (a centre with all e_k >= 0 lies in the closed triangle), the joint box's extent
+ * is < 80 sub-pixels, the bound tri_tiny's lanes need, and T1 is drawn before T2.
+ * Otherwise each triangle goes through tri_raster. */
+RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
+                                      const rs_cvert *v3)
+{
+    int32_t lo, hi, xl, xh, py0, py1, px0, px1;
+    {
+        int32_t t, u, ymin, ymax, xmin, xmax;
+        t = v0->y < v1->y ? v0->y : v1->y; u = v2->y < v3->y ? v2->y : v3->y; ymin = t < u ? t : u;
+        t = v0->y > v1->y ? v0->y : v1->y; u = v2->y > v3->y ? v2->y : v3->y; ymax = t > u ? t : u;
+        t = v0->x < v1->x ? v0->x : v1->x; u = v2->x < v3->x ? v2->x : v3->x; xmin = t < u ? t : u;
+        t = v0->x > v1->x ? v0->x : v1->x; u = v2->x > v3->x ? v2->x : v3->x; xmax = t > u ? t : u;
+        lo = (ymin + HALF - 1) >> SUB; hi = (ymax - HALF) >> SUB;
+        xl = (xmin + HALF - 1) >> SUB; xh = (xmax - HALF) >> SUB;
+    }
+    if (RS_UNLIKELY(hi - lo >= TINY || xh - xl >= TINY)) {
+        RS_FN(tri_raster)(bd, v0, v1, v2);
+        RS_FN(tri_raster)(bd, v2, v1, v3);
+        return;
+    }
+    py0 = lo < bd->y0 ? bd->y0 : lo;
+    py1 = hi >= bd->y1 ? bd->y1 - 1 : hi;
+    px0 = xl < 0 ? 0 : xl;
+    px1 = xh >= bd->w ? bd->w - 1 : xh;
+    if (py0 > py1 || px0 > px1) return;
+    RS_FN(tri_pair_one)(bd, v0, v1, v2, px0, px1, py0, py1);
+    RS_FN(tri_pair_one)(bd, v2, v1, v3, px0, px1, py0, py1);
+}
+#endif
+
 /* The strip loop inlines the triangle code for the plain variants; the textured and
  * write-counting ones call it out of line (their speed matters less than code size). */
-#if RS_TEX || RS_COUNT
 #define RS_STRIP_TRI RS_FN(tri_raster)
-#else
-#define RS_STRIP_TRI RS_FN(tri_body)
-#endif
 
 static void RS_FN(draw)(band *bd)
 {
@@ -428,6 +477,22 @@ static void RS_FN(draw)(band *bd)
                  * chunks start at even t0 */
                 for (k = t0 + 2; k + 1 < t1 + 2; k += 2) {
                     const rs_cvert *v2 = &cache[s[k]], *v3;
+#if !(RS_TEX || RS_COUNT)
+                    v3 = &cache[s[k + 1]];
+                    {
+                        const uint32_t c12 = v1->c & v2->c;
+                        if ((c12 & v0->c & REJECT) && (c12 & v3->c & REJECT)) {
+                            v0 = v2; v1 = v3;       /* both rejected by outcodes */
+                            continue;
+                        }
+                        if (RS_LIKELY(!(((v0->c | v1->c | v2->c | v3->c) & SLOW) | (c12 & v0->c & REJECT)
+                                        | (c12 & v3->c & REJECT)))) {
+                            RS_FN(tri_pair)(bd, v0, v1, v2, v3);
+                            v0 = v2; v1 = v3;
+                            continue;
+                        }
+                    }
+#endif
                     STRIP_TRI(v0, v1, v2, s[k - 2], s[k - 1]);
                     v3 = &cache[s[k + 1]];
                     k++;
