@@ -312,9 +312,10 @@ static int decide(em *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
 /* ------------------------------------------------------------ strip */
 /* Home slot of grid key y n + x in the dedup hash: the key itself when the table
  * has >= n^2 / 2 slots (<= 2 keys per slot; the walk's spatial coherence stays in
- * the table's cache lines), else a multiplicative hash.  Collisions probe with a
- * scattered odd step (double hashing), never along the dense runs that direct
- * slots of a fully refined region form.  Only speed depends on it. */
+ * the table's cache lines), else a multiplicative hash.  Collisions of direct
+ * slots probe with a scattered odd step (double hashing), never along the dense
+ * run a fully refined region forms; hashed slots probe linearly (cache lines).
+ * Only speed depends on it. */
 static uint32_t home(uint32_t key, uint32_t mask, int direct)
 {
     return (direct ? key : key * 2654435761u) & mask;
@@ -329,7 +330,7 @@ static uint32_t vid_find(em *e, pt *q)
         uint32_t s = m->hash[h] - e->hbase;   /* 1 + index; <= 0 (wrapped): empty */
         if (s == 0 || s > m->nv) break;
         if (m->v[s - 1].x == q->x && m->v[s - 1].y == q->y) return q->idx = s - 1;
-        h = (h + (((key * 2654435761u) >> 15) | 1u)) & m->hmask;   /* odd step: no long runs */
+        h = (h + (e->direct ? ((key * 2654435761u) >> 15) | 1u : 1u)) & m->hmask;
     }
     {
         uint32_t i = m->nv++;
