@@ -193,8 +193,8 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
  * for front faces), candidate centres px0..px1 x py0..py1 (clipped to the band and the
  * screen), b - a = (dx1, dy1), c - a = (dx2, dy2). */
 RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
-                                      int32_t px0, int32_t px1, int32_t py0, int32_t py1,
-                                      int32_t dx1, int32_t dy1, int32_t dx2, int32_t dy2, int32_t area2)
+                                      int32_t px0, int32_t py0, int32_t ny, uint64_t xm,
+                                      uint8_t *const crow0, RS_Z *const zrow0, int32_t dx1, int32_t dy1, int32_t dx2, int32_t dy2, int32_t area2)
 {
     /* tiny triangles only: extent < 80 sub-pixels, so every set-up value fits 32 bits */
     int32_t A0, A1, A2, B0, B1, B2, S, e0r, e2r, bias0, bias1, bias2;
@@ -234,17 +234,15 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
          * the lane's top bit is set iff e >= 0.  Lanes past px1 (outside the triangle
          * unless px1 was clipped to the screen) are masked off. */
         uint64_t m0, m1 = 0, m2 = 0, m3 = 0, p0i, p2i, p0 = 0, p2 = 0, sy0w = 0, sy2w = 0;
-        if (!((px1 - px0) | (py1 - py0))) {
+        if (xm == 0x8000u && ny == 1) {
             /* one candidate (the commonest box on small screens): lane 0 only */
             if ((e0r | e2r | (S - e0r - e2r)) < 0) return;
             p0i = (uint64_t)(int64_t)(e0r + 0x8000);
             p2i = (uint64_t)(int64_t)(e2r + 0x8000);
             m0 = 0x8000u;
         } else {
-            const uint64_t ones = bd->ones, top = 0x8000800080008000u;
+            const uint64_t ones = bd->ones;
             const uint64_t k1 = (uint64_t)(int64_t)(S + 3 * 0x8000) * ones;
-            const int32_t nx = px1 - px0 + 1, ny = py1 - py0 + 1;
-            const uint64_t xm = top >> (64 - 16 * nx);
             /* per-pixel steps: sx = 16 A, sy = 16 B (the 16 is in ones16, steps16) */
             sy0w = (uint64_t)(int64_t)B0 * bd->ones16;
             sy2w = (uint64_t)(int64_t)B2 * bd->ones16;
@@ -271,8 +269,8 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
             const int64_t dzb = (int64_t)b->d - ad, dzc = (int64_t)c->d - ad;
             const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
             const size_t stride = bd->stride, zw = (size_t)bd->w;
-            uint8_t *const crow0 = bd->color + (size_t)(py0 - bd->y0) * stride, *crow;
-            RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw, *zrow;
+            uint8_t *crow;
+            RS_Z *zrow;
 #if RS_TEX
             /* perspective: 1/w weights d >> tsh (16 bits for the nearest vertex) */
             const rs_texture *tx = bd->f->tex;
@@ -344,7 +342,10 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
 RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
 {
     int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1;
-    int32_t dx1, dy1, dx2, dy2, area2, tiny;
+    int32_t dx1, dy1, dx2, dy2, area2, tiny, ny;
+    uint64_t xm;
+    uint8_t *crow0;
+    RS_Z *zrow0;
 
     {
         const int32_t ax = a->x, ay = a->y, bx = b->x, by = b->y, cx = c->x, cy = c->y;
@@ -371,16 +372,20 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
         return;
     }
 
+    xm = 0x8000800080008000u >> (64 - 16 * (px1 - px0 + 1));
+    ny = py1 - py0 + 1;
+    crow0 = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
+    zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)bd->w;
     dx1 = b->x - a->x; dy1 = b->y - a->y;
     dx2 = c->x - a->x; dy2 = c->y - a->y;
     area2 = dx1 * dy2 - dx2 * dy1;
     /* y points down: counter-clockwise as seen (a front face) has area2 < 0 */
     if (area2 >= 0) {
         if (area2 == 0 || bd->cull) return;
-        RS_FN(tri_tiny)(bd, a, b, c, px0, px1, py0, py1, dx1, dy1, dx2, dy2, area2);
+        RS_FN(tri_tiny)(bd, a, b, c, px0, py0, ny, xm, crow0, zrow0, dx1, dy1, dx2, dy2, area2);
     } else {
         /* a front face: b and c swapped (one inlined copy per orientation, no moves) */
-        RS_FN(tri_tiny)(bd, a, c, b, px0, px1, py0, py1, dx2, dy2, dx1, dy1, -area2);
+        RS_FN(tri_tiny)(bd, a, c, b, px0, py0, ny, xm, crow0, zrow0, dx2, dy2, dx1, dy1, -area2);
     }
 }
 
@@ -393,15 +398,16 @@ RS_NOINLINE static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_
 /* One tiny triangle of a strip pair (see tri_pair): orientation, then tri_tiny over the
  * pair's candidate box. */
 RS_INLINE static void RS_FN(tri_pair_one)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
-                                          int32_t px0, int32_t px1, int32_t py0, int32_t py1)
+                                          int32_t px0, int32_t py0, int32_t ny, uint64_t xm,
+                                          uint8_t *const crow0, RS_Z *const zrow0)
 {
     const int32_t dx1 = b->x - a->x, dy1 = b->y - a->y, dx2 = c->x - a->x, dy2 = c->y - a->y;
     const int32_t area2 = dx1 * dy2 - dx2 * dy1;
     if (area2 >= 0) {
         if (area2 == 0 || bd->cull) return;
-        RS_FN(tri_tiny)(bd, a, b, c, px0, px1, py0, py1, dx1, dy1, dx2, dy2, area2);
+        RS_FN(tri_tiny)(bd, a, b, c, px0, py0, ny, xm, crow0, zrow0, dx1, dy1, dx2, dy2, area2);
     } else {
-        RS_FN(tri_tiny)(bd, a, c, b, px0, px1, py0, py1, dx2, dy2, dx1, dy1, -area2);
+        RS_FN(tri_tiny)(bd, a, c, b, px0, py0, ny, xm, crow0, zrow0, dx2, dy2, dx1, dy1, -area2);
     }
 }
 
@@ -437,8 +443,15 @@ RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cve
     px0 = xl < 0 ? 0 : xl;
     px1 = xh >= bd->w ? bd->w - 1 : xh;
     if (py0 > py1 || px0 > px1) return;
-    RS_FN(tri_pair_one)(bd, v0, v1, v2, px0, px1, py0, py1);
-    RS_FN(tri_pair_one)(bd, v2, v1, v3, px0, px1, py0, py1);
+    {
+        /* lanes 0 .. px1 - px0 of the candidate mask, rows py0 .. py1 */
+        const uint64_t xm = 0x8000800080008000u >> (64 - 16 * (px1 - px0 + 1));
+        const int32_t ny = py1 - py0 + 1;
+        uint8_t *const crow0 = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
+        RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)bd->w;
+        RS_FN(tri_pair_one)(bd, v0, v1, v2, px0, py0, ny, xm, crow0, zrow0);
+        RS_FN(tri_pair_one)(bd, v2, v1, v3, px0, py0, ny, xm, crow0, zrow0);
+    }
 }
 #endif
 
