@@ -31,6 +31,7 @@ typedef struct bsearch {
     int32_t x[NCAND], y[NCAND];
     unsigned lm, nm;                 /* candidates of L, of N */
     int8_t sg[NCAND * NCAND * NCAND]; /* sign of cross(b - a, r - a); 2: not yet known */
+    int8_t hc[NCAND * NCAND * 3];     /* hcost by state (without parity); -1: not yet known */
 } bsearch;
 
 /* Triangle (a, b, r) of candidate slots appended at strip length len: 0 line
@@ -114,6 +115,7 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
             if (!dup) cand[nc++] = N[i];
         }
     memset(q.sg, 2, sizeof q.sg);
+    memset(q.hc, 0xff, sizeof q.hc);
     q.lm = q.nm = 0;
     for (i = 0; i < nc; i++) {
         q.x[i] = m->v[cand[i]].x; q.y[i] = m->v[cand[i]].y;
@@ -142,7 +144,10 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
                     int nph = ph + (s > 0), nk;
                     if (s < 0) continue;
                     nk = key_of(b, r, nph, par ^ 1);
-                    if (pred[nk] >= 0 || d + 1 + hcost(&q, b, r, nph, goal) > bound) continue;
+                    if (pred[nk] >= 0) continue;
+                    if (q.hc[(b * NCAND + r) * 3 + nph] < 0)
+                        q.hc[(b * NCAND + r) * 3 + nph] = (int8_t)hcost(&q, b, r, nph, goal);
+                    if (d + 1 + q.hc[(b * NCAND + r) * 3 + nph] > bound) continue;
                     pred[nk] = (int16_t)k;
                     via[nk] = (int8_t)r;
                     nxt[nnxt++] = (int16_t)nk;
