@@ -22,34 +22,11 @@
 #include "core/bitree.h"
 #include "core/cam.h"
 #include "platform/load.h"
+#include "tests/support/timing.h"
+#include "tests/test.h"
 #include "benchmarks/martini_ref.c"
 #include "benchmarks/rqt_ref.c"
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
-}
-static int cmp_d(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_d);
-    return v[n / 2];
-}
-static const char *data_path(const char *rel)
-{
-    static char buf[4][1024];
-    static int k;
-    const char *root = getenv("BITRAIN_DATA");
-    char *b = buf[k++ & 3];
-    snprintf(b, sizeof buf[0], "%s/%s", root ? root : "../shared/data/dem", rel);
-    return b;
-}
 
 typedef struct tree { bt_tree t; void *mem, *scr; } tree;
 static int tree_build(tree *b, const hf *f, int metric)
@@ -87,7 +64,7 @@ static void part_fuji(int quick)
     uint64_t cnt;
     memset(&o, 0, sizeof o);
     memset(&b, 0, sizeof b);
-    if (dem_load(data_path("png/fuji.png"), &o, &f, &err) != BR_OK) { printf("fuji: skipped: %s\n", err.msg); return; }
+    if (dem_load(t_data("png/fuji.png"), &o, &f, &err) != BR_OK) { printf("fuji: skipped: %s\n", err.msg); return; }
     g = f;
     g.w = g.h = 513;
     g.z = malloc(513 * 513 * 4);
@@ -99,26 +76,26 @@ static void part_fuji(int quick)
     /* each build in its own loop (warm caches; interleaving them lets one evict
      * the other's tables) */
     for (i = 0; i < reps; i++) {
-        double t0 = now_ms();
+        double t0 = tm_now_ms();
         tree_build(&b, &g, BT_METRIC_EXACT);
-        tb[i] = now_ms() - t0;
+        tb[i] = tm_now_ms() - t0;
     }
     for (i = 0; i < reps; i++) {
         double t0;
         memset(e2, 0, 513 * 513 * 4);
-        t0 = now_ms();
+        t0 = tm_now_ms();
         mr_errors_int(&mg, g.z, e2, 0);
-        tm[i] = now_ms() - t0;
+        tm[i] = tm_now_ms() - t0;
     }
     for (i = 0; i < reps; i++) {
-        double t0 = now_ms();
+        double t0 = tm_now_ms();
         tree_build(&b, &g, BT_METRIC_CURVATURE);
-        tc[i] = now_ms() - t0;
+        tc[i] = tm_now_ms() - t0;
     }
     printf("fuji.png padded to 513x513 (median of %d)\n", reps);
     printf("  error hierarchy build: bitree exact %.2f ms, bitree curvature %.2f ms, martini metric (C, int) %.2f ms"
-           " -> exact/martini = %.2fx (issue 3: <= 2x)\n", median(tb, reps), median(tc, reps), median(tm, reps),
-           median(tb, reps) / median(tm, reps));
+           " -> exact/martini = %.2fx (issue 3: <= 2x)\n", tm_median(tb, reps), tm_median(tc, reps), tm_median(tm, reps),
+           tm_median(tb, reps) / tm_median(tm, reps));
     tree_build(&b, &g, BT_METRIC_EXACT);
     memset(&p, 0, sizeof p);
     p.mode = BT_FIDELITY;
@@ -128,14 +105,14 @@ static void part_fuji(int quick)
     /* extraction: each in its own warm loop (interleaving lets martini's 8 MB
      * coordinate table evict ours and the other way round) */
     for (i = 0; i < reps; i++) {
-        double t0 = now_ms();
+        double t0 = tm_now_ms();
         bt_extract(&b.t, &p, &m);
-        te[i] = now_ms() - t0;
+        te[i] = tm_now_ms() - t0;
     }
     for (i = 0; i < reps; i++) {
-        double t0 = now_ms();
+        double t0 = tm_now_ms();
         mr_mesh_int(&mg, e2, 200, &mm);   /* martini's metric at 10 m (doubled units) */
-        tx[i] = now_ms() - t0;
+        tx[i] = tm_now_ms() - t0;
     }
     {
         int64_t eq = bt_true_error_q16(&b.t, &m, NULL, NULL);
@@ -146,9 +123,9 @@ static void part_fuji(int quick)
                m.ns, (double)m.ns / m.ntri, m.nline);
         printf("  extraction + strip: %.3f ms = %.1f ns per output triangle (%.1f M tri/s); martini extraction"
                " (metric 10 m, %lld triangles, not a bound) %.3f ms = %.1f ns per triangle (%.1f M tri/s)\n",
-               median(te, reps), median(te, reps) * 1e6 / m.ntri, m.ntri / median(te, reps) / 1e3,
-               (long long)mm.nt, median(tx, reps), median(tx, reps) * 1e6 / (double)mm.nt,
-               (double)mm.nt / median(tx, reps) / 1e3);
+               tm_median(te, reps), tm_median(te, reps) * 1e6 / m.ntri, m.ntri / tm_median(te, reps) / 1e3,
+               (long long)mm.nt, tm_median(tx, reps), tm_median(tx, reps) * 1e6 / (double)mm.nt,
+               (double)mm.nt / tm_median(tx, reps) / 1e3);
     }
     free(mmem);
     /* view-dependent: a camera south-west of the mountain, 640x480, 60 deg, 1 px */
@@ -173,24 +150,24 @@ static void part_fuji(int quick)
         p.morph_q8 = 256;
         mesh_new(&vm, 600000, &vmem);
         for (i = 0; i < reps; i++) {
-            double t0 = now_ms();
+            double t0 = tm_now_ms();
             bt_extract(&b.t, &p, &vm);
-            tv[i] = now_ms() - t0;
+            tv[i] = tm_now_ms() - t0;
         }
         printf("  view-dependent (640x480, 60 deg, 1 px, culling, hysteresis, geomorph): %u triangles, %u fictitious"
                " (morphing), %.3f refs/tri; selection + strip %.3f ms per frame = %.1f ns per output triangle\n",
-               vm.ntri, vm.nfict, (double)vm.ns / (vm.ntri ? vm.ntri : 1), median(tv, reps),
-               median(tv, reps) * 1e6 / (vm.ntri ? vm.ntri : 1));
+               vm.ntri, vm.nfict, (double)vm.ns / (vm.ntri ? vm.ntri : 1), tm_median(tv, reps),
+               tm_median(tv, reps) * 1e6 / (vm.ntri ? vm.ntri : 1));
         p.mode = BT_BUDGET;
         p.budget = 20000;
         for (i = 0; i < reps; i++) {
-            double t0 = now_ms();
+            double t0 = tm_now_ms();
             bt_extract(&b.t, &p, &vm);
-            tbud[i] = now_ms() - t0;
+            tbud[i] = tm_now_ms() - t0;
         }
         printf("  budget 20,000 (same camera): %u triangles, %.3f refs/tri, %.3f ms per frame = %.1f ns per"
-               " output triangle\n", vm.ntri, (double)vm.ns / (vm.ntri ? vm.ntri : 1), median(tbud, reps),
-               median(tbud, reps) * 1e6 / (vm.ntri ? vm.ntri : 1));
+               " output triangle\n", vm.ntri, (double)vm.ns / (vm.ntri ? vm.ntri : 1), tm_median(tbud, reps),
+               tm_median(tbud, reps) * 1e6 / (vm.ntri ? vm.ntri : 1));
         free(vmem);
     }
     tree_free(&b);
@@ -233,7 +210,7 @@ static void part_table1(void)
         memset(&o, 0, sizeof o);
         memset(&b, 0, sizeof b);
         if (crops[c].png_grey_dm) { o.png_encoding = DEM_PNG_GREY; o.png_scale = 0.1; }
-        if (dem_load(data_path(crops[c].file), &o, &f, &err) != BR_OK) { printf("  %s skipped\n", crops[c].file); continue; }
+        if (dem_load(t_data(crops[c].file), &o, &f, &err) != BR_OK) { printf("  %s skipped\n", crops[c].file); continue; }
         for (y = 0; y < 65; y++)
             for (x = 0; x < 65; x++) {
                 int32_t v = f.z[(crops[c].y0 + y) * f.w + crops[c].x0 + x];
@@ -299,21 +276,21 @@ static void part_dems(void)
         double t0, tb, te;
         memset(&o, 0, sizeof o);
         memset(&b, 0, sizeof b);
-        if (dem_load(data_path(dems[i]), &o, &f, &err) != BR_OK) { printf("  %s skipped\n", dems[i]); continue; }
+        if (dem_load(t_data(dems[i]), &o, &f, &err) != BR_OK) { printf("  %s skipped\n", dems[i]); continue; }
         hf_stats_get(&f, &st);
         tree_build(&b, &f, BT_METRIC_EXACT);   /* first touch of fresh memory: not timed */
-        t0 = now_ms();
+        t0 = tm_now_ms();
         tree_build(&b, &f, BT_METRIC_EXACT);
-        tb = now_ms() - t0;
+        tb = tm_now_ms() - t0;
         memset(&p, 0, sizeof p);
         p.mode = BT_FIDELITY;
         p.max_err = ((int64_t)st.zmax - st.zmin) / 200;
         bt_count(&b.t, &p, &cnt);
         mesh_new(&m, (uint32_t)cnt, &mem);
         bt_extract(&b.t, &p, &m);
-        t0 = now_ms();
+        t0 = tm_now_ms();
         bt_extract(&b.t, &p, &m);
-        te = now_ms() - t0;
+        te = tm_now_ms() - t0;
         printf("  %-32s %5dx%-5d build %7.1f ms  %8u tri  %.3f refs/tri  extract %.1f ns/tri  true err %.2f m (tol %.2f m)\n",
                dems[i], f.w, f.h, tb, m.ntri, (double)m.ns / (m.ntri ? m.ntri : 1), te * 1e6 / (m.ntri ? m.ntri : 1),
                (double)bt_true_error_q16(&b.t, &m, NULL, NULL) / 65536.0 * f.z_num / f.z_den,
