@@ -191,10 +191,15 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
 
 /* The tiny path of tri_body for a triangle a, b, c with area2 > 0 (b, c already swapped
  * for front faces), candidate centres px0..px1 x py0..py1 (clipped to the band and the
- * screen), b - a = (dx1, dy1), c - a = (dx2, dy2). */
+ * screen; at most TINY x TINY, within a box of extent < 80 sub-pixels around the
+ * triangle), b - a = (dx1, dy1), c - a = (dx2, dy2).  Given per box (shared by the two
+ * triangles of a strip pair): ny = py1 - py0 + 1 rows, xm = the lane mask of the
+ * px1 - px0 + 1 candidates of a row, crow0 and zrow0 = row py0 of the colour and depth
+ * buffers, (ox0, oy0) = the centre of candidate (px0, py0) in sub-pixels. */
 RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
-                                      int32_t px0, int32_t py0, int32_t ny, uint64_t xm,
-                                      uint8_t *const crow0, RS_Z *const zrow0, int32_t dx1, int32_t dy1, int32_t dx2, int32_t dy2, int32_t area2)
+                                      int32_t px0, int32_t ny, uint64_t xm, uint8_t *const crow0,
+                                      RS_Z *const zrow0, int32_t ox0, int32_t oy0,
+                                      int32_t dx1, int32_t dy1, int32_t dx2, int32_t dy2, int32_t area2)
 {
     /* tiny triangles only: extent < 80 sub-pixels, so every set-up value fits 32 bits */
     int32_t A0, A1, A2, B0, B1, B2, S, e0r, e2r, bias0, bias1, bias2;
@@ -214,7 +219,7 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
     bias2 = (int32_t)((uint32_t)(A2 * 65536 + B2 - 1) >> 31);
     S = area2 - bias0 - bias1 - bias2;
     {
-        int32_t ox = px0 * SUBONE + HALF - a->x, oy = py0 * SUBONE + HALF - a->y;
+        int32_t ox = ox0 - a->x, oy = oy0 - a->y;
         e0r = A0 * ox + B0 * oy - bias0;
         e2r = A2 * ox + B2 * oy - bias2;
     }
@@ -244,13 +249,13 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
             const uint64_t ones = bd->ones;
             const uint64_t k1 = (uint64_t)(int64_t)(S + 3 * 0x8000) * ones;
             /* per-pixel steps: sx = 16 A, sy = 16 B (the 16 is in ones16, steps16) */
-            sy0w = (uint64_t)(int64_t)B0 * bd->ones16;
-            sy2w = (uint64_t)(int64_t)B2 * bd->ones16;
             p0i = (uint64_t)(int64_t)(e0r + 0x8000) * ones + (uint64_t)(int64_t)A0 * bd->steps16;
             p2i = (uint64_t)(int64_t)(e2r + 0x8000) * ones + (uint64_t)(int64_t)A2 * bd->steps16;
             /* rows 0 .. ny-1 (ny <= TINY = 4), unrolled: most tiny boxes have one or two rows */
             m0 = p0i & p2i & (k1 - p0i - p2i) & xm;
             if (ny > 1) {
+                sy0w = (uint64_t)(int64_t)B0 * bd->ones16;
+                sy2w = (uint64_t)(int64_t)B2 * bd->ones16;
                 p0 = p0i + sy0w; p2 = p2i + sy2w;
                 m1 = p0 & p2 & (k1 - p0 - p2) & xm;
                 if (ny > 2) {
@@ -342,7 +347,7 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
 RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
 {
     int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1;
-    int32_t dx1, dy1, dx2, dy2, area2, tiny, ny;
+    int32_t dx1, dy1, dx2, dy2, area2, tiny, ny, ox0, oy0;
     uint64_t xm;
     uint8_t *crow0;
     RS_Z *zrow0;
@@ -376,16 +381,17 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
     ny = py1 - py0 + 1;
     crow0 = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
     zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)bd->w;
+    ox0 = px0 * SUBONE + HALF; oy0 = py0 * SUBONE + HALF;
     dx1 = b->x - a->x; dy1 = b->y - a->y;
     dx2 = c->x - a->x; dy2 = c->y - a->y;
     area2 = dx1 * dy2 - dx2 * dy1;
     /* y points down: counter-clockwise as seen (a front face) has area2 < 0 */
     if (area2 >= 0) {
         if (area2 == 0 || bd->cull) return;
-        RS_FN(tri_tiny)(bd, a, b, c, px0, py0, ny, xm, crow0, zrow0, dx1, dy1, dx2, dy2, area2);
+        RS_FN(tri_tiny)(bd, a, b, c, px0, ny, xm, crow0, zrow0, ox0, oy0, dx1, dy1, dx2, dy2, area2);
     } else {
         /* a front face: b and c swapped (one inlined copy per orientation, no moves) */
-        RS_FN(tri_tiny)(bd, a, c, b, px0, py0, ny, xm, crow0, zrow0, dx2, dy2, dx1, dy1, -area2);
+        RS_FN(tri_tiny)(bd, a, c, b, px0, ny, xm, crow0, zrow0, ox0, oy0, dx2, dy2, dx1, dy1, -area2);
     }
 }
 
@@ -398,16 +404,16 @@ RS_NOINLINE static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_
 /* One tiny triangle of a strip pair (see tri_pair): orientation, then tri_tiny over the
  * pair's candidate box. */
 RS_INLINE static void RS_FN(tri_pair_one)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
-                                          int32_t px0, int32_t py0, int32_t ny, uint64_t xm,
-                                          uint8_t *const crow0, RS_Z *const zrow0)
+                                          int32_t px0, int32_t ny, uint64_t xm,
+                                          uint8_t *const crow0, RS_Z *const zrow0, int32_t ox0, int32_t oy0)
 {
     const int32_t dx1 = b->x - a->x, dy1 = b->y - a->y, dx2 = c->x - a->x, dy2 = c->y - a->y;
     const int32_t area2 = dx1 * dy2 - dx2 * dy1;
     if (area2 >= 0) {
         if (area2 == 0 || bd->cull) return;
-        RS_FN(tri_tiny)(bd, a, b, c, px0, py0, ny, xm, crow0, zrow0, dx1, dy1, dx2, dy2, area2);
+        RS_FN(tri_tiny)(bd, a, b, c, px0, ny, xm, crow0, zrow0, ox0, oy0, dx1, dy1, dx2, dy2, area2);
     } else {
-        RS_FN(tri_tiny)(bd, a, c, b, px0, py0, ny, xm, crow0, zrow0, dx2, dy2, dx1, dy1, -area2);
+        RS_FN(tri_tiny)(bd, a, c, b, px0, ny, xm, crow0, zrow0, ox0, oy0, dx2, dy2, dx1, dy1, -area2);
     }
 }
 
@@ -449,8 +455,9 @@ RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cve
         const int32_t ny = py1 - py0 + 1;
         uint8_t *const crow0 = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
         RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)bd->w;
-        RS_FN(tri_pair_one)(bd, v0, v1, v2, px0, py0, ny, xm, crow0, zrow0);
-        RS_FN(tri_pair_one)(bd, v2, v1, v3, px0, py0, ny, xm, crow0, zrow0);
+        const int32_t ox0 = px0 * SUBONE + HALF, oy0 = py0 * SUBONE + HALF;   /* the first candidate */
+        RS_FN(tri_pair_one)(bd, v0, v1, v2, px0, ny, xm, crow0, zrow0, ox0, oy0);
+        RS_FN(tri_pair_one)(bd, v2, v1, v3, px0, ny, xm, crow0, zrow0, ox0, oy0);
     }
 }
 #endif
@@ -493,13 +500,19 @@ static void RS_FN(draw)(band *bd)
 #if !(RS_TEX || RS_COUNT)
                     v3 = &cache[s[k + 1]];
                     {
-                        const uint32_t c12 = v1->c & v2->c;
-                        if ((c12 & v0->c & REJECT) && (c12 & v3->c & REJECT)) {
-                            v0 = v2; v1 = v3;       /* both rejected by outcodes */
-                            continue;
+                        /* all four vertices on screen (the common case): no further outcode tests */
+                        int pair = 1;
+                        if (RS_UNLIKELY((v0->c | v1->c | v2->c | v3->c) & (SLOW | REJECT))) {
+                            const uint32_t c12 = v1->c & v2->c;
+                            if ((c12 & v0->c & REJECT) && (c12 & v3->c & REJECT)) {
+                                v0 = v2; v1 = v3;       /* both rejected by outcodes */
+                                continue;
+                            }
+                            /* clipped, or one of the two rejected: one at a time */
+                            pair = !(((v0->c | v1->c | v2->c | v3->c) & SLOW) | (c12 & v0->c & REJECT)
+                                     | (c12 & v3->c & REJECT));
                         }
-                        if (RS_LIKELY(!(((v0->c | v1->c | v2->c | v3->c) & SLOW) | (c12 & v0->c & REJECT)
-                                        | (c12 & v3->c & REJECT)))) {
+                        if (pair) {
                             RS_FN(tri_pair)(bd, v0, v1, v2, v3);
                             v0 = v2; v1 = v3;
                             continue;
