@@ -195,19 +195,23 @@ void bte_level2(bt_tree *t, const ctx *c)
             for (hh = 0; hh < 2; hh++) {
                 /* apex of half hh: (x+2, y-2) / (x-2, y+2) on diagonal (1,1), else
                  * (x-2, y-2) / (x+2, y+2); legs of 4 along the row and the column */
-                int32_t cx, cy, sx, sy, ii, jj, m = 0, zc, zr, zcol;
+                int32_t cx, cy, m = 0, zc, zr, zcol, p0, dr, dcl;
+                ptrdiff_t ox, oy;
+                const int32_t *zp;
                 if (((x ^ y) & 4) == 0) { cx = hh ? x - 2 : x + 2; cy = hh ? y + 2 : y - 2; }
                 else { cx = hh ? x + 2 : x - 2; cy = hh ? y + 2 : y - 2; }
-                sx = cx < x ? 1 : -1; sy = cy < y ? 1 : -1;     /* towards the square */
-                zc = ZZ(cx, cy); zr = ZZ(cx + 4 * sx, cy); zcol = ZZ(cx, cy + 4 * sy);
-                for (jj = 0; jj <= 4; jj++)
-                    for (ii = 0; ii + jj <= 4; ii++) {
-                        int32_t v;
-                        if ((ii == 0 && jj == 0) || ii == 4 || jj == 4) continue;
-                        v = 4 * zc + ii * (zr - zc) + jj * (zcol - zc) - 4 * ZZ(cx + ii * sx, cy + jj * sy);
-                        v = v < 0 ? -v : v;
-                        if (v > m) m = v;
-                    }
+                ox = cx < x ? 1 : -1; oy = cy < y ? (ptrdiff_t)w : -(ptrdiff_t)w;   /* towards the square */
+                zp = &ZZ(cx, cy);
+                zc = zp[0]; zr = zp[4 * ox]; zcol = zp[4 * oy];
+                p0 = 4 * zc; dr = zr - zc; dcl = zcol - zc;
+                /* the 12 samples (ii, jj), ii + jj <= 4, off the vertices, written out */
+#define D2S(I, J) do { int32_t v = p0 + (I) * dr + (J) * dcl - 4 * zp[(I) * ox + (J) * oy]; \
+                       v = v < 0 ? -v : v; m = v > m ? v : m; } while (0)
+                D2S(1, 0); D2S(2, 0); D2S(3, 0);
+                D2S(0, 1); D2S(1, 1); D2S(2, 1); D2S(3, 1);
+                D2S(0, 2); D2S(1, 2); D2S(2, 2);
+                D2S(0, 3); D2S(1, 3);
+#undef D2S
                 e[hh] = (m + 3) >> 2;
                 zl[hh] = min3i(zc, zr, zcol); zh[hh] = max3i(zc, zr, zcol);
                 if (c->ub) c->ub[2 * idx + (size_t)hh] = e[hh];
