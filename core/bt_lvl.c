@@ -10,7 +10,7 @@
 
 /* Interior A1 diamond (hypotenuse a-b of length 2 through m, apexes p and q):
  * only m is off the planes, so e = ceil(|za + zb - 2 zm| / 2) for both halves. */
-static void a1_fast(bt_tree *t, const ctx *c, size_t idx, int32_t za, int32_t zb, int32_t zm,
+static inline void a1_fast(bt_tree *t, const ctx *c, size_t idx, int32_t za, int32_t zb, int32_t zm,
                     int32_t zp, int32_t zq)
 {
     int32_t e = (iabs32(za + zb - 2 * zm) + 1) >> 1;
@@ -60,16 +60,20 @@ void bte_level1(bt_tree *t, const ctx *c)
                 a1_fast(t, c, (size_t)y * n + x, ZZ(x, y - 1), ZZ(x, y + 1), ZZ(x, y), ZZ(x - 1, y), ZZ(x + 1, y));
             else bte_diamond(t, c, x, y, 1, 0);
         }
-    /* D1: x, y odd; diagonal (1,1) when (x>>1) + (y>>1) is even */
-    for (y = 1; y < S; y += 2)
+    /* D1: x, y odd; diagonal (1,1) when (x>>1) + (y>>1) is even.  The clean
+     * test reduces to x + 1 < w on rows inside h of grids without voids. */
+    for (y = 1; y < S; y += 2) {
+        int rowok = !c->vblk && y + 1 < c->h;
         for (x = 1; x < S; x += 2) {
             size_t idx = (size_t)y * n + x;
-            if (clean(c, x - 1, y - 1, x + 1, y + 1)) {
-                int32_t z00 = ZZ(x - 1, y - 1), z20 = ZZ(x + 1, y - 1), z02 = ZZ(x - 1, y + 1), z22 = ZZ(x + 1, y + 1);
-                int32_t zm = ZZ(x, y), e, lo, hi, k;
-                uint16_t code;
-                size_t ch[4];
-                int lq, hq;
+            if (rowok ? x + 1 < w : clean(c, x - 1, y - 1, x + 1, y + 1)) {
+                const int32_t *zc = z + (size_t)y * w + x;
+                int32_t z00 = zc[-w - 1], z20 = zc[-w + 1], z02 = zc[w - 1], z22 = zc[w + 1];
+                int32_t zm = zc[0], e, lo, hi;
+                uint32_t c0 = t->node[idx - 1], c1 = t->node[idx + 1];
+                uint32_t c2 = t->node[idx - (size_t)n], c3 = t->node[idx + (size_t)n];
+                uint16_t code, e0, e1;
+                int lq, hq, l0, l1, h0, h1;
                 if ((((x >> 1) + (y >> 1)) & 1) == 0) {
                     e = (iabs32(z00 + z22 - 2 * zm) + 1) >> 1;
                     if (c->ub) {   /* apexes (x+1, y-1): half 0, (x-1, y+1): half 1 */
@@ -84,26 +88,28 @@ void bte_level1(bt_tree *t, const ctx *c)
                     }
                 }
                 code = enc_small(e);
-                ch[0] = idx - 1; ch[1] = idx + 1; ch[2] = idx - (size_t)n; ch[3] = idx + (size_t)n;
-                uint32_t cv[4];
-                for (k = 0; k < 4; k++) {
-                    cv[k] = t->node[ch[k]];
-                    if (BT_NODE_ERR(cv[k]) > code) code = BT_NODE_ERR(cv[k]);
-                }
-                lo = z00; hi = z00;
-                lo = z20 < lo ? z20 : lo; hi = z20 > hi ? z20 : hi;
+                e0 = BT_NODE_ERR(c0) > BT_NODE_ERR(c1) ? BT_NODE_ERR(c0) : BT_NODE_ERR(c1);
+                e1 = BT_NODE_ERR(c2) > BT_NODE_ERR(c3) ? BT_NODE_ERR(c2) : BT_NODE_ERR(c3);
+                if (e0 > code) code = e0;
+                if (e1 > code) code = e1;
+                lo = z00 < z20 ? z00 : z20; hi = z00 > z20 ? z00 : z20;
                 lo = z02 < lo ? z02 : lo; hi = z02 > hi ? z02 : hi;
                 lo = z22 < lo ? z22 : lo; hi = z22 > hi ? z22 : hi;
-                e = (int32_t)bt_code_value(code);
+                e = code < 4096 ? (int32_t)code : (int32_t)bt_code_value(code);
                 lq = q_lo(c, (int64_t)lo - e);
                 hq = q_hi(c, (int64_t)hi + e);
-                for (k = 0; k < 4; k++) {
-                    if (BT_NODE_ZLO(cv[k]) < lq) lq = BT_NODE_ZLO(cv[k]);
-                    if (BT_NODE_ZHI(cv[k]) > hq) hq = BT_NODE_ZHI(cv[k]);
-                }
+                l0 = BT_NODE_ZLO(c0) < BT_NODE_ZLO(c1) ? BT_NODE_ZLO(c0) : BT_NODE_ZLO(c1);
+                l1 = BT_NODE_ZLO(c2) < BT_NODE_ZLO(c3) ? BT_NODE_ZLO(c2) : BT_NODE_ZLO(c3);
+                h0 = BT_NODE_ZHI(c0) > BT_NODE_ZHI(c1) ? BT_NODE_ZHI(c0) : BT_NODE_ZHI(c1);
+                h1 = BT_NODE_ZHI(c2) > BT_NODE_ZHI(c3) ? BT_NODE_ZHI(c2) : BT_NODE_ZHI(c3);
+                if (l0 < lq) lq = l0;
+                if (l1 < lq) lq = l1;
+                if (h0 > hq) hq = h0;
+                if (h1 > hq) hq = h1;
                 t->node[idx] = BT_NODE(code, lq, hq);
             } else bte_diamond(t, c, x, y, 1, 1);
         }
+    }
 #undef ZZ
 }
 
@@ -111,7 +117,7 @@ void bte_level1(bt_tree *t, const ctx *c)
  * exact error of each half from its samples off the vertices, with plane x 4
  * written out (A2: hypotenuse of length 4 and apex at distance 2; D2: axis legs
  * of length 4), then the usual maximum with the children.  Others: diamond(). */
-static void level2_node(bt_tree *t, const ctx *c, size_t idx, const int32_t e[2], const int32_t zl[2],
+static inline void level2_node(bt_tree *t, const ctx *c, size_t idx, const int32_t e[2], const int32_t zl[2],
                         const int32_t zh[2], const size_t ch[4], int nh)
 {
     uint16_t code = 0;
