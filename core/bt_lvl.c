@@ -117,87 +117,92 @@ void bte_level1(bt_tree *t, const ctx *c)
  * exact error of each half from its samples off the vertices, with plane x 4
  * written out (A2: hypotenuse of length 4 and apex at distance 2; D2: axis legs
  * of length 4), then the usual maximum with the children.  Others: diamond(). */
-static inline void level2_node(bt_tree *t, const ctx *c, size_t idx, const int32_t e[2], const int32_t zl[2],
-                        const int32_t zh[2], const size_t ch[4], int nh)
+static inline void level2_node(bt_tree *t, const ctx *c, size_t idx, int32_t e0, int32_t e1, int32_t zl0,
+                               int32_t zh0, int32_t zl1, int32_t zh1, size_t da, size_t db)
 {
-    uint16_t code = 0;
-    int lo = 255, hi = 0, i;
-    for (i = 0; i < nh; i++) {
-        uint16_t ce = enc_small(e[i]);
-        uint8_t l = q_lo(c, (int64_t)zl[i] - e[i]), u = q_hi(c, (int64_t)zh[i] + e[i]);
-        if (ce > code) code = ce;
-        if (l < lo) lo = l;
-        if (u > hi) hi = u;
-    }
-    for (i = 0; i < 4; i++) {
-        uint32_t v = t->node[ch[i]];
-        if (BT_NODE_ERR(v) > code) code = BT_NODE_ERR(v);
-        if (BT_NODE_ZLO(v) < lo) lo = BT_NODE_ZLO(v);
-        if (BT_NODE_ZHI(v) > hi) hi = BT_NODE_ZHI(v);
-    }
+    /* children at idx -+ da, idx -+ db; q_lo and q_hi are monotone, so the
+     * halves' volumes are merged before quantising (the same bytes) */
+    uint32_t c0 = t->node[idx - da], c1 = t->node[idx + da], c2 = t->node[idx - db], c3 = t->node[idx + db];
+    uint16_t code = enc_small(e0), ce = enc_small(e1), m0, m1;
+    int64_t vl0 = (int64_t)zl0 - e0, vl1 = (int64_t)zl1 - e1, vh0 = (int64_t)zh0 + e0, vh1 = (int64_t)zh1 + e1;
+    int lo = q_lo(c, vl0 < vl1 ? vl0 : vl1), hi = q_hi(c, vh0 > vh1 ? vh0 : vh1), l0, l1, h0, h1;
+    if (ce > code) code = ce;
+    m0 = BT_NODE_ERR(c0) > BT_NODE_ERR(c1) ? BT_NODE_ERR(c0) : BT_NODE_ERR(c1);
+    m1 = BT_NODE_ERR(c2) > BT_NODE_ERR(c3) ? BT_NODE_ERR(c2) : BT_NODE_ERR(c3);
+    if (m0 > code) code = m0;
+    if (m1 > code) code = m1;
+    l0 = BT_NODE_ZLO(c0) < BT_NODE_ZLO(c1) ? BT_NODE_ZLO(c0) : BT_NODE_ZLO(c1);
+    l1 = BT_NODE_ZLO(c2) < BT_NODE_ZLO(c3) ? BT_NODE_ZLO(c2) : BT_NODE_ZLO(c3);
+    h0 = BT_NODE_ZHI(c0) > BT_NODE_ZHI(c1) ? BT_NODE_ZHI(c0) : BT_NODE_ZHI(c1);
+    h1 = BT_NODE_ZHI(c2) > BT_NODE_ZHI(c3) ? BT_NODE_ZHI(c2) : BT_NODE_ZHI(c3);
+    if (l0 < lo) lo = l0;
+    if (l1 < lo) lo = l1;
+    if (h0 > hi) hi = h0;
+    if (h1 > hi) hi = h1;
     t->node[idx] = BT_NODE(code, lo, hi);
 }
 
 static int32_t max3i(int32_t a, int32_t b, int32_t c) { return a > b ? (a > c ? a : c) : (b > c ? b : c); }
 static int32_t min3i(int32_t a, int32_t b, int32_t c) { return a < b ? (a < c ? a : c) : (b < c ? b : c); }
 
-/* A2 half: hypotenuse values hv[3] (4 x plane - 4 z at the three inner
- * hypotenuse samples), middle row through zr (samples x-1..x+1 of that row) */
-static int32_t a2_half(int32_t za, int32_t zb, int32_t zc, const int32_t hv[3], const int32_t *zr, ptrdiff_t st)
+/* A2 half: hm = the largest |4 x plane - 4 z| over the three inner hypotenuse
+ * samples, middle row through zr (samples x-1..x+1 of that row) */
+static inline int32_t a2_half(int32_t za, int32_t zb, int32_t zc, int32_t hm, const int32_t *zr, ptrdiff_t st)
 {
-    int32_t m = 0, i;
+    int32_t m = hm, i;
     for (i = -1; i <= 1; i++) {
         int32_t v = za * (1 - i) + zb * (1 + i) + 2 * zc - 4 * zr[i * st];
         v = v < 0 ? -v : v;
-        if (v > m) m = v;
+        m = v > m ? v : m;
     }
-    for (i = 0; i < 3; i++) if (hv[i] > m) m = hv[i];
     return (m + 3) >> 2;
 }
 
 void bte_level2(bt_tree *t, const ctx *c)
 {
-    int32_t n = t->n, S = n - 1, w = c->w, x, y, i, j;
+    int32_t n = t->n, S = n - 1, w = c->w, x, y, j;
     const int32_t *z = c->z;
 #define ZZ(X, Y) z[(size_t)(Y) * w + (X)]
-    /* A2, horizontal (x = 2 mod 4, y = 0 mod 4) and vertical (transposed) */
+    /* A2, horizontal (x = 2 mod 4, y = 0 mod 4) and vertical (transposed); the
+     * clean test reduces to x + 2 < w on rows inside h of grids without voids */
     for (j = 0; j < 2; j++)
-        for (y = j ? 2 : 0; y <= S; y += j ? 4 : 4)
+        for (y = j ? 2 : 0; y <= S; y += 4) {
+            int rowok = !c->vblk && y + 2 < c->h;
+            ptrdiff_t along = j ? (ptrdiff_t)w : 1, across = j ? 1 : (ptrdiff_t)w;
             for (x = j ? 0 : 2; x <= S; x += 4) {
-                size_t idx = (size_t)y * n + x, ch[4];
-                int32_t za, zb, hv[3], e[2], zl[2], zh[2], nh = 0, k;
-                ptrdiff_t along = j ? (ptrdiff_t)w : 1, across = j ? 1 : (ptrdiff_t)w;
+                size_t idx = (size_t)y * n + x;
+                int32_t za, zb, zc0, zc1, hm = 0, e0, e1, k;
                 const int32_t *zm;
-                int32_t px = j ? x : x, py = y;
                 if ((j == 0 && (x >= S || y - 2 < 0 || y + 2 > S)) || (j == 1 && (y >= S || x - 2 < 0 || x + 2 > S)) ||
-                    !clean(c, x - 2, y - 2, x + 2, y + 2)) {
+                    !(rowok ? x + 2 < w : clean(c, x - 2, y - 2, x + 2, y + 2))) {
                     if ((j == 0 && x < S) || (j == 1 && y < S)) bte_diamond(t, c, x, y, 2, 0);
                     continue;
                 }
-                (void)px; (void)py;
                 zm = z + (size_t)y * w + x;
                 za = zm[-2 * along]; zb = zm[2 * along];
                 for (k = -1; k <= 1; k++) {
                     int32_t v = za * (2 - k) + zb * (2 + k) - 4 * zm[k * along];
-                    hv[k + 1] = v < 0 ? -v : v;
+                    v = v < 0 ? -v : v;
+                    hm = v > hm ? v : hm;
                 }
-                for (k = -1; k <= 1; k += 2) {   /* apex at -2 (half 0) and +2 (half 1) across */
-                    int32_t zc = zm[2 * k * across];
-                    e[nh] = a2_half(za, zb, zc, hv, zm + k * across, along);
-                    zl[nh] = min3i(za, zb, zc); zh[nh] = max3i(za, zb, zc);
-                    if (c->ub) c->ub[2 * idx + (size_t)nh] = e[nh];
-                    nh++;
-                }
-                ch[0] = idx - (size_t)n - 1; ch[1] = idx - (size_t)n + 1;
-                ch[2] = idx + (size_t)n - 1; ch[3] = idx + (size_t)n + 1;
-                level2_node(t, c, idx, e, zl, zh, ch, 2);
+                /* apex at -2 (half 0) and +2 (half 1) across */
+                zc0 = zm[-2 * across]; zc1 = zm[2 * across];
+                e0 = a2_half(za, zb, zc0, hm, zm - across, along);
+                e1 = a2_half(za, zb, zc1, hm, zm + across, along);
+                if (c->ub) { c->ub[2 * idx] = e0; c->ub[2 * idx + 1] = e1; }
+                level2_node(t, c, idx, e0, e1, min3i(za, zb, zc0), max3i(za, zb, zc0), min3i(za, zb, zc1),
+                            max3i(za, zb, zc1), (size_t)n + 1, (size_t)n - 1);
             }
+        }
     /* D2: x, y = 2 mod 4; diagonal (1,1) when ((x ^ y) & 4) == 0 */
     for (y = 2; y < S; y += 4)
         for (x = 2; x < S; x += 4) {
-            size_t idx = (size_t)y * n + x, ch[4];
+            size_t idx = (size_t)y * n + x;
             int32_t e[2], zl[2], zh[2], hh;
-            if (!clean(c, x - 2, y - 2, x + 2, y + 2)) { bte_diamond(t, c, x, y, 2, 1); continue; }
+            if (!(!c->vblk && y + 2 < c->h ? x + 2 < w : clean(c, x - 2, y - 2, x + 2, y + 2))) {
+                bte_diamond(t, c, x, y, 2, 1);
+                continue;
+            }
             for (hh = 0; hh < 2; hh++) {
                 /* apex of half hh: (x+2, y-2) / (x-2, y+2) on diagonal (1,1), else
                  * (x-2, y-2) / (x+2, y+2); legs of 4 along the row and the column */
@@ -222,10 +227,8 @@ void bte_level2(bt_tree *t, const ctx *c)
                 zl[hh] = min3i(zc, zr, zcol); zh[hh] = max3i(zc, zr, zcol);
                 if (c->ub) c->ub[2 * idx + (size_t)hh] = e[hh];
             }
-            ch[0] = idx - 2; ch[1] = idx + 2; ch[2] = idx - 2 * (size_t)n; ch[3] = idx + 2 * (size_t)n;
-            level2_node(t, c, idx, e, zl, zh, ch, 2);
+            level2_node(t, c, idx, e[0], e[1], zl[0], zh[0], zl[1], zh[1], 2, 2 * (size_t)n);
         }
 #undef ZZ
-    (void)i;
 }
 
