@@ -34,8 +34,7 @@
 
 static uint64_t rs_pack_rgb(uint32_t rgb)
 {
-    return ((uint64_t)((rgb >> 16) & 255) << 42) | ((uint64_t)((rgb >> 8) & 255) << 21)
-           | (uint64_t)(rgb & 255);
+    return ((uint64_t)(rgb & 0xff0000u) << 26) | ((uint64_t)(rgb & 0xff00u) << 13) | (uint64_t)(rgb & 255u);
 }
 #define SMALL (1 << 10)   /* triangles smaller than 64 px use a reciprocal for gradients */
 
@@ -197,10 +196,12 @@ br_status rs_frame_prepare(rs_frame *f)
                 int32_t sx = cx + (int32_t)((ax / c2 + 8) >> 4), sy = cy - (int32_t)((ay / c2 + 8) >> 4);
                 o->x = sx; o->y = sy;
                 o->d = (uint32_t)(kd / c2);
-                if (sx < HALF) oc |= RS_OUT_LEFT;
-                if (sx > xmax) oc |= RS_OUT_RIGHT;
-                if (sy < HALF) oc |= RS_OUT_TOP;
-                if (sy > ymax) oc |= RS_OUT_BOTTOM;
+                /* one unsigned compare per axis for the common on-screen vertex (|sx|, |sy|
+                 * < 2^19 inside the guard band, so sx - HALF cannot overflow) */
+                if ((uint32_t)(sx - HALF) > (uint32_t)(xmax - HALF))
+                    oc |= sx < HALF ? RS_OUT_LEFT : RS_OUT_RIGHT;
+                if ((uint32_t)(sy - HALF) > (uint32_t)(ymax - HALF))
+                    oc |= sy < HALF ? RS_OUT_TOP : RS_OUT_BOTTOM;
             }
             o->c = (v->rgb & 0xffffffu) | (oc << 24);
         }
