@@ -12,22 +12,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include "benchmarks/peer_scene.h"
+#include "platform/peer_scene.h"
+#include "tests/support/timing.h"
 #include "core/cam.h"
 #include "raster/raster.h"
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
 
 int main(void)
 {
@@ -68,13 +56,12 @@ int main(void)
             f.v = v; f.nv = PEER_NV; f.cache = cache; f.prims = prims; f.nprims = PEER_NSTRIP;
             cam_viewproj(&c, &f.vp);
             for (i = 0; i < frames; i++) {
-                double t0 = now_ms();
+                double t0 = tm_now_ms();
                 rs_frame_prepare(&f);
                 rs_render_band(&f, 0, f.h, color, (size_t)f.w * 4, zbuf);
-                ms[i] = now_ms() - t0;
+                ms[i] = tm_now_ms() - t0;
             }
-            qsort(ms, (size_t)frames, sizeof *ms, cmp_d);
-            med = ms[frames / 2];
+            med = tm_median(ms, frames);
             printf("  camera %c %dx%d cull=%d: %.2f ms/frame, %.1f Mtri/s, %.1f Mpix/s (%u triangles set up, %u clipped)\n",
                    cfg[k].cam, cfg[k].w, cfg[k].h, cull, med, PEER_NTRI / med / 1e3,
                    (double)cfg[k].w * cfg[k].h / med / 1e3, f.stat_tris, f.stat_clipped);

@@ -19,9 +19,7 @@
 #include "platform/cmd.h"
 #include "platform/png_io.h"
 #include "raster/raster.h"
-/* The scene builder lives with the benchmarks (benchmarks/peer_scene.h); it is compiled
- * here because the Makefile builds only platform/ sources into the library. */
-#include "benchmarks/peer_scene.c"
+#include "platform/peer_scene.h"
 
 static double now_ms(void)
 {

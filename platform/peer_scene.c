@@ -1,11 +1,10 @@
-/* benchmarks/peer_scene.c — see peer_scene.h.  Platform-side code (floating point
- * allowed: it builds the scene INPUT once).  Compiled as part of
- * platform/cmd_bench.c (which #includes this file) so that `bitrain bench` and the
- * benchmark programs share one builder without a Makefile change. */
+/* platform/peer_scene.c — see peer_scene.h.  Platform-side code (floating point
+ * allowed: it builds the scene INPUT once); part of the library, so `bitrain bench`
+ * and the benchmark programs share one builder. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include "benchmarks/peer_scene.h"
+#include "platform/peer_scene.h"
 #include "platform/png_io.h"
 
 static const double peer_ramp[6][4] = {
