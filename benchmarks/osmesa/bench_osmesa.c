@@ -41,19 +41,15 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "platform/peer_scene.h"
 
-#define N 257           /* grid side, vertices */
-#define NV (N * N)      /* 66049 vertices */
-#define STRIP_LEN (2 * N)   /* 514 indices per row strip */
-#define NSTRIP (N - 1)      /* 256 strips */
-#define ZRANGE 64.0
-
-typedef struct {
-    float pos[NV * 3];
-    float col[NV * 3];
-    unsigned char rgba[NV * 4];
-    GLuint strip[NSTRIP * STRIP_LEN];
-} scene_t;
+/* The scene is built by bitrain's own builder (platform/peer_scene.c), whose float
+ * arrays are checked bit for bit against peer_scene.py's scene.bin (--check). */
+typedef peer_scene scene_t;
+#define N PEER_N
+#define NV PEER_NV
+#define STRIP_LEN PEER_STRIP_LEN
+#define NSTRIP PEER_NSTRIP
 
 static void die(const char *msg, const char *what)
 {
@@ -114,96 +110,6 @@ static void write_png(const char *path, const unsigned char *rgba, int w, int h)
     png_destroy_write_struct(&png, &info);
     free(row);
     fclose(f);
-}
-
-/* ---- the scene, in the operation order of peer_scene.py ---- */
-static double hm[N][N];
-static double zs, hmin;
-
-static double Z(int i, int j)
-{
-    i = i < 0 ? 0 : (i > N - 1 ? N - 1 : i);
-    j = j < 0 ? 0 : (j > N - 1 ? N - 1 : j);
-    return (hm[j][i] - hmin) * zs;
-}
-
-static const double ramp[6][4] = {
-    { 0.00, 0.18, 0.40, 0.16 },
-    { 0.25, 0.35, 0.55, 0.22 },
-    { 0.50, 0.55, 0.45, 0.30 },
-    { 0.75, 0.55, 0.50, 0.46 },
-    { 0.88, 0.85, 0.85, 0.85 },
-    { 1.00, 1.00, 1.00, 1.00 },
-};
-
-static void rampc(double t, double c[3])
-{
-    for (int k = 0; k < 5; k++) {
-        if (t <= ramp[k + 1][0]) {
-            double u = (t - ramp[k][0]) / (ramp[k + 1][0] - ramp[k][0]);
-            for (int m = 0; m < 3; m++)
-                c[m] = ramp[k][1 + m] + (ramp[k + 1][1 + m] - ramp[k][1 + m]) * u;
-            return;
-        }
-    }
-    for (int m = 0; m < 3; m++) c[m] = ramp[5][1 + m];
-}
-
-static void build_scene(const char *png_path, scene_t *s)
-{
-    int w, h, bpp;
-    unsigned char *px = read_png(png_path, &w, &h, &bpp);
-    for (int j = 0; j < N; j++) {
-        int sy = 2 * j < h - 1 ? 2 * j : h - 1;
-        for (int i = 0; i < N; i++) {
-            int sx = 2 * i < w - 1 ? 2 * i : w - 1;
-            const unsigned char *p = px + ((size_t)sy * (size_t)w + (size_t)sx) * (size_t)bpp;
-            hm[j][i] = -10000.0 + (double)(p[0] * 65536 + p[1] * 256 + p[2]) * 0.1;
-        }
-    }
-    free(px);
-    double hmax = hm[0][0];
-    hmin = hm[0][0];
-    for (int j = 0; j < N; j++)
-        for (int i = 0; i < N; i++) {
-            if (hm[j][i] < hmin) hmin = hm[j][i];
-            if (hm[j][i] > hmax) hmax = hm[j][i];
-        }
-    zs = ZRANGE / (hmax - hmin);
-
-    double L[3] = { -1.0, -1.0, 1.5 };
-    double ll = sqrt(0.0 + L[0] * L[0] + L[1] * L[1] + L[2] * L[2]);
-    for (int m = 0; m < 3; m++) L[m] /= ll;
-    for (int j = 0; j < N; j++)
-        for (int i = 0; i < N; i++) {
-            size_t v = (size_t)j * N + (size_t)i;
-            double z = Z(i, j);
-            double dzdx = (Z(i + 1, j) - Z(i - 1, j)) * 0.5;
-            double dzdy = -(Z(i, j + 1) - Z(i, j - 1)) * 0.5;
-            double n[3] = { -dzdx, -dzdy, 1.0 };
-            double nl = sqrt(0.0 + n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            for (int m = 0; m < 3; m++) n[m] /= nl;
-            double d = 0.0 + n[0] * L[0] + n[1] * L[1] + n[2] * L[2];
-            if (d < 0.0) d = 0.0;
-            double sh = 0.30 + 0.70 * d;
-            double c[3];
-            rampc(z / ZRANGE, c);
-            s->pos[3 * v] = (float)i;
-            s->pos[3 * v + 1] = (float)(N - 1 - j);
-            s->pos[3 * v + 2] = (float)z;
-            for (int m = 0; m < 3; m++) {
-                double cc = c[m] * sh;
-                if (cc > 1.0) cc = 1.0;
-                s->col[3 * v + m] = (float)cc;
-                s->rgba[4 * v + m] = (unsigned char)nearbyint(cc * 255); /* Python round(): half to even */
-            }
-            s->rgba[4 * v + 3] = 255;
-        }
-    for (int j = 0; j < NSTRIP; j++)
-        for (int i = 0; i < N; i++) {
-            s->strip[j * STRIP_LEN + 2 * i] = (GLuint)(j * N + i);
-            s->strip[j * STRIP_LEN + 2 * i + 1] = (GLuint)((j + 1) * N + i);
-        }
 }
 
 /* ---- --check: compare with scene.bin written by peer_scene.py ---- */
@@ -418,7 +324,7 @@ int main(int argc, char **argv)
 
     scene_t *s = malloc(sizeof *s);
     if (!s) die("out of memory", NULL);
-    build_scene(dem, s);
+    if (peer_scene_build(dem, s) != 0) die("cannot build the scene from", dem);
     g_scene = s;
     if (check) return check_scene(check, s);
 

@@ -13,5 +13,6 @@ fi
 mkdir -p "$out"
 # -O2 like the project; -ffp-contract=off so the scene's doubles round exactly as in peer_scene.py.
 ${CC:-cc} -std=c99 -O2 -g -ffp-contract=off -Wall -Wextra -Wshadow -Wdouble-promotion -Wconversion -Wno-sign-conversion \
-  $(pkg-config --cflags osmesa libpng) -o "$out/bench_osmesa" "$here/bench_osmesa.c" \
+  -I"$here/../.." $(pkg-config --cflags osmesa libpng) -o "$out/bench_osmesa" "$here/bench_osmesa.c" \
+  "$here/../../platform/peer_scene.c" "$here/../../platform/png_io.c" "$here/../../platform/err.c" \
   $(pkg-config --libs osmesa libpng) -lm
