@@ -25,6 +25,7 @@
 #include "tests/test.h"
 #include "benchmarks/martini_ref.c"
 #include "benchmarks/rqt_ref.c"
+#include "benchmarks/table1.h"
 
 
 /* ---- meshcheck glue -------------------------------------------------------- */
@@ -230,26 +231,6 @@ static void martini_part(int quick)
 
 /* ---- part 2: table 1 of 002 --------------------------------------------------- */
 
-typedef struct paper_row { const char *tol; int bt_add, qt_add, bt_tx, qt_tx, bt_tri, qt_tri, bt_ref, qt_ref; } paper_row;
-static const paper_row paper[8] = {   /* papers/002, tabla 1 (65x65, heights 0..1445 m) */
-    { "Orig.", 0, 0, 4225, 4225, 8192, 8192, 13655, 12972 },
-    { "0%", 215, 272, 2533, 2805, 5296, 5843, 8685, 8467 },
-    { "1%", 344, 407, 1235, 1642, 2899, 3184, 4643, 4788 },
-    { "2%", 281, 360, 704, 1064, 1736, 2041, 2803, 3049 },
-    { "7%", 161, 241, 229, 470, 647, 884, 1037, 1307 },
-    { "10%", 144, 202, 182, 384, 527, 715, 851, 1061 },
-    { "14%", 89, 142, 88, 230, 268, 418, 443, 601 },
-    { "50%", 10, 19, 9, 28, 23, 41, 37, 62 },
-};
-static const int pct[8] = { -1, 0, 1, 2, 7, 10, 14, 50 };
-
-typedef struct crop { const char *file; int png_grey_dm; int32_t x0, y0; const char *what; } crop;
-static const crop crops[] = {
-    { "png/ps_height_1k.png", 1, 160, 0, "Puget Sound shore: sea (22% at 0 m) to 1220 m" },
-    { "png/ps_height_1k.png", 1, 112, 48, "Puget Sound: 0 to 1317 m" },
-    { "hgt/N47E009.hgt", 0, 176, 1040, "Raetikon valley floor (26% flat at 419 m) to 2337 m" },
-};
-
 /* 002's "ahorro": how much fewer BT needs than QT, in % of QT */
 static double save(int64_t bt, int64_t qt)
 {
@@ -266,26 +247,16 @@ static void table_part(void)
     for (c = 0; c < 8; c++)
         printf("  %-5s | %4d %4d | %4d %4d | %4d %4d | %5d %5d\n", paper[c].tol, paper[c].bt_add, paper[c].qt_add,
                paper[c].bt_tx, paper[c].qt_tx, paper[c].bt_tri, paper[c].qt_tri, paper[c].bt_ref, paper[c].qt_ref);
-    for (c = 0; c < (int)(sizeof crops / sizeof crops[0]); c++) {
+    for (c = 0; c < NCROPS; c++) {
         hf f;
         br_err err;
-        dem_opts o;
-        int32_t z[65 * 65], x, y, zmin = INT32_MAX, zmax = INT32_MIN;
+        int32_t z[65 * 65], zmin = 0, zmax = 0;
         int k, mode, m3;
         memset(&f, 0, sizeof f);
-        memset(&o, 0, sizeof o);
-        if (crops[c].png_grey_dm) { o.png_encoding = DEM_PNG_GREY; o.png_scale = 0.1; }
-        if (dem_load(t_data(crops[c].file), &o, &f, &err) != BR_OK) {
+        if (load_crop(c, &f, z, &zmin, &zmax, &err) != BR_OK) {
             printf("crop %s: skipped: %s\n", crops[c].file, err.msg);
             continue;
         }
-        for (y = 0; y < 65; y++)
-            for (x = 0; x < 65; x++) {
-                int32_t v = f.z[(crops[c].y0 + y) * f.w + crops[c].x0 + x];
-                z[y * 65 + x] = v;
-                if (v < zmin) zmin = v;
-                if (v > zmax) zmax = v;
-            }
         grid_verts(65, z);
         printf("\n%s crop at column %d, row %d: %s; heights %.1f..%.1f m\n", crops[c].file, crops[c].x0, crops[c].y0,
                crops[c].what, (double)zmin * f.z_num / f.z_den, (double)zmax * f.z_num / f.z_den);

@@ -26,6 +26,7 @@
 #include "tests/test.h"
 #include "benchmarks/martini_ref.c"
 #include "benchmarks/rqt_ref.c"
+#include "benchmarks/table1.h"
 
 
 typedef struct tree { bt_tree t; void *mem, *scr; } tree;
@@ -179,21 +180,6 @@ static void part_fuji(int quick)
 }
 
 /* ---- table 1 of 002 ---- */
-typedef struct paper_row { const char *tol; int bt_tri, qt_tri, bt_ref, qt_ref; } paper_row;
-static const paper_row paper[8] = {   /* papers/002, tabla 1 (65x65, heights 0..1445 m) */
-    { "Orig.", 8192, 8192, 13655, 12972 }, { "0%", 5296, 5843, 8685, 8467 },
-    { "1%", 2899, 3184, 4643, 4788 },      { "2%", 1736, 2041, 2803, 3049 },
-    { "7%", 647, 884, 1037, 1307 },        { "10%", 527, 715, 851, 1061 },
-    { "14%", 268, 418, 443, 601 },         { "50%", 23, 41, 37, 62 },
-};
-static const int pct[8] = { -1, 0, 1, 2, 7, 10, 14, 50 };
-typedef struct crop { const char *file; int png_grey_dm; int32_t x0, y0; const char *what; } crop;
-static const crop crops[] = {   /* the crops of bench_baselines */
-    { "png/ps_height_1k.png", 1, 160, 0, "Puget Sound shore" },
-    { "png/ps_height_1k.png", 1, 112, 48, "Puget Sound" },
-    { "hgt/N47E009.hgt", 0, 176, 1040, "Raetikon valley" },
-};
-
 static void part_table1(void)
 {
     int c, k;
@@ -201,23 +187,13 @@ static void part_table1(void)
            "  bitrain = this bitree (exact metric, true bound, no T-junctions, one strip);\n"
            "  QT = restricted quadtree with the same exact criterion (rqt_ref, RQ_SEL_EACH, optimal strip for its order);\n"
            "  paper = 002's own 65x65 grid (0..1445 m), BT and QT.\n");
-    for (c = 0; c < (int)(sizeof crops / sizeof crops[0]); c++) {
+    for (c = 0; c < NCROPS; c++) {
         hf f, g;
         br_err err;
-        dem_opts o;
-        int32_t z[65 * 65], x, y, zmin = INT32_MAX, zmax = INT32_MIN;
+        int32_t z[65 * 65], zmin = 0, zmax = 0;
         tree b;
-        memset(&o, 0, sizeof o);
         memset(&b, 0, sizeof b);
-        if (crops[c].png_grey_dm) { o.png_encoding = DEM_PNG_GREY; o.png_scale = 0.1; }
-        if (dem_load(t_data(crops[c].file), &o, &f, &err) != BR_OK) { printf("  %s skipped\n", crops[c].file); continue; }
-        for (y = 0; y < 65; y++)
-            for (x = 0; x < 65; x++) {
-                int32_t v = f.z[(crops[c].y0 + y) * f.w + crops[c].x0 + x];
-                z[y * 65 + x] = v;
-                if (v < zmin) zmin = v;
-                if (v > zmax) zmax = v;
-            }
+        if (load_crop(c, &f, z, &zmin, &zmax, &err) != BR_OK) { printf("  %s skipped\n", crops[c].file); continue; }
         g = f; g.w = g.h = 65; g.z = z;
         tree_build(&b, &g, BT_METRIC_EXACT);
         printf("  %s (%d,%d) %s, %.1f..%.1f m\n", crops[c].file, crops[c].x0, crops[c].y0, crops[c].what,
