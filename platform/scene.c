@@ -109,15 +109,8 @@ static void apply_zscale(scene *s, const scene_opts *o, const char *name)
                        "vertical scale %.4g (override with --zscale)\n", name, relief, ext, zs);
         }
     }
-    if (zs != 1) {
-        s->rt.fr.sz_q16 = (int32_t)fmax(1, fmin((double)INT32_MAX, s->rt.fr.sz_q16 * zs));
-        /* the normals follow the scaled heights (core/shade.h: n = (-gx kx, -gy ky, kz);
-         * scale down only, so the constants stay below 2^24) */
-        if (zs < 1) {
-            s->rt.sc.kx = (int64_t)fmax(1, (double)llround((double)s->rt.sc.kx * zs));
-            s->rt.sc.ky = (int64_t)fmax(1, (double)llround((double)s->rt.sc.ky * zs));
-        } else s->rt.sc.kz = (int64_t)fmax(1, (double)llround((double)s->rt.sc.kz / zs));
-    }
+    if (zs != 1) /* as the rational round(zs * 2^20) / 2^20: zs <= 1000 fits int32 */
+        rt_scene_zscale(&s->rt, (int32_t)fmax(1, (double)llround(zs * 1048576.0)), 1048576);
     s->zscale = zs;
     s->zmin_m *= zs;
     s->zmax_m *= zs;

@@ -47,6 +47,24 @@ br_status rt_scene_init(rt_scene *s, const hf *f, const rs_ramp *ramp, const fx_
     return BR_OK;
 }
 
+static int64_t scale_at_least_1(int64_t v, int64_t num, int64_t den, int64_t max)
+{
+    int64_t r = fx_div_round(v * num, den);   /* v < 2^31, num < 2^31: fits */
+    return r < 1 ? 1 : (r > max ? max : r);
+}
+
+br_status rt_scene_zscale(rt_scene *s, int32_t num, int32_t den)
+{
+    if (num <= 0 || den <= 0) return BR_E_ARG;
+    if (num == den) return BR_OK;
+    s->fr.sz_q16 = (int32_t)scale_at_least_1(s->fr.sz_q16, num, den, INT32_MAX);
+    if (num < den) {
+        s->sc.kx = scale_at_least_1(s->sc.kx, num, den, INT64_MAX);
+        s->sc.ky = scale_at_least_1(s->sc.ky, num, den, INT64_MAX);
+    } else s->sc.kz = scale_at_least_1(s->sc.kz, den, num, INT64_MAX);
+    return BR_OK;
+}
+
 int64_t rt_mm_to_world(const rt_scene *s, int64_t mm)
 {
     if (s->shift >= 0) return fx_div_round(mm * ((int64_t)1 << s->shift), 1000);

@@ -38,6 +38,13 @@ typedef struct rt_scene {
 br_status rt_scene_init(rt_scene *s, const hf *f, const rs_ramp *ramp, const fx_q14 sun[3],
                         int32_t ambient_q14);
 
+/* Vertical exaggeration num/den (0 < num, den < 2^31; the scene's heights are
+ * multiplied by it): scales the world frame's z and makes the shading normals
+ * follow the scaled surface (n = (-gx kx, -gy ky, kz) of core/shade.h: kx, ky
+ * scale down when num < den, kz scales down otherwise, so the constants stay
+ * below 2^24).  BR_E_ARG (s unchanged) for a non-positive ratio. */
+br_status rt_scene_zscale(rt_scene *s, int32_t num, int32_t den);
+
 /* Millimetres to world units (rounded to nearest). */
 int64_t rt_mm_to_world(const rt_scene *s, int64_t mm);
 
