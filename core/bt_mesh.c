@@ -75,6 +75,7 @@ typedef struct em {
     int fid;                /* plain fidelity rule (no budget marks) */
     int direct;             /* vertex hash slots by grid key (see home) */
     uint32_t hbase;         /* vertex hash generation (see reset_mesh) */
+    uint32_t nbreak;        /* breaks of the walk bridged (the reorder pass runs if > 0) */
 } em;
 
 /* ------------------------------------------------------------ mesh memory */
@@ -385,6 +386,7 @@ static int write_leaf(em *e, const pend *L, const pend *N)
             uint32_t l3[3];
             l3[0] = L->ia; l3[1] = L->ic; l3[2] = L->ib;
             if (N) { n3[0] = N->ia; n3[1] = N->ic; n3[2] = N->ib; }
+            e->nbreak++;
             if (bts_bridge(m, l3, N ? n3 : NULL, N ? N->o0 : 0, N ? N->o1 : 0, e->plan, &e->nplan) == 0) return 0;
         }
         if (hp && hq && p != q) {
@@ -457,6 +459,182 @@ static void flush(em *e)
 {
     if (e->has_pend && !e->count_only && !e->full) write_leaf(e, &e->pend, NULL);
     e->has_pend = 0;
+}
+
+/* ------------------------------------------------------------ reorder */
+/* Leaf order where the walk broke.  The recursive walk's order is fixed by the
+ * tree; where voids or culled subtrees cut it, every break costs a bridge of
+ * 1-5 line triangles, and the fans along a void border (a vertex whose
+ * diamond's other half is void) break it every few leaves.  When the walk
+ * bridged at least once, the strip's triangles are re-ordered as a path over
+ * the mesh's edge adjacency and written again by the same writer (write_leaf:
+ * swaps, collinear rims, bridges; exactly the same triangles and winding):
+ *   - start at the walk's first leaf; after leaf t, take the earliest leaf of
+ *     the walk not yet written if it shares an edge with t (so unbroken runs of
+ *     the walk are kept as they are);
+ *   - else take the unwritten edge neighbour u of t with the best score:
+ *     fewest unwritten neighbours of its own first (a neighbour that would be
+ *     left with none becomes an isolated piece: a bridge later; the rule of
+ *     greedy strip builders), then no swap (t's pivot, the vertex shared by its
+ *     entry and exit edges, differs from the previous leaf's pivot: a repeated
+ *     pivot costs a line triangle, 002 figure 10), then u ends a run of the walk
+ *     (taking it splits no run);
+ *   - else (no unwritten neighbour) bridge to the earliest unwritten leaf.
+ * Each pass is linear (3 neighbours per leaf) and the strip is kept only when it
+ * is shorter than the walk's (otherwise the walk's order is written again).
+ * Scratch: the budget heap's area of the mesh (bt_mesh_mem_size: 64 bytes per
+ * triangle of capacity), used as 24 bytes per triangle (vertices, neighbours)
+ * + an edge hash of <= 32 bytes per triangle, later the written flags. */
+#define RNONE 0xFFFFFFFFu
+
+typedef struct ro {
+    uint32_t nt;
+    const uint32_t *tv;    /* 3 per leaf, counter-clockwise, in walk order */
+    const uint32_t *nb;    /* 3 per leaf: the leaf across edge (tv[k], tv[k+1 mod 3]) */
+    uint8_t *vis;          /* 1: written */
+} ro;
+
+/* a pass: weights of the neighbour score (see above) */
+typedef struct ro_pass { int w_deg, w_nosw, w_end; } ro_pass;
+static const ro_pass ro_passes[] = { { 16, 12, 8 } };
+
+/* unwritten neighbours of u */
+static int rdeg(const ro *r, uint32_t u)
+{
+    int d = 0, j;
+    for (j = 0; j < 3; j++) { uint32_t w = r->nb[3 * (size_t)u + j]; d += w != RNONE && !r->vis[w]; }
+    return d;
+}
+
+static int adjacent(const ro *r, uint32_t t, uint32_t u)
+{
+    return r->nb[3 * (size_t)t] == u || r->nb[3 * (size_t)t + 1] == u || r->nb[3 * (size_t)t + 2] == u;
+}
+
+static int has_v(const uint32_t *v, uint32_t x) { return v[0] == x || v[1] == x || v[2] == x; }
+
+/* exit edge of leaf t towards leaf u (u == RNONE: none): their shared edge, or
+ * else the edge of t sharing most vertices with u, not the entry edge {i0, i1}
+ * when there is a choice (the bridge to u starts from it) */
+static void exit_edge(const ro *r, uint32_t t, uint32_t u, uint32_t i0, uint32_t i1,
+                      uint32_t *o0, uint32_t *o1)
+{
+    const uint32_t *v = r->tv + 3 * (size_t)t;
+    int j, best = 0, bs = -1;
+    for (j = 0; j < 3; j++) {
+        uint32_t a = v[j], b = v[(j + 1) % 3];
+        int s = 0;
+        if (u != RNONE) s = 2 * (has_v(r->tv + 3 * (size_t)u, a) + has_v(r->tv + 3 * (size_t)u, b));
+        if (!((a == i0 && b == i1) || (a == i1 && b == i0))) s++;
+        if (s > bs) { bs = s; best = j; }
+    }
+    *o0 = v[best]; *o1 = v[(best + 1) % 3];
+}
+
+/* Appends leaf t with exit edge {o0, o1} through the regular writer. */
+static void re_emit(em *e, const ro *r, uint32_t t, uint32_t o0, uint32_t o1)
+{
+    pend L;
+    const uint32_t *v = r->tv + 3 * (size_t)t;
+    L.ia = v[0]; L.ic = v[1]; L.ib = v[2];
+    L.o0 = o0; L.o1 = o1;
+    L.other = (v[0] != o0 && v[0] != o1) ? v[0] : ((v[1] != o0 && v[1] != o1) ? v[1] : v[2]);
+    if (e->has_pend && write_leaf(e, &e->pend, &L)) { e->has_pend = 0; return; }
+    e->pend = L;
+    e->has_pend = 1;
+}
+
+/* Writes the strip in the order of pass ps (NULL: the walk's order).  Returns 0,
+ * or -1 if the strip would not fit (m->strip is then unusable). */
+static int ro_write(em *e, const ro *r, const ro_pass *ps)
+{
+    bt_mesh *m = e->m;
+    uint32_t cur = 0, nextw = 1, i0 = RNONE, i1 = RNONE, ppiv = RNONE;
+    memset(r->vis, 0, r->nt);
+    m->ns = 0; m->nline = 0;
+    e->has_pend = 0; e->nplan = 0;
+    r->vis[0] = 1;
+    for (;;) {
+        uint32_t nxt = RNONE, o0, o1;
+        while (nextw < r->nt && r->vis[nextw]) nextw++;
+        if (nextw < r->nt && (!ps || adjacent(r, cur, nextw))) nxt = nextw;
+        else if (ps) {
+            int j, bs = -1;
+            for (j = 0; j < 3; j++) {
+                uint32_t u = r->nb[3 * (size_t)cur + j], a, b, pv;
+                int run_mid, sc;
+                if (u == RNONE || r->vis[u]) continue;
+                run_mid = u + 1 < r->nt && !r->vis[u + 1] && adjacent(r, u, u + 1) &&
+                          u >= 1 && !r->vis[u - 1] && adjacent(r, u, u - 1);
+                a = r->tv[3 * (size_t)cur + j]; b = r->tv[3 * (size_t)cur + (j + 1) % 3];
+                pv = (a == i0 || a == i1) ? a : ((b == i0 || b == i1) ? b : RNONE);
+                sc = (4 - rdeg(r, u)) * ps->w_deg + !(pv != RNONE && pv == ppiv) * ps->w_nosw +
+                     !run_mid * ps->w_end;
+                if (sc > bs) { bs = sc; nxt = u; }
+            }
+            if (nxt == RNONE && nextw < r->nt) nxt = nextw;
+        }
+        if (m->ns > e->lim_ns) return -1;
+        exit_edge(r, cur, nxt, i0, i1, &o0, &o1);
+        re_emit(e, r, cur, o0, o1);
+        if (nxt == RNONE) break;
+        ppiv = (o0 == i0 || o0 == i1) ? o0 : ((o1 == i0 || o1 == i1) ? o1 : RNONE);
+        i0 = o0; i1 = o1;
+        if (!adjacent(r, cur, nxt)) i0 = i1 = ppiv = RNONE;
+        cur = nxt;
+        r->vis[cur] = 1;
+    }
+    if (m->ns > e->lim_ns) return -1;
+    flush(e);
+    return 0;
+}
+
+static void reorder(em *e)
+{
+    bt_mesh *m = e->m;
+    uint32_t nt = 0, k, hs = 16, *tv, *nb, *hsh, best_ns = m->ns;
+    int best = -1, last = -1;
+    size_t p;
+    ro r;
+    if (m->ns < 3 || m->ntri < 2) return;
+    while (hs < 4 * m->ntri) hs <<= 1;
+    if ((size_t)m->ntri * 24 + (size_t)hs * 4 > (size_t)heap_cap(m) * sizeof(heap_ent)) return;
+    tv = (uint32_t *)(void *)heap_of(m);
+    nb = tv + 3 * (size_t)m->ntri;
+    hsh = nb + 3 * (size_t)m->ntri;
+    /* the strip's real triangles in order, counter-clockwise */
+    for (k = 0; k + 2 < m->ns; k++) {
+        uint32_t a = m->strip[k], b = m->strip[k + 1], c = m->strip[k + 2];
+        if (a == b || b == c || a == c || collinear(m, a, b, c)) continue;
+        if (nt >= m->ntri) return;
+        if (k & 1) { uint32_t x = a; a = b; b = x; }
+        tv[3 * nt] = a; tv[3 * nt + 1] = b; tv[3 * nt + 2] = c;
+        nt++;
+    }
+    if (nt != m->ntri) return;
+    /* edge adjacency: a hash of vertex pairs (each interior edge is met twice) */
+    memset(hsh, 0, (size_t)hs * 4);
+    for (k = 0; k < 3 * nt; k++) nb[k] = RNONE;
+    for (k = 0; k < 3 * nt; k++) {
+        uint32_t a = tv[k], b = tv[k % 3 == 2 ? k - 2 : k + 1];
+        uint32_t lo = a < b ? a : b, hi = a ^ b ^ lo;
+        uint32_t h = (lo * 2654435761u + hi * 40503u) & (hs - 1);
+        for (;;) {
+            uint32_t s = hsh[h];
+            if (s == 0) { hsh[h] = k + 1; break; }
+            {
+                uint32_t q = s - 1, c = tv[q], d = tv[q % 3 == 2 ? q - 2 : q + 1];
+                if ((c == a && d == b) || (c == b && d == a)) { nb[k] = q / 3; nb[q] = k / 3; break; }
+            }
+            h = (h + 1) & (hs - 1);
+        }
+    }
+    r.nt = nt; r.tv = tv; r.nb = nb; r.vis = (uint8_t *)hsh;
+    for (p = 0; p < sizeof ro_passes / sizeof ro_passes[0]; p++) {
+        last = (int)p;
+        if (ro_write(e, &r, &ro_passes[p]) == 0 && m->ns < best_ns) { best_ns = m->ns; best = (int)p; }
+    }
+    if (best != last && ro_write(e, &r, best < 0 ? NULL : &ro_passes[best]) != 0) e->full = 1;
 }
 
 static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned mask)
@@ -773,6 +951,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
                         t->st[ids[i]] = (uint8_t)((t->st[ids[i]] & ~ST_CUR) | ST_PREV);
                 }
             }
+            if (e.nbreak > 0) reorder(&e);
             return BR_OK;
         }
         /* defined downgrade: the selection needs more than m holds; spend the
@@ -793,5 +972,6 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
     }
     run(&e);
     for (i = 0; i < nid; i++) t->st[ids[i]] &= (uint8_t)~(ST_SPLIT | ST_PUSHED);
+    if (!e.full && e.nbreak > 0) reorder(&e);
     return e.full ? BR_E_NOMEM : BR_OK;
 }

@@ -242,9 +242,12 @@ static void test_every_dem(void)
         { "hgt/N47E009.hgt", 1500 }, { "hgt/N50E008.hgt", 1500 }, { "hgt/N50E009.hgt", 1500 },
         { "hgt/N50E010.hgt", 1500 }, { "hgt/N57E011.hgt", 1500 }, { "png/ps_height_1k.png", 1500 },
         { "bt/crater_0513.bt", 1500 },
-        /* not yet at 1.5 (breaks of the walk; before the bridges: 1.537, 1.512, 1.617, 1.523, 1.603) */
-        { "png/fuji.png", 1514 }, { "asc/colorado_front_range.asc", 1503 }, { "asc/hugo_site.asc", 1578 },
-        { "tif/mt_rainier_90m.tif", 1515 }, { "xyz/monai_valley_bathymetry.txt", 1546 }
+        /* voids or a void border break the walk: at 1.5 with the reorder pass (walk order
+         * with bridges: 1.514, 1.502, 1.515, 1.545) */
+        { "png/fuji.png", 1500 }, { "asc/colorado_front_range.asc", 1500 },
+        { "tif/mt_rainier_90m.tif", 1500 }, { "xyz/monai_valley_bathymetry.txt", 1500 },
+        /* not yet at 1.5 (walk order with bridges: 1.578) */
+        { "asc/hugo_site.asc", 1565 }
     };
     size_t i;
     for (i = 0; i < sizeof dems / sizeof dems[0]; i++) one_dem(dems[i].rel, sanitized(), dems[i].refs_pm);
@@ -425,7 +428,7 @@ static void test_view(void)
     CHECK_EQ(nf, o.m.nfict);
     CHECK(nf > 0);                          /* some vertices are still morphing */
     CHECK_EQ(o.m.ntri, 4250);
-    CHECK(mesh_hash(&o.m) == 12832302367714380740ull);  /* same bytes on every build */
+    CHECK(mesh_hash(&o.m) == 2618060124009063680ull);  /* same bytes on every build (culling breaks the walk: reordered strip) */
     /* the same frame again: hysteresis keeps everything split, nothing is lost */
     {
         uint32_t t1 = o.m.ntri;
