@@ -462,29 +462,35 @@ static void flush(em *e)
 }
 
 /* ------------------------------------------------------------ reorder */
-/* Leaf order where the walk broke.  The recursive walk's order is fixed by the
- * tree; where voids or culled subtrees cut it, every break costs a bridge of
- * 1-5 line triangles, and the fans along a void border (a vertex whose
- * diamond's other half is void) break it every few leaves.  When the walk
- * bridged at least once, the strip's triangles are re-ordered as a path over
- * the mesh's edge adjacency and written again by the same writer (write_leaf:
- * swaps, collinear rims, bridges; exactly the same triangles and winding):
- *   - start at the walk's first leaf; after leaf t, take the earliest leaf of
- *     the walk not yet written if it shares an edge with t (so unbroken runs of
- *     the walk are kept as they are);
- *   - else take the unwritten edge neighbour u of t with the best score:
- *     fewest unwritten neighbours of its own first (a neighbour that would be
- *     left with none becomes an isolated piece: a bridge later; the rule of
- *     greedy strip builders), then no swap (t's pivot, the vertex shared by its
- *     entry and exit edges, differs from the previous leaf's pivot: a repeated
- *     pivot costs a line triangle, 002 figure 10), then u ends a run of the walk
- *     (taking it splits no run);
- *   - else (no unwritten neighbour) bridge to the earliest unwritten leaf.
- * Each pass is linear (3 neighbours per leaf) and the strip is kept only when it
- * is shorter than the walk's (otherwise the walk's order is written again).
+/* Leaf order where the walk broke (fidelity meshes).  The recursive walk's
+ * order is fixed by the tree: where voids cut it, every break costs a bridge
+ * of 1-5 line triangles, and along a void border (a vertex whose diamond has
+ * a void half) it breaks every few leaves; reversing subtrees does not help
+ * (the valid part of a border diamond is split into two runs either way).
+ * When the walk bridged at least once, the strip's triangles are instead
+ * ordered as a greedy path over the mesh's edge adjacency (the rule of greedy
+ * strip builders, with the strip's exact cost of a turn) and written again by
+ * the same writer (write_leaf: swaps, collinear rims, bridges), so the strip
+ * holds exactly the same triangles with the same winding:
+ *   - start at the walk's first leaf; after leaf t, go to the unwritten edge
+ *     neighbour u of t with (1) the fewest unwritten neighbours of its own (one
+ *     left with none becomes an isolated piece: a bridge later), then (2) no
+ *     swap: t's pivot, the vertex its entry and exit edges share, differs from
+ *     the previous leaf's pivot (a pivot kept for two leaves in a row is a fan
+ *     turn: one line triangle, 002 figure 10), then the first in walk order;
+ *   - with no unwritten edge neighbour, bridge to the unwritten leaf around a
+ *     vertex of t with the fewest unwritten neighbours (a short bridge), else to
+ *     the first unwritten leaf in walk order.
+ * It trades fan turns for bridges: fuji.png (unpadded) 21,276 swaps and 510
+ * bridges (1,022 line triangles) in walk order, 12,329 swaps and 1,493 bridges
+ * (5,333) in this order: 65,710 -> 61,141 references.  The result is kept only
+ * if shorter than the walk's strip (else the walk's order is written again).
+ * Cost: linear (3 neighbours per leaf), about 2-4x the extraction where it
+ * runs (the bridges' searches dominate); it does not run on meshes without
+ * breaks (fuji 513 padded) nor in view and budget modes (per-frame speed).
  * Scratch: the budget heap's area of the mesh (bt_mesh_mem_size: 64 bytes per
- * triangle of capacity), used as 24 bytes per triangle (vertices, neighbours)
- * + an edge hash of <= 32 bytes per triangle, later the written flags. */
+ * triangle of capacity), as 36 bytes per triangle (vertices, neighbours,
+ * half-edge lists, then the written flags) + 4 per vertex. */
 #define RNONE 0xFFFFFFFFu
 
 typedef struct ro {
@@ -494,16 +500,40 @@ typedef struct ro {
     uint8_t *vis;          /* 1: written */
 } ro;
 
-/* a pass: weights of the neighbour score (see above) */
-typedef struct ro_pass { int w_deg, w_nosw, w_end; } ro_pass;
-static const ro_pass ro_passes[] = { { 16, 12, 8 } };
-
 /* unwritten neighbours of u */
 static int rdeg(const ro *r, uint32_t u)
 {
     int d = 0, j;
     for (j = 0; j < 3; j++) { uint32_t w = r->nb[3 * (size_t)u + j]; d += w != RNONE && !r->vis[w]; }
     return d;
+}
+
+/* the unwritten leaf around a vertex of t with the fewest unwritten neighbours
+ * (ties: first in walk order), RNONE if none: turns around each vertex of t
+ * through the edge neighbours, both ways (consistent winding: the edge out of
+ * v in one leaf is the edge into v in the next) */
+static uint32_t vert_next(const ro *r, uint32_t t)
+{
+    uint32_t best = RNONE;
+    int bd = 9, j, dir;
+    for (j = 0; j < 3; j++) {
+        uint32_t v = r->tv[3 * (size_t)t + j];
+        for (dir = 0; dir < 2; dir++) {
+            uint32_t u = t, steps = 0;
+            for (;;) {
+                const uint32_t *w = r->tv + 3 * (size_t)u;
+                int i = w[0] == v ? 0 : (w[1] == v ? 1 : 2);
+                uint32_t nx = r->nb[3 * (size_t)u + (dir == 0 ? i : (i + 2) % 3)];
+                if (nx == RNONE || nx == t || ++steps > 12) break;
+                u = nx;
+                if (!r->vis[u]) {
+                    int d = rdeg(r, u);
+                    if (d < bd || (d == bd && u < best)) { bd = d; best = u; }
+                }
+            }
+        }
+    }
+    return best;
 }
 
 static int adjacent(const ro *r, uint32_t t, uint32_t u)
@@ -523,10 +553,10 @@ static void exit_edge(const ro *r, uint32_t t, uint32_t u, uint32_t i0, uint32_t
     int j, best = 0, bs = -1;
     for (j = 0; j < 3; j++) {
         uint32_t a = v[j], b = v[(j + 1) % 3];
-        int s = 0;
-        if (u != RNONE) s = 2 * (has_v(r->tv + 3 * (size_t)u, a) + has_v(r->tv + 3 * (size_t)u, b));
-        if (!((a == i0 && b == i1) || (a == i1 && b == i0))) s++;
-        if (s > bs) { bs = s; best = j; }
+        int sc = 0;
+        if (u != RNONE) sc = 2 * (has_v(r->tv + 3 * (size_t)u, a) + has_v(r->tv + 3 * (size_t)u, b));
+        if (!((a == i0 && b == i1) || (a == i1 && b == i0))) sc++;
+        if (sc > bs) { bs = sc; best = j; }
     }
     *o0 = v[best]; *o1 = v[(best + 1) % 3];
 }
@@ -544,9 +574,9 @@ static void re_emit(em *e, const ro *r, uint32_t t, uint32_t o0, uint32_t o1)
     e->has_pend = 1;
 }
 
-/* Writes the strip in the order of pass ps (NULL: the walk's order).  Returns 0,
- * or -1 if the strip would not fit (m->strip is then unusable). */
-static int ro_write(em *e, const ro *r, const ro_pass *ps)
+/* Writes the strip in the greedy order (walk = 0) or the walk's (walk = 1).
+ * Returns 0, or -1 if the strip would not fit (m->strip is then unusable). */
+static int ro_write(em *e, const ro *r, int walk)
 {
     bt_mesh *m = e->m;
     uint32_t cur = 0, nextw = 1, i0 = RNONE, i1 = RNONE, ppiv = RNONE;
@@ -557,23 +587,20 @@ static int ro_write(em *e, const ro *r, const ro_pass *ps)
     for (;;) {
         uint32_t nxt = RNONE, o0, o1;
         while (nextw < r->nt && r->vis[nextw]) nextw++;
-        if (nextw < r->nt && (!ps || adjacent(r, cur, nextw))) nxt = nextw;
-        else if (ps) {
+        if (!walk) {
             int j, bs = -1;
             for (j = 0; j < 3; j++) {
                 uint32_t u = r->nb[3 * (size_t)cur + j], a, b, pv;
-                int run_mid, sc;
+                int sc;
                 if (u == RNONE || r->vis[u]) continue;
-                run_mid = u + 1 < r->nt && !r->vis[u + 1] && adjacent(r, u, u + 1) &&
-                          u >= 1 && !r->vis[u - 1] && adjacent(r, u, u - 1);
                 a = r->tv[3 * (size_t)cur + j]; b = r->tv[3 * (size_t)cur + (j + 1) % 3];
                 pv = (a == i0 || a == i1) ? a : ((b == i0 || b == i1) ? b : RNONE);
-                sc = (4 - rdeg(r, u)) * ps->w_deg + !(pv != RNONE && pv == ppiv) * ps->w_nosw +
-                     !run_mid * ps->w_end;
-                if (sc > bs) { bs = sc; nxt = u; }
+                sc = (4 - rdeg(r, u)) * 2 + !(pv != RNONE && pv == ppiv);
+                if (sc > bs || (sc == bs && u < nxt)) { bs = sc; nxt = u; }
             }
-            if (nxt == RNONE && nextw < r->nt) nxt = nextw;
+            if (nxt == RNONE) nxt = vert_next(r, cur);
         }
+        if (nxt == RNONE && nextw < r->nt) nxt = nextw;
         if (m->ns > e->lim_ns) return -1;
         exit_edge(r, cur, nxt, i0, i1, &o0, &o1);
         re_emit(e, r, cur, o0, o1);
@@ -592,16 +619,14 @@ static int ro_write(em *e, const ro *r, const ro_pass *ps)
 static void reorder(em *e)
 {
     bt_mesh *m = e->m;
-    uint32_t nt = 0, k, hs = 16, *tv, *nb, *hsh, best_ns = m->ns;
-    int best = -1, last = -1;
-    size_t p;
+    uint32_t nt = 0, k, *tv, *nb, *nx, *head, walk_ns = m->ns;
     ro r;
     if (m->ns < 3 || m->ntri < 2) return;
-    while (hs < 4 * m->ntri) hs <<= 1;
-    if ((size_t)m->ntri * 24 + (size_t)hs * 4 > (size_t)heap_cap(m) * sizeof(heap_ent)) return;
+    if ((size_t)m->ntri * 36 + (size_t)m->nv * 4 > (size_t)heap_cap(m) * sizeof(heap_ent)) return;
     tv = (uint32_t *)(void *)heap_of(m);
     nb = tv + 3 * (size_t)m->ntri;
-    hsh = nb + 3 * (size_t)m->ntri;
+    nx = nb + 3 * (size_t)m->ntri;
+    head = nx + 3 * (size_t)m->ntri;
     /* the strip's real triangles in order, counter-clockwise */
     for (k = 0; k + 2 < m->ns; k++) {
         uint32_t a = m->strip[k], b = m->strip[k + 1], c = m->strip[k + 2];
@@ -612,29 +637,32 @@ static void reorder(em *e)
         nt++;
     }
     if (nt != m->ntri) return;
-    /* edge adjacency: a hash of vertex pairs (each interior edge is met twice) */
-    memset(hsh, 0, (size_t)hs * 4);
-    for (k = 0; k < 3 * nt; k++) nb[k] = RNONE;
+    /* edge adjacency: the half-edges listed by their lower vertex index (vertices
+     * are numbered in walk order, so the lists stay local), twins matched in the
+     * list (each interior edge is met twice, a boundary edge once) */
+    memset(head, 0xff, (size_t)m->nv * 4);
     for (k = 0; k < 3 * nt; k++) {
-        uint32_t a = tv[k], b = tv[k % 3 == 2 ? k - 2 : k + 1];
-        uint32_t lo = a < b ? a : b, hi = a ^ b ^ lo;
-        uint32_t h = (lo * 2654435761u + hi * 40503u) & (hs - 1);
-        for (;;) {
-            uint32_t s = hsh[h];
-            if (s == 0) { hsh[h] = k + 1; break; }
-            {
-                uint32_t q = s - 1, c = tv[q], d = tv[q % 3 == 2 ? q - 2 : q + 1];
-                if ((c == a && d == b) || (c == b && d == a)) { nb[k] = q / 3; nb[q] = k / 3; break; }
-            }
-            h = (h + 1) & (hs - 1);
+        uint32_t a = tv[k], b = tv[k % 3 == 2 ? k - 2 : k + 1], lo = a < b ? a : b;
+        nb[k] = RNONE;
+        nx[k] = head[lo];
+        head[lo] = k;
+    }
+    for (k = 0; k < m->nv; k++) {
+        uint32_t q, q2;
+        for (q = head[k]; q != RNONE; q = nx[q]) {
+            uint32_t hi;
+            if (nb[q] != RNONE) continue;
+            hi = tv[q] ^ tv[q % 3 == 2 ? q - 2 : q + 1] ^ k;
+            for (q2 = nx[q]; q2 != RNONE; q2 = nx[q2])
+                if (nb[q2] == RNONE && (tv[q2] ^ tv[q2 % 3 == 2 ? q2 - 2 : q2 + 1] ^ k) == hi) {
+                    nb[q] = q2 / 3; nb[q2] = q / 3;
+                    break;
+                }
         }
     }
-    r.nt = nt; r.tv = tv; r.nb = nb; r.vis = (uint8_t *)hsh;
-    for (p = 0; p < sizeof ro_passes / sizeof ro_passes[0]; p++) {
-        last = (int)p;
-        if (ro_write(e, &r, &ro_passes[p]) == 0 && m->ns < best_ns) { best_ns = m->ns; best = (int)p; }
-    }
-    if (best != last && ro_write(e, &r, best < 0 ? NULL : &ro_passes[best]) != 0) e->full = 1;
+    r.nt = nt; r.tv = tv; r.nb = nb; r.vis = (uint8_t *)nx;
+    if (ro_write(e, &r, 0) != 0 || m->ns >= walk_ns)
+        if (ro_write(e, &r, 1) != 0) e->full = 1;
 }
 
 static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned mask)
@@ -951,7 +979,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
                         t->st[ids[i]] = (uint8_t)((t->st[ids[i]] & ~ST_CUR) | ST_PREV);
                 }
             }
-            if (e.nbreak > 0) reorder(&e);
+            if (e.nbreak > 0 && p->mode == BT_FIDELITY) reorder(&e);
             return BR_OK;
         }
         /* defined downgrade: the selection needs more than m holds; spend the
@@ -972,6 +1000,6 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
     }
     run(&e);
     for (i = 0; i < nid; i++) t->st[ids[i]] &= (uint8_t)~(ST_SPLIT | ST_PUSHED);
-    if (!e.full && e.nbreak > 0) reorder(&e);
+    if (!e.full && e.nbreak > 0 && p->mode == BT_FIDELITY) reorder(&e);
     return e.full ? BR_E_NOMEM : BR_OK;
 }
