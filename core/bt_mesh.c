@@ -980,7 +980,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
                 }
             }
             if (e.nbreak > 0 && p->mode == BT_FIDELITY) reorder(&e);
-            return BR_OK;
+            return e.full ? BR_E_NOMEM : BR_OK;
         }
         /* defined downgrade: the selection needs more than m holds; spend the
          * capacity by priority (the budget rule) instead */
