@@ -271,6 +271,16 @@ static void test_lossless_voids(void)
     CHECK(judge(&f, &o, 1, exact_area2(&f), &r, &sr));
     CHECK_EQ(r.err_num, 0);
     CHECK_EQ(r.void_covered, 0);
+    CHECK(o.m.ns * 2 <= o.m.ntri * 3);      /* the reorder pass ran (voids break the walk) */
+    free(o.mem);
+    /* the same into a mesh too small: budget downgrade, then the reorder pass */
+    CHECK(extract(&b, &p, 600, &o) == 0);
+    CHECK_EQ(o.m.overflow, 1);
+    CHECK(o.m.ntri <= 600 && o.m.ntri > 50);   /* voids take most of a small budget (117) */
+    CHECK(judge(&f, &o, 1, 0, &r, &sr) || r.uncovered > 0);
+    CHECK_EQ(r.tjunctions, 0);
+    CHECK_EQ(r.void_covered, 0);
+    CHECK_EQ(r.nonmanifold_edges, 0);
     free(o.mem);
     {   /* view and budget modes over voids */
         cam c;
