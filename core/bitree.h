@@ -188,7 +188,11 @@ br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri);
 br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m);
 
 /* Budget mode scratch: bt_extract with BT_BUDGET (or a fallback) needs a heap;
- * it is carved from m (bt_mesh_mem_size includes it). */
+ * it is carved from m (bt_mesh_mem_size includes it).  In BT_FIDELITY mode, when
+ * voids broke the recursive walk, the strip is written again in a greedy leaf
+ * order (fewer references; same triangles, same winding) using the same area
+ * as scratch (36 bytes per triangle + 4 per vertex, within the 64 per triangle
+ * of capacity already counted). */
 
 /* Projected (screen-space) error of diamond (x, y), 1/256 pixel, for tests and
  * the renderer's statistics; 0 when culled. */
