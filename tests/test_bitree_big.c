@@ -2,42 +2,54 @@
  * 16385^2 grids and heights from -11000 to 9000 m".  The bitree's arithmetic
  * bounds are argued in comments (core/bt_err.c, core/bt_lvl.c, core/bt_mesh.c);
  * this program runs them at the largest size on real data, and the sanitizer
- * run (UBSan: -fsanitize=undefined traps signed overflow) is what proves it.
+ * run (UBSan traps signed overflow) is what proves them.  Timed on its own:
+ * build/tests/test_bitree_big [name filter]; figures in docs/bitree.md.
  *
- * THE GRID (no invented terrain).  ../shared/data/dem/hgt/N47E009.hgt (SRTM3,
+ * THE GRIDS (no invented terrain).  ../shared/data/dem/hgt/N47E009.hgt (SRTM3,
  * 1201 x 1201, Lake Constance and the Raetikon Alps, 388 .. 2937 m, no voids)
- * is MIRROR-tiled to 16385 x 16385 (the largest side, BR_MAX_SIDE): sample
- * (x, y) of the big grid is tile sample (m(x), m(y)) with
- *     m(i) = i mod 2400, reflected as 2400 - that when it exceeds 1200,
- * so the grid is continuous (every step is a real step of the tile) and the
- * tile's edges are the mirror axes.  Its heights are then mapped AFFINELY (int64,
- * floor) so that 388 m -> the lowest height and 2937 m -> the highest:
- *   WIDE:   -11000 m .. 9000 m in units of 1/24403 m (z_num 1, z_den 24403), the
- *           FINEST unit the heightfield allows for -11000 m (|z| <= BR_Z_LIMIT =
- *           2^28: 11000 * 24403 = 268,433,000 <= 268,435,456), i.e. heights
- *           -268,433,000 .. 219,627,000 and a spread R = 488,060,000 (2^28.86):
- *           the exact metric's int64 path with D up to 2^14;
- *   NARROW: the largest spread the int32 fast paths accept at this size
- *           ((2 S + 64) R < 2^31 with S = 16384: R = 65408), heights -35974 ..
- *           29434 in units of 625/2044 m (0.306 m; -10999.9 m .. 9000.1 m): the
- *           stencils (bt_lvl.c), the tables and row32 at their limit;
- *   VOIDS:  WIDE plus the real voids of ../shared/data/dem/tif/mt_rainier_90m.tif
- *           (unfilled SRTM3, 1201 x 1201, 9033 voids) mirror-tiled the same way
- *           (HF_NODATA): the void paths (prefix counts, block map, mixed splits).
- * Spacing: dx_um = dy_um = INT32_MAX (2147.483647 m), the largest the
- * heightfield type accepts, so the world extents (16384 x 2147 m = 35,184 km)
- * and bt_frame_auto's unit enter the view-dependent products at their largest.
+ * is MIRROR-tiled: sample (x, y) is tile sample (m(x), m(y)) with
+ *     m(i) = i mod 2400, reflected to 2400 - that when it exceeds 1200,
+ * so the grid is continuous (every step is a real step of the tile; the tile's
+ * edges are mirror axes).  Heights are mapped AFFINELY (int64, floor) so that
+ * 388 m -> zlo and 2937 m -> zhi.  Spacing dx_um = dy_um = INT32_MAX
+ * (2147.483647 m), the largest the heightfield accepts, so the world extents
+ * (16384 steps = 35,184 km) enter bt_frame_auto and the view products at their
+ * largest.
+ *   wide (16385 x 16385, BR_MAX_SIDE): -11000 m .. 9000 m in units of 1/24403 m
+ *     (z_num 1, z_den 24403), the FINEST unit the heightfield allows for -11000 m
+ *     (|z| <= BR_Z_LIMIT = 2^28: 11000 * 24403 = 268,433,000): heights
+ *     -268,433,000 .. 219,627,000, spread R = 488,060,000 (2^28.86).  The exact
+ *     metric's int64 path with D up to 2^14; fidelity at 1600 m (1,950,534
+ *     triangles), a view-dependent mesh (1024 x 768, 60 deg, 1/4 px, hysteresis,
+ *     geomorph, from 15 km above the centre), budget 1,000,000, the strip as a
+ *     list and bt_true_error_q16 (D up to 2^29).
+ *   narrow 4097 (4097 x 4097): the int32 fast paths (row32, tables, stencils) at
+ *     their gate (2 S + 64) R < 2^31: R = 260,111 (heights -143,061 .. 117,050 in
+ *     units of 2000/26011 m = -11000.0 .. 9000.0 m).  row32's values reach
+ *     D R ~ S R ~ 2^30 at ANY size whose R sits at the gate, so this exercises
+ *     the same worst-case int32 magnitudes as 16385^2 with R = 65,408 (which the
+ *     sanitized run also builds: "narrow 16385", -35,974 .. 29,434 in units of
+ *     625/2044 m; its mesh bytes were judged by meshcheck when the hashes were
+ *     pinned).  Fidelity, view, budget.
+ *   wide + voids 4097 (4097 x 4097): the wide heights with the real voids of
+ *     ../shared/data/dem/tif/mt_rainier_90m.tif (unfilled SRTM3, 1201 x 1201,
+ *     9033 voids) mirror-tiled the same way (HF_NODATA): the void paths (prefix
+ *     counts, block map, mixed diamonds, the strip's bridges) with exact hole
+ *     area; fidelity, view, budget, true error.  (16385 x 2049 was run while
+ *     writing this: 22 s build; the void paths' arithmetic does not grow with
+ *     the grid beyond the uint16 prefix counts, <= w <= 16385.)
+ * Every mesh is judged in the normal run by tests/support/meshcheck over every
+ * sample (watertight, no T-junctions, exact hole area, TRUE error <= the
+ * request for fidelity meshes, strip decodes to exactly the mesh, CCW), and its
+ * bytes are pinned (FNV-1a); the sanitized run (BITRAIN_SANITIZED) makes the
+ * same bytes under ASan + UBSan and compares the hashes instead of judging them
+ * again.  Small unit checks first: the overflows the review found (heights
+ * beyond BR_Z_LIMIT, frames beyond CAM_COORD_MAX) and +-BR_Z_LIMIT heights.
  *
- * WHAT RUNS (each mesh judged by tests/support/meshcheck over all 268 million
- * samples: watertight, no T-junctions, exact hole area, TRUE error at every
- * sample <= the request, strip decodes to exactly the mesh, CCW): see the test
- * functions below and docs/bitree.md ("16385^2").  Under BITRAIN_SANITIZED the
- * same grids and checks run (the whole point is UBSan at full size); only the
- * number of extra modes is trimmed there (see each test).
- *
- * Memory: heights 1.07 GB + tree 1.34 GB + build scratch 3.76 GB (freed after
- * the build; meshcheck then needs 14 B per sample, 3.76 GB, so the tree is freed
- * before the meshes are judged).  Peak RSS is in docs/bitree.md. */
+ * Memory (16385^2): heights 1.07 GB + tree 1.34 GB + build scratch 3.76 GB
+ * (freed after the build); meshcheck then needs 14 B per sample (3.76 GB), so
+ * the tree is freed before the meshes are judged.  Peak RSS about 5.5 GB (6.3 GB
+ * under the sanitizers). */
 #define _DEFAULT_SOURCE   /* madvise, setenv, execv */
 #include <stdint.h>
 #include <stdlib.h>
@@ -49,6 +61,7 @@
 #include "core/bitree.h"
 #include "core/cam.h"
 #include "platform/load.h"
+#include "raster/terrain.h"
 
 #define BIG 16385
 #define TILE 1201
@@ -141,13 +154,15 @@ static uint64_t fnv(uint64_t h, const void *p, size_t n)
     return h;
 }
 
-/* FNV-1a of the tree's node words, little-endian bytes (determinism) */
+/* FNV-1a of the tree's node words, little-endian bytes (determinism); the 4
+ * corners are no diamond centres, bt_build never writes (nor reads) them */
 static uint64_t tree_hash(const bt_tree *t)
 {
     uint64_t h = 1469598103934665603ull;
-    size_t i, nn = (size_t)t->n * (size_t)t->n;
+    size_t i, nn = (size_t)t->n * (size_t)t->n, S = (size_t)t->n - 1;
     for (i = 0; i < nn; i++) {
         uint32_t v = t->node[i];
+        if (i == 0 || i == S || i == nn - 1 - S || i == nn - 1) v = 0;
         uint8_t le[4] = { (uint8_t)v, (uint8_t)(v >> 8), (uint8_t)(v >> 16), (uint8_t)(v >> 24) };
         h = fnv(h, le, 4);
     }
@@ -253,7 +268,34 @@ static void judge(const hf *f, const omesh *o, int has_voids, int64_t expect_are
     free(v); free(s); free(tri);
 }
 
-enum { V_VIEW = 1, V_BUDGET = 2, V_UTIL = 4 };
+enum { V_VIEW = 1, V_BUDGET = 2, V_UTIL = 4, V_RASTER = 8 };
+
+/* The rasteriser's world-unit path (raster/terrain.c) on mesh m: the scene's
+ * frame for the largest extent, every vertex transformed (int32 x * sx etc.),
+ * positions checked against an int64 recomputation and CAM_COORD_MAX. */
+static void raster_world(const hf *g, const bt_mesh *m)
+{
+    rs_ramp ramp;
+    rt_scene sc;
+    fx_q14 sun[3];
+    rs_vertex *rv = malloc(sizeof *rv * (m->nv + 1));
+    uint32_t i, bad = 0;
+    if (!rv) { CHECK(0); return; }
+    rs_ramp_default(&ramp, hf_z_to_mm(g, -11000LL * 24403), hf_z_to_mm(g, 9000LL * 24403));
+    rs_sun_dir(315000, 45000, sun);
+    CHECK_EQ(rt_scene_init(&sc, g, &ramp, sun, 4915), BR_OK);
+    rt_from_mesh(&sc, m, rv);
+    for (i = 0; i < m->nv; i++) {
+        int64_t wx = sc.fr.ox + (int64_t)m->v[i].x * sc.fr.sx, wy = sc.fr.oy - (int64_t)m->v[i].y * sc.fr.sy;
+        int64_t wz = sc.fr.oz + (((int64_t)m->v[i].z * sc.fr.sz_q16) >> 16);
+        bad += rv[i].p[0] != wx || rv[i].p[1] != wy || rv[i].p[2] != wz ||
+               wx > CAM_COORD_MAX || wy > CAM_COORD_MAX || wz > CAM_COORD_MAX || wz < -CAM_COORD_MAX;
+    }
+    CHECK_EQ(bad, 0);
+    printf("  rt_from_mesh: %u vertices, world unit 2^-%d m, sx %d, extent %lld units\n", m->nv, sc.shift,
+           sc.fr.sx, (long long)(g->w - 1) * sc.fr.sx);
+    free(rv);
+}
 
 /* One grid: its shape, heights and what runs on it, with the expected bytes
  * (FNV-1a of the tree's node words and of each mesh) and fidelity triangles. */
@@ -358,6 +400,7 @@ static void variant(const spec *sp)
                 CHECK(mh == sp->mesh_fnv[1]);
                 printf("  view: count + 2 extractions %.1f s, %u triangles, mesh fnv %llu\n",
                        (tm_now_ms() - t0) / 1000, o[no].m.ntri, (unsigned long long)mh);
+                if (sp->modes & V_RASTER) raster_world(&g, &o[no].m);
                 no++;
             }
         }
@@ -509,7 +552,7 @@ static void test_frame_limit(void)
 static void test_wide(void)
 {
     static const spec sp = { "wide", BIG, BIG, -11000LL * 24403, 9000LL * 24403, 1, 24403, 0, 1600,
-                             V_VIEW | V_BUDGET | V_UTIL, 3,
+                             V_VIEW | V_BUDGET | V_UTIL | V_RASTER, 3,
                              6112714490394231043ull, { 13696975643854820297ull, 6679624455536227088ull, 16063793260504662526ull }, 1950534 };
     variant(&sp);
 }
