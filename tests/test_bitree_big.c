@@ -48,7 +48,7 @@
  *
  * Memory (16385^2): heights 1.07 GB + tree 1.34 GB + build scratch 3.76 GB
  * (freed after the build); meshcheck then needs 14 B per sample (3.76 GB), so
- * the tree is freed before the meshes are judged.  Peak RSS about 5.5 GB (6.3 GB
+ * the tree is freed before the meshes are judged.  Peak RSS about 5.5 GB (6.4 GB
  * under the sanitizers). */
 #define _DEFAULT_SOURCE   /* madvise, setenv, execv */
 #include <stdint.h>
