@@ -96,8 +96,8 @@ size_t bt_mem_size(int32_t w, int32_t h);
 /* Bytes of build scratch (freed by the caller after bt_build). */
 size_t bt_scratch_size(int32_t w, int32_t h);
 /* Builds the error hierarchy of f with metric (BT_METRIC_*).  BR_E_ARG on a bad
- * hf, bad metric, too small buffers or mem not 4-byte aligned (t is then
- * unchanged). */
+ * hf (also a height outside +-BR_Z_LIMIT: the arithmetic bounds rest on it), bad
+ * metric, too small buffers or mem not 4-byte aligned (t is then unchanged). */
 br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
                    void *mem, size_t mem_bytes, void *scratch, size_t scratch_bytes);
 
@@ -143,7 +143,10 @@ br_status bt_mesh_init(bt_mesh *m, uint32_t max_tri, void *mem, size_t mem_bytes
 enum { BT_FIDELITY = 0, BT_VIEW = 1, BT_BUDGET = 2 };
 
 /* Grid to world (core/cam.h units): wx = ox + x*sx, wy = oy - y*sy (north up),
- * wz = oz + (z*sz_q16 >> 16).  sx, sy in world units per grid step (> 0). */
+ * wz = oz + (z*sz_q16 >> 16).  sx, sy in world units per grid step (> 0).
+ * The PADDED grid (n x n, heights zmin..zmax) must map inside +-CAM_COORD_MAX on
+ * every axis (the camera's precondition; bt_frame_auto's frames do): bt_count,
+ * bt_extract and bt_screen_error_q8 refuse a larger frame (BR_E_ARG / 0). */
 typedef struct bt_frame {
     int32_t ox, oy, oz;
     int32_t sx, sy;

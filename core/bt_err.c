@@ -549,6 +549,10 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
             voids += nv;
         }
         if (lo > hi) lo = hi = 0;          /* all void */
+        /* hf.h's |z| <= BR_Z_LIMIT is what every bound below rests on (biased
+         * heights 0 .. R <= 2^29, so za + zb - 2 zm and the like fit int32);
+         * the loaders guarantee it, a caller's hf may not: refuse, don't overflow */
+        if (lo < -(int32_t)BR_Z_LIMIT || hi > (int32_t)BR_Z_LIMIT) return BR_E_ARG;
         nt.zmin = lo; nt.zmax = hi;
         if (voids)                         /* per-row prefix counts of voids */
             for (y = 0; y < h; y++) {

@@ -907,8 +907,6 @@ static br_status setup(em *e, bt_tree *t, const bt_params *p)
     }
     if (p->mode != BT_VIEW && p->mode != BT_BUDGET) return BR_E_ARG;
     if (!p->c || p->fr.sx <= 0 || p->fr.sy <= 0 || p->fr.sz_q16 <= 0) return BR_E_ARG;
-    cam_frustum(p->c, e->pl);
-    e->fq8 = p->c->f_q16 >> 8;
     {
         int64_t range = (int64_t)t->zmax - t->zmin;
         int i;
@@ -917,7 +915,17 @@ static br_status setup(em *e, bt_tree *t, const bt_params *p)
             e->wz_lo[i] = p->fr.oz + ((zl * p->fr.sz_q16) >> 16);
             e->wz_hi[i] = p->fr.oz + ((zh * p->fr.sz_q16 + 65535) >> 16);
         }
+        /* the volumes' corners are camera inputs: every world coordinate of the
+         * padded grid's box must be within CAM_COORD_MAX (core/cam.h), which keeps
+         * culled()'s sums of Q30 normal x coordinate products (and the plane
+         * offsets) below 2^62; a frame with a larger extent (e.g. sx = 2^20 over
+         * 16384 steps: 2^34) would overflow them */
+        if ((int64_t)p->fr.ox < -CAM_COORD_MAX || (int64_t)p->fr.ox + (int64_t)e->S * p->fr.sx > CAM_COORD_MAX ||
+            (int64_t)p->fr.oy > CAM_COORD_MAX || (int64_t)p->fr.oy - (int64_t)e->S * p->fr.sy < -CAM_COORD_MAX ||
+            e->wz_lo[0] < -CAM_COORD_MAX || e->wz_hi[255] > CAM_COORD_MAX) return BR_E_ARG;
     }
+    cam_frustum(p->c, e->pl);
+    e->fq8 = p->c->f_q16 >> 8;
     e->tau = p->pixel_err_q8 > 0 ? p->pixel_err_q8 : 256;
     e->tau_lo = p->hyst_q8 > 0 ? (e->tau * (256 - (p->hyst_q8 > 256 ? 256 : p->hyst_q8))) >> 8 : e->tau;
     e->morph_span = (e->tau * p->morph_q8) >> 8;
