@@ -528,7 +528,10 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
     if (((uintptr_t)mem & 3) != 0) return BR_E_ARG;
     nt.node = (uint32_t *)mem;
     nt.st = (uint8_t *)mem + nn * 4;
-    memset(nt.st, 0, nn);   /* every node is written below; corners are never read */
+    memset(nt.st, 0, nn);
+    /* every other node is written below; the 4 corners are never read, but are
+     * zeroed so that the tree's bytes are a function of the input alone */
+    nt.node[0] = nt.node[S] = nt.node[(size_t)S * n] = nt.node[(size_t)S * n + S] = 0;
     /* stats and void prefix counts, then heights biased by zmin (>= 0: shifts of
      * non-negative values only), voids = 0 */
     zs = (int32_t *)scratch;

@@ -155,7 +155,8 @@ static uint64_t fnv(uint64_t h, const void *p, size_t n)
 }
 
 /* FNV-1a of the tree's node words, little-endian bytes (determinism); the 4
- * corners are no diamond centres, bt_build never writes (nor reads) them */
+ * corners are no diamond centres: bt_build zeroes them, and they are hashed as 0
+ * whatever they hold, so the pinned hashes do not depend on that */
 static uint64_t tree_hash(const bt_tree *t)
 {
     uint64_t h = 1469598103934665603ull;
@@ -353,7 +354,7 @@ static void variant(const spec *sp)
     o[no].what = "fidelity"; o[no].partial = 0; o[no].thr = p.max_err;
     CHECK_EQ(o[no].m.ntri, sp->fid_tri);
     CHECK_EQ(o[no].m.overflow, 0);
-    if (!sp->voids) CHECK(o[no].m.ns * 2 <= o[no].m.ntri * 3);   /* <= 1.5 references per triangle */
+    CHECK(o[no].m.ns * 2 <= o[no].m.ntri * 3);   /* <= 1.5 references per triangle (issue 3), voids too */
     mh = mesh_hash(&o[no].m);
     CHECK(mh == sp->mesh_fnv[0]);
     printf("  fidelity %lld m (%lld units): count + extract %.1f s, %u triangles, mesh fnv %llu\n",
@@ -578,7 +579,7 @@ static void test_voids(void)
 {
     static const spec sp = { "wide + voids 4097", 4097, 4097, -11000LL * 24403, 9000LL * 24403, 1, 24403, 1, 1600,
                              V_VIEW | V_BUDGET | V_UTIL, 5, 12511681009602379972ull,
-                             { 12651781765788971325ull, 2134132993910152730ull, 5513012248338569693ull }, 655570 };
+                             { 16703503999203307436ull, 2134132993910152730ull, 5513012248338569693ull }, 655570 };
     variant(&sp);
 }
 
