@@ -468,8 +468,7 @@ RS_INLINE static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cv
  * calls (the two triangles cover disjoint centres: order does not matter). */
 RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                       const rs_cvert *v3, int32_t px0, int32_t ny, uint64_t xm, uint8_t *const crow0, RS_Z *const zrow0,
-                                      int32_t X0, int32_t Y0, int32_t X1, int32_t Y1, int32_t X2, int32_t Y2,
-                                      int32_t X3, int32_t Y3, int32_t e01, int32_t e12, int32_t e20,
+                                      int32_t e01, int32_t e12, int32_t e20,
                                       int32_t e13, int32_t e32, int32_t ar1, int32_t ar2, const int neg)
 {
 #define SG(x) (neg ? -(x) : (x))
@@ -480,8 +479,8 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
          * value < 0 rejects whatever the bias, so biases only for a triangle that may hold it */
         const int32_t g01 = SG(e01), g12 = SG(e12), g20 = SG(e20);
         if ((g01 | g12 | g20) >= 0) {
-            const int32_t f01 = g01 - QBIAS(SG(Y0 - Y1), SG(X1 - X0)), f20 = g20 - QBIAS(SG(Y2 - Y0), SG(X0 - X2));
-            const int32_t fD = g12 - QBIAS(SG(Y1 - Y2), SG(X2 - X1));
+            const int32_t f01 = g01 - QBIAS(SG(v0->y - v1->y), SG(v1->x - v0->x)), f20 = g20 - QBIAS(SG(v2->y - v0->y), SG(v0->x - v2->x));
+            const int32_t fD = g12 - QBIAS(SG(v1->y - v2->y), SG(v2->x - v1->x));
             if ((f01 | f20 | fD) >= 0) {
                 RS_FN(quad_shade)(bd, v0, v1, v2, SG(ar1), 0x8000u, (uint64_t)(f01 + 0x8000), 0,
                                   (uint64_t)(f20 + 0x8000), 0, crow0, zrow0, px0);
@@ -491,8 +490,8 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
         {
             const int32_t g13 = SG(e13), g32 = SG(e32);
             if ((g13 | g32 | -g12) >= 0) {
-                const int32_t f13 = g13 - QBIAS(SG(Y1 - Y3), SG(X3 - X1)), f32 = g32 - QBIAS(SG(Y3 - Y2), SG(X2 - X3));
-                const int32_t fT = -g12 - 1 + QBIAS(SG(Y1 - Y2), SG(X2 - X1));
+                const int32_t f13 = g13 - QBIAS(SG(v1->y - v3->y), SG(v3->x - v1->x)), f32 = g32 - QBIAS(SG(v3->y - v2->y), SG(v2->x - v3->x));
+                const int32_t fT = -g12 - 1 + QBIAS(SG(v1->y - v2->y), SG(v2->x - v1->x));
                 if ((f13 | f32 | fT) >= 0)
                     RS_FN(quad_shade)(bd, v2, v1, v3, SG(ar2), 0x8000u, (uint64_t)(fT + 0x8000), 0,
                                       (uint64_t)(f32 + 0x8000), 0, crow0, zrow0, px0);
@@ -501,9 +500,9 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
         }
     }
     {
-    const int32_t A01 = SG(Y0 - Y1), B01 = SG(X1 - X0), A12 = SG(Y1 - Y2), B12 = SG(X2 - X1);
-    const int32_t A20 = SG(Y2 - Y0), B20 = SG(X0 - X2), A13 = SG(Y1 - Y3), B13 = SG(X3 - X1);
-    const int32_t A32 = SG(Y3 - Y2), B32 = SG(X2 - X3);
+    const int32_t A01 = SG(v0->y - v1->y), B01 = SG(v1->x - v0->x), A12 = SG(v1->y - v2->y), B12 = SG(v2->x - v1->x);
+    const int32_t A20 = SG(v2->y - v0->y), B20 = SG(v0->x - v2->x), A13 = SG(v1->y - v3->y), B13 = SG(v3->x - v1->x);
+    const int32_t A32 = SG(v3->y - v2->y), B32 = SG(v2->x - v3->x);
     const int32_t b01 = QBIAS(A01, B01), b12 = QBIAS(A12, B12), b20 = QBIAS(A20, B20);
     const int32_t b13 = QBIAS(A13, B13), b32 = QBIAS(A32, B32);
     /* S = area2 - the three biases; T2's diagonal bias is 1 - b12 */
@@ -555,8 +554,8 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
 #undef QBIAS
 }
 
-/* Two consecutive strip triangles T1 = (v0, v1, v2) and T2 = (v2, v1, v3), neither needing
- * the clipper nor rejected by outcodes.  When the pair's joint bounding
+/* Two consecutive strip triangles T1 = (v0, v1, v2) and T2 = (v2, v1, v3) whose four
+ * vertices are all on screen (no outcode bits: no clipping, no column clamping).  When the pair's joint bounding
  * box has at most TINY x TINY candidate centres, both are drawn by the tiny path over
  * that joint box: one bounding box for two triangles.  The pixels are those of two
  * separate tri_body calls: a triangle inside the joint box is tiny on its own (its own
@@ -586,8 +585,10 @@ RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cve
     }
     py0 = lo < bd->y0 ? bd->y0 : lo;
     py1 = hi >= bd->y1 ? bd->y1 - 1 : hi;
-    px0 = xl < 0 ? 0 : xl;
-    px1 = xh >= bd->w ? bd->w - 1 : xh;
+    /* all four vertices on screen (no outcode bits): HALF <= x <= 16 w - HALF, so
+     * 0 <= xl and xh <= w - 1 without clamping */
+    px0 = xl;
+    px1 = xh;
     if (py0 > py1 || px0 > px1) return;
     {
         /* lanes 0 .. px1 - px0 of the candidate mask, rows py0 .. py1 */
@@ -603,10 +604,10 @@ RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cve
         const int32_t ar1 = e01 + e12 + e20, ar2 = e13 + e32 - e12;
         if (bd->cull && (ar1 | ar2) >= 0) return;    /* both culled or of zero area */
         if (ar1 < 0 && ar2 < 0)
-            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, crow0, zrow0, X0, Y0, X1, Y1, X2, Y2, X3, Y3,
+            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, crow0, zrow0,
                             e01, e12, e20, e13, e32, ar1, ar2, 1);
         else if (ar1 > 0 && ar2 > 0 && !bd->cull)
-            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, crow0, zrow0, X0, Y0, X1, Y1, X2, Y2, X3, Y3,
+            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, crow0, zrow0,
                             e01, e12, e20, e13, e32, ar1, ar2, 0);
         else if (bd->cull) {
             /* culled or zero area: area >= 0 draws nothing */
@@ -657,24 +658,19 @@ static void RS_FN(draw)(band *bd)
                     const rs_cvert *v2 = &cache[s[k]], *v3;
 #if !(RS_TEX || RS_COUNT)
                     v3 = &cache[s[k + 1]];
-                    {
-                        /* all four vertices on screen (the common case): no further outcode tests */
-                        int pair = 1;
-                        if (RS_UNLIKELY((v0->c | v1->c | v2->c | v3->c) & (SLOW | REJECT))) {
-                            const uint32_t c12 = v1->c & v2->c;
-                            if ((c12 & v0->c & REJECT) && (c12 & v3->c & REJECT)) {
-                                v0 = v2; v1 = v3;       /* both rejected by outcodes */
-                                continue;
-                            }
-                            /* clipped, or one of the two rejected: one at a time */
-                            pair = !(((v0->c | v1->c | v2->c | v3->c) & SLOW) | (c12 & v0->c & REJECT)
-                                     | (c12 & v3->c & REJECT));
-                        }
-                        if (pair) {
-                            RS_FN(tri_pair)(bd, v0, v1, v2, v3);
-                            v0 = v2; v1 = v3;
+                    if (RS_LIKELY(!((v0->c | v1->c | v2->c | v3->c) & (SLOW | REJECT)))) {
+                        /* all four vertices on screen (the common case): no further outcode
+                         * tests, no clamping to the screen's columns */
+                        RS_FN(tri_pair)(bd, v0, v1, v2, v3);
+                        v0 = v2; v1 = v3;
+                        continue;
+                    } else {
+                        const uint32_t c12 = v1->c & v2->c;
+                        if ((c12 & v0->c & REJECT) && (c12 & v3->c & REJECT)) {
+                            v0 = v2; v1 = v3;       /* both rejected by outcodes */
                             continue;
                         }
+                        /* clipped, partly off screen or one of the two rejected: one at a time */
                     }
 #endif
                     STRIP_TRI(v0, v1, v2, s[k - 2], s[k - 1]);
