@@ -468,9 +468,12 @@ RS_INLINE static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cv
  * calls (the two triangles cover disjoint centres: order does not matter). */
 RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                       const rs_cvert *v3, int32_t px0, int32_t ny, uint64_t xm, uint8_t *const crow0, RS_Z *const zrow0,
-                                      int32_t e01, int32_t e12, int32_t e20,
-                                      int32_t e13, int32_t e32, int32_t ar1, int32_t ar2, const int neg)
+                                      int32_t ox0, int32_t oy0, int32_t ar1, int32_t ar2, const int neg)
 {
+    const int32_t X0 = v0->x - ox0, Y0 = v0->y - oy0, X1 = v1->x - ox0, Y1 = v1->y - oy0;
+    const int32_t X2 = v2->x - ox0, Y2 = v2->y - oy0, X3 = v3->x - ox0, Y3 = v3->y - oy0;
+    const int32_t e01 = X0 * Y1 - Y0 * X1, e12 = X1 * Y2 - Y1 * X2, e20 = X2 * Y0 - Y2 * X0;
+    const int32_t e13 = X1 * Y3 - Y1 * X3, e32 = X3 * Y2 - Y3 * X2;
 #define SG(x) (neg ? -(x) : (x))
 #define QBIAS(A, B) ((int32_t)((uint32_t)((A) * 65536 + (B) - 1) >> 31))
     bd->tris += 2;
@@ -597,18 +600,14 @@ RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cve
         uint8_t *const crow0 = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
         RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)bd->w;
         const int32_t ox0 = px0 * SUBONE + HALF, oy0 = py0 * SUBONE + HALF;   /* the first candidate */
-        const int32_t X0 = v0->x - ox0, Y0 = v0->y - oy0, X1 = v1->x - ox0, Y1 = v1->y - oy0;
-        const int32_t X2 = v2->x - ox0, Y2 = v2->y - oy0, X3 = v3->x - ox0, Y3 = v3->y - oy0;
-        const int32_t e01 = X0 * Y1 - Y0 * X1, e12 = X1 * Y2 - Y1 * X2, e20 = X2 * Y0 - Y2 * X0;
-        const int32_t e13 = X1 * Y3 - Y1 * X3, e32 = X3 * Y2 - Y3 * X2;
-        const int32_t ar1 = e01 + e12 + e20, ar2 = e13 + e32 - e12;
+        /* doubled signed areas (T2 from its vertex v2, as tri_tiny) */
+        const int32_t ar1 = (v1->x - v0->x) * (v2->y - v0->y) - (v2->x - v0->x) * (v1->y - v0->y);
+        const int32_t ar2 = (v1->x - v2->x) * (v3->y - v2->y) - (v3->x - v2->x) * (v1->y - v2->y);
         if (bd->cull && (ar1 | ar2) >= 0) return;    /* both culled or of zero area */
         if (ar1 < 0 && ar2 < 0)
-            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, crow0, zrow0,
-                            e01, e12, e20, e13, e32, ar1, ar2, 1);
+            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, crow0, zrow0, ox0, oy0, ar1, ar2, 1);
         else if (ar1 > 0 && ar2 > 0 && !bd->cull)
-            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, crow0, zrow0,
-                            e01, e12, e20, e13, e32, ar1, ar2, 0);
+            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, crow0, zrow0, ox0, oy0, ar1, ar2, 0);
         else if (bd->cull) {
             /* culled or zero area: area >= 0 draws nothing */
             if (ar1 < 0) RS_FN(tri_pair_one)(bd, v0, v1, v2, px0, ny, xm, crow0, zrow0, ox0, oy0);
