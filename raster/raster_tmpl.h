@@ -424,13 +424,15 @@ RS_INLINE static void RS_FN(tri_pair_one)(band *bd, const rs_cvert *a, const rs_
  * Pixel values are exactly those of tri_tiny. */
 RS_INLINE static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                         int32_t area2, uint64_t M, uint64_t P0, uint64_t sy0,
-                                        uint64_t P2, uint64_t sy2, uint8_t *crow, RS_Z *zrow, int32_t px0)
+                                        uint64_t P2, uint64_t sy2, int32_t py0, int32_t px0)
 {
     const uint64_t hi = 0x8000800080008000u;
     const int64_t inv = ((int64_t)1 << 40) / area2, ad = a->d;
     const int64_t dzb = (int64_t)b->d - ad, dzc = (int64_t)c->d - ad;
     const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
     const size_t stride = bd->stride, zw = (size_t)bd->w;
+    uint8_t *crow = bd->color + (size_t)(py0 - bd->y0) * stride;
+    RS_Z *zrow = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw;
     for (;;) {
         uint64_t m = M & hi;
         M ^= m;
@@ -467,7 +469,7 @@ RS_INLINE static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cv
  * tri_tiny computes for the same triangle, so the pixels are those of two tri_tiny
  * calls (the two triangles cover disjoint centres: order does not matter). */
 RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
-                                      const rs_cvert *v3, int32_t px0, int32_t ny, uint64_t xm, uint8_t *const crow0, RS_Z *const zrow0,
+                                      const rs_cvert *v3, int32_t px0, int32_t ny, uint64_t xm, int32_t py0,
                                       int32_t ox0, int32_t oy0, int32_t ar1, int32_t ar2, const int neg)
 {
     const int32_t X0 = v0->x - ox0, Y0 = v0->y - oy0, X1 = v1->x - ox0, Y1 = v1->y - oy0;
@@ -486,7 +488,7 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
             const int32_t fD = g12 - QBIAS(SG(v1->y - v2->y), SG(v2->x - v1->x));
             if ((f01 | f20 | fD) >= 0) {
                 RS_FN(quad_shade)(bd, v0, v1, v2, SG(ar1), 0x8000u, (uint64_t)(f01 + 0x8000), 0,
-                                  (uint64_t)(f20 + 0x8000), 0, crow0, zrow0, px0);
+                                  (uint64_t)(f20 + 0x8000), 0, py0, px0);
                 return;     /* T2 cannot hold it: T2's diagonal value is -1 - fD */
             }
         }
@@ -497,7 +499,7 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
                 const int32_t fT = -g12 - 1 + QBIAS(SG(v1->y - v2->y), SG(v2->x - v1->x));
                 if ((f13 | f32 | fT) >= 0)
                     RS_FN(quad_shade)(bd, v2, v1, v3, SG(ar2), 0x8000u, (uint64_t)(fT + 0x8000), 0,
-                                      (uint64_t)(f32 + 0x8000), 0, crow0, zrow0, px0);
+                                      (uint64_t)(f32 + 0x8000), 0, py0, px0);
             }
             return;
         }
@@ -549,9 +551,9 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
     /* T1: base v0, weight of v1 from the edge v2-v0 (P20), of v2 from v0-v1 (P01);
      * T2: base v2, weight of v1 from the edge v3-v2 (P32), of v3 from the diagonal (~PD) */
     if (M1)
-        RS_FN(quad_shade)(bd, v0, v1, v2, SG(ar1), M1, P01, s01, P20, s20, crow0, zrow0, px0);
+        RS_FN(quad_shade)(bd, v0, v1, v2, SG(ar1), M1, P01, s01, P20, s20, py0, px0);
     if (M2)
-        RS_FN(quad_shade)(bd, v2, v1, v3, SG(ar2), M2, ~PD, s01 + s20, P32, (uint64_t)0 - s01 - s20 - s13, crow0, zrow0, px0);
+        RS_FN(quad_shade)(bd, v2, v1, v3, SG(ar2), M2, ~PD, s01 + s20, P32, (uint64_t)0 - s01 - s20 - s13, py0, px0);
     }
 #undef SG
 #undef QBIAS
@@ -597,24 +599,26 @@ RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cve
         /* lanes 0 .. px1 - px0 of the candidate mask, rows py0 .. py1 */
         const uint64_t xm = 0x8000800080008000u >> (64 - 16 * (px1 - px0 + 1));
         const int32_t ny = py1 - py0 + 1;
-        uint8_t *const crow0 = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
-        RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)bd->w;
         const int32_t ox0 = px0 * SUBONE + HALF, oy0 = py0 * SUBONE + HALF;   /* the first candidate */
         /* doubled signed areas (T2 from its vertex v2, as tri_tiny) */
         const int32_t ar1 = (v1->x - v0->x) * (v2->y - v0->y) - (v2->x - v0->x) * (v1->y - v0->y);
         const int32_t ar2 = (v1->x - v2->x) * (v3->y - v2->y) - (v3->x - v2->x) * (v1->y - v2->y);
         if (bd->cull && (ar1 | ar2) >= 0) return;    /* both culled or of zero area */
         if (ar1 < 0 && ar2 < 0)
-            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, crow0, zrow0, ox0, oy0, ar1, ar2, 1);
+            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, py0, ox0, oy0, ar1, ar2, 1);
         else if (ar1 > 0 && ar2 > 0 && !bd->cull)
-            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, crow0, zrow0, ox0, oy0, ar1, ar2, 0);
-        else if (bd->cull) {
+            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, py0, ox0, oy0, ar1, ar2, 0);
+        else {
+        uint8_t *const crow0 = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
+        RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)bd->w;
+        if (bd->cull) {
             /* culled or zero area: area >= 0 draws nothing */
             if (ar1 < 0) RS_FN(tri_pair_one)(bd, v0, v1, v2, px0, ny, xm, crow0, zrow0, ox0, oy0);
             else if (ar2 < 0) RS_FN(tri_pair_one)(bd, v2, v1, v3, px0, ny, xm, crow0, zrow0, ox0, oy0);
         } else {
             RS_FN(tri_pair_one)(bd, v0, v1, v2, px0, ny, xm, crow0, zrow0, ox0, oy0);
             RS_FN(tri_pair_one)(bd, v2, v1, v3, px0, ny, xm, crow0, zrow0, ox0, oy0);
+        }
         }
     }
 }
