@@ -470,8 +470,9 @@ RS_INLINE static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cv
  * calls (the two triangles cover disjoint centres: order does not matter). */
 RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                       const rs_cvert *v3, int32_t px0, int32_t ny, uint64_t xm, int32_t py0,
-                                      int32_t ox0, int32_t oy0, int32_t ar1, int32_t ar2, const int neg)
+                                      int32_t ar1, int32_t ar2, const int neg)
 {
+    const int32_t ox0 = px0 * SUBONE + HALF, oy0 = py0 * SUBONE + HALF;   /* the first candidate */
     const int32_t X0 = v0->x - ox0, Y0 = v0->y - oy0, X1 = v1->x - ox0, Y1 = v1->y - oy0;
     const int32_t X2 = v2->x - ox0, Y2 = v2->y - oy0, X3 = v3->x - ox0, Y3 = v3->y - oy0;
     const int32_t e01 = X0 * Y1 - Y0 * X1, e12 = X1 * Y2 - Y1 * X2, e20 = X2 * Y0 - Y2 * X0;
@@ -599,16 +600,16 @@ RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cve
         /* lanes 0 .. px1 - px0 of the candidate mask, rows py0 .. py1 */
         const uint64_t xm = 0x8000800080008000u >> (64 - 16 * (px1 - px0 + 1));
         const int32_t ny = py1 - py0 + 1;
-        const int32_t ox0 = px0 * SUBONE + HALF, oy0 = py0 * SUBONE + HALF;   /* the first candidate */
         /* doubled signed areas (T2 from its vertex v2, as tri_tiny) */
         const int32_t ar1 = (v1->x - v0->x) * (v2->y - v0->y) - (v2->x - v0->x) * (v1->y - v0->y);
         const int32_t ar2 = (v1->x - v2->x) * (v3->y - v2->y) - (v3->x - v2->x) * (v1->y - v2->y);
         if (bd->cull && (ar1 | ar2) >= 0) return;    /* both culled or of zero area */
         if (ar1 < 0 && ar2 < 0)
-            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, py0, ox0, oy0, ar1, ar2, 1);
+            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, py0, ar1, ar2, 1);
         else if (ar1 > 0 && ar2 > 0 && !bd->cull)
-            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, py0, ox0, oy0, ar1, ar2, 0);
+            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, py0, ar1, ar2, 0);
         else {
+        const int32_t ox0 = px0 * SUBONE + HALF, oy0 = py0 * SUBONE + HALF;   /* the first candidate */
         uint8_t *const crow0 = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
         RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)bd->w;
         if (bd->cull) {
