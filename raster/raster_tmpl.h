@@ -457,6 +457,25 @@ RS_INLINE static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cv
     }
 }
 
+/* The one covered centre (px0, py0) of a triangle of a strip quad whose box has one
+ * candidate: E0 / E2 its biased edge values opposite c / b; the values of quad_shade. */
+RS_INLINE static void RS_FN(quad_pixel)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                        int32_t area2, int64_t E0, int64_t E2, int32_t py0, int32_t px0)
+{
+    const int64_t inv = ((int64_t)1 << 40) / area2, ad = a->d;
+    const int64_t w1 = (E2 * inv) >> 24, w2 = (E0 * inv) >> 24;   /* Q16 */
+    const RS_Z zz = (RS_Z)((uint32_t)(ad + ((((int64_t)b->d - ad) * w1 + ((int64_t)c->d - ad) * w2) >> 16)) >> RS_ZSH);
+    const size_t row = (size_t)(py0 - bd->y0);
+    RS_Z *const zp = (RS_Z *)bd->depth + row * (size_t)bd->w + (size_t)px0;
+    bd->pixels++;
+    if (zz > *zp) {
+        const uint64_t col = (a->cp << 13) + RS_CBIAS + (b->cp - a->cp) * (uint64_t)(w1 >> 3)
+                             + (c->cp - a->cp) * (uint64_t)(w2 >> 3);
+        *zp = zz;
+        ((RS_PIX *)(void *)(bd->color + row * bd->stride))[px0] = RS_PACK(col);
+    }
+}
+
 /* A strip pair T1 = (v0, v1, v2), T2 = (v2, v1, v3) whose two triangles have the same
  * orientation (neg = 1: both front faces, area < 0 as computed) and a tiny joint box:
  * a quad split by the diagonal v1-v2.  Four outer edges and the diagonal: T2's diagonal
@@ -488,8 +507,7 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
             const int32_t f01 = g01 - QBIAS(SG(v0->y - v1->y), SG(v1->x - v0->x)), f20 = g20 - QBIAS(SG(v2->y - v0->y), SG(v0->x - v2->x));
             const int32_t fD = g12 - QBIAS(SG(v1->y - v2->y), SG(v2->x - v1->x));
             if ((f01 | f20 | fD) >= 0) {
-                RS_FN(quad_shade)(bd, v0, v1, v2, SG(ar1), 0x8000u, (uint64_t)(f01 + 0x8000), 0,
-                                  (uint64_t)(f20 + 0x8000), 0, py0, px0);
+                RS_FN(quad_pixel)(bd, v0, v1, v2, SG(ar1), f01, f20, py0, px0);
                 return;     /* T2 cannot hold it: T2's diagonal value is -1 - fD */
             }
         }
@@ -499,8 +517,7 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
                 const int32_t f13 = g13 - QBIAS(SG(v1->y - v3->y), SG(v3->x - v1->x)), f32 = g32 - QBIAS(SG(v3->y - v2->y), SG(v2->x - v3->x));
                 const int32_t fT = -g12 - 1 + QBIAS(SG(v1->y - v2->y), SG(v2->x - v1->x));
                 if ((f13 | f32 | fT) >= 0)
-                    RS_FN(quad_shade)(bd, v2, v1, v3, SG(ar2), 0x8000u, (uint64_t)(fT + 0x8000), 0,
-                                      (uint64_t)(f32 + 0x8000), 0, py0, px0);
+                    RS_FN(quad_pixel)(bd, v2, v1, v3, SG(ar2), fT, f32, py0, px0);
             }
             return;
         }
