@@ -675,17 +675,24 @@ static void RS_FN(draw)(band *bd)
                 } while (0)
                 /* two triangles per step (even, then odd with its first two swapped):
                  * chunks start at even t0 */
+#if !(RS_TEX || RS_COUNT)
+                uint32_t c01 = v0->c | v1->c;      /* carried: the previous step's c23 */
+#endif
                 for (k = t0 + 2; k + 1 < t1 + 2; k += 2) {
                     const rs_cvert *v2 = &cache[s[k]], *v3;
 #if !(RS_TEX || RS_COUNT)
+                    uint32_t c23;
                     v3 = &cache[s[k + 1]];
-                    if (RS_LIKELY(!((v0->c | v1->c | v2->c | v3->c) & (SLOW | REJECT)))) {
+                    c23 = v2->c | v3->c;
+                    if (RS_LIKELY(!((c01 | c23) & (SLOW | REJECT)))) {
                         /* all four vertices on screen (the common case): no further outcode
                          * tests, no clamping to the screen's columns */
                         RS_FN(tri_pair)(bd, v0, v1, v2, v3);
-                        v0 = v2; v1 = v3;
+                        v0 = v2; v1 = v3; c01 = c23;
                         continue;
-                    } else {
+                    }
+                    c01 = c23;
+                    {
                         const uint32_t c12 = v1->c & v2->c;
                         if ((c12 & v0->c & REJECT) && (c12 & v3->c & REJECT)) {
                             v0 = v2; v1 = v3;       /* both rejected by outcodes */
