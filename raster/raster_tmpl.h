@@ -523,71 +523,71 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
         }
     }
     {
-    const int32_t A01 = SG(v0->y - v1->y), B01 = SG(v1->x - v0->x), A12 = SG(v1->y - v2->y), B12 = SG(v2->x - v1->x);
-    const int32_t A20 = SG(v2->y - v0->y), B20 = SG(v0->x - v2->x), A13 = SG(v1->y - v3->y), B13 = SG(v3->x - v1->x);
-    const int32_t A32 = SG(v3->y - v2->y), B32 = SG(v2->x - v3->x);
-    const int32_t b01 = QBIAS(A01, B01), b12 = QBIAS(A12, B12), b20 = QBIAS(A20, B20);
-    const int32_t b13 = QBIAS(A13, B13), b32 = QBIAS(A32, B32);
-    /* S = area2 - the three biases; T2's diagonal bias is 1 - b12 */
-    const int32_t S1 = SG(ar1) - b01 - b12 - b20, S2 = SG(ar2) - 1 + b12 - b13 - b32;
-    const int32_t f01 = SG(e01) - b01, f20 = SG(e20) - b20, f13 = SG(e13) - b13;
-    const uint64_t ones = bd->ones, st = bd->steps16;
-    uint64_t P01, P20, P13, K1, K2, s01 = 0, s20 = 0, s13 = 0, PD, P32, M1, M2;
-    /* lanes as in tri_tiny: e + 2^15 of candidates px0 .. px0+3; PD = T1's diagonal,
-     * P32 = T2's third edge = S2 - (-1 - eD) - e13, i.e. K2 + PD - P13 with K2 = S2 + 0x8001 */
-    P01 = (uint64_t)(int64_t)(f01 + 0x8000) * ones + (uint64_t)(int64_t)A01 * st;
-    P20 = (uint64_t)(int64_t)(f20 + 0x8000) * ones + (uint64_t)(int64_t)A20 * st;
-    P13 = (uint64_t)(int64_t)(f13 + 0x8000) * ones + (uint64_t)(int64_t)A13 * st;
-    K1 = (uint64_t)(int64_t)(S1 + 3 * 0x8000) * ones;
-    K2 = (uint64_t)(int64_t)(S2 + 0x8001) * ones;
-    PD = K1 - P01 - P20;
-    P32 = K2 + PD - P13;
-    M1 = P01 & P20 & PD & xm;
-    M2 = P13 & P32 & ~PD & xm;
-    if (ny > 1) {
-        const uint64_t o16 = bd->ones16;
-        uint64_t q01, q20, q13, qD, q32;
-        s01 = (uint64_t)(int64_t)B01 * o16;
-        s20 = (uint64_t)(int64_t)B20 * o16;
-        s13 = (uint64_t)(int64_t)B13 * o16;
-        /* rows 1 .. ny-1 (ny <= TINY = 4), unrolled; row j's lanes at bit 15 - j */
+        const int32_t A01 = SG(v0->y - v1->y), B01 = SG(v1->x - v0->x), A12 = SG(v1->y - v2->y), B12 = SG(v2->x - v1->x);
+        const int32_t A20 = SG(v2->y - v0->y), B20 = SG(v0->x - v2->x), A13 = SG(v1->y - v3->y), B13 = SG(v3->x - v1->x);
+        const int32_t A32 = SG(v3->y - v2->y), B32 = SG(v2->x - v3->x);
+        const int32_t b01 = QBIAS(A01, B01), b12 = QBIAS(A12, B12), b20 = QBIAS(A20, B20);
+        const int32_t b13 = QBIAS(A13, B13), b32 = QBIAS(A32, B32);
+        /* S = area2 - the three biases; T2's diagonal bias is 1 - b12 */
+        const int32_t S1 = SG(ar1) - b01 - b12 - b20, S2 = SG(ar2) - 1 + b12 - b13 - b32;
+        const int32_t f01 = SG(e01) - b01, f20 = SG(e20) - b20, f13 = SG(e13) - b13;
+        const uint64_t ones = bd->ones, st = bd->steps16;
+        uint64_t P01, P20, P13, K1, K2, s01 = 0, s20 = 0, s13 = 0, PD, P32, M1, M2;
+        /* lanes as in tri_tiny: e + 2^15 of candidates px0 .. px0+3; PD = T1's diagonal,
+         * P32 = T2's third edge = S2 - (-1 - eD) - e13, i.e. K2 + PD - P13 with K2 = S2 + 0x8001 */
+        P01 = (uint64_t)(int64_t)(f01 + 0x8000) * ones + (uint64_t)(int64_t)A01 * st;
+        P20 = (uint64_t)(int64_t)(f20 + 0x8000) * ones + (uint64_t)(int64_t)A20 * st;
+        P13 = (uint64_t)(int64_t)(f13 + 0x8000) * ones + (uint64_t)(int64_t)A13 * st;
+        K1 = (uint64_t)(int64_t)(S1 + 3 * 0x8000) * ones;
+        K2 = (uint64_t)(int64_t)(S2 + 0x8001) * ones;
+        PD = K1 - P01 - P20;
+        P32 = K2 + PD - P13;
+        M1 = P01 & P20 & PD & xm;
+        M2 = P13 & P32 & ~PD & xm;
+        if (ny > 1) {
+            const uint64_t o16 = bd->ones16;
+            uint64_t q01, q20, q13, qD, q32;
+            s01 = (uint64_t)(int64_t)B01 * o16;
+            s20 = (uint64_t)(int64_t)B20 * o16;
+            s13 = (uint64_t)(int64_t)B13 * o16;
+            /* rows 1 .. ny-1 (ny <= TINY = 4), unrolled; row j's lanes at bit 15 - j */
 #define QROW(J) do {                                                                   \
-            q01 += s01; q20 += s20; q13 += s13;                                        \
-            qD = K1 - q01 - q20;                                                       \
-            q32 = K2 + qD - q13;                                                       \
-            M1 |= (q01 & q20 & qD & xm) >> (J);                                        \
-            M2 |= (q13 & q32 & ~qD & xm) >> (J);                                       \
-        } while (0)
-        q01 = P01; q20 = P20; q13 = P13;
-        QROW(1);
-        if (ny > 2) {
-            QROW(2);
-            if (ny > 3) QROW(3);
-        }
+                q01 += s01; q20 += s20; q13 += s13;                                    \
+                qD = K1 - q01 - q20;                                                   \
+                q32 = K2 + qD - q13;                                                   \
+                M1 |= (q01 & q20 & qD & xm) >> (J);                                    \
+                M2 |= (q13 & q32 & ~qD & xm) >> (J);                                   \
+            } while (0)
+            q01 = P01; q20 = P20; q13 = P13;
+            QROW(1);
+            if (ny > 2) {
+                QROW(2);
+                if (ny > 3) QROW(3);
+            }
 #undef QROW
-    }
-    /* T1: base v0, weight of v1 from the edge v2-v0 (P20), of v2 from v0-v1 (P01);
-     * T2: base v2, weight of v1 from the edge v3-v2 (P32), of v3 from the diagonal (~PD) */
-    if (M1)
-        RS_FN(quad_shade)(bd, v0, v1, v2, SG(ar1), M1, P01, s01, P20, s20, py0, px0);
-    if (M2)
-        RS_FN(quad_shade)(bd, v2, v1, v3, SG(ar2), M2, ~PD, s01 + s20, P32, (uint64_t)0 - s01 - s20 - s13, py0, px0);
+        }
+        /* T1: base v0, weight of v1 from the edge v2-v0 (P20), of v2 from v0-v1 (P01);
+         * T2: base v2, weight of v1 from the edge v3-v2 (P32), of v3 from the diagonal (~PD) */
+        if (M1)
+            RS_FN(quad_shade)(bd, v0, v1, v2, SG(ar1), M1, P01, s01, P20, s20, py0, px0);
+        if (M2)
+            RS_FN(quad_shade)(bd, v2, v1, v3, SG(ar2), M2, ~PD, s01 + s20, P32, (uint64_t)0 - s01 - s20 - s13, py0, px0);
     }
 #undef SG
 #undef QBIAS
 }
 
 /* Two consecutive strip triangles T1 = (v0, v1, v2) and T2 = (v2, v1, v3) whose four
- * vertices are all on screen (no outcode bits: no clipping, no column clamping).  When the pair's joint bounding
- * box has at most TINY x TINY candidate centres, both are drawn by the tiny path over
+ * vertices are all on screen (no outcode bits: no clipping, no column clamping).  When
+ * the pair's joint bounding box has at most TINY x TINY candidate centres, both are drawn by the tiny path over
  * that joint box: one bounding box for two triangles.  The pixels are those of two
  * separate tri_body calls: a triangle inside the joint box is tiny on its own (its own
  * box is a sub-box), the candidates of the joint box outside its own box fail its edge
  * tests (a centre with all e_k >= 0 lies in the closed triangle), the joint box's extent
  * is < 80 sub-pixels, the bound tri_tiny's lanes need, and T1 is drawn before T2.
- * Pairs whose triangles have the same orientation go through tri_quad (shared
- * diagonal); others through tri_tiny one at a time.
- * Otherwise each triangle goes through tri_raster. */
+ * Pairs whose triangles have the same orientation (the common case) go through
+ * tri_quad (shared diagonal); others through tri_tiny one at a time.  A larger joint
+ * box: each triangle through tri_raster. */
 RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                       const rs_cvert *v3)
 {
@@ -626,17 +626,18 @@ RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cve
         else if (ar1 > 0 && ar2 > 0 && !bd->cull)
             RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, py0, ar1, ar2, 0);
         else {
-        const int32_t ox0 = px0 * SUBONE + HALF, oy0 = py0 * SUBONE + HALF;   /* the first candidate */
-        uint8_t *const crow0 = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
-        RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)bd->w;
-        if (bd->cull) {
-            /* culled or zero area: area >= 0 draws nothing */
-            if (ar1 < 0) RS_FN(tri_pair_one)(bd, v0, v1, v2, px0, ny, xm, crow0, zrow0, ox0, oy0);
-            else if (ar2 < 0) RS_FN(tri_pair_one)(bd, v2, v1, v3, px0, ny, xm, crow0, zrow0, ox0, oy0);
-        } else {
-            RS_FN(tri_pair_one)(bd, v0, v1, v2, px0, ny, xm, crow0, zrow0, ox0, oy0);
-            RS_FN(tri_pair_one)(bd, v2, v1, v3, px0, ny, xm, crow0, zrow0, ox0, oy0);
-        }
+            /* mixed orientations or a zero area (rare): one triangle at a time */
+            const int32_t ox0 = px0 * SUBONE + HALF, oy0 = py0 * SUBONE + HALF;   /* the first candidate */
+            uint8_t *const crow0 = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
+            RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)bd->w;
+            if (bd->cull) {
+                /* culled or zero area: area >= 0 draws nothing */
+                if (ar1 < 0) RS_FN(tri_pair_one)(bd, v0, v1, v2, px0, ny, xm, crow0, zrow0, ox0, oy0);
+                else if (ar2 < 0) RS_FN(tri_pair_one)(bd, v2, v1, v3, px0, ny, xm, crow0, zrow0, ox0, oy0);
+            } else {
+                RS_FN(tri_pair_one)(bd, v0, v1, v2, px0, ny, xm, crow0, zrow0, ox0, oy0);
+                RS_FN(tri_pair_one)(bd, v2, v1, v3, px0, ny, xm, crow0, zrow0, ox0, oy0);
+            }
         }
     }
 }
