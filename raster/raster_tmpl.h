@@ -665,25 +665,27 @@ static void RS_FN(draw)(band *bd)
                 /* sliding window: one new vertex per triangle; triangle t = (s[t], s[t+1],
                  * s[t+2]), the first two swapped for odd t */
                 const rs_cvert *v0 = &cache[s[t0]], *v1 = &cache[s[t0 + 1]];
-                /* triangle k-2 = (P, Q, V), V the new vertex; outcodes read where tested
-                 * (fewer live registers); the clipper gets the same order (indices IP, IQ) */
-#define STRIP_TRI(P, Q, V, IP, IQ) do {                                                \
+                /* triangle = (P, Q, V), V the new vertex; outcodes read where tested
+                 * (fewer live registers); the clipper gets the same order (indices IP, IQ, IV) */
+#define STRIP_TRI(P, Q, V, IP, IQ, IV) do {                                            \
                     if (!((P)->c & (Q)->c & (V)->c & REJECT)) {                        \
                         if (RS_UNLIKELY(((P)->c | (Q)->c | (V)->c) & SLOW))            \
-                            tri_clip(bd, RS_FN(tri_raster), (IP), (IQ), s[k]);         \
+                            tri_clip(bd, RS_FN(tri_raster), (IP), (IQ), (IV));         \
                         else RS_STRIP_TRI(bd, (P), (Q), (V));                          \
                     }                                                                  \
                 } while (0)
                 /* two triangles per step (even, then odd with its first two swapped):
-                 * chunks start at even t0 */
+                 * chunks start at even t0; sp points at the step's two new indices */
+                const uint32_t *sp = s + t0 + 2;
+                const uint32_t *const se = s + t1 + 1;     /* steps while sp < se */
 #if !(RS_TEX || RS_COUNT)
                 uint32_t c01 = v0->c | v1->c;      /* carried: the previous step's c23 */
 #endif
-                for (k = t0 + 2; k + 1 < t1 + 2; k += 2) {
-                    const rs_cvert *v2 = &cache[s[k]], *v3;
+                for (; sp < se; sp += 2) {
+                    const rs_cvert *v2 = &cache[sp[0]], *v3;
 #if !(RS_TEX || RS_COUNT)
                     uint32_t c23;
-                    v3 = &cache[s[k + 1]];
+                    v3 = &cache[sp[1]];
                     c23 = v2->c | v3->c;
                     if (RS_LIKELY(!((c01 | c23) & (SLOW | REJECT)))) {
                         /* all four vertices on screen (the common case): no further outcode
@@ -702,16 +704,14 @@ static void RS_FN(draw)(band *bd)
                         /* clipped, partly off screen or one of the two rejected: one at a time */
                     }
 #endif
-                    STRIP_TRI(v0, v1, v2, s[k - 2], s[k - 1]);
-                    v3 = &cache[s[k + 1]];
-                    k++;
-                    STRIP_TRI(v2, v1, v3, s[k - 1], s[k - 2]);
-                    k--;
+                    STRIP_TRI(v0, v1, v2, sp[-2], sp[-1], sp[0]);
+                    v3 = &cache[sp[1]];
+                    STRIP_TRI(v2, v1, v3, sp[0], sp[-1], sp[1]);
                     v0 = v2; v1 = v3;
                 }
-                if (k < t1 + 2) {
-                    const rs_cvert *v2 = &cache[s[k]];
-                    STRIP_TRI(v0, v1, v2, s[k - 2], s[k - 1]);
+                if (sp < s + t1 + 2) {
+                    const rs_cvert *v2 = &cache[sp[0]];
+                    STRIP_TRI(v0, v1, v2, sp[-2], sp[-1], sp[0]);
                 }
 #undef STRIP_TRI
             } else {
