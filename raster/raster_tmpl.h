@@ -417,15 +417,177 @@ RS_INLINE static void RS_FN(tri_pair_one)(band *bd, const rs_cvert *a, const rs_
     }
 }
 
-/* Two consecutive strip triangles T1 = (v0, v1, v2) and T2 = (v2, v1, v3), neither needing
- * the clipper nor rejected by outcodes.  When the pair's joint bounding
- * box has at most TINY x TINY candidate centres, both are drawn by the tiny path over
+/* The covered centres of one triangle of a strip quad (see tri_quad): a, b, c as in
+ * tri_tiny's attribute formulas (a the base vertex), area2 > 0 its area, M its coverage
+ * with row j's lanes at bit 15 - j of each 16-bit lane, P0 / P2 the packed biased edge
+ * values (e + 2^15) of the edges opposite c / b on row 0, sy0 / sy2 their row steps.
+ * Pixel values are exactly those of tri_tiny. */
+RS_INLINE static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                        int32_t area2, uint64_t M, uint64_t P0, uint64_t sy0,
+                                        uint64_t P2, uint64_t sy2, int32_t py0, int32_t px0)
+{
+    const uint64_t hi = 0x8000800080008000u;
+    const int64_t inv = ((int64_t)1 << 40) / area2, ad = a->d;
+    const int64_t dzb = (int64_t)b->d - ad, dzc = (int64_t)c->d - ad;
+    const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
+    const size_t stride = bd->stride, zw = (size_t)bd->w;
+    uint8_t *crow = bd->color + (size_t)(py0 - bd->y0) * stride;
+    RS_Z *zrow = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw;
+    for (;;) {
+        uint64_t m = M & hi;
+        M ^= m;
+        while (m) {
+            /* lane of the lowest set top bit: shift 16 * lane */
+            int32_t sh = ctz64(m) - 15, i = px0 + (sh >> 4);
+            int64_t w1 = (((int64_t)(uint16_t)(P2 >> sh) - 0x8000) * inv) >> 24;   /* Q16 */
+            int64_t w2 = (((int64_t)(uint16_t)(P0 >> sh) - 0x8000) * inv) >> 24;
+            RS_Z zz = (RS_Z)((uint32_t)(ad + ((dzb * w1 + dzc * w2) >> 16)) >> RS_ZSH);
+            m &= m - 1;
+            bd->pixels++;
+            if (zz > zrow[i]) {
+                uint64_t col = ca + db * (uint64_t)(w1 >> 3) + dc * (uint64_t)(w2 >> 3);
+                zrow[i] = zz;
+                ((RS_PIX *)(void *)crow)[i] = RS_PACK(col);
+            }
+        }
+        if (!M) return;
+        M <<= 1;
+        P0 += sy0; P2 += sy2;
+        crow += stride; zrow += zw;
+    }
+}
+
+/* The one covered centre (px0, py0) of a triangle of a strip quad whose box has one
+ * candidate: E0 / E2 its biased edge values opposite c / b; the values of quad_shade. */
+RS_INLINE static void RS_FN(quad_pixel)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                        int32_t area2, int64_t E0, int64_t E2, int32_t py0, int32_t px0)
+{
+    const int64_t inv = ((int64_t)1 << 40) / area2, ad = a->d;
+    const int64_t w1 = (E2 * inv) >> 24, w2 = (E0 * inv) >> 24;   /* Q16 */
+    const RS_Z zz = (RS_Z)((uint32_t)(ad + ((((int64_t)b->d - ad) * w1 + ((int64_t)c->d - ad) * w2) >> 16)) >> RS_ZSH);
+    const size_t row = (size_t)(py0 - bd->y0);
+    RS_Z *const zp = (RS_Z *)bd->depth + row * (size_t)bd->w + (size_t)px0;
+    bd->pixels++;
+    if (zz > *zp) {
+        const uint64_t col = (a->cp << 13) + RS_CBIAS + (b->cp - a->cp) * (uint64_t)(w1 >> 3)
+                             + (c->cp - a->cp) * (uint64_t)(w2 >> 3);
+        *zp = zz;
+        ((RS_PIX *)(void *)(bd->color + row * bd->stride))[px0] = RS_PACK(col);
+    }
+}
+
+/* A strip pair T1 = (v0, v1, v2), T2 = (v2, v1, v3) whose two triangles have the same
+ * orientation (neg = 1: both front faces, area < 0 as computed) and a tiny joint box:
+ * a quad split by the diagonal v1-v2.  Four outer edges and the diagonal: T2's diagonal
+ * edge function is the exact negation of T1's and its top-left bias the complement
+ * (b21 = 1 - b12; v1 != v2 since both areas are non-zero), so T2's biased diagonal value
+ * is -1 - T1's, the bitwise complement of T1's packed lanes.  (X_k, Y_k) = v_k relative
+ * to the first candidate centre; e_PQ = X_P Y_Q - Y_P X_Q is the edge function P->Q
+ * there (the same line function tri_tiny evaluates from its vertex a).  Edges are
+ * oriented so that the inside is positive (reversed when neg).  Every value is the one
+ * tri_tiny computes for the same triangle, so the pixels are those of two tri_tiny
+ * calls (the two triangles cover disjoint centres: order does not matter). */
+RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
+                                      const rs_cvert *v3, int32_t px0, int32_t ny, uint64_t xm, int32_t py0,
+                                      int32_t ar1, int32_t ar2, const int neg)
+{
+    const int32_t ox0 = px0 * SUBONE + HALF, oy0 = py0 * SUBONE + HALF;   /* the first candidate */
+    const int32_t X0 = v0->x - ox0, Y0 = v0->y - oy0, X1 = v1->x - ox0, Y1 = v1->y - oy0;
+    const int32_t X2 = v2->x - ox0, Y2 = v2->y - oy0, X3 = v3->x - ox0, Y3 = v3->y - oy0;
+    const int32_t e01 = X0 * Y1 - Y0 * X1, e12 = X1 * Y2 - Y1 * X2, e20 = X2 * Y0 - Y2 * X0;
+    const int32_t e13 = X1 * Y3 - Y1 * X3, e32 = X3 * Y2 - Y3 * X2;
+#define SG(x) (neg ? -(x) : (x))
+#define QBIAS(A, B) ((int32_t)((uint32_t)((A) * 65536 + (B) - 1) >> 31))
+    bd->tris += 2;
+    if (xm == 0x8000u && ny == 1) {
+        /* one candidate, at the origin: its edge values are the e_PQ themselves; an edge
+         * value < 0 rejects whatever the bias, so biases only for a triangle that may hold it */
+        const int32_t g01 = SG(e01), g12 = SG(e12), g20 = SG(e20);
+        if ((g01 | g12 | g20) >= 0) {
+            const int32_t f01 = g01 - QBIAS(SG(v0->y - v1->y), SG(v1->x - v0->x)), f20 = g20 - QBIAS(SG(v2->y - v0->y), SG(v0->x - v2->x));
+            const int32_t fD = g12 - QBIAS(SG(v1->y - v2->y), SG(v2->x - v1->x));
+            if ((f01 | f20 | fD) >= 0) {
+                RS_FN(quad_pixel)(bd, v0, v1, v2, SG(ar1), f01, f20, py0, px0);
+                return;     /* T2 cannot hold it: T2's diagonal value is -1 - fD */
+            }
+        }
+        {
+            const int32_t g13 = SG(e13), g32 = SG(e32);
+            if ((g13 | g32 | -g12) >= 0) {
+                const int32_t f13 = g13 - QBIAS(SG(v1->y - v3->y), SG(v3->x - v1->x)), f32 = g32 - QBIAS(SG(v3->y - v2->y), SG(v2->x - v3->x));
+                const int32_t fT = -g12 - 1 + QBIAS(SG(v1->y - v2->y), SG(v2->x - v1->x));
+                if ((f13 | f32 | fT) >= 0)
+                    RS_FN(quad_pixel)(bd, v2, v1, v3, SG(ar2), fT, f32, py0, px0);
+            }
+            return;
+        }
+    }
+    {
+        const int32_t A01 = SG(v0->y - v1->y), B01 = SG(v1->x - v0->x), A12 = SG(v1->y - v2->y), B12 = SG(v2->x - v1->x);
+        const int32_t A20 = SG(v2->y - v0->y), B20 = SG(v0->x - v2->x), A13 = SG(v1->y - v3->y), B13 = SG(v3->x - v1->x);
+        const int32_t A32 = SG(v3->y - v2->y), B32 = SG(v2->x - v3->x);
+        const int32_t b01 = QBIAS(A01, B01), b12 = QBIAS(A12, B12), b20 = QBIAS(A20, B20);
+        const int32_t b13 = QBIAS(A13, B13), b32 = QBIAS(A32, B32);
+        /* S = area2 - the three biases; T2's diagonal bias is 1 - b12 */
+        const int32_t S1 = SG(ar1) - b01 - b12 - b20, S2 = SG(ar2) - 1 + b12 - b13 - b32;
+        const int32_t f01 = SG(e01) - b01, f20 = SG(e20) - b20, f13 = SG(e13) - b13;
+        const uint64_t ones = bd->ones, st = bd->steps16;
+        uint64_t P01, P20, P13, K1, K2, s01 = 0, s20 = 0, s13 = 0, PD, P32, M1, M2;
+        /* lanes as in tri_tiny: e + 2^15 of candidates px0 .. px0+3; PD = T1's diagonal,
+         * P32 = T2's third edge = S2 - (-1 - eD) - e13, i.e. K2 + PD - P13 with K2 = S2 + 0x8001 */
+        P01 = (uint64_t)(int64_t)(f01 + 0x8000) * ones + (uint64_t)(int64_t)A01 * st;
+        P20 = (uint64_t)(int64_t)(f20 + 0x8000) * ones + (uint64_t)(int64_t)A20 * st;
+        P13 = (uint64_t)(int64_t)(f13 + 0x8000) * ones + (uint64_t)(int64_t)A13 * st;
+        K1 = (uint64_t)(int64_t)(S1 + 3 * 0x8000) * ones;
+        K2 = (uint64_t)(int64_t)(S2 + 0x8001) * ones;
+        PD = K1 - P01 - P20;
+        P32 = K2 + PD - P13;
+        M1 = P01 & P20 & PD & xm;
+        M2 = P13 & P32 & ~PD & xm;
+        if (ny > 1) {
+            const uint64_t o16 = bd->ones16;
+            uint64_t q01, q20, q13, qD, q32;
+            s01 = (uint64_t)(int64_t)B01 * o16;
+            s20 = (uint64_t)(int64_t)B20 * o16;
+            s13 = (uint64_t)(int64_t)B13 * o16;
+            /* rows 1 .. ny-1 (ny <= TINY = 4), unrolled; row j's lanes at bit 15 - j */
+#define QROW(J) do {                                                                   \
+                q01 += s01; q20 += s20; q13 += s13;                                    \
+                qD = K1 - q01 - q20;                                                   \
+                q32 = K2 + qD - q13;                                                   \
+                M1 |= (q01 & q20 & qD & xm) >> (J);                                    \
+                M2 |= (q13 & q32 & ~qD & xm) >> (J);                                   \
+            } while (0)
+            q01 = P01; q20 = P20; q13 = P13;
+            QROW(1);
+            if (ny > 2) {
+                QROW(2);
+                if (ny > 3) QROW(3);
+            }
+#undef QROW
+        }
+        /* T1: base v0, weight of v1 from the edge v2-v0 (P20), of v2 from v0-v1 (P01);
+         * T2: base v2, weight of v1 from the edge v3-v2 (P32), of v3 from the diagonal (~PD) */
+        if (M1)
+            RS_FN(quad_shade)(bd, v0, v1, v2, SG(ar1), M1, P01, s01, P20, s20, py0, px0);
+        if (M2)
+            RS_FN(quad_shade)(bd, v2, v1, v3, SG(ar2), M2, ~PD, s01 + s20, P32, (uint64_t)0 - s01 - s20 - s13, py0, px0);
+    }
+#undef SG
+#undef QBIAS
+}
+
+/* Two consecutive strip triangles T1 = (v0, v1, v2) and T2 = (v2, v1, v3) whose four
+ * vertices are all on screen (no outcode bits: no clipping, no column clamping).  When
+ * the pair's joint bounding box has at most TINY x TINY candidate centres, both are drawn by the tiny path over
  * that joint box: one bounding box for two triangles.  The pixels are those of two
  * separate tri_body calls: a triangle inside the joint box is tiny on its own (its own
  * box is a sub-box), the candidates of the joint box outside its own box fail its edge
  * tests (a centre with all e_k >= 0 lies in the closed triangle), the joint box's extent
  * is < 80 sub-pixels, the bound tri_tiny's lanes need, and T1 is drawn before T2.
- * Otherwise each triangle goes through tri_raster. */
+ * Pairs whose triangles have the same orientation (the common case) go through
+ * tri_quad (shared diagonal); others through tri_tiny one at a time.  A larger joint
+ * box: each triangle through tri_raster. */
 RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                       const rs_cvert *v3)
 {
@@ -446,18 +608,37 @@ RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cve
     }
     py0 = lo < bd->y0 ? bd->y0 : lo;
     py1 = hi >= bd->y1 ? bd->y1 - 1 : hi;
-    px0 = xl < 0 ? 0 : xl;
-    px1 = xh >= bd->w ? bd->w - 1 : xh;
+    /* all four vertices on screen (no outcode bits): HALF <= x <= 16 w - HALF, so
+     * 0 <= xl and xh <= w - 1 without clamping */
+    px0 = xl;
+    px1 = xh;
     if (py0 > py1 || px0 > px1) return;
     {
         /* lanes 0 .. px1 - px0 of the candidate mask, rows py0 .. py1 */
         const uint64_t xm = 0x8000800080008000u >> (64 - 16 * (px1 - px0 + 1));
         const int32_t ny = py1 - py0 + 1;
-        uint8_t *const crow0 = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
-        RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)bd->w;
-        const int32_t ox0 = px0 * SUBONE + HALF, oy0 = py0 * SUBONE + HALF;   /* the first candidate */
-        RS_FN(tri_pair_one)(bd, v0, v1, v2, px0, ny, xm, crow0, zrow0, ox0, oy0);
-        RS_FN(tri_pair_one)(bd, v2, v1, v3, px0, ny, xm, crow0, zrow0, ox0, oy0);
+        /* doubled signed areas (T2 from its vertex v2, as tri_tiny) */
+        const int32_t ar1 = (v1->x - v0->x) * (v2->y - v0->y) - (v2->x - v0->x) * (v1->y - v0->y);
+        const int32_t ar2 = (v1->x - v2->x) * (v3->y - v2->y) - (v3->x - v2->x) * (v1->y - v2->y);
+        if (bd->cull && (ar1 | ar2) >= 0) return;    /* both culled or of zero area */
+        if (ar1 < 0 && ar2 < 0)
+            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, py0, ar1, ar2, 1);
+        else if (ar1 > 0 && ar2 > 0 && !bd->cull)
+            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, py0, ar1, ar2, 0);
+        else {
+            /* mixed orientations or a zero area (rare): one triangle at a time */
+            const int32_t ox0 = px0 * SUBONE + HALF, oy0 = py0 * SUBONE + HALF;   /* the first candidate */
+            uint8_t *const crow0 = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
+            RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)bd->w;
+            if (bd->cull) {
+                /* culled or zero area: area >= 0 draws nothing */
+                if (ar1 < 0) RS_FN(tri_pair_one)(bd, v0, v1, v2, px0, ny, xm, crow0, zrow0, ox0, oy0);
+                else if (ar2 < 0) RS_FN(tri_pair_one)(bd, v2, v1, v3, px0, ny, xm, crow0, zrow0, ox0, oy0);
+            } else {
+                RS_FN(tri_pair_one)(bd, v0, v1, v2, px0, ny, xm, crow0, zrow0, ox0, oy0);
+                RS_FN(tri_pair_one)(bd, v2, v1, v3, px0, ny, xm, crow0, zrow0, ox0, oy0);
+            }
+        }
     }
 }
 #endif
@@ -484,51 +665,53 @@ static void RS_FN(draw)(band *bd)
                 /* sliding window: one new vertex per triangle; triangle t = (s[t], s[t+1],
                  * s[t+2]), the first two swapped for odd t */
                 const rs_cvert *v0 = &cache[s[t0]], *v1 = &cache[s[t0 + 1]];
-                /* triangle k-2 = (P, Q, V), V the new vertex; outcodes read where tested
-                 * (fewer live registers); the clipper gets the same order (indices IP, IQ) */
-#define STRIP_TRI(P, Q, V, IP, IQ) do {                                                \
+                /* triangle = (P, Q, V), V the new vertex; outcodes read where tested
+                 * (fewer live registers); the clipper gets the same order (indices IP, IQ, IV) */
+#define STRIP_TRI(P, Q, V, IP, IQ, IV) do {                                            \
                     if (!((P)->c & (Q)->c & (V)->c & REJECT)) {                        \
                         if (RS_UNLIKELY(((P)->c | (Q)->c | (V)->c) & SLOW))            \
-                            tri_clip(bd, RS_FN(tri_raster), (IP), (IQ), s[k]);         \
+                            tri_clip(bd, RS_FN(tri_raster), (IP), (IQ), (IV));         \
                         else RS_STRIP_TRI(bd, (P), (Q), (V));                          \
                     }                                                                  \
                 } while (0)
                 /* two triangles per step (even, then odd with its first two swapped):
-                 * chunks start at even t0 */
-                for (k = t0 + 2; k + 1 < t1 + 2; k += 2) {
-                    const rs_cvert *v2 = &cache[s[k]], *v3;
+                 * chunks start at even t0; sp points at the step's two new indices */
+                const uint32_t *sp = s + t0 + 2;
+                const uint32_t *const se = s + t1 + 1;     /* steps while sp < se */
 #if !(RS_TEX || RS_COUNT)
-                    v3 = &cache[s[k + 1]];
+                uint32_t c01 = v0->c | v1->c;      /* carried: the previous step's c23 */
+#endif
+                for (; sp < se; sp += 2) {
+                    const rs_cvert *v2 = &cache[sp[0]], *v3;
+#if !(RS_TEX || RS_COUNT)
+                    uint32_t c23;
+                    v3 = &cache[sp[1]];
+                    c23 = v2->c | v3->c;
+                    if (RS_LIKELY(!((c01 | c23) & (SLOW | REJECT)))) {
+                        /* all four vertices on screen (the common case): no further outcode
+                         * tests, no clamping to the screen's columns */
+                        RS_FN(tri_pair)(bd, v0, v1, v2, v3);
+                        v0 = v2; v1 = v3; c01 = c23;
+                        continue;
+                    }
+                    c01 = c23;
                     {
-                        /* all four vertices on screen (the common case): no further outcode tests */
-                        int pair = 1;
-                        if (RS_UNLIKELY((v0->c | v1->c | v2->c | v3->c) & (SLOW | REJECT))) {
-                            const uint32_t c12 = v1->c & v2->c;
-                            if ((c12 & v0->c & REJECT) && (c12 & v3->c & REJECT)) {
-                                v0 = v2; v1 = v3;       /* both rejected by outcodes */
-                                continue;
-                            }
-                            /* clipped, or one of the two rejected: one at a time */
-                            pair = !(((v0->c | v1->c | v2->c | v3->c) & SLOW) | (c12 & v0->c & REJECT)
-                                     | (c12 & v3->c & REJECT));
-                        }
-                        if (pair) {
-                            RS_FN(tri_pair)(bd, v0, v1, v2, v3);
-                            v0 = v2; v1 = v3;
+                        const uint32_t c12 = v1->c & v2->c;
+                        if ((c12 & v0->c & REJECT) && (c12 & v3->c & REJECT)) {
+                            v0 = v2; v1 = v3;       /* both rejected by outcodes */
                             continue;
                         }
+                        /* clipped, partly off screen or one of the two rejected: one at a time */
                     }
 #endif
-                    STRIP_TRI(v0, v1, v2, s[k - 2], s[k - 1]);
-                    v3 = &cache[s[k + 1]];
-                    k++;
-                    STRIP_TRI(v2, v1, v3, s[k - 1], s[k - 2]);
-                    k--;
+                    STRIP_TRI(v0, v1, v2, sp[-2], sp[-1], sp[0]);
+                    v3 = &cache[sp[1]];
+                    STRIP_TRI(v2, v1, v3, sp[0], sp[-1], sp[1]);
                     v0 = v2; v1 = v3;
                 }
-                if (k < t1 + 2) {
-                    const rs_cvert *v2 = &cache[s[k]];
-                    STRIP_TRI(v0, v1, v2, s[k - 2], s[k - 1]);
+                if (sp < s + t1 + 2) {
+                    const rs_cvert *v2 = &cache[sp[0]];
+                    STRIP_TRI(v0, v1, v2, sp[-2], sp[-1], sp[0]);
                 }
 #undef STRIP_TRI
             } else {
