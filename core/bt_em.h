@@ -1,0 +1,58 @@
+/* core/bt_em.h — the extraction state shared by the bitree's selection
+ * (core/bt_mesh.c) and its strip writer (core/bt_emit.c); internal, not part of
+ * the public contract (bitree.h). */
+#ifndef BR_BT_EM_H
+#define BR_BT_EM_H
+#include <stdint.h>
+#include "core/bitree.h"
+#include "core/bt_int.h"
+
+typedef struct heap_ent { int64_t key; uint32_t id; uint32_t pad_; } heap_ent;
+
+typedef struct em {
+    bt_tree *t;
+    const bt_params *p;
+    bt_mesh *m;
+    int count_only;
+    uint64_t count;
+    int32_t S, n;
+    uint16_t cthr;          /* fidelity: split iff code > cthr */
+    /* view */
+    cam_plane pl[CAM_NPLANES];
+    int64_t fq8;            /* f in Q8 pixels (f_q16 >> 8) */
+    int64_t tau;            /* q8 pixels */
+    int64_t tau_lo;         /* with hysteresis */
+    int64_t morph_span;     /* q8 pixels: tau * morph/256 */
+    int full;               /* mesh full: stop emitting */
+    int rec_splits;         /* record this frame's splits (view mode, hysteresis) */
+    int lost;               /* the split list overflowed */
+    int nonvoid;            /* the padded grid has no void sample: skip the checks */
+    int64_t wz_lo[256], wz_hi[256]; /* world z of the quantised height codes (floor, ceil) */
+    struct pend_s { uint32_t ia, ic, ib, o0, o1, other; } pend; /* see pend */
+    int has_pend;
+    uint32_t plan[BTS_PLAN]; int nplan; /* a bridge's way on to the next leaf */
+    uint32_t lim_nv, lim_ns;  /* room for two more leaves: vertices, strip indices */
+    int fid;                /* plain fidelity rule (no budget marks) */
+    int direct;             /* vertex hash slots by grid key (see home) */
+    uint32_t hbase;         /* vertex hash generation (see reset_mesh) */
+    uint32_t nbreak;        /* breaks of the walk bridged (the reorder pass runs if > 0) */
+} em;
+
+/* A leaf waiting to be written: its vertex indices, exit edge {o0, o1} and the
+ * third vertex */
+typedef struct pend_s pend;
+
+/* The mesh's tail area: the budget heap, then the split id list (bt_mesh_init);
+ * the reorder pass borrows the heap's part as scratch. */
+static inline heap_ent *heap_of(const bt_mesh *m) { return (heap_ent *)(void *)m->splits; }
+static inline uint32_t heap_cap(const bt_mesh *m) { return 4 * m->max_tri + 8; }
+static inline uint32_t *ids_of(const bt_mesh *m) { return (uint32_t *)(void *)(heap_of(m) + heap_cap(m)); }
+
+/* core/bt_emit.c: writes leaf L (N: the next leaf, or NULL), 1 when N was
+ * written too; writes the pending leaf; rewrites a fidelity strip with breaks
+ * in a greedy leaf order when that is shorter. */
+int btw_write_leaf(em *e, const pend *L, const pend *N);
+void btw_flush(em *e);
+void btw_reorder(em *e);
+
+#endif
