@@ -176,7 +176,15 @@ typedef struct bt_params {
                               (at threshold * (1 + morph/256)); 0 = no geomorph */
     uint32_t budget;       /* BT_BUDGET: at most this many triangles */
     int32_t no_cull;       /* 1: no frustum culling */
+    int32_t strip_order;   /* where voids or culling break the recursive walk, the strip can
+                              be written again in a greedy leaf order (fewer references, the
+                              same triangles; about 4-5x the extraction's time where it runs):
+                              BT_ORDER_AUTO (0) in fidelity mode only (export), not in view and
+                              budget modes (per frame); BT_ORDER_WALK never; BT_ORDER_BEST in
+                              every mode */
 } bt_params;
+
+enum { BT_ORDER_AUTO = 0, BT_ORDER_WALK = 1, BT_ORDER_BEST = 2 };
 
 /* Counts the triangles the selection p would produce (fidelity and view modes,
  * the latter without hysteresis; for BT_BUDGET returns the budget), e.g. to size
@@ -191,9 +199,9 @@ br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri);
 br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m);
 
 /* Budget mode scratch: bt_extract with BT_BUDGET (or a fallback) needs a heap;
- * it is carved from m (bt_mesh_mem_size includes it).  In BT_FIDELITY mode, when
- * voids broke the recursive walk, the strip is written again in a greedy leaf
- * order (fewer references; same triangles, same winding) using the same area
+ * it is carved from m (bt_mesh_mem_size includes it).  When the recursive walk
+ * broke and p->strip_order asks for it, the strip is written again in a greedy
+ * leaf order (fewer references; same triangles, same winding) using the same area
  * as scratch (36 bytes per triangle + 4 per vertex, within the 64 per triangle
  * of capacity already counted). */
 

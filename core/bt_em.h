@@ -36,6 +36,7 @@ typedef struct em {
     int direct;             /* vertex hash slots by grid key (see home) */
     uint32_t hbase;         /* vertex hash generation (see reset_mesh) */
     uint32_t nbreak;        /* breaks of the walk bridged (the reorder pass runs if > 0) */
+    int reorder;            /* p->strip_order asks for the reorder pass in this mode */
 } em;
 
 /* A leaf waiting to be written: its vertex indices, exit edge {o0, o1} and the

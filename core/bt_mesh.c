@@ -34,8 +34,9 @@
  * core/bt_emit.c.
  * Where the walk breaks (after a void or a culled subtree) core/bt_strip.c
  * bridges to the next leaf by the shortest run of line triangles; in fidelity
- * mode a strip with breaks is then written again in a greedy leaf order over
- * the edge adjacency (btw_reorder), which needs fewer references.  Winding: the
+ * mode (or when p->strip_order asks) a strip with breaks is then written again
+ * in a greedy leaf order over the edge adjacency (btw_reorder), which needs
+ * fewer references.  Winding: the
  * first triangle is written counter-clockwise seen from +z (x east, y north); the GL parity rule
  * keeps every later edge-adjacent triangle the same. */
 #include <string.h>
@@ -549,6 +550,8 @@ static br_status setup(em *e, bt_tree *t, const bt_params *p)
     e->t = t; e->p = p; e->n = t->n; e->S = t->n - 1;
     e->nonvoid = t->nvalid == (int64_t)t->n * t->n;
     e->fid = p->mode == BT_FIDELITY;
+    if (p->strip_order < BT_ORDER_AUTO || p->strip_order > BT_ORDER_BEST) return BR_E_ARG;
+    e->reorder = p->strip_order == BT_ORDER_BEST || (p->strip_order == BT_ORDER_AUTO && p->mode == BT_FIDELITY);
     if (p->mode == BT_FIDELITY) {
         int64_t thr = p->max_err;
         uint16_t lo = 0, hi = BT_CODE_SPLIT - 1;
@@ -666,7 +669,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
                         t->st[ids[i]] = (uint8_t)((t->st[ids[i]] & ~ST_CUR) | ST_PREV);
                 }
             }
-            if (e.nbreak > 0 && p->mode == BT_FIDELITY) btw_reorder(&e);
+            if (e.nbreak > 0 && e.reorder) btw_reorder(&e);
             return e.full ? BR_E_NOMEM : BR_OK;
         }
         /* defined downgrade: the selection needs more than m holds; spend the
@@ -687,6 +690,6 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
     }
     run(&e);
     for (i = 0; i < nid; i++) t->st[ids[i]] &= (uint8_t)~(ST_SPLIT | ST_PUSHED);
-    if (!e.full && e.nbreak > 0 && p->mode == BT_FIDELITY) btw_reorder(&e);
+    if (!e.full && e.nbreak > 0 && e.reorder) btw_reorder(&e);
     return e.full ? BR_E_NOMEM : BR_OK;
 }

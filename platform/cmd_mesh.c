@@ -166,6 +166,7 @@ int cmd_mesh(int argc, char **argv)
     free(scr); scr = NULL;
     memset(&p, 0, sizeof p);
     p.mode = BT_FIDELITY;
+    p.strip_order = BT_ORDER_BEST;   /* an export: the shortest strip in every mode */
     p.max_err = bt_mm_to_units(&f, (int64_t)(maxerr * 1000.0 + 1e-6));
     if (have_cam) {
         int32_t ushift, eye[3], tgt[3], k;

@@ -445,6 +445,46 @@ static void test_view(void)
         CHECK(bt_extract(&b.t, &p, &o.m) == BR_OK);
         CHECK(o.m.ntri >= t1);
     }
+    /* culling breaks the walk: BT_ORDER_BEST writes the same triangles in fewer
+     * references (<= 1.5), BT_ORDER_WALK is what AUTO gives in view mode */
+    {
+        omesh ob, ow;
+        uint32_t ns_auto = o.m.ns;
+        p.strip_order = BT_ORDER_WALK;
+        CHECK(extract(&b, &p, 200000, &ow) == 0);
+        p.strip_order = BT_ORDER_BEST;
+        CHECK(extract(&b, &p, 200000, &ob) == 0);
+        CHECK_EQ(ow.m.ns, ns_auto);
+        CHECK_EQ(ob.m.ntri, ow.m.ntri);
+        CHECK(ob.m.ns < ow.m.ns);
+        CHECK(2 * (uint64_t)ob.m.ns <= 3 * (uint64_t)ob.m.ntri);
+        printf("  view mesh, culling: %u triangles, walk %.3f refs/tri, best order %.3f\n", ob.m.ntri,
+               (double)ow.m.ns / ow.m.ntri, (double)ob.m.ns / ob.m.ntri);
+        CHECK(judge(&g, &ob, 1, 0, &r, &sr) || r.uncovered > 0);
+        CHECK_EQ(r.tjunctions, 0);
+        CHECK_EQ(r.nonmanifold_edges, 0);
+        CHECK_EQ(r.flipped, 0);
+        /* the same vertices, and the best strip decodes to exactly the walk's triangles */
+        CHECK_EQ(ob.m.nv, ow.m.nv);
+        CHECK(memcmp(ob.m.v, ow.m.v, sizeof *ob.m.v * ow.m.nv) == 0);
+        {
+            mc_vert *v = malloc(sizeof *v * (ow.m.nv + 1));
+            int32_t *sw = malloc(4 * ((size_t)ow.m.ns + 1)), *sb = malloc(4 * ((size_t)ob.m.ns + 1));
+            int32_t *tw = malloc(12 * ((size_t)ow.m.ns + 1));
+            int64_t nt = 0, nl = 0;
+            for (i = 0; i < ow.m.nv; i++) { v[i].x = ow.m.v[i].x; v[i].y = ow.m.v[i].y; v[i].zq = ow.m.v[i].z; }
+            for (i = 0; i < ow.m.ns; i++) sw[i] = (int32_t)ow.m.strip[i];
+            for (i = 0; i < ob.m.ns; i++) sb[i] = (int32_t)ob.m.strip[i];
+            CHECK(mc_strip_decode(sw, ow.m.ns, v, (int32_t)ow.m.nv, tw, &nt, NULL, &nl) == 0);
+            CHECK_EQ(nt, ow.m.ntri);
+            CHECK(mc_strip_compare(sb, ob.m.ns, tw, nt, v, (int32_t)ow.m.nv, &sr) == 1);
+            free(v); free(sw); free(sb); free(tw);
+        }
+        p.strip_order = 3;
+        CHECK_EQ(bt_extract(&b.t, &p, &ob.m), BR_E_ARG);
+        p.strip_order = BT_ORDER_AUTO;
+        free(ob.mem); free(ow.mem);
+    }
     /* no culling: more triangles */
     p.no_cull = 1;
     CHECK(extract(&b, &p, 400000, &o2) == 0);
