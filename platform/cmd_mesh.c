@@ -59,7 +59,7 @@ static int write_mesh(const char *out, const hf *f, const bt_mesh *m, const uint
 #define VZ(i) (m->v[i].z * sz)
     if (kind == 0) {
         fprintf(fp, "# bitrain mesh: %u vertices, %u triangles, metres (x east, y north, z up)\n", m->nv, nt);
-        for (i = 0; i < m->nv; i++) fprintf(fp, "v %.3f %.3f %.3f\n", VX(i), VY(i), VZ(i));
+        for (i = 0; i < m->nv; i++) fprintf(fp, "v %.6f %.6f %.6f\n", VX(i), VY(i), VZ(i));
         for (i = 0; i < nt; i++) fprintf(fp, "f %u %u %u\n", list[3 * i] + 1, list[3 * i + 1] + 1, list[3 * i + 2] + 1);
     } else if (kind == 1) {
         fprintf(fp, "ply\nformat ascii 1.0\ncomment bitrain mesh, metres (x east, y north, z up)\n"
@@ -67,7 +67,7 @@ static int write_mesh(const char *out, const hf *f, const bt_mesh *m, const uint
                     "property uchar fictitious\nelement face %u\nproperty list uchar int vertex_indices\n"
                     "end_header\n", m->nv, nt);
         for (i = 0; i < m->nv; i++)
-            fprintf(fp, "%.3f %.3f %.3f %d\n", VX(i), VY(i), VZ(i), m->v[i].state == BT_F);
+            fprintf(fp, "%.6f %.6f %.6f %d\n", VX(i), VY(i), VZ(i), m->v[i].state == BT_F);
         for (i = 0; i < nt; i++) fprintf(fp, "3 %u %u %u\n", list[3 * i], list[3 * i + 1], list[3 * i + 2]);
     } else {
         unsigned char hdr[80];
@@ -155,6 +155,10 @@ int cmd_mesh(int argc, char **argv)
         else if (nf < 64) files[nf++] = a;
     }
     if (nf == 0 || maxerr < 0 || (budget < 0) || (budget > 0x10000000L)) { usage(stderr); return 2; }
+    if (out && strcmp(ext_of(out), "obj") && strcmp(ext_of(out), "ply") && strcmp(ext_of(out), "stl")) {
+        fprintf(stderr, "bitrain mesh: %s: unknown output format (want .obj, .ply or .stl)\n", out);
+        return 2;   /* before any work: the mesh of a large DEM takes a while */
+    }
     if (dem_load_many(files, nf, &o, &f, &e) != BR_OK) { fprintf(stderr, "bitrain mesh: %s\n", e.msg); return 1; }
     mem = malloc(bt_mem_size(f.w, f.h));
     scr = malloc(bt_scratch_size(f.w, f.h));
