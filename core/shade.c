@@ -15,11 +15,15 @@ br_status shade_init(shade_ctx *c, const hf *f)
     int64_t kx, ky, kz;
     if (hf_validate(f) != BR_OK) return BR_E_ARG;
     /* Divided by 1e6: (-gx*zn*dy_um, -gy*zn*dx_um, 8*zd*dx_um*dy_um/1e6).
-     * kx, ky < 2^62; kz's first product 8*zd*dx_um < 2^57 is brought below 2^32
-     * (shifting kx, ky alike) before it is multiplied by dy_um. */
+     * kx, ky, zd*dx_um < 2^62 (int32 factors); 8*zd*dx_um would reach 2^65, so
+     * zd*dx_um is first halved (kx, ky alike) below 2^59, then kz = 8*zd*dx_um is
+     * brought below 2^32 before it is multiplied by dy_um.  (For zd*dx_um < 2^59,
+     * every unit the loaders make, the first loop does nothing.) */
     kx = (int64_t)f->z_num * f->dy_um;
     ky = (int64_t)f->z_num * f->dx_um;
-    kz = (int64_t)8 * f->z_den * f->dx_um;
+    kz = (int64_t)f->z_den * f->dx_um;
+    while (kz >= ((int64_t)1 << 59)) { kx = (kx + 1) >> 1; ky = (ky + 1) >> 1; kz = (kz + 1) >> 1; }
+    kz *= 8;
     while (kz >= ((int64_t)1 << 32)) { kx = (kx + 1) >> 1; ky = (ky + 1) >> 1; kz = (kz + 1) >> 1; }
     kz = kz * f->dy_um;
     /* keep precision through the division: scale all three up while they are small */

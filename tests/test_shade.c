@@ -60,6 +60,34 @@ static void test_matches_double_formula(void)
     CHECK_MSG(same * 1000 >= n * 995, "only %ld of %ld samples identical", same, n);
 }
 
+/* The largest unit and spacing hf accepts (z_den, dx_um, dy_um = INT32_MAX: the
+ * constants' products reach 2^65 before scaling; UBSan run): real heights, and the
+ * same values as the double formula. */
+static void test_extreme_units(void)
+{
+    shade_ctx c;
+    fx_q14 l[3];
+    uint8_t *row;
+    hf g;
+    int x, worst = 0;
+    if (!have_lake) { CHECK(have_lake); return; }
+    g = lake;
+    g.z_den = INT32_MAX; g.dx_um = INT32_MAX; g.dy_um = INT32_MAX;
+    CHECK_EQ(shade_init(&c, &g), BR_OK);
+    hillshade_light(315, 45, l);
+    row = malloc((size_t)g.w);
+    shade_hill_row(&c, g.h / 2, l, row);
+    for (x = 0; x < g.w; x++) {
+        int d = abs((int)row[x] - (int)lround(ref_value(&g, x, g.h / 2, 315, 45)));
+        if (d > worst) worst = d;
+    }
+    free(row);
+    CHECK_MSG(worst <= 1, "max difference %d", worst);
+    /* and the other extreme: z_num large, the finest spacing */
+    g.z_num = INT32_MAX; g.z_den = 1; g.dx_um = 1; g.dy_um = 1;
+    CHECK_EQ(shade_init(&c, &g), BR_OK);
+}
+
 static void test_flat_lake_value(void)
 {
     /* Lake Constance is flat at 396 m near (col 300, row 420) of N47E009? find a flat
@@ -121,6 +149,7 @@ int main(void)
     if (!have_lake) fprintf(stderr, "cannot load: %s\n", err.msg);
     T_RUN(test_matches_double_formula);
     T_RUN(test_flat_lake_value);
+    T_RUN(test_extreme_units);
     T_RUN(test_png_written);
     if (have_lake) dem_free(&lake);
     return t_finish();
