@@ -173,7 +173,8 @@ typedef struct bt_params {
                               threshold * (1 - hyst/256) (003); 0 = none */
     int32_t morph_q8;      /* BT_VIEW/BUDGET: geomorph range, 1/256 of the threshold: a
                               vertex rises from fictitious (at threshold) to real height
-                              (at threshold * (1 + morph/256)); 0 = no geomorph */
+                              (at threshold * (1 + morph/256)); 0 = no geomorph;
+                              0..65536, else BR_E_ARG */
     uint32_t budget;       /* BT_BUDGET: at most this many triangles */
     int32_t no_cull;       /* 1: no frustum culling */
     int32_t strip_order;   /* where voids or culling break the recursive walk, the strip can

@@ -590,6 +590,9 @@ static br_status setup(em *e, bt_tree *t, const bt_params *p)
     e->fq8 = p->c->f_q16 >> 8;
     e->tau = p->pixel_err_q8 > 0 ? p->pixel_err_q8 : 256;
     e->tau_lo = p->hyst_q8 > 0 ? (e->tau * (256 - (p->hyst_q8 > 256 ? 256 : p->hyst_q8))) >> 8 : e->tau;
+    /* morph_of multiplies (rho - tau) < morph_span by 2^15: morph_span < 2^31 * 2^16 / 2^8
+     * = 2^39 keeps it below 2^54 (a range of 256 thresholds is already absurd) */
+    if (p->morph_q8 < 0 || p->morph_q8 > 65536) return BR_E_ARG;
     e->morph_span = (e->tau * p->morph_q8) >> 8;
     return BR_OK;
 }

@@ -483,6 +483,14 @@ static void test_view(void)
         p.strip_order = 3;
         CHECK_EQ(bt_extract(&b.t, &p, &ob.m), BR_E_ARG);
         p.strip_order = BT_ORDER_AUTO;
+        /* an absurd geomorph range is refused (it would overflow morph_of) */
+        p.morph_q8 = 65537;
+        p.pixel_err_q8 = INT32_MAX;
+        CHECK_EQ(bt_extract(&b.t, &p, &ob.m), BR_E_ARG);
+        p.morph_q8 = 65536;
+        CHECK_EQ(bt_extract(&b.t, &p, &ob.m), BR_OK);
+        p.morph_q8 = 256;
+        p.pixel_err_q8 = 256;
         free(ob.mem); free(ow.mem);
     }
     /* no culling: more triangles */
