@@ -266,8 +266,14 @@ static void tri_clip(band *bd, tri_fn draw, uint32_t ia, uint32_t ib, uint32_t i
 #define SLOW ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)
 
 /* Pixel packing from the 21-bit colour fields (R at bit 42, G at 21, B at 0; each
- * 8 integer + 13 fraction bits). */
-#define PACK888(v) ((uint32_t)((((v) >> 39) & 0xff0000u) | (((v) >> 26) & 0xff00u) | (((v) >> 13) & 0xffu)))
+ * 8 integer + 13 fraction bits).  XRGB8888: R and B move with one multiply: the masked
+ * integer bits r 2^55 + b 2^13 times 1 + 2^10 + 2^26 add b 2^39, 16 bits below r, and
+ * b 2^23, below the shift (that middle term only keeps the compiler from expanding the
+ * multiply into shifts and adds); the r products fall beyond bit 63 and no two terms
+ * overlap, so the sum is exact: R and B of the pixel in one shift, G by its own shift
+ * and mask.  (For RGB565 the multiplier 1 + 2^31 needs a 64-bit constant, which cost
+ * more than it saved: three shifts and masks.) */
+#define PACK888(v) ((uint32_t)((((v) & 0x7f800000001fe000u) * 0x4000401u) >> 39) | ((uint32_t)((v) >> 26) & 0xff00u))
 #define PACK565(v) ((uint16_t)((((v) >> 47) & 0xf800u) | (((v) >> 31) & 0x07e0u) | (((v) >> 16) & 0x001fu)))
 
 /* ---------------------------------------------------------------- texture helpers */
