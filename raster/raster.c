@@ -31,6 +31,7 @@
  * the gradient rounding (<= 0.5 LSB per pixel step, spans <= RS_MAX_DIM = 4096 px:
  * < 0.25 colour units), so fields stay in range inside every triangle. */
 #define RS_CBIAS (((uint64_t)1 << 54) | ((uint64_t)1 << 33) | ((uint64_t)1 << 12))
+#define RS_C256 (((uint64_t)256 << 42) | ((uint64_t)256 << 21) | (uint64_t)256)   /* 256 in each field */
 
 static uint64_t rs_pack_rgb(uint32_t rgb)
 {

@@ -59,8 +59,10 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
          * inside centre of the row (no stepping across rows), so a row's values do not
          * depend on which band it is drawn in. */
         int64_t gz, gzn, dzb = (int64_t)b->d - a->d, dzc = (int64_t)c->d - a->d, inv = 0;
-        /* colour differences per channel k (0 = R, 1 = G, 2 = B; straight-line, no arrays) */
-#define DCH(V, K) ((int64_t)(((V)->c >> (16 - 8 * (K))) & 255) - (int64_t)((a->c >> (16 - 8 * (K))) & 255))
+        /* colour differences per channel k (0 = R, 1 = G, 2 = B; straight-line, no arrays)
+         * from the packed colours: the difference plus 256 in each 21-bit field is in
+         * [1, 511], so the fields of v->cp - a->cp + 256 (1 + 2^21 + 2^42) do not borrow */
+#define DCH(V, K) ((int64_t)((((V)->cp - a->cp + RS_C256) >> (42 - 21 * (K))) & 0x1fffffu) - 256)
         const int64_t dcb0 = DCH(b, 0), dcb1 = DCH(b, 1), dcb2 = DCH(b, 2);
         const int64_t dcc0 = DCH(c, 0), dcc1 = DCH(c, 1), dcc2 = DCH(c, 2);
 #undef DCH
