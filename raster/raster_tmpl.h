@@ -104,6 +104,7 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
         if (gz > INT32_MAX) gz = INT32_MAX;
         if (gz < -INT32_MAX) gz = -INT32_MAX;
 
+        const uint64_t ca = (a->cp << 13) + RS_CBIAS;
         for (py = py0; py <= py1; py++, e0r += sy0, e2r += sy2) {
             /* The row's covered centres exactly, by one floor/ceil division per edge
              * (span_limits), columns l relative to px0: e_k(px0 + l) = e_kr + sx_k l,
@@ -129,7 +130,7 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                 if (small) { w1 = (e2 * inv) >> 18; w2 = (e0 * inv) >> 18; }
                 else { w1 = e2 * ((int64_t)1 << 22) / area2; w2 = e0 * ((int64_t)1 << 22) / area2; }
                 z = (uint32_t)((int64_t)a->d + ((dzb * w1 + dzc * w2) >> 22));
-                col = (a->cp << 13) + RS_CBIAS + ((uint64_t)((dcb0 * w1 + dcc0 * w2) >> 9) << 42)
+                col = ca + ((uint64_t)((dcb0 * w1 + dcc0 * w2) >> 9) << 42)
                       + ((uint64_t)((dcb1 * w1 + dcc1 * w2) >> 9) << 21) + (uint64_t)((dcb2 * w1 + dcc2 * w2) >> 9);
                 bd->pixels += (uint32_t)n;
 #if !RS_TEX && !RS_COUNT
