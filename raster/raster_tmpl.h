@@ -106,19 +106,34 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
 
         const uint64_t ca = (a->cp << 13) + RS_CBIAS;
         for (py = py0; py <= py1; py++, e0r += sy0, e2r += sy2) {
-            /* The row's covered centres exactly, by one floor/ceil division per edge
-             * (span_limits), columns l relative to px0: e_k(px0 + l) = e_kr + sx_k l,
-             * e1 = S - e0 - e2 (no products by px0 to keep across the rows; cheaper than
-             * stepping the edge values pixel by pixel even for narrow boxes). */
-            const int64_t s1 = -(sx0 + sx2), e1r = S - e0r - e2r;
-            int32_t l = 0, r = px1 - px0, xl, xr;
+            int32_t xl = px0, xr = px1;
             int64_t e0, e2;
-            if (!span_limits(sx0, e0r, 0, px1 - px0, &l, &r)
-                || !span_limits(s1, e1r, 0, px1 - px0, &l, &r)
-                || !span_limits(sx2, e2r, 0, px1 - px0, &l, &r) || l > r)
-                continue;
-            xl = px0 + l; xr = px0 + r;
-            e0 = e0r + sx0 * l; e2 = e2r + sx2 * l;
+            if (px1 - px0 < NARROW) {
+                int64_t e1;
+                e0 = e0r; e2 = e2r; e1 = S - e0 - e2;
+                while ((e0 | e1 | e2) < 0) {
+                    if (++xl > px1) break;
+                    e0 += sx0; e2 += sx2; e1 = S - e0 - e2;
+                }
+                if (xl > px1) continue;
+                {
+                    int64_t f0 = e0 + sx0, f2 = e2 + sx2, f1 = S - f0 - f2;
+                    xr = xl;
+                    while (xr < px1 && (f0 | f1 | f2) >= 0) { xr++; f0 += sx0; f2 += sx2; f1 = S - f0 - f2; }
+                }
+            } else {
+                /* e_k(px0 + l) = e_kr + sx_k l; e1 = S - e0 - e2; columns l relative to px0
+                 * (floor((K + s px0) / s) = floor(K / s) + px0: the same centres as from
+                 * column 0, with no products by px0 to keep across the rows) */
+                int64_t s1 = -(sx0 + sx2), e1r = S - e0r - e2r;
+                int32_t l = 0, r = px1 - px0;
+                if (!span_limits(sx0, e0r, 0, px1 - px0, &l, &r)
+                    || !span_limits(s1, e1r, 0, px1 - px0, &l, &r)
+                    || !span_limits(sx2, e2r, 0, px1 - px0, &l, &r) || l > r)
+                    continue;
+                xl = px0 + l; xr = px0 + r;
+                e0 = e0r + sx0 * l; e2 = e2r + sx2 * l;
+            }
             {
                 /* exact barycentric weights at (xl, py): b gets edge 2, c gets edge 0 (Q22) */
                 int64_t w1, w2;
