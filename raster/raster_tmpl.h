@@ -59,8 +59,10 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
          * inside centre of the row (no stepping across rows), so a row's values do not
          * depend on which band it is drawn in. */
         int64_t gz, gzn, dzb = (int64_t)b->d - a->d, dzc = (int64_t)c->d - a->d, inv = 0;
-        /* colour differences per channel k (0 = R, 1 = G, 2 = B; straight-line, no arrays) */
-#define DCH(V, K) ((int64_t)(((V)->c >> (16 - 8 * (K))) & 255) - (int64_t)((a->c >> (16 - 8 * (K))) & 255))
+        /* colour differences per channel k (0 = R, 1 = G, 2 = B; straight-line, no arrays)
+         * from the packed colours: the difference plus 256 in each 21-bit field is in
+         * [1, 511], so the fields of v->cp - a->cp + 256 (1 + 2^21 + 2^42) do not borrow */
+#define DCH(V, K) ((int64_t)((((V)->cp - a->cp + RS_C256) >> (42 - 21 * (K))) & 0x1fffffu) - 256)
         const int64_t dcb0 = DCH(b, 0), dcb1 = DCH(b, 1), dcb2 = DCH(b, 2);
         const int64_t dcc0 = DCH(c, 0), dcc1 = DCH(c, 1), dcc2 = DCH(c, 2);
 #undef DCH
@@ -102,6 +104,7 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
         if (gz > INT32_MAX) gz = INT32_MAX;
         if (gz < -INT32_MAX) gz = -INT32_MAX;
 
+        const uint64_t ca = (a->cp << 13) + RS_CBIAS;
         for (py = py0; py <= py1; py++, e0r += sy0, e2r += sy2) {
             int32_t xl = px0, xr = px1;
             int64_t e0, e2;
@@ -119,13 +122,17 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                     while (xr < px1 && (f0 | f1 | f2) >= 0) { xr++; f0 += sx0; f2 += sx2; f1 = S - f0 - f2; }
                 }
             } else {
-                /* e_k(px) = e_kr + sx_k (px - px0); e1 = S - e0 - e2 */
+                /* e_k(px0 + l) = e_kr + sx_k l; e1 = S - e0 - e2; columns l relative to px0
+                 * (floor((K + s px0) / s) = floor(K / s) + px0: the same centres as from
+                 * column 0, with no products by px0 to keep across the rows) */
                 int64_t s1 = -(sx0 + sx2), e1r = S - e0r - e2r;
-                if (!span_limits(sx0, e0r - sx0 * px0, px0, px1, &xl, &xr)
-                    || !span_limits(s1, e1r - s1 * px0, px0, px1, &xl, &xr)
-                    || !span_limits(sx2, e2r - sx2 * px0, px0, px1, &xl, &xr) || xl > xr)
+                int32_t l = 0, r = px1 - px0;
+                if (!span_limits(sx0, e0r, 0, px1 - px0, &l, &r)
+                    || !span_limits(s1, e1r, 0, px1 - px0, &l, &r)
+                    || !span_limits(sx2, e2r, 0, px1 - px0, &l, &r) || l > r)
                     continue;
-                e0 = e0r + sx0 * (xl - px0); e2 = e2r + sx2 * (xl - px0);
+                xl = px0 + l; xr = px0 + r;
+                e0 = e0r + sx0 * l; e2 = e2r + sx2 * l;
             }
             {
                 /* exact barycentric weights at (xl, py): b gets edge 2, c gets edge 0 (Q22) */
@@ -138,7 +145,7 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                 if (small) { w1 = (e2 * inv) >> 18; w2 = (e0 * inv) >> 18; }
                 else { w1 = e2 * ((int64_t)1 << 22) / area2; w2 = e0 * ((int64_t)1 << 22) / area2; }
                 z = (uint32_t)((int64_t)a->d + ((dzb * w1 + dzc * w2) >> 22));
-                col = (a->cp << 13) + RS_CBIAS + ((uint64_t)((dcb0 * w1 + dcc0 * w2) >> 9) << 42)
+                col = ca + ((uint64_t)((dcb0 * w1 + dcc0 * w2) >> 9) << 42)
                       + ((uint64_t)((dcb1 * w1 + dcc1 * w2) >> 9) << 21) + (uint64_t)((dcb2 * w1 + dcc2 * w2) >> 9);
                 bd->pixels += (uint32_t)n;
 #if !RS_TEX && !RS_COUNT
