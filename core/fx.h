@@ -46,6 +46,13 @@ int64_t fx_div_round(int64_t n, int64_t d);
 /* floor(n / d) and ceil(n / d) for any signs; d != 0. */
 int64_t fx_div_floor(int64_t n, int64_t d);
 int64_t fx_div_ceil(int64_t n, int64_t d);
+/* floor(n / d) for d > 0, inline for inner loops (the rasteriser's span limits):
+ * the truncated quotient, minus 1 when the remainder is negative. */
+static inline int64_t fx_div_floor_pos(int64_t n, int64_t d)
+{
+    int64_t q = n / d;
+    return n % d < 0 ? q - 1 : q;
+}
 
 /* Millidegrees (any int32) to a binary angle, rounded: mdeg * 2^32 / 360000. */
 fx_angle fx_angle_from_mdeg(int32_t mdeg);

@@ -218,19 +218,15 @@ br_status rs_frame_prepare(rs_frame *f)
 
 /* Narrows [*xl, *xr] to the centres px where K + s px >= 0 (one edge on one row;
  * s = 16 A is the edge's step per pixel).  Returns 0 when the row is empty.
- * floor(n / d) for d > 0 is the truncated quotient minus 1 when the remainder is
- * negative; ceil(-K / s) = -floor(K / s). */
+ * ceil(-K / s) = -floor(K / s); the step's sign is known, so the inline
+ * positive-divisor floor (core/fx.h) serves both sides. */
 static inline int span_limits(int64_t s, int64_t K, int32_t px0, int32_t px1, int32_t *xl, int32_t *xr)
 {
     if (s > 0) {
-        int64_t q = K / s, x;
-        if (K % s < 0) q--;
-        x = -q;
+        int64_t x = -fx_div_floor_pos(K, s);
         if (x > *xl) *xl = x > px1 ? px1 + 1 : (int32_t)x;
     } else if (s < 0) {
-        int64_t q = K / -s, x;
-        if (K % -s < 0) q--;
-        x = q;
+        int64_t x = fx_div_floor_pos(K, -s);
         if (x < *xr) *xr = x < px0 ? px0 - 1 : (int32_t)x;
     } else if (K < 0) return 0;
     return 1;

@@ -52,6 +52,12 @@ static void test_isqrt_div(void)
     CHECK_EQ(fx_div_floor(-7, 2), -4);
     CHECK_EQ(fx_div_floor(7, -2), -4);
     CHECK_EQ(fx_div_floor(-8, 2), -4);
+    {   /* the inline positive-divisor floor agrees with the general one */
+        int64_t n, d;
+        for (n = -40; n <= 40; n++)
+            for (d = 1; d <= 17; d++) CHECK_EQ(fx_div_floor_pos(n, d), fx_div_floor(n, d));
+        CHECK_EQ(fx_div_floor_pos(-((int64_t)1 << 40) - 1, 16), -((int64_t)1 << 36) - 1);
+    }
     CHECK_EQ(fx_div_ceil(-7, 2), -3);
     CHECK_EQ(fx_div_ceil(7, 2), 4);
     CHECK_EQ(fx_div_round(-7, 2), -4);
