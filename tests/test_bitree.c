@@ -8,6 +8,7 @@
 #include <stdint.h>
 #include "tests/test.h"
 #include "tests/support/meshcheck.h"
+#include "tests/support/btcheck.h"
 #include "core/bitree.h"
 #include "core/cam.h"
 #include "platform/load.h"
@@ -32,13 +33,7 @@ typedef struct omesh { bt_mesh m; void *mem; } omesh;
 
 static int extract(built *b, const bt_params *p, uint32_t cap, omesh *o)
 {
-    size_t sz;
-    uint64_t cnt = cap;
-    if (!cap) { if (bt_count(&b->t, p, &cnt) != BR_OK) return -1; if (cnt < 2) cnt = 2; }
-    sz = bt_mesh_mem_size((uint32_t)cnt);
-    o->mem = malloc(sz);
-    if (!o->mem || bt_mesh_init(&o->m, (uint32_t)cnt, o->mem, sz) != BR_OK) return -1;
-    return bt_extract(&b->t, p, &o->m) == BR_OK ? 0 : -1;
+    return btc_extract(&b->t, p, cap, &o->m, &o->mem);
 }
 
 /* Runs meshcheck on o (strip decoded); returns ok and fills r. */
@@ -46,19 +41,15 @@ static int judge(const hf *f, const omesh *o, int allow_uncovered, int64_t expec
                  mc_report *r, mc_strip_report *sr)
 {
     const bt_mesh *m = &o->m;
-    mc_vert *v = malloc(sizeof *v * (m->nv + 1));
-    int32_t *s = malloc(4 * ((size_t)m->ns + 1)), *tri = malloc(12 * ((size_t)m->ns + 1));
-    int64_t nt = 0, nl = 0;
+    mc_vert *v;
+    int32_t *s, *tri;
+    int64_t nt, nl;
     mc_opts opt;
-    uint32_t i;
-    int ok;
-    for (i = 0; i < m->nv; i++) { v[i].x = m->v[i].x; v[i].y = m->v[i].y; v[i].zq = m->v[i].z; }
-    for (i = 0; i < m->ns; i++) s[i] = (int32_t)m->strip[i];
-    ok = mc_strip_decode(s, m->ns, v, (int32_t)m->nv, tri, &nt, NULL, &nl) == 0;
+    int ok = btc_decode(m, &v, &s, &tri, &nt, &nl) == 0;
     CHECK(ok);
     CHECK_EQ(nt, m->ntri);
     CHECK_EQ(nl, m->nline);
-    {
+    if (ok) {
         mc_mesh mm = { v, (int32_t)m->nv, tri, nt, 0 };
         memset(&opt, 0, sizeof opt);
         opt.allow_uncovered = allow_uncovered;
@@ -73,64 +64,12 @@ static int judge(const hf *f, const omesh *o, int allow_uncovered, int64_t expec
     return ok;
 }
 
-/* Doubled area an exact hole gives: unit cells are split along the diagonal
- * through their (odd, odd) corner (the finest bitree level); each half counts
- * when its three corners are valid. */
-static int64_t exact_area2(const hf *f)
-{
-    int64_t a = 0;
-    int32_t x, y;
-#define OK(X, Y) (f->z[(size_t)(Y) * f->w + (X)] != HF_NODATA)
-    for (y = 0; y + 1 < f->h; y++)
-        for (x = 0; x + 1 < f->w; x++) {
-            int tl = OK(x, y), tr = OK(x + 1, y), bl = OK(x, y + 1), br = OK(x + 1, y + 1);
-            if (((x ^ y) & 1) == 0) a += (tl && br && tr) + (tl && br && bl); /* diagonal tl-br */
-            else a += (tr && bl && tl) + (tr && bl && br);
-        }
-#undef OK
-    return a;
-}
-
-static uint64_t fnv(uint64_t h, const void *p, size_t n)
-{
-    const uint8_t *b = (const uint8_t *)p;
-    while (n--) { h ^= *b++; h *= 1099511628211ull; }
-    return h;
-}
-static uint64_t mesh_hash(const bt_mesh *m)
-{
-    uint64_t h = 1469598103934665603ull;
-    uint32_t i;
-    for (i = 0; i < m->nv; i++) {
-        int32_t q[4] = { m->v[i].x, m->v[i].y, m->v[i].z, m->v[i].morph | (m->v[i].state << 16) };
-        uint8_t le[16];
-        int k;
-        for (k = 0; k < 16; k++) le[k] = (uint8_t)((uint32_t)q[k / 4] >> (8 * (k % 4)));
-        h = fnv(h, le, 16);
-    }
-    for (i = 0; i < m->ns; i++) {
-        uint8_t le[4] = { (uint8_t)m->strip[i], (uint8_t)(m->strip[i] >> 8),
-                          (uint8_t)(m->strip[i] >> 16), (uint8_t)(m->strip[i] >> 24) };
-        h = fnv(h, le, 4);
-    }
-    return h;
-}
-
-static int load(const char *rel, hf *f)
-{
-    br_err e;
-    dem_opts o;
-    memset(&o, 0, sizeof o);
-    if (dem_load(t_data(rel), &o, f, &e) != BR_OK) { fprintf(stderr, "%s\n", e.msg); return -1; }
-    return 0;
-}
-
 /* fuji.png padded to 513 x 513 by repeating the last row and column (martini's test) */
 static int fuji513(hf *g)
 {
     hf f;
     int32_t x, y;
-    if (load("png/fuji.png", &f)) return -1;
+    if (btc_load("png/fuji.png", &f)) return -1;
     *g = f;
     g->w = g->h = 513;
     g->z = malloc(513 * 513 * 4);
@@ -176,7 +115,7 @@ static void test_fuji_10m(void)
     CHECK(judge(&g, &o, 0, 0, &r, &sr));
     CHECK(!mc_err_exceeds(&r, 10000LL * g.z_den, 1000LL * g.z_num));
     CHECK_EQ(r.tjunctions, 0);
-    CHECK(mesh_hash(&o.m) == 17595611661356056590ull);  /* determinism: fixed bytes */
+    CHECK(btc_mesh_hash(&o.m) == 17595611661356056590ull);  /* determinism: fixed bytes */
     CHECK(o.m.ns * 2 <= o.m.ntri * 3);                 /* <= 1.5 strip references per triangle */
     CHECK_EQ(o.m.nfict, 59);    /* vertices whose height is their hypotenuse's interpolation */
     printf("fuji 513 @10 m: %u triangles, %u vertices, %u refs (%.3f/tri), %u line, max err %lld/%lld\n",
@@ -200,7 +139,7 @@ static void one_dem(const char *rel, int crop, uint32_t refs_pm)
     mc_strip_report sr;
     hf_stats st;
     int64_t thr;
-    if (load(rel, &f)) { CHECK(0); return; }
+    if (btc_load(rel, &f)) { CHECK(0); return; }
     g = f;
     if (crop && (f.w > 200 || f.h > 160)) {   /* asymmetric crop from the interior */
         int32_t x, y, x0 = f.w / 3, y0 = f.h / 4;
@@ -219,7 +158,7 @@ static void one_dem(const char *rel, int crop, uint32_t refs_pm)
     p.mode = BT_FIDELITY;
     p.max_err = thr;
     CHECK(extract(&b, &p, 0, &o) == 0);
-    CHECK_MSG(judge(&g, &o, st.voids > 0, st.voids > 0 ? exact_area2(&g) : 0, &r, &sr), "%s", rel);
+    CHECK_MSG(judge(&g, &o, st.voids > 0, st.voids > 0 ? btc_exact_area2(&g) : 0, &r, &sr), "%s", rel);
     if (!crop) {
         CHECK_MSG((uint64_t)o.m.ns * 1000 <= (uint64_t)o.m.ntri * refs_pm, "%s: %u refs for %u triangles > %u/1000",
                   rel, o.m.ns, o.m.ntri, refs_pm);
@@ -262,13 +201,13 @@ static void test_lossless_voids(void)
     bt_params p;
     mc_report r;
     mc_strip_report sr;
-    if (load("asc/hugo_site.asc", &f)) { CHECK(0); return; }
+    if (btc_load("asc/hugo_site.asc", &f)) { CHECK(0); return; }
     CHECK(build(&b, &f, BT_METRIC_EXACT) == 0);
     memset(&p, 0, sizeof p);
     p.mode = BT_FIDELITY;
     p.max_err = 0;
     CHECK(extract(&b, &p, 0, &o) == 0);
-    CHECK(judge(&f, &o, 1, exact_area2(&f), &r, &sr));
+    CHECK(judge(&f, &o, 1, btc_exact_area2(&f), &r, &sr));
     CHECK_EQ(r.err_num, 0);
     CHECK_EQ(r.void_covered, 0);
     CHECK(o.m.ns * 2 <= o.m.ntri * 3);      /* the reorder pass ran (voids break the walk) */
@@ -340,7 +279,7 @@ static void test_extremes(void)
     p.mode = BT_FIDELITY;
     p.max_err = 5000000;   /* 5 km */
     CHECK(extract(&b, &p, 0, &o) == 0);
-    CHECK(judge(&f, &o, 1, exact_area2(&f), &r, &sr));
+    CHECK(judge(&f, &o, 1, btc_exact_area2(&f), &r, &sr));
     CHECK(!mc_err_exceeds(&r, p.max_err, 1));
     free(o.mem);
     unbuild(&b);
@@ -392,7 +331,7 @@ static void test_curvature(void)
     bt_params p;
     mc_report r;
     mc_strip_report sr;
-    if (load("bt/crater_0513.bt", &f)) { CHECK(0); return; }
+    if (btc_load("bt/crater_0513.bt", &f)) { CHECK(0); return; }
     CHECK(build(&b, &f, BT_METRIC_CURVATURE) == 0);
     memset(&p, 0, sizeof p);
     p.mode = BT_FIDELITY;
@@ -438,7 +377,7 @@ static void test_view(void)
     CHECK_EQ(nf, o.m.nfict);
     CHECK(nf > 0);                          /* some vertices are still morphing */
     CHECK_EQ(o.m.ntri, 4250);
-    CHECK(mesh_hash(&o.m) == 12832302367714380740ull);  /* same bytes on every build */
+    CHECK(btc_mesh_hash(&o.m) == 12832302367714380740ull);  /* same bytes on every build */
     /* the same frame again: hysteresis keeps everything split, nothing is lost */
     {
         uint32_t t1 = o.m.ntri;
@@ -468,16 +407,13 @@ static void test_view(void)
         CHECK_EQ(ob.m.nv, ow.m.nv);
         CHECK(memcmp(ob.m.v, ow.m.v, sizeof *ob.m.v * ow.m.nv) == 0);
         {
-            mc_vert *v = malloc(sizeof *v * (ow.m.nv + 1));
-            int32_t *sw = malloc(4 * ((size_t)ow.m.ns + 1)), *sb = malloc(4 * ((size_t)ob.m.ns + 1));
-            int32_t *tw = malloc(12 * ((size_t)ow.m.ns + 1));
-            int64_t nt = 0, nl = 0;
-            for (i = 0; i < ow.m.nv; i++) { v[i].x = ow.m.v[i].x; v[i].y = ow.m.v[i].y; v[i].zq = ow.m.v[i].z; }
-            for (i = 0; i < ow.m.ns; i++) sw[i] = (int32_t)ow.m.strip[i];
-            for (i = 0; i < ob.m.ns; i++) sb[i] = (int32_t)ob.m.strip[i];
-            CHECK(mc_strip_decode(sw, ow.m.ns, v, (int32_t)ow.m.nv, tw, &nt, NULL, &nl) == 0);
+            mc_vert *v;
+            int32_t *sw, *tw, *sb = malloc(4 * ((size_t)ob.m.ns + 1));
+            int64_t nt, nl;
+            CHECK(btc_decode(&ow.m, &v, &sw, &tw, &nt, &nl) == 0 && sb);
             CHECK_EQ(nt, ow.m.ntri);
-            CHECK(mc_strip_compare(sb, ob.m.ns, tw, nt, v, (int32_t)ow.m.nv, &sr) == 1);
+            for (i = 0; sb && i < ob.m.ns; i++) sb[i] = (int32_t)ob.m.strip[i];
+            if (sb) CHECK(mc_strip_compare(sb, ob.m.ns, tw, nt, v, (int32_t)ow.m.nv, &sr) == 1);
             free(v); free(sw); free(sb); free(tw);
         }
         p.strip_order = 3;

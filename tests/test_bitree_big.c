@@ -57,6 +57,7 @@
 #include <unistd.h>
 #include "tests/test.h"
 #include "tests/support/meshcheck.h"
+#include "tests/support/btcheck.h"
 #include "tests/support/timing.h"
 #include "core/bitree.h"
 #include "core/cam.h"
@@ -72,15 +73,6 @@ static int32_t mirror(int32_t i)
 {
     int32_t p = 2 * (TILE - 1), m = i % p;
     return m > TILE - 1 ? p - m : m;
-}
-
-static int load(const char *rel, hf *f)
-{
-    br_err e;
-    dem_opts o;
-    memset(&o, 0, sizeof o);
-    if (dem_load(t_data(rel), &o, f, &e) != BR_OK) { fprintf(stderr, "%s\n", e.msg); return -1; }
-    return 0;
 }
 
 /* A large buffer; the interior pages are offered to the kernel as huge pages
@@ -108,7 +100,7 @@ static int make_grid(hf *g, int32_t *z, int32_t side, int32_t rows, int64_t zlo,
     hf_stats st;
     int32_t x, y;
     int32_t mx[BIG];
-    if (load("hgt/N47E009.hgt", &t)) return -1;
+    if (btc_load("hgt/N47E009.hgt", &t)) return -1;
     if (t.w != TILE || t.h != TILE) { dem_free(&t); return -1; }
     hf_stats_get(&t, &st);
     if (st.voids || st.zmin != 388 || st.zmax != 2937) { dem_free(&t); return -1; }
@@ -147,44 +139,18 @@ static int build(built *b, const hf *f, double *ms_out)
     return rc;
 }
 
-static uint64_t fnv(uint64_t h, const void *p, size_t n)
-{
-    const uint8_t *c = (const uint8_t *)p;
-    while (n--) { h ^= *c++; h *= 1099511628211ull; }
-    return h;
-}
-
 /* FNV-1a of the tree's node words, little-endian bytes (determinism); the 4
  * corners are no diamond centres: bt_build zeroes them, and they are hashed as 0
  * whatever they hold, so the pinned hashes do not depend on that */
 static uint64_t tree_hash(const bt_tree *t)
 {
-    uint64_t h = 1469598103934665603ull;
+    uint64_t h = BTC_FNV_INIT;
     size_t i, nn = (size_t)t->n * (size_t)t->n, S = (size_t)t->n - 1;
     for (i = 0; i < nn; i++) {
         uint32_t v = t->node[i];
         if (i == 0 || i == S || i == nn - 1 - S || i == nn - 1) v = 0;
         uint8_t le[4] = { (uint8_t)v, (uint8_t)(v >> 8), (uint8_t)(v >> 16), (uint8_t)(v >> 24) };
-        h = fnv(h, le, 4);
-    }
-    return h;
-}
-
-static uint64_t mesh_hash(const bt_mesh *m)
-{
-    uint64_t h = 1469598103934665603ull;
-    uint32_t i;
-    for (i = 0; i < m->nv; i++) {
-        int32_t q[4] = { m->v[i].x, m->v[i].y, m->v[i].z, m->v[i].morph | (m->v[i].state << 16) };
-        uint8_t le[16];
-        int k;
-        for (k = 0; k < 16; k++) le[k] = (uint8_t)((uint32_t)q[k / 4] >> (8 * (k % 4)));
-        h = fnv(h, le, 16);
-    }
-    for (i = 0; i < m->ns; i++) {
-        uint8_t le[4] = { (uint8_t)m->strip[i], (uint8_t)(m->strip[i] >> 8),
-                          (uint8_t)(m->strip[i] >> 16), (uint8_t)(m->strip[i] >> 24) };
-        h = fnv(h, le, 4);
+        h = btc_fnv(h, le, 4);
     }
     return h;
 }
@@ -194,32 +160,7 @@ typedef struct omesh { bt_mesh m; void *mem; const char *what; int partial; int6
 /* extracts into a mesh of capacity cap (0: the exact count) */
 static int extract(built *b, const bt_params *p, uint32_t cap, omesh *o)
 {
-    size_t sz;
-    uint64_t cnt = cap;
-    o->mem = NULL;
-    if (!cap) { if (bt_count(&b->t, p, &cnt) != BR_OK || cnt > 0x10000000u) return -1; if (cnt < 2) cnt = 2; }
-    sz = bt_mesh_mem_size((uint32_t)cnt);
-    o->mem = malloc(sz);
-    if (!o->mem || bt_mesh_init(&o->m, (uint32_t)cnt, o->mem, sz) != BR_OK) return -1;
-    return bt_extract(&b->t, p, &o->m) == BR_OK ? 0 : -1;
-}
-
-/* Doubled area an exact hole gives (see tests/test_bitree.c): unit cells split
- * along the diagonal through their (odd, odd) corner; a half counts when its
- * three corners are valid. */
-static int64_t exact_area2(const hf *f)
-{
-    int64_t a = 0;
-    int32_t x, y;
-#define OK(X, Y) (f->z[(size_t)(Y) * f->w + (X)] != HF_NODATA)
-    for (y = 0; y + 1 < f->h; y++)
-        for (x = 0; x + 1 < f->w; x++) {
-            int tl = OK(x, y), tr = OK(x + 1, y), bl = OK(x, y + 1), br = OK(x + 1, y + 1);
-            if (((x ^ y) & 1) == 0) a += (tl && br && tr) + (tl && br && bl);
-            else a += (tr && bl && tl) + (tr && bl && br);
-        }
-#undef OK
-    return a;
+    return btc_extract(&b->t, p, cap, &o->m, &o->mem);
 }
 
 /* The referee on o: strip decodes to exactly the mesh (CCW), watertight, no
@@ -228,18 +169,18 @@ static int64_t exact_area2(const hf *f)
 static void judge(const hf *f, const omesh *o, int has_voids, int64_t expect_area2)
 {
     const bt_mesh *m = &o->m;
-    mc_vert *v = malloc(sizeof *v * (m->nv + 1));
-    int32_t *s = malloc(4 * ((size_t)m->ns + 1)), *tri = malloc(12 * ((size_t)m->ns + 1));
-    int64_t nt = 0, nl = 0;
+    mc_vert *v;
+    int32_t *s, *tri;
+    int64_t nt, nl;
     mc_opts opt;
     mc_report r;
     mc_strip_report sr;
-    uint32_t i;
     double t0 = tm_now_ms();
-    if (!v || !s || !tri) { CHECK(0); free(v); free(s); free(tri); return; }
-    for (i = 0; i < m->nv; i++) { v[i].x = m->v[i].x; v[i].y = m->v[i].y; v[i].zq = m->v[i].z; }
-    for (i = 0; i < m->ns; i++) s[i] = (int32_t)m->strip[i];
-    CHECK_MSG(mc_strip_decode(s, m->ns, v, (int32_t)m->nv, tri, &nt, NULL, &nl) == 0, "%s", o->what);
+    if (btc_decode(m, &v, &s, &tri, &nt, &nl) != 0) {
+        CHECK_MSG(0, "%s: strip does not decode (or no memory)", o->what);
+        free(v); free(s); free(tri);
+        return;
+    }
     CHECK_EQ(nt, m->ntri);
     CHECK_EQ(nl, m->nline);
     memset(&opt, 0, sizeof opt);
@@ -329,7 +270,7 @@ static void variant(const spec *sp)
     int64_t a2 = 0;
     uint64_t th, mh;
     memset(&vt, 0, sizeof vt);
-    if (sp->voids && (load("tif/mt_rainier_90m.tif", &vt) || vt.w != TILE || vt.h != TILE)) {
+    if (sp->voids && (btc_load("tif/mt_rainier_90m.tif", &vt) || vt.w != TILE || vt.h != TILE)) {
         CHECK(0); free(z); dem_free(&vt); return;
     }
     if (!z || make_grid(&g, z, sp->side, sp->rows, sp->zlo, sp->zhi, sp->z_num, sp->z_den, sp->voids ? &vt : NULL)) {
@@ -355,7 +296,7 @@ static void variant(const spec *sp)
     CHECK_EQ(o[no].m.ntri, sp->fid_tri);
     CHECK_EQ(o[no].m.overflow, 0);
     CHECK(o[no].m.ns * 2 <= o[no].m.ntri * 3);   /* <= 1.5 references per triangle (issue 3), voids too */
-    mh = mesh_hash(&o[no].m);
+    mh = btc_mesh_hash(&o[no].m);
     CHECK(mh == sp->mesh_fnv[0]);
     printf("  fidelity %lld m (%lld units): count + extract %.1f s, %u triangles, mesh fnv %llu\n",
            (long long)sp->thr_m, (long long)p.max_err, (tm_now_ms() - t0) / 1000, o[no].m.ntri,
@@ -397,7 +338,7 @@ static void variant(const spec *sp)
                 o[no].what = "view 1024x768 1/4 px"; o[no].partial = 1; o[no].thr = -1;
                 /* the same frame again (hysteresis state set): nothing is lost */
                 CHECK(bt_extract(&b.t, &p, &o[no].m) == BR_OK);
-                mh = mesh_hash(&o[no].m);
+                mh = btc_mesh_hash(&o[no].m);
                 CHECK(mh == sp->mesh_fnv[1]);
                 printf("  view: count + 2 extractions %.1f s, %u triangles, mesh fnv %llu\n",
                        (tm_now_ms() - t0) / 1000, o[no].m.ntri, (unsigned long long)mh);
@@ -413,7 +354,7 @@ static void variant(const spec *sp)
             else {
                 CHECK(o[no].m.ntri <= p.budget && o[no].m.ntri > p.budget / 2);
                 o[no].what = "budget 1,000,000"; o[no].partial = 1; o[no].thr = -1;
-                mh = mesh_hash(&o[no].m);
+                mh = btc_mesh_hash(&o[no].m);
                 CHECK(mh == sp->mesh_fnv[2]);
                 printf("  budget: extraction %.1f s, %u triangles, mesh fnv %llu\n", (tm_now_ms() - t0) / 1000,
                        o[no].m.ntri, (unsigned long long)mh);
@@ -422,7 +363,7 @@ static void variant(const spec *sp)
         }
     }
     free(b.mem);                          /* meshcheck's 14 B per sample instead of the tree */
-    if (sp->voids && judged) a2 = exact_area2(&g);
+    if (sp->voids && judged) a2 = btc_exact_area2(&g);
     for (i = 0; i < no; i++) {
         if (judged) judge(&g, &o[i], sp->voids, a2);
         free(o[i].mem);
