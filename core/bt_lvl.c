@@ -8,6 +8,32 @@
 #include "core/bitree.h"
 #include "core/bt_int.h"
 
+/* A node's error code is at least its children's (c0..c3: the 4 child diamonds'
+ * nodes), and its volume [lo, hi] (quantised) holds theirs: both stencil levels
+ * finish a node this way. */
+static inline uint16_t err_with_children(uint16_t code, uint32_t c0, uint32_t c1, uint32_t c2, uint32_t c3)
+{
+    uint16_t e0 = BT_NODE_ERR(c0) > BT_NODE_ERR(c1) ? BT_NODE_ERR(c0) : BT_NODE_ERR(c1);
+    uint16_t e1 = BT_NODE_ERR(c2) > BT_NODE_ERR(c3) ? BT_NODE_ERR(c2) : BT_NODE_ERR(c3);
+    if (e0 > code) code = e0;
+    if (e1 > code) code = e1;
+    return code;
+}
+
+static inline uint32_t node_with_children(uint16_t code, int lo, int hi, uint32_t c0, uint32_t c1, uint32_t c2,
+                                          uint32_t c3)
+{
+    int l0 = BT_NODE_ZLO(c0) < BT_NODE_ZLO(c1) ? BT_NODE_ZLO(c0) : BT_NODE_ZLO(c1);
+    int l1 = BT_NODE_ZLO(c2) < BT_NODE_ZLO(c3) ? BT_NODE_ZLO(c2) : BT_NODE_ZLO(c3);
+    int h0 = BT_NODE_ZHI(c0) > BT_NODE_ZHI(c1) ? BT_NODE_ZHI(c0) : BT_NODE_ZHI(c1);
+    int h1 = BT_NODE_ZHI(c2) > BT_NODE_ZHI(c3) ? BT_NODE_ZHI(c2) : BT_NODE_ZHI(c3);
+    if (l0 < lo) lo = l0;
+    if (l1 < lo) lo = l1;
+    if (h0 > hi) hi = h0;
+    if (h1 > hi) hi = h1;
+    return BT_NODE(code, lo, hi);
+}
+
 /* Interior A1 diamond (hypotenuse a-b of length 2 through m, apexes p and q):
  * only m is off the planes, so e = ceil(|za + zb - 2 zm| / 2) for both halves. */
 static inline void a1_fast(bt_tree *t, const ctx *c, size_t idx, int32_t za, int32_t zb, int32_t zm,
@@ -72,8 +98,8 @@ void bte_level1(bt_tree *t, const ctx *c)
                 int32_t zm = zc[0], e, lo, hi;
                 uint32_t c0 = t->node[idx - 1], c1 = t->node[idx + 1];
                 uint32_t c2 = t->node[idx - (size_t)n], c3 = t->node[idx + (size_t)n];
-                uint16_t code, e0, e1;
-                int lq, hq, l0, l1, h0, h1;
+                uint16_t code;
+                int lq, hq;
                 if ((((x >> 1) + (y >> 1)) & 1) == 0) {
                     e = (iabs32(z00 + z22 - 2 * zm) + 1) >> 1;
                     if (c->ub) {   /* apexes (x+1, y-1): half 0, (x-1, y+1): half 1 */
@@ -87,26 +113,14 @@ void bte_level1(bt_tree *t, const ctx *c)
                         c->ub[2 * idx + 1] = d1_half(c, n, x, y, x + 1, y + 1, e);
                     }
                 }
-                code = enc_small(e);
-                e0 = BT_NODE_ERR(c0) > BT_NODE_ERR(c1) ? BT_NODE_ERR(c0) : BT_NODE_ERR(c1);
-                e1 = BT_NODE_ERR(c2) > BT_NODE_ERR(c3) ? BT_NODE_ERR(c2) : BT_NODE_ERR(c3);
-                if (e0 > code) code = e0;
-                if (e1 > code) code = e1;
+                code = err_with_children(enc_small(e), c0, c1, c2, c3);
                 lo = z00 < z20 ? z00 : z20; hi = z00 > z20 ? z00 : z20;
                 lo = z02 < lo ? z02 : lo; hi = z02 > hi ? z02 : hi;
                 lo = z22 < lo ? z22 : lo; hi = z22 > hi ? z22 : hi;
                 e = code < 4096 ? (int32_t)code : (int32_t)bt_code_value(code);
                 lq = q_lo(c, (int64_t)lo - e);
                 hq = q_hi(c, (int64_t)hi + e);
-                l0 = BT_NODE_ZLO(c0) < BT_NODE_ZLO(c1) ? BT_NODE_ZLO(c0) : BT_NODE_ZLO(c1);
-                l1 = BT_NODE_ZLO(c2) < BT_NODE_ZLO(c3) ? BT_NODE_ZLO(c2) : BT_NODE_ZLO(c3);
-                h0 = BT_NODE_ZHI(c0) > BT_NODE_ZHI(c1) ? BT_NODE_ZHI(c0) : BT_NODE_ZHI(c1);
-                h1 = BT_NODE_ZHI(c2) > BT_NODE_ZHI(c3) ? BT_NODE_ZHI(c2) : BT_NODE_ZHI(c3);
-                if (l0 < lq) lq = l0;
-                if (l1 < lq) lq = l1;
-                if (h0 > hq) hq = h0;
-                if (h1 > hq) hq = h1;
-                t->node[idx] = BT_NODE(code, lq, hq);
+                t->node[idx] = node_with_children(code, lq, hq, c0, c1, c2, c3);
             } else bte_diamond(t, c, x, y, 1, 1);
         }
     }
@@ -123,23 +137,11 @@ static inline void level2_node(bt_tree *t, const ctx *c, size_t idx, int32_t e0,
     /* children at idx -+ da, idx -+ db; q_lo and q_hi are monotone, so the
      * halves' volumes are merged before quantising (the same bytes) */
     uint32_t c0 = t->node[idx - da], c1 = t->node[idx + da], c2 = t->node[idx - db], c3 = t->node[idx + db];
-    uint16_t code = enc_small(e0), ce = enc_small(e1), m0, m1;
+    uint16_t code = enc_small(e0), ce = enc_small(e1);
     int64_t vl0 = (int64_t)zl0 - e0, vl1 = (int64_t)zl1 - e1, vh0 = (int64_t)zh0 + e0, vh1 = (int64_t)zh1 + e1;
-    int lo = q_lo(c, vl0 < vl1 ? vl0 : vl1), hi = q_hi(c, vh0 > vh1 ? vh0 : vh1), l0, l1, h0, h1;
+    int lo = q_lo(c, vl0 < vl1 ? vl0 : vl1), hi = q_hi(c, vh0 > vh1 ? vh0 : vh1);
     if (ce > code) code = ce;
-    m0 = BT_NODE_ERR(c0) > BT_NODE_ERR(c1) ? BT_NODE_ERR(c0) : BT_NODE_ERR(c1);
-    m1 = BT_NODE_ERR(c2) > BT_NODE_ERR(c3) ? BT_NODE_ERR(c2) : BT_NODE_ERR(c3);
-    if (m0 > code) code = m0;
-    if (m1 > code) code = m1;
-    l0 = BT_NODE_ZLO(c0) < BT_NODE_ZLO(c1) ? BT_NODE_ZLO(c0) : BT_NODE_ZLO(c1);
-    l1 = BT_NODE_ZLO(c2) < BT_NODE_ZLO(c3) ? BT_NODE_ZLO(c2) : BT_NODE_ZLO(c3);
-    h0 = BT_NODE_ZHI(c0) > BT_NODE_ZHI(c1) ? BT_NODE_ZHI(c0) : BT_NODE_ZHI(c1);
-    h1 = BT_NODE_ZHI(c2) > BT_NODE_ZHI(c3) ? BT_NODE_ZHI(c2) : BT_NODE_ZHI(c3);
-    if (l0 < lo) lo = l0;
-    if (l1 < lo) lo = l1;
-    if (h0 > hi) hi = h0;
-    if (h1 > hi) hi = h1;
-    t->node[idx] = BT_NODE(code, lo, hi);
+    t->node[idx] = node_with_children(err_with_children(code, c0, c1, c2, c3), lo, hi, c0, c1, c2, c3);
 }
 
 static int32_t max3i(int32_t a, int32_t b, int32_t c) { return a > b ? (a > c ? a : c) : (b > c ? b : c); }
