@@ -37,21 +37,19 @@ static void usage(FILE *f)
         "  -o OUT            .obj, .ply or .stl (binary); omit to only print the figures\n");
 }
 
-static const char *ext_of(const char *p)
+/* Output format from the file name: 0 OBJ, 1 PLY, 2 STL, -1 unknown. */
+static int out_kind(const char *path)
 {
-    const char *d = strrchr(p, '.');
-    return d ? d + 1 : "";
+    const char *d = strrchr(path, '.'), *ext = d ? d + 1 : "";
+    return !strcmp(ext, "obj") ? 0 : !strcmp(ext, "ply") ? 1 : !strcmp(ext, "stl") ? 2 : -1;
 }
 
-static int write_mesh(const char *out, const hf *f, const bt_mesh *m, const uint32_t *list, uint32_t nt,
+static int write_mesh(const char *out, int kind, const hf *f, const bt_mesh *m, const uint32_t *list, uint32_t nt,
                       br_err *e)
 {
-    const char *ext = ext_of(out);
     FILE *fp;
     uint32_t i;
     double sx = f->dx_um * 1e-6, sy = f->dy_um * 1e-6, sz = (double)f->z_num / f->z_den;
-    int kind = !strcmp(ext, "obj") ? 0 : !strcmp(ext, "ply") ? 1 : !strcmp(ext, "stl") ? 2 : -1;
-    if (kind < 0) return br_err_set(e, BR_E_ARG, out, "unknown output format (want .obj, .ply or .stl)");
     fp = fopen(out, kind == 2 ? "wb" : "w");
     if (!fp) return br_err_set(e, BR_E_IO, out, "cannot open for writing");
 #define VX(i) (m->v[i].x * sx)
@@ -155,7 +153,7 @@ int cmd_mesh(int argc, char **argv)
         else if (nf < 64) files[nf++] = a;
     }
     if (nf == 0 || maxerr < 0 || (budget < 0) || (budget > 0x10000000L)) { usage(stderr); return 2; }
-    if (out && strcmp(ext_of(out), "obj") && strcmp(ext_of(out), "ply") && strcmp(ext_of(out), "stl")) {
+    if (out && out_kind(out) < 0) {
         fprintf(stderr, "bitrain mesh: %s: unknown output format (want .obj, .ply or .stl)\n", out);
         return 2;   /* before any work: the mesh of a large DEM takes a while */
     }
@@ -218,7 +216,7 @@ int cmd_mesh(int argc, char **argv)
                    "line triangles %u\ntrue max error %.4f m (at column %d, row %d)\n",
                    nt, m.nv, m.nfict, refs, nt ? (double)refs / nt : 0.0, lines, em, ex, ey);
     }
-    if (out && write_mesh(out, &f, &m, list, nt, &e) != BR_OK) { fprintf(stderr, "bitrain mesh: %s\n", e.msg); goto done; }
+    if (out && write_mesh(out, out_kind(out), &f, &m, list, nt, &e) != BR_OK) { fprintf(stderr, "bitrain mesh: %s\n", e.msg); goto done; }
     rc = 0;
 done:
     free(list); free(mm); free(mem); free(scr);

@@ -549,6 +549,5 @@ int main(int argc, char **argv)
     RUN(test_narrow);
     RUN(test_voids);
     printf("total %.1f s\n", (tm_now_ms() - t0) / 1000);
-    (void)sanitized;
     return t_finish();
 }
