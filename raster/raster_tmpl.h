@@ -609,6 +609,8 @@ RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cve
         xl = (xmin + HALF - 1) >> SUB; xh = (xmax - HALF) >> SUB;
     }
     if (RS_UNLIKELY(hi - lo >= TINY || xh - xl >= TINY)) {
+        /* no row or no column of centres: neither triangle's own (sub-)box holds one */
+        if (hi < lo || xh < xl) return;
         RS_FN(tri_raster)(bd, v0, v1, v2);
         RS_FN(tri_raster)(bd, v2, v1, v3);
         return;
