@@ -2,7 +2,7 @@
 # Prints one md5 per peer-scene frame configuration (96 frames: cameras A/B, 320x240,
 # 640x480, 1000x700, culling off/on, XRGB8888/RGB565, 32/16-bit depth, whole frame and
 # 7-row bands), to check that a change to raster/ leaves every pixel unchanged:
-#   sh benchmarks/peer_frames.sh > before.txt; (change); sh benchmarks/peer_frames.sh | diff before.txt -
+#   sh mk/peer-frames.sh > before.txt; (change); sh mk/peer-frames.sh | diff before.txt -
 # BITRAIN=path picks the binary (default ./bitrain).
 bin=${BITRAIN:-./bitrain}
 tmp=${TMPDIR:-/tmp}/peer_frames.$$

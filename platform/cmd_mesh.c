@@ -210,10 +210,10 @@ int cmd_mesh(int argc, char **argv)
         uint32_t refs = nolines ? 3 * nt : m.ns, lines = nolines ? 0 : m.nline;
         if (json)
             printf("{\"triangles\": %u, \"vertices\": %u, \"fictitious\": %u, \"strip_refs\": %u, "
-                   "\"line_triangles\": %u, \"max_error\": %.4f}\n", nt, m.nv, m.nfict, refs, lines, em);
+                   "\"line_triangles\": %u, \"max_error\": %.6f}\n", nt, m.nv, m.nfict, refs, lines, em);
         else
             printf("triangles %u\nvertices %u\nfictitious %u\nstrip references %u (%.3f per triangle)\n"
-                   "line triangles %u\ntrue max error %.4f m (at column %d, row %d)\n",
+                   "line triangles %u\ntrue max error %.6f m (at column %d, row %d)\n",
                    nt, m.nv, m.nfict, refs, nt ? (double)refs / nt : 0.0, lines, em, ex, ey);
     }
     if (out && write_mesh(out, out_kind(out), &f, &m, list, nt, &e) != BR_OK) { fprintf(stderr, "bitrain mesh: %s\n", e.msg); goto done; }
