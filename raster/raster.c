@@ -18,6 +18,34 @@
 #include "raster/raster.h"
 #include "core/fx.h"
 
+/* Build-time choice of the compiled variants (see raster.h): each pixel format x depth
+ * size x texture combination, and the write-counting test variant, is its own
+ * specialised copy of raster_tmpl.h; a board with little flash keeps only the one it
+ * draws, e.g. -DRS_WITH_888=0 -DRS_WITH_Z32=0 -DRS_WITH_TEX=0 -DRS_WITH_COUNT=0 for
+ * RGB565 with 16-bit depth.  Left-out variants are refused by rs_render_band
+ * (BR_E_UNSUPPORTED) and reported by rs_variant_built. */
+#ifndef RS_WITH_888
+#define RS_WITH_888 1
+#endif
+#ifndef RS_WITH_565
+#define RS_WITH_565 1
+#endif
+#ifndef RS_WITH_Z32
+#define RS_WITH_Z32 1
+#endif
+#ifndef RS_WITH_Z16
+#define RS_WITH_Z16 1
+#endif
+#ifndef RS_WITH_TEX
+#define RS_WITH_TEX 1
+#endif
+#ifndef RS_WITH_COUNT
+#define RS_WITH_COUNT 1
+#endif
+#if !((RS_WITH_888 || RS_WITH_565) && (RS_WITH_Z32 || RS_WITH_Z16))
+#error "raster.c: RS_WITH_* leave no pixel format x depth variant to compile"
+#endif
+
 #define SUB RS_SUBPIX_BITS
 #define SUBONE (1 << SUB)
 #define HALF (SUBONE / 2)
@@ -274,6 +302,7 @@ static void tri_clip(band *bd, tri_fn draw, uint32_t ia, uint32_t ib, uint32_t i
 #define PACK565(v) ((uint16_t)((((v) >> 47) & 0xf800u) | (((v) >> 31) & 0x07e0u) | (((v) >> 16) & 0x001fu)))
 
 /* ---------------------------------------------------------------- texture helpers */
+#if RS_WITH_TEX
 
 /* Shift that brings the largest of three depths below 2^16 (1/w weights). */
 static int32_t tex_shift(uint32_t da, uint32_t db, uint32_t dc)
@@ -312,8 +341,12 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
     return out;
 }
 
+#endif
+
 #define PACK24_888(x) (x)
 #define PACK24_565(x) ((uint16_t)((((x) >> 8) & 0xf800u) | (((x) >> 5) & 0x07e0u) | (((x) >> 3) & 0x001fu)))
+
+typedef void (*draw_fn)(band *bd);
 
 #define RS_TEX 0
 #define RS_PACK24 PACK24_888
@@ -323,14 +356,24 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 #define RS_ZSH 0
 #define RS_PACK PACK888
 #define RS_COUNT 0
+#if RS_WITH_888 && RS_WITH_Z32
 #include "raster/raster_tmpl.h"
+#define DRAW_888_Z32 draw_888_z32
+#else
+#define DRAW_888_Z32 ((draw_fn)0)
+#endif
 #undef RS_FN
 #undef RS_Z
 #undef RS_ZSH
 #define RS_FN(n) n##_888_z16
 #define RS_Z uint16_t
 #define RS_ZSH 14
+#if RS_WITH_888 && RS_WITH_Z16
 #include "raster/raster_tmpl.h"
+#define DRAW_888_Z16 draw_888_z16
+#else
+#define DRAW_888_Z16 ((draw_fn)0)
+#endif
 #undef RS_FN
 #undef RS_PIX
 #undef RS_PACK
@@ -339,27 +382,47 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 #define RS_PIX uint16_t
 #define RS_PACK PACK565
 #define RS_PACK24 PACK24_565
+#if RS_WITH_565 && RS_WITH_Z16
 #include "raster/raster_tmpl.h"
+#define DRAW_565_Z16 draw_565_z16
+#else
+#define DRAW_565_Z16 ((draw_fn)0)
+#endif
 #undef RS_FN
 #undef RS_Z
 #undef RS_ZSH
 #define RS_FN(n) n##_565_z32
 #define RS_Z uint32_t
 #define RS_ZSH 0
+#if RS_WITH_565 && RS_WITH_Z32
 #include "raster/raster_tmpl.h"
+#define DRAW_565_Z32 draw_565_z32
+#else
+#define DRAW_565_Z32 ((draw_fn)0)
+#endif
 /* textured variants */
 #undef RS_TEX
 #define RS_TEX 1
 #undef RS_FN
 #define RS_FN(n) n##_565_z32_tex
+#if RS_WITH_565 && RS_WITH_Z32 && RS_WITH_TEX
 #include "raster/raster_tmpl.h"
+#define DRAW_565_Z32_TEX draw_565_z32_tex
+#else
+#define DRAW_565_Z32_TEX ((draw_fn)0)
+#endif
 #undef RS_FN
 #undef RS_Z
 #undef RS_ZSH
 #define RS_FN(n) n##_565_z16_tex
 #define RS_Z uint16_t
 #define RS_ZSH 14
+#if RS_WITH_565 && RS_WITH_Z16 && RS_WITH_TEX
 #include "raster/raster_tmpl.h"
+#define DRAW_565_Z16_TEX draw_565_z16_tex
+#else
+#define DRAW_565_Z16_TEX ((draw_fn)0)
+#endif
 #undef RS_FN
 #undef RS_PIX
 #undef RS_PACK
@@ -368,14 +431,24 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 #define RS_PIX uint32_t
 #define RS_PACK PACK888
 #define RS_PACK24 PACK24_888
+#if RS_WITH_888 && RS_WITH_Z16 && RS_WITH_TEX
 #include "raster/raster_tmpl.h"
+#define DRAW_888_Z16_TEX draw_888_z16_tex
+#else
+#define DRAW_888_Z16_TEX ((draw_fn)0)
+#endif
 #undef RS_FN
 #undef RS_Z
 #undef RS_ZSH
 #define RS_FN(n) n##_888_z32_tex
 #define RS_Z uint32_t
 #define RS_ZSH 0
+#if RS_WITH_888 && RS_WITH_Z32 && RS_WITH_TEX
 #include "raster/raster_tmpl.h"
+#define DRAW_888_Z32_TEX draw_888_z32_tex
+#else
+#define DRAW_888_Z32_TEX ((draw_fn)0)
+#endif
 #undef RS_TEX
 #define RS_TEX 0
 #undef RS_FN
@@ -384,7 +457,12 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 #define RS_FN(n) n##_count
 #define RS_PIX uint32_t
 #define RS_COUNT 1
+#if RS_WITH_COUNT
 #include "raster/raster_tmpl.h"
+#define DRAW_COUNT draw_count
+#else
+#define DRAW_COUNT ((draw_fn)0)
+#endif
 #undef RS_FN
 #undef RS_PIX
 #undef RS_Z
@@ -482,12 +560,29 @@ static void tri_clip(band *bd, tri_fn draw, uint32_t ia, uint32_t ib, uint32_t i
     for (i = 1; i + 1 < n; i++) draw(bd, &sv[0], &sv[i], &sv[i + 1]);
 }
 
+/* The compiled variant that draws frames of this format, depth size, texture and
+ * counting mode; NULL when the build left it out. */
+static draw_fn draw_for(int32_t fmt, int32_t depth, int tex, int count)
+{
+    const int z16 = depth == RS_DEPTH16, c565 = fmt == RS_FMT_RGB565;
+    if (count) return fmt == RS_FMT_XRGB8888 ? DRAW_COUNT : (draw_fn)0;
+    if (tex) return c565 ? (z16 ? DRAW_565_Z16_TEX : DRAW_565_Z32_TEX) : (z16 ? DRAW_888_Z16_TEX : DRAW_888_Z32_TEX);
+    return c565 ? (z16 ? DRAW_565_Z16 : DRAW_565_Z32) : (z16 ? DRAW_888_Z16 : DRAW_888_Z32);
+}
+
+int rs_variant_built(int32_t fmt, int32_t depth, int textured)
+{
+    return draw_for(fmt, depth, textured, 0) != 0;
+}
+
 br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth)
 {
+    const draw_fn draw = draw_for(f->fmt, f->depth, f->tex != 0, f->debug_count != 0);
     band bd;
     int32_t y, x;
     uint32_t dfar;
     if (!f->cache || !color || !depth || y0 < 0 || rows < 1 || y0 + rows > f->h) return BR_E_ARG;
+    if (!draw) return BR_E_UNSUPPORTED;
     memset(&bd, 0, sizeof bd);
     bd.f = f; bd.y0 = y0; bd.y1 = y0 + rows; bd.w = f->w;
     bd.color = (uint8_t *)color; bd.stride = stride; bd.depth = depth;
@@ -525,18 +620,7 @@ br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, siz
             memcpy(z0 + (size_t)y * zrow, z0, zrow);
         }
     }
-    if (f->debug_count) draw_count(&bd);
-    else if (f->tex) {
-        if (f->fmt == RS_FMT_RGB565) {
-            if (f->depth == RS_DEPTH16) draw_565_z16_tex(&bd); else draw_565_z32_tex(&bd);
-        } else {
-            if (f->depth == RS_DEPTH16) draw_888_z16_tex(&bd); else draw_888_z32_tex(&bd);
-        }
-    } else if (f->fmt == RS_FMT_RGB565) {
-        if (f->depth == RS_DEPTH16) draw_565_z16(&bd); else draw_565_z32(&bd);
-    } else {
-        if (f->depth == RS_DEPTH16) draw_888_z16(&bd); else draw_888_z32(&bd);
-    }
+    draw(&bd);
     f->stat_tris += bd.tris;
     f->stat_clipped += bd.clipped;
     f->stat_pixels += bd.pixels;

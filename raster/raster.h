@@ -164,13 +164,21 @@ void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint3
 br_status rs_frame_prepare(rs_frame *f);
 
 /* Renders rows [y0, y0+rows) into caller buffers: colour (stride bytes per row) and a
- * depth buffer of w*rows entries (uint32 or uint16).  Clears both first. */
+ * depth buffer of w*rows entries (uint32 or uint16).  Clears both first.
+ * BR_E_UNSUPPORTED: this build left the frame's variant out (rs_variant_built). */
 br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth);
 
 /* Renders the whole frame as successive bands of band_rows rows (the last may be
  * shorter) in mem (rs_band_mem_size(w, band_rows, ...) bytes, suitably aligned),
  * handing each to sink. */
 br_status rs_render(rs_frame *f, int32_t band_rows, void *mem, rs_sink sink, void *user);
+
+/* 1 when this build draws frames of this pixel format, depth size and texturing.
+ * Every combination is compiled by default; boards with little flash compile
+ * raster/raster.c with RS_WITH_888, RS_WITH_565, RS_WITH_Z32, RS_WITH_Z16, RS_WITH_TEX
+ * or RS_WITH_COUNT (the tests' write-counting variant) defined to 0 to leave variants
+ * out (each is about 20 KB of code on x86-64; docs/raster.md gives the sizes). */
+int rs_variant_built(int32_t fmt, int32_t depth, int textured);
 
 /* XRGB8888 or RGB565 pixel rows to RGB888 bytes (RGB565 expanded by bit replication). */
 void rs_to_rgb888(int32_t fmt, const void *src, int32_t n, uint8_t *rgb);

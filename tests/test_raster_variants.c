@@ -1,0 +1,167 @@
+/* tests/test_raster_variants.c — the build-time variant choice of raster/raster.c
+ * (RS_WITH_*), as a board with little flash would use it.
+ *
+ * This file compiles a second copy of raster.c keeping only RGB565 with 16-bit depth,
+ * its functions renamed (min_*) so that it links beside the full library.  On the peer
+ * scene (real fuji.png terrain, both cameras, whole frame and 7-row bands) the reduced
+ * copy must give exactly the full library's bytes, and refuse every variant it left out
+ * with BR_E_UNSUPPORTED instead of drawing. */
+#include "raster/raster.h"
+#include "core/cam.h"
+#include "platform/peer_scene.h"
+#include "tests/test.h"
+
+#define RS_WITH_888 0
+#define RS_WITH_Z32 0
+#define RS_WITH_TEX 0
+#define RS_WITH_COUNT 0
+#define rs_cache_mem_size min_cache_mem_size
+#define rs_band_mem_size min_band_mem_size
+#define rs_chunk_mem_size min_chunk_mem_size
+#define rs_cvert_set min_cvert_set
+#define rs_frame_prepare min_frame_prepare
+#define rs_render_band min_render_band
+#define rs_render min_render
+#define rs_variant_built min_variant_built
+#define rs_to_rgb888 min_to_rgb888
+/* prototypes of the renamed copy (raster.h is already included, under the real names) */
+size_t rs_cache_mem_size(uint32_t nv);
+size_t rs_chunk_mem_size(const rs_prim *prims, int32_t nprims);
+size_t rs_band_mem_size(int32_t w, int32_t rows, int32_t fmt, int32_t depth);
+void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint32_t d, uint32_t rgb);
+br_status rs_frame_prepare(rs_frame *f);
+br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth);
+br_status rs_render(rs_frame *f, int32_t band_rows, void *mem, rs_sink sink, void *user);
+int rs_variant_built(int32_t fmt, int32_t depth, int textured);
+void rs_to_rgb888(int32_t fmt, const void *src, int32_t n, uint8_t *rgb);
+#include "raster/raster.c"
+#undef rs_cache_mem_size
+#undef rs_band_mem_size
+#undef rs_chunk_mem_size
+#undef rs_cvert_set
+#undef rs_frame_prepare
+#undef rs_render_band
+#undef rs_render
+#undef rs_variant_built
+#undef rs_to_rgb888
+
+#define W 320
+#define H 240
+
+static peer_scene *g_ps;
+static rs_vertex g_v[PEER_NV];
+static rs_prim g_prims[PEER_NSTRIP];
+
+static int load_scene(void)
+{
+    int32_t i;
+    if (g_ps) return 1;
+    g_ps = (peer_scene *)malloc(sizeof *g_ps);
+    if (!g_ps || peer_scene_build(t_data("png/fuji.png"), g_ps) != 0) return 0;
+    for (i = 0; i < PEER_NV; i++) {
+        g_v[i].p[0] = g_ps->ipos[3 * i]; g_v[i].p[1] = g_ps->ipos[3 * i + 1]; g_v[i].p[2] = g_ps->ipos[3 * i + 2];
+        g_v[i].rgb = ((uint32_t)g_ps->rgba[4 * i] << 16) | ((uint32_t)g_ps->rgba[4 * i + 1] << 8) | g_ps->rgba[4 * i + 2];
+    }
+    for (i = 0; i < PEER_NSTRIP; i++) {
+        g_prims[i].kind = RS_STRIP; g_prims[i].n = PEER_STRIP_LEN; g_prims[i].idx = g_ps->strip + i * PEER_STRIP_LEN;
+    }
+    return 1;
+}
+
+/* Frame of peer camera `which` at W x H in RGB565 + 16-bit depth, cache from `prepare`. */
+static int setup(rs_frame *f, char which, br_status (*prepare)(rs_frame *))
+{
+    int32_t eye[3], tg[3], fovy, zn, zf;
+    cam c;
+    memset(f, 0, sizeof *f);
+    if (!load_scene() || peer_camera(which, NULL, eye, tg, &fovy, &zn, &zf) != 0) return 0;
+    if (cam_look_at(&c, eye, tg, fovy, W, H, zn, zf) != BR_OK) return 0;
+    f->w = W; f->h = H; f->fmt = RS_FMT_RGB565; f->depth = RS_DEPTH16;
+    f->clear_rgb = 0x99ccff;
+    f->v = g_v; f->nv = PEER_NV; f->prims = g_prims; f->nprims = PEER_NSTRIP;
+    f->cache = (rs_cvert *)malloc(rs_cache_mem_size(PEER_NV));
+    cam_viewproj(&c, &f->vp);
+    return f->cache && prepare(f) == BR_OK;
+}
+
+/* The whole frame drawn in bands of `rows` by `band_fn` into colour (W x H RGB565). */
+static br_status draw(rs_frame *f, br_status (*band_fn)(rs_frame *, int32_t, int32_t, void *, size_t, void *),
+                      int32_t rows, uint16_t *colour, uint16_t *zbuf)
+{
+    int32_t y0;
+    for (y0 = 0; y0 < H; y0 += rows) {
+        int32_t n = H - y0 < rows ? H - y0 : rows;
+        br_status s = band_fn(f, y0, n, colour + (size_t)y0 * W, W * 2, zbuf);
+        if (s != BR_OK) return s;
+    }
+    return BR_OK;
+}
+
+static void test_same_bytes(void)
+{
+    static uint16_t full[W * H], part[W * H], zb[W * H];
+    const char cams[2] = { 'A', 'B' };
+    const int32_t bands[2] = { H, 7 };
+    int ci, bi;
+    for (ci = 0; ci < 2; ci++) {
+        rs_frame ff, fm;
+        long terrain = 0, i;
+        CHECK(setup(&ff, cams[ci], rs_frame_prepare));
+        CHECK(setup(&fm, cams[ci], min_frame_prepare));
+        if (!ff.cache || !fm.cache) return;
+        CHECK(memcmp(ff.cache, fm.cache, rs_cache_mem_size(PEER_NV)) == 0);
+        for (bi = 0; bi < 2; bi++) {
+            CHECK_EQ(draw(&ff, rs_render_band, bands[bi], full, zb), BR_OK);
+            CHECK_EQ(draw(&fm, min_render_band, bands[bi], part, zb), BR_OK);
+            CHECK_MSG(memcmp(full, part, sizeof full) == 0, "camera %c, bands of %d rows", cams[ci], bands[bi]);
+        }
+        for (i = 0; i < W * H; i++) terrain += full[i] != 0x9e7f;   /* not sky */
+        CHECK_MSG(terrain > W * H / 3, "camera %c: %ld terrain pixels", cams[ci], terrain);
+        CHECK_EQ(ff.stat_pixels, fm.stat_pixels);
+        free(ff.cache); free(fm.cache);
+    }
+}
+
+static void test_refused(void)
+{
+    static uint32_t colour[W * H], zb[W * H];
+    static const uint32_t texel = 0xffffff;
+    rs_texture tex;
+    rs_frame f;
+    int32_t fmt, dep;
+    for (fmt = 0; fmt < 2; fmt++)
+        for (dep = 0; dep < 2; dep++) {
+            CHECK_EQ(rs_variant_built(fmt, dep, 0), 1);
+            CHECK_EQ(rs_variant_built(fmt, dep, 1), 1);
+            CHECK_EQ(min_variant_built(fmt, dep, 0), fmt == RS_FMT_RGB565 && dep == RS_DEPTH16);
+            CHECK_EQ(min_variant_built(fmt, dep, 1), 0);
+        }
+    CHECK(setup(&f, 'A', min_frame_prepare));
+    if (!f.cache) return;
+    f.fmt = RS_FMT_XRGB8888;
+    memset(colour, 0x5a, sizeof colour);
+    CHECK_EQ(min_render_band(&f, 0, H, colour, W * 4, zb), BR_E_UNSUPPORTED);
+    CHECK(colour[0] == 0x5a5a5a5au && colour[W * H - 1] == 0x5a5a5a5au);   /* nothing drawn or cleared */
+    f.fmt = RS_FMT_RGB565; f.depth = RS_DEPTH32;
+    CHECK_EQ(min_render_band(&f, 0, H, colour, W * 2, zb), BR_E_UNSUPPORTED);
+    f.depth = RS_DEPTH16;
+    tex.w = tex.h = 1; tex.px = &texel;
+    f.tex = &tex;
+    CHECK_EQ(min_render_band(&f, 0, H, colour, W * 2, zb), BR_E_UNSUPPORTED);
+    f.tex = NULL;
+    f.debug_count = 1;
+    CHECK_EQ(min_render_band(&f, 0, H, colour, W * 2, zb), BR_E_UNSUPPORTED);
+    /* the full library counts writes on XRGB8888 only */
+    CHECK_EQ(rs_render_band(&f, 0, H, colour, W * 2, zb), BR_E_UNSUPPORTED);
+    f.debug_count = 0;
+    CHECK_EQ(min_render_band(&f, 0, H, colour, W * 2, zb), BR_OK);
+    free(f.cache);
+}
+
+int main(void)
+{
+    T_RUN(test_same_bytes);
+    T_RUN(test_refused);
+    free(g_ps);
+    return t_finish();
+}
