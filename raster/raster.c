@@ -39,6 +39,18 @@ static uint64_t rs_pack_rgb(uint32_t rgb)
 }
 #define SMALL (1 << 10)   /* triangles smaller than 64 px use a reciprocal for gradients */
 
+#if defined(__GNUC__)
+#define RS_NOINLINE __attribute__((noinline))
+#define RS_INLINE inline __attribute__((always_inline))
+#define RS_UNLIKELY(x) __builtin_expect(!!(x), 0)
+#define RS_LIKELY(x) __builtin_expect(!!(x), 1)
+#else
+#define RS_LIKELY(x) (x)
+#define RS_UNLIKELY(x) (x)
+#define RS_NOINLINE
+#define RS_INLINE
+#endif
+
 typedef struct band {
     const rs_frame *f;
     int32_t y0, y1;       /* rows [y0, y1) */
@@ -144,12 +156,113 @@ void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint3
     o->u = o->v = 0;
 }
 
+/* The reference transform of one vertex (camera space, near/far, guard band, divide,
+ * screen outcodes), for the vertices the fast loop below does not finish: behind the
+ * near plane, beyond the far plane, or not provably inside the guard band.  Rare
+ * (peer camera B 640x480: 2,740 of 66,049 per frame; camera A: none), so it recomputes
+ * everything from the frame instead of holding constants. */
+static RS_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cvert *o)
+{
+    const cam_vp *vp = &f->vp;
+    const int64_t f8 = f_q8(vp), g8 = (int64_t)RS_GUARD_PX << 8;
+    const int32_t xmax = f->w * SUBONE - HALF, ymax = f->h * SUBONE - HALF;
+    int64_t c[3], lim, ax, ay;
+    uint32_t oc = 0;
+    o->cp = rs_pack_rgb(v->rgb);
+    o->u = v->uv[0]; o->v = v->uv[1];
+    to_camera(vp, v->p, c);
+    if (c[2] < vp->znear) {
+        o->x = o->y = 0; o->d = 0;
+        o->c = (v->rgb & 0xffffffu) | ((uint32_t)RS_OUT_NEAR << 24);
+        return;
+    }
+    if (c[2] > vp->zfar) oc |= RS_OUT_FAR;
+    lim = g8 * c[2]; ax = f8 * c[0]; ay = f8 * c[1];
+    /* |ax| > lim or |ay| > lim, one unsigned compare each (lim > 0; |ax| < 2^61 and
+     * lim < 2^55, so ax + lim cannot overflow) */
+    if ((uint64_t)(ax + lim) > (uint64_t)(2 * lim) || (uint64_t)(ay + lim) > (uint64_t)(2 * lim)) {
+        /* beyond the guard band on one side is outside the screen on that side */
+        oc |= RS_OUT_GUARD;
+        if (ax > lim) oc |= RS_OUT_RIGHT;
+        if (-ax > lim) oc |= RS_OUT_LEFT;
+        if (ay > lim) oc |= RS_OUT_TOP;
+        if (-ay > lim) oc |= RS_OUT_BOTTOM;
+        o->x = o->y = 0; o->d = 0;
+    } else {
+        project(vp, f8, c, f->w, f->h, o);
+        if (o->x < HALF) oc |= RS_OUT_LEFT;
+        if (o->x > xmax) oc |= RS_OUT_RIGHT;
+        if (o->y < HALF) oc |= RS_OUT_TOP;
+        if (o->y > ymax) oc |= RS_OUT_BOTTOM;
+    }
+    o->c = (v->rgb & 0xffffffu) | (oc << 24);
+}
+
+/* The per-frame transform loop; tex (a constant after inlining) says whether to copy
+ * the texture coordinates, which only textured frames read.
+ *
+ * Every vertex gets exactly xform_slow's result; the loop takes a shorter road for the
+ * common vertex, znear <= zc <= zfar and inside the guard band:
+ * - near and far in one unsigned compare of zc - znear against zfar - znear (|zc| <
+ *   2^33, no overflow);
+ * - the guard band is not tested before the divide: the quotient q = ax / zc
+ *   (truncated, |ax| < 2^61, zc >= 1) is formed anyway, and |q| = floor(|ax| / zc) < g8
+ *   implies |ax| < g8 zc, strictly inside; |q| >= g8 goes to xform_slow, which decides
+ *   exactly.  An on-screen vertex (|q| < 2^20) needs neither test: its one compare per
+ *   axis against the screen rectangle (64-bit, since q is not yet bounded) settles it;
+ * - the screen position folds the centre and the rounding into one constant:
+ *   cx + ((q + 8) >> 4) = (q + 8 + 16 cx) >> 4, and cy - ((q + 8) >> 4) =
+ *   (16 cy + 7 - q) >> 4 (as -floor(a / 16) = floor((15 - a) / 16));
+ * - the packed colour: rgb (< 2^24) times 1 + 2^26 is rgb + (rgb << 26) without
+ *   overlap, which holds B at bit 0 and R at bit 42 where rs_pack_rgb puts them; G
+ *   moves by its own shift. */
+static RS_INLINE void xform_loop(const rs_frame *f, int tex)
+{
+    const cam_vp *vp = &f->vp;
+    const int64_t r00 = vp->r[0][0], r01 = vp->r[0][1], r02 = vp->r[0][2], t0 = vp->t[0];
+    const int64_t r10 = vp->r[1][0], r11 = vp->r[1][1], r12 = vp->r[1][2], t1 = vp->t[1];
+    const int64_t r20 = vp->r[2][0], r21 = vp->r[2][1], r22 = vp->r[2][2], t2 = vp->t[2];
+    const int64_t zn = vp->znear, zspan = (int64_t)vp->zfar - vp->znear;
+    const int64_t f8 = f_q8(vp), g8 = (int64_t)RS_GUARD_PX << 8, kd = (int64_t)RS_DEPTH_ONE * vp->znear;
+    const int64_t kx = (int64_t)f->w * SUBONE * HALF + HALF, ky = (int64_t)f->h * SUBONE * HALF + HALF - 1;
+    /* on screen: HALF <= sx <= w * SUBONE - HALF */
+    const uint64_t xspan = (uint64_t)f->w * SUBONE - 2 * HALF, yspan = (uint64_t)f->h * SUBONE - 2 * HALF;
+    const rs_vertex *v = f->v, *const end = f->v + f->nv;
+    rs_cvert *o = f->cache;
+    for (; v != end; v++, o++) {
+        const int64_t x = v->p[0], y = v->p[1], z = v->p[2];
+        const uint32_t rgb = v->rgb & 0xffffffu;
+        int64_t c0, c1, c2, qx, qy, sx, sy;
+        uint32_t oc = 0;
+        c2 = (r20 * x + r21 * y + r22 * z + t2) >> 30;
+        if (RS_UNLIKELY((uint64_t)(c2 - zn) > (uint64_t)zspan)) { xform_slow(f, v, o); continue; }
+        c0 = (r00 * x + r01 * y + r02 * z + t0) >> 30;
+        c1 = (r10 * x + r11 * y + r12 * z + t1) >> 30;
+        qx = f8 * c0 / c2; qy = f8 * c1 / c2;
+        sx = (qx + kx) >> 4; sy = (ky - qy) >> 4;
+        if (RS_UNLIKELY((uint64_t)(sx - HALF) > xspan || (uint64_t)(sy - HALF) > yspan)) {
+            /* off screen: inside the guard band when |qx|, |qy| < g8 (one unsigned
+             * compare each), else the exact test in xform_slow */
+            if ((uint64_t)(qx + g8 - 1) > (uint64_t)(2 * g8 - 2) || (uint64_t)(qy + g8 - 1) > (uint64_t)(2 * g8 - 2)) {
+                xform_slow(f, v, o);
+                continue;
+            }
+            if ((uint64_t)(sx - HALF) > xspan) oc |= sx < HALF ? RS_OUT_LEFT : RS_OUT_RIGHT;
+            if ((uint64_t)(sy - HALF) > yspan) oc |= sy < HALF ? RS_OUT_TOP : RS_OUT_BOTTOM;
+        }
+        o->x = (int32_t)sx; o->y = (int32_t)sy;
+        o->d = (uint32_t)(kd / c2);
+        o->c = rgb | (oc << 24);
+        o->cp = (((uint64_t)rgb * 0x4000001u) & 0x3fc00000000ffu) | ((uint64_t)(rgb & 0xff00u) << 13);
+        if (tex) { o->u = v->uv[0]; o->v = v->uv[1]; }
+    }
+}
+
 br_status rs_frame_prepare(rs_frame *f)
 {
     const cam_vp *vp = &f->vp;
-    int64_t f8 = f_q8(vp), g8 = (int64_t)RS_GUARD_PX << 8;
-    int32_t w = f->w, h = f->h, xmax = w * SUBONE - HALF, ymax = h * SUBONE - HALF;
-    uint32_t i;
+    int64_t f8 = f_q8(vp);
+    int32_t w = f->w, h = f->h;
     if (w < 1 || h < 1 || w > RS_MAX_DIM || h > RS_MAX_DIM || !f->cache || (f->nv && !f->v)
         || (f->fmt != RS_FMT_XRGB8888 && f->fmt != RS_FMT_RGB565)
         || (f->depth != RS_DEPTH32 && f->depth != RS_DEPTH16) || vp->znear <= 0
@@ -159,53 +272,9 @@ br_status rs_frame_prepare(rs_frame *f)
                        || f->tex->h > RS_MAX_TEX)))
         return BR_E_ARG;
     f->stat_tris = f->stat_clipped = f->stat_pixels = 0;
-    {
-        const int64_t r00 = vp->r[0][0], r01 = vp->r[0][1], r02 = vp->r[0][2], t0 = vp->t[0];
-        const int64_t r10 = vp->r[1][0], r11 = vp->r[1][1], r12 = vp->r[1][2], t1 = vp->t[1];
-        const int64_t r20 = vp->r[2][0], r21 = vp->r[2][1], r22 = vp->r[2][2], t2 = vp->t[2];
-        const int64_t zn = vp->znear, zf = vp->zfar, kd = (int64_t)RS_DEPTH_ONE * vp->znear;
-        const int32_t cx = w * HALF, cy = h * HALF;
-        const rs_vertex *v = f->v;
-        rs_cvert *o = f->cache;
-        for (i = 0; i < f->nv; i++, v++, o++) {
-            int64_t x = v->p[0], y = v->p[1], z = v->p[2], c0, c1, c2, lim, ax, ay;
-            uint32_t oc = 0;
-            o->cp = rs_pack_rgb(v->rgb);
-            o->u = v->uv[0]; o->v = v->uv[1];
-            c2 = (r20 * x + r21 * y + r22 * z + t2) >> 30;
-            if (c2 < zn) {
-                o->x = o->y = 0; o->d = 0;
-                o->c = (v->rgb & 0xffffffu) | ((uint32_t)RS_OUT_NEAR << 24);
-                continue;
-            }
-            c0 = (r00 * x + r01 * y + r02 * z + t0) >> 30;
-            c1 = (r10 * x + r11 * y + r12 * z + t1) >> 30;
-            if (c2 > zf) oc |= RS_OUT_FAR;
-            lim = g8 * c2; ax = f8 * c0; ay = f8 * c1;
-            /* |ax| > lim or |ay| > lim, one unsigned compare each (lim > 0; |ax| < 2^61 and
-             * lim < 2^55, so ax + lim cannot overflow) */
-            if ((uint64_t)(ax + lim) > (uint64_t)(2 * lim) || (uint64_t)(ay + lim) > (uint64_t)(2 * lim)) {
-                /* beyond the guard band on one side is outside the screen on that side */
-                oc |= RS_OUT_GUARD;
-                if (ax > lim) oc |= RS_OUT_RIGHT;
-                if (-ax > lim) oc |= RS_OUT_LEFT;
-                if (ay > lim) oc |= RS_OUT_TOP;
-                if (-ay > lim) oc |= RS_OUT_BOTTOM;
-                o->x = o->y = 0; o->d = 0;
-            } else {
-                /* the same arithmetic as project() */
-                int32_t sx = cx + (int32_t)((ax / c2 + 8) >> 4), sy = cy - (int32_t)((ay / c2 + 8) >> 4);
-                o->x = sx; o->y = sy;
-                o->d = (uint32_t)(kd / c2);
-                /* one unsigned compare per axis for the common on-screen vertex (|sx|, |sy|
-                 * < 2^19 inside the guard band, so sx - HALF cannot overflow) */
-                if ((uint32_t)(sx - HALF) > (uint32_t)(xmax - HALF))
-                    oc |= sx < HALF ? RS_OUT_LEFT : RS_OUT_RIGHT;
-                if ((uint32_t)(sy - HALF) > (uint32_t)(ymax - HALF))
-                    oc |= sy < HALF ? RS_OUT_TOP : RS_OUT_BOTTOM;
-            }
-            o->c = (v->rgb & 0xffffffu) | (oc << 24);
-        }
+    if (f->nv) {
+        if (f->tex) xform_loop(f, 1);
+        else xform_loop(f, 0);
     }
     if (f->chunks) chunk_rows(f);
     return BR_OK;
@@ -231,18 +300,6 @@ static inline int span_limits(int64_t s, int64_t K, int32_t px0, int32_t px1, in
     } else if (K < 0) return 0;
     return 1;
 }
-
-#if defined(__GNUC__)
-#define RS_NOINLINE __attribute__((noinline))
-#define RS_INLINE inline __attribute__((always_inline))
-#define RS_UNLIKELY(x) __builtin_expect(!!(x), 0)
-#define RS_LIKELY(x) __builtin_expect(!!(x), 1)
-#else
-#define RS_LIKELY(x) (x)
-#define RS_UNLIKELY(x) (x)
-#define RS_NOINLINE
-#define RS_INLINE
-#endif
 
 /* Index of the lowest set bit of m (m != 0). */
 static int32_t ctz64(uint64_t m)
