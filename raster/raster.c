@@ -202,61 +202,69 @@ static RS_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cve
  * the texture coordinates, which only textured frames read.
  *
  * Every vertex gets exactly xform_slow's result; the loop takes a shorter road for the
- * common vertex, znear <= zc <= zfar and inside the guard band:
- * - near and far in one unsigned compare of zc - znear against zfar - znear (|zc| <
- *   2^33, no overflow);
- * - the guard band is not tested before the divide: the quotient q = ax / zc
- *   (truncated, |ax| < 2^61, zc >= 1) is formed anyway, and |q| = floor(|ax| / zc) < g8
- *   implies |ax| < g8 zc, strictly inside; |q| >= g8 goes to xform_slow, which decides
- *   exactly.  An on-screen vertex (|q| < 2^20) needs neither test: its one compare per
- *   axis against the screen rectangle (64-bit, since q is not yet bounded) settles it;
+ * common vertex, znear <= zc <= zfar and inside the guard band, with its constants in
+ * an xform_k read through a pointer (memory operands instead of a dozen stack reloads):
+ * - near and far in one unsigned compare: tzn = t2 - znear 2^30 makes the shifted sum
+ *   zc - znear exactly (a multiple of 2^30 passes through the floor shift); the sum
+ *   still fits int64, as |r p| < 3 2^60, |t2| < 3 2^60 and znear 2^30 < 2^61;
  * - the screen position folds the centre and the rounding into one constant:
- *   cx + ((q + 8) >> 4) = (q + 8 + 16 cx) >> 4, and cy - ((q + 8) >> 4) =
- *   (16 cy + 7 - q) >> 4 (as -floor(a / 16) = floor((15 - a) / 16));
+ *   cx + ((q + 8) >> 4) = (q + 8 + 16 cx) >> 4 for q = f8 c0 / zc, and for y the
+ *   quotient of -f8 c1 (truncation is symmetric, so it is -q exactly):
+ *   cy - ((q + 8) >> 4) = (16 cy + 7 + (-q)) >> 4, as -floor(a / 16) =
+ *   floor((15 - a) / 16).  sx, sy stay int64 until the guard band is settled;
+ * - the guard band is not tested before the divide (|f8 c0| < 2^61, zc >= 1: the
+ *   quotient is always defined).  An on-screen vertex (one compare per axis) is far
+ *   inside it; off screen, |sx - cx| <= GUARD_S = 2^18 - 2 gives |q| < 2^22 = g8
+ *   (q + 8 >= -16 GUARD_S, q + 8 < 16 (GUARD_S + 1); likewise y), so |f8 c0| < g8 zc,
+ *   strictly inside, and the side bits follow from sx, sy as in xform_slow; anything
+ *   else goes to xform_slow, which decides exactly;
  * - the packed colour: rgb (< 2^24) times 1 + 2^26 is rgb + (rgb << 26) without
  *   overlap, which holds B at bit 0 and R at bit 42 where rs_pack_rgb puts them; G
  *   moves by its own shift. */
-static RS_INLINE void xform_loop(const rs_frame *f, int tex)
+#define GUARD_S ((RS_GUARD_PX << SUB) - 2)
+typedef struct xform_k {
+    int64_t r[3][3], t[3];      /* view matrix (Q30) and translation (Q30 world units) */
+    int64_t tzn, zn, zspan;     /* t2 - znear 2^30; znear; zfar - znear */
+    int64_t f8, nf8, kd;        /* f (Q8 pixels), -f, RS_DEPTH_ONE znear */
+    int64_t kx, ky;             /* 16 cx + 8, 16 cy + 7 (cx, cy: centre, sub-pixels) */
+    int64_t gx, gy;             /* cx - GUARD_S, cy - GUARD_S */
+    uint64_t xspan, yspan;      /* on screen: sx - HALF <= xspan, sy - HALF <= yspan */
+} xform_k;
+
+static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
 {
-    const cam_vp *vp = &f->vp;
-    const int64_t r00 = vp->r[0][0], r01 = vp->r[0][1], r02 = vp->r[0][2], t0 = vp->t[0];
-    const int64_t r10 = vp->r[1][0], r11 = vp->r[1][1], r12 = vp->r[1][2], t1 = vp->t[1];
-    const int64_t r20 = vp->r[2][0], r21 = vp->r[2][1], r22 = vp->r[2][2], t2 = vp->t[2];
-    const int64_t zn = vp->znear, zspan = (int64_t)vp->zfar - vp->znear;
-    const int64_t f8 = f_q8(vp), g8 = (int64_t)RS_GUARD_PX << 8, kd = (int64_t)RS_DEPTH_ONE * vp->znear;
-    const int64_t kx = (int64_t)f->w * SUBONE * HALF + HALF, ky = (int64_t)f->h * SUBONE * HALF + HALF - 1;
-    /* on screen: HALF <= sx <= w * SUBONE - HALF */
-    const uint64_t xspan = (uint64_t)f->w * SUBONE - 2 * HALF, yspan = (uint64_t)f->h * SUBONE - 2 * HALF;
     const rs_vertex *v = f->v, *const end = f->v + f->nv;
     rs_cvert *o = f->cache;
     for (; v != end; v++, o++) {
         const int64_t x = v->p[0], y = v->p[1], z = v->p[2];
         const uint32_t rgb = v->rgb & 0xffffffu;
-        int64_t c0, c1, c2, qx, qy, sx, sy;
+        int64_t c0, c1, c2, sx, sy;
         uint32_t oc = 0;
-        c2 = (r20 * x + r21 * y + r22 * z + t2) >> 30;
-        if (RS_UNLIKELY((uint64_t)(c2 - zn) > (uint64_t)zspan)) { xform_slow(f, v, o); continue; }
-        c0 = (r00 * x + r01 * y + r02 * z + t0) >> 30;
-        c1 = (r10 * x + r11 * y + r12 * z + t1) >> 30;
-        qx = f8 * c0 / c2; qy = f8 * c1 / c2;
-        sx = (qx + kx) >> 4; sy = (ky - qy) >> 4;
-        if (RS_UNLIKELY((uint64_t)(sx - HALF) > xspan || (uint64_t)(sy - HALF) > yspan)) {
-            /* off screen: inside the guard band when |qx|, |qy| < g8 (one unsigned
-             * compare each), else the exact test in xform_slow */
-            if ((uint64_t)(qx + g8 - 1) > (uint64_t)(2 * g8 - 2) || (uint64_t)(qy + g8 - 1) > (uint64_t)(2 * g8 - 2)) {
+        c2 = (k->r[2][0] * x + k->r[2][1] * y + k->r[2][2] * z + k->tzn) >> 30;
+        if (RS_UNLIKELY((uint64_t)c2 > (uint64_t)k->zspan)) { xform_slow(f, v, o); continue; }
+        c2 += k->zn;
+        c0 = (k->r[0][0] * x + k->r[0][1] * y + k->r[0][2] * z + k->t[0]) >> 30;
+        c1 = (k->r[1][0] * x + k->r[1][1] * y + k->r[1][2] * z + k->t[1]) >> 30;
+        sx = (k->f8 * c0 / c2 + k->kx) >> 4; sy = (k->nf8 * c1 / c2 + k->ky) >> 4;
+        if (RS_UNLIKELY((uint64_t)(sx - HALF) > k->xspan || (uint64_t)(sy - HALF) > k->yspan)) {
+            /* off screen: inside the guard band when |sx - cx|, |sy - cy| <= GUARD_S
+             * (one unsigned compare each), else the exact test in xform_slow */
+            if ((uint64_t)(sx - k->gx) > 2 * GUARD_S || (uint64_t)(sy - k->gy) > 2 * GUARD_S) {
                 xform_slow(f, v, o);
                 continue;
             }
-            if ((uint64_t)(sx - HALF) > xspan) oc |= sx < HALF ? RS_OUT_LEFT : RS_OUT_RIGHT;
-            if ((uint64_t)(sy - HALF) > yspan) oc |= sy < HALF ? RS_OUT_TOP : RS_OUT_BOTTOM;
+            if ((uint64_t)(sx - HALF) > k->xspan) oc |= sx < HALF ? RS_OUT_LEFT : RS_OUT_RIGHT;
+            if ((uint64_t)(sy - HALF) > k->yspan) oc |= sy < HALF ? RS_OUT_TOP : RS_OUT_BOTTOM;
         }
         o->x = (int32_t)sx; o->y = (int32_t)sy;
-        o->d = (uint32_t)(kd / c2);
+        o->d = (uint32_t)(k->kd / c2);
         o->c = rgb | (oc << 24);
         o->cp = (((uint64_t)rgb * 0x4000001u) & 0x3fc00000000ffu) | ((uint64_t)(rgb & 0xff00u) << 13);
         if (tex) { o->u = v->uv[0]; o->v = v->uv[1]; }
     }
 }
+static RS_NOINLINE void xform_plain(const rs_frame *f, const xform_k *k) { xform_loop(f, k, 0); }
+static RS_NOINLINE void xform_tex(const rs_frame *f, const xform_k *k) { xform_loop(f, k, 1); }
 
 br_status rs_frame_prepare(rs_frame *f)
 {
@@ -273,8 +281,20 @@ br_status rs_frame_prepare(rs_frame *f)
         return BR_E_ARG;
     f->stat_tris = f->stat_clipped = f->stat_pixels = 0;
     if (f->nv) {
-        if (f->tex) xform_loop(f, 1);
-        else xform_loop(f, 0);
+        xform_k k;
+        int i, j;
+        for (i = 0; i < 3; i++) {
+            for (j = 0; j < 3; j++) k.r[i][j] = vp->r[i][j];
+            k.t[i] = vp->t[i];
+        }
+        k.tzn = vp->t[2] - ((int64_t)vp->znear << 30);
+        k.zn = vp->znear; k.zspan = (int64_t)vp->zfar - vp->znear;
+        k.f8 = f8; k.nf8 = -f8; k.kd = (int64_t)RS_DEPTH_ONE * vp->znear;
+        k.kx = (int64_t)w * SUBONE * HALF + HALF; k.ky = (int64_t)h * SUBONE * HALF + HALF - 1;
+        k.xspan = (uint64_t)w * SUBONE - 2 * HALF; k.yspan = (uint64_t)h * SUBONE - 2 * HALF;
+        k.gx = (int64_t)w * HALF - GUARD_S; k.gy = (int64_t)h * HALF - GUARD_S;
+        if (f->tex) xform_tex(f, &k);
+        else xform_plain(f, &k);
     }
     if (f->chunks) chunk_rows(f);
     return BR_OK;
