@@ -228,7 +228,9 @@ typedef struct xform_k {
     int64_t f8, nf8, kd;        /* f (Q8 pixels), -f, RS_DEPTH_ONE znear */
     int64_t kx, ky;             /* 16 cx + 8, 16 cy + 7 (cx, cy: centre, sub-pixels) */
     int64_t gx, gy;             /* cx - GUARD_S, cy - GUARD_S */
+    int64_t xmax, ymax;         /* w * SUBONE - HALF, h * SUBONE - HALF */
     uint64_t xspan, yspan;      /* on screen: sx - HALF <= xspan, sy - HALF <= yspan */
+    uint64_t pmul, pmask;       /* colour packing: 1 + 2^26, bits of B (0..7) and R (42..49) */
 } xform_k;
 
 static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
@@ -239,27 +241,31 @@ static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
         const int64_t x = v->p[0], y = v->p[1], z = v->p[2];
         const uint32_t rgb = v->rgb & 0xffffffu;
         int64_t c0, c1, c2, sx, sy;
-        uint32_t oc = 0;
         c2 = (k->r[2][0] * x + k->r[2][1] * y + k->r[2][2] * z + k->tzn) >> 30;
         if (RS_UNLIKELY((uint64_t)c2 > (uint64_t)k->zspan)) { xform_slow(f, v, o); continue; }
         c2 += k->zn;
         c0 = (k->r[0][0] * x + k->r[0][1] * y + k->r[0][2] * z + k->t[0]) >> 30;
         c1 = (k->r[1][0] * x + k->r[1][1] * y + k->r[1][2] * z + k->t[1]) >> 30;
         sx = (k->f8 * c0 / c2 + k->kx) >> 4; sy = (k->nf8 * c1 / c2 + k->ky) >> 4;
-        if (RS_UNLIKELY((uint64_t)(sx - HALF) > k->xspan || (uint64_t)(sy - HALF) > k->yspan)) {
+        if (RS_LIKELY((uint64_t)(sx - HALF) <= k->xspan && (uint64_t)(sy - HALF) <= k->yspan)) {
+            o->c = rgb;
+        } else {
             /* off screen: inside the guard band when |sx - cx|, |sy - cy| <= GUARD_S
              * (one unsigned compare each), else the exact test in xform_slow */
+            uint32_t oc = 0;
             if ((uint64_t)(sx - k->gx) > 2 * GUARD_S || (uint64_t)(sy - k->gy) > 2 * GUARD_S) {
                 xform_slow(f, v, o);
                 continue;
             }
-            if ((uint64_t)(sx - HALF) > k->xspan) oc |= sx < HALF ? RS_OUT_LEFT : RS_OUT_RIGHT;
-            if ((uint64_t)(sy - HALF) > k->yspan) oc |= sy < HALF ? RS_OUT_TOP : RS_OUT_BOTTOM;
+            if (sx < HALF) oc |= RS_OUT_LEFT;
+            if (sx > k->xmax) oc |= RS_OUT_RIGHT;
+            if (sy < HALF) oc |= RS_OUT_TOP;
+            if (sy > k->ymax) oc |= RS_OUT_BOTTOM;
+            o->c = rgb | (oc << 24);
         }
         o->x = (int32_t)sx; o->y = (int32_t)sy;
         o->d = (uint32_t)(k->kd / c2);
-        o->c = rgb | (oc << 24);
-        o->cp = (((uint64_t)rgb * 0x4000001u) & 0x3fc00000000ffu) | ((uint64_t)(rgb & 0xff00u) << 13);
+        o->cp = (((uint64_t)rgb * k->pmul) & k->pmask) | ((uint64_t)(rgb & 0xff00u) << 13);
         if (tex) { o->u = v->uv[0]; o->v = v->uv[1]; }
     }
 }
@@ -292,7 +298,9 @@ br_status rs_frame_prepare(rs_frame *f)
         k.f8 = f8; k.nf8 = -f8; k.kd = (int64_t)RS_DEPTH_ONE * vp->znear;
         k.kx = (int64_t)w * SUBONE * HALF + HALF; k.ky = (int64_t)h * SUBONE * HALF + HALF - 1;
         k.xspan = (uint64_t)w * SUBONE - 2 * HALF; k.yspan = (uint64_t)h * SUBONE - 2 * HALF;
+        k.xmax = (int64_t)w * SUBONE - HALF; k.ymax = (int64_t)h * SUBONE - HALF;
         k.gx = (int64_t)w * HALF - GUARD_S; k.gy = (int64_t)h * HALF - GUARD_S;
+        k.pmul = 0x4000001u; k.pmask = 0x3fc00000000ffu;
         if (f->tex) xform_tex(f, &k);
         else xform_plain(f, &k);
     }
