@@ -157,10 +157,10 @@ void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint3
 }
 
 /* The reference transform of one vertex (camera space, near/far, guard band, divide,
- * screen outcodes), for the vertices the fast loop below does not finish: behind the
- * near plane, beyond the far plane, or not provably inside the guard band.  Rare
- * (peer camera B 640x480: 2,740 of 66,049 per frame; camera A: none), so it recomputes
- * everything from the frame instead of holding constants. */
+ * screen outcodes), for the vertices the fast loop below does not finish: beyond the
+ * far plane, or not provably inside the guard band.  Rare (peer camera B 640x480: 103
+ * of 66,049 per frame; camera A: none), so it recomputes everything from the frame
+ * instead of holding constants. */
 static RS_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cvert *o)
 {
     const cam_vp *vp = &f->vp;
@@ -206,7 +206,9 @@ static RS_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cve
  * an xform_k read through a pointer (memory operands instead of a dozen stack reloads):
  * - near and far in one unsigned compare: tzn = t2 - znear 2^30 makes the shifted sum
  *   zc - znear exactly (a multiple of 2^30 passes through the floor shift); the sum
- *   still fits int64, as |r p| < 3 2^60, |t2| < 3 2^60 and znear 2^30 < 2^61;
+ *   still fits int64, as |r p| < 3 2^60, |t2| < 3 2^60 and znear 2^30 < 2^61.  A
+ *   vertex behind the near plane (peer camera B: 2,637 per frame) only needs its
+ *   colour, so it is done here too;
  * - the screen position folds the centre and the rounding into one constant:
  *   cx + ((q + 8) >> 4) = (q + 8 + 16 cx) >> 4 for q = f8 c0 / zc, and for y the
  *   quotient of -f8 c1 (truncation is symmetric, so it is -q exactly):
@@ -233,6 +235,12 @@ typedef struct xform_k {
     uint64_t pmul, pmask;       /* colour packing: 1 + 2^26, bits of B (0..7) and R (42..49) */
 } xform_k;
 
+/* rs_pack_rgb(rgb) for rgb < 2^24, with one multiply (see above). */
+static RS_INLINE uint64_t xform_pack(const xform_k *k, uint32_t rgb)
+{
+    return (((uint64_t)rgb * k->pmul) & k->pmask) | ((uint64_t)(rgb & 0xff00u) << 13);
+}
+
 static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
 {
     const rs_vertex *v = f->v, *const end = f->v + f->nv;
@@ -242,7 +250,17 @@ static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
         const uint32_t rgb = v->rgb & 0xffffffu;
         int64_t c0, c1, c2, sx, sy;
         c2 = (k->r[2][0] * x + k->r[2][1] * y + k->r[2][2] * z + k->tzn) >> 30;
-        if (RS_UNLIKELY((uint64_t)c2 > (uint64_t)k->zspan)) { xform_slow(f, v, o); continue; }
+        if (RS_UNLIKELY((uint64_t)c2 > (uint64_t)k->zspan)) {
+            if (c2 < 0) {       /* behind the near plane: only the colour is valid */
+                o->x = o->y = 0; o->d = 0;
+                o->c = rgb | ((uint32_t)RS_OUT_NEAR << 24);
+                o->cp = xform_pack(k, rgb);
+                if (tex) { o->u = v->uv[0]; o->v = v->uv[1]; }
+            } else {
+                xform_slow(f, v, o);
+            }
+            continue;
+        }
         c2 += k->zn;
         c0 = (k->r[0][0] * x + k->r[0][1] * y + k->r[0][2] * z + k->t[0]) >> 30;
         c1 = (k->r[1][0] * x + k->r[1][1] * y + k->r[1][2] * z + k->t[1]) >> 30;
@@ -265,7 +283,7 @@ static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
         }
         o->x = (int32_t)sx; o->y = (int32_t)sy;
         o->d = (uint32_t)(k->kd / c2);
-        o->cp = (((uint64_t)rgb * k->pmul) & k->pmask) | ((uint64_t)(rgb & 0xff00u) << 13);
+        o->cp = xform_pack(k, rgb);
         if (tex) { o->u = v->uv[0]; o->v = v->uv[1]; }
     }
 }
