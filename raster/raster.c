@@ -265,9 +265,8 @@ static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
         c0 = (k->r[0][0] * x + k->r[0][1] * y + k->r[0][2] * z + k->t[0]) >> 30;
         c1 = (k->r[1][0] * x + k->r[1][1] * y + k->r[1][2] * z + k->t[1]) >> 30;
         sx = (k->f8 * c0 / c2 + k->kx) >> 4; sy = (k->nf8 * c1 / c2 + k->ky) >> 4;
-        if (RS_LIKELY((uint64_t)(sx - HALF) <= k->xspan && (uint64_t)(sy - HALF) <= k->yspan)) {
-            o->c = rgb;
-        } else {
+        o->c = rgb;
+        if (RS_UNLIKELY((uint64_t)(sx - HALF) > k->xspan || (uint64_t)(sy - HALF) > k->yspan)) {
             /* off screen: inside the guard band when |sx - cx|, |sy - cy| <= GUARD_S
              * (one unsigned compare each), else the exact test in xform_slow */
             uint32_t oc = 0;
