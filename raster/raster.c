@@ -216,14 +216,16 @@ static RS_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cve
  *   floor((15 - a) / 16).  sx, sy stay int64 until the guard band is settled;
  * - the guard band is not tested before the divide (|f8 c0| < 2^61, zc >= 1: the
  *   quotient is always defined).  An on-screen vertex (one compare per axis) is far
- *   inside it; off screen, |sx - cx| <= GUARD_S = 2^18 - 2 gives |q| < 2^22 = g8
- *   (q + 8 >= -16 GUARD_S, q + 8 < 16 (GUARD_S + 1); likewise y), so |f8 c0| < g8 zc,
- *   strictly inside, and the side bits follow from sx, sy as in xform_slow; anything
- *   else goes to xform_slow, which decides exactly;
+ *   inside it; off screen, |sx - cx| <= GUARD_S = 2^18 - 1 gives |q| < 2^22 = g8
+ *   (sx - cx = floor((q + 8) / 16), so -2^22 + 16 <= q + 8 <= 2^22 - 1; for y the same
+ *   with q' + 7, q' = -q), hence |f8 c0| < g8 zc, strictly inside, and the side bits
+ *   follow from sx, sy as in xform_slow; anything else goes to xform_slow, which
+ *   decides exactly.  (GUARD_S = 2^18 would be wrong: test_raster's test_transform
+ *   fails on it);
  * - the packed colour: rgb (< 2^24) times 1 + 2^26 is rgb + (rgb << 26) without
  *   overlap, which holds B at bit 0 and R at bit 42 where rs_pack_rgb puts them; G
  *   moves by its own shift. */
-#define GUARD_S ((RS_GUARD_PX << SUB) - 2)
+#define GUARD_S ((RS_GUARD_PX << SUB) - 1)
 typedef struct xform_k {
     int64_t r[3][3], t[3];      /* view matrix (Q30) and translation (Q30 world units) */
     int64_t tzn, zn, zspan;     /* t2 - znear 2^30; znear; zfar - znear */
