@@ -219,9 +219,10 @@ static RS_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cve
  *   inside it; off screen, |sx - cx| <= GUARD_S = 2^18 - 1 gives |q| < 2^22 = g8
  *   (sx - cx = floor((q + 8) / 16), so -2^22 + 16 <= q + 8 <= 2^22 - 1; for y the same
  *   with q' + 7, q' = -q), hence |f8 c0| < g8 zc, strictly inside, and the side bits
- *   follow from sx, sy as in xform_slow; anything else goes to xform_slow, which
- *   decides exactly.  (GUARD_S = 2^18 would be wrong: test_raster's test_transform
- *   fails on it);
+ *   follow from sx, sy as in xform_slow.  Only the side a coordinate is off needs the
+ *   bound (peer camera B: 15,700 vertices per frame off screen, nearly all inside the
+ *   guard band).  Anything else goes to xform_slow, which decides exactly.
+ *   (GUARD_S = 2^18 would be wrong: test_raster's test_transform fails on it);
  * - the packed colour: rgb (< 2^24) times 1 + 2^26 is rgb + (rgb << 26) without
  *   overlap, which holds B at bit 0 and R at bit 42 where rs_pack_rgb puts them; G
  *   moves by its own shift. */
@@ -231,7 +232,7 @@ typedef struct xform_k {
     int64_t tzn, zn, zspan;     /* t2 - znear 2^30; znear; zfar - znear */
     int64_t f8, nf8, kd;        /* f (Q8 pixels), -f, RS_DEPTH_ONE znear */
     int64_t kx, ky;             /* 16 cx + 8, 16 cy + 7 (cx, cy: centre, sub-pixels) */
-    int64_t gx, gy;             /* cx - GUARD_S, cy - GUARD_S */
+    int64_t gx0, gx1, gy0, gy1; /* cx -+ GUARD_S, cy -+ GUARD_S */
     int64_t xmax, ymax;         /* w * SUBONE - HALF, h * SUBONE - HALF */
     uint64_t xspan, yspan;      /* on screen: sx - HALF <= xspan, sy - HALF <= yspan */
     uint64_t pmul, pmask;       /* colour packing: 1 + 2^26, bits of B (0..7) and R (42..49) */
@@ -269,23 +270,33 @@ static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
         sx = (k->f8 * c0 / c2 + k->kx) >> 4; sy = (k->nf8 * c1 / c2 + k->ky) >> 4;
         o->c = rgb;
         if (RS_UNLIKELY((uint64_t)(sx - HALF) > k->xspan || (uint64_t)(sy - HALF) > k->yspan)) {
-            /* off screen: inside the guard band when |sx - cx|, |sy - cy| <= GUARD_S
-             * (one unsigned compare each), else the exact test in xform_slow */
+            /* off screen: inside the guard band when |sx - cx|, |sy - cy| <= GUARD_S,
+             * which needs a test only on the side a coordinate is off; else the exact
+             * test in xform_slow */
             uint32_t oc = 0;
-            if ((uint64_t)(sx - k->gx) > 2 * GUARD_S || (uint64_t)(sy - k->gy) > 2 * GUARD_S) {
-                xform_slow(f, v, o);
-                continue;
+            if (sx < HALF) {
+                if (sx < k->gx0) goto slow;
+                oc = RS_OUT_LEFT;
+            } else if (sx > k->xmax) {
+                if (sx > k->gx1) goto slow;
+                oc = RS_OUT_RIGHT;
             }
-            if (sx < HALF) oc |= RS_OUT_LEFT;
-            if (sx > k->xmax) oc |= RS_OUT_RIGHT;
-            if (sy < HALF) oc |= RS_OUT_TOP;
-            if (sy > k->ymax) oc |= RS_OUT_BOTTOM;
+            if (sy < HALF) {
+                if (sy < k->gy0) goto slow;
+                oc |= RS_OUT_TOP;
+            } else if (sy > k->ymax) {
+                if (sy > k->gy1) goto slow;
+                oc |= RS_OUT_BOTTOM;
+            }
             o->c = rgb | (oc << 24);
         }
         o->x = (int32_t)sx; o->y = (int32_t)sy;
         o->d = (uint32_t)(k->kd / c2);
         o->cp = xform_pack(k, rgb);
         if (tex) { o->u = v->uv[0]; o->v = v->uv[1]; }
+        continue;
+    slow:
+        xform_slow(f, v, o);
     }
 }
 /* Called through a pointer (see rs_frame_prepare), so the compiler cannot propagate
@@ -322,7 +333,8 @@ br_status rs_frame_prepare(rs_frame *f)
         k.kx = (int64_t)w * SUBONE * HALF + HALF; k.ky = (int64_t)h * SUBONE * HALF + HALF - 1;
         k.xspan = (uint64_t)w * SUBONE - 2 * HALF; k.yspan = (uint64_t)h * SUBONE - 2 * HALF;
         k.xmax = (int64_t)w * SUBONE - HALF; k.ymax = (int64_t)h * SUBONE - HALF;
-        k.gx = (int64_t)w * HALF - GUARD_S; k.gy = (int64_t)h * HALF - GUARD_S;
+        k.gx0 = (int64_t)w * HALF - GUARD_S; k.gx1 = (int64_t)w * HALF + GUARD_S;
+        k.gy0 = (int64_t)h * HALF - GUARD_S; k.gy1 = (int64_t)h * HALF + GUARD_S;
         k.pmul = 0x4000001u; k.pmask = 0x3fc00000000ffu;
         (f->tex ? xform_tex : xform_plain)(f, &k);
     }
