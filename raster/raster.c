@@ -233,7 +233,6 @@ typedef struct xform_k {
     int64_t f8, nf8, kd;        /* f (Q8 pixels), -f, RS_DEPTH_ONE znear */
     int64_t kx, ky;             /* 16 cx + 8, 16 cy + 7 (cx, cy: centre, sub-pixels) */
     int64_t gx0, gx1, gy0, gy1; /* cx -+ GUARD_S, cy -+ GUARD_S */
-    int64_t xmax, ymax;         /* w * SUBONE - HALF, h * SUBONE - HALF */
     uint64_t xspan, yspan;      /* on screen: sx - HALF <= xspan, sy - HALF <= yspan */
     uint64_t pmul, pmask;       /* colour packing: 1 + 2^26, bits of B (0..7) and R (42..49) */
 } xform_k;
@@ -266,31 +265,25 @@ static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
         }
         c2 += k->zn;
         c0 = (k->r[0][0] * x + k->r[0][1] * y + k->r[0][2] * z + k->t[0]) >> 30;
-        c1 = (k->r[1][0] * x + k->r[1][1] * y + k->r[1][2] * z + k->t[1]) >> 30;
-        sx = (k->f8 * c0 / c2 + k->kx) >> 4; sy = (k->nf8 * c1 / c2 + k->ky) >> 4;
+        /* one axis at a time, each settled and stored before the next divide (c1 is
+         * formed only then: one register move fewer).  Off screen: inside the guard
+         * band when |s - c| <= GUARD_S, which needs a test only on the side the
+         * coordinate is off; else the exact test in xform_slow (which rewrites the
+         * whole entry) */
         o->c = rgb;
-        if (RS_UNLIKELY((uint64_t)(sx - HALF) > k->xspan || (uint64_t)(sy - HALF) > k->yspan)) {
-            /* off screen: inside the guard band when |sx - cx|, |sy - cy| <= GUARD_S,
-             * which needs a test only on the side a coordinate is off; else the exact
-             * test in xform_slow */
-            uint32_t oc = 0;
-            if (sx < HALF) {
-                if (sx < k->gx0) goto slow;
-                oc = RS_OUT_LEFT;
-            } else if (sx > k->xmax) {
-                if (sx > k->gx1) goto slow;
-                oc = RS_OUT_RIGHT;
-            }
-            if (sy < HALF) {
-                if (sy < k->gy0) goto slow;
-                oc |= RS_OUT_TOP;
-            } else if (sy > k->ymax) {
-                if (sy > k->gy1) goto slow;
-                oc |= RS_OUT_BOTTOM;
-            }
-            o->c = rgb | (oc << 24);
+        sx = (k->f8 * c0 / c2 + k->kx) >> 4;
+        if (RS_UNLIKELY((uint64_t)(sx - HALF) > k->xspan)) {
+            if (sx < HALF ? sx < k->gx0 : sx > k->gx1) goto slow;
+            o->c = rgb | (uint32_t)(sx < HALF ? RS_OUT_LEFT : RS_OUT_RIGHT) << 24;
         }
-        o->x = (int32_t)sx; o->y = (int32_t)sy;
+        o->x = (int32_t)sx;
+        c1 = (k->r[1][0] * x + k->r[1][1] * y + k->r[1][2] * z + k->t[1]) >> 30;
+        sy = (k->nf8 * c1 / c2 + k->ky) >> 4;
+        if (RS_UNLIKELY((uint64_t)(sy - HALF) > k->yspan)) {
+            if (sy < HALF ? sy < k->gy0 : sy > k->gy1) goto slow;
+            o->c |= (uint32_t)(sy < HALF ? RS_OUT_TOP : RS_OUT_BOTTOM) << 24;
+        }
+        o->y = (int32_t)sy;
         o->d = (uint32_t)(k->kd / c2);
         o->cp = xform_pack(k, rgb);
         if (tex) { o->u = v->uv[0]; o->v = v->uv[1]; }
@@ -332,7 +325,6 @@ br_status rs_frame_prepare(rs_frame *f)
         k.f8 = f8; k.nf8 = -f8; k.kd = (int64_t)RS_DEPTH_ONE * vp->znear;
         k.kx = (int64_t)w * SUBONE * HALF + HALF; k.ky = (int64_t)h * SUBONE * HALF + HALF - 1;
         k.xspan = (uint64_t)w * SUBONE - 2 * HALF; k.yspan = (uint64_t)h * SUBONE - 2 * HALF;
-        k.xmax = (int64_t)w * SUBONE - HALF; k.ymax = (int64_t)h * SUBONE - HALF;
         k.gx0 = (int64_t)w * HALF - GUARD_S; k.gx1 = (int64_t)w * HALF + GUARD_S;
         k.gy0 = (int64_t)h * HALF - GUARD_S; k.gy1 = (int64_t)h * HALF + GUARD_S;
         k.pmul = 0x4000001u; k.pmask = 0x3fc00000000ffu;
