@@ -292,6 +292,7 @@ static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
         xform_slow(f, v, o);
     }
 }
+
 /* Called through a pointer (see rs_frame_prepare), so the compiler cannot propagate
  * xform_k's values into the loop: it would then expand the multiply by pmul into a
  * copy, shift and add and rebuild the 64-bit pmask every vertex, where a memory
