@@ -109,7 +109,8 @@ typedef struct rs_cvert {
     uint32_t d;
     uint32_t c;
     uint64_t cp;
-    int32_t u, v;       /* texture coordinates, texels Q8 (textured frames) */
+    int32_t u, v;       /* texture coordinates, texels Q8 (rs_frame_prepare writes them
+                           for textured frames only; untextured drawing never reads them) */
 } rs_cvert;
 
 /* Outcode bits (in rs_cvert.c >> 24). */

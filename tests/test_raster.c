@@ -5,9 +5,12 @@
  * exactly once, ties on pixel centres included; degenerate, line, tiny and huge
  * triangles.  World-space input: near-plane crossings, cameras below and inside real
  * terrain (N47E009), vertices far outside the guard band.  Bands of 1, 7, 16 and 240
- * rows give the full frame's bytes; RGB565 is RGB888 reduced; a golden PNG of real
- * terrain is compared byte for byte (on mismatch: tests/out/<name>.actual.png and
- * .diff.png; BITRAIN_UPDATE_GOLDEN=1 rewrites the golden file). */
+ * rows give the full frame's bytes; RGB565 is RGB888 reduced; the vertex cache that
+ * rs_frame_prepare fills equals a plain per-vertex transcription of the transform
+ * (real terrain, random cameras, points on the near/far/screen/guard-band edges); a
+ * golden PNG of real terrain is compared byte for byte (on mismatch:
+ * tests/out/<name>.actual.png and .diff.png; BITRAIN_UPDATE_GOLDEN=1 rewrites the
+ * golden file). */
 #include <math.h>
 #include "tests/test.h"
 #include "core/cam.h"
@@ -555,6 +558,154 @@ static void test_texture(void)
     texture_case(16, RS_FMT_XRGB8888, 1);
 }
 
+/* ------------------------------------------------------------- vertex transform */
+
+/* One cache entry as raster.h states it, with the plainest arithmetic: camera space
+ * c = (r p + t) >> 30; behind the near plane only the colour; beyond the guard band
+ * (|f c0| or |f c1| > 2^14 px * c2, f in Q8 pixels) the sides; else x, y rounded to
+ * 1/16 px around the centre, d = RS_DEPTH_ONE znear / c2 and the screen sides.
+ * rs_frame_prepare takes shorter roads for common vertices: they must all end here. */
+static void ref_cvert(const rs_frame *f, const rs_vertex *v, rs_cvert *o)
+{
+    const cam_vp *vp = &f->vp;
+    const int64_t f8 = (vp->f_q16 + 128) >> 8, g8 = (int64_t)RS_GUARD_PX << 8;
+    const uint32_t rgb = v->rgb & 0xffffffu;
+    uint32_t oc = 0;
+    int64_t c[3];
+    int i;
+    for (i = 0; i < 3; i++)
+        c[i] = ((int64_t)vp->r[i][0] * v->p[0] + (int64_t)vp->r[i][1] * v->p[1]
+                + (int64_t)vp->r[i][2] * v->p[2] + vp->t[i]) >> 30;
+    o->x = o->y = 0;
+    o->d = 0;
+    if (c[2] < vp->znear) oc = RS_OUT_NEAR;
+    else {
+        const int64_t ax = f8 * c[0], ay = f8 * c[1], lim = g8 * c[2];
+        if (c[2] > vp->zfar) oc |= RS_OUT_FAR;
+        if (ax > lim || -ax > lim || ay > lim || -ay > lim) {
+            oc |= RS_OUT_GUARD;
+            if (ax > lim) oc |= RS_OUT_RIGHT;
+            if (-ax > lim) oc |= RS_OUT_LEFT;
+            if (ay > lim) oc |= RS_OUT_TOP;
+            if (-ay > lim) oc |= RS_OUT_BOTTOM;
+        } else {
+            o->x = f->w * 8 + (int32_t)((ax / c[2] + 8) >> 4);
+            o->y = f->h * 8 - (int32_t)((ay / c[2] + 8) >> 4);
+            o->d = (uint32_t)((int64_t)RS_DEPTH_ONE * vp->znear / c[2]);
+            if (o->x < 8) oc |= RS_OUT_LEFT;
+            if (o->x > f->w * 16 - 8) oc |= RS_OUT_RIGHT;
+            if (o->y < 8) oc |= RS_OUT_TOP;
+            if (o->y > f->h * 16 - 8) oc |= RS_OUT_BOTTOM;
+        }
+    }
+    o->c = rgb | (oc << 24);
+    o->cp = ((uint64_t)(rgb >> 16) << 42) | ((uint64_t)((rgb >> 8) & 255u) << 21) | (rgb & 255u);
+    o->u = v->uv[0];
+    o->v = v->uv[1];
+}
+
+/* Compares f's cache (after rs_frame_prepare) with ref_cvert; u, v only when textured.
+ * Counts the entries by outcode class in cls (on screen, off screen, near, far, guard). */
+static int32_t cache_mismatches(const rs_frame *f, long cls[5])
+{
+    int32_t bad = 0;
+    uint32_t i;
+    for (i = 0; i < f->nv; i++) {
+        const rs_cvert *a = &f->cache[i];
+        rs_cvert r;
+        uint32_t oc;
+        ref_cvert(f, &f->v[i], &r);
+        oc = r.c >> 24;
+        cls[oc & RS_OUT_NEAR ? 2 : oc & RS_OUT_GUARD ? 4 : oc & RS_OUT_FAR ? 3 : oc ? 1 : 0]++;
+        if (a->x != r.x || a->y != r.y || a->d != r.d || a->c != r.c || a->cp != r.cp
+            || (f->tex && (a->u != r.u || a->v != r.v))) {
+            if (bad < 3)
+                fprintf(stderr, "  vertex %u (%d, %d, %d): got %d %d %u %08x %llx, want %d %d %u %08x %llx\n", i,
+                        f->v[i].p[0], f->v[i].p[1], f->v[i].p[2], a->x, a->y, a->d, a->c, (unsigned long long)a->cp,
+                        r.x, r.y, r.d, r.c, (unsigned long long)r.cp);
+            bad++;
+        }
+    }
+    return bad;
+}
+
+static int64_t clamp_coord(int64_t p) { return p > CAM_COORD_MAX ? CAM_COORD_MAX : p < -CAM_COORD_MAX ? -CAM_COORD_MAX : p; }
+static int64_t rnd_range(int64_t lo, int64_t hi)
+{
+    uint64_t r = ((uint64_t)lcg() << 40) ^ ((uint64_t)lcg() << 20) ^ lcg();
+    return lo + (int64_t)(r % (uint64_t)(hi - lo + 1));
+}
+
+static void test_transform(void)
+{
+    /* real terrain from an oblique camera, a camera 3 m above the ground (vertices behind
+     * the near plane) and a 2-degree telephoto (most vertices beyond the guard band) */
+    static const double lo_e[3] = { 6000, 9000, 700 }, lo_t[3] = { 9000, 14000, 500 };
+    enum { NV = 1024, NCAM = 300 };
+    rs_vertex *v = malloc(sizeof *v * NV);
+    rs_cvert *cache;
+    rs_frame f;
+    long cls[5] = { 0, 0, 0, 0, 0 };
+    uint32_t texel = 0xffffffu;
+    rs_texture tex;
+    int32_t bad = 0, k, i;
+    tex.w = tex.h = 1; tex.px = &texel;
+    terrain_load();
+    if (!T.ok) { CHECK(T.ok); free(v); return; }
+    cache = malloc(rs_cache_mem_size(T.nv > NV ? T.nv : NV));
+    terrain_frame(&f, cache, 161, 121, CAM_OBLIQUE_E, CAM_OBLIQUE_T, 50, 1);
+    bad += cache_mismatches(&f, cls);
+    terrain_frame(&f, cache, 320, 240, lo_e, lo_t, 70, 1);
+    bad += cache_mismatches(&f, cls);
+    terrain_frame(&f, cache, 640, 480, CAM_OBLIQUE_E, CAM_OBLIQUE_T, 2, 1);
+    bad += cache_mismatches(&f, cls);
+    /* random cameras (every scale up to CAM_COORD_MAX, viewports 1 .. 4096) and points:
+     * anywhere, or aimed at camera-space spots on the edges of the decisions: the near
+     * and far planes, the screen edge and the guard band edge, a few units either side */
+    for (k = 0; k < NCAM; k++) {
+        const int64_t big = k % 4 == 0 ? 1000 : k % 4 == 1 ? 100000 : k % 4 == 2 ? 10000000 : CAM_COORD_MAX;
+        int32_t eye[3], tg[3], w, h, zn, zf;
+        cam c;
+        for (i = 0; i < 3; i++) { eye[i] = (int32_t)rnd_range(-big, big); tg[i] = (int32_t)rnd_range(-big, big); }
+        w = (int32_t)(k & 1 ? rnd_range(1, 64) : rnd_range(1, 4096));
+        h = (int32_t)(k & 2 ? rnd_range(1, 64) : rnd_range(1, 4096));
+        zn = (int32_t)rnd_range(1, big / 64 + 1);
+        zf = (int32_t)(zn + rnd_range(1, big));
+        if (cam_look_at(&c, eye, tg, (int32_t)rnd_range(1000, 170000), w, h, zn, zf) != BR_OK) continue;
+        memset(&f, 0, sizeof f);
+        f.w = w; f.h = h; f.v = v; f.nv = NV; f.cache = cache;
+        f.tex = k & 4 ? &tex : NULL;
+        cam_viewproj(&c, &f.vp);
+        for (i = 0; i < NV; i++) {
+            int32_t j, mode = (int32_t)(lcg() % 4);
+            int64_t cz = 0, c0 = 0, c1 = 0;
+            if (mode) {
+                cz = mode == 1 ? zn + rnd_range(-2, 2) : mode == 2 ? zf + rnd_range(-2, 2) : rnd_range(zn, zf);
+                c0 = cz * (lcg() & 1 ? RS_GUARD_PX : w / 2) * 65536 / c.f_q16 * (lcg() & 1 ? 1 : -1) + rnd_range(-3, 3);
+                c1 = cz * (lcg() & 1 ? RS_GUARD_PX : h / 2) * 65536 / c.f_q16 * (lcg() & 1 ? 1 : -1) + rnd_range(-3, 3);
+                if (lcg() & 1) c1 = rnd_range(-(c1 < 0 ? -c1 : c1), c1 < 0 ? -c1 : c1);
+                else if (lcg() & 1) c0 = rnd_range(-(c0 < 0 ? -c0 : c0), c0 < 0 ? -c0 : c0);
+                if (c0 > INT32_MAX || -c0 > INT32_MAX || c1 > INT32_MAX || -c1 > INT32_MAX) mode = 0;
+            }
+            for (j = 0; j < 3; j++)
+                v[i].p[j] = (int32_t)clamp_coord(mode ? eye[j] + (((int64_t)c.right[j] * c0 + (int64_t)c.up[j] * c1
+                                                                   + (int64_t)c.fwd[j] * cz) >> 30) + rnd_range(-1, 1)
+                                                      : rnd_range(-big, big));
+            v[i].rgb = ((uint32_t)lcg() << 8) ^ lcg();   /* junk in the top byte too */
+            v[i].uv[0] = (int32_t)(((uint32_t)lcg() << 8) ^ lcg());
+            v[i].uv[1] = (int32_t)lcg();
+        }
+        CHECK_EQ(rs_frame_prepare(&f), BR_OK);
+        bad += cache_mismatches(&f, cls);
+    }
+    if (getenv("BITRAIN_VERBOSE"))
+        fprintf(stderr, "  transform: %ld on screen, %ld off, %ld near, %ld far, %ld beyond the guard band\n",
+                cls[0], cls[1], cls[2], cls[3], cls[4]);
+    for (i = 0; i < 5; i++) CHECK(cls[i] > 1000);
+    CHECK_MSG(bad == 0, "%d cache entries differ from the reference transform", bad);
+    free(cache); free(v);
+}
+
 /* ------------------------------------------------------------- golden image */
 
 static void golden_compare(const char *name, const uint32_t *img, int32_t w, int32_t h)
@@ -620,6 +771,7 @@ int main(void)
     T_RUN(test_far_outside_guard);
     T_RUN(test_near_plane_grid);
     T_RUN(test_texture);
+    T_RUN(test_transform);
     T_RUN(test_golden);
     if (T.ok) { free(T.f.z); free(T.v); free(T.idx); }
     return t_finish();
