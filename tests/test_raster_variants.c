@@ -108,7 +108,11 @@ static void test_same_bytes(void)
         CHECK(setup(&ff, cams[ci], rs_frame_prepare));
         CHECK(setup(&fm, cams[ci], min_frame_prepare));
         if (!ff.cache || !fm.cache) return;
-        CHECK(memcmp(ff.cache, fm.cache, rs_cache_mem_size(PEER_NV)) == 0);
+        for (i = 0; i < PEER_NV; i++) {   /* u, v are written for textured frames only */
+            const rs_cvert *a = &ff.cache[i], *b = &fm.cache[i];
+            if (a->x != b->x || a->y != b->y || a->d != b->d || a->c != b->c || a->cp != b->cp) break;
+        }
+        CHECK_EQ(i, PEER_NV);
         for (bi = 0; bi < 2; bi++) {
             CHECK_EQ(draw(&ff, rs_render_band, bands[bi], full, zb), BR_OK);
             CHECK_EQ(draw(&fm, min_render_band, bands[bi], part, zb), BR_OK);
