@@ -667,7 +667,7 @@ static void RS_FN(draw)(band *bd)
         const uint32_t *s = pr->idx;
         uint32_t k, n = pr->n, nt = rs_prim_tris(pr), t0;
         if (nt == 0) continue;
-        for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch += ch ? 2 : 0) {
+        for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch = ch ? ch + 2 : ch) {
             uint32_t t1 = nt - t0 < RS_CHUNK ? nt : t0 + RS_CHUNK;
             if (ch && (ch[1] < bd->y0 || ch[0] >= bd->y1)) continue;   /* chunk misses the band */
             if (pr->kind == RS_STRIP) {

@@ -1,5 +1,5 @@
 #!/bin/sh
-# tests/fuzz.sh [SECONDS] — `make fuzz`: build one libFuzzer harness per reader
+# tests/fuzz.sh [SECONDS] — `make fuzz`: build one libFuzzer harness per reader and one for the rasteriser
 # (tests/fuzz_*.c) with clang -fsanitize=fuzzer,address,undefined from the loader
 # sources, seed each corpus from the real data (small crops: tests/data, heads of
 # ../shared/data/dem files), run them for SECONDS in total (default 30) split
@@ -37,7 +37,7 @@ PKG_LIBS=$(pkg-config --libs libpng zlib)
 FLAGS="-std=c99 -g -O1 -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all -I. $PKG_CFLAGS"
 # decompressed archives capped at 64 MB so a zip bomb is a quick refusal, not an OOM
 DEFS="-DDEM_MAX_INFLATE=((size_t)64<<20)"
-SRC="core/hf.c platform/err.c platform/merge.c $(ls platform/load*.c)"
+SRC="$(ls core/*.c raster/*.c) platform/err.c platform/merge.c $(ls platform/load*.c)"
 OBJ=""
 for s in $SRC; do
   o="$D/obj/$(echo "$s" | tr / _ | sed 's/\.c$/.o/')"
