@@ -347,6 +347,25 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
     }
 }
 
+/* A tiny triangle (a, b, c as seen; either orientation) over a candidate box given
+ * by its caller (tri_body: its own box; tri_pair: the pair's joint box): orientation
+ * (cull, zero area; front faces with b and c swapped, one inlined copy per
+ * orientation, no moves), then tri_tiny. */
+RS_INLINE static void RS_FN(tri_tiny_any)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                          int32_t px0, int32_t ny, uint64_t xm,
+                                          uint8_t *const crow0, RS_Z *const zrow0, int32_t ox0, int32_t oy0)
+{
+    const int32_t dx1 = b->x - a->x, dy1 = b->y - a->y, dx2 = c->x - a->x, dy2 = c->y - a->y;
+    const int32_t area2 = dx1 * dy2 - dx2 * dy1;
+    /* y points down: counter-clockwise as seen (a front face) has area2 < 0 */
+    if (area2 >= 0) {
+        if (area2 == 0 || bd->cull) return;
+        RS_FN(tri_tiny)(bd, a, b, c, px0, ny, xm, crow0, zrow0, ox0, oy0, dx1, dy1, dx2, dy2, area2);
+    } else {
+        RS_FN(tri_tiny)(bd, a, c, b, px0, ny, xm, crow0, zrow0, ox0, oy0, dx2, dy2, dx1, dy1, -area2);
+    }
+}
+
 /* One triangle (a, b, c as seen; either orientation).  Forced inline into the strip loop
  * of the plain variants (one copy for even, one for odd triangles), so the per-triangle
  * call costs nothing; tri_raster below is the out-of-line copy for lists, the clipper and
@@ -354,7 +373,7 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
 RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
 {
     int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1;
-    int32_t dx1, dy1, dx2, dy2, area2, tiny, ny, ox0, oy0;
+    int32_t tiny, ny, ox0, oy0;
     uint64_t xm;
     uint8_t *crow0;
     RS_Z *zrow0;
@@ -389,17 +408,7 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
     crow0 = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
     zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)bd->w;
     ox0 = px0 * SUBONE + HALF; oy0 = py0 * SUBONE + HALF;
-    dx1 = b->x - a->x; dy1 = b->y - a->y;
-    dx2 = c->x - a->x; dy2 = c->y - a->y;
-    area2 = dx1 * dy2 - dx2 * dy1;
-    /* y points down: counter-clockwise as seen (a front face) has area2 < 0 */
-    if (area2 >= 0) {
-        if (area2 == 0 || bd->cull) return;
-        RS_FN(tri_tiny)(bd, a, b, c, px0, ny, xm, crow0, zrow0, ox0, oy0, dx1, dy1, dx2, dy2, area2);
-    } else {
-        /* a front face: b and c swapped (one inlined copy per orientation, no moves) */
-        RS_FN(tri_tiny)(bd, a, c, b, px0, ny, xm, crow0, zrow0, ox0, oy0, dx2, dy2, dx1, dy1, -area2);
-    }
+    RS_FN(tri_tiny_any)(bd, a, b, c, px0, ny, xm, crow0, zrow0, ox0, oy0);
 }
 
 RS_NOINLINE static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
@@ -408,22 +417,6 @@ RS_NOINLINE static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_
 }
 
 #if !(RS_TEX || RS_COUNT)
-/* One tiny triangle of a strip pair (see tri_pair): orientation, then tri_tiny over the
- * pair's candidate box. */
-RS_INLINE static void RS_FN(tri_pair_one)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
-                                          int32_t px0, int32_t ny, uint64_t xm,
-                                          uint8_t *const crow0, RS_Z *const zrow0, int32_t ox0, int32_t oy0)
-{
-    const int32_t dx1 = b->x - a->x, dy1 = b->y - a->y, dx2 = c->x - a->x, dy2 = c->y - a->y;
-    const int32_t area2 = dx1 * dy2 - dx2 * dy1;
-    if (area2 >= 0) {
-        if (area2 == 0 || bd->cull) return;
-        RS_FN(tri_tiny)(bd, a, b, c, px0, ny, xm, crow0, zrow0, ox0, oy0, dx1, dy1, dx2, dy2, area2);
-    } else {
-        RS_FN(tri_tiny)(bd, a, c, b, px0, ny, xm, crow0, zrow0, ox0, oy0, dx2, dy2, dx1, dy1, -area2);
-    }
-}
-
 /* The covered centres of one triangle of a strip quad (see tri_quad): a, b, c as in
  * tri_tiny's attribute formulas (a the base vertex), area2 > 0 its area, M its coverage
  * with row j's lanes at bit 15 - j of each 16-bit lane, P0 / P2 the packed biased edge
@@ -641,11 +634,11 @@ RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cve
             RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)bd->w;
             if (bd->cull) {
                 /* culled or zero area: area >= 0 draws nothing */
-                if (ar1 < 0) RS_FN(tri_pair_one)(bd, v0, v1, v2, px0, ny, xm, crow0, zrow0, ox0, oy0);
-                else if (ar2 < 0) RS_FN(tri_pair_one)(bd, v2, v1, v3, px0, ny, xm, crow0, zrow0, ox0, oy0);
+                if (ar1 < 0) RS_FN(tri_tiny_any)(bd, v0, v1, v2, px0, ny, xm, crow0, zrow0, ox0, oy0);
+                else if (ar2 < 0) RS_FN(tri_tiny_any)(bd, v2, v1, v3, px0, ny, xm, crow0, zrow0, ox0, oy0);
             } else {
-                RS_FN(tri_pair_one)(bd, v0, v1, v2, px0, ny, xm, crow0, zrow0, ox0, oy0);
-                RS_FN(tri_pair_one)(bd, v2, v1, v3, px0, ny, xm, crow0, zrow0, ox0, oy0);
+                RS_FN(tri_tiny_any)(bd, v0, v1, v2, px0, ny, xm, crow0, zrow0, ox0, oy0);
+                RS_FN(tri_tiny_any)(bd, v2, v1, v3, px0, ny, xm, crow0, zrow0, ox0, oy0);
             }
         }
     }
