@@ -10,11 +10,9 @@
 
 static void push(bt_mesh *m, uint32_t i) { m->strip[m->ns++] = i; }
 
-
 static int collinear(const bt_mesh *m, uint32_t a, uint32_t b, uint32_t c)
 {
-    const bt_vert *A = &m->v[a], *B = &m->v[b], *C = &m->v[c];
-    return (int64_t)(B->x - A->x) * (C->y - A->y) == (int64_t)(B->y - A->y) * (C->x - A->x);
+    return bt_cross(&m->v[a], &m->v[b], &m->v[c]) == 0;
 }
 
 /* Writes leaf L (the next leaf N, if any, is known: one leaf of lookahead).
@@ -70,11 +68,7 @@ int btw_write_leaf(em *e, const pend *L, const pend *N)
         /* (re)start: (other, v2, v3) drawn at index i counter-clockwise from +z, i.e.
          * grid cross < 0 for even i, > 0 for odd i (odd triangles are swapped) */
         uint32_t i0, v2 = L->o0, v3 = L->o1;
-        int ccw_first;
-        {
-            const bt_vert *A = &m->v[L->other], *B = &m->v[L->o0], *C = &m->v[L->o1];
-            ccw_first = (int64_t)(B->x - A->x) * (C->y - A->y) - (int64_t)(B->y - A->y) * (C->x - A->x) < 0;
-        }
+        const int ccw_first = bt_cross(&m->v[L->other], &m->v[L->o0], &m->v[L->o1]) < 0;
         if (m->ns > 0) {    /* only if no bridge fits (bt_strip.c): 4 line triangles */
             push(m, m->strip[m->ns - 1]);
             push(m, L->other);

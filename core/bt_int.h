@@ -34,6 +34,14 @@ typedef struct ctx {
 
 static inline int32_t iabs32(int32_t v) { return v < 0 ? -v : v; }
 
+/* Doubled signed area of grid vertices (a, b, c) in grid coordinates: < 0 when they
+ * run counter-clockwise seen from +z (grid rows run south, so the sign is flipped),
+ * 0 when collinear. */
+static inline int64_t bt_cross(const bt_vert *a, const bt_vert *b, const bt_vert *c)
+{
+    return (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(b->y - a->y) * (c->x - a->x);
+}
+
 /* 1 when the box [x0, x1] x [y0, y1] (x0, y0 >= 0) lies inside w x h and touches
  * no 16 x 16 block that holds a void: every sample in it is valid */
 static inline int clean(const ctx *c, int32_t x0, int32_t y0, int32_t x1, int32_t y1)
