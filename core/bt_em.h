@@ -50,8 +50,9 @@ static inline uint32_t heap_cap(const bt_mesh *m) { return 4 * m->max_tri + 8; }
 static inline uint32_t *ids_of(const bt_mesh *m) { return (uint32_t *)(void *)(heap_of(m) + heap_cap(m)); }
 
 /* core/bt_emit.c: writes leaf L (N: the next leaf, or NULL), 1 when N was
- * written too; writes the pending leaf; rewrites a fidelity strip with breaks
- * in a greedy leaf order when that is shorter. */
+ * written too; writes the pending leaf; after a complete extraction whose walk
+ * broke, rewrites the strip in a greedy leaf order when the mode asks for it
+ * (e->reorder) and that is shorter. */
 int btw_write_leaf(em *e, const pend *L, const pend *N);
 void btw_flush(em *e);
 void btw_reorder(em *e);

@@ -265,7 +265,8 @@ void btw_reorder(em *e)
     bt_mesh *m = e->m;
     uint32_t nt = 0, k, *tv, *nb, *nx, *head, walk_ns = m->ns;
     ro r;
-    if (m->ns < 3 || m->ntri < 2) return;
+    /* only where the walk broke, the mode asks for it and the mesh is complete */
+    if (e->nbreak == 0 || !e->reorder || e->full || m->ns < 3 || m->ntri < 2) return;
     if ((size_t)m->ntri * 36 + (size_t)m->nv * 4 > (size_t)heap_cap(m) * sizeof(heap_ent)) return;
     tv = (uint32_t *)(void *)heap_of(m);
     nb = tv + 3 * (size_t)m->ntri;

@@ -672,7 +672,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
                         t->st[ids[i]] = (uint8_t)((t->st[ids[i]] & ~ST_CUR) | ST_PREV);
                 }
             }
-            if (e.nbreak > 0 && e.reorder) btw_reorder(&e);
+            btw_reorder(&e);
             return e.full ? BR_E_NOMEM : BR_OK;
         }
         /* defined downgrade: the selection needs more than m holds; spend the
@@ -693,6 +693,6 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
     }
     run(&e);
     for (i = 0; i < nid; i++) t->st[ids[i]] &= (uint8_t)~(ST_SPLIT | ST_PUSHED);
-    if (!e.full && e.nbreak > 0 && e.reorder) btw_reorder(&e);
+    btw_reorder(&e);
     return e.full ? BR_E_NOMEM : BR_OK;
 }
