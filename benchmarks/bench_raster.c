@@ -35,26 +35,14 @@ int main(void)
         printf("bench_raster: skipped (fuji.png not found; run from the repo root)\n");
         return 0;
     }
-    for (i = 0; i < PEER_NV; i++) {
-        v[i].p[0] = ps->ipos[3 * i]; v[i].p[1] = ps->ipos[3 * i + 1]; v[i].p[2] = ps->ipos[3 * i + 2];
-        v[i].rgb = ((uint32_t)ps->rgba[4 * i] << 16) | ((uint32_t)ps->rgba[4 * i + 1] << 8) | ps->rgba[4 * i + 2];
-    }
-    for (i = 0; i < PEER_NSTRIP; i++) {
-        prims[i].kind = RS_STRIP; prims[i].n = PEER_STRIP_LEN; prims[i].idx = ps->strip + i * PEER_STRIP_LEN;
-    }
+    peer_scene_raster(ps, v, prims);
     printf("bitrain raster, peer scene, %d frames per configuration (median), XRGB8888 + depth32:\n", frames);
     for (cull = 0; cull < 2; cull++)
         for (k = 0; k < 4; k++) {
             rs_frame f;
-            cam c;
-            int32_t eye[3], tg[3], fovy, zn, zf;
             double med;
-            peer_camera(cfg[k].cam, NULL, eye, tg, &fovy, &zn, &zf);
-            cam_look_at(&c, eye, tg, fovy, cfg[k].w, cfg[k].h, zn, zf);
-            memset(&f, 0, sizeof f);
-            f.w = cfg[k].w; f.h = cfg[k].h; f.no_cull = !cull; f.clear_rgb = 0x99ccffu;
-            f.v = v; f.nv = PEER_NV; f.cache = cache; f.prims = prims; f.nprims = PEER_NSTRIP;
-            cam_viewproj(&c, &f.vp);
+            peer_frame(cfg[k].cam, cfg[k].w, cfg[k].h, v, prims, &f);
+            f.cache = cache; f.no_cull = !cull;
             for (i = 0; i < frames; i++) {
                 double t0 = tm_now_ms();
                 rs_frame_prepare(&f);

@@ -71,8 +71,7 @@ int cmd_bench(int argc, char **argv)
     rs_vertex *v;
     rs_prim prims[PEER_NSTRIP];
     rs_frame f;
-    cam c;
-    int32_t eye[3], tg[3], fovy, zn, zf;
+    rs_cvert *cache;
     void *color, *zbuf, *mem = NULL;
     double *ms;
     for (i = 0; i < argc; i++) {
@@ -97,28 +96,18 @@ int cmd_bench(int argc, char **argv)
     }
     if (!scene || strcmp(scene, "peer") || frames < 1 || warm < 0 || w < 1 || h < 1 || w > RS_MAX_DIM || h > RS_MAX_DIM)
         goto usage;
-    if (peer_camera(camc, NULL, eye, tg, &fovy, &zn, &zf) != 0) goto usage;
+    if (camc != 'A' && camc != 'a' && camc != 'B' && camc != 'b') goto usage;
     ps = (peer_scene *)malloc(sizeof *ps);
     v = (rs_vertex *)malloc(sizeof(rs_vertex) * PEER_NV);
-    memset(&f, 0, sizeof f);
-    f.cache = (rs_cvert *)malloc(rs_cache_mem_size(PEER_NV));
+    cache = (rs_cvert *)malloc(rs_cache_mem_size(PEER_NV));
     color = malloc((size_t)w * (size_t)h * 4);
     zbuf = malloc((size_t)w * (size_t)h * 4);
     ms = (double *)malloc(sizeof(double) * (size_t)frames);
-    if (!ps || !v || !f.cache || !color || !zbuf || !ms) { fprintf(stderr, "bitrain bench: out of memory\n"); return 1; }
+    if (!ps || !v || !cache || !color || !zbuf || !ms) { fprintf(stderr, "bitrain bench: out of memory\n"); return 1; }
     if (peer_scene_build(dem, ps) != 0) return 1;
-    for (i = 0; i < PEER_NV; i++) {
-        v[i].p[0] = ps->ipos[3 * i]; v[i].p[1] = ps->ipos[3 * i + 1]; v[i].p[2] = ps->ipos[3 * i + 2];
-        v[i].rgb = ((uint32_t)ps->rgba[4 * i] << 16) | ((uint32_t)ps->rgba[4 * i + 1] << 8) | ps->rgba[4 * i + 2];
-    }
-    for (i = 0; i < PEER_NSTRIP; i++) {
-        prims[i].kind = RS_STRIP; prims[i].n = PEER_STRIP_LEN; prims[i].idx = ps->strip + i * PEER_STRIP_LEN;
-    }
-    if (cam_look_at(&c, eye, tg, fovy, w, h, zn, zf) != BR_OK) { fprintf(stderr, "bitrain bench: bad camera\n"); return 1; }
-    f.w = w; f.h = h; f.fmt = fmt; f.depth = depth; f.no_cull = !cull;
-    f.clear_rgb = 0x99ccff;   /* light blue sky (153, 204, 255), as bench_osmesa */
-    f.v = v; f.nv = PEER_NV; f.prims = prims; f.nprims = PEER_NSTRIP;
-    cam_viewproj(&c, &f.vp);
+    peer_scene_raster(ps, v, prims);
+    if (peer_frame(camc, w, h, v, prims, &f) != 0) { fprintf(stderr, "bitrain bench: bad camera\n"); return 1; }
+    f.cache = cache; f.fmt = fmt; f.depth = depth; f.no_cull = !cull;
     if (bands > 0) {   /* band mode: with the chunk table, bands skip what misses them */
         mem = malloc(rs_band_mem_size(w, bands, fmt, depth));
         f.chunks = malloc(rs_chunk_mem_size(prims, PEER_NSTRIP));

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include "platform/peer_scene.h"
 #include "platform/png_io.h"
 
@@ -127,5 +128,32 @@ int peer_camera(char which, peer_camera_def *def, int32_t eye[3], int32_t target
     *fovy_mdeg = (int32_t)lrint(c->fovy_deg * 1000);
     *znear = (int32_t)lrint(c->znear * PEER_UNIT);
     *zfar = (int32_t)lrint(c->zfar * PEER_UNIT);
+    return 0;
+}
+
+void peer_scene_raster(const peer_scene *s, rs_vertex *v, rs_prim *prims)
+{
+    int i;
+    for (i = 0; i < PEER_NV; i++) {
+        v[i].p[0] = s->ipos[3 * i]; v[i].p[1] = s->ipos[3 * i + 1]; v[i].p[2] = s->ipos[3 * i + 2];
+        v[i].rgb = ((uint32_t)s->rgba[4 * i] << 16) | ((uint32_t)s->rgba[4 * i + 1] << 8) | s->rgba[4 * i + 2];
+        v[i].uv[0] = v[i].uv[1] = 0;
+    }
+    for (i = 0; i < PEER_NSTRIP; i++) {
+        prims[i].kind = RS_STRIP; prims[i].n = PEER_STRIP_LEN; prims[i].idx = s->strip + i * PEER_STRIP_LEN;
+    }
+}
+
+int peer_frame(char which, int32_t w, int32_t h, const rs_vertex *v, const rs_prim *prims, rs_frame *f)
+{
+    int32_t eye[3], tg[3], fovy, zn, zf;
+    cam c;
+    if (peer_camera(which, NULL, eye, tg, &fovy, &zn, &zf) != 0) return -1;
+    if (cam_look_at(&c, eye, tg, fovy, w, h, zn, zf) != BR_OK) return -1;
+    memset(f, 0, sizeof *f);
+    f->w = w; f->h = h; f->fmt = RS_FMT_XRGB8888; f->depth = RS_DEPTH32; f->no_cull = 1;
+    f->clear_rgb = 0x99ccffu;
+    f->v = v; f->nv = PEER_NV; f->prims = prims; f->nprims = PEER_NSTRIP;
+    cam_viewproj(&c, &f->vp);
     return 0;
 }

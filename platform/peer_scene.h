@@ -17,6 +17,7 @@
 #ifndef BR_PEER_SCENE_H
 #define BR_PEER_SCENE_H
 #include <stdint.h>
+#include "raster/raster.h"
 
 #define PEER_N 257
 #define PEER_NV (PEER_N * PEER_N)
@@ -47,5 +48,15 @@ int peer_scene_build(const char *fuji_png, peer_scene *s);
  * rounded to nearest; fovy in millidegrees. */
 int peer_camera(char which, peer_camera_def *def, int32_t eye[3], int32_t target[3],
                 int32_t *fovy_mdeg, int32_t *znear, int32_t *zfar);
+
+/* bitrain's form of the scene: the PEER_NV vertices (integer positions, RGB colour of
+ * the RGBA bytes) and the PEER_NSTRIP row strips over s->strip (s must outlive prims). */
+void peer_scene_raster(const peer_scene *s, rs_vertex *v, rs_prim *prims);
+
+/* A zeroed frame of peer camera `which` ('A' or 'B') at w x h over those vertices and
+ * strips: the sky clear colour (153, 204, 255) as bench_osmesa, XRGB8888 + 32-bit depth,
+ * culling off (the peers' table), the view of cam_look_at; the caller sets the cache
+ * and anything else.  0, or -1 for an unknown camera or a size the camera refuses. */
+int peer_frame(char which, int32_t w, int32_t h, const rs_vertex *v, const rs_prim *prims, rs_frame *f);
 
 #endif

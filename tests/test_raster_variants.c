@@ -53,33 +53,20 @@ static rs_prim g_prims[PEER_NSTRIP];
 
 static int load_scene(void)
 {
-    int32_t i;
     if (g_ps) return 1;
     g_ps = (peer_scene *)malloc(sizeof *g_ps);
     if (!g_ps || peer_scene_build(t_data("png/fuji.png"), g_ps) != 0) return 0;
-    for (i = 0; i < PEER_NV; i++) {
-        g_v[i].p[0] = g_ps->ipos[3 * i]; g_v[i].p[1] = g_ps->ipos[3 * i + 1]; g_v[i].p[2] = g_ps->ipos[3 * i + 2];
-        g_v[i].rgb = ((uint32_t)g_ps->rgba[4 * i] << 16) | ((uint32_t)g_ps->rgba[4 * i + 1] << 8) | g_ps->rgba[4 * i + 2];
-    }
-    for (i = 0; i < PEER_NSTRIP; i++) {
-        g_prims[i].kind = RS_STRIP; g_prims[i].n = PEER_STRIP_LEN; g_prims[i].idx = g_ps->strip + i * PEER_STRIP_LEN;
-    }
+    peer_scene_raster(g_ps, g_v, g_prims);
     return 1;
 }
 
 /* Frame of peer camera `which` at W x H in RGB565 + 16-bit depth, cache from `prepare`. */
 static int setup(rs_frame *f, char which, br_status (*prepare)(rs_frame *))
 {
-    int32_t eye[3], tg[3], fovy, zn, zf;
-    cam c;
     memset(f, 0, sizeof *f);
-    if (!load_scene() || peer_camera(which, NULL, eye, tg, &fovy, &zn, &zf) != 0) return 0;
-    if (cam_look_at(&c, eye, tg, fovy, W, H, zn, zf) != BR_OK) return 0;
-    f->w = W; f->h = H; f->fmt = RS_FMT_RGB565; f->depth = RS_DEPTH16;
-    f->clear_rgb = 0x99ccff;
-    f->v = g_v; f->nv = PEER_NV; f->prims = g_prims; f->nprims = PEER_NSTRIP;
+    if (!load_scene() || peer_frame(which, W, H, g_v, g_prims, f) != 0) return 0;
+    f->fmt = RS_FMT_RGB565; f->depth = RS_DEPTH16;
     f->cache = (rs_cvert *)malloc(rs_cache_mem_size(PEER_NV));
-    cam_viewproj(&c, &f->vp);
     return f->cache && prepare(f) == BR_OK;
 }
 
