@@ -112,7 +112,7 @@ static int write_mesh(const char *out, int kind, const hf *f, const bt_mesh *m, 
 int cmd_mesh(int argc, char **argv)
 {
     const char *files[64], *out = NULL;
-    int nf = 0, i, json = 0, nolines = 0, have_cam = 0, rc = 1;
+    int nf = 0, i, json = 0, nolines = 0, have_cam = 0, rc = 1, kind;
     int32_t metric = BT_METRIC_EXACT, vw = 640, vh = 480;
     double maxerr = 1.0, fov = 60, pixerr = 1.0, camv[6];
     long budget = 0;
@@ -153,7 +153,8 @@ int cmd_mesh(int argc, char **argv)
         else if (nf < 64) files[nf++] = a;
     }
     if (nf == 0 || maxerr < 0 || (budget < 0) || (budget > 0x10000000L)) { usage(stderr); return 2; }
-    if (out && out_kind(out) < 0) {
+    kind = out ? out_kind(out) : -1;
+    if (out && kind < 0) {
         fprintf(stderr, "bitrain mesh: %s: unknown output format (want .obj, .ply or .stl)\n", out);
         return 2;   /* before any work: the mesh of a large DEM takes a while */
     }
@@ -216,7 +217,7 @@ int cmd_mesh(int argc, char **argv)
                    "line triangles %u\ntrue max error %.6f m (at column %d, row %d)\n",
                    nt, m.nv, m.nfict, refs, nt ? (double)refs / nt : 0.0, lines, em, ex, ey);
     }
-    if (out && write_mesh(out, out_kind(out), &f, &m, list, nt, &e) != BR_OK) { fprintf(stderr, "bitrain mesh: %s\n", e.msg); goto done; }
+    if (out && write_mesh(out, kind, &f, &m, list, nt, &e) != BR_OK) { fprintf(stderr, "bitrain mesh: %s\n", e.msg); goto done; }
     rc = 0;
 done:
     free(list); free(mm); free(mem); free(scr);
