@@ -286,7 +286,7 @@ static int decide(em *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
 /* Home slot of grid key y n + x in the dedup hash: the key itself when the table
  * has >= n^2 / 2 slots (<= 2 keys per slot; the walk's spatial coherence stays in
  * the table's cache lines), else a multiplicative hash.  Collisions of direct
- * slots probe with a scattered odd step (double hashing), never along the dense
+ * slots probe with a scattered odd step taken from a second hash of the key, never along the dense
  * run a fully refined region forms; hashed slots probe linearly (cache lines).
  * Only speed depends on it. */
 static uint32_t home(uint32_t key, uint32_t mask, int direct)

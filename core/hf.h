@@ -3,7 +3,7 @@
  * Layout: w samples per row, h rows, row-major, row 0 is the NORTH edge and
  * column 0 the WEST edge (the order of SRTM, PNG, ASC and GeoTIFF rows).
  * Heights: int32 in units of z_num/z_den metres (HGT 1/1, terrain-RGB 1/10,
- * Terrarium 1/256, float sources a power of ten chosen to keep at least 1 mm),
+ * Terrarium 1/256, files with decimal heights a power of ten chosen to keep at least 1 mm),
  * |z| <= BR_Z_LIMIT; HF_NODATA marks a void (never triangulated, never shaded).
  * Ground spacing: dx_um between columns, dy_um between rows, in micrometres
  * (for geographic grids: metres per degree at the grid's centre latitude).
