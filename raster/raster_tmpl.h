@@ -658,7 +658,7 @@ static void RS_FN(draw)(band *bd)
     for (p = 0; p < f->nprims; p++) {
         const rs_prim *pr = &f->prims[p];
         const uint32_t *s = pr->idx;
-        uint32_t k, n = pr->n, nt = rs_prim_tris(pr), t0;
+        uint32_t k, nt = rs_prim_tris(pr), t0;
         if (nt == 0) continue;
         for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch = ch ? ch + 2 : ch) {
             uint32_t t1 = nt - t0 < RS_CHUNK ? nt : t0 + RS_CHUNK;
@@ -726,7 +726,6 @@ static void RS_FN(draw)(band *bd)
                 }
             }
         }
-        (void)n;
     }
 }
 #undef RS_STRIP_TRI
