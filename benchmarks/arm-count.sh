@@ -10,8 +10,9 @@
 # checksum cancel.  Every run's last-frame checksum must equal the native reference
 # (cross-architecture identity); a difference is reported as a FAILURE (exit 1).
 # Columns: x86-64 (cc -O2, callgrind), aarch64 (-O2), armhf (-O2, Debian default armv7-a
-# Thumb-2, no hardware divide), armhf-a7 (-O2 -mcpu=cortex-a7: hardware 32-bit divide, run
-# with qemu-arm -cpu cortex-a7).  A missing compiler/qemu/valgrind gives "-" in its column;
+# Thumb-2, no hardware divide), armhf-a7 (-O2 -mcpu=cortex-a7: hardware 32-bit divide).
+# qemu runs a Raspberry-Pi-class CPU model (aarch64: -cpu cortex-a72, armhf: -cpu cortex-a7) so
+# static glibc's ifuncs pick what such a board picks (qemu's default "max" CPU gives SVE memcpy).  A missing compiler/qemu/valgrind gives "-" in its column;
 # with no qemu or no cross compiler at all it prints "skipped: ..." and exits 0.
 # Then the per-function top list of one configuration (per frame, from the per-TB counts and
 # nm; static functions inlined into others count as their caller), with the libgcc helpers.
@@ -34,8 +35,8 @@ CC=${CC:-cc}
 WARN="-Wall -Wextra -Wshadow -Wundef -Wwrite-strings -Wdouble-promotion -Wmissing-prototypes -Wstrict-prototypes -Wconversion -Wno-sign-conversion"
 RSRC="$(ls core/*.c raster/*.c)"
 # name  compiler  qemu  [-cpu model]  flags...
-TARGETS="aarch64:aarch64-linux-gnu-gcc:qemu-aarch64::-O2
-armhf:arm-linux-gnueabihf-gcc:qemu-arm::-O2
+TARGETS="aarch64:aarch64-linux-gnu-gcc:qemu-aarch64:cortex-a72:-O2
+armhf:arm-linux-gnueabihf-gcc:qemu-arm:cortex-a7:-O2
 armhf-a7:arm-linux-gnueabihf-gcc:qemu-arm:cortex-a7:-O2 -mcpu=cortex-a7"
 
 have() { command -v "$1" >/dev/null 2>&1; }
@@ -142,7 +143,7 @@ if [ -f "$OUT/tb-$t-$cam-$size-1.txt" ] && [ -f "$OUT/tb-$t-$cam-$size-11.txt" ]
       d[name] += s * c; if (k && sa[k] == a) calls[name] += s * $3 }
     END {
       tot = (t11 - t1) / 10
-      for (n in d) if (d[n] != 0) printf "%.1f %s %.1f\n", d[n] / 10, n, calls[n] / 10
+      for (n in d) if (d[n] > 0) printf "%.1f %s %.1f\n", d[n] / 10, n, calls[n] / 10
       printf "TOTAL %.1f\n", tot > "/dev/stderr"
     }' "$OUT/nm-$t" "$OUT/tb-$t-$cam-$size-1.txt" "$OUT/tb-$t-$cam-$size-11.txt" 2> "$OUT/top-total.txt" \
     | sort -k1,1nr > "$OUT/top-$t-$cam-$size.txt"
