@@ -70,4 +70,84 @@ extern const uint32_t fx_cordic_atan[FX_CORDIC_N];
  * Returns 0, writing nothing, when v is zero. */
 int fx_normalize3(const int64_t v[3], fx_q30 out[3]);
 
+/* --- division by a 32-bit divisor without a divide instruction ---
+ * 32-bit ARM and Cortex-M have no 64-bit division: there the compiler turns an int64
+ * `/` into a call of libgcc's __aeabi_ldivmod, about 280 instructions on the peer
+ * scene (benchmarks/arm-count.sh), which made the rasteriser's per-vertex and
+ * per-triangle quotients half of a 32-bit ARM frame.  With BR_DIV64_NATIVE = 0
+ * (core/config.h; the default where pointers are 32-bit) the rasteriser divides
+ * through these instead.  They give exactly the quotients of `/`, so the pixels are
+ * the same on every target (tests/test_fx.c checks them against `/`).
+ *
+ * fx_recip_make prepares a divisor 1 <= d < 2^32 once: s = the leading zeros of d,
+ * dn = d 2^s (top bit set) and an under-estimate v of floor((2^64 - 1) / dn) - 2^32,
+ * the fraction of 2^64 / dn beyond 2^32 (Moller and Granlund, "Improved division by
+ * invariant integers", IEEE Trans. Computers 60(2), 2011, section 2), from a 256-entry
+ * seed (8 bits) and two Newton steps X' = X + X (1 - D X) (16, then ~31 bits).  A
+ * Newton step from below stays below 1 / D (1/D - X' = D (1/D - X)^2 >= 0) and each
+ * truncation lowers it further, so v never exceeds the exact value.
+ * fx_udiv_r gives floor(n / d) for n < d 2^32: the quotient estimate from v is never
+ * too large and at most a few units too small; the remainder's correction loop makes
+ * it exact (every step is exact integer arithmetic, so the loop is the proof; the
+ * precision only bounds its length). */
+typedef struct fx_recip {
+    uint32_t dn, v;         /* d 2^s; under-estimate of floor((2^64 - 1) / dn) - 2^32 */
+    int32_t s;
+} fx_recip;
+extern const uint16_t fx_recip_seed[256];   /* floor(2^25 / (257 + i)) - 2^16 */
+
+static inline int32_t fx_clz32(uint32_t x)  /* x != 0 */
+{
+#if defined(__GNUC__)
+    return (int32_t)__builtin_clz(x);
+#else
+    int32_t n = 0;
+    while (!(x & 0x80000000u)) { x <<= 1; n++; }
+    return n;
+#endif
+}
+
+/* One Newton step on v (see above), exact integer arithmetic: with E = 2^64 - dn (2^32 + v)
+ * (>= 0 since v is an under-estimate), v += floor(E / 2^32) + floor(v E / 2^64). */
+static inline uint32_t fx_recip_step(uint32_t dn, uint32_t v)
+{
+    const uint64_t e = ((uint64_t)(0u - dn) << 32) - (uint64_t)dn * v;
+    const uint32_t eh = (uint32_t)(e >> 32), el = (uint32_t)e;
+    const uint64_t c = (uint64_t)eh + (((uint64_t)v * eh + (((uint64_t)v * el) >> 32)) >> 32);
+    const uint64_t w = (uint64_t)v + c;
+    return w > 0xffffffffu ? 0xffffffffu : (uint32_t)w;
+}
+
+static inline fx_recip fx_recip_make(uint32_t d)    /* 1 <= d */
+{
+    fx_recip r;
+    r.s = fx_clz32(d);
+    r.dn = d << r.s;
+    r.v = (uint32_t)fx_recip_seed[(r.dn >> 23) - 256u] << 16;
+    r.v = fx_recip_step(r.dn, r.v);
+    r.v = fx_recip_step(r.dn, r.v);
+    return r;
+}
+
+/* floor(n / d) for n < d 2^32, d the divisor r was made from. */
+static inline uint32_t fx_udiv_r(uint64_t n, const fx_recip *r)
+{
+    const uint64_t nn = n << r->s;                /* < dn 2^32 <= 2^64 */
+    const uint32_t nh = (uint32_t)(nn >> 32), nl = (uint32_t)nn;
+    uint32_t q = nh + (uint32_t)(((uint64_t)nh * r->v + nl) >> 32);
+    uint64_t rem = nn - (uint64_t)q * r->dn;
+    while (rem >= r->dn) { q++; rem -= r->dn; }
+    return q;
+}
+
+/* floor(2^40 / a) for 1 <= a < 2^32, through fx_recip. */
+static inline uint64_t fx_inv40(uint32_t a)
+{
+    const fx_recip r = fx_recip_make(a);
+    uint32_t hi;
+    if (a > 256u) return fx_udiv_r((uint64_t)1 << 40, &r);
+    hi = fx_udiv_r(256u, &r);                    /* 2^40 / a = hi 2^32 + (rest 2^32) / a */
+    return ((uint64_t)hi << 32) + fx_udiv_r((uint64_t)(256u - hi * a) << 32, &r);
+}
+
 #endif

@@ -1,5 +1,6 @@
-/* tests/test_fx.c — fixed-point helpers: the CORDIC table is recomputed from its
- * generator formula, sin/cos/isqrt/division checked against the C library. */
+/* tests/test_fx.c — fixed-point helpers: the CORDIC and reciprocal seed tables are
+ * recomputed from their generator formulas, sin/cos/isqrt/division checked against the
+ * C library, the divide-free division (fx_recip) against C's `/`. */
 #include <math.h>
 #include "tests/test.h"
 #include "core/fx.h"
@@ -74,10 +75,66 @@ static void test_isqrt_div(void)
     }
 }
 
+static uint64_t xs_state = 0x9e3779b97f4a7c15u;
+static uint64_t xs64(void)
+{
+    xs_state ^= xs_state << 13; xs_state ^= xs_state >> 7; xs_state ^= xs_state << 17;
+    return xs_state;
+}
+
+/* a divisor: all magnitudes equally likely, then any bits below the top one */
+static uint32_t any_divisor(void)
+{
+    const uint64_t r = xs64();
+    const uint32_t top = (uint32_t)1 << (r & 31);
+    return top | ((uint32_t)(r >> 32) & (top - 1u));
+}
+
+/* the reciprocal: never above floor((2^64 - 1) / dn) - 2^32, and at most 8 below it
+ * (which bounds fx_udiv_r's correction loop); the quotients equal C's `/` */
+static void check_recip(uint32_t d, uint64_t n)
+{
+    const fx_recip r = fx_recip_make(d);
+    const uint64_t exact = UINT64_MAX / r.dn - ((uint64_t)1 << 32);
+    CHECK_EQ(r.dn, (uint64_t)d << r.s);
+    CHECK(r.dn >> 31 == 1u);
+    CHECK_MSG(r.v <= exact && (uint64_t)r.v + 8u >= exact, "d=%lu v=%lu exact=%llu", (unsigned long)d,
+              (unsigned long)r.v, (unsigned long long)exact);
+    n %= (uint64_t)d << 32;                       /* any n < d 2^32 */
+    CHECK_EQ(fx_udiv_r(n, &r), n / d);
+    CHECK_EQ(fx_udiv_r(((uint64_t)d << 32) - 1u, &r), (((uint64_t)d << 32) - 1u) / d);
+    CHECK_EQ(fx_udiv_r(d - 1u, &r), 0);
+    CHECK_EQ(fx_udiv_r(d, &r), 1);
+}
+
+static void test_recip(void)
+{
+    uint32_t i, d;
+    for (i = 0; i < 256; i++) CHECK_EQ(fx_recip_seed[i], (1u << 25) / (257u + i) - 65536u);
+    for (d = 1; d <= (1u << 20); d++) check_recip(d, xs64());
+    for (i = 0; i < 32; i++) {                    /* powers of two and their neighbours */
+        d = (uint32_t)1 << i;
+        check_recip(d, xs64());
+        check_recip(d + 1u, xs64());
+        if (d > 1) check_recip(d - 1u, UINT64_MAX);
+    }
+    check_recip(0xffffffffu, UINT64_MAX);
+    for (i = 0; i < 3000000; i++) check_recip(any_divisor(), xs64());
+    /* the triangles' reciprocal of the doubled area: every a of the tiny and small
+     * triangles (< 2^21), then any */
+    for (d = 1; d < (1u << 21); d++) CHECK_EQ(fx_inv40(d), ((uint64_t)1 << 40) / d);
+    for (i = 0; i < 1000000; i++) {
+        d = any_divisor();
+        CHECK_EQ(fx_inv40(d), ((uint64_t)1 << 40) / d);
+    }
+    CHECK_EQ(fx_inv40(0xffffffffu), 256);
+}
+
 int main(void)
 {
     T_RUN(test_table_generator);
     T_RUN(test_sincos);
     T_RUN(test_isqrt_div);
+    T_RUN(test_recip);
     return t_finish();
 }
