@@ -49,6 +49,13 @@ SAN_LIB_OBJ= $(LIB_SRC:%.c=$(B)/san/%.o)
 SAN_SUP_OBJ= $(SUPPORT_SRC:%.c=$(B)/san/%.o)
 SAN_TEST_BIN = $(TEST_SRC:tests/%.c=$(B)/san-tests/%)
 
+# The raster tests again with the divide-free quotients of 32-bit boards
+# (core/config.h BR_DIV64_NATIVE = 0), which must give the same bytes as `/`.
+DIV32_FLAGS = $(OPT) -g -DBR_DIV64_NATIVE=0
+DIV32_LIB_OBJ = $(LIB_SRC:%.c=$(B)/div32/%.o)
+DIV32_SUP_OBJ = $(SUPPORT_SRC:%.c=$(B)/div32/%.o)
+DIV32_TEST_BIN = $(B)/div32-tests/test_raster $(B)/div32-tests/test_raster_render
+
 .SECONDARY:
 .PHONY: all run test test-fast bench fuzz clean deps check-nofloat
 all: deps bitrain $(B)/libbitrain.a
@@ -90,6 +97,17 @@ $(B)/san-tests/%: tests/%.c $(SAN_SUP_OBJ) $(B)/libbitrain-san.a
 	@mkdir -p $(@D)
 	$(CC) -std=c99 $(WARN) $(SAN_FLAGS) -I. $(shell pkg-config --cflags $(PKGS)) -o $@ $< $(SAN_SUP_OBJ) $(B)/libbitrain-san.a $(shell pkg-config --libs $(PKGS)) -lm
 
+$(B)/div32/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) -std=c99 $(WARN) $(DIV32_FLAGS) -I. -MMD -MP $(shell pkg-config --cflags $(PKGS)) -c -o $@ $<
+
+$(B)/libbitrain-div32.a: $(DIV32_LIB_OBJ)
+	rm -f $@ && ar rcs $@ $^
+
+$(B)/div32-tests/%: tests/%.c $(DIV32_SUP_OBJ) $(B)/libbitrain-div32.a
+	@mkdir -p $(@D)
+	$(CC) -std=c99 $(WARN) $(DIV32_FLAGS) -I. $(shell pkg-config --cflags $(PKGS)) -o $@ $< $(DIV32_SUP_OBJ) $(B)/libbitrain-div32.a $(shell pkg-config --libs $(PKGS)) -lm
+
 # core/ and raster/ must not use floating point at all.  On x86-64 and AArch64,
 # -mgeneral-regs-only makes the compiler refuse any float or double; elsewhere we
 # fall back to scanning the objects for soft-float helper symbols.
@@ -107,7 +125,7 @@ run: all
 TEST_PKGS = clang qemu-user gcc-arm-linux-gnueabihf gcc-aarch64-linux-gnu gcc-powerpc-linux-gnu
 test: deps
 	@sh mk/deps.sh --optional $(TEST_PKGS)
-	@$(MAKE) --no-print-directory bitrain $(TEST_BIN) $(SAN_TEST_BIN)
+	@$(MAKE) --no-print-directory bitrain $(TEST_BIN) $(SAN_TEST_BIN) $(DIV32_TEST_BIN)
 	@sh tests/run.sh $(B)
 
 # Benchmarks print figures; they never fail on time.

@@ -27,6 +27,19 @@
 #define BR_Z_LIMIT (1L << 28)
 #endif
 
+/* How the rasteriser's per-vertex and per-triangle 64-bit quotients are computed:
+ * 1 = the compiler's `/` (one instruction on 64-bit targets), 0 = core/fx.h's
+ * fx_recip / fx_udiv_r (no divide instruction; for 32-bit ARM and Cortex-M, where an
+ * int64 `/` is a call to libgcc's __aeabi_ldivmod, ~280 instructions).  Both give the
+ * same quotients, hence the same pixels.  Default: 1 where pointers are 64-bit. */
+#ifndef BR_DIV64_NATIVE
+#if UINTPTR_MAX > 0xffffffffu
+#define BR_DIV64_NATIVE 1
+#else
+#define BR_DIV64_NATIVE 0
+#endif
+#endif
+
 /* The code relies on two's complement and arithmetic right shift of negative
  * values (every compiler we target does it; C99 leaves it to the implementation). */
 _Static_assert((-1 >> 1) == -1, "arithmetic right shift of negative values required");

@@ -271,6 +271,25 @@ static RS_INLINE uint64_t xform_pack(const xform_k *k, uint32_t rgb)
     return (((uint64_t)rgb * k->pmul) & k->pmask) | ((uint64_t)(rgb & 0xff00u) << 13);
 }
 
+/* q = n / d truncated toward zero, as C's `/`, for d = the divisor of rc (> 0).
+ * Returns 0 when |n| >= d 2^32, i.e. |q| >= 2^32: a screen coordinate that far is
+ * beyond the guard band, where the native path (which divides anyway) also ends in
+ * xform_slow. */
+#if BR_DIV64_NATIVE
+#define XDIV(N, Q) ((Q) = (N) / c2, 1)
+#else
+static RS_INLINE int xform_div(int64_t n, int64_t d, const fx_recip *rc, int64_t *q)
+{
+    const uint64_t m = n < 0 ? 0 - (uint64_t)n : (uint64_t)n;
+    uint32_t u;
+    if ((m >> 32) >= (uint64_t)d) return 0;
+    u = fx_udiv_r(m, rc);
+    *q = n < 0 ? -(int64_t)u : (int64_t)u;
+    return 1;
+}
+#define XDIV(N, Q) xform_div((N), c2, &rc, &(Q))
+#endif
+
 static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
 {
     const rs_vertex *v = f->v, *const end = f->v + f->nv;
@@ -278,7 +297,7 @@ static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
     for (; v != end; v++, o++) {
         const int64_t x = v->p[0], y = v->p[1], z = v->p[2];
         const uint32_t rgb = v->rgb & 0xffffffu;
-        int64_t c0, c1, c2, sx, sy;
+        int64_t c0, c1, c2, sx, sy, q;
         c2 = (k->r[2][0] * x + k->r[2][1] * y + k->r[2][2] * z + k->tzn) >> 30;
         if (RS_UNLIKELY((uint64_t)c2 > (uint64_t)k->zspan)) {
             if (c2 < 0) {       /* behind the near plane: only the colour is valid */
@@ -292,6 +311,9 @@ static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
             continue;
         }
         c2 += k->zn;
+#if !BR_DIV64_NATIVE
+        const fx_recip rc = fx_recip_make((uint32_t)c2);     /* 1 <= znear <= c2 <= zfar < 2^31 */
+#endif
         c0 = (k->r[0][0] * x + k->r[0][1] * y + k->r[0][2] * z + k->t[0]) >> 30;
         /* one axis at a time, each settled and stored before the next divide (c1 is
          * formed only then: one register move fewer).  Off screen: inside the guard
@@ -299,20 +321,26 @@ static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
          * coordinate is off; else the exact test in xform_slow (which rewrites the
          * whole entry) */
         o->c = rgb;
-        sx = (k->f8 * c0 / c2 + k->kx) >> 4;
+        if (!XDIV(k->f8 * c0, q)) goto slow;
+        sx = (q + k->kx) >> 4;
         if (RS_UNLIKELY((uint64_t)(sx - HALF) > k->xspan)) {
             if (sx < HALF ? sx < k->gx0 : sx > k->gx1) goto slow;
             o->c = rgb | (uint32_t)(sx < HALF ? RS_OUT_LEFT : RS_OUT_RIGHT) << 24;
         }
         o->x = (int32_t)sx;
         c1 = (k->r[1][0] * x + k->r[1][1] * y + k->r[1][2] * z + k->t[1]) >> 30;
-        sy = (k->nf8 * c1 / c2 + k->ky) >> 4;
+        if (!XDIV(k->nf8 * c1, q)) goto slow;
+        sy = (q + k->ky) >> 4;
         if (RS_UNLIKELY((uint64_t)(sy - HALF) > k->yspan)) {
             if (sy < HALF ? sy < k->gy0 : sy > k->gy1) goto slow;
             o->c |= (uint32_t)(sy < HALF ? RS_OUT_TOP : RS_OUT_BOTTOM) << 24;
         }
         o->y = (int32_t)sy;
+#if BR_DIV64_NATIVE
         o->d = (uint32_t)(k->kd / c2);
+#else
+        o->d = fx_udiv_r((uint64_t)k->kd, &rc);   /* kd = RS_DEPTH_ONE znear < c2 2^30 */
+#endif
         o->cp = xform_pack(k, rgb);
         if (tex) { o->u = v->uv[0]; o->v = v->uv[1]; }
         continue;
@@ -382,6 +410,17 @@ static inline int span_limits(int64_t s, int64_t K, int32_t px0, int32_t px1, in
         if (x < *xr) *xr = x < px0 ? px0 - 1 : (int32_t)x;
     } else if (K < 0) return 0;
     return 1;
+}
+
+/* floor(2^40 / a) for 1 <= a < 2^31: the tiny and small triangles' reciprocal of the
+ * doubled area (BR_DIV64_NATIVE = 0: without a 64-bit divide, see core/fx.h). */
+static RS_INLINE int64_t inv40(int64_t a)
+{
+#if BR_DIV64_NATIVE
+    return ((int64_t)1 << 40) / a;
+#else
+    return (int64_t)fx_inv40((uint32_t)a);
+#endif
 }
 
 /* Index of the lowest set bit of m (m != 0). */

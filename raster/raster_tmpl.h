@@ -71,7 +71,7 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
         gzn = dzb * dy2 - dzc * dy1;
         if (small) {
             /* area2 < 2^21 and |colour numerator| < 2^19: products below 2^59 */
-            inv = ((int64_t)1 << 40) / area2;
+            inv = inv40(area2);
 #define GC(B, C, K) ((uint64_t)((((B) * dy2 - (C) * dy1) * inv) >> 23) << (42 - 21 * (K)))
             gc = GC(dcb0, dcc0, 0) + GC(dcb1, dcc1, 1) + GC(dcb2, dcc2, 2);
 #undef GC
@@ -277,7 +277,7 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
         }
         if (!(m0 | m1 | m2 | m3)) return;
         {
-            const int64_t inv = ((int64_t)1 << 40) / area2, ad = a->d;
+            const int64_t inv = inv40(area2), ad = a->d;
             const int64_t dzb = (int64_t)b->d - ad, dzc = (int64_t)c->d - ad;
             const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
             const size_t stride = bd->stride, zw = (size_t)bd->w;
@@ -427,7 +427,7 @@ RS_INLINE static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cv
                                         uint64_t P2, uint64_t sy2, int32_t py0, int32_t px0)
 {
     const uint64_t hi = 0x8000800080008000u;
-    const int64_t inv = ((int64_t)1 << 40) / area2, ad = a->d;
+    const int64_t inv = inv40(area2), ad = a->d;
     const int64_t dzb = (int64_t)b->d - ad, dzc = (int64_t)c->d - ad;
     const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
     const size_t stride = bd->stride, zw = (size_t)bd->w;
@@ -462,7 +462,7 @@ RS_INLINE static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cv
 RS_INLINE static void RS_FN(quad_pixel)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                         int32_t area2, int64_t E0, int64_t E2, int32_t py0, int32_t px0)
 {
-    const int64_t inv = ((int64_t)1 << 40) / area2, ad = a->d;
+    const int64_t inv = inv40(area2), ad = a->d;
     const int64_t w1 = (E2 * inv) >> 24, w2 = (E0 * inv) >> 24;   /* Q16 */
     const RS_Z zz = (RS_Z)((uint32_t)(ad + ((((int64_t)b->d - ad) * w1 + ((int64_t)c->d - ad) * w2) >> 16)) >> RS_ZSH);
     const size_t row = (size_t)(py0 - bd->y0);

@@ -1,6 +1,7 @@
 #!/bin/sh
-# Run the whole suite: the no-floating-point check, every test program, and every
-# test program again under AddressSanitizer + UndefinedBehaviorSanitizer.
+# Run the whole suite: the no-floating-point check, every test program, the raster
+# tests again with the 32-bit boards' divide-free quotients (BR_DIV64_NATIVE=0), and
+# every test program again under AddressSanitizer + UndefinedBehaviorSanitizer.
 # Each program ends with "N passed, N failed"; we add them up and end the same way.
 B=${1:-build}
 passed=0; failed=0
@@ -25,6 +26,10 @@ fi
 for t in "$B"/tests/test_*; do
   [ -x "$t" ] || continue
   "$t" >$log 2>&1; rc=$?; count "$(basename "$t")" $log $rc
+done
+for t in "$B"/div32-tests/test_*; do
+  [ -x "$t" ] || continue
+  "$t" >$log 2>&1; rc=$?; count "$(basename "$t") [BR_DIV64_NATIVE=0]" $log $rc
 done
 for t in "$B"/san-tests/test_*; do
   [ -x "$t" ] || continue

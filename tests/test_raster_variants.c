@@ -2,7 +2,9 @@
  * (RS_WITH_*), as a board with little flash would use it.
  *
  * This file compiles a second copy of raster.c keeping only RGB565 with 16-bit depth,
- * its functions renamed (min_*) so that it links beside the full library.  On the peer
+ * its functions renamed (min_*) so that it links beside the full library, and with
+ * BR_DIV64_NATIVE = 0: the quotients of the vertex transform and the triangles'
+ * reciprocals come from core/fx.h's fx_recip, as on 32-bit ARM, instead of `/`.  On the peer
  * scene (real fuji.png terrain, both cameras, whole frame and 7-row bands) the reduced
  * copy must give exactly the full library's bytes, and refuse every variant it left out
  * with BR_E_UNSUPPORTED instead of drawing. */
@@ -11,6 +13,10 @@
 #include "platform/peer_scene.h"
 #include "tests/test.h"
 
+/* ... and dividing without the 64-bit divide, as a 32-bit board does (core/config.h
+ * BR_DIV64_NATIVE; raster.h already included config.h with the native default) */
+#undef BR_DIV64_NATIVE
+#define BR_DIV64_NATIVE 0
 #define RS_WITH_888 0
 #define RS_WITH_Z32 0
 #define RS_WITH_TEX 0
