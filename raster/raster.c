@@ -255,8 +255,18 @@ static RS_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cve
  *   overlap, which holds B at bit 0 and R at bit 42 where rs_pack_rgb puts them; G
  *   moves by its own shift. */
 #define GUARD_S ((RS_GUARD_PX << SUB) - 1)
+/* The view matrix's elements in xform_k: int64 on 64-bit targets, where the product
+ * with a vertex coordinate takes the element as a memory operand; int32 on 32-bit
+ * ones, where a 32 x 32 -> 64-bit multiply is one instruction and a 64 x 64 one three.
+ * The same products either way. */
+#if UINTPTR_MAX > 0xffffffffu
+typedef int64_t xform_rq;
+#else
+typedef int32_t xform_rq;
+#endif
 typedef struct xform_k {
-    int64_t r[3][3], t[3];      /* view matrix (Q30) and translation (Q30 world units) */
+    xform_rq r[3][3];           /* view matrix (Q30, |r| <= 2^30) */
+    int64_t t[3];               /* translation (Q30 world units) */
     int64_t tzn, zn, zspan;     /* t2 - znear 2^30; znear; zfar - znear */
     int64_t f8, nf8, kd;        /* f (Q8 pixels), -f, RS_DEPTH_ONE znear */
     int64_t kx, ky;             /* 16 cx + 8, 16 cy + 7 (cx, cy: centre, sub-pixels) */
@@ -396,17 +406,62 @@ br_status rs_frame_prepare(rs_frame *f)
 #define MIN3(a, b, c) ((a) < (b) ? ((a) < (c) ? (a) : (c)) : ((b) < (c) ? (b) : (c)))
 #define MAX3(a, b, c) ((a) > (b) ? ((a) > (c) ? (a) : (c)) : ((b) > (c) ? (b) : (c)))
 
+#if !BR_DIV64_NATIVE
+/* Quotients by a divisor that serves many of them (tri_general: the doubled area for
+ * the colour and depth gradients and the row starts, the edge steps for the row spans
+ * of wide boxes) without a 64-bit divide: n / d truncated toward zero as C's `/`
+ * (qdiv_trunc) or floored (qdiv_floor), through one fx_recip of d when d < 2^32 and
+ * |n / d| < 2^32, by `/` otherwise (an area of 2^32 sub-pixels^2 is 8 million pixels). */
+typedef struct qdiv {
+    int64_t d;
+    fx_recip r;                 /* r.dn = 0: d >= 2^32, no reciprocal */
+} qdiv;
+
+static RS_INLINE void qdiv_make(qdiv *a, int64_t d)    /* d > 0 */
+{
+    a->d = d;
+    if (d <= (int64_t)0xffffffff) a->r = fx_recip_make((uint32_t)d);
+    else { a->r.dn = 0; a->r.v = 0; a->r.s = 0; }
+}
+
+static RS_INLINE int64_t qdiv_trunc(const qdiv *a, int64_t n)
+{
+    const uint64_t m = n < 0 ? 0 - (uint64_t)n : (uint64_t)n;
+    if (a->r.dn && (m >> 32) < (uint64_t)a->d) {
+        const uint32_t u = fx_udiv_r(m, &a->r);
+        return n < 0 ? -(int64_t)u : (int64_t)u;
+    }
+    return n / a->d;
+}
+
+/* floor(n / d): the truncated quotient for n >= 0; for n < 0,
+ * floor(n / d) = -floor((-n - 1) / d) - 1 */
+static RS_INLINE int64_t qdiv_floor(const qdiv *a, int64_t n)
+{
+    return n >= 0 ? qdiv_trunc(a, n) : -qdiv_trunc(a, -n - 1) - 1;
+}
+#endif
+
 /* Narrows [*xl, *xr] to the centres px where K + s px >= 0 (one edge on one row;
  * s = 16 A is the edge's step per pixel).  Returns 0 when the row is empty.
  * ceil(-K / s) = -floor(K / s); the step's sign is known, so the inline
  * positive-divisor floor (core/fx.h) serves both sides. */
+#if BR_DIV64_NATIVE
+#define SPAN_FLOOR(K, D, Q) fx_div_floor_pos((K), (D))
+#define SPAN_LIMITS(S, K, Q, PX0, PX1, XL, XR) span_limits((S), (K), (PX0), (PX1), (XL), (XR))
 static inline int span_limits(int64_t s, int64_t K, int32_t px0, int32_t px1, int32_t *xl, int32_t *xr)
+#else
+/* q: the qdiv of |s| (made when s != 0) */
+#define SPAN_FLOOR(K, D, Q) qdiv_floor((Q), (K))
+#define SPAN_LIMITS(S, K, Q, PX0, PX1, XL, XR) span_limits((S), (K), (Q), (PX0), (PX1), (XL), (XR))
+static inline int span_limits(int64_t s, int64_t K, const qdiv *q, int32_t px0, int32_t px1, int32_t *xl, int32_t *xr)
+#endif
 {
     if (s > 0) {
-        int64_t x = -fx_div_floor_pos(K, s);
+        int64_t x = -SPAN_FLOOR(K, s, q);
         if (x > *xl) *xl = x > px1 ? px1 + 1 : (int32_t)x;
     } else if (s < 0) {
-        int64_t x = fx_div_floor_pos(K, -s);
+        int64_t x = SPAN_FLOOR(K, -s, q);
         if (x < *xr) *xr = x < px0 ? px0 - 1 : (int32_t)x;
     } else if (K < 0) return 0;
     return 1;
@@ -426,8 +481,12 @@ static RS_INLINE int64_t inv40(int64_t a)
 /* Index of the lowest set bit of m (m != 0). */
 static int32_t ctz64(uint64_t m)
 {
-#if defined(__GNUC__)
+#if defined(__GNUC__) && UINTPTR_MAX > 0xffffffffu
     return __builtin_ctzll(m);
+#elif defined(__GNUC__)
+    /* 32-bit targets: two 32-bit counts (inline on ARM: rbit + clz) rather than
+     * libgcc's __ctzdi2 call */
+    return (uint32_t)m ? __builtin_ctz((uint32_t)m) : 32 + __builtin_ctz((uint32_t)(m >> 32));
 #else
     int32_t k = 0;
     while (!(m & 1u)) { m >>= 1; k++; }

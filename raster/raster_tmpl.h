@@ -33,6 +33,14 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
         area2 = -area2;
     }
     bd->tris++;
+#if BR_DIV64_NATIVE
+#define AREA_DIV(N) ((N) / area2)
+#else
+    /* the quotients by area2 below through one reciprocal (qdiv in raster.c) */
+    qdiv ad_;
+    qdiv_make(&ad_, area2);
+#define AREA_DIV(N) qdiv_trunc(&ad_, (N))
+#endif
     /* Edge P->Q: E = A (X - P.x) + B (Y - P.y) >= 0 inside, at pixel centres.  Edge 0 =
      * a->b (the weight of c), 1 = b->c (weight of a), 2 = c->a (weight of b); since
      * E0 + E1 + E2 = area2 everywhere, E1 is never evaluated.  Edges that are not
@@ -76,12 +84,12 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
             gc = GC(dcb0, dcc0, 0) + GC(dcb1, dcc1, 1) + GC(dcb2, dcc2, 2);
 #undef GC
             if (gzn < ((int64_t)1 << 22) && gzn > -((int64_t)1 << 22)) gz = (gzn * inv) >> 36;
-            else gz = gzn * SUBONE / area2;
+            else gz = AREA_DIV(gzn * SUBONE);
         } else {
-#define GC(B, C, K) ((uint64_t)((((B) * dy2 - (C) * dy1) * ((int64_t)1 << 17)) / area2) << (42 - 21 * (K)))
+#define GC(B, C, K) ((uint64_t)AREA_DIV(((B) * dy2 - (C) * dy1) * ((int64_t)1 << 17)) << (42 - 21 * (K)))
             gc = GC(dcb0, dcc0, 0) + GC(dcb1, dcc1, 1) + GC(dcb2, dcc2, 2);
 #undef GC
-            gz = gzn * SUBONE / area2;
+            gz = AREA_DIV(gzn * SUBONE);
         }
 #if RS_TEX
         /* Perspective-correct texture coordinates at every pixel from its exact edge
@@ -105,6 +113,16 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
         if (gz < -INT32_MAX) gz = -INT32_MAX;
 
         const uint64_t ca = (a->cp << 13) + RS_CBIAS;
+#if !BR_DIV64_NATIVE
+        /* wide boxes: the row spans' divisors |16 A| through one reciprocal each */
+        qdiv q0_ = { 0, { 0, 0, 0 } }, q1_ = q0_, q2_ = q0_;     /* used only when wide */
+        if (px1 - px0 >= NARROW) {
+            const int64_t s1_ = sx0 + sx2;
+            qdiv_make(&q0_, sx0 < 0 ? -sx0 : sx0 ? sx0 : 1);
+            qdiv_make(&q1_, s1_ < 0 ? -s1_ : s1_ ? s1_ : 1);
+            qdiv_make(&q2_, sx2 < 0 ? -sx2 : sx2 ? sx2 : 1);
+        }
+#endif
         for (py = py0; py <= py1; py++, e0r += sy0, e2r += sy2) {
             int32_t xl = px0, xr = px1;
             int64_t e0, e2;
@@ -127,9 +145,9 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                  * column 0, with no products by px0 to keep across the rows) */
                 int64_t s1 = -(sx0 + sx2), e1r = S - e0r - e2r;
                 int32_t l = 0, r = px1 - px0;
-                if (!span_limits(sx0, e0r, 0, px1 - px0, &l, &r)
-                    || !span_limits(s1, e1r, 0, px1 - px0, &l, &r)
-                    || !span_limits(sx2, e2r, 0, px1 - px0, &l, &r) || l > r)
+                if (!SPAN_LIMITS(sx0, e0r, &q0_, 0, px1 - px0, &l, &r)
+                    || !SPAN_LIMITS(s1, e1r, &q1_, 0, px1 - px0, &l, &r)
+                    || !SPAN_LIMITS(sx2, e2r, &q2_, 0, px1 - px0, &l, &r) || l > r)
                     continue;
                 xl = px0 + l; xr = px0 + r;
                 e0 = e0r + sx0 * l; e2 = e2r + sx2 * l;
@@ -143,7 +161,7 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                 RS_Z *zp = (RS_Z *)bd->depth + (size_t)(py - bd->y0) * (size_t)w + (size_t)xl;
                 int32_t n = xr - xl + 1, i;
                 if (small) { w1 = (e2 * inv) >> 18; w2 = (e0 * inv) >> 18; }
-                else { w1 = e2 * ((int64_t)1 << 22) / area2; w2 = e0 * ((int64_t)1 << 22) / area2; }
+                else { w1 = AREA_DIV(e2 * ((int64_t)1 << 22)); w2 = AREA_DIV(e0 * ((int64_t)1 << 22)); }
                 z = (uint32_t)((int64_t)a->d + ((dzb * w1 + dzc * w2) >> 22));
                 col = ca + ((uint64_t)((dcb0 * w1 + dcc0 * w2) >> 9) << 42)
                       + ((uint64_t)((dcb1 * w1 + dcc1 * w2) >> 9) << 21) + (uint64_t)((dcb2 * w1 + dcc2 * w2) >> 9);
@@ -195,6 +213,8 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
         }
     }
 }
+
+#undef AREA_DIV
 
 /* The tiny path of tri_body for a triangle a, b, c with area2 > 0 (b, c already swapped
  * for front faces), candidate centres px0..px1 x py0..py1 (clipped to the band and the
