@@ -295,7 +295,7 @@ static long count_covered(const unsigned char *buf, int w, int h)
 int main(int argc, char **argv)
 {
     const char *dem = "../shared/data/dem/png/fuji.png", *out = NULL, *check = NULL, *colour = "float";
-    char cam = 'A';
+    char which = 'A';
     int w = 320, h = 240, frames = 50, warmup = 3, cull = 0;
     for (int a = 1; a < argc; a++) {
         const char *o = argv[a], *v = a + 1 < argc ? argv[a + 1] : NULL;
@@ -305,7 +305,7 @@ int main(int argc, char **argv)
             return compare_png(argv[a + 1], argv[a + 2]);
         }
         if (!v) die("missing value after", o);
-        if (!strcmp(o, "--camera")) cam = v[0];
+        if (!strcmp(o, "--camera")) which = v[0];
         else if (!strcmp(o, "--size")) { if (sscanf(v, "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > 8192 || h > 8192) die("bad --size", v); }
         else if (!strcmp(o, "--frames")) frames = atoi(v);
         else if (!strcmp(o, "--warmup")) warmup = atoi(v);
@@ -316,7 +316,7 @@ int main(int argc, char **argv)
         else die("unknown option", o);
         a++;
     }
-    if (cam != 'A' && cam != 'B') die("--camera must be A or B", NULL);
+    if (which != 'A' && which != 'B') die("--camera must be A or B", NULL);
     if (frames < 1) frames = 1;
     if (warmup < 0) warmup = 0;
     int use_float = !strcmp(colour, "float");
@@ -335,7 +335,7 @@ int main(int argc, char **argv)
     if (!OSMesaMakeCurrent(ctx, fb, GL_UNSIGNED_BYTE, w, h)) die("OSMesaMakeCurrent failed", NULL);
 
     double proj[16], view[16];
-    if (cam == 'A') {
+    if (which == 'A') {
         const double eye[3] = { 128, -100, 180 }, at[3] = { 128, 100, 0 }, up[3] = { 0, 0, 1 };
         perspective(55.0, (double)w / h, 10.0, 1000.0, proj);
         look_at(eye, at, up, view);
@@ -383,7 +383,7 @@ int main(int argc, char **argv)
     long covered = count_covered(fb, w, h);
     printf("llvmpipe camera=%c size=%dx%d cull=%d colour=%s frames=%d ms/frame=%.3f min=%.3f max=%.3f "
            "Mtri/s=%.2f Mpix/s=%.2f covered=%ld renderer=\"%s\" version=\"%s\"\n",
-           cam, w, h, cull, colour, frames, med, ms[0], ms[frames - 1],
+           which, w, h, cull, colour, frames, med, ms[0], ms[frames - 1],
            131072.0 / med / 1e3, (double)w * h / med / 1e3, covered,
            (const char *)glGetString(GL_RENDERER), (const char *)glGetString(GL_VERSION));
     if (out) write_png(out, fb, w, h);
