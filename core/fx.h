@@ -140,11 +140,21 @@ static inline uint32_t fx_udiv_r(uint64_t n, const fx_recip *r)
     return q;
 }
 
-/* floor(2^40 / a) for 1 <= a < 2^32, through fx_recip. */
+/* floor(2^40 / a) for 1 <= a < 2^32, through fx_recip; with a 32-bit divide
+ * instruction (__ARM_FEATURE_IDIV: Cortex-M3 and later, Cortex-A7/A15/A53... built
+ * with -mcpu), a < 2^16 (every tiny triangle) takes two of those instead:
+ * 2^40 / a = (2^24 / a) 2^16 + ((2^24 mod a) 2^16) / a, all below 2^32. */
 static inline uint64_t fx_inv40(uint32_t a)
 {
-    const fx_recip r = fx_recip_make(a);
+    fx_recip r;
     uint32_t hi;
+#if defined(__ARM_FEATURE_IDIV) || defined(FX_TEST_IDIV)
+    if (a < 65536u) {
+        const uint32_t q = 0x1000000u / a;
+        return ((uint64_t)q << 16) + (((0x1000000u - q * a) << 16) / a);
+    }
+#endif
+    r = fx_recip_make(a);
     if (a > 256u) return fx_udiv_r((uint64_t)1 << 40, &r);
     hi = fx_udiv_r(256u, &r);                    /* 2^40 / a = hi 2^32 + (rest 2^32) / a */
     return ((uint64_t)hi << 32) + fx_udiv_r((uint64_t)(256u - hi * a) << 32, &r);

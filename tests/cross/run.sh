@@ -3,8 +3,8 @@
 # target available, run each (foreign ones under qemu-user, statically linked),
 # and require byte-identical output.  Ends with "N passed, N failed".
 # Targets: native gcc -O2 (reference), gcc -O0, gcc -O3, clang -O2, and, when
-# the cross compilers and qemu are installed, 32-bit ARM (armhf), AArch64 and
-# 32-bit big-endian PowerPC.
+# the cross compilers and qemu are installed, 32-bit ARM (armhf; and built for
+# Cortex-A7, which has a 32-bit divide instruction), AArch64 and 32-bit big-endian PowerPC.
 set -u
 dem=${BITRAIN_DATA:-../shared/data/dem}/hgt/N47E009.hgt
 out=tests/out/cross
@@ -25,6 +25,7 @@ build ref cc -O2 && run ref || { echo "cross: cannot build/run the native refere
 echo "reference (native cc -O2):"; sed 's/^/  /' $out/ref.txt
 for spec in "gcc-O0 cc -O0" "gcc-O3 cc -O3 -funroll-loops" "clang-O2 clang -O2" \
             "armhf arm-linux-gnueabihf-gcc -O2 -static qemu-arm" \
+            "armhf-a7 arm-linux-gnueabihf-gcc -O2 -mcpu=cortex-a7 -static qemu-arm" \
             "aarch64 aarch64-linux-gnu-gcc -O2 -static qemu-aarch64" \
             "ppc-be powerpc-linux-gnu-gcc -O2 -static qemu-ppc"; do
   set -- $spec
