@@ -140,6 +140,19 @@ static inline uint32_t fx_udiv_r(uint64_t n, const fx_recip *r)
     return q;
 }
 
+/* n / d truncated toward zero, as C's `/`, for d the divisor r was made from: 1 and
+ * the quotient in *q when |n| < d 2^32 (the quotient fits 32 bits), else 0 (the
+ * caller divides otherwise or knows the quotient is out of its range). */
+static inline int fx_sdiv_r(int64_t n, const fx_recip *r, int64_t *q)
+{
+    const uint64_t m = n < 0 ? 0 - (uint64_t)n : (uint64_t)n;
+    uint32_t u;
+    if ((m >> 32) >= (uint64_t)(r->dn >> r->s)) return 0;
+    u = fx_udiv_r(m, r);
+    *q = n < 0 ? -(int64_t)u : (int64_t)u;
+    return 1;
+}
+
 /* floor(2^40 / a) for 1 <= a < 2^32, through fx_recip; with a 32-bit divide
  * instruction (__ARM_FEATURE_IDIV: Cortex-M3 and later, Cortex-A7/A15/A53... built
  * with -mcpu), a < 2^16 (every tiny triangle) takes two of those instead:

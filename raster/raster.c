@@ -281,23 +281,14 @@ static RS_INLINE uint64_t xform_pack(const xform_k *k, uint32_t rgb)
     return (((uint64_t)rgb * k->pmul) & k->pmask) | ((uint64_t)(rgb & 0xff00u) << 13);
 }
 
-/* q = n / d truncated toward zero, as C's `/`, for d = the divisor of rc (> 0).
- * Returns 0 when |n| >= d 2^32, i.e. |q| >= 2^32: a screen coordinate that far is
- * beyond the guard band, where the native path (which divides anyway) also ends in
- * xform_slow. */
+/* Q = N / c2 truncated toward zero, as C's `/`.  Without a 64-bit divide, through
+ * the vertex's fx_recip rc; 0 when |Q| would be 2^32 or more: a screen coordinate
+ * that far is beyond the guard band, where the native path (which divides anyway)
+ * also ends in xform_slow. */
 #if BR_DIV64_NATIVE
 #define XDIV(N, Q) ((Q) = (N) / c2, 1)
 #else
-static RS_INLINE int xform_div(int64_t n, int64_t d, const fx_recip *rc, int64_t *q)
-{
-    const uint64_t m = n < 0 ? 0 - (uint64_t)n : (uint64_t)n;
-    uint32_t u;
-    if ((m >> 32) >= (uint64_t)d) return 0;
-    u = fx_udiv_r(m, rc);
-    *q = n < 0 ? -(int64_t)u : (int64_t)u;
-    return 1;
-}
-#define XDIV(N, Q) xform_div((N), c2, &rc, &(Q))
+#define XDIV(N, Q) fx_sdiv_r((N), &rc, &(Q))
 #endif
 
 static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
@@ -426,15 +417,11 @@ static RS_INLINE void qdiv_make(qdiv *a, int64_t d)    /* d > 0 */
 
 static RS_INLINE int64_t qdiv_trunc(const qdiv *a, int64_t n)
 {
-    const uint64_t m = n < 0 ? 0 - (uint64_t)n : (uint64_t)n;
-    if (a->r.dn && (m >> 32) < (uint64_t)a->d) {
-        const uint32_t u = fx_udiv_r(m, &a->r);
-        return n < 0 ? -(int64_t)u : (int64_t)u;
-    }
-    return n / a->d;
+    int64_t q;
+    return a->r.dn && fx_sdiv_r(n, &a->r, &q) ? q : n / a->d;
 }
 
-/* floor(n / d): the truncated quotient for n >= 0; for n < 0,
+/* floor(n / d): the truncated quotient for n >= 0; for n < 0 (|n| < 2^62 here),
  * floor(n / d) = -floor((-n - 1) / d) - 1 */
 static RS_INLINE int64_t qdiv_floor(const qdiv *a, int64_t n)
 {

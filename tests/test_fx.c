@@ -105,6 +105,18 @@ static void check_recip(uint32_t d, uint64_t n)
     CHECK_EQ(fx_udiv_r(((uint64_t)d << 32) - 1u, &r), (((uint64_t)d << 32) - 1u) / d);
     CHECK_EQ(fx_udiv_r(d - 1u, &r), 0);
     CHECK_EQ(fx_udiv_r(d, &r), 1);
+    {   /* signed, truncated toward zero like C's /; refused from |n| = d 2^32 on */
+        const int64_t sn = (int64_t)(n >> 1) * ((n & 1) ? -1 : 1);
+        int64_t q = 12345;
+        CHECK(fx_sdiv_r(sn, &r, &q) && q == sn / (int64_t)d);
+        if (d < 0x80000000u) {
+            const int64_t lim = (int64_t)d << 32;
+            CHECK(fx_sdiv_r(-(lim - 1), &r, &q) && q == -(lim - 1) / (int64_t)d);
+            CHECK(fx_sdiv_r(lim - 1, &r, &q) && q == (lim - 1) / (int64_t)d);
+            q = 12345;
+            CHECK(!fx_sdiv_r(lim, &r, &q) && !fx_sdiv_r(-lim, &r, &q) && q == 12345);
+        }
+    }
 }
 
 static void test_recip(void)
