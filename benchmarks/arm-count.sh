@@ -14,11 +14,15 @@
 # qemu runs a Raspberry-Pi-class CPU model (aarch64: -cpu cortex-a72, armhf: -cpu cortex-a7) so
 # static glibc's ifuncs pick what such a board picks (qemu's default "max" CPU gives SVE memcpy).  A missing compiler/qemu/valgrind gives "-" in its column;
 # with no qemu or no cross compiler at all it prints "skipped: ..." and exits 0.
+# Then the same for the configuration of a board without a framebuffer (RGB565, 16-bit depth,
+# 16-row bands with the chunk table; checksums against the native run of the same harness).
 # Then the per-function top list of one configuration (per frame, from the per-TB counts and
 # nm; static functions inlined into others count as their caller), with the libgcc helpers.
 #
 # Usage: sh benchmarks/arm-count.sh        (from anywhere)
 #   SIZES="640x480 320x240"  CAMS="A B"    the configurations
+#   BOARD_SIZE=320x240                     size of the board configuration (RGB565, 16-bit
+#                                          depth, 16-row bands): its own table
 #   TOP="armhf A 640x480"                  target, camera, size of the per-function list
 #   NTOP=15                                length of that list
 #   OUT=benchmarks/out/arm-count           build and output directory (raw counts stay there)
@@ -26,6 +30,7 @@
 set -u
 cd "$(dirname "$0")/.." || exit 1
 SIZES=${SIZES:-640x480 320x240}
+BOARD_SIZE=${BOARD_SIZE:-320x240}
 CAMS=${CAMS:-A B}
 TOP=${TOP:-armhf A 640x480}
 NTOP=${NTOP:-15}
@@ -76,16 +81,16 @@ done
 
 # ---- runs ----
 fail=0
-count_qemu() { # name q cpu cam size frames -> prints total, leaves $OUT/tb-...
-  f="$OUT/tb-$1-$4-$5-$6.txt"
-  $2 ${3:+-cpu $3} -plugin "$OUT/qemu_insn.so,out=$f" "$OUT/peer_run-$1" "$OUT/scene.bin" "$4" "$5" "$6" \
-    > "$OUT/run-$1-$4-$5-$6.txt" || return 1
+count_qemu() { # name q cpu cam size frames [board] -> prints total, leaves $OUT/tb-...
+  f="$OUT/tb-$1-$4-$5-$6${7:+-$7}.txt"
+  $2 ${3:+-cpu $3} -plugin "$OUT/qemu_insn.so,out=$f" "$OUT/peer_run-$1" "$OUT/scene.bin" "$4" "$5" "$6" ${7:-} \
+    > "$OUT/run-$1-$4-$5-$6${7:+-$7}.txt" || return 1
   sed -n 's/^total //p' "$f"
 }
-count_cg() { # cam size frames
-  valgrind --tool=callgrind --callgrind-out-file=/dev/null "$OUT/peer_run-x86-64" "$OUT/scene.bin" "$1" "$2" "$3" \
-    2> "$OUT/cg-$1-$2-$3.err" > "$OUT/run-x86-64-$1-$2-$3.txt" || return 1
-  sed -n 's/.*Collected : *//p' "$OUT/cg-$1-$2-$3.err" | tr -d ','
+count_cg() { # cam size frames [board]
+  valgrind --tool=callgrind --callgrind-out-file=/dev/null "$OUT/peer_run-x86-64" "$OUT/scene.bin" "$1" "$2" "$3" ${4:-} \
+    2> "$OUT/cg-$1-$2-$3${4:+-$4}.err" > "$OUT/run-x86-64-$1-$2-$3${4:+-$4}.txt" || return 1
+  sed -n 's/.*Collected : *//p' "$OUT/cg-$1-$2-$3${4:+-$4}.err" | tr -d ','
 }
 printf '%-14s %12s %12s %12s %12s   %s\n' "M insn/frame" "x86-64" "aarch64" "armhf" "armhf-a7" "checksum (last frame)"
 for size in $SIZES; do
@@ -118,6 +123,38 @@ for size in $SIZES; do
   done
 done
 rm -f "$OUT/scene-check.bin"
+
+# ---- the configuration of a board without a framebuffer ----
+# RGB565, 16-bit depth, 16-row bands into one band buffer, chunk table (peer_run ... board);
+# every target's checksum over the bands must equal the native one.
+echo
+echo "board configuration (RGB565, 16-bit depth, bands of 16 rows with the chunk table), $BOARD_SIZE:"
+printf '%-14s %12s %12s %12s %12s   %s\n' "M insn/frame" "x86-64" "aarch64" "armhf" "armhf-a7" "checksum (bands)"
+for cam in $CAMS; do
+  size=$BOARD_SIZE
+  "$OUT/peer_run-x86-64" "$OUT/scene.bin" "$cam" "$size" 2 board > "$OUT/run-native-$cam-$size-board.txt"
+  ref=$(sed 's/.*checksum=\([0-9a-f]*\).*/\1/' "$OUT/run-native-$cam-$size-board.txt")
+  line=$(printf '%-14s' "$cam $size")
+  bad=""
+  if have valgrind; then
+    c1=$(count_cg "$cam" "$size" 1 board); c11=$(count_cg "$cam" "$size" 11 board)
+    if [ -n "$c1" ] && [ -n "$c11" ]; then
+      line="$line $(echo "$c1 $c11" | awk '{ printf "%12.3f", ($2 - $1) / 10 / 1e6 }')"
+    else line="$line $(printf '%12s' failed)"; fi
+  else line="$line $(printf '%12s' -)"; fi
+  for t in aarch64 armhf armhf-a7; do
+    spec=$(echo "$TARGETS" | grep "^$t:")
+    q=$(echo "$spec" | cut -d: -f3); cpu=$(echo "$spec" | cut -d: -f4)
+    if [ ! -x "$OUT/peer_run-$t" ]; then line="$line $(printf '%12s' -)"; continue; fi
+    c1=$(count_qemu "$t" "$q" "$cpu" "$cam" "$size" 1 board); c11=$(count_qemu "$t" "$q" "$cpu" "$cam" "$size" 11 board)
+    if [ -n "$c1" ] && [ -n "$c11" ]; then
+      line="$line $(echo "$c1 $c11" | awk '{ printf "%12.3f", ($2 - $1) / 10 / 1e6 }')"
+    else line="$line $(printf '%12s' failed)"; bad="$bad $t(run)"; continue; fi
+    for n in 1 11; do grep -q "checksum=$ref " "$OUT/run-$t-$cam-$size-$n-board.txt" || bad="$bad $t"; done
+  done
+  if [ -z "$bad" ]; then echo "$line   $ref all equal"
+  else echo "$line   $ref MISMATCH:$bad"; fail=1; fi
+done
 if [ $fail != 0 ]; then
   echo "FAILURE: a target's frame differs from the native reference (cross-architecture identity broken);"
   echo "         the runs' outputs are in $OUT/run-*.txt"

@@ -5,8 +5,12 @@
  * one band.  Prints the checksum line of the last frame (same format as peer_dump).
  * For instruction counts run it with 1 and with 11 frames: (count(11) - count(1)) / 10
  * is one frame, everything else (file reading, set-up, checksum) cancels.
+ * With "board": the configuration of a board without a framebuffer (RGB565, 16-bit
+ * depth, bands of 16 rows into one band buffer, with the chunk table); the checksum,
+ * FNV-1a over the bytes of every band's pixels (low byte first), is taken in the
+ * last frame only, where a board would send the band to its display.
  *
- *   peer_run SCENE.bin A|B WxH FRAMES
+ *   peer_run SCENE.bin A|B WxH FRAMES [board]
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,15 +29,34 @@ static uint32_t get(void)
     return v;
 }
 
+#define BOARD_ROWS 16
+static int g_board, g_sum_now;
+static uint64_t g_sum = 0xcbf29ce484222325u;
+
 /* One frame, as platform/cmd_bench.c's bench_frame (same name, so callgrind's
  * --toggle-collect=bench_frame works here too). */
 __attribute__((noinline)) br_status bench_frame(rs_frame *f, void *color, void *depth);
 __attribute__((noinline)) br_status bench_frame(rs_frame *f, void *color, void *depth)
 {
     br_status s = rs_frame_prepare(f);
+    int32_t y0;
     if (s != BR_OK) return s;
     f->stat_tris = f->stat_clipped = f->stat_pixels = 0;
-    return rs_render_band(f, 0, f->h, color, (size_t)f->w * 4u, depth);
+    if (!g_board) return rs_render_band(f, 0, f->h, color, (size_t)f->w * 4u, depth);
+    for (y0 = 0; y0 < f->h; y0 += BOARD_ROWS) {
+        const int32_t rows = f->h - y0 < BOARD_ROWS ? f->h - y0 : BOARD_ROWS;
+        s = rs_render_band(f, y0, rows, color, (size_t)f->w * 2u, depth);
+        if (s != BR_OK) return s;
+        if (g_sum_now) {
+            const uint16_t *px = (const uint16_t *)color;
+            size_t i;
+            for (i = 0; i < (size_t)f->w * (size_t)rows; i++) {
+                g_sum = (g_sum ^ (px[i] & 255u)) * 0x100000001b3u;
+                g_sum = (g_sum ^ (px[i] >> 8)) * 0x100000001b3u;
+            }
+        }
+    }
+    return BR_OK;
 }
 
 int main(int argc, char **argv)
@@ -49,11 +72,12 @@ int main(int argc, char **argv)
     int frames, found = 0, n;
     cam c;
     rs_frame f;
-    if (argc != 5 || sscanf(argv[3], "%dx%d", &w, &h) != 2 || (frames = atoi(argv[4])) < 1 || w < 1 || h < 1 ||
-        w > RS_MAX_DIM || h > RS_MAX_DIM) {
-        fprintf(stderr, "usage: peer_run SCENE.bin A|B WxH FRAMES\n");
+    if (argc < 5 || argc > 6 || sscanf(argv[3], "%dx%d", &w, &h) != 2 || (frames = atoi(argv[4])) < 1 || w < 1 ||
+        h < 1 || w > RS_MAX_DIM || h > RS_MAX_DIM || (argc == 6 && strcmp(argv[5], "board") != 0)) {
+        fprintf(stderr, "usage: peer_run SCENE.bin A|B WxH FRAMES [board]\n");
         return 2;
     }
+    g_board = argc == 6;
     fp = fopen(argv[1], "rb");
     if (!fp || fseek(fp, 0, SEEK_END) != 0 || (len = ftell(fp)) < 0 || fseek(fp, 0, SEEK_SET) != 0) {
         fprintf(stderr, "peer_run: %s: cannot read\n", argv[1]);
@@ -99,18 +123,25 @@ int main(int argc, char **argv)
     /* peer_frame() of platform/peer_scene.c, from the integer camera */
     if (cam_look_at(&c, eye, tg, fovy, w, h, zn, zf) != BR_OK) { fprintf(stderr, "peer_run: camera refused\n"); return 1; }
     memset(&f, 0, sizeof f);
-    f.w = w; f.h = h; f.fmt = RS_FMT_XRGB8888; f.depth = RS_DEPTH32; f.no_cull = 1;
+    f.w = w; f.h = h; f.no_cull = 1;
+    f.fmt = g_board ? RS_FMT_RGB565 : RS_FMT_XRGB8888;
+    f.depth = g_board ? RS_DEPTH16 : RS_DEPTH32;
     f.clear_rgb = 0x99ccffu;
     f.v = v; f.nv = nv; f.prims = prims; f.nprims = (int32_t)nstrip;
     cam_viewproj(&c, &f.vp);
     f.cache = (rs_cvert *)malloc(rs_cache_mem_size(nv));
-    color = (uint32_t *)malloc((size_t)w * (size_t)h * 4);
+    if (g_board) f.chunks = (int16_t *)malloc(rs_chunk_mem_size(prims, f.nprims));
+    color = (uint32_t *)malloc((size_t)w * (size_t)h * 4);     /* a board needs only BOARD_ROWS rows */
     zbuf = (uint32_t *)malloc((size_t)w * (size_t)h * 4);
-    if (!f.cache || !color || !zbuf) { fprintf(stderr, "peer_run: out of memory\n"); return 1; }
-    for (n = 0; n < frames; n++)
+    if (!f.cache || !color || !zbuf || (g_board && !f.chunks)) { fprintf(stderr, "peer_run: out of memory\n"); return 1; }
+    for (n = 0; n < frames; n++) {
+        g_sum_now = n == frames - 1;
         if (bench_frame(&f, color, zbuf) != BR_OK) { fprintf(stderr, "peer_run: render failed\n"); return 1; }
+    }
     printf("camera=%c size=%dx%d checksum=%016llx drawn_tris=%u clipped=%u span_px=%u\n", argv[2][0], w, h,
-           (unsigned long long)pf_checksum(color, w, h, (size_t)w), f.stat_tris, f.stat_clipped, f.stat_pixels);
+           (unsigned long long)(g_board ? g_sum : pf_checksum(color, w, h, (size_t)w)), f.stat_tris, f.stat_clipped,
+           f.stat_pixels);
+    free(f.chunks);
     free(buf); free(v); free(idx); free(prims); free(f.cache); free(color); free(zbuf);
     return 0;
 }
