@@ -298,7 +298,7 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
         if (!(m0 | m1 | m2 | m3)) return;
         {
             const int64_t inv = inv40(area2), ad = a->d;
-            const int64_t dzb = (int64_t)b->d - ad, dzc = (int64_t)c->d - ad;
+            const dz_t dzb = (dz_t)((int64_t)b->d - ad), dzc = (dz_t)((int64_t)c->d - ad);
             const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
             const size_t stride = bd->stride, zw = (size_t)bd->w;
             uint8_t *crow;
@@ -323,10 +323,10 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
 #define TINY_SHADE(E0, E2, I) do {                                                     \
                 int64_t w1_ = ((E2) * inv) >> 24, w2_ = ((E0) * inv) >> 24; /* Q16 */    \
                 RS_Z *zp_ = zrow + px0 + (I);                                          \
-                RS_Z zz_ = (RS_Z)((uint32_t)(ad + ((dzb * w1_ + dzc * w2_) >> 16)) >> RS_ZSH); \
+                RS_Z zz_ = (RS_Z)((uint32_t)(ad + ((DZ_MUL(dzb, w1_) + DZ_MUL(dzc, w2_)) >> 16)) >> RS_ZSH); \
                 bd->pixels++;                                                          \
                 if (zz_ > *zp_) {                                                      \
-                    uint64_t col_ = ca + db * (uint64_t)(w1_ >> 3) + dc * (uint64_t)(w2_ >> 3); \
+                    uint64_t col_ = ca + CW_MUL(db, w1_) + CW_MUL(dc, w2_); \
                     *zp_ = zz_;                                                        \
                     ((RS_PIX *)(void *)crow)[px0 + (I)] = TINY_PIX(col_, w1_, w2_);    \
                 }                                                                      \
@@ -448,7 +448,7 @@ RS_INLINE static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cv
 {
     const uint64_t hi = 0x8000800080008000u;
     const int64_t inv = inv40(area2), ad = a->d;
-    const int64_t dzb = (int64_t)b->d - ad, dzc = (int64_t)c->d - ad;
+    const dz_t dzb = (dz_t)((int64_t)b->d - ad), dzc = (dz_t)((int64_t)c->d - ad);
     const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
     const size_t stride = bd->stride, zw = (size_t)bd->w;
     uint8_t *crow = bd->color + (size_t)(py0 - bd->y0) * stride;
@@ -461,11 +461,11 @@ RS_INLINE static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cv
             int32_t sh = ctz64(m) - 15, i = px0 + (sh >> 4);
             int64_t w1 = (((int64_t)(uint16_t)(P2 >> sh) - 0x8000) * inv) >> 24;   /* Q16 */
             int64_t w2 = (((int64_t)(uint16_t)(P0 >> sh) - 0x8000) * inv) >> 24;
-            RS_Z zz = (RS_Z)((uint32_t)(ad + ((dzb * w1 + dzc * w2) >> 16)) >> RS_ZSH);
+            RS_Z zz = (RS_Z)((uint32_t)(ad + ((DZ_MUL(dzb, w1) + DZ_MUL(dzc, w2)) >> 16)) >> RS_ZSH);
             m &= m - 1;
             bd->pixels++;
             if (zz > zrow[i]) {
-                uint64_t col = ca + db * (uint64_t)(w1 >> 3) + dc * (uint64_t)(w2 >> 3);
+                uint64_t col = ca + CW_MUL(db, w1) + CW_MUL(dc, w2);
                 zrow[i] = zz;
                 ((RS_PIX *)(void *)crow)[i] = RS_PACK(col);
             }
@@ -484,13 +484,12 @@ RS_INLINE static void RS_FN(quad_pixel)(band *bd, const rs_cvert *a, const rs_cv
 {
     const int64_t inv = inv40(area2), ad = a->d;
     const int64_t w1 = (E2 * inv) >> 24, w2 = (E0 * inv) >> 24;   /* Q16 */
-    const RS_Z zz = (RS_Z)((uint32_t)(ad + ((((int64_t)b->d - ad) * w1 + ((int64_t)c->d - ad) * w2) >> 16)) >> RS_ZSH);
+    const RS_Z zz = (RS_Z)((uint32_t)(ad + ((DZ_MUL((dz_t)((int64_t)b->d - ad), w1) + DZ_MUL((dz_t)((int64_t)c->d - ad), w2)) >> 16)) >> RS_ZSH);
     const size_t row = (size_t)(py0 - bd->y0);
     RS_Z *const zp = (RS_Z *)bd->depth + row * (size_t)bd->w + (size_t)px0;
     bd->pixels++;
     if (zz > *zp) {
-        const uint64_t col = (a->cp << 13) + RS_CBIAS + (b->cp - a->cp) * (uint64_t)(w1 >> 3)
-                             + (c->cp - a->cp) * (uint64_t)(w2 >> 3);
+        const uint64_t col = (a->cp << 13) + RS_CBIAS + CW_MUL(b->cp - a->cp, w1) + CW_MUL(c->cp - a->cp, w2);
         *zp = zz;
         ((RS_PIX *)(void *)(bd->color + row * bd->stride))[px0] = RS_PACK(col);
     }
