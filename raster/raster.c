@@ -492,6 +492,15 @@ typedef int32_t dz_t;
 #define CW_MUL(DC, W) ((DC) * (uint32_t)((W) >> 3))
 #endif
 
+/* The 16-bit lane of P at bit SH (0, 16, 32 or 48: a lane found by ctz64 of a top-bit
+ * mask, minus 15): on 32-bit targets from the word that holds it, without a 64-bit
+ * shift by a variable amount (several instructions there). */
+#if RS_REG64
+#define LANE16(P, SH) ((uint16_t)((P) >> (SH)))
+#else
+#define LANE16(P, SH) ((uint16_t)(((SH) & 32 ? (uint32_t)((P) >> 32) : (uint32_t)(P)) >> ((SH) & 16)))
+#endif
+
 /* Index of the lowest set bit of m (m != 0). */
 static int32_t ctz64(uint64_t m)
 {

@@ -348,8 +348,8 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
                 while (m_) {                                                           \
                     /* lane of the lowest set top bit: shift 16 * lane */               \
                     int32_t sh_ = ctz64(m_) - 15;                                      \
-                    int64_t e0_ = (int64_t)(uint16_t)((P0) >> sh_) - 0x8000;           \
-                    int64_t e2_ = (int64_t)(uint16_t)((P2) >> sh_) - 0x8000;           \
+                    int64_t e0_ = (int64_t)LANE16((P0), sh_) - 0x8000;                  \
+                    int64_t e2_ = (int64_t)LANE16((P2), sh_) - 0x8000;                  \
                     m_ &= m_ - 1;                                                      \
                     TINY_SHADE(e0_, e2_, sh_ >> 4);                                    \
                 }                                                                      \
@@ -459,8 +459,8 @@ RS_INLINE static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cv
         while (m) {
             /* lane of the lowest set top bit: shift 16 * lane */
             int32_t sh = ctz64(m) - 15, i = px0 + (sh >> 4);
-            int64_t w1 = (((int64_t)(uint16_t)(P2 >> sh) - 0x8000) * inv) >> 24;   /* Q16 */
-            int64_t w2 = (((int64_t)(uint16_t)(P0 >> sh) - 0x8000) * inv) >> 24;
+            int64_t w1 = (((int64_t)LANE16(P2, sh) - 0x8000) * inv) >> 24;   /* Q16 */
+            int64_t w2 = (((int64_t)LANE16(P0, sh) - 0x8000) * inv) >> 24;
             RS_Z zz = (RS_Z)((uint32_t)(ad + ((DZ_MUL(dzb, w1) + DZ_MUL(dzc, w2)) >> 16)) >> RS_ZSH);
             m &= m - 1;
             bd->pixels++;
