@@ -92,34 +92,39 @@ count_cg() { # cam size frames [board]
     2> "$OUT/cg-$1-$2-$3${4:+-$4}.err" > "$OUT/run-x86-64-$1-$2-$3${4:+-$4}.txt" || return 1
   sed -n 's/.*Collected : *//p' "$OUT/cg-$1-$2-$3${4:+-$4}.err" | tr -d ','
 }
+# one table row: cam size ref line-so-far bad-so-far [board]; counts per target (x86-64 by
+# callgrind when valgrind is there), every run's checksum against ref; sets fail on a mismatch
+row() {
+  cam=$1; size=$2; ref=$3; line=$4; bad=$5; mode=${6:-}; sfx=${mode:+-$mode}
+  if have valgrind; then
+    c1=$(count_cg "$cam" "$size" 1 $mode); c11=$(count_cg "$cam" "$size" 11 $mode)
+    if [ -n "$c1" ] && [ -n "$c11" ]; then
+      line="$line $(echo "$c1 $c11" | awk '{ printf "%12.3f", ($2 - $1) / 10 / 1e6 }')"
+      grep -q "checksum=$ref " "$OUT/run-x86-64-$cam-$size-11$sfx.txt" || bad="$bad x86-64(cg)"
+    else line="$line $(printf '%12s' failed)"; fi
+  else line="$line $(printf '%12s' -)"; fi
+  for t in aarch64 armhf armhf-a7; do
+    spec=$(echo "$TARGETS" | grep "^$t:")
+    q=$(echo "$spec" | cut -d: -f3); cpu=$(echo "$spec" | cut -d: -f4)
+    if [ ! -x "$OUT/peer_run-$t" ]; then line="$line $(printf '%12s' -)"; continue; fi
+    c1=$(count_qemu "$t" "$q" "$cpu" "$cam" "$size" 1 $mode); c11=$(count_qemu "$t" "$q" "$cpu" "$cam" "$size" 11 $mode)
+    if [ -n "$c1" ] && [ -n "$c11" ]; then
+      line="$line $(echo "$c1 $c11" | awk '{ printf "%12.3f", ($2 - $1) / 10 / 1e6 }')"
+    else line="$line $(printf '%12s' failed)"; bad="$bad $t(run)"; continue; fi
+    for n in 1 11; do grep -q "checksum=$ref " "$OUT/run-$t-$cam-$size-$n$sfx.txt" || bad="$bad $t"; done
+  done
+  if [ -z "$bad" ]; then echo "$line   $ref all equal"
+  else echo "$line   $ref MISMATCH:$bad"; fail=1; fi
+}
 printf '%-14s %12s %12s %12s %12s   %s\n' "M insn/frame" "x86-64" "aarch64" "armhf" "armhf-a7" "checksum (last frame)"
 for size in $SIZES; do
   for cam in $CAMS; do
     ref=$("$OUT/peer_dump" "$DEM" "$OUT/scene-check.bin" "$cam" "$size" | sed 's/.*checksum=\([0-9a-f]*\).*/\1/')
     line=$(printf '%-14s' "$cam $size")
-    bad=""
-    # x86-64 (native) checksum always; count when valgrind is there
     "$OUT/peer_run-x86-64" "$OUT/scene.bin" "$cam" "$size" 2 > "$OUT/run-native-$cam-$size.txt"
-    grep -q "checksum=$ref " "$OUT/run-native-$cam-$size.txt" || bad="$bad x86-64"
-    if have valgrind; then
-      c1=$(count_cg "$cam" "$size" 1); c11=$(count_cg "$cam" "$size" 11)
-      if [ -n "$c1" ] && [ -n "$c11" ]; then
-        line="$line $(echo "$c1 $c11" | awk '{ printf "%12.3f", ($2 - $1) / 10 / 1e6 }')"
-        grep -q "checksum=$ref " "$OUT/run-x86-64-$cam-$size-11.txt" || bad="$bad x86-64(cg)"
-      else line="$line $(printf '%12s' failed)"; fi
-    else line="$line $(printf '%12s' -)"; fi
-    for t in aarch64 armhf armhf-a7; do
-      spec=$(echo "$TARGETS" | grep "^$t:")
-      q=$(echo "$spec" | cut -d: -f3); cpu=$(echo "$spec" | cut -d: -f4)
-      if [ ! -x "$OUT/peer_run-$t" ]; then line="$line $(printf '%12s' -)"; continue; fi
-      c1=$(count_qemu "$t" "$q" "$cpu" "$cam" "$size" 1); c11=$(count_qemu "$t" "$q" "$cpu" "$cam" "$size" 11)
-      if [ -n "$c1" ] && [ -n "$c11" ]; then
-        line="$line $(echo "$c1 $c11" | awk '{ printf "%12.3f", ($2 - $1) / 10 / 1e6 }')"
-      else line="$line $(printf '%12s' failed)"; bad="$bad $t(run)"; continue; fi
-      for n in 1 11; do grep -q "checksum=$ref " "$OUT/run-$t-$cam-$size-$n.txt" || bad="$bad $t"; done
-    done
-    if [ -z "$bad" ]; then echo "$line   $ref all equal"
-    else echo "$line   $ref MISMATCH:$bad"; fail=1; fi
+    bad=""
+    grep -q "checksum=$ref " "$OUT/run-native-$cam-$size.txt" || bad=" x86-64"
+    row "$cam" "$size" "$ref" "$line" "$bad"
   done
 done
 rm -f "$OUT/scene-check.bin"
@@ -134,26 +139,7 @@ for cam in $CAMS; do
   size=$BOARD_SIZE
   "$OUT/peer_run-x86-64" "$OUT/scene.bin" "$cam" "$size" 2 board > "$OUT/run-native-$cam-$size-board.txt"
   ref=$(sed 's/.*checksum=\([0-9a-f]*\).*/\1/' "$OUT/run-native-$cam-$size-board.txt")
-  line=$(printf '%-14s' "$cam $size")
-  bad=""
-  if have valgrind; then
-    c1=$(count_cg "$cam" "$size" 1 board); c11=$(count_cg "$cam" "$size" 11 board)
-    if [ -n "$c1" ] && [ -n "$c11" ]; then
-      line="$line $(echo "$c1 $c11" | awk '{ printf "%12.3f", ($2 - $1) / 10 / 1e6 }')"
-    else line="$line $(printf '%12s' failed)"; fi
-  else line="$line $(printf '%12s' -)"; fi
-  for t in aarch64 armhf armhf-a7; do
-    spec=$(echo "$TARGETS" | grep "^$t:")
-    q=$(echo "$spec" | cut -d: -f3); cpu=$(echo "$spec" | cut -d: -f4)
-    if [ ! -x "$OUT/peer_run-$t" ]; then line="$line $(printf '%12s' -)"; continue; fi
-    c1=$(count_qemu "$t" "$q" "$cpu" "$cam" "$size" 1 board); c11=$(count_qemu "$t" "$q" "$cpu" "$cam" "$size" 11 board)
-    if [ -n "$c1" ] && [ -n "$c11" ]; then
-      line="$line $(echo "$c1 $c11" | awk '{ printf "%12.3f", ($2 - $1) / 10 / 1e6 }')"
-    else line="$line $(printf '%12s' failed)"; bad="$bad $t(run)"; continue; fi
-    for n in 1 11; do grep -q "checksum=$ref " "$OUT/run-$t-$cam-$size-$n-board.txt" || bad="$bad $t"; done
-  done
-  if [ -z "$bad" ]; then echo "$line   $ref all equal"
-  else echo "$line   $ref MISMATCH:$bad"; fail=1; fi
+  row "$cam" "$size" "$ref" "$(printf '%-14s' "$cam $size")" "" board
 done
 if [ $fail != 0 ]; then
   echo "FAILURE: a target's frame differs from the native reference (cross-architecture identity broken);"
