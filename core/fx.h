@@ -173,4 +173,71 @@ static inline uint64_t fx_inv40(uint32_t a)
     return ((uint64_t)hi << 32) + fx_udiv_r((uint64_t)(256u - hi * a) << 32, &r);
 }
 
+/* --- division the way the target does it best (BR_DIV64_NATIVE, core/config.h) ---
+ * A divisor d > 0 that serves several quotients: with a 64-bit divide (BR_DIV64_NATIVE
+ * = 1) C's `/`; without one, through one fx_recip of d (d < 2^32; `/` for larger d or
+ * quotients of 2^32 and more).  The quotients are the same either way. */
+typedef struct fx_divisor {
+    int64_t d;
+#if !BR_DIV64_NATIVE
+    fx_recip r;                 /* r.dn = 0: d >= 2^32, no reciprocal */
+#endif
+} fx_divisor;
+/* an initializer for a divisor made only on some paths (1, no reciprocal) */
+#if BR_DIV64_NATIVE
+#define FX_DIVISOR_INIT { 1 }
+#else
+#define FX_DIVISOR_INIT { 1, { 0, 0, 0 } }
+#endif
+
+static inline void fx_divisor_make(fx_divisor *q, int64_t d)     /* d > 0 */
+{
+    q->d = d;
+#if !BR_DIV64_NATIVE
+    if (d <= (int64_t)0xffffffff) q->r = fx_recip_make((uint32_t)d);
+    else { q->r.dn = 0; q->r.v = 0; q->r.s = 0; }
+#endif
+}
+
+/* n / d truncated toward zero, as C's `/`, in *out, and 1; without a 64-bit divide, 0
+ * instead (nothing written) when |n / d| >= 2^32, for callers whose exact path for such
+ * quotients is elsewhere. */
+static inline int fx_divisor_trunc32(const fx_divisor *q, int64_t n, int64_t *out)
+{
+#if BR_DIV64_NATIVE
+    *out = n / q->d;
+    return 1;
+#else
+    return fx_sdiv_r(n, &q->r, out);     /* r.dn = 0 (d >= 2^32) refuses every n */
+#endif
+}
+
+/* n / d truncated toward zero, as C's `/`. */
+static inline int64_t fx_divisor_trunc(const fx_divisor *q, int64_t n)
+{
+    int64_t t;
+    return fx_divisor_trunc32(q, n, &t) ? t : n / q->d;
+}
+
+/* floor(n / d), |n| < 2^62: the truncated quotient for n >= 0, and for n < 0
+ * floor(n / d) = -floor((-n - 1) / d) - 1 (as fx_div_floor_pos with a 64-bit divide). */
+static inline int64_t fx_divisor_floor(const fx_divisor *q, int64_t n)
+{
+#if BR_DIV64_NATIVE
+    return fx_div_floor_pos(n, q->d);
+#else
+    return n >= 0 ? fx_divisor_trunc(q, n) : -fx_divisor_trunc(q, -n - 1) - 1;
+#endif
+}
+
+/* floor(2^40 / a) for 1 <= a < 2^32: `/` with a 64-bit divide, else fx_inv40. */
+static inline int64_t fx_div40(uint32_t a)
+{
+#if BR_DIV64_NATIVE
+    return ((int64_t)1 << 40) / a;
+#else
+    return (int64_t)fx_inv40(a);
+#endif
+}
+
 #endif

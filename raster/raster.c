@@ -289,16 +289,6 @@ static RS_INLINE uint64_t xform_pack(const xform_k *k, uint32_t rgb)
     return (((uint64_t)rgb * k->pmul) & k->pmask) | ((uint64_t)(rgb & 0xff00u) << 13);
 }
 
-/* Q = N / c2 truncated toward zero, as C's `/`.  Without a 64-bit divide, through
- * the vertex's fx_recip rc; 0 when |Q| would be 2^32 or more: a screen coordinate
- * that far is beyond the guard band, where the native path (which divides anyway)
- * also ends in xform_slow. */
-#if BR_DIV64_NATIVE
-#define XDIV(N, Q) ((Q) = (N) / c2, 1)
-#else
-#define XDIV(N, Q) fx_sdiv_r((N), &rc, &(Q))
-#endif
-
 static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
 {
     const rs_vertex *v = f->v, *const end = f->v + f->nv;
@@ -307,6 +297,7 @@ static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
         const int64_t x = v->p[0], y = v->p[1], z = v->p[2];
         const uint32_t rgb = v->rgb & 0xffffffu;
         int64_t c0, c1, c2, sx, sy, q;
+        fx_divisor dz;          /* c2, for the three quotients */
         c2 = (k->r[2][0] * x + k->r[2][1] * y + k->r[2][2] * z + k->tzn) >> 30;
         if (RS_UNLIKELY((uint64_t)c2 > (uint64_t)k->zspan)) {
             if (c2 < 0) {       /* behind the near plane: only the colour is valid */
@@ -320,9 +311,7 @@ static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
             continue;
         }
         c2 += k->zn;
-#if !BR_DIV64_NATIVE
-        const fx_recip rc = fx_recip_make((uint32_t)c2);     /* 1 <= znear <= c2 <= zfar < 2^31 */
-#endif
+        fx_divisor_make(&dz, c2);      /* 1 <= znear <= c2 <= zfar < 2^31 */
         c0 = (k->r[0][0] * x + k->r[0][1] * y + k->r[0][2] * z + k->t[0]) >> 30;
         /* one axis at a time, each settled and stored before the next divide (c1 is
          * formed only then: one register move fewer).  Off screen: inside the guard
@@ -330,7 +319,9 @@ static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
          * coordinate is off; else the exact test in xform_slow (which rewrites the
          * whole entry) */
         o->c = rgb;
-        if (!XDIV(k->f8 * c0, q)) goto slow;
+        /* without a 64-bit divide, |q| >= 2^32 (far beyond the guard band) is left to
+         * xform_slow, where the native path ends too */
+        if (!fx_divisor_trunc32(&dz, k->f8 * c0, &q)) goto slow;
         sx = (q + k->kx) >> 4;
         if (RS_UNLIKELY((uint64_t)(sx - HALF) > k->xspan)) {
             if (sx < HALF ? sx < k->gx0 : sx > k->gx1) goto slow;
@@ -338,18 +329,15 @@ static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
         }
         o->x = (int32_t)sx;
         c1 = (k->r[1][0] * x + k->r[1][1] * y + k->r[1][2] * z + k->t[1]) >> 30;
-        if (!XDIV(k->nf8 * c1, q)) goto slow;
+        if (!fx_divisor_trunc32(&dz, k->nf8 * c1, &q)) goto slow;
         sy = (q + k->ky) >> 4;
         if (RS_UNLIKELY((uint64_t)(sy - HALF) > k->yspan)) {
             if (sy < HALF ? sy < k->gy0 : sy > k->gy1) goto slow;
             o->c |= (uint32_t)(sy < HALF ? RS_OUT_TOP : RS_OUT_BOTTOM) << 24;
         }
         o->y = (int32_t)sy;
-#if BR_DIV64_NATIVE
-        o->d = (uint32_t)(k->kd / c2);
-#else
-        o->d = fx_udiv_r((uint64_t)k->kd, &rc);   /* kd = RS_DEPTH_ONE znear < c2 2^30 */
-#endif
+        (void)fx_divisor_trunc32(&dz, k->kd, &q);        /* kd = RS_DEPTH_ONE znear < c2 2^30: fits */
+        o->d = (uint32_t)q;
         o->cp = xform_pack(k, rgb);
         if (tex) { o->u = v->uv[0]; o->v = v->uv[1]; }
         continue;
@@ -405,72 +393,20 @@ br_status rs_frame_prepare(rs_frame *f)
 #define MIN3(a, b, c) ((a) < (b) ? ((a) < (c) ? (a) : (c)) : ((b) < (c) ? (b) : (c)))
 #define MAX3(a, b, c) ((a) > (b) ? ((a) > (c) ? (a) : (c)) : ((b) > (c) ? (b) : (c)))
 
-#if !BR_DIV64_NATIVE
-/* Quotients by a divisor that serves many of them (tri_general: the doubled area for
- * the colour and depth gradients and the row starts, the edge steps for the row spans
- * of wide boxes) without a 64-bit divide: n / d truncated toward zero as C's `/`
- * (qdiv_trunc) or floored (qdiv_floor), through one fx_recip of d when d < 2^32 and
- * |n / d| < 2^32, by `/` otherwise (an area of 2^32 sub-pixels^2 is 8 million pixels). */
-typedef struct qdiv {
-    int64_t d;
-    fx_recip r;                 /* r.dn = 0: d >= 2^32, no reciprocal */
-} qdiv;
-
-static RS_INLINE void qdiv_make(qdiv *a, int64_t d)    /* d > 0 */
-{
-    a->d = d;
-    if (d <= (int64_t)0xffffffff) a->r = fx_recip_make((uint32_t)d);
-    else { a->r.dn = 0; a->r.v = 0; a->r.s = 0; }
-}
-
-static RS_INLINE int64_t qdiv_trunc(const qdiv *a, int64_t n)
-{
-    int64_t q;
-    return a->r.dn && fx_sdiv_r(n, &a->r, &q) ? q : n / a->d;
-}
-
-/* floor(n / d): the truncated quotient for n >= 0; for n < 0 (|n| < 2^62 here),
- * floor(n / d) = -floor((-n - 1) / d) - 1 */
-static RS_INLINE int64_t qdiv_floor(const qdiv *a, int64_t n)
-{
-    return n >= 0 ? qdiv_trunc(a, n) : -qdiv_trunc(a, -n - 1) - 1;
-}
-#endif
-
 /* Narrows [*xl, *xr] to the centres px where K + s px >= 0 (one edge on one row;
- * s = 16 A is the edge's step per pixel).  Returns 0 when the row is empty.
- * ceil(-K / s) = -floor(K / s); the step's sign is known, so the inline
- * positive-divisor floor (core/fx.h) serves both sides. */
-#if BR_DIV64_NATIVE
-#define SPAN_FLOOR(K, D, Q) fx_div_floor_pos((K), (D))
-#define SPAN_LIMITS(S, K, Q, PX0, PX1, XL, XR) span_limits((S), (K), (PX0), (PX1), (XL), (XR))
-static inline int span_limits(int64_t s, int64_t K, int32_t px0, int32_t px1, int32_t *xl, int32_t *xr)
-#else
-/* q: the qdiv of |s| (made when s != 0) */
-#define SPAN_FLOOR(K, D, Q) qdiv_floor((Q), (K))
-#define SPAN_LIMITS(S, K, Q, PX0, PX1, XL, XR) span_limits((S), (K), (Q), (PX0), (PX1), (XL), (XR))
-static inline int span_limits(int64_t s, int64_t K, const qdiv *q, int32_t px0, int32_t px1, int32_t *xl, int32_t *xr)
-#endif
+ * s = 16 A is the edge's step per pixel, q the fx_divisor of |s| when s != 0).
+ * Returns 0 when the row is empty.  ceil(-K / s) = -floor(K / s); the step's sign is
+ * known, so the positive-divisor floor serves both sides. */
+static inline int span_limits(int64_t s, int64_t K, const fx_divisor *q, int32_t px0, int32_t px1, int32_t *xl, int32_t *xr)
 {
     if (s > 0) {
-        int64_t x = -SPAN_FLOOR(K, s, q);
+        int64_t x = -fx_divisor_floor(q, K);
         if (x > *xl) *xl = x > px1 ? px1 + 1 : (int32_t)x;
     } else if (s < 0) {
-        int64_t x = SPAN_FLOOR(K, -s, q);
+        int64_t x = fx_divisor_floor(q, K);
         if (x < *xr) *xr = x < px0 ? px0 - 1 : (int32_t)x;
     } else if (K < 0) return 0;
     return 1;
-}
-
-/* floor(2^40 / a) for 1 <= a < 2^31: the tiny and small triangles' reciprocal of the
- * doubled area (BR_DIV64_NATIVE = 0: without a 64-bit divide, see core/fx.h). */
-static RS_INLINE int64_t inv40(int64_t a)
-{
-#if BR_DIV64_NATIVE
-    return ((int64_t)1 << 40) / a;
-#else
-    return (int64_t)fx_inv40((uint32_t)a);
-#endif
 }
 
 /* The tiny paths' depth products dz * w (|dz| < 2^30: depths are below 2^30; weights

@@ -33,14 +33,6 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
         area2 = -area2;
     }
     bd->tris++;
-#if BR_DIV64_NATIVE
-#define AREA_DIV(N) ((N) / area2)
-#else
-    /* the quotients by area2 below through one reciprocal (qdiv in raster.c) */
-    qdiv ad_;
-    qdiv_make(&ad_, area2);
-#define AREA_DIV(N) qdiv_trunc(&ad_, (N))
-#endif
     /* Edge P->Q: E = A (X - P.x) + B (Y - P.y) >= 0 inside, at pixel centres.  Edge 0 =
      * a->b (the weight of c), 1 = b->c (weight of a), 2 = c->a (weight of b); since
      * E0 + E1 + E2 = area2 everywhere, E1 is never evaluated.  Edges that are not
@@ -67,6 +59,7 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
          * inside centre of the row (no stepping across rows), so a row's values do not
          * depend on which band it is drawn in. */
         int64_t gz, gzn, dzb = (int64_t)b->d - a->d, dzc = (int64_t)c->d - a->d, inv = 0;
+        fx_divisor ad = FX_DIVISOR_INIT;     /* area2, made for large triangles only */
         /* colour differences per channel k (0 = R, 1 = G, 2 = B; straight-line, no arrays)
          * from the packed colours: the difference plus 256 in each 21-bit field is in
          * [1, 511], so the fields of v->cp - a->cp + 256 (1 + 2^21 + 2^42) do not borrow */
@@ -79,17 +72,19 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
         gzn = dzb * dy2 - dzc * dy1;
         if (small) {
             /* area2 < 2^21 and |colour numerator| < 2^19: products below 2^59 */
-            inv = inv40(area2);
+            inv = fx_div40((uint32_t)area2);
 #define GC(B, C, K) ((uint64_t)((((B) * dy2 - (C) * dy1) * inv) >> 23) << (42 - 21 * (K)))
             gc = GC(dcb0, dcc0, 0) + GC(dcb1, dcc1, 1) + GC(dcb2, dcc2, 2);
 #undef GC
             if (gzn < ((int64_t)1 << 22) && gzn > -((int64_t)1 << 22)) gz = (gzn * inv) >> 36;
-            else gz = AREA_DIV(gzn * SUBONE);
+            else gz = gzn * SUBONE / area2;     /* rare: no divisor made for it */
         } else {
-#define GC(B, C, K) ((uint64_t)AREA_DIV(((B) * dy2 - (C) * dy1) * ((int64_t)1 << 17)) << (42 - 21 * (K)))
+            /* the quotients by area2: gradients here, row starts below */
+            fx_divisor_make(&ad, area2);
+#define GC(B, C, K) ((uint64_t)fx_divisor_trunc(&ad, ((B) * dy2 - (C) * dy1) * ((int64_t)1 << 17)) << (42 - 21 * (K)))
             gc = GC(dcb0, dcc0, 0) + GC(dcb1, dcc1, 1) + GC(dcb2, dcc2, 2);
 #undef GC
-            gz = AREA_DIV(gzn * SUBONE);
+            gz = fx_divisor_trunc(&ad, gzn * SUBONE);
         }
 #if RS_TEX
         /* Perspective-correct texture coordinates at every pixel from its exact edge
@@ -113,16 +108,14 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
         if (gz < -INT32_MAX) gz = -INT32_MAX;
 
         const uint64_t ca = (a->cp << 13) + RS_CBIAS;
-#if !BR_DIV64_NATIVE
-        /* wide boxes: the row spans' divisors |16 A| through one reciprocal each */
-        qdiv q0_ = { 0, { 0, 0, 0 } }, q1_ = q0_, q2_ = q0_;     /* used only when wide */
+        /* wide boxes: the row spans' divisors |16 A| (1 for a zero step, never divided by) */
+        fx_divisor q0 = FX_DIVISOR_INIT, q1 = FX_DIVISOR_INIT, q2 = FX_DIVISOR_INIT;    /* made when wide */
         if (px1 - px0 >= NARROW) {
             const int64_t s1_ = sx0 + sx2;
-            qdiv_make(&q0_, sx0 < 0 ? -sx0 : sx0 ? sx0 : 1);
-            qdiv_make(&q1_, s1_ < 0 ? -s1_ : s1_ ? s1_ : 1);
-            qdiv_make(&q2_, sx2 < 0 ? -sx2 : sx2 ? sx2 : 1);
+            fx_divisor_make(&q0, sx0 < 0 ? -sx0 : sx0 ? sx0 : 1);
+            fx_divisor_make(&q1, s1_ < 0 ? -s1_ : s1_ ? s1_ : 1);
+            fx_divisor_make(&q2, sx2 < 0 ? -sx2 : sx2 ? sx2 : 1);
         }
-#endif
         for (py = py0; py <= py1; py++, e0r += sy0, e2r += sy2) {
             int32_t xl = px0, xr = px1;
             int64_t e0, e2;
@@ -145,9 +138,9 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                  * column 0, with no products by px0 to keep across the rows) */
                 int64_t s1 = -(sx0 + sx2), e1r = S - e0r - e2r;
                 int32_t l = 0, r = px1 - px0;
-                if (!SPAN_LIMITS(sx0, e0r, &q0_, 0, px1 - px0, &l, &r)
-                    || !SPAN_LIMITS(s1, e1r, &q1_, 0, px1 - px0, &l, &r)
-                    || !SPAN_LIMITS(sx2, e2r, &q2_, 0, px1 - px0, &l, &r) || l > r)
+                if (!span_limits(sx0, e0r, &q0, 0, px1 - px0, &l, &r)
+                    || !span_limits(s1, e1r, &q1, 0, px1 - px0, &l, &r)
+                    || !span_limits(sx2, e2r, &q2, 0, px1 - px0, &l, &r) || l > r)
                     continue;
                 xl = px0 + l; xr = px0 + r;
                 e0 = e0r + sx0 * l; e2 = e2r + sx2 * l;
@@ -161,7 +154,7 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                 RS_Z *zp = (RS_Z *)bd->depth + (size_t)(py - bd->y0) * (size_t)w + (size_t)xl;
                 int32_t n = xr - xl + 1, i;
                 if (small) { w1 = (e2 * inv) >> 18; w2 = (e0 * inv) >> 18; }
-                else { w1 = AREA_DIV(e2 * ((int64_t)1 << 22)); w2 = AREA_DIV(e0 * ((int64_t)1 << 22)); }
+                else { w1 = fx_divisor_trunc(&ad, e2 * ((int64_t)1 << 22)); w2 = fx_divisor_trunc(&ad, e0 * ((int64_t)1 << 22)); }
                 z = (uint32_t)((int64_t)a->d + ((dzb * w1 + dzc * w2) >> 22));
                 col = ca + ((uint64_t)((dcb0 * w1 + dcc0 * w2) >> 9) << 42)
                       + ((uint64_t)((dcb1 * w1 + dcc1 * w2) >> 9) << 21) + (uint64_t)((dcb2 * w1 + dcc2 * w2) >> 9);
@@ -213,8 +206,6 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
         }
     }
 }
-
-#undef AREA_DIV
 
 /* The tiny path of tri_body for a triangle a, b, c with area2 > 0 (b, c already swapped
  * for front faces), candidate centres px0..px1 x py0..py1 (clipped to the band and the
@@ -297,7 +288,7 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
         }
         if (!(m0 | m1 | m2 | m3)) return;
         {
-            const int64_t inv = inv40(area2), ad = a->d;
+            const int64_t inv = fx_div40((uint32_t)area2), ad = a->d;
             const dz_t dzb = (dz_t)((int64_t)b->d - ad), dzc = (dz_t)((int64_t)c->d - ad);
             const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
             const size_t stride = bd->stride, zw = (size_t)bd->w;
@@ -447,7 +438,7 @@ RS_INLINE static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cv
                                         uint64_t P2, uint64_t sy2, int32_t py0, int32_t px0)
 {
     const uint64_t hi = 0x8000800080008000u;
-    const int64_t inv = inv40(area2), ad = a->d;
+    const int64_t inv = fx_div40((uint32_t)area2), ad = a->d;
     const dz_t dzb = (dz_t)((int64_t)b->d - ad), dzc = (dz_t)((int64_t)c->d - ad);
     const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
     const size_t stride = bd->stride, zw = (size_t)bd->w;
@@ -482,7 +473,7 @@ RS_INLINE static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cv
 RS_INLINE static void RS_FN(quad_pixel)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                         int32_t area2, int64_t E0, int64_t E2, int32_t py0, int32_t px0)
 {
-    const int64_t inv = inv40(area2), ad = a->d;
+    const int64_t inv = fx_div40((uint32_t)area2), ad = a->d;
     const int64_t w1 = (E2 * inv) >> 24, w2 = (E0 * inv) >> 24;   /* Q16 */
     const RS_Z zz = (RS_Z)((uint32_t)(ad + ((DZ_MUL((dz_t)((int64_t)b->d - ad), w1) + DZ_MUL((dz_t)((int64_t)c->d - ad), w2)) >> 16)) >> RS_ZSH);
     const size_t row = (size_t)(py0 - bd->y0);

@@ -142,11 +142,33 @@ static void test_recip(void)
     CHECK_EQ(fx_inv40(0xffffffffu), 256);
 }
 
+/* fx_divisor: C's `/` and floor for any divisor, large ones and large quotients included
+ * (with BR_DIV64_NATIVE = 0, the fallbacks to `/`); trunc32 writes only quotients it
+ * may compute that way */
+static void test_divisor(void)
+{
+    int i;
+    for (i = 0; i < 2000000; i++) {
+        const uint64_t r = xs64();
+        const int64_t d = (int64_t)(xs64() >> (1 + (r & 63) % 63)) + 1;
+        const int64_t n = (int64_t)(xs64() >> (2 + (r >> 6) % 62)) * ((r >> 12) & 1 ? -1 : 1);
+        fx_divisor q;
+        int64_t t = 777;
+        fx_divisor_make(&q, d);
+        CHECK_EQ(fx_divisor_trunc(&q, n), n / d);
+        CHECK_EQ(fx_divisor_floor(&q, n), fx_div_floor(n, d));
+        if (fx_divisor_trunc32(&q, n, &t)) CHECK_EQ(t, n / d);
+        else CHECK(t == 777 && !BR_DIV64_NATIVE && (d > 0xffffffff || n / d >= ((int64_t)1 << 32) || n / d <= -((int64_t)1 << 32)));
+    }
+    for (i = 1; i < 100000; i++) CHECK_EQ(fx_div40((uint32_t)i), ((int64_t)1 << 40) / i);
+}
+
 int main(void)
 {
     T_RUN(test_table_generator);
     T_RUN(test_sincos);
     T_RUN(test_isqrt_div);
     T_RUN(test_recip);
+    T_RUN(test_divisor);
     return t_finish();
 }

@@ -8,15 +8,15 @@
  * scene (real fuji.png terrain, both cameras, whole frame and 7-row bands) the reduced
  * copy must give exactly the full library's bytes, and refuse every variant it left out
  * with BR_E_UNSUPPORTED instead of drawing. */
+/* dividing without the 64-bit divide, as a 32-bit board does (core/config.h
+ * BR_DIV64_NATIVE, read by core/fx.h's fx_divisor): set before any header; the full
+ * library it is compared with is built separately, with the native default */
+#define BR_DIV64_NATIVE 0
 #include "raster/raster.h"
 #include "core/cam.h"
 #include "platform/peer_scene.h"
 #include "tests/test.h"
 
-/* ... and dividing without the 64-bit divide, as a 32-bit board does (core/config.h
- * BR_DIV64_NATIVE; raster.h already included config.h with the native default) */
-#undef BR_DIV64_NATIVE
-#define BR_DIV64_NATIVE 0
 #define RS_WITH_888 0
 #define RS_WITH_Z32 0
 #define RS_WITH_TEX 0
