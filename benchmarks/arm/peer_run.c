@@ -131,8 +131,11 @@ int main(int argc, char **argv)
     cam_viewproj(&c, &f.vp);
     f.cache = (rs_cvert *)malloc(rs_cache_mem_size(nv));
     if (g_board) f.chunks = (int16_t *)malloc(rs_chunk_mem_size(prims, f.nprims));
-    color = (uint32_t *)malloc((size_t)w * (size_t)h * 4);     /* a board needs only BOARD_ROWS rows */
-    zbuf = (uint32_t *)malloc((size_t)w * (size_t)h * 4);
+    {   /* a board holds one band: rs_band_mem_size of BOARD_ROWS rows, colour + depth */
+        const size_t rows = (size_t)(g_board ? (h < BOARD_ROWS ? h : BOARD_ROWS) : h);
+        color = (uint32_t *)malloc((size_t)w * rows * 4);
+        zbuf = (uint32_t *)malloc((size_t)w * rows * 4);
+    }
     if (!f.cache || !color || !zbuf || (g_board && !f.chunks)) { fprintf(stderr, "peer_run: out of memory\n"); return 1; }
     for (n = 0; n < frames; n++) {
         g_sum_now = n == frames - 1;
