@@ -50,7 +50,8 @@
 #define SUBONE (1 << SUB)
 #define HALF (SUBONE / 2)
 #define NARROW 8          /* boxes of at most this many columns are scanned pixel by pixel, wider ones by division (three 64-bit divisions per row): 8 rather than 5 is 1.4 % faster on B 640x480 for 0.07 M more instructions per frame; all by division is 0.3 M fewer but 2 % slower */
-#define TINY 4            /* bounding boxes of at most TINY x TINY centres: coverage mask + per-pixel weights */
+#define TINY_W 8          /* bounding boxes of at most TINY_W x TINY_H centres: coverage mask + per-pixel weights */
+#define TINY_H 4          /* (two groups of four 16-bit lanes per row; the lane bound is in raster_tmpl.h) */
 /* Colour is interpolated in one uint64 with three 21-bit fields (R at bit 42, G at 21,
  * B at 0), each 8 integer + 13 fraction bits.  Sums and products of packed values are
  * exact modulo 2^64, so a packed value whose true fields are all in [0, 2^21) unpacks

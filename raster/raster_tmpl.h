@@ -7,8 +7,8 @@
  *   write-counting test variant (no depth test; each write adds 1 to a 32-bit pixel).
  * No header guard on purpose.  See raster.c for the derivations. */
 
-/* Triangles whose bounding box has more than TINY x TINY candidate centres (kept out
- * of tri_raster so that the tiny path's code stays small). */
+/* Triangles whose bounding box has more than TINY_W x TINY_H candidate centres (kept
+ * out of tri_raster so that the tiny path's code stays small). */
 RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                            int32_t xmin, int32_t xmax, int32_t ymin, int32_t ymax,
                                            int32_t px0, int32_t px1, int32_t py0, int32_t py1)
@@ -207,19 +207,153 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
     }
 }
 
-/* The tiny path of tri_body for a triangle a, b, c with area2 > 0 (b, c already swapped
- * for front faces), candidate centres px0..px1 x py0..py1 (clipped to the band and the
- * screen; at most TINY x TINY, within a box of extent < 80 sub-pixels around the
- * triangle), b - a = (dx1, dy1), c - a = (dx2, dy2).  Given per box (shared by the two
- * triangles of a strip pair): ny = py1 - py0 + 1 rows, xm = the lane mask of the
- * px1 - px0 + 1 candidates of a row, crow0 and zrow0 = row py0 of the colour and depth
- * buffers, (ox0, oy0) = the centre of candidate (px0, py0) in sub-pixels. */
+/* ------------------------------------------------------------------ tiny boxes
+ * Triangles (and strip pairs) whose bounding box holds at most TINY_W x TINY_H candidate
+ * centres: a coverage mask first (SWAR: four candidates of a row per uint64, the edge
+ * value e + 2^15 of each in a 16-bit lane, the lane's top bit set iff e >= 0), then, for
+ * covered centres only, attributes straight from the exact barycentric weights.  A box
+ * of more than four columns is two groups of four (columns px0 .. px0+3 and px0+4 ..
+ * px0+7), the second group's lanes being the first's plus 4 pixels of each edge step.
+ *
+ * Lane bound.  A box of at most 8 x 4 centres around a triangle (or quad) means a
+ * vertex extent below 9 px = 144 sub-pixels across and 5 px = 80 down, so an edge has
+ * |A| <= 79 and |B| <= 143.  Every lane, masked or not, is a centre X within
+ * [xmin - 143, xmax + 48] (a group's last lanes lie at most 3 columns past the box) and
+ * Y within the box's rows, so |X - P.x| <= 191, |Y - P.y| <= 79 from any vertex P and
+ * |e| <= 79 * 191 + 143 * 79 = 26,386 < 2^15 (plus a bias of 1): each lane value is in
+ * [0, 2^16) and the packed sums, computed modulo 2^64, are exact lane by lane.  The
+ * area is below 143 * 79 < 2^14, so the weights' products e * inv stay below 2^55. */
+
+/* The coverage of one triangle over one group of columns: P0 / P2 / k1 - P0 - P2 the
+ * packed biased edge values of row 0, s0 / s2 the row steps, rows 0 .. ny-1 (ny <=
+ * TINY_H = 4, unrolled: most tiny boxes have one or two rows); row j's lanes at bit
+ * 15 - j of each 16-bit lane. */
+RS_INLINE static uint64_t RS_FN(tiny_mask)(uint64_t P0, uint64_t P2, uint64_t k1, uint64_t s0, uint64_t s2,
+                                           uint64_t xm, int32_t ny)
+{
+    uint64_t M = P0 & P2 & (k1 - P0 - P2) & xm;
+    if (ny > 1) {
+        P0 += s0; P2 += s2;
+        M |= (P0 & P2 & (k1 - P0 - P2) & xm) >> 1;
+        if (ny > 2) {
+            P0 += s0; P2 += s2;
+            M |= (P0 & P2 & (k1 - P0 - P2) & xm) >> 2;
+            if (ny > 3) {
+                P0 += s0; P2 += s2;
+                M |= (P0 & P2 & (k1 - P0 - P2) & xm) >> 3;
+            }
+        }
+    }
+    return M;
+}
+
+/* The pixel of a covered centre from its weights W1 (of b), W2 (of c), Q16 */
+#if RS_TEX
+#define TINY_PIX(COL, W1, W2) RS_PACK24(tex_mod(tex_fetch(tx,                          \
+                tex_div(((65536 - (W1) - (W2)) * ua + (W1) * ub + (W2) * uc),           \
+                        ((65536 - (W1) - (W2)) * qa + (W1) * qb + (W2) * qc)),          \
+                tex_div(((65536 - (W1) - (W2)) * va + (W1) * vb + (W2) * vc),           \
+                        ((65536 - (W1) - (W2)) * qa + (W1) * qb + (W2) * qc))), (COL)))
+#else
+#define TINY_PIX(COL, W1, W2) RS_PACK(COL)
+#endif
+
+/* The covered centres of one tiny triangle a, b, c (a the base vertex; area2 > 0 its
+ * doubled area) in one group of columns from px0, rows from py0: M its coverage (rows
+ * at bit 15 - j), P0 / P2 the packed biased edge values (e + 2^15) of row 0 of the
+ * edges opposite c / b (e0 = the weight of c times area2, e2 = that of b), sy0 / sy2
+ * their row steps.  Every tiny path (tri_tiny, tri_quad) shades here, so a triangle's
+ * pixels do not depend on which of them drew it. */
+RS_INLINE static void RS_FN(tiny_shade)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                        int32_t area2, uint64_t M, uint64_t P0, uint64_t sy0,
+                                        uint64_t P2, uint64_t sy2, int32_t py0, int32_t px0,
+                                        uint64_t Mw, uint64_t P0w, uint64_t P2w)
+{
+    const uint64_t hi = 0x8000800080008000u;
+    const int64_t inv = fx_div40((uint32_t)area2), ad = a->d;
+    const dz_t dzb = (dz_t)((int64_t)b->d - ad), dzc = (dz_t)((int64_t)c->d - ad);
+    const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
+    const size_t stride = bd->stride, zw = (size_t)bd->w;
+    uint8_t *const crow0 = bd->color + (size_t)(py0 - bd->y0) * stride, *crow = crow0;
+    RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw, *zrow = zrow0;
+#if RS_TEX
+    /* perspective: 1/w weights d >> tsh (16 bits for the nearest vertex) */
+    const rs_texture *tx = bd->f->tex;
+    const int32_t tsh = tex_shift(a->d, b->d, c->d);
+    const int64_t qa = a->d >> tsh, qb = b->d >> tsh, qc = c->d >> tsh;
+    const int64_t ua = qa * a->u, ub = qb * b->u, uc = qc * c->u;
+    const int64_t va = qa * a->v, vb = qb * b->v, vc = qc * c->v;
+#endif
+    for (;;) {
+        uint64_t m = M & hi;
+        M ^= m;
+        while (m) {
+            /* lane of the lowest set top bit: shift 16 * lane */
+            int32_t sh = ctz64(m) - 15, i = px0 + (sh >> 4);
+            int64_t w1 = (((int64_t)LANE16(P2, sh) - 0x8000) * inv) >> 24;   /* Q16 */
+            int64_t w2 = (((int64_t)LANE16(P0, sh) - 0x8000) * inv) >> 24;
+            m &= m - 1;
+            bd->pixels++;
+#if RS_COUNT
+            (void)w1; (void)w2; (void)dzb; (void)dzc; (void)db; (void)dc; (void)ca; (void)zrow;
+            ((RS_PIX *)(void *)crow)[i] += 1;
+#else
+            {
+                RS_Z zz = (RS_Z)((uint32_t)(ad + ((DZ_MUL(dzb, w1) + DZ_MUL(dzc, w2)) >> 16)) >> RS_ZSH);
+                if (zz > zrow[i]) {
+                    uint64_t col = ca + CW_MUL(db, w1) + CW_MUL(dc, w2);
+                    zrow[i] = zz;
+                    ((RS_PIX *)(void *)crow)[i] = TINY_PIX(col, w1, w2);
+                }
+            }
+#endif
+        }
+        if (M) {
+            M <<= 1;
+            P0 += sy0; P2 += sy2;
+            crow += stride; zrow += zw;
+            continue;
+        }
+        if (!Mw) return;
+        /* the second group of columns: same rows, four pixels to the right */
+        M = Mw; Mw = 0; P0 = P0w; P2 = P2w;
+        px0 += 4; crow = crow0; zrow = zrow0;
+    }
+}
+
+/* The one covered centre (px0, py0) of a tiny triangle whose box has one candidate:
+ * E0 / E2 its biased edge values opposite c / b; the values of tiny_shade. */
+RS_INLINE static void RS_FN(tiny_pixel)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                        int32_t area2, int64_t E0, int64_t E2, int32_t py0, int32_t px0)
+{
+#if RS_TEX || RS_COUNT
+    RS_FN(tiny_shade)(bd, a, b, c, area2, 0x8000u, (uint64_t)(E0 + 0x8000), 0, (uint64_t)(E2 + 0x8000), 0, py0, px0, 0, 0, 0);
+#else
+    const int64_t inv = fx_div40((uint32_t)area2), ad = a->d;
+    const int64_t w1 = (E2 * inv) >> 24, w2 = (E0 * inv) >> 24;   /* Q16 */
+    const RS_Z zz = (RS_Z)((uint32_t)(ad + ((DZ_MUL((dz_t)((int64_t)b->d - ad), w1) + DZ_MUL((dz_t)((int64_t)c->d - ad), w2)) >> 16)) >> RS_ZSH);
+    const size_t row = (size_t)(py0 - bd->y0);
+    RS_Z *const zp = (RS_Z *)bd->depth + row * (size_t)bd->w + (size_t)px0;
+    bd->pixels++;
+    if (zz > *zp) {
+        const uint64_t col = (a->cp << 13) + RS_CBIAS + CW_MUL(b->cp - a->cp, w1) + CW_MUL(c->cp - a->cp, w2);
+        *zp = zz;
+        ((RS_PIX *)(void *)(bd->color + row * bd->stride))[px0] = RS_PACK(col);
+    }
+#endif
+}
+
+/* The tiny path for a triangle a, b, c with area2 > 0 (b, c already swapped for front
+ * faces), b - a = (dx1, dy1), c - a = (dx2, dy2), over candidate centres px0 .. px0 +
+ * nx - 1 x py0 .. py0 + ny - 1 (clipped to the band and the screen; nx <= TINY_W, ny <=
+ * TINY_H), xm the lane mask of the first group's min(nx, 4) columns, (ox0, oy0) the
+ * centre of candidate (px0, py0) in sub-pixels. */
 RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
-                                      int32_t px0, int32_t ny, uint64_t xm, uint8_t *const crow0,
-                                      RS_Z *const zrow0, int32_t ox0, int32_t oy0,
+                                      int32_t px0, int32_t nx, int32_t py0, int32_t ny, uint64_t xm,
+                                      int32_t ox0, int32_t oy0,
                                       int32_t dx1, int32_t dy1, int32_t dx2, int32_t dy2, int32_t area2)
 {
-    /* tiny triangles only: extent < 80 sub-pixels, so every set-up value fits 32 bits */
+    /* every set-up value fits 32 bits (extent < 144 sub-pixels) */
     int32_t A0, A1, A2, B0, B1, B2, S, e0r, e2r, bias0, bias1, bias2;
     bd->tris++;
     /* Edge P->Q: E = A (X - P.x) + B (Y - P.y) >= 0 inside, at pixel centres.  Edge 0 =
@@ -231,7 +365,7 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
     A2 = dy2; B2 = -dx2;
     A1 = -(A0 + A2); B1 = -(B0 + B2);
     /* bias = (2 A + (B > 0)) <= 0, i.e. A < 0 or (A == 0 and B <= 0), i.e. (here
-     * |A|, |B| < 80) A 2^16 + B <= 0: the sign bit of A 2^16 + B - 1 */
+     * |A|, |B| < 2^15) A 2^16 + B <= 0: the sign bit of A 2^16 + B - 1 */
     bias0 = (int32_t)((uint32_t)(A0 * 65536 + B0 - 1) >> 31);
     bias1 = (int32_t)((uint32_t)(A1 * 65536 + B1 - 1) >> 31);
     bias2 = (int32_t)((uint32_t)(A2 * 65536 + B2 - 1) >> 31);
@@ -241,120 +375,27 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
         e0r = A0 * ox + B0 * oy - bias0;
         e2r = A2 * ox + B2 * oy - bias2;
     }
-
+    if (nx == 1 && ny == 1) {
+        /* one candidate (the commonest box on small screens) */
+        if ((e0r | e2r | (S - e0r - e2r)) >= 0) RS_FN(tiny_pixel)(bd, a, b, c, area2, e0r, e2r, py0, px0);
+        return;
+    }
     {
-        /* Tiny bounding box (at most TINY x TINY candidate centres).  Phase 1: the
-         * coverage mask, no attribute work, so the many triangles that cover no centre
-         * stop here.  Phase 2: at an inside centre the edge values are the barycentric
-         * weights times area2, so attributes come straight from the vertices with no
-         * gradient set-up.  Extent < (TINY+1) px, so area2 < 2^15 and e * inv < 2^41.
-         *
-         * The mask is computed four candidates at a time (SWAR): one uint64 per row and
-         * edge holds e + 2^15 of the candidates px0 .. px0+3 in 16-bit lanes.  Every
-         * candidate lies within 3 px of the bounding box, whose extent is < 80
-         * sub-pixels, so |e| < 80 * 128 + 80 * 80 < 2^15 and each lane value is in
-         * [0, 2^16): the packed sums, computed modulo 2^64, are exact lane by lane, and
-         * the lane's top bit is set iff e >= 0.  Lanes past px1 (outside the triangle
-         * unless px1 was clipped to the screen) are masked off. */
-        uint64_t m0, m1 = 0, m2 = 0, m3 = 0, p0i, p2i, p0 = 0, p2 = 0, sy0w = 0, sy2w = 0;
-        if (xm == 0x8000u && ny == 1) {
-            /* one candidate (the commonest box on small screens): lane 0 only */
-            if ((e0r | e2r | (S - e0r - e2r)) < 0) return;
-            p0i = (uint64_t)(int64_t)(e0r + 0x8000);
-            p2i = (uint64_t)(int64_t)(e2r + 0x8000);
-            m0 = 0x8000u;
-        } else {
-            const uint64_t ones = bd->ones;
-            const uint64_t k1 = (uint64_t)(int64_t)(S + 3 * 0x8000) * ones;
-            /* per-pixel steps: sx = 16 A, sy = 16 B (the 16 is in ones16, steps16) */
-            p0i = (uint64_t)(int64_t)(e0r + 0x8000) * ones + (uint64_t)(int64_t)A0 * bd->steps16;
-            p2i = (uint64_t)(int64_t)(e2r + 0x8000) * ones + (uint64_t)(int64_t)A2 * bd->steps16;
-            /* rows 0 .. ny-1 (ny <= TINY = 4), unrolled: most tiny boxes have one or two rows */
-            m0 = p0i & p2i & (k1 - p0i - p2i) & xm;
-            if (ny > 1) {
-                sy0w = (uint64_t)(int64_t)B0 * bd->ones16;
-                sy2w = (uint64_t)(int64_t)B2 * bd->ones16;
-                p0 = p0i + sy0w; p2 = p2i + sy2w;
-                m1 = p0 & p2 & (k1 - p0 - p2) & xm;
-                if (ny > 2) {
-                    p0 += sy0w; p2 += sy2w;
-                    m2 = p0 & p2 & (k1 - p0 - p2) & xm;
-                    if (ny > 3) {
-                        p0 += sy0w; p2 += sy2w;
-                        m3 = p0 & p2 & (k1 - p0 - p2) & xm;
-                    }
-                }
-            }
+        const uint64_t ones = bd->ones, o16 = bd->ones16;
+        const uint64_t k1 = (uint64_t)(int64_t)(S + 3 * 0x8000) * ones;
+        /* per-pixel steps: sx = 16 A, sy = 16 B (the 16 is in ones16, steps16) */
+        uint64_t p0 = (uint64_t)(int64_t)(e0r + 0x8000) * ones + (uint64_t)(int64_t)A0 * bd->steps16;
+        uint64_t p2 = (uint64_t)(int64_t)(e2r + 0x8000) * ones + (uint64_t)(int64_t)A2 * bd->steps16;
+        const uint64_t sy0 = (uint64_t)(int64_t)B0 * o16, sy2 = (uint64_t)(int64_t)B2 * o16;
+        const uint64_t M = RS_FN(tiny_mask)(p0, p2, k1, sy0, sy2, xm, ny);
+        uint64_t Mw = 0, p0w = 0, p2w = 0;
+        if (nx > 4) {
+            /* the second group: four pixels (64 A sub-pixels) to the right */
+            p0w = p0 + (uint64_t)(int64_t)(A0 * 64) * ones;
+            p2w = p2 + (uint64_t)(int64_t)(A2 * 64) * ones;
+            Mw = RS_FN(tiny_mask)(p0w, p2w, k1, sy0, sy2, 0x8000800080008000u >> (128 - 16 * nx), ny);
         }
-        if (!(m0 | m1 | m2 | m3)) return;
-        {
-            const int64_t inv = fx_div40((uint32_t)area2), ad = a->d;
-            const dz_t dzb = (dz_t)((int64_t)b->d - ad), dzc = (dz_t)((int64_t)c->d - ad);
-            const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
-            const size_t stride = bd->stride, zw = (size_t)bd->w;
-            uint8_t *crow;
-            RS_Z *zrow;
-#if RS_TEX
-            /* perspective: 1/w weights d >> tsh (16 bits for the nearest vertex) */
-            const rs_texture *tx = bd->f->tex;
-            int32_t tsh = tex_shift(a->d, b->d, c->d);
-            const int64_t qa = a->d >> tsh, qb = b->d >> tsh, qc = c->d >> tsh;
-            const int64_t ua = qa * a->u, ub = qb * b->u, uc = qc * c->u;
-            const int64_t va = qa * a->v, vb = qb * b->v, vc = qc * c->v;
-#endif
-            /* shade the centre (px0 + I, current row) whose edge values are E0, E2 */
-#if RS_COUNT
-#define TINY_SHADE(E0, E2, I) do {                                                     \
-                (void)inv; (void)ad; (void)dzb; (void)dzc; (void)db; (void)dc; (void)ca; \
-                (void)zrow; (void)(E0); (void)(E2);                                    \
-                ((RS_PIX *)(void *)crow)[px0 + (I)] += 1;                              \
-                bd->pixels++;                                                          \
-            } while (0)
-#else
-#define TINY_SHADE(E0, E2, I) do {                                                     \
-                int64_t w1_ = ((E2) * inv) >> 24, w2_ = ((E0) * inv) >> 24; /* Q16 */    \
-                RS_Z *zp_ = zrow + px0 + (I);                                          \
-                RS_Z zz_ = (RS_Z)((uint32_t)(ad + ((DZ_MUL(dzb, w1_) + DZ_MUL(dzc, w2_)) >> 16)) >> RS_ZSH); \
-                bd->pixels++;                                                          \
-                if (zz_ > *zp_) {                                                      \
-                    uint64_t col_ = ca + CW_MUL(db, w1_) + CW_MUL(dc, w2_); \
-                    *zp_ = zz_;                                                        \
-                    ((RS_PIX *)(void *)crow)[px0 + (I)] = TINY_PIX(col_, w1_, w2_);    \
-                }                                                                      \
-            } while (0)
-#if RS_TEX
-#define TINY_PIX(COL, W1, W2) RS_PACK24(tex_mod(tex_fetch(tx,                          \
-                tex_div(((65536 - (W1) - (W2)) * ua + (W1) * ub + (W2) * uc),           \
-                        ((65536 - (W1) - (W2)) * qa + (W1) * qb + (W2) * qc)),          \
-                tex_div(((65536 - (W1) - (W2)) * va + (W1) * vb + (W2) * vc),           \
-                        ((65536 - (W1) - (W2)) * qa + (W1) * qb + (W2) * qc))), (COL)))
-#else
-#define TINY_PIX(COL, W1, W2) RS_PACK(COL)
-#endif
-#endif
-            /* the covered centres of row J: mask M, packed edge values P0, P2 */
-#define TINY_ROW(M, P0, P2, J) do {                                                    \
-                uint64_t m_ = (M);                                                     \
-                crow = crow0 + (J) * stride; zrow = zrow0 + (J) * zw;                   \
-                while (m_) {                                                           \
-                    /* lane of the lowest set top bit: shift 16 * lane */               \
-                    int32_t sh_ = ctz64(m_) - 15;                                      \
-                    int64_t e0_ = (int64_t)LANE16((P0), sh_) - 0x8000;                  \
-                    int64_t e2_ = (int64_t)LANE16((P2), sh_) - 0x8000;                  \
-                    m_ &= m_ - 1;                                                      \
-                    TINY_SHADE(e0_, e2_, sh_ >> 4);                                    \
-                }                                                                      \
-            } while (0)
-            if (m0) TINY_ROW(m0, p0i, p2i, 0);
-            if (m1) TINY_ROW(m1, p0i + sy0w, p2i + sy2w, 1);
-            if (m2 | m3) {
-                if (m2) TINY_ROW(m2, p0i + 2 * sy0w, p2i + 2 * sy2w, 2);
-                if (m3) TINY_ROW(m3, p0, p2, 3);
-            }
-#undef TINY_ROW
-#undef TINY_SHADE
-#undef TINY_PIX
-        }
+        if (M | Mw) RS_FN(tiny_shade)(bd, a, b, c, area2, M, p0, sy0, p2, sy2, py0, px0, Mw, p0w, p2w);
     }
 }
 
@@ -363,31 +404,29 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
  * (cull, zero area; front faces with b and c swapped, one inlined copy per
  * orientation, no moves), then tri_tiny. */
 RS_INLINE static void RS_FN(tri_tiny_any)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
-                                          int32_t px0, int32_t ny, uint64_t xm,
-                                          uint8_t *const crow0, RS_Z *const zrow0, int32_t ox0, int32_t oy0)
+                                          int32_t px0, int32_t nx, int32_t py0, int32_t ny, uint64_t xm,
+                                          int32_t ox0, int32_t oy0)
 {
     const int32_t dx1 = b->x - a->x, dy1 = b->y - a->y, dx2 = c->x - a->x, dy2 = c->y - a->y;
     const int32_t area2 = dx1 * dy2 - dx2 * dy1;
     /* y points down: counter-clockwise as seen (a front face) has area2 < 0 */
     if (area2 >= 0) {
         if (area2 == 0 || bd->cull) return;
-        RS_FN(tri_tiny)(bd, a, b, c, px0, ny, xm, crow0, zrow0, ox0, oy0, dx1, dy1, dx2, dy2, area2);
+        RS_FN(tri_tiny)(bd, a, b, c, px0, nx, py0, ny, xm, ox0, oy0, dx1, dy1, dx2, dy2, area2);
     } else {
-        RS_FN(tri_tiny)(bd, a, c, b, px0, ny, xm, crow0, zrow0, ox0, oy0, dx2, dy2, dx1, dy1, -area2);
+        RS_FN(tri_tiny)(bd, a, c, b, px0, nx, py0, ny, xm, ox0, oy0, dx2, dy2, dx1, dy1, -area2);
     }
 }
 
-/* One triangle (a, b, c as seen; either orientation).  Forced inline into the strip loop
- * of the plain variants (one copy for even, one for odd triangles), so the per-triangle
- * call costs nothing; tri_raster below is the out-of-line copy for lists, the clipper and
- * the textured and write-counting variants. */
-RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
+/* Lanes 0 .. min(nx, 4) - 1 of a candidate mask (the first group of columns). */
+#define TINY_XM(nx) (0x8000800080008000u >> (64 - 16 * ((nx) < 4 ? (nx) : 4)))
+
+/* One triangle (a, b, c as seen; either orientation): the out-of-line code for lists,
+ * the clipper and strip triangles that are not drawn as a pair. */
+RS_NOINLINE static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
 {
     int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1;
-    int32_t tiny, ny, ox0, oy0;
-    uint64_t xm;
-    uint8_t *crow0;
-    RS_Z *zrow0;
+    int32_t tiny;
 
     {
         const int32_t ax = a->x, ay = a->y, bx = b->x, by = b->y, cx = c->x, cy = c->y;
@@ -404,7 +443,7 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
         px0 = (xmin + HALF - 1) >> SUB;
         px1 = (xmax - HALF) >> SUB;
         /* the path choice depends on the triangle only (not on the band or screen clip) */
-        tiny = px1 - px0 < TINY && hi - lo < TINY;
+        tiny = px1 - px0 < TINY_W && hi - lo < TINY_H;
         if (px0 < 0) px0 = 0;
         if (px1 >= bd->w) px1 = bd->w - 1;
         if (px0 > px1) return;
@@ -413,93 +452,57 @@ RS_INLINE static void RS_FN(tri_body)(band *bd, const rs_cvert *a, const rs_cver
         RS_FN(tri_general)(bd, a, b, c, xmin, xmax, ymin, ymax, px0, px1, py0, py1);
         return;
     }
-
-    xm = 0x8000800080008000u >> (64 - 16 * (px1 - px0 + 1));
-    ny = py1 - py0 + 1;
-    crow0 = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
-    zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)bd->w;
-    ox0 = px0 * SUBONE + HALF; oy0 = py0 * SUBONE + HALF;
-    RS_FN(tri_tiny_any)(bd, a, b, c, px0, ny, xm, crow0, zrow0, ox0, oy0);
+    {
+        const int32_t nx = px1 - px0 + 1;
+        RS_FN(tri_tiny_any)(bd, a, b, c, px0, nx, py0, py1 - py0 + 1, TINY_XM(nx),
+                            px0 * SUBONE + HALF, py0 * SUBONE + HALF);
+    }
 }
 
-RS_NOINLINE static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
+/* The coverage of a strip quad's two triangles over one group of columns (see
+ * tri_quad): P01, P20, P13 the packed biased values of row 0 of three outer edges, K1,
+ * K2 the packed S + lane offsets from which the diagonal and the fourth edge follow,
+ * s01, s20, s13 the row steps; rows 0 .. ny-1 at bit 15 - j. */
+RS_INLINE static void RS_FN(quad_masks)(uint64_t P01, uint64_t P20, uint64_t P13, uint64_t K1, uint64_t K2,
+                                        uint64_t s01, uint64_t s20, uint64_t s13, uint64_t xm, int32_t ny,
+                                        uint64_t *m1, uint64_t *m2)
 {
-    RS_FN(tri_body)(bd, a, b, c);
-}
-
-#if !(RS_TEX || RS_COUNT)
-/* The covered centres of one triangle of a strip quad (see tri_quad): a, b, c as in
- * tri_tiny's attribute formulas (a the base vertex), area2 > 0 its area, M its coverage
- * with row j's lanes at bit 15 - j of each 16-bit lane, P0 / P2 the packed biased edge
- * values (e + 2^15) of the edges opposite c / b on row 0, sy0 / sy2 their row steps.
- * Pixel values are exactly those of tri_tiny. */
-RS_INLINE static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
-                                        int32_t area2, uint64_t M, uint64_t P0, uint64_t sy0,
-                                        uint64_t P2, uint64_t sy2, int32_t py0, int32_t px0)
-{
-    const uint64_t hi = 0x8000800080008000u;
-    const int64_t inv = fx_div40((uint32_t)area2), ad = a->d;
-    const dz_t dzb = (dz_t)((int64_t)b->d - ad), dzc = (dz_t)((int64_t)c->d - ad);
-    const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
-    const size_t stride = bd->stride, zw = (size_t)bd->w;
-    uint8_t *crow = bd->color + (size_t)(py0 - bd->y0) * stride;
-    RS_Z *zrow = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw;
-    for (;;) {
-        uint64_t m = M & hi;
-        M ^= m;
-        while (m) {
-            /* lane of the lowest set top bit: shift 16 * lane */
-            int32_t sh = ctz64(m) - 15, i = px0 + (sh >> 4);
-            int64_t w1 = (((int64_t)LANE16(P2, sh) - 0x8000) * inv) >> 24;   /* Q16 */
-            int64_t w2 = (((int64_t)LANE16(P0, sh) - 0x8000) * inv) >> 24;
-            RS_Z zz = (RS_Z)((uint32_t)(ad + ((DZ_MUL(dzb, w1) + DZ_MUL(dzc, w2)) >> 16)) >> RS_ZSH);
-            m &= m - 1;
-            bd->pixels++;
-            if (zz > zrow[i]) {
-                uint64_t col = ca + CW_MUL(db, w1) + CW_MUL(dc, w2);
-                zrow[i] = zz;
-                ((RS_PIX *)(void *)crow)[i] = RS_PACK(col);
-            }
+    uint64_t PD = K1 - P01 - P20, P32 = K2 + PD - P13;
+    uint64_t M1 = P01 & P20 & PD & xm, M2 = P13 & P32 & ~PD & xm;
+    /* rows 1 .. ny-1 (ny <= TINY_H = 4), unrolled */
+#define QROW(J) do {                                                                   \
+        P01 += s01; P20 += s20; P13 += s13;                                            \
+        PD = K1 - P01 - P20;                                                           \
+        P32 = K2 + PD - P13;                                                           \
+        M1 |= (P01 & P20 & PD & xm) >> (J);                                            \
+        M2 |= (P13 & P32 & ~PD & xm) >> (J);                                           \
+    } while (0)
+    if (ny > 1) {
+        QROW(1);
+        if (ny > 2) {
+            QROW(2);
+            if (ny > 3) QROW(3);
         }
-        if (!M) return;
-        M <<= 1;
-        P0 += sy0; P2 += sy2;
-        crow += stride; zrow += zw;
     }
-}
-
-/* The one covered centre (px0, py0) of a triangle of a strip quad whose box has one
- * candidate: E0 / E2 its biased edge values opposite c / b; the values of quad_shade. */
-RS_INLINE static void RS_FN(quad_pixel)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
-                                        int32_t area2, int64_t E0, int64_t E2, int32_t py0, int32_t px0)
-{
-    const int64_t inv = fx_div40((uint32_t)area2), ad = a->d;
-    const int64_t w1 = (E2 * inv) >> 24, w2 = (E0 * inv) >> 24;   /* Q16 */
-    const RS_Z zz = (RS_Z)((uint32_t)(ad + ((DZ_MUL((dz_t)((int64_t)b->d - ad), w1) + DZ_MUL((dz_t)((int64_t)c->d - ad), w2)) >> 16)) >> RS_ZSH);
-    const size_t row = (size_t)(py0 - bd->y0);
-    RS_Z *const zp = (RS_Z *)bd->depth + row * (size_t)bd->w + (size_t)px0;
-    bd->pixels++;
-    if (zz > *zp) {
-        const uint64_t col = (a->cp << 13) + RS_CBIAS + CW_MUL(b->cp - a->cp, w1) + CW_MUL(c->cp - a->cp, w2);
-        *zp = zz;
-        ((RS_PIX *)(void *)(bd->color + row * bd->stride))[px0] = RS_PACK(col);
-    }
+#undef QROW
+    *m1 = M1; *m2 = M2;
 }
 
 /* A strip pair T1 = (v0, v1, v2), T2 = (v2, v1, v3) whose two triangles have the same
- * orientation (neg = 1: both front faces, area < 0 as computed) and a tiny joint box:
- * a quad split by the diagonal v1-v2.  Four outer edges and the diagonal: T2's diagonal
- * edge function is the exact negation of T1's and its top-left bias the complement
- * (b21 = 1 - b12; v1 != v2 since both areas are non-zero), so T2's biased diagonal value
- * is -1 - T1's, the bitwise complement of T1's packed lanes.  (X_k, Y_k) = v_k relative
- * to the first candidate centre; e_PQ = X_P Y_Q - Y_P X_Q is the edge function P->Q
- * there (the same line function tri_tiny evaluates from its vertex a).  Edges are
- * oriented so that the inside is positive (reversed when neg).  Every value is the one
- * tri_tiny computes for the same triangle, so the pixels are those of two tri_tiny
- * calls (the two triangles cover disjoint centres: order does not matter). */
+ * orientation (neg = 1: both front faces, area < 0 as computed) and a tiny joint box
+ * (px0, py0, nx x ny candidates, xm the first group's lane mask): a quad split by the
+ * diagonal v1-v2.  Four outer edges and the diagonal: T2's diagonal edge function is
+ * the exact negation of T1's and its top-left bias the complement (b21 = 1 - b12; v1 !=
+ * v2 since both areas are non-zero), so T2's biased diagonal value is -1 - T1's, the
+ * bitwise complement of T1's packed lanes.  (X_k, Y_k) = v_k relative to the first
+ * candidate centre; e_PQ = X_P Y_Q - Y_P X_Q is the edge function P->Q there (the same
+ * line function tri_tiny evaluates from its vertex a).  Edges are oriented so that the
+ * inside is positive (reversed when neg).  Every value is the one tri_tiny computes
+ * for the same triangle, so the pixels are those of two tri_tiny calls (the two
+ * triangles cover disjoint centres: order does not matter). */
 RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
-                                      const rs_cvert *v3, int32_t px0, int32_t ny, uint64_t xm, int32_t py0,
-                                      int32_t ar1, int32_t ar2, const int neg)
+                                      const rs_cvert *v3, int32_t px0, int32_t nx, int32_t py0, int32_t ny,
+                                      uint64_t xm, int32_t ar1, int32_t ar2, const int neg, const int wide)
 {
     const int32_t ox0 = px0 * SUBONE + HALF, oy0 = py0 * SUBONE + HALF;   /* the first candidate */
     const int32_t X0 = v0->x - ox0, Y0 = v0->y - oy0, X1 = v1->x - ox0, Y1 = v1->y - oy0;
@@ -509,7 +512,7 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
 #define SG(x) (neg ? -(x) : (x))
 #define QBIAS(A, B) ((int32_t)((uint32_t)((A) * 65536 + (B) - 1) >> 31))
     bd->tris += 2;
-    if (xm == 0x8000u && ny == 1) {
+    if (nx == 1 && ny == 1) {
         /* one candidate, at the origin: its edge values are the e_PQ themselves; an edge
          * value < 0 rejects whatever the bias, so biases only for a triangle that may hold it */
         const int32_t g01 = SG(e01), g12 = SG(e12), g20 = SG(e20);
@@ -517,7 +520,7 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
             const int32_t f01 = g01 - QBIAS(SG(v0->y - v1->y), SG(v1->x - v0->x)), f20 = g20 - QBIAS(SG(v2->y - v0->y), SG(v0->x - v2->x));
             const int32_t fD = g12 - QBIAS(SG(v1->y - v2->y), SG(v2->x - v1->x));
             if ((f01 | f20 | fD) >= 0) {
-                RS_FN(quad_pixel)(bd, v0, v1, v2, SG(ar1), f01, f20, py0, px0);
+                RS_FN(tiny_pixel)(bd, v0, v1, v2, SG(ar1), f01, f20, py0, px0);
                 return;     /* T2 cannot hold it: T2's diagonal value is -1 - fD */
             }
         }
@@ -527,7 +530,7 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
                 const int32_t f13 = g13 - QBIAS(SG(v1->y - v3->y), SG(v3->x - v1->x)), f32 = g32 - QBIAS(SG(v3->y - v2->y), SG(v2->x - v3->x));
                 const int32_t fT = -g12 - 1 + QBIAS(SG(v1->y - v2->y), SG(v2->x - v1->x));
                 if ((f13 | f32 | fT) >= 0)
-                    RS_FN(quad_pixel)(bd, v2, v1, v3, SG(ar2), fT, f32, py0, px0);
+                    RS_FN(tiny_pixel)(bd, v2, v1, v3, SG(ar2), fT, f32, py0, px0);
             }
             return;
         }
@@ -542,60 +545,105 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
         const int32_t S1 = SG(ar1) - b01 - b12 - b20, S2 = SG(ar2) - 1 + b12 - b13 - b32;
         const int32_t f01 = SG(e01) - b01, f20 = SG(e20) - b20, f13 = SG(e13) - b13;
         const uint64_t ones = bd->ones, st = bd->steps16;
-        uint64_t P01, P20, P13, K1, K2, s01 = 0, s20 = 0, s13 = 0, PD, P32, M1, M2;
         /* lanes as in tri_tiny: e + 2^15 of candidates px0 .. px0+3; PD = T1's diagonal,
          * P32 = T2's third edge = S2 - (-1 - eD) - e13, i.e. K2 + PD - P13 with K2 = S2 + 0x8001 */
-        P01 = (uint64_t)(int64_t)(f01 + 0x8000) * ones + (uint64_t)(int64_t)A01 * st;
-        P20 = (uint64_t)(int64_t)(f20 + 0x8000) * ones + (uint64_t)(int64_t)A20 * st;
-        P13 = (uint64_t)(int64_t)(f13 + 0x8000) * ones + (uint64_t)(int64_t)A13 * st;
-        K1 = (uint64_t)(int64_t)(S1 + 3 * 0x8000) * ones;
-        K2 = (uint64_t)(int64_t)(S2 + 0x8001) * ones;
-        PD = K1 - P01 - P20;
-        P32 = K2 + PD - P13;
-        M1 = P01 & P20 & PD & xm;
-        M2 = P13 & P32 & ~PD & xm;
+        uint64_t P01 = (uint64_t)(int64_t)(f01 + 0x8000) * ones + (uint64_t)(int64_t)A01 * st;
+        uint64_t P20 = (uint64_t)(int64_t)(f20 + 0x8000) * ones + (uint64_t)(int64_t)A20 * st;
+        uint64_t P13 = (uint64_t)(int64_t)(f13 + 0x8000) * ones + (uint64_t)(int64_t)A13 * st;
+        const uint64_t K1 = (uint64_t)(int64_t)(S1 + 3 * 0x8000) * ones;
+        const uint64_t K2 = (uint64_t)(int64_t)(S2 + 0x8001) * ones;
+        uint64_t s01 = 0, s20 = 0, s13 = 0, M1, M2;
         if (ny > 1) {
             const uint64_t o16 = bd->ones16;
-            uint64_t q01, q20, q13, qD, q32;
             s01 = (uint64_t)(int64_t)B01 * o16;
             s20 = (uint64_t)(int64_t)B20 * o16;
             s13 = (uint64_t)(int64_t)B13 * o16;
-            /* rows 1 .. ny-1 (ny <= TINY = 4), unrolled; row j's lanes at bit 15 - j */
-#define QROW(J) do {                                                                   \
-                q01 += s01; q20 += s20; q13 += s13;                                    \
-                qD = K1 - q01 - q20;                                                   \
-                q32 = K2 + qD - q13;                                                   \
-                M1 |= (q01 & q20 & qD & xm) >> (J);                                    \
-                M2 |= (q13 & q32 & ~qD & xm) >> (J);                                   \
-            } while (0)
-            q01 = P01; q20 = P20; q13 = P13;
-            QROW(1);
-            if (ny > 2) {
-                QROW(2);
-                if (ny > 3) QROW(3);
-            }
-#undef QROW
+        }
+        uint64_t M1w = 0, M2w = 0, P01w = 0, P20w = 0, P13w = 0;
+        RS_FN(quad_masks)(P01, P20, P13, K1, K2, s01, s20, s13, xm, ny, &M1, &M2);
+        if (wide && nx > 4) {
+            /* the second group: four pixels (64 A sub-pixels) to the right */
+            P01w = P01 + (uint64_t)(int64_t)(A01 * 64) * ones;
+            P20w = P20 + (uint64_t)(int64_t)(A20 * 64) * ones;
+            P13w = P13 + (uint64_t)(int64_t)(A13 * 64) * ones;
+            RS_FN(quad_masks)(P01w, P20w, P13w, K1, K2, s01, s20, s13, 0x8000800080008000u >> (128 - 16 * nx), ny,
+                              &M1w, &M2w);
         }
         /* T1: base v0, weight of v1 from the edge v2-v0 (P20), of v2 from v0-v1 (P01);
          * T2: base v2, weight of v1 from the edge v3-v2 (P32), of v3 from the diagonal (~PD) */
-        if (M1)
-            RS_FN(quad_shade)(bd, v0, v1, v2, SG(ar1), M1, P01, s01, P20, s20, py0, px0);
-        if (M2)
-            RS_FN(quad_shade)(bd, v2, v1, v3, SG(ar2), M2, ~PD, s01 + s20, P32, (uint64_t)0 - s01 - s20 - s13, py0, px0);
+        if (M1 | M1w)
+            RS_FN(tiny_shade)(bd, v0, v1, v2, SG(ar1), M1, P01, s01, P20, s20, py0, px0, M1w, P01w, P20w);
+        if (M2 | M2w) {
+            const uint64_t PD = K1 - P01 - P20, PDw = K1 - P01w - P20w;
+            RS_FN(tiny_shade)(bd, v2, v1, v3, SG(ar2), M2, ~PD, s01 + s20, K2 + PD - P13,
+                              (uint64_t)0 - s01 - s20 - s13, py0, px0, M2w, ~PDw, K2 + PDw - P13w);
+        }
     }
 #undef SG
 #undef QBIAS
 }
 
+/* A strip pair (see tri_pair) over its tiny joint box px0, py0, nx x ny: orientations
+ * (cull, zero area), then tri_quad, or tri_tiny one triangle at a time.  wide = 0 when
+ * nx <= 4 (one group of columns, the inlined common case). */
+RS_INLINE static void RS_FN(pair_tiny)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
+                                       const rs_cvert *v3, int32_t px0, int32_t nx, int32_t py0, int32_t ny,
+                                       const int wide)
+{
+    const uint64_t xm = wide ? TINY_XM(nx) : 0x8000800080008000u >> (64 - 16 * nx);
+    /* doubled signed areas (T2 from its vertex v2, as tri_tiny) */
+    const int32_t ar1 = (v1->x - v0->x) * (v2->y - v0->y) - (v2->x - v0->x) * (v1->y - v0->y);
+    const int32_t ar2 = (v1->x - v2->x) * (v3->y - v2->y) - (v3->x - v2->x) * (v1->y - v2->y);
+    if (bd->cull && (ar1 | ar2) >= 0) return;    /* both culled or of zero area */
+    if (ar1 < 0 && ar2 < 0)
+        RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, nx, py0, ny, xm, ar1, ar2, 1, wide);
+    else if (ar1 > 0 && ar2 > 0 && !bd->cull)
+        RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, nx, py0, ny, xm, ar1, ar2, 0, wide);
+    else {
+        /* mixed orientations or a zero area (rare): one triangle at a time */
+        const int32_t ox0 = px0 * SUBONE + HALF, oy0 = py0 * SUBONE + HALF;   /* the first candidate */
+        if (bd->cull) {
+            /* culled or zero area: area >= 0 draws nothing */
+            if (ar1 < 0) RS_FN(tri_tiny_any)(bd, v0, v1, v2, px0, nx, py0, ny, xm, ox0, oy0);
+            else if (ar2 < 0) RS_FN(tri_tiny_any)(bd, v2, v1, v3, px0, nx, py0, ny, xm, ox0, oy0);
+        } else {
+            RS_FN(tri_tiny_any)(bd, v0, v1, v2, px0, nx, py0, ny, xm, ox0, oy0);
+            RS_FN(tri_tiny_any)(bd, v2, v1, v3, px0, nx, py0, ny, xm, ox0, oy0);
+        }
+    }
+}
+
+/* The strip pairs that tri_pair's inlined code leaves: joint boxes of more than four
+ * columns (tiny up to TINY_W: both groups of columns) or more than TINY_H rows or
+ * TINY_W columns (each triangle through tri_raster), out of line so that the strip
+ * loop's code has one group of columns only.  lo .. hi, xl .. xh: the joint box's rows
+ * and columns of centres, unclipped. */
+RS_NOINLINE static void RS_FN(pair_wide)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
+                                         const rs_cvert *v3, int32_t lo, int32_t hi, int32_t xl, int32_t xh)
+{
+    int32_t py0, py1;
+    /* no row or no column of centres: neither triangle's own (sub-)box holds one */
+    if (hi < lo || xh < xl) return;
+    if (hi - lo >= TINY_H || xh - xl >= TINY_W) {
+        RS_FN(tri_raster)(bd, v0, v1, v2);
+        RS_FN(tri_raster)(bd, v2, v1, v3);
+        return;
+    }
+    py0 = lo < bd->y0 ? bd->y0 : lo;
+    py1 = hi >= bd->y1 ? bd->y1 - 1 : hi;
+    if (py0 > py1) return;
+    RS_FN(pair_tiny)(bd, v0, v1, v2, v3, xl, xh - xl + 1, py0, py1 - py0 + 1, 1);
+}
+
 /* Two consecutive strip triangles T1 = (v0, v1, v2) and T2 = (v2, v1, v3) whose four
  * vertices are all on screen (no outcode bits: no clipping, no column clamping).  When
- * the pair's joint bounding box has at most TINY x TINY candidate centres, both are drawn by the tiny path over
- * that joint box: one bounding box for two triangles.  The pixels are those of two
- * separate tri_body calls: a triangle inside the joint box is tiny on its own (its own
- * box is a sub-box), the candidates of the joint box outside its own box fail its edge
- * tests (a centre with all e_k >= 0 lies in the closed triangle), the joint box's extent
- * is < 80 sub-pixels, the bound tri_tiny's lanes need, and T1 is drawn before T2.
- * Pairs whose triangles have the same orientation (the common case) go through
+ * the pair's joint bounding box has at most TINY_W x TINY_H candidate centres, both are
+ * drawn by the tiny path over that joint box: one bounding box for two triangles.  The
+ * pixels are those of two separate tri_raster calls: a triangle inside the joint box is
+ * tiny on its own (its own box is a sub-box), the candidates of the joint box outside
+ * its own box fail its edge tests (a centre with all e_k >= 0 lies in the closed
+ * triangle), the joint box's extent is within the lane bound, and T1 is drawn before
+ * T2.  Pairs whose triangles have the same orientation (the common case) go through
  * tri_quad (shared diagonal); others through tri_tiny one at a time.  A larger joint
  * box: each triangle through tri_raster. */
 RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
@@ -611,11 +659,8 @@ RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cve
         lo = (ymin + HALF - 1) >> SUB; hi = (ymax - HALF) >> SUB;
         xl = (xmin + HALF - 1) >> SUB; xh = (xmax - HALF) >> SUB;
     }
-    if (RS_UNLIKELY(hi - lo >= TINY || xh - xl >= TINY)) {
-        /* no row or no column of centres: neither triangle's own (sub-)box holds one */
-        if (hi < lo || xh < xl) return;
-        RS_FN(tri_raster)(bd, v0, v1, v2);
-        RS_FN(tri_raster)(bd, v2, v1, v3);
+    if (RS_UNLIKELY(hi - lo >= TINY_H || xh - xl >= 4)) {
+        RS_FN(pair_wide)(bd, v0, v1, v2, v3, lo, hi, xl, xh);
         return;
     }
     py0 = lo < bd->y0 ? bd->y0 : lo;
@@ -625,38 +670,12 @@ RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cve
     px0 = xl;
     px1 = xh;
     if (py0 > py1 || px0 > px1) return;
-    {
-        /* lanes 0 .. px1 - px0 of the candidate mask, rows py0 .. py1 */
-        const uint64_t xm = 0x8000800080008000u >> (64 - 16 * (px1 - px0 + 1));
-        const int32_t ny = py1 - py0 + 1;
-        /* doubled signed areas (T2 from its vertex v2, as tri_tiny) */
-        const int32_t ar1 = (v1->x - v0->x) * (v2->y - v0->y) - (v2->x - v0->x) * (v1->y - v0->y);
-        const int32_t ar2 = (v1->x - v2->x) * (v3->y - v2->y) - (v3->x - v2->x) * (v1->y - v2->y);
-        if (bd->cull && (ar1 | ar2) >= 0) return;    /* both culled or of zero area */
-        if (ar1 < 0 && ar2 < 0)
-            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, py0, ar1, ar2, 1);
-        else if (ar1 > 0 && ar2 > 0 && !bd->cull)
-            RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, ny, xm, py0, ar1, ar2, 0);
-        else {
-            /* mixed orientations or a zero area (rare): one triangle at a time */
-            const int32_t ox0 = px0 * SUBONE + HALF, oy0 = py0 * SUBONE + HALF;   /* the first candidate */
-            uint8_t *const crow0 = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
-            RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)bd->w;
-            if (bd->cull) {
-                /* culled or zero area: area >= 0 draws nothing */
-                if (ar1 < 0) RS_FN(tri_tiny_any)(bd, v0, v1, v2, px0, ny, xm, crow0, zrow0, ox0, oy0);
-                else if (ar2 < 0) RS_FN(tri_tiny_any)(bd, v2, v1, v3, px0, ny, xm, crow0, zrow0, ox0, oy0);
-            } else {
-                RS_FN(tri_tiny_any)(bd, v0, v1, v2, px0, ny, xm, crow0, zrow0, ox0, oy0);
-                RS_FN(tri_tiny_any)(bd, v2, v1, v3, px0, ny, xm, crow0, zrow0, ox0, oy0);
-            }
-        }
-    }
+    RS_FN(pair_tiny)(bd, v0, v1, v2, v3, px0, px1 - px0 + 1, py0, py1 - py0 + 1, 0);
 }
-#endif
+#undef TINY_PIX
+#undef TINY_XM
 
-/* The strip loop inlines the triangle code for the plain variants; the textured and
- * write-counting ones call it out of line (their speed matters less than code size). */
+/* Strip triangles not drawn as a pair go through the out-of-line triangle code. */
 #define RS_STRIP_TRI RS_FN(tri_raster)
 
 static void RS_FN(draw)(band *bd)
@@ -690,12 +709,9 @@ static void RS_FN(draw)(band *bd)
                  * chunks start at even t0; sp points at the step's two new indices */
                 const uint32_t *sp = s + t0 + 2;
                 const uint32_t *const se = s + t1 + 1;     /* steps while sp < se */
-#if !(RS_TEX || RS_COUNT)
                 uint32_t c01 = v0->c | v1->c;      /* carried: the previous step's c23 */
-#endif
                 for (; sp < se; sp += 2) {
                     const rs_cvert *v2 = &cache[sp[0]], *v3;
-#if !(RS_TEX || RS_COUNT)
                     uint32_t c23;
                     v3 = &cache[sp[1]];
                     c23 = v2->c | v3->c;
@@ -715,7 +731,6 @@ static void RS_FN(draw)(band *bd)
                         }
                         /* clipped, partly off screen or one of the two rejected: one at a time */
                     }
-#endif
                     STRIP_TRI(v0, v1, v2, sp[-2], sp[-1], sp[0]);
                     v3 = &cache[sp[1]];
                     STRIP_TRI(v2, v1, v3, sp[0], sp[-1], sp[1]);

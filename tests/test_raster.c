@@ -117,6 +117,55 @@ static void grid_case(int jitter, int32_t w, int32_t h, int32_t cols, int32_t ro
     free(v); free(idx);
 }
 
+/* The same grid drawn as one triangle strip per row of cells (the strip pairs' quad
+ * path, both groups of columns of its 8-column boxes, and the one-triangle-at-a-time
+ * code at the screen's edges), counting writes: every pixel exactly once; the strips
+ * reversed (all back faces): none with culling, once without. */
+static void strip_grid_case(int jitter, int32_t w, int32_t h, int32_t cols, int32_t rows)
+{
+    sv *v = calloc((size_t)(cols + 1) * (size_t)(rows + 1), sizeof *v);
+    uint32_t *idx = calloc((size_t)rows * (size_t)(cols + 1) * 2, sizeof *idx), *img;
+    rs_prim *pr = calloc((size_t)rows, sizeof *pr);
+    rs_cvert *cache = malloc(sizeof *cache * (size_t)(cols + 1) * (size_t)(rows + 1));
+    const uint32_t nv = (uint32_t)((cols + 1) * (rows + 1));
+    int32_t i, j, pass, bad;
+    int32_t cw = (w + 40) * 16 / cols, ch = (h + 40) * 16 / rows, amp = (cw < ch ? cw : ch) / 3;
+    CHECK(v && idx && pr && cache);
+    for (j = 0; j <= rows; j++)
+        for (i = 0; i <= cols; i++) {
+            sv *p = &v[j * (cols + 1) + i];
+            p->x = -20 * 16 + (w + 40) * 16 * i / cols + 8;
+            p->y = -20 * 16 + (h + 40) * 16 * j / rows + 8;
+            if (jitter && amp > 0 && i > 0 && i < cols && j > 0 && j < rows) {
+                p->x += (int32_t)(lcg() % (uint32_t)(2 * amp + 1)) - amp;
+                p->y += (int32_t)(lcg() % (uint32_t)(2 * amp + 1)) - amp;
+            }
+        }
+    for (i = 0; i < (int32_t)nv; i++) rs_cvert_set(&cache[i], w, h, v[i].x, v[i].y, 1000, 0x123456u);
+    for (pass = 0; pass < 3; pass++) {
+        rs_frame f;
+        /* pass 0: top row first (front faces: (top-left, bottom-left, top-right) is
+         * counter-clockwise as seen); passes 1, 2: bottom row first (back faces) */
+        for (j = 0; j < rows; j++) {
+            uint32_t *s = idx + (size_t)j * (size_t)(cols + 1) * 2;
+            for (i = 0; i <= cols; i++) {
+                uint32_t top = (uint32_t)(j * (cols + 1) + i), bot = top + (uint32_t)cols + 1;
+                s[2 * i] = pass ? bot : top;
+                s[2 * i + 1] = pass ? top : bot;
+            }
+            pr[j].kind = RS_STRIP; pr[j].n = (uint32_t)(cols + 1) * 2; pr[j].idx = s;
+        }
+        memset(&f, 0, sizeof f);
+        f.w = w; f.h = h; f.fmt = RS_FMT_XRGB8888; f.depth = RS_DEPTH32; f.no_cull = pass == 2;
+        f.cache = cache; f.nv = nv; f.prims = pr; f.nprims = rows; f.debug_count = 1;
+        img = render_full(&f);
+        CHECK_MSG(all_equal(img, w * h, pass == 1 ? 0 : 1, &bad), "strip grid %dx%d jitter %d pass %d: %d pixels wrong",
+                  cols, rows, jitter, pass, bad);
+        free(img);
+    }
+    free(v); free(idx); free(pr); free(cache);
+}
+
 static void test_fill_grid(void)
 {
     grid_case(0, 61, 47, 101, 87);   /* corners on pixel centres: edges through centres */
@@ -125,6 +174,12 @@ static void test_fill_grid(void)
     grid_case(1, 64, 48, 40, 30);    /* cells of ~2.6 x 2.6 px: the tiny path */
     grid_case(1, 53, 37, 120, 90);   /* sub-pixel cells */
     grid_case(1, 200, 150, 3, 2);    /* large triangles: the general path */
+    strip_grid_case(0, 61, 47, 101, 87);  /* corners on centres, sub-pixel cells */
+    strip_grid_case(1, 64, 48, 40, 30);   /* ~2.6 px cells: joint boxes of up to 4 x 4 */
+    strip_grid_case(1, 61, 47, 15, 40);   /* ~6.7 x 2.2 px cells: boxes of 5 to 8 columns */
+    strip_grid_case(0, 61, 47, 15, 40);
+    strip_grid_case(1, 67, 45, 12, 20);   /* ~8.9 x 4.3 px: tiny and general triangles */
+    strip_grid_case(1, 53, 37, 120, 90);  /* sub-pixel cells */
 }
 
 static void test_fill_fan(void)
