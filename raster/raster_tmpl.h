@@ -274,8 +274,9 @@ RS_INLINE static void RS_FN(tiny_shade)(band *bd, const rs_cvert *a, const rs_cv
     const dz_t dzb = (dz_t)((int64_t)b->d - ad), dzc = (dz_t)((int64_t)c->d - ad);
     const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
     const size_t stride = bd->stride, zw = (size_t)bd->w;
-    uint8_t *const crow0 = bd->color + (size_t)(py0 - bd->y0) * stride, *crow = crow0;
-    RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw, *zrow = zrow0;
+    /* rows from py0, columns from px0 (lane l is column px0 + l) */
+    RS_PIX *const crow0 = (RS_PIX *)(void *)(bd->color + (size_t)(py0 - bd->y0) * stride) + px0, *crow = crow0;
+    RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw + px0, *zrow = zrow0;
 #if RS_TEX
     /* perspective: 1/w weights d >> tsh (16 bits for the nearest vertex) */
     const rs_texture *tx = bd->f->tex;
@@ -289,21 +290,21 @@ RS_INLINE static void RS_FN(tiny_shade)(band *bd, const rs_cvert *a, const rs_cv
         M ^= m;
         while (m) {
             /* lane of the lowest set top bit: shift 16 * lane */
-            int32_t sh = ctz64(m) - 15, i = px0 + (sh >> 4);
+            int32_t sh = ctz64(m) - 15, i = sh >> 4;
             int64_t w1 = (((int64_t)LANE16(P2, sh) - 0x8000) * inv) >> 24;   /* Q16 */
             int64_t w2 = (((int64_t)LANE16(P0, sh) - 0x8000) * inv) >> 24;
             m &= m - 1;
             bd->pixels++;
 #if RS_COUNT
             (void)w1; (void)w2; (void)dzb; (void)dzc; (void)db; (void)dc; (void)ca; (void)zrow;
-            ((RS_PIX *)(void *)crow)[i] += 1;
+            crow[i] += 1;
 #else
             {
                 RS_Z zz = (RS_Z)((uint32_t)(ad + ((DZ_MUL(dzb, w1) + DZ_MUL(dzc, w2)) >> 16)) >> RS_ZSH);
                 if (zz > zrow[i]) {
                     uint64_t col = ca + CW_MUL(db, w1) + CW_MUL(dc, w2);
                     zrow[i] = zz;
-                    ((RS_PIX *)(void *)crow)[i] = TINY_PIX(col, w1, w2);
+                    crow[i] = TINY_PIX(col, w1, w2);
                 }
             }
 #endif
@@ -311,13 +312,13 @@ RS_INLINE static void RS_FN(tiny_shade)(band *bd, const rs_cvert *a, const rs_cv
         if (M) {
             M <<= 1;
             P0 += sy0; P2 += sy2;
-            crow += stride; zrow += zw;
+            crow = (RS_PIX *)(void *)((uint8_t *)crow + stride); zrow += zw;
             continue;
         }
         if (!Mw) return;
         /* the second group of columns: same rows, four pixels to the right */
         M = Mw; Mw = 0; P0 = P0w; P2 = P2w;
-        px0 += 4; crow = crow0; zrow = zrow0;
+        crow = crow0 + 4; zrow = zrow0 + 4;
     }
 }
 
