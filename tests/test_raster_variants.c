@@ -1,10 +1,11 @@
 /* tests/test_raster_variants.c — the build-time variant choice of raster/raster.c
  * (RS_WITH_*), as a board with little flash would use it.
  *
- * This file compiles a second copy of raster.c keeping only RGB565 with 16-bit depth,
- * its functions renamed (min_*) so that it links beside the full library, and with
- * BR_DIV64_NATIVE = 0: the quotients of the vertex transform and the triangles'
- * reciprocals come from core/fx.h's fx_recip, as on 32-bit ARM, instead of `/`.  On the peer
+ * This file compiles a second copy of raster.c and xform.c (the vertex transform)
+ * keeping only RGB565 with 16-bit depth, their functions renamed (min_*) so that it
+ * links beside the full library, and with BR_DIV64_NATIVE = 0: the quotients of the
+ * vertex transform and the triangles' reciprocals come from core/fx.h's fx_recip, as on
+ * 32-bit ARM, instead of `/`.  On the peer
  * scene (real fuji.png terrain, both cameras, whole frame and 7-row bands) the reduced
  * copy must give exactly the full library's bytes, and refuse every variant it left out
  * with BR_E_UNSUPPORTED instead of drawing. */
@@ -37,6 +38,7 @@
 #pragma GCC diagnostic ignored "-Wmissing-prototypes"
 #endif
 #include "raster/raster.c"
+#include "raster/xform.c"
 #if defined(__GNUC__)
 #pragma GCC diagnostic pop
 #endif

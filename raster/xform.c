@@ -1,0 +1,259 @@
+/* raster/xform.c — the per-frame vertex transform of the rasteriser (see raster.h for
+ * the conventions; raster.c draws the bands from what this file leaves in the cache).
+ *
+ * rs_frame_prepare checks the frame, transforms each vertex once (camera space by the
+ * Q30 view matrix, then divide) into the vertex cache with an outcode, and, when the
+ * caller gave chunks, notes the rows each chunk of triangles can touch, so the band loop
+ * skips chunks that miss its band.
+ */
+#include "raster/raster_int.h"
+
+size_t rs_cache_mem_size(uint32_t nv) { return (size_t)nv * sizeof(rs_cvert); }
+
+size_t rs_chunk_mem_size(const rs_prim *prims, int32_t nprims)
+{
+    size_t n = 0;
+    int32_t p;
+    for (p = 0; p < nprims; p++) n += (rs_prim_tris(&prims[p]) + RS_CHUNK - 1) / RS_CHUNK;
+    return n * 2 * sizeof(int16_t);
+}
+
+/* Rows [lo, hi] that chunks' triangles can touch (conservative: the pixel-centre rows
+ * of their vertices; everything when a vertex needs clipping). */
+static void chunk_rows(rs_frame *f)
+{
+    const uint32_t slow = (uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24;
+    int16_t *ch = f->chunks;
+    int32_t p;
+    for (p = 0; p < f->nprims; p++) {
+        const rs_prim *pr = &f->prims[p];
+        uint32_t nt = rs_prim_tris(pr), t0;
+        for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch += 2) {
+            uint32_t t1 = nt - t0 < RS_CHUNK ? nt : t0 + RS_CHUNK, i, i0, i1;
+            int32_t lo = INT32_MAX, hi = INT32_MIN, full = 0;
+            if (pr->kind == RS_STRIP) { i0 = t0; i1 = t1 + 2; } else { i0 = 3 * t0; i1 = 3 * t1; }
+            for (i = i0; i < i1; i++) {
+                const rs_cvert *v = &f->cache[pr->idx[i]];
+                if (v->c & slow) full = 1;
+                if (v->y < lo) lo = v->y;
+                if (v->y > hi) hi = v->y;
+            }
+            lo = (lo + HALF - 1) >> SUB;
+            hi = (hi - HALF) >> SUB;
+            if (full) { lo = -1; hi = f->h; }
+            if (lo < -1) lo = -1;
+            if (hi > f->h) hi = f->h;
+            ch[0] = (int16_t)lo;
+            ch[1] = (int16_t)hi;
+        }
+    }
+}
+
+void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint32_t d, uint32_t rgb)
+{
+    uint32_t oc = 0;
+    if (x < HALF) oc |= RS_OUT_LEFT;
+    if (x > w * SUBONE - HALF) oc |= RS_OUT_RIGHT;
+    if (y < HALF) oc |= RS_OUT_TOP;
+    if (y > h * SUBONE - HALF) oc |= RS_OUT_BOTTOM;
+    o->x = x; o->y = y; o->d = d;
+    o->c = (rgb & 0xffffffu) | (oc << 24);
+    o->cp = rs_pack_rgb(rgb);
+    o->u = o->v = 0;
+}
+
+/* The reference transform of one vertex (camera space, near/far, guard band, divide,
+ * screen outcodes), for the vertices the fast loop below does not finish: beyond the
+ * far plane, or not provably inside the guard band.  Rare (peer camera B 640x480: 103
+ * of 66,049 per frame; camera A: none), so it recomputes everything from the frame
+ * instead of holding constants. */
+static RS_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cvert *o)
+{
+    const cam_vp *vp = &f->vp;
+    const int64_t f8 = f_q8(vp), g8 = (int64_t)RS_GUARD_PX << 8;
+    const int32_t xmax = f->w * SUBONE - HALF, ymax = f->h * SUBONE - HALF;
+    int64_t c[3], lim, ax, ay;
+    uint32_t oc = 0;
+    o->cp = rs_pack_rgb(v->rgb);
+    o->u = v->uv[0]; o->v = v->uv[1];
+    to_camera(vp, v->p, c);
+    if (c[2] < vp->znear) {
+        o->x = o->y = 0; o->d = 0;
+        o->c = (v->rgb & 0xffffffu) | ((uint32_t)RS_OUT_NEAR << 24);
+        return;
+    }
+    if (c[2] > vp->zfar) oc |= RS_OUT_FAR;
+    lim = g8 * c[2]; ax = f8 * c[0]; ay = f8 * c[1];
+    /* |ax| > lim or |ay| > lim, one unsigned compare each (lim > 0; |ax| < 2^61 and
+     * lim < 2^55, so ax + lim cannot overflow) */
+    if ((uint64_t)(ax + lim) > (uint64_t)(2 * lim) || (uint64_t)(ay + lim) > (uint64_t)(2 * lim)) {
+        /* beyond the guard band on one side is outside the screen on that side */
+        oc |= RS_OUT_GUARD;
+        if (ax > lim) oc |= RS_OUT_RIGHT;
+        if (-ax > lim) oc |= RS_OUT_LEFT;
+        if (ay > lim) oc |= RS_OUT_TOP;
+        if (-ay > lim) oc |= RS_OUT_BOTTOM;
+        o->x = o->y = 0; o->d = 0;
+    } else {
+        project(vp, f8, c, f->w, f->h, o);
+        if (o->x < HALF) oc |= RS_OUT_LEFT;
+        if (o->x > xmax) oc |= RS_OUT_RIGHT;
+        if (o->y < HALF) oc |= RS_OUT_TOP;
+        if (o->y > ymax) oc |= RS_OUT_BOTTOM;
+    }
+    o->c = (v->rgb & 0xffffffu) | (oc << 24);
+}
+
+/* The per-frame transform loop; tex (a constant after inlining) says whether to copy
+ * the texture coordinates, which only textured frames read.
+ *
+ * Every vertex gets exactly xform_slow's result; the loop takes a shorter road for the
+ * common vertex, znear <= zc <= zfar and inside the guard band, with its constants in
+ * an xform_k read through a pointer (memory operands instead of a dozen stack reloads):
+ * - near and far in one unsigned compare: tzn = t2 - znear 2^30 makes the shifted sum
+ *   zc - znear exactly (a multiple of 2^30 passes through the floor shift); the sum
+ *   still fits int64, as |r p| < 3 2^60, |t2| < 3 2^60 and znear 2^30 < 2^61.  A
+ *   vertex behind the near plane (peer camera B: 2,637 per frame) only needs its
+ *   colour, so it is done here too;
+ * - the screen position folds the centre and the rounding into one constant:
+ *   cx + ((q + 8) >> 4) = (q + 8 + 16 cx) >> 4 for q = f8 c0 / zc, and for y the
+ *   quotient of -f8 c1 (truncation is symmetric, so it is -q exactly):
+ *   cy - ((q + 8) >> 4) = (16 cy + 7 + (-q)) >> 4, as -floor(a / 16) =
+ *   floor((15 - a) / 16).  sx, sy stay int64 until the guard band is settled;
+ * - the guard band is not tested before the divide (|f8 c0| < 2^61, zc >= 1: the
+ *   quotient is always defined).  An on-screen vertex (one compare per axis) is far
+ *   inside it; off screen, |sx - cx| <= GUARD_S = 2^18 - 1 gives |q| < 2^22 = g8
+ *   (sx - cx = floor((q + 8) / 16), so -2^22 + 16 <= q + 8 <= 2^22 - 1; for y the same
+ *   with q' + 7, q' = -q), hence |f8 c0| < g8 zc, strictly inside, and the side bits
+ *   follow from sx, sy as in xform_slow.  Only the side a coordinate is off needs the
+ *   bound (peer camera B: 15,700 vertices per frame off screen, nearly all inside the
+ *   guard band).  Anything else goes to xform_slow, which decides exactly.
+ *   (GUARD_S = 2^18 would be wrong: test_raster's test_transform fails on it);
+ * - the packed colour: rgb (< 2^24) times 1 + 2^26 is rgb + (rgb << 26) without
+ *   overlap, which holds B at bit 0 and R at bit 42 where rs_pack_rgb puts them; G
+ *   moves by its own shift. */
+#define GUARD_S ((RS_GUARD_PX << SUB) - 1)
+/* The view matrix's elements in xform_k: int64 on 64-bit targets, where the product
+ * with a vertex coordinate takes the element as a memory operand; int32 on 32-bit
+ * ones, where a 32 x 32 -> 64-bit multiply is one instruction and a 64 x 64 one three.
+ * The same products either way. */
+#if RS_REG64
+typedef int64_t xform_rq;
+#else
+typedef int32_t xform_rq;
+#endif
+typedef struct xform_k {
+    xform_rq r[3][3];           /* view matrix (Q30, |r| <= 2^30) */
+    int64_t t[3];               /* translation (Q30 world units) */
+    int64_t tzn, zn, zspan;     /* t2 - znear 2^30; znear; zfar - znear */
+    int64_t f8, nf8, kd;        /* f (Q8 pixels), -f, RS_DEPTH_ONE znear */
+    int64_t kx, ky;             /* 16 cx + 8, 16 cy + 7 (cx, cy: centre, sub-pixels) */
+    int64_t gx0, gx1, gy0, gy1; /* cx -+ GUARD_S, cy -+ GUARD_S */
+    uint64_t xspan, yspan;      /* on screen: sx - HALF <= xspan, sy - HALF <= yspan */
+    uint64_t pmul, pmask;       /* colour packing: 1 + 2^26, bits of B (0..7) and R (42..49) */
+} xform_k;
+
+/* rs_pack_rgb(rgb) for rgb < 2^24, with one multiply (see above). */
+static RS_INLINE uint64_t xform_pack(const xform_k *k, uint32_t rgb)
+{
+    return (((uint64_t)rgb * k->pmul) & k->pmask) | ((uint64_t)(rgb & 0xff00u) << 13);
+}
+
+static RS_INLINE void xform_loop(const rs_frame *f, const xform_k *k, int tex)
+{
+    const rs_vertex *v = f->v, *const end = f->v + f->nv;
+    rs_cvert *o = f->cache;
+    for (; v != end; v++, o++) {
+        const int64_t x = v->p[0], y = v->p[1], z = v->p[2];
+        const uint32_t rgb = v->rgb & 0xffffffu;
+        int64_t c0, c1, c2, sx, sy, q;
+        fx_divisor dz;          /* c2, for the three quotients */
+        c2 = (k->r[2][0] * x + k->r[2][1] * y + k->r[2][2] * z + k->tzn) >> 30;
+        if (RS_UNLIKELY((uint64_t)c2 > (uint64_t)k->zspan)) {
+            if (c2 < 0) {       /* behind the near plane: only the colour is valid */
+                o->x = o->y = 0; o->d = 0;
+                o->c = rgb | ((uint32_t)RS_OUT_NEAR << 24);
+                o->cp = xform_pack(k, rgb);
+                if (tex) { o->u = v->uv[0]; o->v = v->uv[1]; }
+            } else {
+                xform_slow(f, v, o);
+            }
+            continue;
+        }
+        c2 += k->zn;
+        fx_divisor_make(&dz, c2);      /* 1 <= znear <= c2 <= zfar < 2^31 */
+        c0 = (k->r[0][0] * x + k->r[0][1] * y + k->r[0][2] * z + k->t[0]) >> 30;
+        /* one axis at a time, each settled and stored before the next divide (c1 is
+         * formed only then: one register move fewer).  Off screen: inside the guard
+         * band when |s - c| <= GUARD_S, which needs a test only on the side the
+         * coordinate is off; else the exact test in xform_slow (which rewrites the
+         * whole entry) */
+        o->c = rgb;
+        /* without a 64-bit divide, |q| >= 2^32 (far beyond the guard band) is left to
+         * xform_slow, where the native path ends too */
+        if (!fx_divisor_trunc32(&dz, k->f8 * c0, &q)) goto slow;
+        sx = (q + k->kx) >> 4;
+        if (RS_UNLIKELY((uint64_t)(sx - HALF) > k->xspan)) {
+            if (sx < HALF ? sx < k->gx0 : sx > k->gx1) goto slow;
+            o->c = rgb | (uint32_t)(sx < HALF ? RS_OUT_LEFT : RS_OUT_RIGHT) << 24;
+        }
+        o->x = (int32_t)sx;
+        c1 = (k->r[1][0] * x + k->r[1][1] * y + k->r[1][2] * z + k->t[1]) >> 30;
+        if (!fx_divisor_trunc32(&dz, k->nf8 * c1, &q)) goto slow;
+        sy = (q + k->ky) >> 4;
+        if (RS_UNLIKELY((uint64_t)(sy - HALF) > k->yspan)) {
+            if (sy < HALF ? sy < k->gy0 : sy > k->gy1) goto slow;
+            o->c |= (uint32_t)(sy < HALF ? RS_OUT_TOP : RS_OUT_BOTTOM) << 24;
+        }
+        o->y = (int32_t)sy;
+        (void)fx_divisor_trunc32(&dz, k->kd, &q);        /* kd = RS_DEPTH_ONE znear < c2 2^30: fits */
+        o->d = (uint32_t)q;
+        o->cp = xform_pack(k, rgb);
+        if (tex) { o->u = v->uv[0]; o->v = v->uv[1]; }
+        continue;
+    slow:
+        xform_slow(f, v, o);
+    }
+}
+
+/* Called through a pointer (see rs_frame_prepare), so the compiler cannot propagate
+ * xform_k's values into the loop: it would then expand the multiply by pmul into a
+ * copy, shift and add and rebuild the 64-bit pmask every vertex, where a memory
+ * operand costs nothing (2 instructions per vertex). */
+static RS_NOINLINE void xform_plain(const rs_frame *f, const xform_k *k) { xform_loop(f, k, 0); }
+static RS_NOINLINE void xform_tex(const rs_frame *f, const xform_k *k) { xform_loop(f, k, 1); }
+
+br_status rs_frame_prepare(rs_frame *f)
+{
+    const cam_vp *vp = &f->vp;
+    int64_t f8 = f_q8(vp);
+    int32_t w = f->w, h = f->h;
+    if (w < 1 || h < 1 || w > RS_MAX_DIM || h > RS_MAX_DIM || !f->cache || (f->nv && !f->v)
+        || (f->fmt != RS_FMT_XRGB8888 && f->fmt != RS_FMT_RGB565)
+        || (f->depth != RS_DEPTH32 && f->depth != RS_DEPTH16) || vp->znear <= 0
+        || vp->zfar <= vp->znear || vp->cx_q16 != w * (FX_Q16_ONE / 2)
+        || vp->cy_q16 != h * (FX_Q16_ONE / 2) || f8 <= 0 || f8 >= ((int64_t)1 << 28)
+        || (f->tex && (!f->tex->px || f->tex->w < 1 || f->tex->h < 1 || f->tex->w > RS_MAX_TEX
+                       || f->tex->h > RS_MAX_TEX)))
+        return BR_E_ARG;
+    f->stat_tris = f->stat_clipped = f->stat_pixels = 0;
+    if (f->nv) {
+        xform_k k;
+        int i, j;
+        for (i = 0; i < 3; i++) {
+            for (j = 0; j < 3; j++) k.r[i][j] = vp->r[i][j];
+            k.t[i] = vp->t[i];
+        }
+        k.tzn = vp->t[2] - ((int64_t)vp->znear << 30);
+        k.zn = vp->znear; k.zspan = (int64_t)vp->zfar - vp->znear;
+        k.f8 = f8; k.nf8 = -f8; k.kd = (int64_t)RS_DEPTH_ONE * vp->znear;
+        k.kx = (int64_t)w * SUBONE * HALF + HALF; k.ky = (int64_t)h * SUBONE * HALF + HALF - 1;
+        k.xspan = (uint64_t)w * SUBONE - 2 * HALF; k.yspan = (uint64_t)h * SUBONE - 2 * HALF;
+        k.gx0 = (int64_t)w * HALF - GUARD_S; k.gx1 = (int64_t)w * HALF + GUARD_S;
+        k.gy0 = (int64_t)h * HALF - GUARD_S; k.gy1 = (int64_t)h * HALF + GUARD_S;
+        k.pmul = 0x4000001u; k.pmask = 0x3fc00000000ffu;
+        (f->tex ? xform_tex : xform_plain)(f, &k);
+    }
+    if (f->chunks) chunk_rows(f);
+    return BR_OK;
+}
