@@ -69,6 +69,7 @@ for h in $harnesses; do
   $CC $FLAGS -fsanitize=fuzzer "$DEFS" -o "$D/fuzz_$h" "tests/fuzz_$h.c" $OBJ $PKG_LIBS -lm ||
     { echo "fuzz: cannot build tests/fuzz_$h.c" >&2; status=1; continue; }
   seeds="$S/$h"; [ -d "$seeds" ] || seeds=""
+  mkdir -p "$D/corpus/$h"     # every harness, seeded or not (fuzz_raster has no seeds)
   log="$D/log/$h.log"
   ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 UBSAN_OPTIONS=print_stacktrace=1 \
   "$D/fuzz_$h" -max_total_time="$per" -max_len=32768 -timeout=20 -rss_limit_mb=2560 \
