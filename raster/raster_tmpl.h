@@ -224,6 +224,15 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
  * [0, 2^16) and the packed sums, computed modulo 2^64, are exact lane by lane.  The
  * area is below 143 * 79 < 2^14, so the weights' products e * inv stay below 2^55. */
 
+/* The strip pairs and their shading are inlined into the strip loop of the plain
+ * variants; the textured and write-counting ones call them (their speed matters less
+ * than their code size). */
+#if RS_TEX || RS_COUNT
+#define RS_HOT RS_NOINLINE
+#else
+#define RS_HOT RS_INLINE
+#endif
+
 /* The coverage of one triangle over one group of columns: P0 / P2 / k1 - P0 - P2 the
  * packed biased edge values of row 0, s0 / s2 the row steps, rows 0 .. ny-1 (ny <=
  * TINY_H = 4, unrolled: most tiny boxes have one or two rows); row j's lanes at bit
@@ -264,7 +273,7 @@ RS_INLINE static uint64_t RS_FN(tiny_mask)(uint64_t P0, uint64_t P2, uint64_t k1
  * edges opposite c / b (e0 = the weight of c times area2, e2 = that of b), sy0 / sy2
  * their row steps.  Every tiny path (tri_tiny, tri_quad) shades here, so a triangle's
  * pixels do not depend on which of them drew it. */
-RS_INLINE static void RS_FN(tiny_shade)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RS_HOT static void RS_FN(tiny_shade)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                         int32_t area2, uint64_t M, uint64_t P0, uint64_t sy0,
                                         uint64_t P2, uint64_t sy2, int32_t py0, int32_t px0,
                                         uint64_t Mw, uint64_t P0w, uint64_t P2w)
@@ -633,7 +642,20 @@ RS_NOINLINE static void RS_FN(pair_wide)(band *bd, const rs_cvert *v0, const rs_
     py0 = lo < bd->y0 ? bd->y0 : lo;
     py1 = hi >= bd->y1 ? bd->y1 - 1 : hi;
     if (py0 > py1) return;
-    RS_FN(pair_tiny)(bd, v0, v1, v2, v3, xl, xh - xl + 1, py0, py1 - py0 + 1, 1);
+    {
+        /* as pair_tiny, but one copy of tri_quad (the orientation a variable), and
+         * mixed orientations through tri_raster (the pixels of a pair are those of two
+         * tri_raster calls; tri_raster culls): less code for the rarer wide boxes */
+        const int32_t nx = xh - xl + 1;
+        const int32_t ar1 = (v1->x - v0->x) * (v2->y - v0->y) - (v2->x - v0->x) * (v1->y - v0->y);
+        const int32_t ar2 = (v1->x - v2->x) * (v3->y - v2->y) - (v3->x - v2->x) * (v1->y - v2->y);
+        if ((ar1 < 0 && ar2 < 0) || (ar1 > 0 && ar2 > 0 && !bd->cull))
+            RS_FN(tri_quad)(bd, v0, v1, v2, v3, xl, nx, py0, py1 - py0 + 1, TINY_XM(nx), ar1, ar2, ar1 < 0, 1);
+        else {
+            RS_FN(tri_raster)(bd, v0, v1, v2);
+            RS_FN(tri_raster)(bd, v2, v1, v3);
+        }
+    }
 }
 
 /* Two consecutive strip triangles T1 = (v0, v1, v2) and T2 = (v2, v1, v3) whose four
@@ -647,7 +669,7 @@ RS_NOINLINE static void RS_FN(pair_wide)(band *bd, const rs_cvert *v0, const rs_
  * T2.  Pairs whose triangles have the same orientation (the common case) go through
  * tri_quad (shared diagonal); others through tri_tiny one at a time.  A larger joint
  * box: each triangle through tri_raster. */
-RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
+RS_HOT static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                       const rs_cvert *v3)
 {
     int32_t lo, hi, xl, xh, py0, py1, px0, px1;
@@ -675,6 +697,7 @@ RS_INLINE static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cve
 }
 #undef TINY_PIX
 #undef TINY_XM
+#undef RS_HOT
 
 /* Strip triangles not drawn as a pair go through the out-of-line triangle code. */
 #define RS_STRIP_TRI RS_FN(tri_raster)
