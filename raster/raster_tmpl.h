@@ -649,6 +649,7 @@ RS_NOINLINE static void RS_FN(pair_wide)(band *bd, const rs_cvert *v0, const rs_
         const int32_t nx = xh - xl + 1;
         const int32_t ar1 = (v1->x - v0->x) * (v2->y - v0->y) - (v2->x - v0->x) * (v1->y - v0->y);
         const int32_t ar2 = (v1->x - v2->x) * (v3->y - v2->y) - (v3->x - v2->x) * (v1->y - v2->y);
+        if (bd->cull && (ar1 | ar2) >= 0) return;    /* both culled or of zero area */
         if ((ar1 < 0 && ar2 < 0) || (ar1 > 0 && ar2 > 0 && !bd->cull))
             RS_FN(tri_quad)(bd, v0, v1, v2, v3, xl, nx, py0, py1 - py0 + 1, TINY_XM(nx), ar1, ar2, ar1 < 0, 1);
         else {
