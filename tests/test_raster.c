@@ -75,15 +75,15 @@ static int all_equal(const uint32_t *img, int32_t n, uint32_t want, int32_t *bad
     return nb == 0;
 }
 
-static void grid_case(int jitter, int32_t w, int32_t h, int32_t cols, int32_t rows)
+/* The (cols + 1) x (rows + 1) vertices of a grid spanning [-20 px, w + 20 px] so the screen
+ * is covered; with cols, rows dividing the span the cell corners sit on pixel centres
+ * (exact ties); jitter stays below a third of a cell so the mesh stays valid. */
+static sv *grid_vertices(int jitter, int32_t w, int32_t h, int32_t cols, int32_t rows)
 {
     sv *v = calloc((size_t)(cols + 1) * (size_t)(rows + 1), sizeof *v);
-    uint32_t *idx = calloc((size_t)cols * (size_t)rows * 6, sizeof *idx), n = 0, *img;
-    int32_t i, j, bad;
-    /* spans [-20 px, w + 20 px] so the screen is covered; with cols, rows dividing the
-     * span the cell corners sit on pixel centres (exact ties); jitter stays below a
-     * third of a cell so the mesh stays valid */
-    int32_t cw = (w + 40) * 16 / cols, ch = (h + 40) * 16 / rows, amp = (cw < ch ? cw : ch) / 3;
+    int32_t i, j, cw = (w + 40) * 16 / cols, ch = (h + 40) * 16 / rows, amp = (cw < ch ? cw : ch) / 3;
+    CHECK(v != NULL);
+    if (!v) exit(1);
     for (j = 0; j <= rows; j++)
         for (i = 0; i <= cols; i++) {
             sv *p = &v[j * (cols + 1) + i];
@@ -94,6 +94,14 @@ static void grid_case(int jitter, int32_t w, int32_t h, int32_t cols, int32_t ro
                 p->y += (int32_t)(lcg() % (uint32_t)(2 * amp + 1)) - amp;
             }
         }
+    return v;
+}
+
+static void grid_case(int jitter, int32_t w, int32_t h, int32_t cols, int32_t rows)
+{
+    sv *v = grid_vertices(jitter, w, h, cols, rows);
+    uint32_t *idx = calloc((size_t)cols * (size_t)rows * 6, sizeof *idx), n = 0, *img;
+    int32_t i, j, bad;
     for (j = 0; j < rows; j++)
         for (i = 0; i < cols; i++) {
             uint32_t a = (uint32_t)(j * (cols + 1) + i), b = a + 1, c = a + (uint32_t)cols + 1, d = c + 1;
@@ -123,24 +131,13 @@ static void grid_case(int jitter, int32_t w, int32_t h, int32_t cols, int32_t ro
  * reversed (all back faces): none with culling, once without. */
 static void strip_grid_case(int jitter, int32_t w, int32_t h, int32_t cols, int32_t rows)
 {
-    sv *v = calloc((size_t)(cols + 1) * (size_t)(rows + 1), sizeof *v);
+    sv *v = grid_vertices(jitter, w, h, cols, rows);
     uint32_t *idx = calloc((size_t)rows * (size_t)(cols + 1) * 2, sizeof *idx), *img;
     rs_prim *pr = calloc((size_t)rows, sizeof *pr);
     rs_cvert *cache = malloc(sizeof *cache * (size_t)(cols + 1) * (size_t)(rows + 1));
     const uint32_t nv = (uint32_t)((cols + 1) * (rows + 1));
     int32_t i, j, pass, bad;
-    int32_t cw = (w + 40) * 16 / cols, ch = (h + 40) * 16 / rows, amp = (cw < ch ? cw : ch) / 3;
-    CHECK(v && idx && pr && cache);
-    for (j = 0; j <= rows; j++)
-        for (i = 0; i <= cols; i++) {
-            sv *p = &v[j * (cols + 1) + i];
-            p->x = -20 * 16 + (w + 40) * 16 * i / cols + 8;
-            p->y = -20 * 16 + (h + 40) * 16 * j / rows + 8;
-            if (jitter && amp > 0 && i > 0 && i < cols && j > 0 && j < rows) {
-                p->x += (int32_t)(lcg() % (uint32_t)(2 * amp + 1)) - amp;
-                p->y += (int32_t)(lcg() % (uint32_t)(2 * amp + 1)) - amp;
-            }
-        }
+    CHECK(idx && pr && cache);
     for (i = 0; i < (int32_t)nv; i++) rs_cvert_set(&cache[i], w, h, v[i].x, v[i].y, 1000, 0x123456u);
     for (pass = 0; pass < 3; pass++) {
         rs_frame f;
