@@ -83,9 +83,6 @@ size_t rs_band_mem_size(int32_t w, int32_t rows, int32_t fmt, int32_t depth)
 
 /* ---------------------------------------------------------------- set-up helpers */
 
-#define MIN3(a, b, c) ((a) < (b) ? ((a) < (c) ? (a) : (c)) : ((b) < (c) ? (b) : (c)))
-#define MAX3(a, b, c) ((a) > (b) ? ((a) > (c) ? (a) : (c)) : ((b) > (c) ? (b) : (c)))
-
 /* Narrows [*xl, *xr] to the centres px where K + s px >= 0 (one edge on one row;
  * s = 16 A is the edge's step per pixel, q the fx_divisor of |s| when s != 0).
  * Returns 0 when the row is empty.  ceil(-K / s) = -floor(K / s); the step's sign is

@@ -224,6 +224,12 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
  * [0, 2^16) and the packed sums, computed modulo 2^64, are exact lane by lane.  The
  * area is below 143 * 79 < 2^14, so the weights' products e * inv stay below 2^55. */
 
+/* Top bits of the four 16-bit lanes; TINY_XM: the lanes of a box's first group of
+ * columns (min(nx, 4) of them), TINY_XM2: of its second group (nx - 4, for 5 <= nx <= 8). */
+#define TINY_LANES 0x8000800080008000u
+#define TINY_XM(nx) (TINY_LANES >> (64 - 16 * ((nx) < 4 ? (nx) : 4)))
+#define TINY_XM2(nx) (TINY_LANES >> (128 - 16 * (nx)))
+
 /* The strip pairs and their shading are inlined into the strip loop of the plain
  * variants; the textured and write-counting ones call them (their speed matters less
  * than their code size). */
@@ -278,7 +284,7 @@ RS_HOT static void RS_FN(tiny_shade)(band *bd, const rs_cvert *a, const rs_cvert
                                         uint64_t P2, uint64_t sy2, int32_t py0, int32_t px0,
                                         uint64_t Mw, uint64_t P0w, uint64_t P2w)
 {
-    const uint64_t hi = 0x8000800080008000u;
+    const uint64_t hi = TINY_LANES;
     const int64_t inv = fx_div40((uint32_t)area2), ad = a->d;
     const dz_t dzb = (dz_t)((int64_t)b->d - ad), dzc = (dz_t)((int64_t)c->d - ad);
     const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
@@ -403,14 +409,14 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
             /* the second group: four pixels (64 A sub-pixels) to the right */
             p0w = p0 + (uint64_t)(int64_t)(A0 * 64) * ones;
             p2w = p2 + (uint64_t)(int64_t)(A2 * 64) * ones;
-            Mw = RS_FN(tiny_mask)(p0w, p2w, k1, sy0, sy2, 0x8000800080008000u >> (128 - 16 * nx), ny);
+            Mw = RS_FN(tiny_mask)(p0w, p2w, k1, sy0, sy2, TINY_XM2(nx), ny);
         }
         if (M | Mw) RS_FN(tiny_shade)(bd, a, b, c, area2, M, p0, sy0, p2, sy2, py0, px0, Mw, p0w, p2w);
     }
 }
 
 /* A tiny triangle (a, b, c as seen; either orientation) over a candidate box given
- * by its caller (tri_body: its own box; tri_pair: the pair's joint box): orientation
+ * by its caller (tri_raster: its own box; pair_tiny: the pair's joint box): orientation
  * (cull, zero area; front faces with b and c swapped, one inlined copy per
  * orientation, no moves), then tri_tiny. */
 RS_INLINE static void RS_FN(tri_tiny_any)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
@@ -427,9 +433,6 @@ RS_INLINE static void RS_FN(tri_tiny_any)(band *bd, const rs_cvert *a, const rs_
         RS_FN(tri_tiny)(bd, a, c, b, px0, nx, py0, ny, xm, ox0, oy0, dx2, dy2, dx1, dy1, -area2);
     }
 }
-
-/* Lanes 0 .. min(nx, 4) - 1 of a candidate mask (the first group of columns). */
-#define TINY_XM(nx) (0x8000800080008000u >> (64 - 16 * ((nx) < 4 ? (nx) : 4)))
 
 /* One triangle (a, b, c as seen; either orientation): the out-of-line code for lists,
  * the clipper and strip triangles that are not drawn as a pair. */
@@ -576,7 +579,7 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
             P01w = P01 + (uint64_t)(int64_t)(A01 * 64) * ones;
             P20w = P20 + (uint64_t)(int64_t)(A20 * 64) * ones;
             P13w = P13 + (uint64_t)(int64_t)(A13 * 64) * ones;
-            RS_FN(quad_masks)(P01w, P20w, P13w, K1, K2, s01, s20, s13, 0x8000800080008000u >> (128 - 16 * nx), ny,
+            RS_FN(quad_masks)(P01w, P20w, P13w, K1, K2, s01, s20, s13, TINY_XM2(nx), ny,
                               &M1w, &M2w);
         }
         /* T1: base v0, weight of v1 from the edge v2-v0 (P20), of v2 from v0-v1 (P01);
@@ -593,22 +596,25 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
 #undef QBIAS
 }
 
-/* A strip pair (see tri_pair) over its tiny joint box px0, py0, nx x ny: orientations
- * (cull, zero area), then tri_quad, or tri_tiny one triangle at a time.  wide = 0 when
- * nx <= 4 (one group of columns, the inlined common case). */
+/* The doubled signed areas of a strip pair's T1 = (v0, v1, v2) and T2 (from its vertex
+ * v2, as tri_tiny); < 0 for front faces. */
+#define PAIR_AREAS(AR1, AR2) \
+    const int32_t AR1 = (v1->x - v0->x) * (v2->y - v0->y) - (v2->x - v0->x) * (v1->y - v0->y); \
+    const int32_t AR2 = (v1->x - v2->x) * (v3->y - v2->y) - (v3->x - v2->x) * (v1->y - v2->y)
+
+/* A strip pair (see tri_pair) over its tiny joint box px0, py0, nx x ny with nx <= 4 (one
+ * group of columns: the inlined common case): orientations (cull, zero area), then
+ * tri_quad, or tri_tiny one triangle at a time. */
 RS_INLINE static void RS_FN(pair_tiny)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
-                                       const rs_cvert *v3, int32_t px0, int32_t nx, int32_t py0, int32_t ny,
-                                       const int wide)
+                                       const rs_cvert *v3, int32_t px0, int32_t nx, int32_t py0, int32_t ny)
 {
-    const uint64_t xm = wide ? TINY_XM(nx) : 0x8000800080008000u >> (64 - 16 * nx);
-    /* doubled signed areas (T2 from its vertex v2, as tri_tiny) */
-    const int32_t ar1 = (v1->x - v0->x) * (v2->y - v0->y) - (v2->x - v0->x) * (v1->y - v0->y);
-    const int32_t ar2 = (v1->x - v2->x) * (v3->y - v2->y) - (v3->x - v2->x) * (v1->y - v2->y);
+    const uint64_t xm = TINY_LANES >> (64 - 16 * nx);
+    PAIR_AREAS(ar1, ar2);
     if (bd->cull && (ar1 | ar2) >= 0) return;    /* both culled or of zero area */
     if (ar1 < 0 && ar2 < 0)
-        RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, nx, py0, ny, xm, ar1, ar2, 1, wide);
+        RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, nx, py0, ny, xm, ar1, ar2, 1, 0);
     else if (ar1 > 0 && ar2 > 0 && !bd->cull)
-        RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, nx, py0, ny, xm, ar1, ar2, 0, wide);
+        RS_FN(tri_quad)(bd, v0, v1, v2, v3, px0, nx, py0, ny, xm, ar1, ar2, 0, 0);
     else {
         /* mixed orientations or a zero area (rare): one triangle at a time */
         const int32_t ox0 = px0 * SUBONE + HALF, oy0 = py0 * SUBONE + HALF;   /* the first candidate */
@@ -647,8 +653,7 @@ RS_NOINLINE static void RS_FN(pair_wide)(band *bd, const rs_cvert *v0, const rs_
          * mixed orientations through tri_raster (the pixels of a pair are those of two
          * tri_raster calls; tri_raster culls): less code for the rarer wide boxes */
         const int32_t nx = xh - xl + 1;
-        const int32_t ar1 = (v1->x - v0->x) * (v2->y - v0->y) - (v2->x - v0->x) * (v1->y - v0->y);
-        const int32_t ar2 = (v1->x - v2->x) * (v3->y - v2->y) - (v3->x - v2->x) * (v1->y - v2->y);
+        PAIR_AREAS(ar1, ar2);
         if (bd->cull && (ar1 | ar2) >= 0) return;    /* both culled or of zero area */
         if ((ar1 < 0 && ar2 < 0) || (ar1 > 0 && ar2 > 0 && !bd->cull))
             RS_FN(tri_quad)(bd, v0, v1, v2, v3, xl, nx, py0, py1 - py0 + 1, TINY_XM(nx), ar1, ar2, ar1 < 0, 1);
@@ -694,10 +699,13 @@ RS_HOT static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert 
     px0 = xl;
     px1 = xh;
     if (py0 > py1 || px0 > px1) return;
-    RS_FN(pair_tiny)(bd, v0, v1, v2, v3, px0, px1 - px0 + 1, py0, py1 - py0 + 1, 0);
+    RS_FN(pair_tiny)(bd, v0, v1, v2, v3, px0, px1 - px0 + 1, py0, py1 - py0 + 1);
 }
 #undef TINY_PIX
 #undef TINY_XM
+#undef TINY_XM2
+#undef TINY_LANES
+#undef PAIR_AREAS
 #undef RS_HOT
 
 /* Strip triangles not drawn as a pair go through the out-of-line triangle code. */
