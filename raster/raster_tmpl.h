@@ -225,10 +225,12 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
  * area is below 143 * 79 < 2^14, so the weights' products e * inv stay below 2^55. */
 
 /* Top bits of the four 16-bit lanes; TINY_XM: the lanes of a box's first group of
- * columns (min(nx, 4) of them), TINY_XM2: of its second group (nx - 4, for 5 <= nx <= 8). */
+ * columns (min(nx, 4) of them), TINY_XM2: of its second group (nx - 4, for 5 <= nx <= 8);
+ * TINY_XM4 where nx <= 4 is known. */
 #define TINY_LANES 0x8000800080008000u
-#define TINY_XM(nx) (TINY_LANES >> (64 - 16 * ((nx) < 4 ? (nx) : 4)))
-#define TINY_XM2(nx) (TINY_LANES >> (128 - 16 * (nx)))
+#define TINY_XM4(n) (TINY_LANES >> (64 - 16 * (n)))    /* the first n lanes, 1 <= n <= 4 */
+#define TINY_XM(nx) TINY_XM4((nx) < 4 ? (nx) : 4)
+#define TINY_XM2(nx) TINY_XM4((nx) - 4)
 
 /* The strip pairs and their shading are inlined into the strip loop of the plain
  * variants; the textured and write-counting ones call them (their speed matters less
@@ -608,7 +610,7 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
 RS_INLINE static void RS_FN(pair_tiny)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                        const rs_cvert *v3, int32_t px0, int32_t nx, int32_t py0, int32_t ny)
 {
-    const uint64_t xm = TINY_LANES >> (64 - 16 * nx);
+    const uint64_t xm = TINY_XM4(nx);
     PAIR_AREAS(ar1, ar2);
     if (bd->cull && (ar1 | ar2) >= 0) return;    /* both culled or of zero area */
     if (ar1 < 0 && ar2 < 0)
@@ -633,13 +635,13 @@ RS_INLINE static void RS_FN(pair_tiny)(band *bd, const rs_cvert *v0, const rs_cv
  * columns (tiny up to TINY_W: both groups of columns) or more than TINY_H rows or
  * TINY_W columns (each triangle through tri_raster), out of line so that the strip
  * loop's code has one group of columns only.  lo .. hi, xl .. xh: the joint box's rows
- * and columns of centres, unclipped. */
+ * and columns of centres, unclipped; lo <= hi (tri_pair returns when there is no row). */
 RS_NOINLINE static void RS_FN(pair_wide)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                          const rs_cvert *v3, int32_t lo, int32_t hi, int32_t xl, int32_t xh)
 {
     int32_t py0, py1;
-    /* no row or no column of centres: neither triangle's own (sub-)box holds one */
-    if (hi < lo || xh < xl) return;
+    /* no column of centres: neither triangle's own (sub-)box holds one */
+    if (xh < xl) return;
     if (hi - lo >= TINY_H || xh - xl >= TINY_W) {
         RS_FN(tri_raster)(bd, v0, v1, v2);
         RS_FN(tri_raster)(bd, v2, v1, v3);
@@ -707,6 +709,7 @@ RS_HOT static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert 
 #undef TINY_PIX
 #undef TINY_XM
 #undef TINY_XM2
+#undef TINY_XM4
 #undef TINY_LANES
 #undef PAIR_AREAS
 #undef RS_HOT

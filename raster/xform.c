@@ -49,15 +49,22 @@ static void chunk_rows(rs_frame *f)
     }
 }
 
-void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint32_t d, uint32_t rgb)
+/* The side bits of a screen position (sub-pixels) beyond the w x h frame's outermost
+ * pixel centres. */
+static uint32_t screen_oc(int32_t x, int32_t y, int32_t w, int32_t h)
 {
     uint32_t oc = 0;
     if (x < HALF) oc |= RS_OUT_LEFT;
     if (x > w * SUBONE - HALF) oc |= RS_OUT_RIGHT;
     if (y < HALF) oc |= RS_OUT_TOP;
     if (y > h * SUBONE - HALF) oc |= RS_OUT_BOTTOM;
+    return oc;
+}
+
+void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint32_t d, uint32_t rgb)
+{
     o->x = x; o->y = y; o->d = d;
-    o->c = (rgb & 0xffffffu) | (oc << 24);
+    o->c = (rgb & 0xffffffu) | (screen_oc(x, y, w, h) << 24);
     o->cp = rs_pack_rgb(rgb);
     o->u = o->v = 0;
 }
@@ -71,7 +78,6 @@ static RS_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cve
 {
     const cam_vp *vp = &f->vp;
     const int64_t f8 = f_q8(vp), g8 = (int64_t)RS_GUARD_PX << 8;
-    const int32_t xmax = f->w * SUBONE - HALF, ymax = f->h * SUBONE - HALF;
     int64_t c[3], lim, ax, ay;
     uint32_t oc = 0;
     o->cp = rs_pack_rgb(v->rgb);
@@ -96,10 +102,7 @@ static RS_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cve
         o->x = o->y = 0; o->d = 0;
     } else {
         project(vp, f8, c, f->w, f->h, o);
-        if (o->x < HALF) oc |= RS_OUT_LEFT;
-        if (o->x > xmax) oc |= RS_OUT_RIGHT;
-        if (o->y < HALF) oc |= RS_OUT_TOP;
-        if (o->y > ymax) oc |= RS_OUT_BOTTOM;
+        oc |= screen_oc(o->x, o->y, f->w, f->h);
     }
     o->c = (v->rgb & 0xffffffu) | (oc << 24);
 }

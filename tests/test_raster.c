@@ -138,6 +138,7 @@ static void strip_grid_case(int jitter, int32_t w, int32_t h, int32_t cols, int3
     const uint32_t nv = (uint32_t)((cols + 1) * (rows + 1));
     int32_t i, j, pass, bad;
     CHECK(idx && pr && cache);
+    if (!idx || !pr || !cache) exit(1);
     for (i = 0; i < (int32_t)nv; i++) rs_cvert_set(&cache[i], w, h, v[i].x, v[i].y, 1000, 0x123456u);
     for (pass = 0; pass < 3; pass++) {
         rs_frame f;
