@@ -53,8 +53,9 @@ SAN_TEST_BIN = $(TEST_SRC:tests/%.c=$(B)/san-tests/%)
 # (core/config.h BR_DIV64_NATIVE = 0), which must give the same bytes as `/`, and
 # with fx_inv40's branch for targets with a 32-bit divide (FX_TEST_IDIV stands in
 # for __ARM_FEATURE_IDIV; test_fx checks that branch against `/` for every a) and
-# raster.c's other 32-bit-target choices (RS_TEST_32BIT: narrow types, ctz64).
-DIV32_FLAGS = $(OPT) -g -DBR_DIV64_NATIVE=0 -DFX_TEST_IDIV -DRS_TEST_32BIT
+# raster.c's other 32-bit-target choices (RS_TEST_32BIT: narrow types, ctz64; RS_PREPASS=0:
+# the per-pair strip code of targets without vector registers, see raster.c).
+DIV32_FLAGS = $(OPT) -g -DBR_DIV64_NATIVE=0 -DFX_TEST_IDIV -DRS_TEST_32BIT -DRS_PREPASS=0
 DIV32_LIB_OBJ = $(LIB_SRC:%.c=$(B)/div32/%.o)
 DIV32_SUP_OBJ = $(SUPPORT_SRC:%.c=$(B)/div32/%.o)
 DIV32_TEST_BIN = $(B)/div32-tests/test_raster $(B)/div32-tests/test_raster_render $(B)/div32-tests/test_fx

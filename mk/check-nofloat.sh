@@ -13,9 +13,14 @@ esac
 for f in "$@"; do
   [ -f "$f" ] || continue
   if [ -n "$flag" ]; then
-    if ! $cc -std=c99 -O2 $flag -I. -c -o /dev/null "$f" 2>/tmp/nofloat.$$; then
-      echo "nofloat: $f uses floating point (or fails to build with $flag):"; head -5 /tmp/nofloat.$$; fail=1
-    fi
+    # raster.c twice: with and without its vector pre-pass (RS_PREPASS; GCC's generic
+    # vectors, lowered here to general registers)
+    for d in "" -DRS_PREPASS=0 -DRS_PREPASS=1; do
+      case "$f:$d" in */raster.c:*) ;; *:) ;; *) continue ;; esac
+      if ! $cc -std=c99 -O2 $flag $d -I. -c -o /dev/null "$f" 2>/tmp/nofloat.$$; then
+        echo "nofloat: $f $d uses floating point (or fails to build with $flag):"; head -5 /tmp/nofloat.$$; fail=1
+      fi
+    done
   fi
   bad=$(grep -nE '^[[:space:]]*#[[:space:]]*include[[:space:]]*<' "$f" | grep -vE '<(stdint|stddef|string|limits|assert)\.h>')
   if [ -n "$bad" ]; then echo "nofloat: $f includes a non-freestanding header: $bad"; fail=1; fi
@@ -24,6 +29,22 @@ for h in $(ls core/*.h raster/*.h 2>/dev/null); do
   bad=$(grep -nE '^[[:space:]]*#[[:space:]]*include[[:space:]]*<' "$h" | grep -vE '<(stdint|stddef|string|limits|assert)\.h>')
   if [ -n "$bad" ]; then echo "nofloat: $h includes a non-freestanding header: $bad"; fail=1; fi
 done
+# On x86-64 the normal build (SSE2 for raster.c's vector pre-pass) is also scanned:
+# no floating-point arithmetic, comparison, conversion or x87 instruction may appear
+# (the pre-pass uses integer SSE2 only: padd/psub/pmullw/pcmp/pmin/pmax/logic/moves).
+case "$arch" in
+  x86_64*)
+    if command -v objdump >/dev/null 2>&1; then
+      for f in "$@"; do
+        [ -f "$f" ] || continue
+        $cc -std=c99 -O2 -I. -c -o /tmp/nofloat.$$.o "$f" 2>/dev/null || continue
+        bad=$(objdump -d --no-show-raw-insn /tmp/nofloat.$$.o | awk -F'\t' 'NF >= 2 { split($2, a, " "); print a[1] }' \
+              | grep -E '^v?(add|sub|mul|div|sqrt|min|max|rcp|rsqrt|round|cmp|hadd|hsub|dp|fmadd|fmsub)[a-z0-9]*(ss|sd|ps|pd)$|^v?u?comis[sd]$|^v?cvt|^f[a-z]+$' | sort -u | tr '\n' ' ')
+        if [ -n "$bad" ]; then echo "nofloat: $f compiles to floating-point instructions: $bad"; fail=1; fi
+      done
+      rm -f /tmp/nofloat.$$.o
+    fi ;;
+esac
 rm -f /tmp/nofloat.$$
 if [ -z "$flag" ]; then echo "nofloat: no -mgeneral-regs-only for $arch; only the header check ran"; fi
 exit $fail

@@ -202,6 +202,146 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 
 #endif
 
+/* The strip pre-pass (pp_prepass below; used by the strip loop of raster_tmpl.h's draw):
+ * the set-up of a chunk's strip pairs, eight at a time in 16-bit vector lanes (GCC's
+ * generic vectors: SSE2 on x86-64, NEON on AArch64), into pp_soa; the strip loop then
+ * builds the coverage masks and shades from those values, one pair at a time.  The same values as
+ * the plain per-pair code (tri_pair), so the same pixels; targets without such vectors
+ * (32-bit ARM without NEON, Cortex-M, other compilers) keep the per-pair code.
+ * RS_PREPASS=0 or 1 overrides (check-nofloat.sh compiles the pre-pass with
+ * -mgeneral-regs-only, where GCC lowers the vectors to integer registers). */
+#ifndef RS_PREPASS
+#if defined(__GNUC__) && (defined(__SSE2__) || defined(__ARM_NEON))
+#define RS_PREPASS 1
+#else
+#define RS_PREPASS 0
+#endif
+#endif
+#if RS_PREPASS
+enum { PK_NONE = 0, PK_QUAD, PK_ONE1, PK_ONE2, PK_WIDE, PK_MIXED, PK_SLOW, PK_NONE2 };
+#define PP_STEPS (RS_CHUNK / 2)
+#define PP_IN (PP_STEPS + 16)   /* vertex slots 0 .. n rounded up to 8 (n <= PP_STEPS steps); a multiple of 8 */
+#define PP_OFF 32768            /* coordinates are taken as x - PP_OFF: [-32760, 32760] on screen */
+#define PP_ROFF (PP_OFF >> SUB) /* the same in rows and columns */
+#define PP_XM(nx) ((uint64_t)0x8000800080008000u >> (64 - 16 * (nx)))   /* lanes of nx <= 4 columns */
+typedef int16_t pp_v8 __attribute__((vector_size(16)));
+typedef uint16_t pp_v8u __attribute__((vector_size(16)));
+typedef int16_t pp_v8un __attribute__((vector_size(16), aligned(2)));
+/* A chunk's steps: vertices at even / odd strip positions (step j: v0 = even j, v1 =
+ * odd j, v2 = even j+1, v3 = odd j+1), then the pre-pass's results per step (the
+ * fields after kind as pp_prepass describes). */
+typedef struct pp_soa {
+    int16_t xe[PP_IN], xo[PP_IN], ye[PP_IN], yo[PP_IN], ce[PP_IN], co[PP_IN];
+    int16_t kind[PP_STEPS], px0[PP_STEPS], py0[PP_STEPS], nx[PP_STEPS], ny[PP_STEPS];
+    int16_t a1[PP_STEPS], a2[PP_STEPS], f01[PP_STEPS], f20[PP_STEPS], f13[PP_STEPS];
+    int16_t A01[PP_STEPS], A20[PP_STEPS], A13[PP_STEPS], B01[PP_STEPS], B20[PP_STEPS], B13[PP_STEPS];
+    int16_t S1[PP_STEPS], S2[PP_STEPS];
+} pp_soa;
+#define PPL(A, K) (*(const pp_v8un *)(const void *)&(A)[K])
+#define PPS(A, K, V) (*(pp_v8un *)(void *)&(A)[K] = (V))
+/* wrapping arithmetic (unsigned lanes); comparisons and >> on the signed ones */
+#define VU(x) ((pp_v8u)(x))
+#define VI(x) ((pp_v8)(x))
+#define VADD(a, b) VI(VU(a) + VU(b))
+#define VSUB(a, b) VI(VU(a) - VU(b))
+#define VMUL(a, b) VI(VU(a) * VU(b))
+#define VSEL(m, a, b) (((a) & (m)) | ((b) & ~(m)))
+/* macros, not functions: a vector argument or result needs vector registers, which
+ * the no-float check's -mgeneral-regs-only build does not have */
+#if defined(__SSE2__) && !defined(__clang__)     /* GCC's names for pminsw / pmaxsw */
+#define PP_MIN(a, b) __builtin_ia32_pminsw128((a), (b))
+#define PP_MAX(a, b) __builtin_ia32_pmaxsw128((a), (b))
+#else
+#define PP_MIN(a, b) VSEL((a) < (b), (a), (b))
+#define PP_MAX(a, b) VSEL((a) > (b), (a), (b))
+#endif
+
+/* The set-up of strip steps 0 .. n-1 of a chunk, eight at a time in 16-bit lanes (see
+ * pp_soa above; the vertices' low 16 bits in q->xe .. q->co): for each step what
+ * tri_pair, pair_tiny and tri_quad (raster_tmpl.h) compute before the coverage masks,
+ * with the same values, so the pixels are theirs:
+ * - kind: PK_SLOW (an outcode bit: the main pass does what the plain loop does), PK_NONE
+ *   (no row of centres, an empty box in the band, both culled), PK_WIDE (more than
+ *   TINY_H rows or four columns: pair_wide with lo, hi, xl, xh in py0, ny, px0, nx),
+ *   PK_MIXED (orientations differ or an area is zero: pair_tiny), PK_ONE1 / PK_ONE2 /
+ *   PK_NONE2 (one candidate, held by T1, by T2 or by neither), PK_QUAD (tri_quad);
+ * - for the quads (and one-candidate boxes) the box, the orientation-signed areas, biased
+ *   edge values at the first candidate, the edges' steps and S1, S2, as tri_quad has them.
+ * Every value is computed modulo 2^16.  For the pairs that use them it is exact: all four
+ * vertices are on screen, so a coordinate minus PP_OFF is in [-32760, 32760] (w, h <=
+ * 4096) and the box bounds lo, hi, xl, xh (and their differences) are exact; a box of at
+ * most 4 x TINY_H centres has every vertex within 80 sub-pixels of its first candidate
+ * (xmax - xmin < 16 (xh - xl + 1) + 16), so |X|, |Y| < 80, the edge values and doubled
+ * areas are below 12,800 in magnitude and the biased ones and S1, S2 within 3 of them.
+ * Steps whose values overflow (wide boxes, vertices off screen) are classified from
+ * exact quantities only (outcodes, lo, hi, xl, xh) before any of the rest is read. */
+static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
+{
+    const pp_v8 zero = { 0, 0, 0, 0, 0, 0, 0, 0 }, one = zero + 1;
+    const pp_v8 by0 = zero + (int16_t)(bd->y0 - PP_ROFF), by1 = zero + (int16_t)(bd->y1 - 1 - PP_ROFF);
+    const pp_v8 cullm = zero - (int16_t)(bd->cull != 0);
+    int32_t k;
+    for (k = 0; k < n; k += 8) {
+        /* x - PP_OFF modulo 2^16 is the low 16 bits with the top one flipped */
+        const pp_v8 fl = zero + (int16_t)-PP_OFF;
+        const pp_v8 x0 = PPL(q->xe, k) ^ fl, x1 = PPL(q->xo, k) ^ fl, x2 = PPL(q->xe, k + 1) ^ fl, x3 = PPL(q->xo, k + 1) ^ fl;
+        const pp_v8 y0 = PPL(q->ye, k) ^ fl, y1 = PPL(q->yo, k) ^ fl, y2 = PPL(q->ye, k + 1) ^ fl, y3 = PPL(q->yo, k + 1) ^ fl;
+        const pp_v8 slow = ((PPL(q->ce, k) | PPL(q->co, k) | PPL(q->ce, k + 1) | PPL(q->co, k + 1))
+                            & (int16_t)((SLOW | REJECT) >> 24)) != 0;
+        const pp_v8 ymin = PP_MIN(PP_MIN(y0, y1), PP_MIN(y2, y3)), ymax = PP_MAX(PP_MAX(y0, y1), PP_MAX(y2, y3));
+        const pp_v8 xmin = PP_MIN(PP_MIN(x0, x1), PP_MIN(x2, x3)), xmax = PP_MAX(PP_MAX(x0, x1), PP_MAX(x2, x3));
+        const pp_v8 lo = VADD(ymin, zero + (HALF - 1)) >> SUB, hi = VSUB(ymax, zero + HALF) >> SUB;
+        const pp_v8 xl = VADD(xmin, zero + (HALF - 1)) >> SUB, xh = VSUB(xmax, zero + HALF) >> SUB;
+        const pp_v8 empty = hi < lo, wide = ((hi - lo) > (TINY_H - 1)) | ((xh - xl) > 3);
+        const pp_v8 py0 = PP_MAX(lo, by0), py1 = PP_MIN(hi, by1);
+        const pp_v8 bempty = (py0 > py1) | (xl > xh);
+        const pp_v8 ox = VI((VU(xl) << SUB) + HALF), oy = VI((VU(py0) << SUB) + HALF);
+        const pp_v8 X0 = VSUB(x0, ox), X1 = VSUB(x1, ox), X2 = VSUB(x2, ox), X3 = VSUB(x3, ox);
+        const pp_v8 Y0 = VSUB(y0, oy), Y1 = VSUB(y1, oy), Y2 = VSUB(y2, oy), Y3 = VSUB(y3, oy);
+        /* modulo 2^16; exact for the pairs that use them (tiny boxes: |e| < 2^15) */
+        const pp_v8 e01 = VSUB(VMUL(X0, Y1), VMUL(Y0, X1)), e12 = VSUB(VMUL(X1, Y2), VMUL(Y1, X2));
+        const pp_v8 e20 = VSUB(VMUL(X2, Y0), VMUL(Y2, X0)), e13 = VSUB(VMUL(X1, Y3), VMUL(Y1, X3));
+        const pp_v8 e32 = VSUB(VMUL(X3, Y2), VMUL(Y3, X2));
+        const pp_v8 ar1 = VADD(VADD(e01, e12), e20), ar2 = VSUB(VADD(e13, e32), e12);
+        const pp_v8 bneg = (ar1 < 0) & (ar2 < 0), bpos = (ar1 > 0) & (ar2 > 0) & ~cullm;
+        const pp_v8 culled = cullm & ((ar1 | ar2) >= 0);
+        const pp_v8 m = bneg;
+#define SG(x) VSUB((x) ^ m, m)
+        /* top-left bias masks (-1 for a biased edge): A = SG(yP - yQ) < 0, or A == 0 and
+         * B = SG(xQ - xP) <= 0 */
+#define QB(P, Q) ((SG(VSUB(y##P, y##Q)) < 0) | ((SG(VSUB(y##P, y##Q)) == 0) & (SG(VSUB(x##Q, x##P)) <= 0)))
+        const pp_v8 b01 = QB(0, 1), b12 = QB(1, 2), b20 = QB(2, 0), b13 = QB(1, 3), b32 = QB(3, 2);
+        const pp_v8 f01 = VADD(SG(e01), b01), f20 = VADD(SG(e20), b20), f13 = VADD(SG(e13), b13);
+        const pp_v8 fD = VADD(SG(e12), b12), f32 = VADD(SG(e32), b32), fT = VSUB(zero - one, fD);
+        const pp_v8 one1 = (f01 | f20 | fD) >= 0, one2 = ~one1 & ((f13 | f32 | fT) >= 0);
+        const pp_v8 isone = (xl == xh) & (py0 == py1), o2 = isone & ~one1;
+        pp_v8 kind = zero + PK_QUAD;
+        kind = VSEL(isone, VSEL(one1, zero + PK_ONE1, VSEL(one2, zero + PK_ONE2, zero + PK_NONE2)), kind);
+        kind = VSEL(~(bneg | bpos), zero + PK_MIXED, kind);
+        kind = VSEL(culled | bempty, zero + PK_NONE, kind);
+        kind = VSEL(wide, zero + PK_WIDE, kind);
+        kind = VSEL(empty, zero + PK_NONE, kind);
+        kind = VSEL(slow, zero + PK_SLOW, kind);
+        PPS(q->kind, k, kind);
+        PPS(q->px0, k, xl + PP_ROFF);
+        PPS(q->py0, k, VSEL(wide, lo, py0) + PP_ROFF);
+        PPS(q->nx, k, VSEL(wide, xh + PP_ROFF, xh - xl + 1));
+        PPS(q->ny, k, VSEL(wide, hi + PP_ROFF, py1 - py0 + 1));
+        PPS(q->a1, k, VSEL(o2, SG(ar2), SG(ar1)));
+        PPS(q->a2, k, SG(ar2));
+        PPS(q->f01, k, VSEL(o2, fT, f01));
+        PPS(q->f20, k, VSEL(o2, f32, f20));
+        PPS(q->f13, k, f13);
+        PPS(q->A01, k, SG(VSUB(y0, y1))); PPS(q->A20, k, SG(VSUB(y2, y0))); PPS(q->A13, k, SG(VSUB(y1, y3)));
+        PPS(q->B01, k, SG(VSUB(x1, x0))); PPS(q->B20, k, SG(VSUB(x0, x2))); PPS(q->B13, k, SG(VSUB(x3, x1)));
+        PPS(q->S1, k, VADD(VADD(VADD(SG(ar1), b01), b12), b20));
+        PPS(q->S2, k, VADD(VSUB(VADD(VSUB(SG(ar2), one), b13), b12), b32));
+#undef SG
+#undef QB
+    }
+}
+#endif
+
 #define PACK24_888(x) (x)
 #define PACK24_565(x) ((uint16_t)((((x) >> 8) & 0xf800u) | (((x) >> 5) & 0x07e0u) | (((x) >> 3) & 0x001fu)))
 

@@ -706,6 +706,25 @@ RS_HOT static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert 
     if (py0 > py1 || px0 > px1) return;
     RS_FN(pair_tiny)(bd, v0, v1, v2, v3, px0, px1 - px0 + 1, py0, py1 - py0 + 1);
 }
+
+#if RS_PREPASS
+/* The per-pair code, out of line, for the chunks the pre-pass leaves (band edges). */
+RS_NOINLINE static void RS_FN(pair_old)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
+                                        const rs_cvert *v3)
+{
+    RS_FN(tri_pair)(bd, v0, v1, v2, v3);
+}
+#define RS_PAIR_OLD RS_FN(pair_old)
+
+/* The pre-pass's mixed-orientation pairs (rare), as tri_pair draws them. */
+RS_NOINLINE static void RS_FN(pair_mixed)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
+                                          const rs_cvert *v3, int32_t px0, int32_t nx, int32_t py0, int32_t ny)
+{
+    RS_FN(pair_tiny)(bd, v0, v1, v2, v3, px0, nx, py0, ny);
+}
+#else
+#define RS_PAIR_OLD RS_FN(tri_pair)
+#endif
 #undef TINY_PIX
 #undef TINY_XM
 #undef TINY_XM2
@@ -748,6 +767,73 @@ static void RS_FN(draw)(band *bd)
                  * chunks start at even t0; sp points at the step's two new indices */
                 const uint32_t *sp = s + t0 + 2;
                 const uint32_t *const se = s + t1 + 1;     /* steps while sp < se */
+#if RS_PREPASS
+                /* A chunk inside the band (or any chunk of a whole-frame band): its steps
+                 * set up by the pre-pass (the vertices gathered first: the low 16 bits of
+                 * x and y, the outcode), then masks and shading here.  A chunk that
+                 * crosses the band's edges (bands of a few rows) has most of its steps
+                 * outside, which the per-pair code below rejects for less. */
+                if ((bd->y0 == 0 && bd->y1 == f->h) || (ch && ch[0] >= bd->y0 && ch[1] < bd->y1)) {
+                pp_soa q;
+                int32_t n = (int32_t)((se - sp + 1) / 2), kk;
+                {
+                    const uint32_t *ip = s + t0;
+                    for (kk = 0; kk <= n; kk++, ip += 2) {
+                        const rs_cvert *a0 = &cache[ip[0]], *a1 = &cache[ip[1]];
+                        q.xe[kk] = (int16_t)a0->x; q.ye[kk] = (int16_t)a0->y; q.ce[kk] = (int16_t)(a0->c >> 24);
+                        q.xo[kk] = (int16_t)a1->x; q.yo[kk] = (int16_t)a1->y; q.co[kk] = (int16_t)(a1->c >> 24);
+                    }
+                    /* up to the pre-pass's last group of eight (its lanes past n are ignored) */
+                    for (; kk <= ((n + 7) & ~7); kk++) q.xe[kk] = q.xo[kk] = q.ye[kk] = q.yo[kk] = q.ce[kk] = q.co[kk] = 0;
+                }
+                pp_prepass(bd, &q, n);
+                for (kk = 0; sp < se; sp += 2, kk++) {
+                    const rs_cvert *v2 = &cache[sp[0]], *v3 = &cache[sp[1]];
+                    const int32_t kind = q.kind[kk];
+                    if (RS_LIKELY(kind == PK_QUAD)) {
+                        uint64_t M1, M2;
+                        const uint64_t ones = bd->ones, st = bd->steps16, o16 = bd->ones16;
+                        const uint64_t P01 = (uint64_t)(int64_t)(q.f01[kk] + 0x8000) * ones + (uint64_t)(int64_t)q.A01[kk] * st;
+                        const uint64_t P20 = (uint64_t)(int64_t)(q.f20[kk] + 0x8000) * ones + (uint64_t)(int64_t)q.A20[kk] * st;
+                        const uint64_t P13 = (uint64_t)(int64_t)(q.f13[kk] + 0x8000) * ones + (uint64_t)(int64_t)q.A13[kk] * st;
+                        const uint64_t K1 = (uint64_t)(int64_t)(q.S1[kk] + 3 * 0x8000) * ones;
+                        const uint64_t K2 = (uint64_t)(int64_t)(q.S2[kk] + 0x8001) * ones;
+                        const uint64_t s01 = (uint64_t)(int64_t)q.B01[kk] * o16, s20 = (uint64_t)(int64_t)q.B20[kk] * o16;
+                        const uint64_t s13 = (uint64_t)(int64_t)q.B13[kk] * o16;
+                        const int32_t py0 = q.py0[kk], px0 = q.px0[kk];
+                        bd->tris += 2;
+                        RS_FN(quad_masks)(P01, P20, P13, K1, K2, s01, s20, s13, PP_XM(q.nx[kk]), q.ny[kk], &M1, &M2);
+                        if (M1)
+                            RS_FN(tiny_shade)(bd, v0, v1, v2, q.a1[kk], M1, P01, s01, P20, s20, py0, px0, 0, 0, 0);
+                        if (M2) {
+                            const uint64_t PD = K1 - P01 - P20;
+                            RS_FN(tiny_shade)(bd, v2, v1, v3, q.a2[kk], M2, ~PD, s01 + s20, K2 + PD - P13,
+                                              (uint64_t)0 - s01 - s20 - s13, py0, px0, 0, 0, 0);
+                        }
+                    } else if (kind == PK_NONE2) {
+                        bd->tris += 2;
+                    } else if (kind == PK_ONE1) {
+                        bd->tris += 2;
+                        RS_FN(tiny_pixel)(bd, v0, v1, v2, q.a1[kk], q.f01[kk], q.f20[kk], q.py0[kk], q.px0[kk]);
+                    } else if (kind == PK_ONE2) {
+                        bd->tris += 2;
+                        RS_FN(tiny_pixel)(bd, v2, v1, v3, q.a1[kk], q.f01[kk], q.f20[kk], q.py0[kk], q.px0[kk]);
+                    } else if (kind == PK_WIDE) {
+                        RS_FN(pair_wide)(bd, v0, v1, v2, v3, q.py0[kk], q.ny[kk], q.px0[kk], q.nx[kk]);
+                    } else if (kind == PK_MIXED) {
+                        RS_FN(pair_mixed)(bd, v0, v1, v2, v3, q.px0[kk], q.nx[kk], q.py0[kk], q.ny[kk]);
+                    } else if (kind == PK_SLOW) {
+                        const uint32_t c12 = v1->c & v2->c;
+                        if (!((c12 & v0->c & REJECT) && (c12 & v3->c & REJECT))) {
+                            STRIP_TRI(v0, v1, v2, sp[-2], sp[-1], sp[0]);
+                            STRIP_TRI(v2, v1, v3, sp[0], sp[-1], sp[1]);
+                        }
+                    }
+                    v0 = v2; v1 = v3;
+                }
+                } else
+#endif
+                {
                 uint32_t c01 = v0->c | v1->c;      /* carried: the previous step's c23 */
                 for (; sp < se; sp += 2) {
                     const rs_cvert *v2 = &cache[sp[0]], *v3;
@@ -757,7 +843,7 @@ static void RS_FN(draw)(band *bd)
                     if (RS_LIKELY(!((c01 | c23) & (SLOW | REJECT)))) {
                         /* all four vertices on screen (the common case): no further outcode
                          * tests, no clamping to the screen's columns */
-                        RS_FN(tri_pair)(bd, v0, v1, v2, v3);
+                        RS_PAIR_OLD(bd, v0, v1, v2, v3);
                         v0 = v2; v1 = v3; c01 = c23;
                         continue;
                     }
@@ -774,6 +860,7 @@ static void RS_FN(draw)(band *bd)
                     v3 = &cache[sp[1]];
                     STRIP_TRI(v2, v1, v3, sp[0], sp[-1], sp[1]);
                     v0 = v2; v1 = v3;
+                }
                 }
                 if (sp < s + t1 + 2) {
                     const rs_cvert *v2 = &cache[sp[0]];
@@ -793,3 +880,4 @@ static void RS_FN(draw)(band *bd)
     }
 }
 #undef RS_STRIP_TRI
+#undef RS_PAIR_OLD
