@@ -708,22 +708,12 @@ RS_HOT static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert 
 }
 
 #if RS_PREPASS
-/* The per-pair code, out of line, for the chunks the pre-pass leaves (band edges). */
-RS_NOINLINE static void RS_FN(pair_old)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
-                                        const rs_cvert *v3)
-{
-    RS_FN(tri_pair)(bd, v0, v1, v2, v3);
-}
-#define RS_PAIR_OLD RS_FN(pair_old)
-
 /* The pre-pass's mixed-orientation pairs (rare), as tri_pair draws them. */
 RS_NOINLINE static void RS_FN(pair_mixed)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                           const rs_cvert *v3, int32_t px0, int32_t nx, int32_t py0, int32_t ny)
 {
     RS_FN(pair_tiny)(bd, v0, v1, v2, v3, px0, nx, py0, ny);
 }
-#else
-#define RS_PAIR_OLD RS_FN(tri_pair)
 #endif
 #undef TINY_PIX
 #undef TINY_XM
@@ -843,7 +833,7 @@ static void RS_FN(draw)(band *bd)
                     if (RS_LIKELY(!((c01 | c23) & (SLOW | REJECT)))) {
                         /* all four vertices on screen (the common case): no further outcode
                          * tests, no clamping to the screen's columns */
-                        RS_PAIR_OLD(bd, v0, v1, v2, v3);
+                        RS_FN(tri_pair)(bd, v0, v1, v2, v3);
                         v0 = v2; v1 = v3; c01 = c23;
                         continue;
                     }
@@ -880,4 +870,3 @@ static void RS_FN(draw)(band *bd)
     }
 }
 #undef RS_STRIP_TRI
-#undef RS_PAIR_OLD
