@@ -218,7 +218,7 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 #endif
 #endif
 #if RS_PREPASS
-enum { PK_NONE = 0, PK_QUAD, PK_ONE1, PK_ONE2, PK_WIDE, PK_MIXED, PK_SLOW, PK_NONE2 };
+enum { PK_NONE = 0, PK_QUAD, PK_ONE1, PK_ONE2, PK_WIDE, PK_MIXED, PK_SLOW, PK_NONE2, PK_QUADW };
 #define PP_STEPS (RS_CHUNK / 2)
 #define PP_IN (PP_STEPS + 16)   /* vertex slots 0 .. n rounded up to 8 (n <= PP_STEPS steps); a multiple of 8 */
 #define PP_OFF 32768            /* coordinates are taken as x - PP_OFF: [-32760, 32760] on screen */
@@ -292,7 +292,10 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
         const pp_v8 xmin = PP_MIN(PP_MIN(x0, x1), PP_MIN(x2, x3)), xmax = PP_MAX(PP_MAX(x0, x1), PP_MAX(x2, x3));
         const pp_v8 lo = VADD(ymin, zero + (HALF - 1)) >> SUB, hi = VSUB(ymax, zero + HALF) >> SUB;
         const pp_v8 xl = VADD(xmin, zero + (HALF - 1)) >> SUB, xh = VSUB(xmax, zero + HALF) >> SUB;
-        const pp_v8 empty = hi < lo, wide = ((hi - lo) > (TINY_H - 1)) | ((xh - xl) > 3);
+        /* boxes of 5-8 columns: quads with a second group of columns (pair_wide's), or
+         * pair_wide itself for mixed orientations; larger ones pair_wide */
+        const pp_v8 empty = hi < lo, wide = ((hi - lo) > (TINY_H - 1)) | ((xh - xl) > (TINY_W - 1));
+        const pp_v8 two = (xh - xl) > 3;
         const pp_v8 py0 = PP_MAX(lo, by0), py1 = PP_MIN(hi, by1);
         const pp_v8 bempty = (py0 > py1) | (xl > xh);
         const pp_v8 ox = VI((VU(xl) << SUB) + HALF), oy = VI((VU(py0) << SUB) + HALF);
@@ -317,16 +320,20 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
         const pp_v8 isone = (xl == xh) & (py0 == py1), o2 = isone & ~one1;
         pp_v8 kind = zero + PK_QUAD;
         kind = VSEL(isone, VSEL(one1, zero + PK_ONE1, VSEL(one2, zero + PK_ONE2, zero + PK_NONE2)), kind);
-        kind = VSEL(~(bneg | bpos), zero + PK_MIXED, kind);
+        kind = VSEL(two, zero + PK_QUADW, kind);
+        kind = VSEL(~(bneg | bpos), VSEL(two, zero + PK_WIDE, zero + PK_MIXED), kind);
         kind = VSEL(culled | bempty, zero + PK_NONE, kind);
         kind = VSEL(wide, zero + PK_WIDE, kind);
         kind = VSEL(empty, zero + PK_NONE, kind);
         kind = VSEL(slow, zero + PK_SLOW, kind);
         PPS(q->kind, k, kind);
         PPS(q->px0, k, xl + PP_ROFF);
-        PPS(q->py0, k, VSEL(wide, lo, py0) + PP_ROFF);
-        PPS(q->nx, k, VSEL(wide, xh + PP_ROFF, xh - xl + 1));
-        PPS(q->ny, k, VSEL(wide, hi + PP_ROFF, py1 - py0 + 1));
+        {
+            const pp_v8 wk = kind == PK_WIDE;      /* pair_wide: lo, hi, xl, xh */
+            PPS(q->py0, k, VSEL(wk, lo, py0) + PP_ROFF);
+            PPS(q->nx, k, VSEL(wk, xh + PP_ROFF, xh - xl + 1));
+            PPS(q->ny, k, VSEL(wk, hi + PP_ROFF, py1 - py0 + 1));
+        }
         PPS(q->a1, k, VSEL(o2, SG(ar2), SG(ar1)));
         PPS(q->a2, k, SG(ar2));
         PPS(q->f01, k, VSEL(o2, fT, f01));

@@ -503,6 +503,53 @@ RS_INLINE static void RS_FN(quad_masks)(uint64_t P01, uint64_t P20, uint64_t P13
     *m1 = M1; *m2 = M2;
 }
 
+/* The coverage and shading of a strip quad from its edge set-up (tri_quad's, or the vector
+ * pre-pass's, raster.c): a1, a2 the two triangles' doubled areas (> 0), f01, f20, f13 the
+ * biased values of three outer edges at the first candidate (px0, py0), A, B their steps
+ * per sub-pixel across and down, S1, S2 the areas minus the biases; wide: the box may have
+ * a second group of columns (nx up to TINY_W). */
+RS_INLINE static void RS_FN(quad_edges)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
+                                        const rs_cvert *v3, int32_t px0, int32_t nx, int32_t py0, int32_t ny,
+                                        uint64_t xm, int32_t a1, int32_t a2, int32_t f01, int32_t f20, int32_t f13,
+                                        int32_t A01, int32_t A20, int32_t A13, int32_t B01, int32_t B20, int32_t B13,
+                                        int32_t S1, int32_t S2, const int wide)
+{
+    const uint64_t ones = bd->ones, st = bd->steps16;
+    /* lanes as in tri_tiny: e + 2^15 of candidates px0 .. px0+3; PD = T1's diagonal,
+     * P32 = T2's third edge = S2 - (-1 - eD) - e13, i.e. K2 + PD - P13 with K2 = S2 + 0x8001 */
+    uint64_t P01 = (uint64_t)(int64_t)(f01 + 0x8000) * ones + (uint64_t)(int64_t)A01 * st;
+    uint64_t P20 = (uint64_t)(int64_t)(f20 + 0x8000) * ones + (uint64_t)(int64_t)A20 * st;
+    uint64_t P13 = (uint64_t)(int64_t)(f13 + 0x8000) * ones + (uint64_t)(int64_t)A13 * st;
+    const uint64_t K1 = (uint64_t)(int64_t)(S1 + 3 * 0x8000) * ones;
+    const uint64_t K2 = (uint64_t)(int64_t)(S2 + 0x8001) * ones;
+    uint64_t s01 = 0, s20 = 0, s13 = 0, M1, M2;
+    if (ny > 1) {
+        const uint64_t o16 = bd->ones16;
+        s01 = (uint64_t)(int64_t)B01 * o16;
+        s20 = (uint64_t)(int64_t)B20 * o16;
+        s13 = (uint64_t)(int64_t)B13 * o16;
+    }
+    uint64_t M1w = 0, M2w = 0, P01w = 0, P20w = 0, P13w = 0;
+    RS_FN(quad_masks)(P01, P20, P13, K1, K2, s01, s20, s13, xm, ny, &M1, &M2);
+    if (wide && nx > 4) {
+        /* the second group: four pixels (64 A sub-pixels) to the right */
+        P01w = P01 + (uint64_t)(int64_t)(A01 * 64) * ones;
+        P20w = P20 + (uint64_t)(int64_t)(A20 * 64) * ones;
+        P13w = P13 + (uint64_t)(int64_t)(A13 * 64) * ones;
+        RS_FN(quad_masks)(P01w, P20w, P13w, K1, K2, s01, s20, s13, TINY_XM2(nx), ny,
+                          &M1w, &M2w);
+    }
+    /* T1: base v0, weight of v1 from the edge v2-v0 (P20), of v2 from v0-v1 (P01);
+     * T2: base v2, weight of v1 from the edge v3-v2 (P32), of v3 from the diagonal (~PD) */
+    if (M1 | M1w)
+        RS_FN(tiny_shade)(bd, v0, v1, v2, a1, M1, P01, s01, P20, s20, py0, px0, M1w, P01w, P20w);
+    if (M2 | M2w) {
+        const uint64_t PD = K1 - P01 - P20, PDw = K1 - P01w - P20w;
+        RS_FN(tiny_shade)(bd, v2, v1, v3, a2, M2, ~PD, s01 + s20, K2 + PD - P13,
+                          (uint64_t)0 - s01 - s20 - s13, py0, px0, M2w, ~PDw, K2 + PDw - P13w);
+    }
+}
+
 /* A strip pair T1 = (v0, v1, v2), T2 = (v2, v1, v3) whose two triangles have the same
  * orientation (neg = 1: both front faces, area < 0 as computed) and a tiny joint box
  * (px0, py0, nx x ny candidates, xm the first group's lane mask): a quad split by the
@@ -559,40 +606,8 @@ RS_INLINE static void RS_FN(tri_quad)(band *bd, const rs_cvert *v0, const rs_cve
         /* S = area2 - the three biases; T2's diagonal bias is 1 - b12 */
         const int32_t S1 = SG(ar1) - b01 - b12 - b20, S2 = SG(ar2) - 1 + b12 - b13 - b32;
         const int32_t f01 = SG(e01) - b01, f20 = SG(e20) - b20, f13 = SG(e13) - b13;
-        const uint64_t ones = bd->ones, st = bd->steps16;
-        /* lanes as in tri_tiny: e + 2^15 of candidates px0 .. px0+3; PD = T1's diagonal,
-         * P32 = T2's third edge = S2 - (-1 - eD) - e13, i.e. K2 + PD - P13 with K2 = S2 + 0x8001 */
-        uint64_t P01 = (uint64_t)(int64_t)(f01 + 0x8000) * ones + (uint64_t)(int64_t)A01 * st;
-        uint64_t P20 = (uint64_t)(int64_t)(f20 + 0x8000) * ones + (uint64_t)(int64_t)A20 * st;
-        uint64_t P13 = (uint64_t)(int64_t)(f13 + 0x8000) * ones + (uint64_t)(int64_t)A13 * st;
-        const uint64_t K1 = (uint64_t)(int64_t)(S1 + 3 * 0x8000) * ones;
-        const uint64_t K2 = (uint64_t)(int64_t)(S2 + 0x8001) * ones;
-        uint64_t s01 = 0, s20 = 0, s13 = 0, M1, M2;
-        if (ny > 1) {
-            const uint64_t o16 = bd->ones16;
-            s01 = (uint64_t)(int64_t)B01 * o16;
-            s20 = (uint64_t)(int64_t)B20 * o16;
-            s13 = (uint64_t)(int64_t)B13 * o16;
-        }
-        uint64_t M1w = 0, M2w = 0, P01w = 0, P20w = 0, P13w = 0;
-        RS_FN(quad_masks)(P01, P20, P13, K1, K2, s01, s20, s13, xm, ny, &M1, &M2);
-        if (wide && nx > 4) {
-            /* the second group: four pixels (64 A sub-pixels) to the right */
-            P01w = P01 + (uint64_t)(int64_t)(A01 * 64) * ones;
-            P20w = P20 + (uint64_t)(int64_t)(A20 * 64) * ones;
-            P13w = P13 + (uint64_t)(int64_t)(A13 * 64) * ones;
-            RS_FN(quad_masks)(P01w, P20w, P13w, K1, K2, s01, s20, s13, TINY_XM2(nx), ny,
-                              &M1w, &M2w);
-        }
-        /* T1: base v0, weight of v1 from the edge v2-v0 (P20), of v2 from v0-v1 (P01);
-         * T2: base v2, weight of v1 from the edge v3-v2 (P32), of v3 from the diagonal (~PD) */
-        if (M1 | M1w)
-            RS_FN(tiny_shade)(bd, v0, v1, v2, SG(ar1), M1, P01, s01, P20, s20, py0, px0, M1w, P01w, P20w);
-        if (M2 | M2w) {
-            const uint64_t PD = K1 - P01 - P20, PDw = K1 - P01w - P20w;
-            RS_FN(tiny_shade)(bd, v2, v1, v3, SG(ar2), M2, ~PD, s01 + s20, K2 + PD - P13,
-                              (uint64_t)0 - s01 - s20 - s13, py0, px0, M2w, ~PDw, K2 + PDw - P13w);
-        }
+        RS_FN(quad_edges)(bd, v0, v1, v2, v3, px0, nx, py0, ny, xm, SG(ar1), SG(ar2), f01, f20, f13,
+                          A01, A20, A13, B01, B20, B13, S1, S2, wide);
     }
 #undef SG
 #undef QBIAS
@@ -781,25 +796,15 @@ static void RS_FN(draw)(band *bd)
                     const rs_cvert *v2 = &cache[sp[0]], *v3 = &cache[sp[1]];
                     const int32_t kind = q.kind[kk];
                     if (RS_LIKELY(kind == PK_QUAD)) {
-                        uint64_t M1, M2;
-                        const uint64_t ones = bd->ones, st = bd->steps16, o16 = bd->ones16;
-                        const uint64_t P01 = (uint64_t)(int64_t)(q.f01[kk] + 0x8000) * ones + (uint64_t)(int64_t)q.A01[kk] * st;
-                        const uint64_t P20 = (uint64_t)(int64_t)(q.f20[kk] + 0x8000) * ones + (uint64_t)(int64_t)q.A20[kk] * st;
-                        const uint64_t P13 = (uint64_t)(int64_t)(q.f13[kk] + 0x8000) * ones + (uint64_t)(int64_t)q.A13[kk] * st;
-                        const uint64_t K1 = (uint64_t)(int64_t)(q.S1[kk] + 3 * 0x8000) * ones;
-                        const uint64_t K2 = (uint64_t)(int64_t)(q.S2[kk] + 0x8001) * ones;
-                        const uint64_t s01 = (uint64_t)(int64_t)q.B01[kk] * o16, s20 = (uint64_t)(int64_t)q.B20[kk] * o16;
-                        const uint64_t s13 = (uint64_t)(int64_t)q.B13[kk] * o16;
-                        const int32_t py0 = q.py0[kk], px0 = q.px0[kk];
                         bd->tris += 2;
-                        RS_FN(quad_masks)(P01, P20, P13, K1, K2, s01, s20, s13, PP_XM(q.nx[kk]), q.ny[kk], &M1, &M2);
-                        if (M1)
-                            RS_FN(tiny_shade)(bd, v0, v1, v2, q.a1[kk], M1, P01, s01, P20, s20, py0, px0, 0, 0, 0);
-                        if (M2) {
-                            const uint64_t PD = K1 - P01 - P20;
-                            RS_FN(tiny_shade)(bd, v2, v1, v3, q.a2[kk], M2, ~PD, s01 + s20, K2 + PD - P13,
-                                              (uint64_t)0 - s01 - s20 - s13, py0, px0, 0, 0, 0);
-                        }
+                        RS_FN(quad_edges)(bd, v0, v1, v2, v3, q.px0[kk], q.nx[kk], q.py0[kk], q.ny[kk], PP_XM(q.nx[kk]),
+                                          q.a1[kk], q.a2[kk], q.f01[kk], q.f20[kk], q.f13[kk], q.A01[kk], q.A20[kk],
+                                          q.A13[kk], q.B01[kk], q.B20[kk], q.B13[kk], q.S1[kk], q.S2[kk], 0);
+                    } else if (kind == PK_QUADW) {
+                        bd->tris += 2;
+                        RS_FN(quad_edges)(bd, v0, v1, v2, v3, q.px0[kk], q.nx[kk], q.py0[kk], q.ny[kk], PP_XM(4),
+                                          q.a1[kk], q.a2[kk], q.f01[kk], q.f20[kk], q.f13[kk], q.A01[kk], q.A20[kk],
+                                          q.A13[kk], q.B01[kk], q.B20[kk], q.B13[kk], q.S1[kk], q.S2[kk], 1);
                     } else if (kind == PK_NONE2) {
                         bd->tris += 2;
                     } else if (kind == PK_ONE1) {
