@@ -262,17 +262,20 @@ typedef struct pp_soa {
  * with the same values, so the pixels are theirs:
  * - kind: PK_SLOW (an outcode bit: the main pass does what the plain loop does), PK_NONE
  *   (no row of centres, an empty box in the band, both culled), PK_WIDE (more than
- *   TINY_H rows or four columns: pair_wide with lo, hi, xl, xh in py0, ny, px0, nx),
- *   PK_MIXED (orientations differ or an area is zero: pair_tiny), PK_ONE1 / PK_ONE2 /
- *   PK_NONE2 (one candidate, held by T1, by T2 or by neither), PK_QUAD (tri_quad);
+ *   TINY_H rows or TINY_W columns, or 5-8 columns with mixed orientations: pair_wide with
+ *   lo, hi, xl, xh in py0, ny, px0, nx), PK_MIXED (up to four columns, orientations
+ *   differ or an area is zero: pair_tiny), PK_ONE1 / PK_ONE2 / PK_NONE2 (one candidate,
+ *   held by T1, by T2 or by neither), PK_QUAD / PK_QUADW (tri_quad's quad of up to four
+ *   columns / of five to eight, two groups);
  * - for the quads (and one-candidate boxes) the box, the orientation-signed areas, biased
  *   edge values at the first candidate, the edges' steps and S1, S2, as tri_quad has them.
  * Every value is computed modulo 2^16.  For the pairs that use them it is exact: all four
  * vertices are on screen, so a coordinate minus PP_OFF is in [-32760, 32760] (w, h <=
  * 4096) and the box bounds lo, hi, xl, xh (and their differences) are exact; a box of at
- * most 4 x TINY_H centres has every vertex within 80 sub-pixels of its first candidate
- * (xmax - xmin < 16 (xh - xl + 1) + 16), so |X|, |Y| < 80, the edge values and doubled
- * areas are below 12,800 in magnitude and the biased ones and S1, S2 within 3 of them.
+ * most TINY_W x TINY_H centres has every vertex within 144 x 80 sub-pixels of its first
+ * candidate (xmax - xmin < 16 (xh - xl + 1) + 16), so |X| < 144, |Y| < 80, the edge values
+ * and doubled areas are below 23,040 in magnitude and the biased ones and S1, S2 within 3
+ * of them.
  * Steps whose values overflow (wide boxes, vertices off screen) are classified from
  * exact quantities only (outcodes, lo, hi, xl, xh) before any of the rest is read. */
 static void pp_prepass(const band *bd, pp_soa *q, int32_t n)

@@ -779,83 +779,83 @@ static void RS_FN(draw)(band *bd)
                  * crosses the band's edges (bands of a few rows) has most of its steps
                  * outside, which the per-pair code below rejects for less. */
                 if ((bd->y0 == 0 && bd->y1 == f->h) || (ch && ch[0] >= bd->y0 && ch[1] < bd->y1)) {
-                pp_soa q;
-                int32_t n = (int32_t)((se - sp + 1) / 2), kk;
-                {
-                    const uint32_t *ip = s + t0;
-                    for (kk = 0; kk <= n; kk++, ip += 2) {
-                        const rs_cvert *a0 = &cache[ip[0]], *a1 = &cache[ip[1]];
-                        q.xe[kk] = (int16_t)a0->x; q.ye[kk] = (int16_t)a0->y; q.ce[kk] = (int16_t)(a0->c >> 24);
-                        q.xo[kk] = (int16_t)a1->x; q.yo[kk] = (int16_t)a1->y; q.co[kk] = (int16_t)(a1->c >> 24);
-                    }
-                    /* up to the pre-pass's last group of eight (its lanes past n are ignored) */
-                    for (; kk <= ((n + 7) & ~7); kk++) q.xe[kk] = q.xo[kk] = q.ye[kk] = q.yo[kk] = q.ce[kk] = q.co[kk] = 0;
-                }
-                pp_prepass(bd, &q, n);
-                for (kk = 0; sp < se; sp += 2, kk++) {
-                    const rs_cvert *v2 = &cache[sp[0]], *v3 = &cache[sp[1]];
-                    const int32_t kind = q.kind[kk];
-                    if (RS_LIKELY(kind == PK_QUAD)) {
-                        bd->tris += 2;
-                        RS_FN(quad_edges)(bd, v0, v1, v2, v3, q.px0[kk], q.nx[kk], q.py0[kk], q.ny[kk], PP_XM(q.nx[kk]),
-                                          q.a1[kk], q.a2[kk], q.f01[kk], q.f20[kk], q.f13[kk], q.A01[kk], q.A20[kk],
-                                          q.A13[kk], q.B01[kk], q.B20[kk], q.B13[kk], q.S1[kk], q.S2[kk], 0);
-                    } else if (kind == PK_QUADW) {
-                        bd->tris += 2;
-                        RS_FN(quad_edges)(bd, v0, v1, v2, v3, q.px0[kk], q.nx[kk], q.py0[kk], q.ny[kk], PP_XM(4),
-                                          q.a1[kk], q.a2[kk], q.f01[kk], q.f20[kk], q.f13[kk], q.A01[kk], q.A20[kk],
-                                          q.A13[kk], q.B01[kk], q.B20[kk], q.B13[kk], q.S1[kk], q.S2[kk], 1);
-                    } else if (kind == PK_NONE2) {
-                        bd->tris += 2;
-                    } else if (kind == PK_ONE1) {
-                        bd->tris += 2;
-                        RS_FN(tiny_pixel)(bd, v0, v1, v2, q.a1[kk], q.f01[kk], q.f20[kk], q.py0[kk], q.px0[kk]);
-                    } else if (kind == PK_ONE2) {
-                        bd->tris += 2;
-                        RS_FN(tiny_pixel)(bd, v2, v1, v3, q.a1[kk], q.f01[kk], q.f20[kk], q.py0[kk], q.px0[kk]);
-                    } else if (kind == PK_WIDE) {
-                        RS_FN(pair_wide)(bd, v0, v1, v2, v3, q.py0[kk], q.ny[kk], q.px0[kk], q.nx[kk]);
-                    } else if (kind == PK_MIXED) {
-                        RS_FN(pair_mixed)(bd, v0, v1, v2, v3, q.px0[kk], q.nx[kk], q.py0[kk], q.ny[kk]);
-                    } else if (kind == PK_SLOW) {
-                        const uint32_t c12 = v1->c & v2->c;
-                        if (!((c12 & v0->c & REJECT) && (c12 & v3->c & REJECT))) {
-                            STRIP_TRI(v0, v1, v2, sp[-2], sp[-1], sp[0]);
-                            STRIP_TRI(v2, v1, v3, sp[0], sp[-1], sp[1]);
+                    pp_soa q;
+                    int32_t n = (int32_t)((se - sp + 1) / 2), kk;
+                    {
+                        const uint32_t *ip = s + t0;
+                        for (kk = 0; kk <= n; kk++, ip += 2) {
+                            const rs_cvert *a0 = &cache[ip[0]], *a1 = &cache[ip[1]];
+                            q.xe[kk] = (int16_t)a0->x; q.ye[kk] = (int16_t)a0->y; q.ce[kk] = (int16_t)(a0->c >> 24);
+                            q.xo[kk] = (int16_t)a1->x; q.yo[kk] = (int16_t)a1->y; q.co[kk] = (int16_t)(a1->c >> 24);
                         }
+                        /* up to the pre-pass's last group of eight (its lanes past n are ignored) */
+                        for (; kk <= ((n + 7) & ~7); kk++) q.xe[kk] = q.xo[kk] = q.ye[kk] = q.yo[kk] = q.ce[kk] = q.co[kk] = 0;
                     }
-                    v0 = v2; v1 = v3;
-                }
+                    pp_prepass(bd, &q, n);
+                    for (kk = 0; sp < se; sp += 2, kk++) {
+                        const rs_cvert *v2 = &cache[sp[0]], *v3 = &cache[sp[1]];
+                        const int32_t kind = q.kind[kk];
+                        if (RS_LIKELY(kind == PK_QUAD)) {
+                            bd->tris += 2;
+                            RS_FN(quad_edges)(bd, v0, v1, v2, v3, q.px0[kk], q.nx[kk], q.py0[kk], q.ny[kk], PP_XM(q.nx[kk]),
+                                              q.a1[kk], q.a2[kk], q.f01[kk], q.f20[kk], q.f13[kk], q.A01[kk], q.A20[kk],
+                                              q.A13[kk], q.B01[kk], q.B20[kk], q.B13[kk], q.S1[kk], q.S2[kk], 0);
+                        } else if (kind == PK_QUADW) {
+                            bd->tris += 2;
+                            RS_FN(quad_edges)(bd, v0, v1, v2, v3, q.px0[kk], q.nx[kk], q.py0[kk], q.ny[kk], PP_XM(4),
+                                              q.a1[kk], q.a2[kk], q.f01[kk], q.f20[kk], q.f13[kk], q.A01[kk], q.A20[kk],
+                                              q.A13[kk], q.B01[kk], q.B20[kk], q.B13[kk], q.S1[kk], q.S2[kk], 1);
+                        } else if (kind == PK_NONE2) {
+                            bd->tris += 2;
+                        } else if (kind == PK_ONE1) {
+                            bd->tris += 2;
+                            RS_FN(tiny_pixel)(bd, v0, v1, v2, q.a1[kk], q.f01[kk], q.f20[kk], q.py0[kk], q.px0[kk]);
+                        } else if (kind == PK_ONE2) {
+                            bd->tris += 2;
+                            RS_FN(tiny_pixel)(bd, v2, v1, v3, q.a1[kk], q.f01[kk], q.f20[kk], q.py0[kk], q.px0[kk]);
+                        } else if (kind == PK_WIDE) {
+                            RS_FN(pair_wide)(bd, v0, v1, v2, v3, q.py0[kk], q.ny[kk], q.px0[kk], q.nx[kk]);
+                        } else if (kind == PK_MIXED) {
+                            RS_FN(pair_mixed)(bd, v0, v1, v2, v3, q.px0[kk], q.nx[kk], q.py0[kk], q.ny[kk]);
+                        } else if (kind == PK_SLOW) {
+                            const uint32_t c12 = v1->c & v2->c;
+                            if (!((c12 & v0->c & REJECT) && (c12 & v3->c & REJECT))) {
+                                STRIP_TRI(v0, v1, v2, sp[-2], sp[-1], sp[0]);
+                                STRIP_TRI(v2, v1, v3, sp[0], sp[-1], sp[1]);
+                            }
+                        }
+                        v0 = v2; v1 = v3;
+                    }
                 } else
 #endif
                 {
-                uint32_t c01 = v0->c | v1->c;      /* carried: the previous step's c23 */
-                for (; sp < se; sp += 2) {
-                    const rs_cvert *v2 = &cache[sp[0]], *v3;
-                    uint32_t c23;
-                    v3 = &cache[sp[1]];
-                    c23 = v2->c | v3->c;
-                    if (RS_LIKELY(!((c01 | c23) & (SLOW | REJECT)))) {
-                        /* all four vertices on screen (the common case): no further outcode
-                         * tests, no clamping to the screen's columns */
-                        RS_FN(tri_pair)(bd, v0, v1, v2, v3);
-                        v0 = v2; v1 = v3; c01 = c23;
-                        continue;
-                    }
-                    c01 = c23;
-                    {
-                        const uint32_t c12 = v1->c & v2->c;
-                        if ((c12 & v0->c & REJECT) && (c12 & v3->c & REJECT)) {
-                            v0 = v2; v1 = v3;       /* both rejected by outcodes */
+                    uint32_t c01 = v0->c | v1->c;      /* carried: the previous step's c23 */
+                    for (; sp < se; sp += 2) {
+                        const rs_cvert *v2 = &cache[sp[0]], *v3;
+                        uint32_t c23;
+                        v3 = &cache[sp[1]];
+                        c23 = v2->c | v3->c;
+                        if (RS_LIKELY(!((c01 | c23) & (SLOW | REJECT)))) {
+                            /* all four vertices on screen (the common case): no further outcode
+                             * tests, no clamping to the screen's columns */
+                            RS_FN(tri_pair)(bd, v0, v1, v2, v3);
+                            v0 = v2; v1 = v3; c01 = c23;
                             continue;
                         }
-                        /* clipped, partly off screen or one of the two rejected: one at a time */
+                        c01 = c23;
+                        {
+                            const uint32_t c12 = v1->c & v2->c;
+                            if ((c12 & v0->c & REJECT) && (c12 & v3->c & REJECT)) {
+                                v0 = v2; v1 = v3;       /* both rejected by outcodes */
+                                continue;
+                            }
+                            /* clipped, partly off screen or one of the two rejected: one at a time */
+                        }
+                        STRIP_TRI(v0, v1, v2, sp[-2], sp[-1], sp[0]);
+                        v3 = &cache[sp[1]];
+                        STRIP_TRI(v2, v1, v3, sp[0], sp[-1], sp[1]);
+                        v0 = v2; v1 = v3;
                     }
-                    STRIP_TRI(v0, v1, v2, sp[-2], sp[-1], sp[0]);
-                    v3 = &cache[sp[1]];
-                    STRIP_TRI(v2, v1, v3, sp[0], sp[-1], sp[1]);
-                    v0 = v2; v1 = v3;
-                }
                 }
                 if (sp < s + t1 + 2) {
                     const rs_cvert *v2 = &cache[sp[0]];
