@@ -6,6 +6,12 @@
 cc=$1; shift
 fail=0
 arch=$($cc -dumpmachine 2>/dev/null)
+# compile FILE [DEFINE] with $flag; any float or double is an error there
+nofloat_cc() {
+  if ! $cc -std=c99 -O2 $flag $2 -I. -c -o /dev/null "$1" 2>/tmp/nofloat.$$; then
+    echo "nofloat: $1 $2 uses floating point (or fails to build with $flag):"; head -5 /tmp/nofloat.$$; fail=1
+  fi
+}
 case "$arch" in
   x86_64*|aarch64*) flag=-mgeneral-regs-only ;;
   *) flag="" ;;
@@ -13,14 +19,12 @@ esac
 for f in "$@"; do
   [ -f "$f" ] || continue
   if [ -n "$flag" ]; then
-    # raster.c twice: with and without its vector pre-pass (RS_PREPASS; GCC's generic
+    # raster.c twice: without and with its vector pre-pass (RS_PREPASS; GCC's generic
     # vectors, lowered here to general registers)
-    for d in "" -DRS_PREPASS=0 -DRS_PREPASS=1; do
-      case "$f:$d" in */raster.c:*) ;; *:) ;; *) continue ;; esac
-      if ! $cc -std=c99 -O2 $flag $d -I. -c -o /dev/null "$f" 2>/tmp/nofloat.$$; then
-        echo "nofloat: $f $d uses floating point (or fails to build with $flag):"; head -5 /tmp/nofloat.$$; fail=1
-      fi
-    done
+    case "$f" in
+      */raster.c) nofloat_cc "$f" -DRS_PREPASS=0; nofloat_cc "$f" -DRS_PREPASS=1 ;;
+      *) nofloat_cc "$f" ;;
+    esac
   fi
   bad=$(grep -nE '^[[:space:]]*#[[:space:]]*include[[:space:]]*<' "$f" | grep -vE '<(stdint|stddef|string|limits|assert)\.h>')
   if [ -n "$bad" ]; then echo "nofloat: $f includes a non-freestanding header: $bad"; fail=1; fi

@@ -223,7 +223,6 @@ enum { PK_NONE = 0, PK_QUAD, PK_ONE1, PK_ONE2, PK_WIDE, PK_MIXED, PK_SLOW, PK_NO
 #define PP_IN (PP_STEPS + 16)   /* vertex slots 0 .. n rounded up to 8 (n <= PP_STEPS steps); a multiple of 8 */
 #define PP_OFF 32768            /* coordinates are taken as x - PP_OFF: [-32760, 32760] on screen */
 #define PP_ROFF (PP_OFF >> SUB) /* the same in rows and columns */
-#define PP_XM(nx) ((uint64_t)0x8000800080008000u >> (64 - 16 * (nx)))   /* lanes of nx <= 4 columns */
 typedef int16_t pp_v8 __attribute__((vector_size(16)));
 typedef uint16_t pp_v8u __attribute__((vector_size(16)));
 typedef int16_t pp_v8un __attribute__((vector_size(16), aligned(2)));
@@ -247,7 +246,7 @@ typedef struct pp_soa {
 #define VMUL(a, b) VI(VU(a) * VU(b))
 #define VSEL(m, a, b) (((a) & (m)) | ((b) & ~(m)))
 /* macros, not functions: a vector argument or result needs vector registers, which
- * the no-float check's -mgeneral-regs-only build does not have */
+ * check-nofloat.sh's -mgeneral-regs-only build does not have */
 #if defined(__SSE2__) && !defined(__clang__)     /* GCC's names for pminsw / pmaxsw */
 #define PP_MIN(a, b) __builtin_ia32_pminsw128((a), (b))
 #define PP_MAX(a, b) __builtin_ia32_pmaxsw128((a), (b))

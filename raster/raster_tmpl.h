@@ -731,10 +731,7 @@ RS_NOINLINE static void RS_FN(pair_mixed)(band *bd, const rs_cvert *v0, const rs
 }
 #endif
 #undef TINY_PIX
-#undef TINY_XM
 #undef TINY_XM2
-#undef TINY_XM4
-#undef TINY_LANES
 #undef PAIR_AREAS
 #undef RS_HOT
 
@@ -795,14 +792,16 @@ static void RS_FN(draw)(band *bd)
                     for (kk = 0; sp < se; sp += 2, kk++) {
                         const rs_cvert *v2 = &cache[sp[0]], *v3 = &cache[sp[1]];
                         const int32_t kind = q.kind[kk];
+                        /* two inlined copies: quad_edges specialised without and with the
+                         * second group of columns (one copy for both: A +2.7 M) */
                         if (RS_LIKELY(kind == PK_QUAD)) {
                             bd->tris += 2;
-                            RS_FN(quad_edges)(bd, v0, v1, v2, v3, q.px0[kk], q.nx[kk], q.py0[kk], q.ny[kk], PP_XM(q.nx[kk]),
+                            RS_FN(quad_edges)(bd, v0, v1, v2, v3, q.px0[kk], q.nx[kk], q.py0[kk], q.ny[kk], TINY_XM4(q.nx[kk]),
                                               q.a1[kk], q.a2[kk], q.f01[kk], q.f20[kk], q.f13[kk], q.A01[kk], q.A20[kk],
                                               q.A13[kk], q.B01[kk], q.B20[kk], q.B13[kk], q.S1[kk], q.S2[kk], 0);
                         } else if (kind == PK_QUADW) {
                             bd->tris += 2;
-                            RS_FN(quad_edges)(bd, v0, v1, v2, v3, q.px0[kk], q.nx[kk], q.py0[kk], q.ny[kk], PP_XM(4),
+                            RS_FN(quad_edges)(bd, v0, v1, v2, v3, q.px0[kk], q.nx[kk], q.py0[kk], q.ny[kk], TINY_XM4(4),
                                               q.a1[kk], q.a2[kk], q.f01[kk], q.f20[kk], q.f13[kk], q.A01[kk], q.A20[kk],
                                               q.A13[kk], q.B01[kk], q.B20[kk], q.B13[kk], q.S1[kk], q.S2[kk], 1);
                         } else if (kind == PK_NONE2) {
@@ -875,3 +874,6 @@ static void RS_FN(draw)(band *bd)
     }
 }
 #undef RS_STRIP_TRI
+#undef TINY_XM
+#undef TINY_XM4
+#undef TINY_LANES
