@@ -235,7 +235,19 @@ typedef struct pp_soa {
     int16_t a1[PP_STEPS], a2[PP_STEPS], f01[PP_STEPS], f20[PP_STEPS], f13[PP_STEPS];
     int16_t A01[PP_STEPS], A20[PP_STEPS], A13[PP_STEPS], B01[PP_STEPS], B20[PP_STEPS], B13[PP_STEPS];
     int16_t S1[PP_STEPS], S2[PP_STEPS];
+    /* PK_QUAD steps: the coverage of T1 / T2 (bit 4 j + i: candidate (px0 + i, py0 + j);
+     * candidates outside the nx x ny box are to be masked off), and for each covered
+     * candidate the two edge values shading needs, group g = step / 8, lane step % 8:
+     * e[g][cand][0 / 1] T1's e20, e01 (the weights of v1, v2), e[g][cand][2 / 3] T2's
+     * e32, eT (of v1, v3) */
+    uint16_t m1[PP_STEPS], m2[PP_STEPS];
+    int16_t e[PP_STEPS / 8][16][4][8];
 } pp_soa;
+/* bits 4 j + i of the candidates i < nx, j < ny: pp_box[nx - 1][ny - 1] */
+static const uint16_t pp_box[4][4] = {
+    { 0x0001, 0x0011, 0x0111, 0x1111 }, { 0x0003, 0x0033, 0x0333, 0x3333 },
+    { 0x0007, 0x0077, 0x0777, 0x7777 }, { 0x000f, 0x00ff, 0x0fff, 0xffff },
+};
 #define PPL(A, K) (*(const pp_v8un *)(const void *)&(A)[K])
 #define PPS(A, K, V) (*(pp_v8un *)(void *)&(A)[K] = (V))
 /* wrapping arithmetic (unsigned lanes); comparisons and >> on the signed ones */
@@ -254,6 +266,15 @@ typedef struct pp_soa {
 #define PP_MIN(a, b) VSEL((a) < (b), (a), (b))
 #define PP_MAX(a, b) VSEL((a) > (b), (a), (b))
 #endif
+
+/* The largest lane of V, in every lane (three rounds of swaps and maxima) */
+#if defined(__clang__)
+#define PP_SWAP(V, A, B, C, D, E, F, G, H) __builtin_shufflevector((V), (V), A, B, C, D, E, F, G, H)
+#else
+#define PP_SWAP(V, A, B, C, D, E, F, G, H) __builtin_shuffle((V), (pp_v8){ A, B, C, D, E, F, G, H })
+#endif
+#define PP_HMAX1(V, A, B, C, D, E, F, G, H) PP_MAX((V), PP_SWAP((V), A, B, C, D, E, F, G, H))
+#define PP_HMAX(V) PP_HMAX1(PP_HMAX1(PP_HMAX1((V), 4, 5, 6, 7, 0, 1, 2, 3), 2, 3, 0, 1, 6, 7, 4, 5), 1, 0, 3, 2, 5, 4, 7, 6)
 
 /* The set-up of strip steps 0 .. n-1 of a chunk, eight at a time in 16-bit lanes (see
  * pp_soa above; the vertices' low 16 bits in q->xe .. q->co): for each step what
@@ -282,6 +303,7 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
     const pp_v8 zero = { 0, 0, 0, 0, 0, 0, 0, 0 }, one = zero + 1;
     const pp_v8 by0 = zero + (int16_t)(bd->y0 - PP_ROFF), by1 = zero + (int16_t)(bd->y1 - 1 - PP_ROFF);
     const pp_v8 cullm = zero - (int16_t)(bd->cull != 0);
+    const pp_v8 iota = { 0, 1, 2, 3, 4, 5, 6, 7 };
     int32_t k;
     for (k = 0; k < n; k += 8) {
         /* x - PP_OFF modulo 2^16 is the low 16 bits with the top one flipped */
@@ -345,6 +367,47 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
         PPS(q->B01, k, SG(VSUB(x1, x0))); PPS(q->B20, k, SG(VSUB(x0, x2))); PPS(q->B13, k, SG(VSUB(x3, x1)));
         PPS(q->S1, k, VADD(VADD(VADD(SG(ar1), b01), b12), b20));
         PPS(q->S2, k, VADD(VSUB(VADD(VSUB(SG(ar2), one), b13), b12), b32));
+        {
+            /* The quads' coverage, for the candidates of the largest quad box among
+             * the eight (rows j < nym, columns i < nxm; isq: the lanes of quads): per
+             * candidate T1's edge values g01, g20 and diagonal eD = S1 - g01 - g20, T2's
+             * g13, its diagonal eT = -1 - eD and third edge g32 = S2 + 1 + eD - g13 (the
+             * lanes of quad_edges' P01, P20, PD, P13, ~PD, P32 less 2^15), and a bit for
+             * each triangle whose three values are >= 0.  In a lane's own box every value
+             * is exact (the bound above); the strip loop masks off the bits outside it. */
+            const pp_v8 isq = (kind == PK_QUAD) & (iota < (int16_t)(n - k));
+            pp_v8 bx = PP_HMAX(VSEL(isq, xh - xl + 1, zero)), by = PP_HMAX(VSEL(isq, py1 - py0 + 1, zero));
+            const int32_t nxm = bx[0], nym = by[0];
+            int32_t i, j;
+            pp_v8 m1 = zero, m2 = zero;
+            if (nxm) {
+                const pp_v8 S1 = PPL(q->S1, k), S2p = VADD(PPL(q->S2, k), one);
+                const pp_v8 c01 = VI(VU(PPL(q->A01, k)) << SUB), c20 = VI(VU(PPL(q->A20, k)) << SUB);
+                const pp_v8 c13 = VI(VU(PPL(q->A13, k)) << SUB);
+                const pp_v8 r01s = VI(VU(PPL(q->B01, k)) << SUB), r20s = VI(VU(PPL(q->B20, k)) << SUB);
+                const pp_v8 r13s = VI(VU(PPL(q->B13, k)) << SUB);
+                pp_v8 r01 = f01, r20 = f20, r13 = f13;
+                int16_t (*const ev)[4][8] = q->e[k / 8];
+                for (j = 0; j < nym; j++) {
+                    pp_v8 g01 = r01, g20 = r20, g13 = r13;
+                    for (i = 0; i < nxm; i++) {
+                        const pp_v8 bit = zero + (int16_t)(1u << (4 * j + i));
+                        const pp_v8 eD = VSUB(VSUB(S1, g01), g20), eT = ~eD;
+                        const pp_v8 g32 = VSUB(VADD(S2p, eD), g13);
+                        m1 |= bit & ~((g01 | g20 | eD) >> 15);
+                        m2 |= bit & ~((g13 | g32 | eT) >> 15);
+                        PPS(ev[4 * j + i][0], 0, g20);
+                        PPS(ev[4 * j + i][1], 0, g01);
+                        PPS(ev[4 * j + i][2], 0, g32);
+                        PPS(ev[4 * j + i][3], 0, eT);
+                        g01 = VADD(g01, c01); g20 = VADD(g20, c20); g13 = VADD(g13, c13);
+                    }
+                    r01 = VADD(r01, r01s); r20 = VADD(r20, r20s); r13 = VADD(r13, r13s);
+                }
+            }
+            PPS((int16_t *)q->m1, k, m1);
+            PPS((int16_t *)q->m2, k, m2);
+        }
 #undef SG
 #undef QB
     }

@@ -81,56 +81,95 @@ RS_INLINE static uint64_t RS_FN(tiny_mask)(uint64_t P0, uint64_t P2, uint64_t k1
 #define TINY_PIX(COL, W1, W2) RS_PACK(COL)
 #endif
 
+/* The colour and depth addresses of candidate (px0, py0) (py0 in the band). */
+#define TINY_ROWS(BD, PY0, PX0, CROW, ZROW)                                                               \
+    RS_PIX *const CROW = (RS_PIX *)(void *)((BD)->color + (size_t)((PY0) - (BD)->y0) * (BD)->stride) + (PX0); \
+    RS_Z *const ZROW = (RS_Z *)(BD)->depth + (size_t)((PY0) - (BD)->y0) * (size_t)(BD)->w + (PX0)
+
 /* The covered centres of one tiny triangle a, b, c (a the base vertex; area2 > 0 its
  * doubled area) in one group of columns from px0, rows from py0: M its coverage (rows
  * at bit 15 - j), P0 / P2 the packed biased edge values (e + 2^15) of row 0 of the
  * edges opposite c / b (e0 = the weight of c times area2, e2 = that of b), sy0 / sy2
  * their row steps.  Every tiny path (tri_tiny, tri_quad) shades here, so a triangle's
  * pixels do not depend on which of them drew it. */
+/* The per-triangle values of the tiny shading (tiny_shade, quad_shade): a the base
+ * vertex, b and c the others, area2 > 0. */
+#if RS_TEX
+#define TINY_SETUP                                                                     \
+    TINY_SETUP_PLAIN;                                                                  \
+    /* perspective: 1/w weights d >> tsh (16 bits for the nearest vertex) */          \
+    const rs_texture *tx = bd->f->tex;                                                 \
+    const int32_t tsh = tex_shift(a->d, b->d, c->d);                                   \
+    const int64_t qa = a->d >> tsh, qb = b->d >> tsh, qc = c->d >> tsh;                \
+    const int64_t ua = qa * a->u, ub = qb * b->u, uc = qc * c->u;                      \
+    const int64_t va = qa * a->v, vb = qb * b->v, vc = qc * c->v
+#else
+#define TINY_SETUP TINY_SETUP_PLAIN
+#endif
+#define TINY_SETUP_PLAIN                                                               \
+    const int64_t inv = fx_div40((uint32_t)area2), ad = a->d;                          \
+    const dz_t dzb = (dz_t)((int64_t)b->d - ad), dzc = (dz_t)((int64_t)c->d - ad);     \
+    const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS
+
+/* One covered centre, its edge values E2 (opposite b: the weight of b times area2) and
+ * E0 (of c), depth at *ZP, colour at *CP. */
+#if RS_COUNT
+#define TINY_SHADE(E2, E0, ZP, CP) do {                                                \
+        (void)inv; (void)dzb; (void)dzc; (void)db; (void)dc; (void)ca; (void)(E2); (void)(E0); (void)(ZP); \
+        bd->pixels++;                                                                  \
+        *(CP) += 1;                                                                    \
+    } while (0)
+#else
+#define TINY_SHADE(E2, E0, ZP, CP) do {                                                \
+        const int64_t w1 = ((int64_t)(E2) * inv) >> 24, w2 = ((int64_t)(E0) * inv) >> 24;   /* Q16 */ \
+        const RS_Z zz = (RS_Z)((uint32_t)(ad + ((DZ_MUL(dzb, w1) + DZ_MUL(dzc, w2)) >> 16)) >> RS_ZSH); \
+        bd->pixels++;                                                                  \
+        if (zz > *(ZP)) {                                                              \
+            const uint64_t col = ca + CW_MUL(db, w1) + CW_MUL(dc, w2);                 \
+            *(ZP) = zz;                                                                \
+            *(CP) = TINY_PIX(col, w1, w2);                                             \
+        }                                                                              \
+    } while (0)
+#endif
+
+/* The 16-bit lanes of a packed row of biased edge values (e + 2^15), as the signed e:
+ * L[l] is lane l (bits 16 l .. 16 l + 15) minus 2^15.  The lane then is one indexed
+ * load per covered centre instead of a shift by a variable amount and a zero extension. */
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+#define TINY_LANES_TO(L, P) do { int l_; for (l_ = 0; l_ < 4; l_++) (L)[l_] = (int16_t)((int32_t)LANE16((P), 16 * l_) - 0x8000); } while (0)
+#else
+#define TINY_LANES_TO(L, P) do { const uint64_t x_ = (P) ^ TINY_LANES; memcpy((L), &x_, 8); } while (0)
+#endif
+
+/* The covered centres of one tiny triangle a, b, c (a the base vertex; area2 > 0 its
+ * doubled area) in one group of columns from crow0 / zrow0 (the colour and depth of
+ * the group's first candidate): M its coverage (rows at bit 15 - j), P0 / P2 the packed
+ * biased edge values (e + 2^15) of row 0 of the edges opposite c / b (e0 = the weight
+ * of c times area2, e2 = that of b), sy0 / sy2 their row steps; Mw, P0w, P2w the same
+ * for a second group four columns to the right.  tri_tiny and tri_quad shade here, the
+ * pre-pass's quads in quad_shade, with the same per-centre code (TINY_SHADE), so a
+ * triangle's pixels do not depend on which of them drew it. */
 RS_HOT static void RS_FN(tiny_shade)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                         int32_t area2, uint64_t M, uint64_t P0, uint64_t sy0,
-                                        uint64_t P2, uint64_t sy2, int32_t py0, int32_t px0,
+                                        uint64_t P2, uint64_t sy2, RS_PIX *const crow0, RS_Z *const zrow0,
                                         uint64_t Mw, uint64_t P0w, uint64_t P2w)
 {
-    const uint64_t hi = TINY_LANES;
-    const int64_t inv = fx_div40((uint32_t)area2), ad = a->d;
-    const dz_t dzb = (dz_t)((int64_t)b->d - ad), dzc = (dz_t)((int64_t)c->d - ad);
-    const uint64_t db = b->cp - a->cp, dc = c->cp - a->cp, ca = (a->cp << 13) + RS_CBIAS;
+    TINY_SETUP;
     const size_t stride = bd->stride, zw = (size_t)bd->w;
-    /* rows from py0, columns from px0 (lane l is column px0 + l) */
-    RS_PIX *const crow0 = (RS_PIX *)(void *)(bd->color + (size_t)(py0 - bd->y0) * stride) + px0, *crow = crow0;
-    RS_Z *const zrow0 = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * zw + px0, *zrow = zrow0;
-#if RS_TEX
-    /* perspective: 1/w weights d >> tsh (16 bits for the nearest vertex) */
-    const rs_texture *tx = bd->f->tex;
-    const int32_t tsh = tex_shift(a->d, b->d, c->d);
-    const int64_t qa = a->d >> tsh, qb = b->d >> tsh, qc = c->d >> tsh;
-    const int64_t ua = qa * a->u, ub = qb * b->u, uc = qc * c->u;
-    const int64_t va = qa * a->v, vb = qb * b->v, vc = qc * c->v;
-#endif
+    RS_PIX *crow = crow0;
+    RS_Z *zrow = zrow0;
     for (;;) {
-        uint64_t m = M & hi;
+        uint64_t m = M & TINY_LANES;
         M ^= m;
-        while (m) {
-            /* lane of the lowest set top bit: shift 16 * lane */
-            int32_t sh = ctz64(m) - 15, i = sh >> 4;
-            int64_t w1 = (((int64_t)LANE16(P2, sh) - 0x8000) * inv) >> 24;   /* Q16 */
-            int64_t w2 = (((int64_t)LANE16(P0, sh) - 0x8000) * inv) >> 24;
-            m &= m - 1;
-            bd->pixels++;
-#if RS_COUNT
-            (void)w1; (void)w2; (void)dzb; (void)dzc; (void)db; (void)dc; (void)ca; (void)zrow;
-            crow[i] += 1;
-#else
-            {
-                RS_Z zz = (RS_Z)((uint32_t)(ad + ((DZ_MUL(dzb, w1) + DZ_MUL(dzc, w2)) >> 16)) >> RS_ZSH);
-                if (zz > zrow[i]) {
-                    uint64_t col = ca + CW_MUL(db, w1) + CW_MUL(dc, w2);
-                    zrow[i] = zz;
-                    crow[i] = TINY_PIX(col, w1, w2);
-                }
-            }
-#endif
+        if (m) {
+            int16_t l0[4], l2[4];
+            TINY_LANES_TO(l0, P0);
+            TINY_LANES_TO(l2, P2);
+            do {
+                const uint32_t i = (uint32_t)ctz64(m) >> 4;     /* the lowest top bit: 15 + 16 i */
+                m &= m - 1;
+                TINY_SHADE(l2[i], l0[i], &zrow[i], &crow[i]);
+            } while (m);
         }
         if (M) {
             M <<= 1;
@@ -151,19 +190,12 @@ RS_INLINE static void RS_FN(tiny_pixel)(band *bd, const rs_cvert *a, const rs_cv
                                         int32_t area2, int64_t E0, int64_t E2, int32_t py0, int32_t px0)
 {
 #if RS_TEX || RS_COUNT
-    RS_FN(tiny_shade)(bd, a, b, c, area2, 0x8000u, (uint64_t)(E0 + 0x8000), 0, (uint64_t)(E2 + 0x8000), 0, py0, px0, 0, 0, 0);
+    TINY_ROWS(bd, py0, px0, crow, zrow);
+    RS_FN(tiny_shade)(bd, a, b, c, area2, 0x8000u, (uint64_t)(E0 + 0x8000), 0, (uint64_t)(E2 + 0x8000), 0, crow, zrow, 0, 0, 0);
 #else
-    const int64_t inv = fx_div40((uint32_t)area2), ad = a->d;
-    const int64_t w1 = (E2 * inv) >> 24, w2 = (E0 * inv) >> 24;   /* Q16 */
-    const RS_Z zz = (RS_Z)((uint32_t)(ad + ((DZ_MUL((dz_t)((int64_t)b->d - ad), w1) + DZ_MUL((dz_t)((int64_t)c->d - ad), w2)) >> 16)) >> RS_ZSH);
-    const size_t row = (size_t)(py0 - bd->y0);
-    RS_Z *const zp = (RS_Z *)bd->depth + row * (size_t)bd->w + (size_t)px0;
-    bd->pixels++;
-    if (zz > *zp) {
-        const uint64_t col = (a->cp << 13) + RS_CBIAS + CW_MUL(b->cp - a->cp, w1) + CW_MUL(c->cp - a->cp, w2);
-        *zp = zz;
-        ((RS_PIX *)(void *)(bd->color + row * bd->stride))[px0] = RS_PACK(col);
-    }
+    TINY_SETUP;
+    TINY_ROWS(bd, py0, px0, crow, zrow);
+    TINY_SHADE(E2, E0, zrow, crow);
 #endif
 }
 
@@ -219,7 +251,10 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
             p2w = p2 + (uint64_t)(int64_t)(A2 * 64) * ones;
             Mw = RS_FN(tiny_mask)(p0w, p2w, k1, sy0, sy2, TINY_XM2(nx), ny);
         }
-        if (M | Mw) RS_FN(tiny_shade)(bd, a, b, c, area2, M, p0, sy0, p2, sy2, py0, px0, Mw, p0w, p2w);
+        if (M | Mw) {
+            TINY_ROWS(bd, py0, px0, crow, zrow);
+            RS_FN(tiny_shade)(bd, a, b, c, area2, M, p0, sy0, p2, sy2, crow, zrow, Mw, p0w, p2w);
+        }
     }
 }
 
@@ -347,12 +382,16 @@ RS_INLINE static void RS_FN(quad_edges)(band *bd, const rs_cvert *v0, const rs_c
     }
     /* T1: base v0, weight of v1 from the edge v2-v0 (P20), of v2 from v0-v1 (P01);
      * T2: base v2, weight of v1 from the edge v3-v2 (P32), of v3 from the diagonal (~PD) */
-    if (M1 | M1w)
-        RS_FN(tiny_shade)(bd, v0, v1, v2, a1, M1, P01, s01, P20, s20, py0, px0, M1w, P01w, P20w);
-    if (M2 | M2w) {
-        const uint64_t PD = K1 - P01 - P20, PDw = K1 - P01w - P20w;
-        RS_FN(tiny_shade)(bd, v2, v1, v3, a2, M2, ~PD, s01 + s20, K2 + PD - P13,
-                          (uint64_t)0 - s01 - s20 - s13, py0, px0, M2w, ~PDw, K2 + PDw - P13w);
+    if (M1 | M1w | M2 | M2w) {
+        /* the addresses once for both triangles */
+        TINY_ROWS(bd, py0, px0, crow, zrow);
+        if (M1 | M1w)
+            RS_FN(tiny_shade)(bd, v0, v1, v2, a1, M1, P01, s01, P20, s20, crow, zrow, M1w, P01w, P20w);
+        if (M2 | M2w) {
+            const uint64_t PD = K1 - P01 - P20, PDw = K1 - P01w - P20w;
+            RS_FN(tiny_shade)(bd, v2, v1, v3, a2, M2, ~PD, s01 + s20, K2 + PD - P13,
+                              (uint64_t)0 - s01 - s20 - s13, crow, zrow, M2w, ~PDw, K2 + PDw - P13w);
+        }
     }
 }
 
@@ -529,6 +568,22 @@ RS_HOT static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert 
 }
 
 #if RS_PREPASS
+/* One triangle a, b, c (area2 > 0) of a pre-pass quad (PK_QUAD): m its covered
+ * candidates (bit 4 j + i, see pp_soa), E its edge values (E[32 k] opposite b, E[32 k + 8]
+ * opposite c for candidate k), crow / zrow the colour and depth of candidate 0,
+ * coff / zoff the candidates' offsets from them (bytes / depth entries). */
+RS_HOT static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                        int32_t area2, uint32_t m, const int16_t *E, RS_PIX *crow, RS_Z *zrow,
+                                        const size_t *coff, const size_t *zoff)
+{
+    TINY_SETUP;
+    do {
+        const uint32_t k = (uint32_t)ctz64(m);
+        m &= m - 1;
+        TINY_SHADE(E[32 * k], E[32 * k + 8], zrow + zoff[k], (RS_PIX *)(void *)((uint8_t *)crow + coff[k]));
+    } while (m);
+}
+
 /* The pre-pass's mixed-orientation pairs (rare), as tri_pair draws them. */
 RS_NOINLINE static void RS_FN(pair_mixed)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                           const rs_cvert *v3, int32_t px0, int32_t nx, int32_t py0, int32_t ny)
@@ -536,7 +591,6 @@ RS_NOINLINE static void RS_FN(pair_mixed)(band *bd, const rs_cvert *v0, const rs
     RS_FN(pair_tiny)(bd, v0, v1, v2, v3, px0, nx, py0, ny);
 }
 #endif
-#undef TINY_PIX
 #undef TINY_XM2
 #undef PAIR_AREAS
 #undef RS_HOT
@@ -550,6 +604,14 @@ static void RS_FN(draw)(band *bd)
     const rs_cvert *cache = f->cache;
     const int16_t *ch = f->chunks;     /* per chunk of RS_CHUNK triangles: rows touched */
     int32_t p;
+#if RS_PREPASS
+    /* the pre-pass quads' candidates 4 j + i: offsets of (i, j) in the colour and depth rows */
+    size_t coff[16], zoff[16];
+    for (p = 0; p < 16; p++) {
+        coff[p] = (size_t)(p >> 2) * bd->stride + (size_t)(p & 3) * sizeof(RS_PIX);
+        zoff[p] = (size_t)(p >> 2) * (size_t)bd->w + (size_t)(p & 3);
+    }
+#endif
     for (p = 0; p < f->nprims; p++) {
         const rs_prim *pr = &f->prims[p];
         const uint32_t *s = pr->idx;
@@ -601,10 +663,16 @@ static void RS_FN(draw)(band *bd)
                         /* two inlined copies: quad_edges specialised without and with the
                          * second group of columns (one copy for both: A +2.7 M) */
                         if (RS_LIKELY(kind == PK_QUAD)) {
+                            /* coverage from the pre-pass, less the candidates outside the box */
+                            const uint32_t bm = pp_box[q.nx[kk] - 1][q.ny[kk] - 1];
+                            const uint32_t m1 = q.m1[kk] & bm, m2 = q.m2[kk] & bm;
                             bd->tris += 2;
-                            RS_FN(quad_edges)(bd, v0, v1, v2, v3, q.px0[kk], q.nx[kk], q.py0[kk], q.ny[kk], TINY_XM4(q.nx[kk]),
-                                              q.a1[kk], q.a2[kk], q.f01[kk], q.f20[kk], q.f13[kk], q.A01[kk], q.A20[kk],
-                                              q.A13[kk], q.B01[kk], q.B20[kk], q.B13[kk], q.S1[kk], q.S2[kk], 0);
+                            if (m1 | m2) {
+                                const int16_t *E = &q.e[kk / 8][0][0][kk % 8];
+                                TINY_ROWS(bd, q.py0[kk], q.px0[kk], crow, zrow);
+                                if (m1) RS_FN(quad_shade)(bd, v0, v1, v2, q.a1[kk], m1, E, crow, zrow, coff, zoff);
+                                if (m2) RS_FN(quad_shade)(bd, v2, v1, v3, q.a2[kk], m2, E + 16, crow, zrow, coff, zoff);
+                            }
                         } else if (kind == PK_QUADW) {
                             bd->tris += 2;
                             RS_FN(quad_edges)(bd, v0, v1, v2, v3, q.px0[kk], q.nx[kk], q.py0[kk], q.ny[kk], TINY_XM4(4),
@@ -683,3 +751,9 @@ static void RS_FN(draw)(band *bd)
 #undef TINY_XM
 #undef TINY_XM4
 #undef TINY_LANES
+#undef TINY_PIX
+#undef TINY_ROWS
+#undef TINY_SETUP
+#undef TINY_SETUP_PLAIN
+#undef TINY_SHADE
+#undef TINY_LANES_TO
