@@ -335,8 +335,9 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
         const pp_v8 m = bneg;
 #define SG(x) VSUB((x) ^ m, m)
         /* top-left bias masks (-1 for a biased edge): A = SG(yP - yQ) < 0, or A == 0 and
-         * B = SG(xQ - xP) <= 0 */
-#define QB(P, Q) ((SG(VSUB(y##P, y##Q)) < 0) | ((SG(VSUB(y##P, y##Q)) == 0) & (SG(VSUB(x##Q, x##P)) <= 0)))
+         * B = SG(xQ - xP) <= 0, i.e. 2 A + (B > 0) <= 0 (|A| < 80 in a tiny box: no
+         * overflow; (B > 0) is -1 in the lanes where it holds) */
+#define QB(P, Q) (VSUB(VADD(SG(VSUB(y##P, y##Q)), SG(VSUB(y##P, y##Q))), SG(VSUB(x##Q, x##P)) > 0) < one)
         const pp_v8 b01 = QB(0, 1), b12 = QB(1, 2), b20 = QB(2, 0), b13 = QB(1, 3), b32 = QB(3, 2);
         const pp_v8 f01 = VADD(SG(e01), b01), f20 = VADD(SG(e20), b20), f13 = VADD(SG(e13), b13);
         const pp_v8 fD = VADD(SG(e12), b12), f32 = VADD(SG(e32), b32), fT = VSUB(zero - one, fD);
@@ -388,10 +389,10 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
                 const pp_v8 r13s = VI(VU(PPL(q->B13, k)) << SUB);
                 pp_v8 r01 = f01, r20 = f20, r13 = f13;
                 int16_t (*const ev)[4][8] = q->e[k / 8];
+                pp_v8 rbit = one;       /* 1 << 4 j */
                 for (j = 0; j < nym; j++) {
-                    pp_v8 g01 = r01, g20 = r20, g13 = r13;
+                    pp_v8 g01 = r01, g20 = r20, g13 = r13, bit = rbit;      /* 1 << (4 j + i) */
                     for (i = 0; i < nxm; i++) {
-                        const pp_v8 bit = zero + (int16_t)(1u << (4 * j + i));
                         const pp_v8 eD = VSUB(VSUB(S1, g01), g20), eT = ~eD;
                         const pp_v8 g32 = VSUB(VADD(S2p, eD), g13);
                         m1 |= bit & ~((g01 | g20 | eD) >> 15);
@@ -401,7 +402,9 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
                         PPS(ev[4 * j + i][2], 0, g32);
                         PPS(ev[4 * j + i][3], 0, eT);
                         g01 = VADD(g01, c01); g20 = VADD(g20, c20); g13 = VADD(g13, c13);
+                        bit = VADD(bit, bit);
                     }
+                    rbit = VI(VU(rbit) << 4);
                     r01 = VADD(r01, r01s); r20 = VADD(r20, r20s); r13 = VADD(r13, r13s);
                 }
             }

@@ -578,7 +578,7 @@ RS_HOT static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cvert
 {
     TINY_SETUP;
     do {
-        const uint32_t k = (uint32_t)ctz64(m);
+        const size_t k = (size_t)ctz64(m);
         m &= m - 1;
         TINY_SHADE(E[32 * k], E[32 * k + 8], zrow + zoff[k], (RS_PIX *)(void *)((uint8_t *)crow + coff[k]));
     } while (m);
@@ -668,7 +668,7 @@ static void RS_FN(draw)(band *bd)
                             const uint32_t m1 = q.m1[kk] & bm, m2 = q.m2[kk] & bm;
                             bd->tris += 2;
                             if (m1 | m2) {
-                                const int16_t *E = &q.e[kk / 8][0][0][kk % 8];
+                                const int16_t *E = &q.e[(uint32_t)kk / 8][0][0][(uint32_t)kk % 8];
                                 TINY_ROWS(bd, q.py0[kk], q.px0[kk], crow, zrow);
                                 if (m1) RS_FN(quad_shade)(bd, v0, v1, v2, q.a1[kk], m1, E, crow, zrow, coff, zoff);
                                 if (m2) RS_FN(quad_shade)(bd, v2, v1, v3, q.a2[kk], m2, E + 16, crow, zrow, coff, zoff);
