@@ -235,19 +235,13 @@ typedef struct pp_soa {
     int16_t a1[PP_STEPS], a2[PP_STEPS], f01[PP_STEPS], f20[PP_STEPS], f13[PP_STEPS];
     int16_t A01[PP_STEPS], A20[PP_STEPS], A13[PP_STEPS], B01[PP_STEPS], B20[PP_STEPS], B13[PP_STEPS];
     int16_t S1[PP_STEPS], S2[PP_STEPS];
-    /* PK_QUAD steps: the coverage of T1 / T2 (bit 4 j + i: candidate (px0 + i, py0 + j);
-     * candidates outside the nx x ny box are to be masked off), and for each covered
-     * candidate the two edge values shading needs, group g = step / 8, lane step % 8:
-     * e[g][cand][0 / 1] T1's e20, e01 (the weights of v1, v2), e[g][cand][2 / 3] T2's
-     * e32, eT (of v1, v3) */
+    /* PK_QUAD steps: the coverage of T1 / T2 (bit 4 j + i: candidate (px0 + i, py0 + j)
+     * of the step's nx x ny box), and for each covered
+     * candidate the two edge values shading needs: e[cand][0 / 1][step] T1's e20, e01 (the
+     * weights of v1, v2), e[cand][2 / 3][step] T2's e32, eT (of v1, v3) */
     uint16_t m1[PP_STEPS], m2[PP_STEPS];
-    int16_t e[PP_STEPS / 8][16][4][8];
+    int16_t e[16][4][PP_STEPS];
 } pp_soa;
-/* bits 4 j + i of the candidates i < nx, j < ny: pp_box[nx - 1][ny - 1] */
-static const uint16_t pp_box[4][4] = {
-    { 0x0001, 0x0011, 0x0111, 0x1111 }, { 0x0003, 0x0033, 0x0333, 0x3333 },
-    { 0x0007, 0x0077, 0x0777, 0x7777 }, { 0x000f, 0x00ff, 0x0fff, 0xffff },
-};
 #define PPL(A, K) (*(const pp_v8un *)(const void *)&(A)[K])
 #define PPS(A, K, V) (*(pp_v8un *)(void *)&(A)[K] = (V))
 /* wrapping arithmetic (unsigned lanes); comparisons and >> on the signed ones */
@@ -374,10 +368,11 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
              * candidate T1's edge values g01, g20 and diagonal eD = S1 - g01 - g20, T2's
              * g13, its diagonal eT = -1 - eD and third edge g32 = S2 + 1 + eD - g13 (the
              * lanes of quad_edges' P01, P20, PD, P13, ~PD, P32 less 2^15), and a bit for
-             * each triangle whose three values are >= 0.  In a lane's own box every value
-             * is exact (the bound above); the strip loop masks off the bits outside it. */
+             * each triangle whose three values are >= 0, in the lane's own box only, where
+             * every value is exact (the bound above). */
             const pp_v8 isq = (kind == PK_QUAD) & (iota < (int16_t)(n - k));
-            pp_v8 bx = PP_HMAX(VSEL(isq, xh - xl + 1, zero)), by = PP_HMAX(VSEL(isq, py1 - py0 + 1, zero));
+            const pp_v8 qnx = VSEL(isq, xh - xl + 1, zero), qny = VSEL(isq, py1 - py0 + 1, zero);
+            pp_v8 bx = PP_HMAX(qnx), by = PP_HMAX(qny);
             const int32_t nxm = bx[0], nym = by[0];
             int32_t i, j;
             pp_v8 m1 = zero, m2 = zero;
@@ -388,19 +383,21 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
                 const pp_v8 r01s = VI(VU(PPL(q->B01, k)) << SUB), r20s = VI(VU(PPL(q->B20, k)) << SUB);
                 const pp_v8 r13s = VI(VU(PPL(q->B13, k)) << SUB);
                 pp_v8 r01 = f01, r20 = f20, r13 = f13;
-                int16_t (*const ev)[4][8] = q->e[k / 8];
                 pp_v8 rbit = one;       /* 1 << 4 j */
+                const pp_v8 col[4] = { qnx > 0, qnx > 1, qnx > 2, qnx > 3 };   /* column i in the box */
                 for (j = 0; j < nym; j++) {
+                    const pp_v8 row = qny > (int16_t)j;
                     pp_v8 g01 = r01, g20 = r20, g13 = r13, bit = rbit;      /* 1 << (4 j + i) */
                     for (i = 0; i < nxm; i++) {
+                        const pp_v8 inbox = bit & row & col[i];
                         const pp_v8 eD = VSUB(VSUB(S1, g01), g20), eT = ~eD;
                         const pp_v8 g32 = VSUB(VADD(S2p, eD), g13);
-                        m1 |= bit & ~((g01 | g20 | eD) >> 15);
-                        m2 |= bit & ~((g13 | g32 | eT) >> 15);
-                        PPS(ev[4 * j + i][0], 0, g20);
-                        PPS(ev[4 * j + i][1], 0, g01);
-                        PPS(ev[4 * j + i][2], 0, g32);
-                        PPS(ev[4 * j + i][3], 0, eT);
+                        m1 |= inbox & ~((g01 | g20 | eD) >> 15);
+                        m2 |= inbox & ~((g13 | g32 | eT) >> 15);
+                        PPS(q->e[4 * j + i][0], k, g20);
+                        PPS(q->e[4 * j + i][1], k, g01);
+                        PPS(q->e[4 * j + i][2], k, g32);
+                        PPS(q->e[4 * j + i][3], k, eT);
                         g01 = VADD(g01, c01); g20 = VADD(g20, c20); g13 = VADD(g13, c13);
                         bit = VADD(bit, bit);
                     }

@@ -569,7 +569,7 @@ RS_HOT static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert 
 
 #if RS_PREPASS
 /* One triangle a, b, c (area2 > 0) of a pre-pass quad (PK_QUAD): m its covered
- * candidates (bit 4 j + i, see pp_soa), E its edge values (E[32 k] opposite b, E[32 k + 8]
+ * candidates (bit 4 j + i, see pp_soa), E its edge values (E[4 PP_STEPS k] opposite b, E[4 PP_STEPS k + PP_STEPS]
  * opposite c for candidate k), crow / zrow the colour and depth of candidate 0,
  * coff / zoff the candidates' offsets from them (bytes / depth entries). */
 RS_HOT static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
@@ -580,7 +580,7 @@ RS_HOT static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cvert
     do {
         const size_t k = (size_t)ctz64(m);
         m &= m - 1;
-        TINY_SHADE(E[32 * k], E[32 * k + 8], zrow + zoff[k], (RS_PIX *)(void *)((uint8_t *)crow + coff[k]));
+        TINY_SHADE(E[4 * PP_STEPS * k], E[4 * PP_STEPS * k + PP_STEPS], zrow + zoff[k], (RS_PIX *)(void *)((uint8_t *)crow + coff[k]));
     } while (m);
 }
 
@@ -663,15 +663,13 @@ static void RS_FN(draw)(band *bd)
                         /* two inlined copies: quad_edges specialised without and with the
                          * second group of columns (one copy for both: A +2.7 M) */
                         if (RS_LIKELY(kind == PK_QUAD)) {
-                            /* coverage from the pre-pass, less the candidates outside the box */
-                            const uint32_t bm = pp_box[q.nx[kk] - 1][q.ny[kk] - 1];
-                            const uint32_t m1 = q.m1[kk] & bm, m2 = q.m2[kk] & bm;
+                            const uint32_t m1 = q.m1[kk], m2 = q.m2[kk];    /* coverage */
                             bd->tris += 2;
                             if (m1 | m2) {
-                                const int16_t *E = &q.e[(uint32_t)kk / 8][0][0][(uint32_t)kk % 8];
+                                const int16_t *E = &q.e[0][0][kk];
                                 TINY_ROWS(bd, q.py0[kk], q.px0[kk], crow, zrow);
                                 if (m1) RS_FN(quad_shade)(bd, v0, v1, v2, q.a1[kk], m1, E, crow, zrow, coff, zoff);
-                                if (m2) RS_FN(quad_shade)(bd, v2, v1, v3, q.a2[kk], m2, E + 16, crow, zrow, coff, zoff);
+                                if (m2) RS_FN(quad_shade)(bd, v2, v1, v3, q.a2[kk], m2, E + 2 * PP_STEPS, crow, zrow, coff, zoff);
                             }
                         } else if (kind == PK_QUADW) {
                             bd->tris += 2;
