@@ -218,7 +218,7 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 #endif
 #endif
 #if RS_PREPASS
-enum { PK_NONE = 0, PK_QUAD, PK_ONE1, PK_ONE2, PK_WIDE, PK_MIXED, PK_SLOW, PK_NONE2, PK_QUADW };
+enum { PK_NONE = 0, PK_QUAD, PK_ONE1, PK_ONE2, PK_WIDE, PK_SLOW, PK_NONE2, PK_QUADW };
 #define PP_STEPS (RS_CHUNK / 2)
 #define PP_IN (PP_STEPS + 16)   /* vertex slots 0 .. n rounded up to 8 (n <= PP_STEPS steps); a multiple of 8 */
 #define PP_OFF 32768            /* coordinates are taken as x - PP_OFF: [-32760, 32760] on screen */
@@ -234,7 +234,7 @@ typedef struct pp_soa {
     int16_t kind[PP_STEPS], px0[PP_STEPS], py0[PP_STEPS], nx[PP_STEPS], ny[PP_STEPS];
     int16_t a1[PP_STEPS], a2[PP_STEPS], f01[PP_STEPS], f20[PP_STEPS], f13[PP_STEPS];
     int16_t A01[PP_STEPS], A20[PP_STEPS], A13[PP_STEPS], B01[PP_STEPS], B20[PP_STEPS], B13[PP_STEPS];
-    int16_t S1[PP_STEPS], S2[PP_STEPS];
+    int16_t S1[PP_STEPS], S2[PP_STEPS], nt[PP_STEPS];
     /* PK_QUAD steps: the coverage of T1 / T2 (bit 4 j + i: candidate (px0 + i, py0 + j)
      * of the step's nx x ny box), and for each covered
      * candidate the two edge values shading needs: e[cand][0 / 1][step] T1's e20, e01 (the
@@ -324,24 +324,30 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
         const pp_v8 e20 = VSUB(VMUL(X2, Y0), VMUL(Y2, X0)), e13 = VSUB(VMUL(X1, Y3), VMUL(Y1, X3));
         const pp_v8 e32 = VSUB(VMUL(X3, Y2), VMUL(Y3, X2));
         const pp_v8 ar1 = VADD(VADD(e01, e12), e20), ar2 = VSUB(VADD(e13, e32), e12);
-        const pp_v8 bneg = (ar1 < 0) & (ar2 < 0), bpos = (ar1 > 0) & (ar2 > 0) & ~cullm;
-        const pp_v8 culled = cullm & ((ar1 | ar2) >= 0);
-        const pp_v8 m = bneg;
-#define SG(x) VSUB((x) ^ m, m)
+        /* orientations: s1 / s2 -1 for a front face (T1 / T2), same -1 where they agree;
+         * ok1 / ok2: the triangle is drawn (a non-zero area, not culled) */
+        const pp_v8 s1 = ar1 < 0, s2 = ar2 < 0, same = ~(s1 ^ s2);
+        const pp_v8 ok1 = (ar1 != 0) & (s1 | ~cullm), ok2 = (ar2 != 0) & (s2 | ~cullm);
+        const pp_v8 bsame = same & ok1 & ok2;   /* tri_quad's pairs */
+#define SG1(x) VSUB((x) ^ s1, s1)
+#define SG2(x) VSUB((x) ^ s2, s2)
         /* top-left bias masks (-1 for a biased edge): A = SG(yP - yQ) < 0, or A == 0 and
          * B = SG(xQ - xP) <= 0, i.e. 2 A + (B > 0) <= 0 (|A| < 80 in a tiny box: no
          * overflow; (B > 0) is -1 in the lanes where it holds) */
-#define QB(P, Q) (VSUB(VADD(SG(VSUB(y##P, y##Q)), SG(VSUB(y##P, y##Q))), SG(VSUB(x##Q, x##P)) > 0) < one)
-        const pp_v8 b01 = QB(0, 1), b12 = QB(1, 2), b20 = QB(2, 0), b13 = QB(1, 3), b32 = QB(3, 2);
-        const pp_v8 f01 = VADD(SG(e01), b01), f20 = VADD(SG(e20), b20), f13 = VADD(SG(e13), b13);
-        const pp_v8 fD = VADD(SG(e12), b12), f32 = VADD(SG(e32), b32), fT = VSUB(zero - one, fD);
+#define QB(SG, P, Q) (VSUB(VADD(SG(VSUB(y##P, y##Q)), SG(VSUB(y##P, y##Q))), SG(VSUB(x##Q, x##P)) > 0) < one)
+        const pp_v8 b01 = QB(SG1, 0, 1), b12 = QB(SG1, 1, 2), b20 = QB(SG1, 2, 0), b13 = QB(SG2, 1, 3), b32 = QB(SG2, 3, 2);
+        /* T2's diagonal is T1's edge reversed: with the same orientation its value is
+         * -1 - fD (the negated edge function, the complementary bias), else fD itself
+         * (the negation twice, the same bias); bT its bias */
+        const pp_v8 bT = b12 ^ same;
+        const pp_v8 f01 = VADD(SG1(e01), b01), f20 = VADD(SG1(e20), b20), f13 = VADD(SG2(e13), b13);
+        const pp_v8 fD = VADD(SG1(e12), b12), f32 = VADD(SG2(e32), b32), fT = fD ^ same;
         const pp_v8 one1 = (f01 | f20 | fD) >= 0, one2 = ~one1 & ((f13 | f32 | fT) >= 0);
-        const pp_v8 isone = (xl == xh) & (py0 == py1), o2 = isone & ~one1;
+        const pp_v8 isone = (xl == xh) & (py0 == py1) & bsame, o2 = isone & ~one1;
         pp_v8 kind = zero + PK_QUAD;
         kind = VSEL(isone, VSEL(one1, zero + PK_ONE1, VSEL(one2, zero + PK_ONE2, zero + PK_NONE2)), kind);
-        kind = VSEL(two, zero + PK_QUADW, kind);
-        kind = VSEL(~(bneg | bpos), VSEL(two, zero + PK_WIDE, zero + PK_MIXED), kind);
-        kind = VSEL(culled | bempty, zero + PK_NONE, kind);
+        kind = VSEL(two, VSEL(bsame, zero + PK_QUADW, zero + PK_WIDE), kind);
+        kind = VSEL(~(ok1 | ok2) | bempty, zero + PK_NONE, kind);
         kind = VSEL(wide, zero + PK_WIDE, kind);
         kind = VSEL(empty, zero + PK_NONE, kind);
         kind = VSEL(slow, zero + PK_SLOW, kind);
@@ -353,15 +359,16 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
             PPS(q->nx, k, VSEL(wk, xh + PP_ROFF, xh - xl + 1));
             PPS(q->ny, k, VSEL(wk, hi + PP_ROFF, py1 - py0 + 1));
         }
-        PPS(q->a1, k, VSEL(o2, SG(ar2), SG(ar1)));
-        PPS(q->a2, k, SG(ar2));
+        PPS(q->a1, k, VSEL(o2, SG2(ar2), SG1(ar1)));
+        PPS(q->a2, k, SG2(ar2));
         PPS(q->f01, k, VSEL(o2, fT, f01));
         PPS(q->f20, k, VSEL(o2, f32, f20));
         PPS(q->f13, k, f13);
-        PPS(q->A01, k, SG(VSUB(y0, y1))); PPS(q->A20, k, SG(VSUB(y2, y0))); PPS(q->A13, k, SG(VSUB(y1, y3)));
-        PPS(q->B01, k, SG(VSUB(x1, x0))); PPS(q->B20, k, SG(VSUB(x0, x2))); PPS(q->B13, k, SG(VSUB(x3, x1)));
-        PPS(q->S1, k, VADD(VADD(VADD(SG(ar1), b01), b12), b20));
-        PPS(q->S2, k, VADD(VSUB(VADD(VSUB(SG(ar2), one), b13), b12), b32));
+        PPS(q->A01, k, SG1(VSUB(y0, y1))); PPS(q->A20, k, SG1(VSUB(y2, y0))); PPS(q->A13, k, SG2(VSUB(y1, y3)));
+        PPS(q->B01, k, SG1(VSUB(x1, x0))); PPS(q->B20, k, SG1(VSUB(x0, x2))); PPS(q->B13, k, SG2(VSUB(x3, x1)));
+        PPS(q->S1, k, VADD(VADD(VADD(SG1(ar1), b01), b12), b20));
+        PPS(q->S2, k, VADD(VADD(VADD(SG2(ar2), b13), bT), b32));
+        PPS(q->nt, k, VSUB(zero, VADD(ok1, ok2)));
         {
             /* The quads' coverage, for the candidates of the largest quad box among
              * the eight (rows j < nym, columns i < nxm; isq: the lanes of quads): per
@@ -377,7 +384,7 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
             int32_t i, j;
             pp_v8 m1 = zero, m2 = zero;
             if (nxm) {
-                const pp_v8 S1 = PPL(q->S1, k), S2p = VADD(PPL(q->S2, k), one);
+                const pp_v8 S1 = PPL(q->S1, k), S2 = PPL(q->S2, k);
                 const pp_v8 c01 = VI(VU(PPL(q->A01, k)) << SUB), c20 = VI(VU(PPL(q->A20, k)) << SUB);
                 const pp_v8 c13 = VI(VU(PPL(q->A13, k)) << SUB);
                 const pp_v8 r01s = VI(VU(PPL(q->B01, k)) << SUB), r20s = VI(VU(PPL(q->B20, k)) << SUB);
@@ -390,8 +397,8 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
                     pp_v8 g01 = r01, g20 = r20, g13 = r13, bit = rbit;      /* 1 << (4 j + i) */
                     for (i = 0; i < nxm; i++) {
                         const pp_v8 inbox = bit & row & col[i];
-                        const pp_v8 eD = VSUB(VSUB(S1, g01), g20), eT = ~eD;
-                        const pp_v8 g32 = VSUB(VADD(S2p, eD), g13);
+                        const pp_v8 eD = VSUB(VSUB(S1, g01), g20), eT = eD ^ same;
+                        const pp_v8 g32 = VSUB(VSUB(S2, eT), g13);
                         m1 |= inbox & ~((g01 | g20 | eD) >> 15);
                         m2 |= inbox & ~((g13 | g32 | eT) >> 15);
                         PPS(q->e[4 * j + i][0], k, g20);
@@ -405,10 +412,11 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
                     r01 = VADD(r01, r01s); r20 = VADD(r20, r20s); r13 = VADD(r13, r13s);
                 }
             }
-            PPS((int16_t *)q->m1, k, m1);
-            PPS((int16_t *)q->m2, k, m2);
+            PPS((int16_t *)q->m1, k, m1 & ok1);
+            PPS((int16_t *)q->m2, k, m2 & ok2);
         }
-#undef SG
+#undef SG1
+#undef SG2
 #undef QB
     }
 }

@@ -584,12 +584,6 @@ RS_HOT static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cvert
     } while (m);
 }
 
-/* The pre-pass's mixed-orientation pairs (rare), as tri_pair draws them. */
-RS_NOINLINE static void RS_FN(pair_mixed)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
-                                          const rs_cvert *v3, int32_t px0, int32_t nx, int32_t py0, int32_t ny)
-{
-    RS_FN(pair_tiny)(bd, v0, v1, v2, v3, px0, nx, py0, ny);
-}
 #endif
 #undef TINY_XM2
 #undef PAIR_AREAS
@@ -664,7 +658,7 @@ static void RS_FN(draw)(band *bd)
                          * second group of columns (one copy for both: A +2.7 M) */
                         if (RS_LIKELY(kind == PK_QUAD)) {
                             const uint32_t m1 = q.m1[kk], m2 = q.m2[kk];    /* coverage */
-                            bd->tris += 2;
+                            bd->tris += (uint32_t)q.nt[kk];
                             if (m1 | m2) {
                                 const int16_t *E = &q.e[0][0][kk];
                                 TINY_ROWS(bd, q.py0[kk], q.px0[kk], crow, zrow);
@@ -686,8 +680,6 @@ static void RS_FN(draw)(band *bd)
                             RS_FN(tiny_pixel)(bd, v2, v1, v3, q.a1[kk], q.f01[kk], q.f20[kk], q.py0[kk], q.px0[kk]);
                         } else if (kind == PK_WIDE) {
                             RS_FN(pair_wide)(bd, v0, v1, v2, v3, q.py0[kk], q.ny[kk], q.px0[kk], q.nx[kk]);
-                        } else if (kind == PK_MIXED) {
-                            RS_FN(pair_mixed)(bd, v0, v1, v2, v3, q.px0[kk], q.nx[kk], q.py0[kk], q.ny[kk]);
                         } else if (kind == PK_SLOW) {
                             const uint32_t c12 = v1->c & v2->c;
                             if (!((c12 & v0->c & REJECT) && (c12 & v3->c & REJECT))) {
