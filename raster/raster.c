@@ -128,16 +128,16 @@ typedef int32_t dz_t;
 #endif
 
 /* Index of the lowest set bit of m (m != 0). */
-static int32_t ctz64(uint64_t m)
+static uint32_t ctz64(uint64_t m)
 {
 #if defined(__GNUC__) && RS_REG64
-    return __builtin_ctzll(m);
+    return (uint32_t)__builtin_ctzll(m);
 #elif defined(__GNUC__)
     /* 32-bit targets: two 32-bit counts (inline on ARM: rbit + clz) rather than
      * libgcc's __ctzdi2 call */
-    return (uint32_t)m ? __builtin_ctz((uint32_t)m) : 32 + __builtin_ctz((uint32_t)(m >> 32));
+    return (uint32_t)((uint32_t)m ? __builtin_ctz((uint32_t)m) : 32 + __builtin_ctz((uint32_t)(m >> 32)));
 #else
-    int32_t k = 0;
+    uint32_t k = 0;
     while (!(m & 1u)) { m >>= 1; k++; }
     return k;
 #endif
@@ -227,9 +227,11 @@ typedef int16_t pp_v8 __attribute__((vector_size(16)));
 typedef uint16_t pp_v8u __attribute__((vector_size(16)));
 typedef int16_t pp_v8un __attribute__((vector_size(16), aligned(2)));
 /* A chunk's steps: vertices at even / odd strip positions (step j: v0 = even j, v1 =
- * odd j, v2 = even j+1, v3 = odd j+1), then the pre-pass's results per step (the
- * fields after kind as pp_prepass describes). */
+ * odd j, v2 = even j+1, v3 = odd j+1; their cache entries, then the low 16 bits of x
+ * and y and the outcodes), then the pre-pass's results per step (the fields after kind
+ * as pp_prepass describes). */
 typedef struct pp_soa {
+    const rs_cvert *ve[PP_IN], *vo[PP_IN];
     int16_t xe[PP_IN], xo[PP_IN], ye[PP_IN], yo[PP_IN], ce[PP_IN], co[PP_IN];
     int16_t kind[PP_STEPS], px0[PP_STEPS], py0[PP_STEPS], nx[PP_STEPS], ny[PP_STEPS];
     int16_t a1[PP_STEPS], a2[PP_STEPS], f01[PP_STEPS], f20[PP_STEPS], f13[PP_STEPS];

@@ -166,7 +166,7 @@ RS_HOT static void RS_FN(tiny_shade)(band *bd, const rs_cvert *a, const rs_cvert
             TINY_LANES_TO(l0, P0);
             TINY_LANES_TO(l2, P2);
             do {
-                const uint32_t i = (uint32_t)ctz64(m) >> 4;     /* the lowest top bit: 15 + 16 i */
+                const uint32_t i = ctz64(m) >> 4;     /* the lowest top bit: 15 + 16 i */
                 m &= m - 1;
                 TINY_SHADE(l2[i], l0[i], &zrow[i], &crow[i]);
             } while (m);
@@ -578,7 +578,7 @@ RS_HOT static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cvert
 {
     TINY_SETUP;
     do {
-        const size_t k = (size_t)ctz64(m);
+        const size_t k = ctz64(m);
         m &= m - 1;
         TINY_SHADE(E[4 * PP_STEPS * k], E[4 * PP_STEPS * k + PP_STEPS], zrow + zoff[k], (RS_PIX *)(void *)((uint8_t *)crow + coff[k]));
     } while (m);
@@ -644,6 +644,7 @@ static void RS_FN(draw)(band *bd)
                         const uint32_t *ip = s + t0;
                         for (kk = 0; kk <= n; kk++, ip += 2) {
                             const rs_cvert *a0 = &cache[ip[0]], *a1 = &cache[ip[1]];
+                            q.ve[kk] = a0; q.vo[kk] = a1;
                             q.xe[kk] = (int16_t)a0->x; q.ye[kk] = (int16_t)a0->y; q.ce[kk] = (int16_t)(a0->c >> 24);
                             q.xo[kk] = (int16_t)a1->x; q.yo[kk] = (int16_t)a1->y; q.co[kk] = (int16_t)(a1->c >> 24);
                         }
@@ -652,7 +653,11 @@ static void RS_FN(draw)(band *bd)
                     }
                     pp_prepass(bd, &q, n);
                     for (kk = 0; sp < se; sp += 2, kk++) {
-                        const rs_cvert *v2 = &cache[sp[0]], *v3 = &cache[sp[1]];
+                        /* the step's vertices, read where used (none are carried) */
+#define v0 q.ve[kk]
+#define v1 q.vo[kk]
+#define v2 q.ve[kk + 1]
+#define v3 q.vo[kk + 1]
                         const int32_t kind = q.kind[kk];
                         /* two inlined copies: quad_edges specialised without and with the
                          * second group of columns (one copy for both: A +2.7 M) */
@@ -687,8 +692,12 @@ static void RS_FN(draw)(band *bd)
                                 STRIP_TRI(v2, v1, v3, sp[0], sp[-1], sp[1]);
                             }
                         }
-                        v0 = v2; v1 = v3;
+#undef v0
+#undef v1
+#undef v2
+#undef v3
                     }
+                    v0 = q.ve[kk]; v1 = q.vo[kk];
                 } else
 #endif
                 {
