@@ -334,9 +334,9 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
 #define SG1(x) VSUB((x) ^ s1, s1)
 #define SG2(x) VSUB((x) ^ s2, s2)
         /* top-left bias masks (-1 for a biased edge): A = SG(yP - yQ) < 0, or A == 0 and
-         * B = SG(xQ - xP) <= 0, i.e. 2 A + (B > 0) <= 0 (|A| < 80 in a tiny box: no
-         * overflow; (B > 0) is -1 in the lanes where it holds) */
-#define QB(SG, P, Q) (VSUB(VADD(SG(VSUB(y##P, y##Q)), SG(VSUB(y##P, y##Q))), SG(VSUB(x##Q, x##P)) > 0) < one)
+         * B = SG(xQ - xP) <= 0, i.e. 256 A + B <= 0 as |B| < 144 in a tiny box (and
+         * |A| < 80: no overflow), with 256 A + B = SG(256 (yP - yQ) + xQ - xP) */
+#define QB(SG, P, Q) (SG(VADD(VI(VU(VSUB(y##P, y##Q)) << 8), VSUB(x##Q, x##P))) < one)
         const pp_v8 b01 = QB(SG1, 0, 1), b12 = QB(SG1, 1, 2), b20 = QB(SG1, 2, 0), b13 = QB(SG2, 1, 3), b32 = QB(SG2, 3, 2);
         /* T2's diagonal is T1's edge reversed: with the same orientation its value is
          * -1 - fD (the negated edge function, the complementary bias), else fD itself
