@@ -218,7 +218,7 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 #endif
 #endif
 #if RS_PREPASS
-enum { PK_NONE = 0, PK_QUAD, PK_ONE1, PK_ONE2, PK_WIDE, PK_SLOW, PK_NONE2, PK_QUADW };
+enum { PK_NONE = 0, PK_QUAD, PK_ONE1, PK_ONE2, PK_WIDE, PK_SLOW, PK_NONE2 };
 #define PP_STEPS (RS_CHUNK / 2)
 #define PP_IN (PP_STEPS + 16)   /* vertex slots 0 .. n rounded up to 8 (n <= PP_STEPS steps); a multiple of 8 */
 #define PP_OFF 32768            /* coordinates are taken as x - PP_OFF: [-32760, 32760] on screen */
@@ -237,12 +237,13 @@ typedef struct pp_soa {
     int16_t a1[PP_STEPS], a2[PP_STEPS], f01[PP_STEPS], f20[PP_STEPS], f13[PP_STEPS];
     int16_t A01[PP_STEPS], A20[PP_STEPS], A13[PP_STEPS], B01[PP_STEPS], B20[PP_STEPS], B13[PP_STEPS];
     int16_t S1[PP_STEPS], S2[PP_STEPS], nt[PP_STEPS];
-    /* PK_QUAD steps: the coverage of T1 / T2 (bit 4 j + i: candidate (px0 + i, py0 + j)
-     * of the step's nx x ny box), and for each covered
-     * candidate the two edge values shading needs: e[cand][0 / 1][step] T1's e20, e01 (the
-     * weights of v1, v2), e[cand][2 / 3][step] T2's e32, eT (of v1, v3) */
-    uint16_t m1[PP_STEPS], m2[PP_STEPS];
-    int16_t e[16][4][PP_STEPS];
+    /* PK_QUAD steps: the coverage of T1 / T2 (bit 8 j + i: candidate (px0 + i, py0 + j)
+     * of the step's nx x ny box), and for
+     * each covered candidate the two edge values shading needs: e[cand][0 / 1][step]
+     * T1's e20, e01 (the weights of v1, v2), e[cand][2 / 3][step] T2's e32, eT (of v1,
+     * v3) */
+    uint32_t m1[PP_STEPS], m2[PP_STEPS];
+    int16_t e[TINY_W * TINY_H][4][PP_STEPS];
 } pp_soa;
 #define PPL(A, K) (*(const pp_v8un *)(const void *)&(A)[K])
 #define PPS(A, K, V) (*(pp_v8un *)(void *)&(A)[K] = (V))
@@ -265,10 +266,11 @@ typedef struct pp_soa {
 
 /* The largest lane of V, in every lane (three rounds of swaps and maxima) */
 #if defined(__clang__)
-#define PP_SWAP(V, A, B, C, D, E, F, G, H) __builtin_shufflevector((V), (V), A, B, C, D, E, F, G, H)
+#define PP_ZIP(V, W, A, B, C, D, E, F, G, H) __builtin_shufflevector((V), (W), A, B, C, D, E, F, G, H)
 #else
-#define PP_SWAP(V, A, B, C, D, E, F, G, H) __builtin_shuffle((V), (pp_v8){ A, B, C, D, E, F, G, H })
+#define PP_ZIP(V, W, A, B, C, D, E, F, G, H) __builtin_shuffle((V), (W), (pp_v8){ A, B, C, D, E, F, G, H })
 #endif
+#define PP_SWAP(V, A, B, C, D, E, F, G, H) PP_ZIP((V), (V), A, B, C, D, E, F, G, H)
 #define PP_HMAX1(V, A, B, C, D, E, F, G, H) PP_MAX((V), PP_SWAP((V), A, B, C, D, E, F, G, H))
 #define PP_HMAX(V) PP_HMAX1(PP_HMAX1(PP_HMAX1((V), 4, 5, 6, 7, 0, 1, 2, 3), 2, 3, 0, 1, 6, 7, 4, 5), 1, 0, 3, 2, 5, 4, 7, 6)
 
@@ -315,7 +317,6 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
         /* boxes of 5-8 columns: quads with a second group of columns (pair_wide's), or
          * pair_wide itself for mixed orientations; larger ones pair_wide */
         const pp_v8 empty = hi < lo, wide = ((hi - lo) > (TINY_H - 1)) | ((xh - xl) > (TINY_W - 1));
-        const pp_v8 two = (xh - xl) > 3;
         const pp_v8 py0 = PP_MAX(lo, by0), py1 = PP_MIN(hi, by1);
         const pp_v8 bempty = (py0 > py1) | (xl > xh);
         const pp_v8 ox = VI((VU(xl) << SUB) + HALF), oy = VI((VU(py0) << SUB) + HALF);
@@ -348,7 +349,6 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
         const pp_v8 isone = (xl == xh) & (py0 == py1) & bsame, o2 = isone & ~one1;
         pp_v8 kind = zero + PK_QUAD;
         kind = VSEL(isone, VSEL(one1, zero + PK_ONE1, VSEL(one2, zero + PK_ONE2, zero + PK_NONE2)), kind);
-        kind = VSEL(two, VSEL(bsame, zero + PK_QUADW, zero + PK_WIDE), kind);
         kind = VSEL(~(ok1 | ok2) | bempty, zero + PK_NONE, kind);
         kind = VSEL(wide, zero + PK_WIDE, kind);
         kind = VSEL(empty, zero + PK_NONE, kind);
@@ -375,47 +375,62 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
             /* The quads' coverage, for the candidates of the largest quad box among
              * the eight (rows j < nym, columns i < nxm; isq: the lanes of quads): per
              * candidate T1's edge values g01, g20 and diagonal eD = S1 - g01 - g20, T2's
-             * g13, its diagonal eT = -1 - eD and third edge g32 = S2 + 1 + eD - g13 (the
-             * lanes of quad_edges' P01, P20, PD, P13, ~PD, P32 less 2^15), and a bit for
-             * each triangle whose three values are >= 0, in the lane's own box only, where
-             * every value is exact (the bound above). */
+             * g13, its diagonal eT (fT's) and third edge g32 = S2 - eT - g13, and a bit
+             * (8 j + i: rows 0-1 in the low half, 2-3 in the high one) for each triangle
+             * whose three values are >= 0, in the lane's own box only, where every value
+             * is exact (the bound above). */
             const pp_v8 isq = (kind == PK_QUAD) & (iota < (int16_t)(n - k));
             const pp_v8 qnx = VSEL(isq, xh - xl + 1, zero), qny = VSEL(isq, py1 - py0 + 1, zero);
             pp_v8 bx = PP_HMAX(qnx), by = PP_HMAX(qny);
             const int32_t nxm = bx[0], nym = by[0];
-            int32_t i, j;
-            pp_v8 m1 = zero, m2 = zero;
+            int32_t i;
+            pp_v8 m1l = zero, m2l = zero, m1h = zero, m2h = zero;
             if (nxm) {
                 const pp_v8 S1 = PPL(q->S1, k), S2 = PPL(q->S2, k);
                 const pp_v8 c01 = VI(VU(PPL(q->A01, k)) << SUB), c20 = VI(VU(PPL(q->A20, k)) << SUB);
                 const pp_v8 c13 = VI(VU(PPL(q->A13, k)) << SUB);
                 const pp_v8 r01s = VI(VU(PPL(q->B01, k)) << SUB), r20s = VI(VU(PPL(q->B20, k)) << SUB);
                 const pp_v8 r13s = VI(VU(PPL(q->B13, k)) << SUB);
-                pp_v8 r01 = f01, r20 = f20, r13 = f13;
-                pp_v8 rbit = one;       /* 1 << 4 j */
-                const pp_v8 col[4] = { qnx > 0, qnx > 1, qnx > 2, qnx > 3 };   /* column i in the box */
-                for (j = 0; j < nym; j++) {
-                    const pp_v8 row = qny > (int16_t)j;
-                    pp_v8 g01 = r01, g20 = r20, g13 = r13, bit = rbit;      /* 1 << (4 j + i) */
-                    for (i = 0; i < nxm; i++) {
-                        const pp_v8 inbox = bit & row & col[i];
-                        const pp_v8 eD = VSUB(VSUB(S1, g01), g20), eT = eD ^ same;
-                        const pp_v8 g32 = VSUB(VSUB(S2, eT), g13);
-                        m1 |= inbox & ~((g01 | g20 | eD) >> 15);
-                        m2 |= inbox & ~((g13 | g32 | eT) >> 15);
-                        PPS(q->e[4 * j + i][0], k, g20);
-                        PPS(q->e[4 * j + i][1], k, g01);
-                        PPS(q->e[4 * j + i][2], k, g32);
-                        PPS(q->e[4 * j + i][3], k, eT);
-                        g01 = VADD(g01, c01); g20 = VADD(g20, c20); g13 = VADD(g13, c13);
-                        bit = VADD(bit, bit);
-                    }
-                    rbit = VI(VU(rbit) << 4);
-                    r01 = VADD(r01, r01s); r20 = VADD(r20, r20s); r13 = VADD(r13, r13s);
+                pp_v8 r01 = f01, r20 = f20, r13 = f13, cm = zero, bit = one, cnt = qnx;
+                for (i = 0; i < nxm; i++) {     /* cm: bit i for the columns i < nx */
+                    cm |= (cnt > 0) & bit;
+                    bit = VADD(bit, bit); cnt = VSUB(cnt, one);
                 }
+                /* row J's bits (1 << i, then masked to the lane's box) into ML / MM at bit SH */
+#define PP_ROW(J, ML, MM, SH) do {                                                     \
+                    const pp_v8 rm = cm & (qny > (J));                                 \
+                    pp_v8 g01 = r01, g20 = r20, g13 = r13, b1 = zero, b2 = zero, cb = one; \
+                    for (i = 0; i < nxm; i++) {                                        \
+                        const pp_v8 eD = VSUB(VSUB(S1, g01), g20), eT = eD ^ same;     \
+                        const pp_v8 g32 = VSUB(VSUB(S2, eT), g13);                     \
+                        b1 |= cb & ~((g01 | g20 | eD) >> 15);                          \
+                        b2 |= cb & ~((g13 | g32 | eT) >> 15);                          \
+                        PPS(q->e[8 * (J) + i][0], k, g20);                             \
+                        PPS(q->e[8 * (J) + i][1], k, g01);                             \
+                        PPS(q->e[8 * (J) + i][2], k, g32);                             \
+                        PPS(q->e[8 * (J) + i][3], k, eT);                              \
+                        g01 = VADD(g01, c01); g20 = VADD(g20, c20); g13 = VADD(g13, c13); \
+                        cb = VADD(cb, cb);                                             \
+                    }                                                                  \
+                    ML |= VI(VU(b1 & rm) << (SH)); MM |= VI(VU(b2 & rm) << (SH));      \
+                    r01 = VADD(r01, r01s); r20 = VADD(r20, r20s); r13 = VADD(r13, r13s); \
+                } while (0)
+                PP_ROW(0, m1l, m2l, 0);
+                if (nym > 1) {
+                    PP_ROW(1, m1l, m2l, 8);
+                    if (nym > 2) {
+                        PP_ROW(2, m1h, m2h, 0);
+                        if (nym > 3) PP_ROW(3, m1h, m2h, 8);
+                    }
+                }
+#undef PP_ROW
             }
-            PPS((int16_t *)q->m1, k, m1 & ok1);
-            PPS((int16_t *)q->m2, k, m2 & ok2);
+            /* as 32-bit masks: the halves interleaved */
+            m1l &= ok1; m1h &= ok1; m2l &= ok2; m2h &= ok2;
+            PPS((int16_t *)q->m1, 2 * k, PP_ZIP(m1l, m1h, 0, 8, 1, 9, 2, 10, 3, 11));
+            PPS((int16_t *)q->m1, 2 * k + 8, PP_ZIP(m1l, m1h, 4, 12, 5, 13, 6, 14, 7, 15));
+            PPS((int16_t *)q->m2, 2 * k, PP_ZIP(m2l, m2h, 0, 8, 1, 9, 2, 10, 3, 11));
+            PPS((int16_t *)q->m2, 2 * k + 8, PP_ZIP(m2l, m2h, 4, 12, 5, 13, 6, 14, 7, 15));
         }
 #undef SG1
 #undef SG2

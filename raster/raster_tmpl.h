@@ -569,7 +569,7 @@ RS_HOT static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert 
 
 #if RS_PREPASS
 /* One triangle a, b, c (area2 > 0) of a pre-pass quad (PK_QUAD): m its covered
- * candidates (bit 4 j + i, see pp_soa), E its edge values (E[4 PP_STEPS k] opposite b, E[4 PP_STEPS k + PP_STEPS]
+ * candidates (bit 8 j + i, see pp_soa), E its edge values (E[4 PP_STEPS k] opposite b, E[4 PP_STEPS k + PP_STEPS]
  * opposite c for candidate k), crow / zrow the colour and depth of candidate 0,
  * coff / zoff the candidates' offsets from them (bytes / depth entries). */
 RS_HOT static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
@@ -599,11 +599,11 @@ static void RS_FN(draw)(band *bd)
     const int16_t *ch = f->chunks;     /* per chunk of RS_CHUNK triangles: rows touched */
     int32_t p;
 #if RS_PREPASS
-    /* the pre-pass quads' candidates 4 j + i: offsets of (i, j) in the colour and depth rows */
-    size_t coff[16], zoff[16];
-    for (p = 0; p < 16; p++) {
-        coff[p] = (size_t)(p >> 2) * bd->stride + (size_t)(p & 3) * sizeof(RS_PIX);
-        zoff[p] = (size_t)(p >> 2) * (size_t)bd->w + (size_t)(p & 3);
+    /* the pre-pass quads' candidates 8 j + i: offsets of (i, j) in the colour and depth rows */
+    size_t coff[TINY_W * TINY_H], zoff[TINY_W * TINY_H];
+    for (p = 0; p < TINY_W * TINY_H; p++) {
+        coff[p] = (size_t)(p >> 3) * bd->stride + (size_t)(p & 7) * sizeof(RS_PIX);
+        zoff[p] = (size_t)(p >> 3) * (size_t)bd->w + (size_t)(p & 7);
     }
 #endif
     for (p = 0; p < f->nprims; p++) {
@@ -670,11 +670,6 @@ static void RS_FN(draw)(band *bd)
                                 if (m1) RS_FN(quad_shade)(bd, v0, v1, v2, q.a1[kk], m1, E, crow, zrow, coff, zoff);
                                 if (m2) RS_FN(quad_shade)(bd, v2, v1, v3, q.a2[kk], m2, E + 2 * PP_STEPS, crow, zrow, coff, zoff);
                             }
-                        } else if (kind == PK_QUADW) {
-                            bd->tris += 2;
-                            RS_FN(quad_edges)(bd, v0, v1, v2, v3, q.px0[kk], q.nx[kk], q.py0[kk], q.ny[kk], TINY_XM4(4),
-                                              q.a1[kk], q.a2[kk], q.f01[kk], q.f20[kk], q.f13[kk], q.A01[kk], q.A20[kk],
-                                              q.A13[kk], q.B01[kk], q.B20[kk], q.B13[kk], q.S1[kk], q.S2[kk], 1);
                         } else if (kind == PK_NONE2) {
                             bd->tris += 2;
                         } else if (kind == PK_ONE1) {
