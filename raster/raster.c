@@ -319,6 +319,17 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
         const pp_v8 empty = hi < lo, wide = ((hi - lo) > (TINY_H - 1)) | ((xh - xl) > (TINY_W - 1));
         const pp_v8 py0 = PP_MAX(lo, by0), py1 = PP_MIN(hi, by1);
         const pp_v8 bempty = (py0 > py1) | (xl > xh);
+        {
+            /* eight steps that all draw nothing here (camera B: strips off screen, slivers
+             * near the horizon): kinds from the quantities above, nothing else is read */
+            const pp_v8 skip = slow | empty | (bempty & ~wide) | (iota >= (int16_t)(n - k));
+            uint64_t w[2];
+            memcpy(w, &skip, sizeof w);
+            if ((w[0] & w[1]) == ~(uint64_t)0) {
+                PPS(q->kind, k, VSEL(slow, zero + PK_SLOW, zero + PK_NONE));
+                continue;
+            }
+        }
         const pp_v8 ox = VI((VU(xl) << SUB) + HALF), oy = VI((VU(py0) << SUB) + HALF);
         const pp_v8 X0 = VSUB(x0, ox), X1 = VSUB(x1, ox), X2 = VSUB(x2, ox), X3 = VSUB(x3, ox);
         const pp_v8 Y0 = VSUB(y0, oy), Y1 = VSUB(y1, oy), Y2 = VSUB(y2, oy), Y3 = VSUB(y3, oy);
