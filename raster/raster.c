@@ -308,8 +308,12 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
         const pp_v8 fl = zero + (int16_t)-PP_OFF;
         const pp_v8 x0 = PPL(q->xe, k) ^ fl, x1 = PPL(q->xo, k) ^ fl, x2 = PPL(q->xe, k + 1) ^ fl, x3 = PPL(q->xo, k + 1) ^ fl;
         const pp_v8 y0 = PPL(q->ye, k) ^ fl, y1 = PPL(q->yo, k) ^ fl, y2 = PPL(q->ye, k + 1) ^ fl, y3 = PPL(q->yo, k + 1) ^ fl;
-        const pp_v8 slow = ((PPL(q->ce, k) | PPL(q->co, k) | PPL(q->ce, k + 1) | PPL(q->co, k + 1))
-                            & (int16_t)((SLOW | REJECT) >> 24)) != 0;
+        const pp_v8 c0 = PPL(q->ce, k), c1 = PPL(q->co, k), c2 = PPL(q->ce, k + 1), c3 = PPL(q->co, k + 1);
+        const pp_v8 c12 = c1 & c2 & (int16_t)(REJECT >> 24);
+        /* slow: an outcode bit, both triangles rejected by outcodes (the strip loop's test)
+         * or not */
+        const pp_v8 slow = ((c0 | c1 | c2 | c3) & (int16_t)((SLOW | REJECT) >> 24)) != 0;
+        const pp_v8 rej = ((c12 & c0) != 0) & ((c12 & c3) != 0);
         const pp_v8 ymin = PP_MIN(PP_MIN(y0, y1), PP_MIN(y2, y3)), ymax = PP_MAX(PP_MAX(y0, y1), PP_MAX(y2, y3));
         const pp_v8 xmin = PP_MIN(PP_MIN(x0, x1), PP_MIN(x2, x3)), xmax = PP_MAX(PP_MAX(x0, x1), PP_MAX(x2, x3));
         const pp_v8 lo = VADD(ymin, zero + (HALF - 1)) >> SUB, hi = VSUB(ymax, zero + HALF) >> SUB;
@@ -326,7 +330,7 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
             uint64_t w[2];
             memcpy(w, &skip, sizeof w);
             if ((w[0] & w[1]) == ~(uint64_t)0) {
-                PPS(q->kind, k, VSEL(slow, zero + PK_SLOW, zero + PK_NONE));
+                PPS(q->kind, k, VSEL(slow & ~rej, zero + PK_SLOW, zero + PK_NONE));
                 continue;
             }
         }
@@ -363,7 +367,7 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
         kind = VSEL(~(ok1 | ok2) | bempty, zero + PK_NONE, kind);
         kind = VSEL(wide, zero + PK_WIDE, kind);
         kind = VSEL(empty, zero + PK_NONE, kind);
-        kind = VSEL(slow, zero + PK_SLOW, kind);
+        kind = VSEL(slow, VSEL(rej, zero + PK_NONE, zero + PK_SLOW), kind);
         PPS(q->kind, k, kind);
         PPS(q->px0, k, xl + PP_ROFF);
         {

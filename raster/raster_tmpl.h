@@ -681,11 +681,9 @@ static void RS_FN(draw)(band *bd)
                         } else if (kind == PK_WIDE) {
                             RS_FN(pair_wide)(bd, v0, v1, v2, v3, q.py0[kk], q.ny[kk], q.px0[kk], q.nx[kk]);
                         } else if (kind == PK_SLOW) {
-                            const uint32_t c12 = v1->c & v2->c;
-                            if (!((c12 & v0->c & REJECT) && (c12 & v3->c & REJECT))) {
-                                STRIP_TRI(v0, v1, v2, sp[-2], sp[-1], sp[0]);
-                                STRIP_TRI(v2, v1, v3, sp[0], sp[-1], sp[1]);
-                            }
+                            /* (pairs whose two triangles the outcodes reject are PK_NONE) */
+                            STRIP_TRI(v0, v1, v2, sp[-2], sp[-1], sp[0]);
+                            STRIP_TRI(v2, v1, v3, sp[0], sp[-1], sp[1]);
                         }
 #undef v0
 #undef v1
