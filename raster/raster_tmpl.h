@@ -132,13 +132,19 @@ RS_INLINE static uint64_t RS_FN(tiny_mask)(uint64_t P0, uint64_t P2, uint64_t k1
     } while (0)
 #endif
 
-/* The 16-bit lanes of a packed row of biased edge values (e + 2^15), as the signed e:
- * L[l] is lane l (bits 16 l .. 16 l + 15) minus 2^15.  The lane then is one indexed
- * load per covered centre instead of a shift by a variable amount and a zero extension. */
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-#define TINY_LANES_TO(L, P) do { int l_; for (l_ = 0; l_ < 4; l_++) (L)[l_] = (int16_t)((int32_t)LANE16((P), 16 * l_) - 0x8000); } while (0)
-#else
+/* The edge value e of lane I (bits 16 I .. 16 I + 15) of a packed row P of biased
+ * values (e + 2^15).  64-bit little-endian targets copy a row's lanes into int16 arrays
+ * L first (TINY_ROW_LANES: the lanes of P0, P2 into l0, l2), so that a lane is one
+ * indexed load instead of a shift by a variable amount and a zero extension; 32-bit
+ * targets, where a 64-bit shift is several instructions and LANE16 picks the word
+ * first, extract it. */
+#if RS_REG64 && !(defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__)
 #define TINY_LANES_TO(L, P) do { const uint64_t x_ = (P) ^ TINY_LANES; memcpy((L), &x_, 8); } while (0)
+#define TINY_ROW_LANES int16_t l0[4], l2[4]; TINY_LANES_TO(l0, P0); TINY_LANES_TO(l2, P2)
+#define TINY_E(L, P, I) (L)[I]
+#else
+#define TINY_ROW_LANES
+#define TINY_E(L, P, I) ((int32_t)LANE16((P), 16 * (I)) - 0x8000)
 #endif
 
 /* The covered centres of one tiny triangle a, b, c (a the base vertex; area2 > 0 its
@@ -162,13 +168,11 @@ RS_HOT static void RS_FN(tiny_shade)(band *bd, const rs_cvert *a, const rs_cvert
         uint64_t m = M & TINY_LANES;
         M ^= m;
         if (m) {
-            int16_t l0[4], l2[4];
-            TINY_LANES_TO(l0, P0);
-            TINY_LANES_TO(l2, P2);
+            TINY_ROW_LANES;
             do {
                 const uint32_t i = ctz64(m) >> 4;     /* the lowest top bit: 15 + 16 i */
                 m &= m - 1;
-                TINY_SHADE(l2[i], l0[i], &zrow[i], &crow[i]);
+                TINY_SHADE(TINY_E(l2, P2, i), TINY_E(l0, P0, i), &zrow[i], &crow[i]);
             } while (m);
         }
         if (M) {
@@ -749,3 +753,5 @@ static void RS_FN(draw)(band *bd)
 #undef TINY_SETUP_PLAIN
 #undef TINY_SHADE
 #undef TINY_LANES_TO
+#undef TINY_ROW_LANES
+#undef TINY_E
