@@ -234,9 +234,7 @@ typedef struct pp_soa {
     const rs_cvert *ve[PP_IN], *vo[PP_IN];
     int16_t xe[PP_IN], xo[PP_IN], ye[PP_IN], yo[PP_IN], ce[PP_IN], co[PP_IN];
     int16_t kind[PP_STEPS], px0[PP_STEPS], py0[PP_STEPS], nx[PP_STEPS], ny[PP_STEPS];
-    int16_t a1[PP_STEPS], a2[PP_STEPS], f01[PP_STEPS], f20[PP_STEPS], f13[PP_STEPS];
-    int16_t A01[PP_STEPS], A20[PP_STEPS], A13[PP_STEPS], B01[PP_STEPS], B20[PP_STEPS], B13[PP_STEPS];
-    int16_t S1[PP_STEPS], S2[PP_STEPS], nt[PP_STEPS];
+    int16_t a1[PP_STEPS], a2[PP_STEPS], f01[PP_STEPS], f20[PP_STEPS], nt[PP_STEPS];
     /* PK_QUAD steps: the coverage of T1 / T2 (bit 8 j + i: candidate (px0 + i, py0 + j)
      * of the step's nx x ny box), and for
      * each covered candidate the two edge values shading needs: e[cand][0 / 1][step]
@@ -278,15 +276,18 @@ typedef struct pp_soa {
  * pp_soa above; the vertices' low 16 bits in q->xe .. q->co): for each step what
  * tri_pair, pair_tiny and tri_quad (raster_tmpl.h) compute before the coverage masks,
  * with the same values, so the pixels are theirs:
- * - kind: PK_SLOW (an outcode bit: the main pass does what the plain loop does), PK_NONE
- *   (no row of centres, an empty box in the band, both culled), PK_WIDE (more than
- *   TINY_H rows or TINY_W columns, or 5-8 columns with mixed orientations: pair_wide with
- *   lo, hi, xl, xh in py0, ny, px0, nx), PK_MIXED (up to four columns, orientations
- *   differ or an area is zero: pair_tiny), PK_ONE1 / PK_ONE2 / PK_NONE2 (one candidate,
- *   held by T1, by T2 or by neither), PK_QUAD / PK_QUADW (tri_quad's quad of up to four
- *   columns / of five to eight, two groups);
- * - for the quads (and one-candidate boxes) the box, the orientation-signed areas, biased
- *   edge values at the first candidate, the edges' steps and S1, S2, as tri_quad has them.
+ * - kind: PK_SLOW (an outcode bit, and not both triangles rejected by the outcodes: the
+ *   main pass does what the plain loop does), PK_NONE (no row of centres, an empty box in
+ *   the band, neither triangle drawn (culled or of zero area), both rejected by the
+ *   outcodes), PK_WIDE (more than TINY_H rows or TINY_W columns: pair_wide with lo, hi,
+ *   xl, xh in py0, ny, px0, nx), PK_ONE1 / PK_ONE2 / PK_NONE2 (one candidate, both
+ *   triangles drawn with the same orientation, the candidate held by T1, by T2 or by
+ *   neither), PK_QUAD (any other box of up to TINY_W x TINY_H centres, either orientation
+ *   for each triangle);
+ * - for the one-candidate boxes the orientation-signed area and biased edge values of the
+ *   triangle that holds it, as tri_quad has them; for the quads the box, the areas, the
+ *   number of triangles drawn (nt) and the coverage and edge values of each candidate
+ *   (see the candidate loop below).
  * Every value is computed modulo 2^16.  For the pairs that use them it is exact: all four
  * vertices are on screen, so a coordinate minus PP_OFF is in [-32760, 32760] (w, h <=
  * 4096) and the box bounds lo, hi, xl, xh (and their differences) are exact; a box of at
@@ -380,11 +381,6 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
         PPS(q->a2, k, SG2(ar2));
         PPS(q->f01, k, VSEL(o2, fT, f01));
         PPS(q->f20, k, VSEL(o2, f32, f20));
-        PPS(q->f13, k, f13);
-        PPS(q->A01, k, SG1(VSUB(y0, y1))); PPS(q->A20, k, SG1(VSUB(y2, y0))); PPS(q->A13, k, SG2(VSUB(y1, y3)));
-        PPS(q->B01, k, SG1(VSUB(x1, x0))); PPS(q->B20, k, SG1(VSUB(x0, x2))); PPS(q->B13, k, SG2(VSUB(x3, x1)));
-        PPS(q->S1, k, VADD(VADD(VADD(SG1(ar1), b01), b12), b20));
-        PPS(q->S2, k, VADD(VADD(VADD(SG2(ar2), b13), bT), b32));
         PPS(q->nt, k, VSUB(zero, VADD(ok1, ok2)));
         {
             /* The quads' coverage, for the candidates of the largest quad box among
@@ -401,11 +397,13 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
             int32_t i;
             pp_v8 m1l = zero, m2l = zero, m1h = zero, m2h = zero;
             if (nxm) {
-                const pp_v8 S1 = PPL(q->S1, k), S2 = PPL(q->S2, k);
-                const pp_v8 c01 = VI(VU(PPL(q->A01, k)) << SUB), c20 = VI(VU(PPL(q->A20, k)) << SUB);
-                const pp_v8 c13 = VI(VU(PPL(q->A13, k)) << SUB);
-                const pp_v8 r01s = VI(VU(PPL(q->B01, k)) << SUB), r20s = VI(VU(PPL(q->B20, k)) << SUB);
-                const pp_v8 r13s = VI(VU(PPL(q->B13, k)) << SUB);
+                /* S1, S2: the areas less the biases; the edges' steps per pixel across
+                 * (16 A) and down (16 B) */
+                const pp_v8 S1 = VADD(VADD(VADD(SG1(ar1), b01), b12), b20), S2 = VADD(VADD(VADD(SG2(ar2), b13), bT), b32);
+                const pp_v8 c01 = VI(VU(SG1(VSUB(y0, y1))) << SUB), c20 = VI(VU(SG1(VSUB(y2, y0))) << SUB);
+                const pp_v8 c13 = VI(VU(SG2(VSUB(y1, y3))) << SUB);
+                const pp_v8 r01s = VI(VU(SG1(VSUB(x1, x0))) << SUB), r20s = VI(VU(SG1(VSUB(x0, x2))) << SUB);
+                const pp_v8 r13s = VI(VU(SG2(VSUB(x3, x1))) << SUB);
                 pp_v8 r01 = f01, r20 = f20, r13 = f13, cm = zero, bit = one, cnt = qnx;
                 for (i = 0; i < nxm; i++) {     /* cm: bit i for the columns i < nx */
                     cm |= (cnt > 0) & bit;
