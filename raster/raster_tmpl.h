@@ -348,8 +348,9 @@ RS_INLINE static void RS_FN(quad_masks)(uint64_t P01, uint64_t P20, uint64_t P13
     *m1 = M1; *m2 = M2;
 }
 
-/* The coverage and shading of a strip quad from its edge set-up (tri_quad's, or the vector
- * pre-pass's, raster.c): a1, a2 the two triangles' doubled areas (> 0), f01, f20, f13 the
+/* The coverage and shading of a strip quad from its edge set-up (tri_quad's second half,
+ * for the per-pair code; the pre-pass's quads get their coverage from raster.c's
+ * pp_prepass and shade in quad_shade): a1, a2 the two triangles' doubled areas (> 0), f01, f20, f13 the
  * biased values of three outer edges at the first candidate (px0, py0), A, B their steps
  * per sub-pixel across and down, S1, S2 the areas minus the biases; wide: the box may have
  * a second group of columns (nx up to TINY_W). */
@@ -663,8 +664,6 @@ static void RS_FN(draw)(band *bd)
 #define v2 q.ve[kk + 1]
 #define v3 q.vo[kk + 1]
                         const int32_t kind = q.kind[kk];
-                        /* two inlined copies: quad_edges specialised without and with the
-                         * second group of columns (one copy for both: A +2.7 M) */
                         if (RS_LIKELY(kind == PK_QUAD)) {
                             const uint32_t m1 = q.m1[kk], m2 = q.m2[kk];    /* coverage */
                             bd->tris += (uint32_t)q.nt[kk];
