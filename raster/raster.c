@@ -211,7 +211,10 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
  * RS_PREPASS=0 or 1 overrides (check-nofloat.sh compiles the pre-pass with
  * -mgeneral-regs-only, where GCC lowers the vectors to integer registers). */
 #ifndef RS_PREPASS
-#if defined(__GNUC__) && (defined(__SSE2__) || defined(__ARM_NEON))
+#if defined(__GNUC__) && (defined(__SSE2__) || defined(__ARM_NEON)) \
+    && !(defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__)
+/* (little-endian only: the 32-bit masks are built from 16-bit lanes, and raster_general.h's
+ * spans widen 16-bit pixels through a uint64) */
 #define RS_PREPASS 1
 #else
 #define RS_PREPASS 0
