@@ -202,10 +202,19 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 
 #endif
 
+/* The lanes of two vectors V, W picked by constant indices (MT: the integer vector type
+ * of the indices, which GCC's __builtin_shuffle takes; clang's __builtin_shufflevector
+ * takes them as arguments), for the pre-pass below and raster_general.h's spans. */
+#if defined(__clang__)
+#define RS_SHUFFLE(V, W, MT, ...) __builtin_shufflevector((V), (W), __VA_ARGS__)
+#else
+#define RS_SHUFFLE(V, W, MT, ...) __builtin_shuffle((V), (W), (MT){ __VA_ARGS__ })
+#endif
+
 /* The strip pre-pass (pp_prepass below; used by the strip loop of raster_tmpl.h's draw):
- * the set-up of a chunk's strip pairs, eight at a time in 16-bit vector lanes (GCC's
- * generic vectors: SSE2 on x86-64, NEON on AArch64), into pp_soa; the strip loop then
- * builds the coverage masks and shades from those values, one pair at a time.  The same values as
+ * the set-up and coverage of a chunk's strip pairs, eight at a time in 16-bit vector lanes
+ * (GCC's generic vectors: SSE2 on x86-64, NEON on AArch64), into pp_soa; the strip loop then
+ * shades the covered centres one pair at a time.  The same values as
  * the plain per-pair code (tri_pair), so the same pixels; targets without such vectors
  * (32-bit ARM without NEON, Cortex-M, other compilers) keep the per-pair code.
  * RS_PREPASS=0 or 1 overrides (check-nofloat.sh compiles the pre-pass with
@@ -266,13 +275,7 @@ typedef struct pp_soa {
 #endif
 
 /* The largest lane of V, in every lane (three rounds of swaps and maxima) */
-#if defined(__clang__)
-#define PP_ZIP(V, W, A, B, C, D, E, F, G, H) __builtin_shufflevector((V), (W), A, B, C, D, E, F, G, H)
-#else
-#define PP_ZIP(V, W, A, B, C, D, E, F, G, H) __builtin_shuffle((V), (W), (pp_v8){ A, B, C, D, E, F, G, H })
-#endif
-#define PP_SWAP(V, A, B, C, D, E, F, G, H) PP_ZIP((V), (V), A, B, C, D, E, F, G, H)
-#define PP_HMAX1(V, A, B, C, D, E, F, G, H) PP_MAX((V), PP_SWAP((V), A, B, C, D, E, F, G, H))
+#define PP_HMAX1(V, A, B, C, D, E, F, G, H) PP_MAX((V), RS_SHUFFLE((V), (V), pp_v8, A, B, C, D, E, F, G, H))
 #define PP_HMAX(V) PP_HMAX1(PP_HMAX1(PP_HMAX1((V), 4, 5, 6, 7, 0, 1, 2, 3), 2, 3, 0, 1, 6, 7, 4, 5), 1, 0, 3, 2, 5, 4, 7, 6)
 
 /* The set-up of strip steps 0 .. n-1 of a chunk, eight at a time in 16-bit lanes (see
@@ -314,16 +317,15 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
         const pp_v8 y0 = PPL(q->ye, k) ^ fl, y1 = PPL(q->yo, k) ^ fl, y2 = PPL(q->ye, k + 1) ^ fl, y3 = PPL(q->yo, k + 1) ^ fl;
         const pp_v8 c0 = PPL(q->ce, k), c1 = PPL(q->co, k), c2 = PPL(q->ce, k + 1), c3 = PPL(q->co, k + 1);
         const pp_v8 c12 = c1 & c2 & (int16_t)(REJECT >> 24);
-        /* slow: an outcode bit, both triangles rejected by outcodes (the strip loop's test)
-         * or not */
+        /* slow: an outcode bit; rej: both triangles rejected by the outcodes (the per-pair
+         * strip loop's test) */
         const pp_v8 slow = ((c0 | c1 | c2 | c3) & (int16_t)((SLOW | REJECT) >> 24)) != 0;
         const pp_v8 rej = ((c12 & c0) != 0) & ((c12 & c3) != 0);
         const pp_v8 ymin = PP_MIN(PP_MIN(y0, y1), PP_MIN(y2, y3)), ymax = PP_MAX(PP_MAX(y0, y1), PP_MAX(y2, y3));
         const pp_v8 xmin = PP_MIN(PP_MIN(x0, x1), PP_MIN(x2, x3)), xmax = PP_MAX(PP_MAX(x0, x1), PP_MAX(x2, x3));
         const pp_v8 lo = VADD(ymin, zero + (HALF - 1)) >> SUB, hi = VSUB(ymax, zero + HALF) >> SUB;
         const pp_v8 xl = VADD(xmin, zero + (HALF - 1)) >> SUB, xh = VSUB(xmax, zero + HALF) >> SUB;
-        /* boxes of 5-8 columns: quads with a second group of columns (pair_wide's), or
-         * pair_wide itself for mixed orientations; larger ones pair_wide */
+        /* boxes of more than TINY_W x TINY_H centres: pair_wide */
         const pp_v8 empty = hi < lo, wide = ((hi - lo) > (TINY_H - 1)) | ((xh - xl) > (TINY_W - 1));
         const pp_v8 py0 = PP_MAX(lo, by0), py1 = PP_MIN(hi, by1);
         const pp_v8 bempty = (py0 > py1) | (xl > xh);
@@ -443,10 +445,10 @@ static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
             }
             /* as 32-bit masks: the halves interleaved */
             m1l &= ok1; m1h &= ok1; m2l &= ok2; m2h &= ok2;
-            PPS((int16_t *)q->m1, 2 * k, PP_ZIP(m1l, m1h, 0, 8, 1, 9, 2, 10, 3, 11));
-            PPS((int16_t *)q->m1, 2 * k + 8, PP_ZIP(m1l, m1h, 4, 12, 5, 13, 6, 14, 7, 15));
-            PPS((int16_t *)q->m2, 2 * k, PP_ZIP(m2l, m2h, 0, 8, 1, 9, 2, 10, 3, 11));
-            PPS((int16_t *)q->m2, 2 * k + 8, PP_ZIP(m2l, m2h, 4, 12, 5, 13, 6, 14, 7, 15));
+            PPS((int16_t *)q->m1, 2 * k, RS_SHUFFLE(m1l, m1h, pp_v8, 0, 8, 1, 9, 2, 10, 3, 11));
+            PPS((int16_t *)q->m1, 2 * k + 8, RS_SHUFFLE(m1l, m1h, pp_v8, 4, 12, 5, 13, 6, 14, 7, 15));
+            PPS((int16_t *)q->m2, 2 * k, RS_SHUFFLE(m2l, m2h, pp_v8, 0, 8, 1, 9, 2, 10, 3, 11));
+            PPS((int16_t *)q->m2, 2 * k + 8, RS_SHUFFLE(m2l, m2h, pp_v8, 4, 12, 5, 13, 6, 14, 7, 15));
         }
 #undef SG1
 #undef SG2

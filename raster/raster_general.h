@@ -22,13 +22,6 @@ typedef int32_t gs_v4i __attribute__((vector_size(16)));
 typedef uint32_t gs_v4un __attribute__((vector_size(16), aligned(2)));  /* at any 16-bit boundary */
 typedef uint16_t gs_v8h __attribute__((vector_size(16)));
 typedef uint64_t gs_v2q __attribute__((vector_size(16)));
-#ifdef __clang__
-#define GS_SHUF8(A, B, ...) __builtin_shufflevector((A), (B), __VA_ARGS__)
-#define GS_SHUF4(A, B, ...) __builtin_shufflevector((A), (B), __VA_ARGS__)
-#else
-#define GS_SHUF8(A, B, ...) __builtin_shuffle((A), (B), (gs_v8h){ __VA_ARGS__ })
-#define GS_SHUF4(A, B, ...) __builtin_shuffle((A), (B), (gs_v4u){ __VA_ARGS__ })
-#endif
 /* Four depths or pixels at P (uint32_t or uint16_t, by sizeof) to the 32-bit lanes of V,
  * and back; macros, not functions: a vector argument or result needs vector registers,
  * which -mgeneral-regs-only does not have.  16-bit elements come as eight bytes into
@@ -39,11 +32,11 @@ typedef uint64_t gs_v2q __attribute__((vector_size(16)));
 #define GS_LD(V, P) do { \
         if (sizeof *(P) == 4) V = *(const gs_v4un *)(const void *)(P); \
         else { uint64_t u_; gs_v2q q_; memcpy(&u_, (const void *)(P), 8); q_ = (gs_v2q){ u_, 0 }; \
-               V = (gs_v4u)GS_SHUF8((gs_v8h)q_, (gs_v8h)(q_ - q_), 0, 8, 1, 9, 2, 10, 3, 11); } } while (0)
+               V = (gs_v4u)RS_SHUFFLE((gs_v8h)q_, (gs_v8h)(q_ - q_), gs_v8h, 0, 8, 1, 9, 2, 10, 3, 11); } } while (0)
 #define GS_ST(P, V) do { \
         if (sizeof *(P) == 4) *(gs_v4un *)(void *)(P) = (V); \
         else { gs_v2q q_ = (gs_v2q)(V); uint64_t u_; q_ |= q_ >> 16; \
-               u_ = ((gs_v2q)GS_SHUF4((gs_v4u)q_, (gs_v4u)q_, 0, 2, 0, 2))[0]; memcpy((void *)(P), &u_, 8); } } while (0)
+               u_ = ((gs_v2q)RS_SHUFFLE((gs_v4u)q_, (gs_v4u)q_, gs_v4u, 0, 2, 0, 2))[0]; memcpy((void *)(P), &u_, 8); } } while (0)
 #endif
 
 /* Triangles whose bounding box has more than TINY_W x TINY_H candidate centres (kept
