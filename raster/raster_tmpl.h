@@ -622,6 +622,18 @@ static void RS_FN(draw)(band *bd)
             if (pr->kind == RS_STRIP) {
                 /* sliding window: one new vertex per triangle; triangle t = (s[t], s[t+1],
                  * s[t+2]), the first two swapped for odd t */
+                {
+                    /* a chunk whose vertices s[t0 .. t1 + 1] all lie beyond one side (or
+                     * behind the near plane, or beyond the far one): every triangle of it is
+                     * rejected by its outcodes, as each would be below, so nothing is drawn
+                     * or counted.  Read outcodes only, and stop at the first vertex that
+                     * clears the last common bit (a chunk with a vertex on screen: its
+                     * first one or two). */
+                    const uint32_t *ip = s + t0, *const ie = s + t1 + 2;
+                    uint32_t am = REJECT;
+                    do am &= cache[*ip].c; while (am && ++ip != ie);
+                    if (am) continue;
+                }
                 const rs_cvert *v0 = &cache[s[t0]], *v1 = &cache[s[t0 + 1]];
                 /* triangle = (P, Q, V), V the new vertex; outcodes read where tested
                  * (fewer live registers); the clipper gets the same order (indices IP, IQ, IV) */
