@@ -669,7 +669,7 @@ static void RS_FN(draw)(band *bd)
                         for (; kk <= ((n + 7) & ~7); kk++) q.xe[kk] = q.xo[kk] = q.ye[kk] = q.yo[kk] = q.ce[kk] = q.co[kk] = 0;
                     }
                     pp_prepass(bd, &q, n);
-                    for (kk = 0; sp < se; sp += 2, kk++) {
+                    for (kk = 0; kk < n; kk++) {
                         /* the step's vertices, read where used (none are carried) */
 #define v0 q.ve[kk]
 #define v1 q.vo[kk]
@@ -697,8 +697,9 @@ static void RS_FN(draw)(band *bd)
                             RS_FN(pair_wide)(bd, v0, v1, v2, v3, q.py0[kk], q.ny[kk], q.px0[kk], q.nx[kk]);
                         } else if (kind == PK_SLOW) {
                             /* (pairs whose two triangles the outcodes reject are PK_NONE) */
-                            STRIP_TRI(v0, v1, v2, sp[-2], sp[-1], sp[0]);
-                            STRIP_TRI(v2, v1, v3, sp[0], sp[-1], sp[1]);
+                            const uint32_t *const ip = sp + 2 * kk;
+                            STRIP_TRI(v0, v1, v2, ip[-2], ip[-1], ip[0]);
+                            STRIP_TRI(v2, v1, v3, ip[0], ip[-1], ip[1]);
                         }
 #undef v0
 #undef v1
@@ -706,6 +707,7 @@ static void RS_FN(draw)(band *bd)
 #undef v3
                     }
                     v0 = q.ve[kk]; v1 = q.vo[kk];
+                    sp += 2 * n;
                 } else
 #endif
                 {
