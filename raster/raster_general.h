@@ -37,6 +37,28 @@ typedef uint64_t gs_v2q __attribute__((vector_size(16)));
         if (sizeof *(P) == 4) *(gs_v4un *)(void *)(P) = (V); \
         else { gs_v2q q_ = (gs_v2q)(V); uint64_t u_; q_ |= q_ >> 16; \
                u_ = ((gs_v2q)RS_SHUFFLE((gs_v4u)q_, (gs_v4u)q_, gs_v4u, 0, 2, 0, 2))[0]; memcpy((void *)(P), &u_, 8); } } while (0)
+/* The lanes of a triangle's plain spans: lane l of a group at pixel j holds pixel j + l,
+ * each value from the span start plus (j + l) times its step, so the lanes start at
+ * {0, 1, 2, 3} steps (the *off) and step by 4 (the *step). */
+typedef struct gs_lanes { gs_v4u zoff, roff, goff, boff, zstep, rstep, gstep, bstep; } gs_lanes;
+/* Made at a triangle's first span of four or more pixels (a call draws two rows on
+ * average; on B 640x480 2.1 K of the 4.3 K calls per frame draw such a span), out of
+ * line and into memory: inline, GCC may hoist it out of the row loop (it is loop
+ * invariant), making it for every call.  The signed colour gradients G_k from the packed
+ * gc = G_R 2^42 + G_G 2^21 + G_B (mod 2^64): on a span of n >= 4 pixels the fields at
+ * pixels 0 and 3 both lie in [0, 2^21), so 3 |G_k| < 2^21 and |G_k| < 2^20, which the
+ * 21-bit sign extensions recover exactly, field by field from the bottom.  rl: R's
+ * shift (see GS_PX). */
+RS_NOINLINE static void gs_lanes_make(gs_lanes *L, uint32_t gzu, uint64_t gc, int rl)
+{
+    const uint32_t g_b = (uint32_t)((int64_t)(gc << 43) >> 43);
+    const uint32_t g_g = (uint32_t)((int64_t)((gc - (uint64_t)(int32_t)g_b) << 22) >> 43);
+    const uint32_t g_r = (uint32_t)((int64_t)(gc - (uint64_t)(int32_t)g_b - ((uint64_t)(int32_t)g_g << 21)) >> 42) << rl;
+    L->zoff = (gs_v4u){ 0, gzu, 2 * gzu, 3 * gzu }; L->zstep = L->zoff - L->zoff + 4 * gzu;
+    L->roff = (gs_v4u){ 0, g_r, 2 * g_r, 3 * g_r }; L->rstep = L->roff - L->roff + 4 * g_r;
+    L->goff = (gs_v4u){ 0, g_g, 2 * g_g, 3 * g_g }; L->gstep = L->goff - L->goff + 4 * g_g;
+    L->boff = (gs_v4u){ 0, g_b, 2 * g_b, 3 * g_b }; L->bstep = L->boff - L->boff + 4 * g_b;
+}
 #endif
 
 /* Triangles whose bounding box has more than TINY_W x TINY_H candidate centres (kept
@@ -141,12 +163,7 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
 
         const uint64_t ca = (a->cp << 13) + RS_CBIAS;
 #if RS_SPANV && !RS_TEX && !RS_COUNT
-        /* The span's lanes (see the plain span below), made at the first span of four or
-         * more pixels (a call draws two rows on average; on B 640x480 2.1 K of the 5.5 K
-         * calls per frame draw such a span): lane l of a group at pixel j holds pixel j + l,
-         * each value from the span start plus (j + l) times its step, so the lanes start
-         * at {0, 1, 2, 3} steps (the *off) and step by 4 (the *step). */
-        gs_v4u zoff = { 0 }, zstep = zoff, roff = zoff, rstep = zoff, goff = zoff, gstep = zoff, boff = zoff, bstep = zoff;
+        gs_lanes L;             /* made at the first span of four or more pixels */
         int lanes = 0;
 #endif
         /* wide boxes: the row spans' divisors |16 A| (1 for a zero step, never divided by) */
@@ -233,25 +250,11 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                         const int rl = sizeof(RS_PIX) == 4 ? 3 : 0;     /* R << 3: see GS_PX */
                         const uint32_t tl = (uint32_t)n - 4u;
                         gs_v4u ndl, npl, m;
-                        if (!lanes) {
-                            /* The signed colour gradients G_k from the packed
-                             * gc = G_R 2^42 + G_G 2^21 + G_B (mod 2^64): on a span of n >= 4
-                             * pixels the fields at pixels 0 and 3 both lie in [0, 2^21), so
-                             * 3 |G_k| < 2^21 and |G_k| < 2^20, which the 21-bit sign
-                             * extensions recover exactly, field by field from the bottom. */
-                            const uint32_t g_b = (uint32_t)((int64_t)(gc << 43) >> 43);
-                            const uint32_t g_g = (uint32_t)((int64_t)((gc - (uint64_t)(int32_t)g_b) << 22) >> 43);
-                            const uint32_t g_r = (uint32_t)((int64_t)(gc - (uint64_t)(int32_t)g_b - ((uint64_t)(int32_t)g_g << 21)) >> 42) << rl;
-                            zoff = (gs_v4u){ 0, gzu, 2 * gzu, 3 * gzu }; zstep = zoff - zoff + 4 * gzu;
-                            roff = (gs_v4u){ 0, g_r, 2 * g_r, 3 * g_r }; rstep = roff - roff + 4 * g_r;
-                            goff = (gs_v4u){ 0, g_g, 2 * g_g, 3 * g_g }; gstep = goff - goff + 4 * g_g;
-                            boff = (gs_v4u){ 0, g_b, 2 * g_b, 3 * g_b }; bstep = boff - boff + 4 * g_b;
-                            lanes = 1;
-                        }
+                        if (!lanes) { gs_lanes_make(&L, gzu, gc, rl); lanes = 1; }
 /* The lanes at pixel j from the scalar depth Z and packed colour C there (depth with its
  * top bit flipped, for the signed compare of 32-bit depths). */
-#define GS_LANES(Z, C) zv = ((Z) ^ 0x80000000u) + zoff; rv = ((uint32_t)((C) >> 42) << rl) + roff; \
-                       gv = ((uint32_t)((C) >> 21) & 0x1fffffu) + goff; bv = ((uint32_t)(C) & 0x1fffffu) + boff
+#define GS_LANES(Z, C) zv = ((Z) ^ 0x80000000u) + L.zoff; rv = ((uint32_t)((C) >> 42) << rl) + L.roff; \
+                       gv = ((uint32_t)((C) >> 21) & 0x1fffffu) + L.goff; bv = ((uint32_t)(C) & 0x1fffffu) + L.boff
 /* The depth test of a group: its depths OD, the write mask M and the depths to store ND
  * (OD ^ ((OD ^ zz) & M) picks zz where M is set).  32-bit depths: the unsigned compare
  * as a signed one with the top bits flipped (zv has its top bit flipped already, and
@@ -278,6 +281,7 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                             npl = op ^ ((op ^ GS_PX()) & m);
                         }
                         if (j < -4) {
+                            const gs_v4u zstep = L.zstep, rstep = L.rstep, gstep = L.gstep, bstep = L.bstep;
                             gs_v4u zv, rv, gv, bv;
                             GS_LANES(z, col);
                             do {
