@@ -174,7 +174,14 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
             fx_divisor_make(&q1, s1_ < 0 ? -s1_ : s1_ ? s1_ : 1);
             fx_divisor_make(&q2, sx2 < 0 ? -sx2 : sx2 ? sx2 : 1);
         }
-        for (py = py0; py <= py1; py++, e0r += sy0, e2r += sy2) {
+        /* the row's colour and depth, stepped across the rows (one past the band's last
+         * row at the end at most); per drawn row, products by the row and the band's
+         * fields reloaded (the pixel stores may alias them) cost 0.09 M instructions per
+         * frame more on B 640x480 */
+        uint8_t *crow = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
+        RS_Z *zrow = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)w;
+        const size_t cstride = bd->stride;
+        for (py = py0; py <= py1; py++, e0r += sy0, e2r += sy2, crow += cstride, zrow += w) {
             int32_t xl = px0, xr = px1;
             int64_t e0, e2;
             if (px1 - px0 < NARROW) {
@@ -208,8 +215,8 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                 int64_t w1, w2;
                 uint64_t col;
                 uint32_t z, gzu = (uint32_t)gz;
-                RS_PIX *cp = (RS_PIX *)(void *)(bd->color + (size_t)(py - bd->y0) * bd->stride) + xl;
-                RS_Z *zp = (RS_Z *)bd->depth + (size_t)(py - bd->y0) * (size_t)w + (size_t)xl;
+                RS_PIX *cp = (RS_PIX *)(void *)crow + xl;
+                RS_Z *zp = zrow + xl;
                 int32_t n = xr - xl + 1, i;
                 if (small) { w1 = (e2 * inv) >> 18; w2 = (e0 * inv) >> 18; }
                 else { w1 = fx_divisor_trunc(&ad, e2 * ((int64_t)1 << 22)); w2 = fx_divisor_trunc(&ad, e0 * ((int64_t)1 << 22)); }
