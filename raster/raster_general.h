@@ -200,14 +200,26 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
             } else {
                 /* e_k(px0 + l) = e_kr + sx_k l; e1 = S - e0 - e2; columns l relative to px0
                  * (floor((K + s px0) / s) = floor(K / s) + px0: the same centres as from
-                 * column 0, with no products by px0 to keep across the rows) */
-                int64_t s1 = -(sx0 + sx2), e1r = S - e0r - e2r;
-                int32_t l = 0, r = px1 - px0;
-                if (!span_limits(sx0, e0r, &q0, 0, px1 - px0, &l, &r)
-                    || !span_limits(s1, e1r, &q1, 0, px1 - px0, &l, &r)
-                    || !span_limits(sx2, e2r, &q2, 0, px1 - px0, &l, &r) || l > r)
+                 * column 0, with no products by px0 to keep across the rows).  Edge K + s l:
+                 *   s > 0: l >= ceil(-K / s), no limit for K >= 0 (l >= 0), else with
+                 *     m = -K >= 1, ceil(m / s) = floor((m - 1) / s) + 1, m - 1 = ~K >= 0;
+                 *   s < 0: l <= floor(K / |s|): none for K < 0, else the truncated quotient;
+                 *   s == 0: all or none, as K >= 0.
+                 * In 64 bits, so no clamps (the quotients may lie far outside the box). */
+                int64_t l = 0, r = px1 - px0;
+#define GEN_EDGE(SX, K, Q) do { \
+        if ((SX) > 0) { if ((K) < 0) { const int64_t t_ = fx_divisor_trunc((Q), ~(K)) + 1; if (t_ > l) l = t_; } } \
+        else if ((K) < 0) goto empty; \
+        else if ((SX) < 0) { const int64_t t_ = fx_divisor_trunc((Q), (K)); if (t_ < r) r = t_; } } while (0)
+                GEN_EDGE(sx0, e0r, &q0);
+                GEN_EDGE(-(sx0 + sx2), S - e0r - e2r, &q1);
+                GEN_EDGE(sx2, e2r, &q2);
+#undef GEN_EDGE
+                if (l > r) {
+                empty:
                     continue;
-                xl = px0 + l; xr = px0 + r;
+                }
+                xl = px0 + (int32_t)l; xr = px0 + (int32_t)r;     /* 0 <= l <= r <= px1 - px0 */
                 e0 = e0r + sx0 * l; e2 = e2r + sx2 * l;
             }
             {
