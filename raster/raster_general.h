@@ -302,15 +302,20 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                         if (j < -4) {
                             const gs_v4u zstep = L.zstep, rstep = L.rstep, gstep = L.gstep, bstep = L.bstep;
                             gs_v4u zv, rv, gv, bv;
+                            /* the groups at ze4 + k, k = j + 4 .. < 0 (ze4 = ze - 4, inside
+                             * the span): the loop test is the sign of k */
+                            RS_Z *const ze4 = ze - 4;
+                            RS_PIX *const ce4 = ce - 4;
+                            ptrdiff_t k = j + 4;
                             GS_LANES(z, col);
                             do {
                                 gs_v4u od, op, nd;
-                                GS_LD(od, ze + j); GS_LD(op, ce + j);
+                                GS_LD(od, ze4 + k); GS_LD(op, ce4 + k);
                                 GS_TEST(od, nd);
-                                GS_ST(ze + j, nd);
-                                GS_ST(ce + j, op ^ ((op ^ GS_PX()) & m));
+                                GS_ST(ze4 + k, nd);
+                                GS_ST(ce4 + k, op ^ ((op ^ GS_PX()) & m));
                                 zv += zstep; rv += rstep; gv += gstep; bv += bstep;
-                            } while ((j += 4) < -4);
+                            } while ((k += 4) < 0);
                         }
                         GS_ST(ze - 4, ndl);
                         GS_ST(ce - 4, npl);
