@@ -202,13 +202,16 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                  * (floor((K + s px0) / s) = floor(K / s) + px0: the same centres as from
                  * column 0, with no products by px0 to keep across the rows).  Edge K + s l:
                  *   s > 0: l >= ceil(-K / s), no limit for K >= 0 (l >= 0), else with
-                 *     m = -K >= 1, ceil(m / s) = floor((m - 1) / s) + 1, m - 1 = ~K >= 0;
+                 *     m = -K >= 1, ceil(m / s) = floor((m - 1) / s) + 1, m - 1 = ~K >= 0
+                 *     (= K ^ (K >> 63) for K < 0);
                  *   s < 0: l <= floor(K / |s|): none for K < 0, else the truncated quotient;
                  *   s == 0: all or none, as K >= 0.
                  * In 64 bits, so no clamps (the quotients may lie far outside the box). */
                 int64_t l = 0, r = px1 - px0;
+/* (~K as K ^ (K >> 63), K < 0: GCC's induction variables would otherwise step ~K of
+ * every edge on every row, a derived value it keeps in memory) */
 #define GEN_EDGE(SX, K, Q) do { \
-        if ((SX) > 0) { if ((K) < 0) { const int64_t t_ = fx_divisor_trunc((Q), ~(K)) + 1; if (t_ > l) l = t_; } } \
+        if ((SX) > 0) { if ((K) < 0) { const int64_t t_ = fx_divisor_trunc((Q), (K) ^ ((K) >> 63)) + 1; if (t_ > l) l = t_; } } \
         else if ((K) < 0) goto empty; \
         else if ((SX) < 0) { const int64_t t_ = fx_divisor_trunc((Q), (K)); if (t_ < r) r = t_; } } while (0)
                 GEN_EDGE(sx0, e0r, &q0);
@@ -271,9 +274,15 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                         gs_v4u ndl, npl, m;
                         if (!lanes) { gs_lanes_make(&L, gzu, gc, rl); lanes = 1; }
 /* The lanes at pixel j from the scalar depth Z and packed colour C there (depth with its
- * top bit flipped, for the signed compare of 32-bit depths). */
-#define GS_LANES(Z, C) zv = ((Z) ^ 0x80000000u) + L.zoff; rv = ((uint32_t)((C) >> 42) << rl) + L.roff; \
-                       gv = ((uint32_t)((C) >> 21) & 0x1fffffu) + L.goff; bv = ((uint32_t)(C) & 0x1fffffu) + L.boff
+ * top bit flipped, for the signed compare of 32-bit depths).  R and G are taken with the
+ * bits below them in C (shifts, no masks): lane k holds (F + k G) 2^rl + junk modulo
+ * 2^32 with F + k G the true field, in [0, 2^21), so adding the junk changes no bit
+ * that GS_PX takes.  R: C >> (42 - rl), junk the top rl bits of G's field (< 2^rl,
+ * below the multiple of 2^rl: no carry); G: C >> 21, junk R's low bits times 2^21
+ * (above the field, which neither borrows nor carries into them), cut by GS_PX's mask.
+ * B's field has G's bits above it, which GS_PX's bv >> 13 or >> 16 would take: masked. */
+#define GS_LANES(Z, C) zv = ((Z) ^ 0x80000000u) + L.zoff; rv = (uint32_t)((C) >> (42 - rl)) + L.roff; \
+                       gv = (uint32_t)((C) >> 21) + L.goff; bv = ((uint32_t)(C) & 0x1fffffu) + L.boff
 /* The depth test of a group: its depths OD, the write mask M and the depths to store ND
  * (OD ^ ((OD ^ zz) & M) picks zz where M is set).  32-bit depths: the unsigned compare
  * as a signed one with the top bits flipped (zv has its top bit flipped already, and
