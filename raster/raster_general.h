@@ -161,7 +161,14 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
         if (gz > INT32_MAX) gz = INT32_MAX;
         if (gz < -INT32_MAX) gz = -INT32_MAX;
 
-        const uint64_t ca = (a->cp << 13) + RS_CBIAS;
+        /* The row start's R and G in one pair of products: with v_k = dcb_k w1 + dcc_k w2
+         * (|v_k| <= 255 (w1 + w2) < 2^30, as w1, w2 >= 0 and w1 + w2 <= 2^22: the weights
+         * of inside centres, e0 + e2 <= S <= area2), rg = v_R 2^32 + v_G + 2^30 (every
+         * partial sum below 2^63 in magnitude) has v_G + 2^30 in [0, 2^32) as its low 32
+         * bits, so rg >> 41 = floor(v_R / 2^9) and (low 32 bits) >> 9 =
+         * floor(v_G / 2^9) + 2^21, whose 2^21 (times 2^21) ca takes back. */
+        const int64_t prg_b = dcb0 * ((int64_t)1 << 32) + dcb1, prg_c = dcc0 * ((int64_t)1 << 32) + dcc1;
+        const uint64_t ca = (a->cp << 13) + RS_CBIAS - ((uint64_t)1 << 42);
 #if RS_SPANV && !RS_TEX && !RS_COUNT
         gs_lanes L;             /* made at the first span of four or more pixels */
         int lanes = 0;
@@ -236,8 +243,11 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
                 if (small) { w1 = (e2 * inv) >> 18; w2 = (e0 * inv) >> 18; }
                 else { w1 = fx_divisor_trunc(&ad, e2 * ((int64_t)1 << 22)); w2 = fx_divisor_trunc(&ad, e0 * ((int64_t)1 << 22)); }
                 z = (uint32_t)((int64_t)a->d + ((dzb * w1 + dzc * w2) >> 22));
-                col = ca + ((uint64_t)((dcb0 * w1 + dcc0 * w2) >> 9) << 42)
-                      + ((uint64_t)((dcb1 * w1 + dcc1 * w2) >> 9) << 21) + (uint64_t)((dcb2 * w1 + dcc2 * w2) >> 9);
+                {
+                    const int64_t rg = prg_b * w1 + prg_c * w2 + ((int64_t)1 << 30);
+                    col = ca + ((uint64_t)(rg >> 41) << 42) + ((uint64_t)((uint32_t)rg >> 9) << 21)
+                          + (uint64_t)((dcb2 * w1 + dcc2 * w2) >> 9);
+                }
                 bd->pixels += (uint32_t)n;
 #if !RS_TEX && !RS_COUNT
                 {
