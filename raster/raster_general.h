@@ -41,7 +41,7 @@ typedef uint64_t gs_v2q __attribute__((vector_size(16)));
  * each value from the span start plus (j + l) times its step, so the lanes start at
  * {0, 1, 2, 3} steps (the *off) and step by 4 (the *step). */
 typedef struct gs_lanes { gs_v4u zoff, roff, goff, boff, zstep, rstep, gstep, bstep; } gs_lanes;
-/* Made at a triangle's first span of four or more pixels (a call draws two rows on
+/* Made at a triangle's first span of four or more pixels (a call draws 2.5 rows on
  * average; on B 640x480 2.1 K of the 4.3 K calls per frame draw such a span), out of
  * line and into memory: inline, GCC may hoist it out of the row loop (it is loop
  * invariant), making it for every call.  The signed colour gradients G_k from the packed
