@@ -83,22 +83,6 @@ size_t rs_band_mem_size(int32_t w, int32_t rows, int32_t fmt, int32_t depth)
 
 /* ---------------------------------------------------------------- set-up helpers */
 
-/* Narrows [*xl, *xr] to the centres px where K + s px >= 0 (one edge on one row;
- * s = 16 A is the edge's step per pixel, q the fx_divisor of |s| when s != 0).
- * Returns 0 when the row is empty.  ceil(-K / s) = -floor(K / s); the step's sign is
- * known, so the positive-divisor floor serves both sides. */
-static inline int span_limits(int64_t s, int64_t K, const fx_divisor *q, int32_t px0, int32_t px1, int32_t *xl, int32_t *xr)
-{
-    if (s > 0) {
-        int64_t x = -fx_divisor_floor(q, K);
-        if (x > *xl) *xl = x > px1 ? px1 + 1 : (int32_t)x;
-    } else if (s < 0) {
-        int64_t x = fx_divisor_floor(q, K);
-        if (x < *xr) *xr = x < px0 ? px0 - 1 : (int32_t)x;
-    } else if (K < 0) return 0;
-    return 1;
-}
-
 /* The tiny paths' depth products dz * w (|dz| < 2^30: depths are below 2^30; weights
  * 0 <= w <= 2^16): int32 factors on 32-bit targets, where a 32 x 32 -> 64-bit multiply
  * is one instruction and a 64 x 64 one three (armhf peer scene A 640x480: -3.9 %);
