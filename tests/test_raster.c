@@ -748,6 +748,25 @@ static void test_transform(void)
             v[i].uv[0] = (int32_t)(((uint32_t)lcg() << 8) ^ lcg());
             v[i].uv[1] = (int32_t)lcg();
         }
+        if (k & 8) {
+            /* rows for the fast loop's row stepping: runs of one y with x stepping by a
+             * constant dx (small, large, or beyond 2^30 where the loop does not step),
+             * across x = 0 and into the CAM_COORD_MAX clamp; z as drawn above */
+            int64_t dx = 0;
+            int32_t run = 0;
+            for (i = 1; i < NV; i++) {
+                if (run-- <= 0) {
+                    uint32_t r = lcg() % 4;
+                    run = (int32_t)rnd_range(0, 40);
+                    dx = r == 0 ? rnd_range(-3, 3) : r == 1 ? rnd_range(-big / 16, big / 16)
+                       : r == 2 ? rnd_range(-((int64_t)1 << 31), (int64_t)1 << 31) : big / 64 + 1;
+                    continue;
+                }
+                v[i].p[1] = v[i - 1].p[1];
+                v[i].p[0] = (int32_t)clamp_coord(v[i - 1].p[0] + dx);
+            }
+        }
+        f.nv = NV - (uint32_t)(k % 5);    /* every remainder of the loop's unrolling */
         CHECK_EQ(rs_frame_prepare(&f), BR_OK);
         bad += cache_mismatches(&f, cls);
     }
