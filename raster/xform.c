@@ -198,8 +198,11 @@ typedef struct xform_st {
 } xform_st;
 
 /* One vertex of xform_loop: v's entry o.  first = 0 promises v != f->v (v[-1] exists).
- * A stepped vertex's key equals ek, so the next ek is ek + dk, one add with dk as a
- * memory operand (dk lives in xform_k: one register fewer across the unrolled loop).
+ * The next ek is key + dk for every vertex: a stepped vertex's key is ek, so one add
+ * after the join serves both paths (the other sets ek = key); dk lives in xform_k
+ * (one register fewer across the unrolled loop; the compiler reloads it after the
+ * path that writes it).  Written as ek += dk on the stepped path and ek = key + dk on
+ * the other, gcc 12 moved ek between registers in two of the four copies.
  * Every exit to xform_slow goes through the one call at `slow`, so the compiler forms
  * the call's v and o there only (with several call sites gcc 12 kept v + i and o + i
  * of the unrolled copies in registers or on the stack, 3 instructions per vertex). */
@@ -220,7 +223,6 @@ static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex 
     key ^= k->kbias;
     if (RS_LIKELY(key == st->ek)) {     /* x = previous x + dx, same y */
         st->a0 += k->s[0]; st->a1 += k->s[1]; st->a2 += k->s[2];
-        st->ek += k->dk;
     } else {
         const int64_t x = v->p[0], y = v->p[1];
         if ((!first || v != f->v) && y == v[-1].p[1]) {     /* a new step along the row */
@@ -232,8 +234,9 @@ static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex 
         st->a0 = k->r[0][0] * x + k->r[0][1] * y + k->t[0];
         st->a1 = k->r[1][0] * x + k->r[1][1] * y + k->t[1];
         st->a2 = k->r[2][0] * x + k->r[2][1] * y + k->tzn;
-        st->ek = key + k->dk;
+        st->ek = key;
     }
+    st->ek += k->dk;
 #define XF_C(I) ((st->a##I + k->r[I][2] * z) >> 30)
 #else
     /* each sum where it is used (fewer live values: 64-bit ones take two registers) */
@@ -291,10 +294,10 @@ slow:
 
 /* The loop: on 64-bit targets unrolled by 4 after the nv mod 4 first vertices, so the
  * two pointer increments, the compare and the branch serve four vertices (the copies
- * address v + i, o + i with displacements): peer scene x86-64 60.1 -> 57.6
- * instructions per vertex, camera A 640x480 24.89 -> 24.73 M per frame, AArch64 21.12
- * -> 20.95 M (unrolled by 2: 58.1 on x86-64; gcc's register allocation adds a move or
- * two in the last two copies).  32-bit targets keep one vertex per iteration: there
+ * address v + i, o + i with displacements): peer scene x86-64 60.1 -> 57.3
+ * instructions per vertex, camera A 640x480 24.89 -> 24.71 M per frame, AArch64 21.12
+ * -> 20.95 M (unrolled by 2: 58.1 on x86-64; by 8, about 0.25 fewer than by 4 for
+ * twice the code).  32-bit targets keep one vertex per iteration: there
  * the unrolled loop spills (armhf A 640x480: 76.54 -> 77.62 M, armhf-a7 45.85 ->
  * 47.22 M). */
 static RS_INLINE void xform_loop(const rs_frame *f, xform_k *k, int tex)
