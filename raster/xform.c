@@ -250,7 +250,7 @@ static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex 
     if (RS_UNLIKELY((uint64_t)c2 > (uint64_t)k->zspan)) {
         if (c2 < 0) {       /* behind the near plane: only the colour is valid */
             o->x = o->y = 0; o->d = 0;
-            o->c = rgb | ((uint32_t)RS_OUT_NEAR << 24);
+            o->c = rgb + ((uint32_t)RS_OUT_NEAR << 24);      /* = rgb | bit (rgb < 2^24), one lea */
             o->cp = xform_pack(k, rgb);
             if (tex) { o->u = v->uv[0]; o->v = v->uv[1]; }
             return;
