@@ -263,7 +263,7 @@ RS_INLINE static void RS_FN(tri_tiny)(band *bd, const rs_cvert *a, const rs_cver
 }
 
 /* A tiny triangle (a, b, c as seen; either orientation) over a candidate box given
- * by its caller (tri_raster: its own box; pair_tiny: the pair's joint box): orientation
+ * by its caller (pair_tiny: the pair's joint box; tri_raster has tri_tiny_own): orientation
  * (cull, zero area; front faces with b and c swapped, one inlined copy per
  * orientation, no moves), then tri_tiny. */
 RS_INLINE static void RS_FN(tri_tiny_any)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
@@ -279,6 +279,33 @@ RS_INLINE static void RS_FN(tri_tiny_any)(band *bd, const rs_cvert *a, const rs_
     } else {
         RS_FN(tri_tiny)(bd, a, c, b, px0, nx, py0, ny, xm, ox0, oy0, dx2, dy2, dx1, dy1, -area2);
     }
+}
+
+/* tri_raster's tiny triangles (a, b, c as seen; either orientation) over their own box,
+ * candidates px0 .. px0 + nx - 1 x py0 .. py0 + ny - 1 (clipped to the band and the
+ * screen): out of line, so that tri_raster's box and path choice, which every call runs,
+ * keep few registers (inlined, its prologue saved six and spilled a dozen values for
+ * every call), and one copy for both orientations: a front face swaps b and c (and their
+ * differences) first, which is what tri_tiny_any's second copy passes, so the values
+ * are the same.  B 640x480: 23.008 -> 22.962 M instructions per frame. */
+RS_NOINLINE static void RS_FN(tri_tiny_own)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                            int32_t px0, int32_t nx, int32_t py0, int32_t ny)
+{
+    int32_t dx1 = b->x - a->x, dy1 = b->y - a->y, dx2 = c->x - a->x, dy2 = c->y - a->y;
+    int32_t area2 = dx1 * dy2 - dx2 * dy1;
+    /* y points down: counter-clockwise as seen (a front face) has area2 < 0 */
+    if (area2 >= 0) {
+        if (area2 == 0 || bd->cull) return;
+    } else {
+        const rs_cvert *const t = b;
+        int32_t u;
+        b = c; c = t;
+        u = dx1; dx1 = dx2; dx2 = u;
+        u = dy1; dy1 = dy2; dy2 = u;
+        area2 = -area2;
+    }
+    RS_FN(tri_tiny)(bd, a, b, c, px0, nx, py0, ny, TINY_XM(nx), px0 * SUBONE + HALF, py0 * SUBONE + HALF,
+                    dx1, dy1, dx2, dy2, area2);
 }
 
 /* One triangle (a, b, c as seen; either orientation): the out-of-line code for lists,
@@ -312,11 +339,7 @@ RS_NOINLINE static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_
         RS_FN(tri_general)(bd, a, b, c, xmin, xmax, ymin, ymax, px0, px1, py0, py1);
         return;
     }
-    {
-        const int32_t nx = px1 - px0 + 1;
-        RS_FN(tri_tiny_any)(bd, a, b, c, px0, nx, py0, py1 - py0 + 1, TINY_XM(nx),
-                            px0 * SUBONE + HALF, py0 * SUBONE + HALF);
-    }
+    RS_FN(tri_tiny_own)(bd, a, b, c, px0, px1 - px0 + 1, py0, py1 - py0 + 1);
 }
 
 /* The coverage of a strip quad's two triangles over one group of columns (see
