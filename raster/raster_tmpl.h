@@ -308,9 +308,12 @@ RS_NOINLINE static void RS_FN(tri_tiny_own)(band *bd, const rs_cvert *a, const r
                     dx1, dy1, dx2, dy2, area2);
 }
 
-/* One triangle (a, b, c as seen; either orientation): the out-of-line code for lists,
- * the clipper and strip triangles that are not drawn as a pair. */
-RS_NOINLINE static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
+/* One triangle (a, b, c as seen; either orientation): its box of candidate centres,
+ * then the general or the tiny path.  onscreen: all three vertices are on screen (no
+ * outcode bits: HALF <= x <= 16 w - HALF), so the columns px0 >= 0 and px1 <= w - 1
+ * need no clamping. */
+RS_INLINE static void RS_FN(tri_box)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                     const int onscreen)
 {
     int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1;
     int32_t tiny;
@@ -331,8 +334,10 @@ RS_NOINLINE static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_
         px1 = (xmax - HALF) >> SUB;
         /* the path choice depends on the triangle only (not on the band or screen clip) */
         tiny = px1 - px0 < TINY_W && hi - lo < TINY_H;
-        if (px0 < 0) px0 = 0;
-        if (px1 >= bd->w) px1 = bd->w - 1;
+        if (!onscreen) {
+            if (px0 < 0) px0 = 0;
+            if (px1 >= bd->w) px1 = bd->w - 1;
+        }
         if (px0 > px1) return;
     }
     if (RS_UNLIKELY(!tiny)) {
@@ -340,6 +345,13 @@ RS_NOINLINE static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_
         return;
     }
     RS_FN(tri_tiny_own)(bd, a, b, c, px0, px1 - px0 + 1, py0, py1 - py0 + 1);
+}
+
+/* One triangle (a, b, c as seen; either orientation): the out-of-line code for lists,
+ * the clipper and strip triangles that are not drawn as a pair. */
+RS_NOINLINE static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
+{
+    RS_FN(tri_box)(bd, a, b, c, 0);
 }
 
 /* The coverage of a strip quad's two triangles over one group of columns (see
@@ -527,31 +539,30 @@ RS_INLINE static void RS_FN(pair_tiny)(band *bd, const rs_cvert *v0, const rs_cv
 RS_NOINLINE static void RS_FN(pair_wide)(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                          const rs_cvert *v3, int32_t lo, int32_t hi, int32_t xl, int32_t xh)
 {
-    int32_t py0, py1;
     /* no column of centres: neither triangle's own (sub-)box holds one */
     if (xh < xl) return;
-    if (hi - lo >= TINY_H || xh - xl >= TINY_W) {
-        RS_FN(tri_raster)(bd, v0, v1, v2);
-        RS_FN(tri_raster)(bd, v2, v1, v3);
-        return;
-    }
-    py0 = lo < bd->y0 ? bd->y0 : lo;
-    py1 = hi >= bd->y1 ? bd->y1 - 1 : hi;
-    if (py0 > py1) return;
-    {
-        /* as pair_tiny, but one copy of tri_quad (the orientation a variable), and
-         * mixed orientations through tri_raster (the pixels of a pair are those of two
-         * tri_raster calls; tri_raster culls): less code for the rarer wide boxes */
-        const int32_t nx = xh - xl + 1;
-        PAIR_AREAS(ar1, ar2);
-        if (bd->cull && (ar1 | ar2) >= 0) return;    /* both culled or of zero area */
-        if ((ar1 < 0 && ar2 < 0) || (ar1 > 0 && ar2 > 0 && !bd->cull))
-            RS_FN(tri_quad)(bd, v0, v1, v2, v3, xl, nx, py0, py1 - py0 + 1, TINY_XM(nx), ar1, ar2, ar1 < 0, 1);
-        else {
-            RS_FN(tri_raster)(bd, v0, v1, v2);
-            RS_FN(tri_raster)(bd, v2, v1, v3);
+    if (hi - lo < TINY_H && xh - xl < TINY_W) {
+        const int32_t py0 = lo < bd->y0 ? bd->y0 : lo, py1 = hi >= bd->y1 ? bd->y1 - 1 : hi;
+        if (py0 > py1) return;
+        {
+            /* as pair_tiny, but one copy of tri_quad (the orientation a variable), and
+             * mixed orientations one triangle at a time as below (the pixels of a pair are
+             * those of two tri_raster calls; tri_tiny_own culls): less code for the
+             * rarer wide boxes */
+            const int32_t nx = xh - xl + 1;
+            PAIR_AREAS(ar1, ar2);
+            if (bd->cull && (ar1 | ar2) >= 0) return;    /* both culled or of zero area */
+            if ((ar1 < 0 && ar2 < 0) || (ar1 > 0 && ar2 > 0 && !bd->cull)) {
+                RS_FN(tri_quad)(bd, v0, v1, v2, v3, xl, nx, py0, py1 - py0 + 1, TINY_XM(nx), ar1, ar2, ar1 < 0, 1);
+                return;
+            }
         }
     }
+    /* each triangle on its own, as tri_raster draws it (inlined: no calls for the
+     * triangles without a row or column of centres, and none to tri_raster); both
+     * callers (tri_pair, the pre-pass's PK_WIDE) have all four vertices on screen */
+    RS_FN(tri_box)(bd, v0, v1, v2, 1);
+    RS_FN(tri_box)(bd, v2, v1, v3, 1);
 }
 
 /* Two consecutive strip triangles T1 = (v0, v1, v2) and T2 = (v2, v1, v3) whose four
