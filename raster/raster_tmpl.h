@@ -309,27 +309,30 @@ RS_NOINLINE static void RS_FN(tri_tiny_own)(band *bd, const rs_cvert *a, const r
 }
 
 /* One triangle (a, b, c as seen; either orientation): its box of candidate centres,
- * then the general or the tiny path.  onscreen: all three vertices are on screen (no
- * outcode bits: HALF <= x <= 16 w - HALF), so the columns px0 >= 0 and px1 <= w - 1
- * need no clamping. */
+ * then the general or the tiny path.  o is the vertex of the three not in the pair whose
+ * coordinate extremes ymn, ymx, xmn, xmx the caller passes (pair_wide: v1 and v2, which
+ * both of a strip pair's triangles have, once for both); the box is the same.
+ * onscreen: all three vertices are on screen (no outcode bits: HALF <= x <= 16 w -
+ * HALF), so the columns px0 >= 0 and px1 <= w - 1 need no clamping. */
 RS_INLINE static void RS_FN(tri_box)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                     const rs_cvert *o, int32_t ymn, int32_t ymx, int32_t xmn, int32_t xmx,
                                      const int onscreen)
 {
     int32_t xmin, xmax, ymin, ymax, px0, px1, py0, py1;
     int32_t tiny;
 
     {
-        const int32_t ax = a->x, ay = a->y, bx = b->x, by = b->y, cx = c->x, cy = c->y;
-        int32_t lo, hi, t;
-        t = ay < by ? ay : by; ymin = t < cy ? t : cy;
-        t = ay > by ? ay : by; ymax = t > cy ? t : cy;
+        const int32_t ox = o->x, oy = o->y;
+        int32_t lo, hi;
+        ymin = ymn < oy ? ymn : oy;
+        ymax = ymx > oy ? ymx : oy;
         lo = (ymin + HALF - 1) >> SUB;    /* first row whose centre is >= ymin */
         hi = (ymax - HALF) >> SUB;        /* last row whose centre is <= ymax */
         py0 = lo < bd->y0 ? bd->y0 : lo;
         py1 = hi >= bd->y1 ? bd->y1 - 1 : hi;
         if (py0 > py1) return;
-        t = ax < bx ? ax : bx; xmin = t < cx ? t : cx;
-        t = ax > bx ? ax : bx; xmax = t > cx ? t : cx;
+        xmin = xmn < ox ? xmn : ox;
+        xmax = xmx > ox ? xmx : ox;
         px0 = (xmin + HALF - 1) >> SUB;
         px1 = (xmax - HALF) >> SUB;
         /* the path choice depends on the triangle only (not on the band or screen clip) */
@@ -351,7 +354,8 @@ RS_INLINE static void RS_FN(tri_box)(band *bd, const rs_cvert *a, const rs_cvert
  * the clipper and strip triangles that are not drawn as a pair. */
 RS_NOINLINE static void RS_FN(tri_raster)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c)
 {
-    RS_FN(tri_box)(bd, a, b, c, 0);
+    const int32_t ax = a->x, ay = a->y, bx = b->x, by = b->y;
+    RS_FN(tri_box)(bd, a, b, c, c, ay < by ? ay : by, ay > by ? ay : by, ax < bx ? ax : bx, ax > bx ? ax : bx, 0);
 }
 
 /* The coverage of a strip quad's two triangles over one group of columns (see
@@ -561,8 +565,12 @@ RS_NOINLINE static void RS_FN(pair_wide)(band *bd, const rs_cvert *v0, const rs_
     /* each triangle on its own, as tri_raster draws it (inlined: no calls for the
      * triangles without a row or column of centres, and none to tri_raster); both
      * callers (tri_pair, the pre-pass's PK_WIDE) have all four vertices on screen */
-    RS_FN(tri_box)(bd, v0, v1, v2, 1);
-    RS_FN(tri_box)(bd, v2, v1, v3, 1);
+    {
+        const int32_t x1 = v1->x, y1 = v1->y, x2 = v2->x, y2 = v2->y;
+        const int32_t ymn = y1 < y2 ? y1 : y2, ymx = y1 > y2 ? y1 : y2, xmn = x1 < x2 ? x1 : x2, xmx = x1 > x2 ? x1 : x2;
+        RS_FN(tri_box)(bd, v0, v1, v2, v0, ymn, ymx, xmn, xmx, 1);
+        RS_FN(tri_box)(bd, v2, v1, v3, v3, ymn, ymx, xmn, xmx, 1);
+    }
 }
 
 /* Two consecutive strip triangles T1 = (v0, v1, v2) and T2 = (v2, v1, v3) whose four
