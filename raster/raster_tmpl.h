@@ -618,16 +618,19 @@ RS_HOT static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert 
 /* One triangle a, b, c (area2 > 0) of a pre-pass quad (PK_QUAD): m its covered
  * candidates (bit 8 j + i, see pp_soa), E its edge values (E[4 PP_STEPS k] opposite b, E[4 PP_STEPS k + PP_STEPS]
  * opposite c for candidate k), crow / zrow the colour and depth of candidate 0,
- * coff / zoff the candidates' offsets from them (bytes / depth entries). */
+ * coff / zoff the candidates' offsets from them (bytes / depth entries), eoff the
+ * candidates' offsets in E (4 PP_STEPS k: a table, so that one index k scaled by 8
+ * addresses all three tables instead of k * 8 and k * 256 in two registers). */
 RS_HOT static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                         int32_t area2, uint32_t m, const int16_t *E, RS_PIX *crow, RS_Z *zrow,
-                                        const size_t *coff, const size_t *zoff)
+                                        const size_t *coff, const size_t *zoff, const size_t *eoff)
 {
     TINY_SETUP;
     do {
         const size_t k = ctz64(m);
         m &= m - 1;
-        TINY_SHADE(E[4 * PP_STEPS * k], E[4 * PP_STEPS * k + PP_STEPS], zrow + zoff[k], (RS_PIX *)(void *)((uint8_t *)crow + coff[k]));
+        const int16_t *const Ek = E + eoff[k];
+        TINY_SHADE(Ek[0], Ek[PP_STEPS], zrow + zoff[k], (RS_PIX *)(void *)((uint8_t *)crow + coff[k]));
     } while (m);
 }
 
@@ -646,9 +649,11 @@ static void RS_FN(draw)(band *bd)
     const int16_t *ch = f->chunks;     /* per chunk of RS_CHUNK triangles: rows touched */
     int32_t p;
 #if RS_PREPASS
-    /* the pre-pass quads' candidates 8 j + i: offsets of (i, j) in the colour and depth rows */
-    size_t coff[TINY_W * TINY_H], zoff[TINY_W * TINY_H];
+    /* the pre-pass quads' candidates 8 j + i: offsets of (i, j) in the colour and depth
+     * rows, and of candidate p's edge values in pp_soa's e (see quad_shade) */
+    size_t coff[TINY_W * TINY_H], zoff[TINY_W * TINY_H], eoff[TINY_W * TINY_H];
     for (p = 0; p < TINY_W * TINY_H; p++) {
+        eoff[p] = (size_t)p * 4 * PP_STEPS;
         coff[p] = (size_t)(p >> 3) * bd->stride + (size_t)(p & 7) * sizeof(RS_PIX);
         zoff[p] = (size_t)(p >> 3) * (size_t)bd->w + (size_t)(p & 7);
     }
@@ -724,8 +729,8 @@ static void RS_FN(draw)(band *bd)
                             if (m1 | m2) {
                                 const int16_t *E = &q.e[0][0][kk];
                                 TINY_ROWS(bd, q.py0[kk], q.px0[kk], crow, zrow);
-                                if (m1) RS_FN(quad_shade)(bd, v0, v1, v2, q.a1[kk], m1, E, crow, zrow, coff, zoff);
-                                if (m2) RS_FN(quad_shade)(bd, v2, v1, v3, q.a2[kk], m2, E + 2 * PP_STEPS, crow, zrow, coff, zoff);
+                                if (m1) RS_FN(quad_shade)(bd, v0, v1, v2, q.a1[kk], m1, E, crow, zrow, coff, zoff, eoff);
+                                if (m2) RS_FN(quad_shade)(bd, v2, v1, v3, q.a2[kk], m2, E + 2 * PP_STEPS, crow, zrow, coff, zoff, eoff);
                             }
                         } else if (kind == PK_NONE2) {
                             bd->tris += 2;
