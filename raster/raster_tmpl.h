@@ -657,6 +657,13 @@ static void RS_FN(draw)(band *bd)
         coff[p] = (size_t)(p >> 3) * bd->stride + (size_t)(p & 7) * sizeof(RS_PIX);
         zoff[p] = (size_t)(p >> 3) * (size_t)bd->w + (size_t)(p & 7);
     }
+    /* the band's geometry for the quads' addresses (TINY_ROWS's), read once: through bd
+     * they are read again for every quad, as the pixel stores (uint32_t for 32-bit
+     * colour or depth) might change the band's int32_t fields */
+    const int32_t qy0 = bd->y0;
+    const size_t qstride = bd->stride, qw = (size_t)bd->w;
+    uint8_t *const qcolor = bd->color;
+    RS_Z *const qdepth = (RS_Z *)bd->depth;
 #endif
     for (p = 0; p < f->nprims; p++) {
         const rs_prim *pr = &f->prims[p];
@@ -728,7 +735,9 @@ static void RS_FN(draw)(band *bd)
                             bd->tris += (uint32_t)q.nt[kk];
                             if (m1 | m2) {
                                 const int16_t *E = &q.e[0][0][kk];
-                                TINY_ROWS(bd, q.py0[kk], q.px0[kk], crow, zrow);
+                                const size_t row = (size_t)(q.py0[kk] - qy0);
+                                RS_PIX *const crow = (RS_PIX *)(void *)(qcolor + row * qstride) + q.px0[kk];
+                                RS_Z *const zrow = qdepth + row * qw + q.px0[kk];
                                 if (m1) RS_FN(quad_shade)(bd, v0, v1, v2, q.a1[kk], m1, E, crow, zrow, coff, zoff, eoff);
                                 if (m2) RS_FN(quad_shade)(bd, v2, v1, v3, q.a2[kk], m2, E + 2 * PP_STEPS, crow, zrow, coff, zoff, eoff);
                             }
