@@ -623,7 +623,7 @@ RS_HOT static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert 
  * addresses all three tables instead of k * 8 and k * 256 in two registers). */
 RS_HOT static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                         int32_t area2, uint32_t m, const int16_t *E, RS_PIX *crow, RS_Z *zrow,
-                                        const size_t *coff, const size_t *zoff, const size_t *eoff)
+                                        const size_t *coff, const uint32_t *zoff, const uint32_t *eoff)
 {
     TINY_SETUP;
     do {
@@ -650,12 +650,16 @@ static void RS_FN(draw)(band *bd)
     int32_t p;
 #if RS_PREPASS
     /* the pre-pass quads' candidates 8 j + i: offsets of (i, j) in the colour and depth
-     * rows, and of candidate p's edge values in pp_soa's e (see quad_shade) */
-    size_t coff[TINY_W * TINY_H], zoff[TINY_W * TINY_H], eoff[TINY_W * TINY_H];
+     * rows, and of candidate p's edge values in pp_soa's e (see quad_shade); the last two
+     * as uint32_t (below 3 * RS_MAX_DIM + 8 and 32 * 4 PP_STEPS), which the compiler
+     * indexes with k * 4 in the addresses, without a shifted copy of k (the colour's
+     * take any stride: size_t) */
+    size_t coff[TINY_W * TINY_H];
+    uint32_t zoff[TINY_W * TINY_H], eoff[TINY_W * TINY_H];
     for (p = 0; p < TINY_W * TINY_H; p++) {
-        eoff[p] = (size_t)p * 4 * PP_STEPS;
+        eoff[p] = (uint32_t)p * 4 * PP_STEPS;
         coff[p] = (size_t)(p >> 3) * bd->stride + (size_t)(p & 7) * sizeof(RS_PIX);
-        zoff[p] = (size_t)(p >> 3) * (size_t)bd->w + (size_t)(p & 7);
+        zoff[p] = (uint32_t)((size_t)(p >> 3) * (size_t)bd->w + (size_t)(p & 7));
     }
     /* the band's geometry for the quads' addresses (TINY_ROWS's), read once: through bd
      * they are read again for every quad, as the pixel stores (uint32_t for 32-bit
