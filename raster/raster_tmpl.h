@@ -619,8 +619,10 @@ RS_HOT static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert 
  * candidates (bit 8 j + i, see pp_soa), E its edge values (E[4 PP_STEPS k] opposite b, E[4 PP_STEPS k + PP_STEPS]
  * opposite c for candidate k), crow / zrow the colour and depth of candidate 0,
  * coff / zoff the candidates' offsets from them (bytes / depth entries), eoff the
- * candidates' offsets in E (4 PP_STEPS k: a table, so that one index k scaled by 8
- * addresses all three tables instead of k * 8 and k * 256 in two registers). */
+ * candidates' offsets in E (4 PP_STEPS k int16_t, in bytes: on 64-bit targets a table,
+ * so that one index k scaled by 8 addresses all three tables instead of k * 8 and
+ * k * 256 in two registers on x86-64; 32-bit ARM's quad loops were 0-2 instructions
+ * longer with it, and shift k there). */
 RS_HOT static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                         int32_t area2, uint32_t m, const int16_t *E, RS_PIX *crow, RS_Z *zrow,
                                         const size_t *coff, const uint32_t *zoff, const uint32_t *eoff)
@@ -629,7 +631,12 @@ RS_HOT static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cvert
     do {
         const size_t k = ctz64(m);
         m &= m - 1;
-        const int16_t *const Ek = E + eoff[k];
+#if RS_REG64
+        const int16_t *const Ek = (const int16_t *)(const void *)((const uint8_t *)E + eoff[k]);
+#else
+        const int16_t *const Ek = E + 4 * PP_STEPS * k;
+        (void)eoff;
+#endif
         TINY_SHADE(Ek[0], Ek[PP_STEPS], zrow + zoff[k], (RS_PIX *)(void *)((uint8_t *)crow + coff[k]));
     } while (m);
 }
@@ -657,7 +664,7 @@ static void RS_FN(draw)(band *bd)
     size_t coff[TINY_W * TINY_H];
     uint32_t zoff[TINY_W * TINY_H], eoff[TINY_W * TINY_H];
     for (p = 0; p < TINY_W * TINY_H; p++) {
-        eoff[p] = (uint32_t)p * 4 * PP_STEPS;
+        eoff[p] = (uint32_t)(p * 4 * PP_STEPS * (int32_t)sizeof(int16_t));
         coff[p] = (size_t)(p >> 3) * bd->stride + (size_t)(p & 7) * sizeof(RS_PIX);
         zoff[p] = (uint32_t)((size_t)(p >> 3) * (size_t)bd->w + (size_t)(p & 7));
     }
