@@ -628,9 +628,8 @@ RS_HOT static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cvert
                                         const size_t *coff, const uint32_t *zoff, const uint32_t *eoff)
 {
     TINY_SETUP;
-    do {
+    for (;;) {
         const size_t k = ctz64(m);
-        m &= m - 1;
 #if RS_REG64
         const int16_t *const Ek = (const int16_t *)(const void *)((const uint8_t *)E + eoff[k]);
 #else
@@ -638,7 +637,11 @@ RS_HOT static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cvert
         (void)eoff;
 #endif
         TINY_SHADE(Ek[0], Ek[PP_STEPS], zrow + zoff[k], (RS_PIX *)(void *)((uint8_t *)crow + coff[k]));
-    } while (m);
+        /* the lowest bit cleared last, its flags the loop's test (no separate test of m
+         * on x86-64: peer 640x480 A 24.196 -> 24.012 M, B 22.368 -> 22.298 M) */
+        m &= m - 1;
+        if (!m) break;
+    }
 }
 
 #endif
