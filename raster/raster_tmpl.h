@@ -618,30 +618,17 @@ RS_HOT static void RS_FN(tri_pair)(band *bd, const rs_cvert *v0, const rs_cvert 
 /* One triangle a, b, c (area2 > 0) of a pre-pass quad (PK_QUAD): m its covered
  * candidates (bit 8 j + i, see pp_soa), E its edge values (E[4 PP_STEPS k] opposite b, E[4 PP_STEPS k + PP_STEPS]
  * opposite c for candidate k), crow / zrow the colour and depth of candidate 0,
- * coff / zoff the candidates' offsets from them (bytes / depth entries), eoff the
- * candidates' offsets in E (4 PP_STEPS k int16_t, in bytes: on 64-bit targets a table,
- * so that one index k scaled by 8 addresses all three tables instead of k * 8 and
- * k * 256 in two registers on x86-64; 32-bit ARM's quad loops were 0-2 instructions
- * longer with it, and shift k there). */
+ * coff / zoff the candidates' offsets from them (bytes / depth entries). */
 RS_HOT static void RS_FN(quad_shade)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                         int32_t area2, uint32_t m, const int16_t *E, RS_PIX *crow, RS_Z *zrow,
-                                        const size_t *coff, const uint32_t *zoff, const uint32_t *eoff)
+                                        const size_t *coff, const size_t *zoff)
 {
     TINY_SETUP;
-    for (;;) {
+    do {
         const size_t k = ctz64(m);
-#if RS_REG64
-        const int16_t *const Ek = (const int16_t *)(const void *)((const uint8_t *)E + eoff[k]);
-#else
-        const int16_t *const Ek = E + 4 * PP_STEPS * k;
-        (void)eoff;
-#endif
-        TINY_SHADE(Ek[0], Ek[PP_STEPS], zrow + zoff[k], (RS_PIX *)(void *)((uint8_t *)crow + coff[k]));
-        /* the lowest bit cleared last, its flags the loop's test (no separate test of m
-         * on x86-64: peer 640x480 A 24.196 -> 24.012 M, B 22.368 -> 22.298 M) */
         m &= m - 1;
-        if (!m) break;
-    }
+        TINY_SHADE(E[4 * PP_STEPS * k], E[4 * PP_STEPS * k + PP_STEPS], zrow + zoff[k], (RS_PIX *)(void *)((uint8_t *)crow + coff[k]));
+    } while (m);
 }
 
 #endif
@@ -659,25 +646,12 @@ static void RS_FN(draw)(band *bd)
     const int16_t *ch = f->chunks;     /* per chunk of RS_CHUNK triangles: rows touched */
     int32_t p;
 #if RS_PREPASS
-    /* the pre-pass quads' candidates 8 j + i: offsets of (i, j) in the colour and depth
-     * rows, and of candidate p's edge values in pp_soa's e (see quad_shade); the last two
-     * as uint32_t (below 3 * RS_MAX_DIM + 8 and 32 * 4 PP_STEPS), which the compiler
-     * indexes with k * 4 in the addresses, without a shifted copy of k (the colour's
-     * take any stride: size_t) */
-    size_t coff[TINY_W * TINY_H];
-    uint32_t zoff[TINY_W * TINY_H], eoff[TINY_W * TINY_H];
+    /* the pre-pass quads' candidates 8 j + i: offsets of (i, j) in the colour and depth rows */
+    size_t coff[TINY_W * TINY_H], zoff[TINY_W * TINY_H];
     for (p = 0; p < TINY_W * TINY_H; p++) {
-        eoff[p] = (uint32_t)(p * 4 * PP_STEPS * (int32_t)sizeof(int16_t));
         coff[p] = (size_t)(p >> 3) * bd->stride + (size_t)(p & 7) * sizeof(RS_PIX);
-        zoff[p] = (uint32_t)((size_t)(p >> 3) * (size_t)bd->w + (size_t)(p & 7));
+        zoff[p] = (size_t)(p >> 3) * (size_t)bd->w + (size_t)(p & 7);
     }
-    /* the band's geometry for the quads' addresses (TINY_ROWS's), read once: through bd
-     * they are read again for every quad, as the pixel stores (uint32_t for 32-bit
-     * colour or depth) might change the band's int32_t fields */
-    const int32_t qy0 = bd->y0;
-    const size_t qstride = bd->stride, qw = (size_t)bd->w;
-    uint8_t *const qcolor = bd->color;
-    RS_Z *const qdepth = (RS_Z *)bd->depth;
 #endif
     for (p = 0; p < f->nprims; p++) {
         const rs_prim *pr = &f->prims[p];
@@ -749,11 +723,9 @@ static void RS_FN(draw)(band *bd)
                             bd->tris += (uint32_t)q.nt[kk];
                             if (m1 | m2) {
                                 const int16_t *E = &q.e[0][0][kk];
-                                const size_t row = (size_t)(q.py0[kk] - qy0);
-                                RS_PIX *const crow = (RS_PIX *)(void *)(qcolor + row * qstride) + q.px0[kk];
-                                RS_Z *const zrow = qdepth + row * qw + q.px0[kk];
-                                if (m1) RS_FN(quad_shade)(bd, v0, v1, v2, q.a1[kk], m1, E, crow, zrow, coff, zoff, eoff);
-                                if (m2) RS_FN(quad_shade)(bd, v2, v1, v3, q.a2[kk], m2, E + 2 * PP_STEPS, crow, zrow, coff, zoff, eoff);
+                                TINY_ROWS(bd, q.py0[kk], q.px0[kk], crow, zrow);
+                                if (m1) RS_FN(quad_shade)(bd, v0, v1, v2, q.a1[kk], m1, E, crow, zrow, coff, zoff);
+                                if (m2) RS_FN(quad_shade)(bd, v2, v1, v3, q.a2[kk], m2, E + 2 * PP_STEPS, crow, zrow, coff, zoff);
                             }
                         } else if (kind == PK_NONE2) {
                             bd->tris += 2;
