@@ -670,7 +670,10 @@ static void RS_FN(draw)(band *bd)
                      * rejected by its outcodes, as each would be below, so nothing is drawn
                      * or counted.  Read outcodes only, and stop at the first vertex that
                      * clears the last common bit (a chunk with a vertex on screen: its
-                     * first one or two). */
+                     * first one or two).  With a chunk table, chunk_rows (xform.c) has
+                     * already made such chunks miss every band, once per frame, and the
+                     * others stop here at once (testing for the table first cost the
+                     * whole-frame loop more: A 640x480 +0.04 M). */
                     const uint32_t *ip = s + t0, *const ie = s + t1 + 2;
                     uint32_t am = REJECT;
                     do am &= cache[*ip].c; while (am && ++ip != ie);

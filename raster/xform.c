@@ -20,10 +20,14 @@ size_t rs_chunk_mem_size(const rs_prim *prims, int32_t nprims)
 }
 
 /* Rows [lo, hi] that chunks' triangles can touch (conservative: the pixel-centre rows
- * of their vertices; everything when a vertex needs clipping). */
+ * of their vertices; everything when a vertex needs clipping; none, lo > hi, when all
+ * its vertices share an outcode bit that rejects every triangle: beyond one side of the
+ * screen, behind the near plane or beyond the far one), once per frame for all bands. */
 static void chunk_rows(rs_frame *f)
 {
     const uint32_t slow = (uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24;
+    const uint32_t reject = (uint32_t)(RS_OUT_LEFT | RS_OUT_RIGHT | RS_OUT_TOP | RS_OUT_BOTTOM
+                                       | RS_OUT_FAR | RS_OUT_NEAR) << 24;
     int16_t *ch = f->chunks;
     int32_t p;
     for (p = 0; p < f->nprims; p++) {
@@ -31,19 +35,21 @@ static void chunk_rows(rs_frame *f)
         uint32_t nt = rs_prim_tris(pr), t0;
         for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch += 2) {
             uint32_t t1 = nt - t0 < RS_CHUNK ? nt : t0 + RS_CHUNK, i, i0, i1;
-            int32_t lo = INT32_MAX, hi = INT32_MIN, full = 0;
+            int32_t lo = INT32_MAX, hi = INT32_MIN;
+            uint32_t any = 0, common = reject;     /* outcodes: or, and */
             if (pr->kind == RS_STRIP) { i0 = t0; i1 = t1 + 2; } else { i0 = 3 * t0; i1 = 3 * t1; }
             for (i = i0; i < i1; i++) {
                 const rs_cvert *v = &f->cache[pr->idx[i]];
-                if (v->c & slow) full = 1;
+                any |= v->c; common &= v->c;
                 if (v->y < lo) lo = v->y;
                 if (v->y > hi) hi = v->y;
             }
             lo = (lo + HALF - 1) >> SUB;
             hi = (hi - HALF) >> SUB;
-            if (full) { lo = -1; hi = f->h; }
+            if (any & slow) { lo = -1; hi = f->h; }
             if (lo < -1) lo = -1;
             if (hi > f->h) hi = f->h;
+            if (common) { lo = f->h; hi = -1; }
             ch[0] = (int16_t)lo;
             ch[1] = (int16_t)hi;
         }
