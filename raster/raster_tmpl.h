@@ -86,12 +86,6 @@ RS_INLINE static uint64_t RS_FN(tiny_mask)(uint64_t P0, uint64_t P2, uint64_t k1
     RS_PIX *const CROW = (RS_PIX *)(void *)((BD)->color + (size_t)((PY0) - (BD)->y0) * (BD)->stride) + (PX0); \
     RS_Z *const ZROW = (RS_Z *)(BD)->depth + (size_t)((PY0) - (BD)->y0) * (size_t)(BD)->w + (PX0)
 
-/* The covered centres of one tiny triangle a, b, c (a the base vertex; area2 > 0 its
- * doubled area) in one group of columns from px0, rows from py0: M its coverage (rows
- * at bit 15 - j), P0 / P2 the packed biased edge values (e + 2^15) of row 0 of the
- * edges opposite c / b (e0 = the weight of c times area2, e2 = that of b), sy0 / sy2
- * their row steps.  Every tiny path (tri_tiny, tri_quad) shades here, so a triangle's
- * pixels do not depend on which of them drew it. */
 /* The per-triangle values of the tiny shading (tiny_shade, quad_shade): a the base
  * vertex, b and c the others, area2 > 0. */
 #if RS_TEX
@@ -283,29 +277,15 @@ RS_INLINE static void RS_FN(tri_tiny_any)(band *bd, const rs_cvert *a, const rs_
 
 /* tri_raster's tiny triangles (a, b, c as seen; either orientation) over their own box,
  * candidates px0 .. px0 + nx - 1 x py0 .. py0 + ny - 1 (clipped to the band and the
- * screen): out of line, so that tri_raster's box and path choice, which every call runs,
- * keep few registers (inlined, its prologue saved six and spilled a dozen values for
- * every call), and one copy for both orientations: a front face swaps b and c (and their
- * differences) first, which is what tri_tiny_any's second copy passes, so the values
- * are the same.  B 640x480: 23.008 -> 22.962 M instructions per frame. */
+ * screen): tri_tiny_any out of line, so that tri_raster's box and path choice, which
+ * every call runs, keep few registers (inlined, its prologue saved six and spilled a
+ * dozen values for every call; B 640x480: 23.008 -> 22.962 M instructions per frame).
+ * (A copy of tri_tiny_any's orientation code with one tri_tiny for both orientations
+ * saved B another 0.03 M; not worth the second copy.) */
 RS_NOINLINE static void RS_FN(tri_tiny_own)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                             int32_t px0, int32_t nx, int32_t py0, int32_t ny)
 {
-    int32_t dx1 = b->x - a->x, dy1 = b->y - a->y, dx2 = c->x - a->x, dy2 = c->y - a->y;
-    int32_t area2 = dx1 * dy2 - dx2 * dy1;
-    /* y points down: counter-clockwise as seen (a front face) has area2 < 0 */
-    if (area2 >= 0) {
-        if (area2 == 0 || bd->cull) return;
-    } else {
-        const rs_cvert *const t = b;
-        int32_t u;
-        b = c; c = t;
-        u = dx1; dx1 = dx2; dx2 = u;
-        u = dy1; dy1 = dy2; dy2 = u;
-        area2 = -area2;
-    }
-    RS_FN(tri_tiny)(bd, a, b, c, px0, nx, py0, ny, TINY_XM(nx), px0 * SUBONE + HALF, py0 * SUBONE + HALF,
-                    dx1, dy1, dx2, dy2, area2);
+    RS_FN(tri_tiny_any)(bd, a, b, c, px0, nx, py0, ny, TINY_XM(nx), px0 * SUBONE + HALF, py0 * SUBONE + HALF);
 }
 
 /* One triangle (a, b, c as seen; either orientation): its box of candidate centres,
@@ -546,20 +526,17 @@ RS_NOINLINE static void RS_FN(pair_wide)(band *bd, const rs_cvert *v0, const rs_
     /* no column of centres: neither triangle's own (sub-)box holds one */
     if (xh < xl) return;
     if (hi - lo < TINY_H && xh - xl < TINY_W) {
+        /* as pair_tiny, but one copy of tri_quad (the orientation a variable), and mixed
+         * orientations one triangle at a time as below (the pixels of a pair are those of
+         * two tri_raster calls; tri_tiny_own culls): less code for the rarer wide boxes */
         const int32_t py0 = lo < bd->y0 ? bd->y0 : lo, py1 = hi >= bd->y1 ? bd->y1 - 1 : hi;
+        const int32_t nx = xh - xl + 1;
         if (py0 > py1) return;
-        {
-            /* as pair_tiny, but one copy of tri_quad (the orientation a variable), and
-             * mixed orientations one triangle at a time as below (the pixels of a pair are
-             * those of two tri_raster calls; tri_tiny_own culls): less code for the
-             * rarer wide boxes */
-            const int32_t nx = xh - xl + 1;
-            PAIR_AREAS(ar1, ar2);
-            if (bd->cull && (ar1 | ar2) >= 0) return;    /* both culled or of zero area */
-            if ((ar1 < 0 && ar2 < 0) || (ar1 > 0 && ar2 > 0 && !bd->cull)) {
-                RS_FN(tri_quad)(bd, v0, v1, v2, v3, xl, nx, py0, py1 - py0 + 1, TINY_XM(nx), ar1, ar2, ar1 < 0, 1);
-                return;
-            }
+        PAIR_AREAS(ar1, ar2);
+        if (bd->cull && (ar1 | ar2) >= 0) return;    /* both culled or of zero area */
+        if ((ar1 < 0 && ar2 < 0) || (ar1 > 0 && ar2 > 0 && !bd->cull)) {
+            RS_FN(tri_quad)(bd, v0, v1, v2, v3, xl, nx, py0, py1 - py0 + 1, TINY_XM(nx), ar1, ar2, ar1 < 0, 1);
+            return;
         }
     }
     /* each triangle on its own, as tri_raster draws it (inlined: no calls for the
