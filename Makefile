@@ -39,6 +39,14 @@ FUZZ_SRC   = $(sort $(wildcard tests/fuzz_*.c))
 SUPPORT_SRC= $(sort $(wildcard tests/support/*.c))
 
 LIB_OBJ    = $(LIB_SRC:%.c=$(B)/obj/%.o)
+# x86-64: the drawing code (raster.c, xform.c) a second time for x86-64-v3 CPUs (AVX2,
+# BMI2), chosen at run time by raster/isa.c; when the compiler can (gcc >= 12: the
+# -march level and __builtin_cpu_supports("x86-64-v3")).  ISA_V3=0 leaves it out.
+ISA_V3    ?= $(shell $(CC) -dumpmachine 2>/dev/null | grep -q '^x86_64' && printf 'int main(void){__builtin_cpu_init();return __builtin_cpu_supports("x86-64-v3");}\n' | $(CC) -march=x86-64-v3 -x c -o /dev/null - 2>/dev/null && echo 1)
+ifeq ($(ISA_V3),1)
+LIB_OBJ   += $(B)/obj/raster/raster_v3.o $(B)/obj/raster/xform_v3.o
+$(B)/obj/raster/raster.o $(B)/obj/raster/xform.o $(B)/obj/raster/isa.o: ISA_FLAGS = -DRS_ISA_DISPATCH=1
+endif
 TEST_BIN   = $(TEST_SRC:tests/%.c=$(B)/tests/%)
 BENCH_BIN  = $(BENCH_SRC:benchmarks/%.c=$(B)/bench/%)
 SUPPORT_OBJ= $(SUPPORT_SRC:%.c=$(B)/obj/%.o)
@@ -78,9 +86,13 @@ $(B)/libbitrain.a: $(LIB_OBJ)
 	@mkdir -p $(@D)
 	rm -f $@ && ar rcs $@ $^
 
+$(B)/obj/raster/%_v3.o: raster/%.c
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -march=x86-64-v3 -DRS_BUILD_V3 -c -o $@ $<
+
 $(B)/obj/%.o: %.c
 	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) $(if $(filter platform/% tests/% benchmarks/%,$<),$(shell pkg-config --cflags $(PKGS))) -c -o $@ $<
+	$(CC) $(ALL_CFLAGS) $(ISA_FLAGS) $(if $(filter platform/% tests/% benchmarks/%,$<),$(shell pkg-config --cflags $(PKGS))) -c -o $@ $<
 
 $(B)/tests/%: tests/%.c $(SUPPORT_OBJ) $(B)/libbitrain.a
 	@mkdir -p $(@D)

@@ -91,6 +91,17 @@ int cmd_bench(int argc, char **argv)
         else if (!strcmp(a, "--bands") && n) { bands = atoi(n); i++; }
         else if (!strcmp(a, "-o") && n) { out = n; i++; }
         else if (!strcmp(a, "--dem") && n) { dem = n; i++; }
+        else if (!strcmp(a, "--isa") && n) {
+            /* the copy of the drawing code (raster.h rs_isa_set): auto, x86-64, x86-64-v3 */
+            int want = !strcmp(n, "auto") ? RS_ISA_AUTO : !strcmp(n, "x86-64-v3") ? RS_ISA_V3
+                       : !strcmp(n, rs_isa_name(RS_ISA_BASE)) ? RS_ISA_BASE : -1;
+            if (want < 0) goto usage;
+            if (rs_isa_set(want) != want && want != RS_ISA_AUTO) {
+                fprintf(stderr, "bitrain bench: --isa %s: this build or CPU has no such copy\n", n);
+                return 1;
+            }
+            i++;
+        }
         else if (!strcmp(a, "-h") || !strcmp(a, "--help")) goto usage;
         else { fprintf(stderr, "bitrain bench: unknown option '%s'\n", a); goto usage; }
     }
@@ -127,10 +138,10 @@ int cmd_bench(int argc, char **argv)
     {
         double med = frames & 1 ? ms[frames / 2] : 0.5 * (ms[frames / 2 - 1] + ms[frames / 2]);
         printf("bitrain camera=%c size=%dx%d cull=%d format=%s depth=%d bands=%d frames=%d ms/frame=%.3f "
-               "Mtri/s=%.1f Mpix/s=%.1f drawn_tris=%u clipped=%u span_px=%u\n",
+               "Mtri/s=%.1f Mpix/s=%.1f drawn_tris=%u clipped=%u span_px=%u isa=%s\n",
                camc, w, h, cull, fmt == RS_FMT_RGB565 ? "rgb565" : "rgb888", depth == RS_DEPTH16 ? 16 : 32,
                bands, frames, med, PEER_NTRI / med / 1e3, (double)w * h / med / 1e3,
-               f.stat_tris, f.stat_clipped, f.stat_pixels);
+               f.stat_tris, f.stat_clipped, f.stat_pixels, rs_isa_name(rs_isa()));
     }
     if (out) {
         br_err err;
@@ -151,6 +162,7 @@ int cmd_bench(int argc, char **argv)
 usage:
     fprintf(stderr, "usage: bitrain bench --scene peer --camera A|B --size WxH --frames N [--cull]\n"
                     "       [--format rgb888|rgb565] [--depth 32|16] [--bands ROWS] [-o last.png] [--dem fuji.png]\n"
-                    "       [--warmup W]   (W untimed frames first, default 3)\n");
+                    "       [--warmup W]   (W untimed frames first, default 3)\n"
+                    "       [--isa auto|x86-64|x86-64-v3]   (the copy of the drawing code, default auto)\n");
     return 2;
 }

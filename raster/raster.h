@@ -181,6 +181,21 @@ br_status rs_render(rs_frame *f, int32_t band_rows, void *mem, rs_sink sink, voi
  * out (each is about 20 KB of code on x86-64; docs/raster.md gives the sizes). */
 int rs_variant_built(int32_t fmt, int32_t depth, int textured);
 
+/* The instruction set the drawing code runs with.  x86-64 builds carry two copies of it,
+ * compiled from the same source: baseline x86-64 (SSE2) and x86-64-v3 (AVX2, BMI2,
+ * three-operand forms), chosen at the first frame from what the CPU supports.  The
+ * copies give the same bytes (integer code; make test compares them).  Other targets
+ * have one copy (RS_ISA_BASE).  rs_isa_set(RS_ISA_AUTO) restores the automatic choice,
+ * RS_ISA_BASE or RS_ISA_V3 forces one (tests, benchmarks); it returns the set in use,
+ * which is RS_ISA_BASE when V3 is asked for but not built or not supported.  Not
+ * thread-safe against frames being drawn: set it before. */
+enum { RS_ISA_AUTO = 0, RS_ISA_BASE = 1, RS_ISA_V3 = 2 };
+int rs_isa_set(int isa);
+/* The set in use (choosing it on first use) and its name ("x86-64", "x86-64-v3",
+ * "generic"). */
+int rs_isa(void);
+const char *rs_isa_name(int isa);
+
 /* XRGB8888 or RGB565 pixel rows to RGB888 bytes (RGB565 expanded by bit replication). */
 void rs_to_rgb888(int32_t fmt, const void *src, int32_t n, uint8_t *rgb);
 

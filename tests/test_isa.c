@@ -1,0 +1,102 @@
+/* tests/test_isa.c — the two copies of the drawing code of an x86-64 build (raster.h
+ * rs_isa_set: baseline x86-64 and x86-64-v3, compiled from the same source) give the
+ * same bytes: the vertex cache and every pixel of the peer scene (real fuji.png
+ * terrain), both cameras, two sizes, every pixel format and depth size, culling off and
+ * on, the whole frame and 7-row bands, and a textured frame.  On a build or CPU with
+ * one copy it says so and checks that rs_isa_set falls back to it. */
+#include "raster/raster.h"
+#include "core/cam.h"
+#include "platform/peer_scene.h"
+#include "tests/test.h"
+
+static peer_scene *g_ps;
+static rs_vertex g_v[PEER_NV];
+static rs_prim g_prims[PEER_NSTRIP];
+static uint32_t g_texels[PEER_N * PEER_N];
+
+static int load_scene(void)
+{
+    int32_t i;
+    if (g_ps) return 1;
+    g_ps = (peer_scene *)malloc(sizeof *g_ps);
+    if (!g_ps || peer_scene_build(t_data("png/fuji.png"), g_ps) != 0) return 0;
+    peer_scene_raster(g_ps, g_v, g_prims);
+    /* a texture of the scene's own colours, one texel per grid vertex, mapped onto the
+     * grid (u, v in Q8 texels) */
+    for (i = 0; i < PEER_NV; i++) {
+        g_texels[i] = g_v[i].rgb & 0xffffffu;
+        g_v[i].uv[0] = (i % PEER_N) * 256 + 128;
+        g_v[i].uv[1] = (i / PEER_N) * 256 + 128;
+    }
+    return 1;
+}
+
+/* One frame with the copy `isa`: its cache and its pixels (whole, or bands of `rows`) */
+static int frame(int isa, char camc, int32_t w, int32_t h, int32_t fmt, int32_t depth, int cull,
+                 const rs_texture *tex, int32_t rows, rs_cvert *cache, uint8_t *colour, void *zbuf,
+                 uint32_t *pixels)
+{
+    rs_frame f;
+    int32_t y0, bpp = fmt == RS_FMT_RGB565 ? 2 : 4;
+    memset(&f, 0, sizeof f);
+    if (rs_isa_set(isa) != isa || peer_frame(camc, w, h, g_v, g_prims, &f) != 0) return 0;
+    f.fmt = fmt; f.depth = depth; f.no_cull = !cull; f.tex = tex; f.cache = cache;
+    if (rs_frame_prepare(&f) != BR_OK) return 0;
+    for (y0 = 0; y0 < h; y0 += rows) {
+        int32_t n = h - y0 < rows ? h - y0 : rows;
+        if (rs_render_band(&f, y0, n, colour + (size_t)y0 * (size_t)w * (size_t)bpp, (size_t)(w * bpp), zbuf) != BR_OK)
+            return 0;
+    }
+    *pixels = f.stat_pixels;
+    return 1;
+}
+
+static void test_same_bytes(void)
+{
+    enum { WMAX = 640, HMAX = 480 };
+    static uint8_t c0[WMAX * HMAX * 4], c1[WMAX * HMAX * 4];
+    static uint32_t zb[WMAX * HMAX];
+    static rs_cvert k0[PEER_NV], k1[PEER_NV];
+    const int32_t sizes[2][2] = { { 320, 240 }, { 640, 480 } };
+    rs_texture tex;
+    int ci, si, fmt, dep, cull, bi, frames = 0;
+    if (rs_isa_set(RS_ISA_V3) != RS_ISA_V3) {
+        printf("test_isa: one copy of the drawing code here (%s): nothing to compare\n", rs_isa_name(rs_isa()));
+        CHECK_EQ(rs_isa(), RS_ISA_BASE);
+        rs_isa_set(RS_ISA_AUTO);
+        return;
+    }
+    CHECK(load_scene());
+    if (!g_ps) return;
+    tex.w = tex.h = PEER_N; tex.px = g_texels;
+    for (ci = 0; ci < 2; ci++)
+        for (si = 0; si < 2; si++)
+            for (fmt = 0; fmt < 2; fmt++)
+                for (dep = 0; dep < 2; dep++)
+                    for (cull = 0; cull < 2; cull++)
+                        for (bi = 0; bi < 3; bi++) {
+                            const int32_t w = sizes[si][0], h = sizes[si][1];
+                            const int32_t rows = bi == 1 ? 7 : h;
+                            const rs_texture *tx = bi == 2 ? &tex : NULL;   /* textured, whole frame */
+                            const size_t bytes = (size_t)w * (size_t)h * (fmt == RS_FMT_RGB565 ? 2 : 4);
+                            uint32_t p0 = 0, p1 = 0;
+                            int ok = frame(RS_ISA_BASE, "AB"[ci], w, h, fmt, dep, cull, tx, rows, k0, c0, zb, &p0)
+                                     && frame(RS_ISA_V3, "AB"[ci], w, h, fmt, dep, cull, tx, rows, k1, c1, zb, &p1);
+                            CHECK_MSG(ok, "camera %c %dx%d", "AB"[ci], w, h);
+                            if (!ok) continue;
+                            CHECK_MSG(memcmp(k0, k1, sizeof k0) == 0 && memcmp(c0, c1, bytes) == 0 && p0 == p1,
+                                      "camera %c %dx%d format %d depth %d cull %d rows %d tex %d: the copies differ",
+                                      "AB"[ci], w, h, fmt, dep, cull, rows, tx != NULL);
+                            CHECK(p0 > (uint32_t)(w * h / 4));   /* a frame of terrain was drawn */
+                            frames++;
+                        }
+    printf("test_isa: %d frames compared, %s and %s\n", frames, rs_isa_name(RS_ISA_BASE), rs_isa_name(RS_ISA_V3));
+    rs_isa_set(RS_ISA_AUTO);
+}
+
+int main(void)
+{
+    T_RUN(test_same_bytes);
+    free(g_ps);
+    return t_finish();
+}
