@@ -47,6 +47,11 @@ ifeq ($(ISA_V3),1)
 LIB_OBJ   += $(B)/obj/raster/raster_v3.o $(B)/obj/raster/xform_v3.o
 $(B)/obj/raster/raster.o $(B)/obj/raster/xform.o $(B)/obj/raster/isa.o: ISA_FLAGS = -DRS_ISA_DISPATCH=1
 endif
+# the objects whose symbols depend on ISA_V3 are rebuilt when it changes (the file
+# is rewritten only then)
+$(B)/obj/raster/raster.o $(B)/obj/raster/xform.o $(B)/obj/raster/isa.o: $(B)/isa_v3.flag
+$(B)/isa_v3.flag: FORCE
+	@mkdir -p $(@D); echo '$(ISA_V3)' | cmp -s - $@ || echo '$(ISA_V3)' > $@
 TEST_BIN   = $(TEST_SRC:tests/%.c=$(B)/tests/%)
 BENCH_BIN  = $(BENCH_SRC:benchmarks/%.c=$(B)/bench/%)
 SUPPORT_OBJ= $(SUPPORT_SRC:%.c=$(B)/obj/%.o)
@@ -69,7 +74,7 @@ DIV32_SUP_OBJ = $(SUPPORT_SRC:%.c=$(B)/div32/%.o)
 DIV32_TEST_BIN = $(B)/div32-tests/test_raster $(B)/div32-tests/test_raster_render $(B)/div32-tests/test_fx
 
 .SECONDARY:
-.PHONY: all run test test-fast bench fuzz clean deps check-nofloat
+.PHONY: all run test test-fast bench fuzz clean deps check-nofloat FORCE
 all: deps bitrain $(B)/libbitrain.a
 
 deps:
