@@ -205,6 +205,54 @@ static void test_fill_fan(void)
     }
 }
 
+/* The clear (rs_render_band's first step, 32 bytes a store with an overlapping last
+ * one): every pixel the sky, every depth the far plane's, and not a byte more, for
+ * widths around the store sizes, both pixel formats and depth sizes, rows packed
+ * (stride = row) and padded (stride = row + 8: the padding keeps its bytes). */
+static void test_clear(void)
+{
+    static const int32_t ws[] = { 1, 2, 3, 7, 8, 9, 15, 16, 17, 31, 33, 40, 63, 64, 65, 100, 333 };
+    enum { ROWS = 3, GUARD = 64 };
+    static uint8_t cbuf[(333 * 4 + 8) * ROWS + GUARD], zbuf[333 * 4 * ROWS + GUARD];
+    rs_cvert cache[1];
+    rs_frame f;
+    size_t wi;
+    int32_t fmt, dep, pad, bad = 0;
+    for (wi = 0; wi < sizeof ws / sizeof ws[0]; wi++)
+        for (fmt = 0; fmt < 2; fmt++)
+            for (dep = 0; dep < 2; dep++)
+                for (pad = 0; pad <= 8; pad += 8) {
+                    const int32_t w = ws[wi], cb = fmt == RS_FMT_RGB565 ? 2 : 4, zb = dep == RS_DEPTH16 ? 2 : 4;
+                    const size_t row = (size_t)w * (size_t)cb, stride = row + (size_t)pad;
+                    const uint32_t sky = fmt == RS_FMT_RGB565 ? 0x9e7fu : 0x99ccffu;
+                    uint32_t dfar;
+                    size_t i;
+                    int32_t x, y;
+                    memset(&f, 0, sizeof f);
+                    f.w = w; f.h = ROWS; f.fmt = fmt; f.depth = dep; f.clear_rgb = 0x99ccffu; f.cache = cache;
+                    f.vp.znear = 3; f.vp.zfar = 1000;
+                    dfar = (uint32_t)((int64_t)RS_DEPTH_ONE * 3 / 1000);
+                    memset(cbuf, 0xa5, sizeof cbuf); memset(zbuf, 0xa5, sizeof zbuf);
+                    CHECK_EQ(rs_render_band(&f, 0, ROWS, cbuf, stride, zbuf), BR_OK);
+                    for (y = 0; y < ROWS; y++) {
+                        for (x = 0; x < w; x++) {
+                            const uint8_t *c = cbuf + (size_t)y * stride + (size_t)x * (size_t)cb;
+                            const uint8_t *z = zbuf + ((size_t)y * (size_t)w + (size_t)x) * (size_t)zb;
+                            uint16_t h16;
+                            uint32_t cv, zv;
+                            if (cb == 2) { memcpy(&h16, c, 2); cv = h16; } else memcpy(&cv, c, 4);
+                            if (zb == 2) { memcpy(&h16, z, 2); zv = h16; } else memcpy(&zv, z, 4);
+                            bad += cv != sky || zv != (dep == RS_DEPTH16 ? dfar >> 14 : dfar);
+                        }
+                        for (i = 0; i < (size_t)pad; i++) bad += cbuf[(size_t)y * stride + row + i] != 0xa5;
+                    }
+                    for (i = stride * ROWS; i < sizeof cbuf; i++) bad += cbuf[i] != 0xa5;
+                    for (i = (size_t)w * ROWS * (size_t)zb; i < sizeof zbuf; i++) bad += zbuf[i] != 0xa5;
+                    CHECK_MSG(bad == 0, "clear w %d format %d depth %d pad %d: %d wrong bytes", w, fmt, dep, pad, bad);
+                    if (bad) return;
+                }
+}
+
 static void test_degenerate_huge_tiny(void)
 {
     const int32_t w = 40, h = 30;
@@ -837,6 +885,7 @@ int main(void)
 {
     T_RUN(test_fill_grid);
     T_RUN(test_fill_fan);
+    T_RUN(test_clear);
     T_RUN(test_degenerate_huge_tiny);
     T_RUN(test_bands_and_formats);
     T_RUN(test_near_plane_and_inside);
