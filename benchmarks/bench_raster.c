@@ -4,7 +4,8 @@
  * and on, XRGB8888 + 32-bit depth, single thread.  Prints per configuration the median
  * ms per frame over FRAMES frames (default 30; env BENCH_FRAMES), triangles/s
  * (submitted) and pixels/s (w*h per frame), plus the band-mode memory of 320x240
- * RGB565.  Instructions per frame: one configuration per process with callgrind,
+ * RGB565.  With both copies of the drawing code (x86-64 builds on an AVX2 CPU:
+ * raster.h rs_isa_set) each configuration runs with each, the automatic choice last.  Instructions per frame: one configuration per process with callgrind,
  *   valgrind --tool=callgrind --toggle-collect=bench_frame \
  *       ./bitrain bench --scene peer --camera A --size 640x480 --frames 10
  * (total Ir / 10), see docs/raster.md.  Figures only; never fails on time. */
@@ -22,7 +23,7 @@ int main(void)
     static const struct { char cam; int w, h; } cfg[] = {
         { 'A', 320, 240 }, { 'B', 320, 240 }, { 'A', 640, 480 }, { 'B', 640, 480 } };
     const char *e = getenv("BENCH_FRAMES");
-    int frames = e ? atoi(e) : 30, i, k, cull;
+    int frames = e ? atoi(e) : 30, i, k, cull, isa, nisa;
     peer_scene *ps = malloc(sizeof *ps);
     rs_vertex *v = malloc(sizeof *v * PEER_NV);
     rs_cvert *cache = malloc(rs_cache_mem_size(PEER_NV));
@@ -36,24 +37,30 @@ int main(void)
         return 0;
     }
     peer_scene_raster(ps, v, prims);
-    printf("bitrain raster, peer scene, %d frames per configuration (median), XRGB8888 + depth32:\n", frames);
-    for (cull = 0; cull < 2; cull++)
-        for (k = 0; k < 4; k++) {
-            rs_frame f;
-            double med;
-            peer_frame(cfg[k].cam, cfg[k].w, cfg[k].h, v, prims, &f);
-            f.cache = cache; f.no_cull = !cull;
-            for (i = 0; i < frames; i++) {
-                double t0 = tm_now_ms();
-                rs_frame_prepare(&f);
-                rs_render_band(&f, 0, f.h, color, (size_t)f.w * 4, zbuf);
-                ms[i] = tm_now_ms() - t0;
+    nisa = rs_isa_set(RS_ISA_V3) == RS_ISA_V3 ? 2 : 1;
+    for (isa = nisa == 2 ? RS_ISA_BASE : RS_ISA_AUTO; isa <= nisa; isa++) {
+        if (isa == nisa) rs_isa_set(RS_ISA_AUTO);
+        else rs_isa_set(isa);
+        printf("bitrain raster (%s copy%s), peer scene, %d frames per configuration (median), XRGB8888 + depth32:\n",
+               rs_isa_name(rs_isa()), isa == nisa ? ", the automatic choice" : "", frames);
+        for (cull = 0; cull < 2; cull++)
+            for (k = 0; k < 4; k++) {
+                rs_frame f;
+                double med;
+                peer_frame(cfg[k].cam, cfg[k].w, cfg[k].h, v, prims, &f);
+                f.cache = cache; f.no_cull = !cull;
+                for (i = 0; i < frames; i++) {
+                    double t0 = tm_now_ms();
+                    rs_frame_prepare(&f);
+                    rs_render_band(&f, 0, f.h, color, (size_t)f.w * 4, zbuf);
+                    ms[i] = tm_now_ms() - t0;
+                }
+                med = tm_median(ms, frames);
+                printf("  camera %c %dx%d cull=%d: %.2f ms/frame, %.1f Mtri/s, %.1f Mpix/s (%u triangles set up, %u clipped)\n",
+                       cfg[k].cam, cfg[k].w, cfg[k].h, cull, med, PEER_NTRI / med / 1e3,
+                       (double)cfg[k].w * cfg[k].h / med / 1e3, f.stat_tris, f.stat_clipped);
             }
-            med = tm_median(ms, frames);
-            printf("  camera %c %dx%d cull=%d: %.2f ms/frame, %.1f Mtri/s, %.1f Mpix/s (%u triangles set up, %u clipped)\n",
-                   cfg[k].cam, cfg[k].w, cfg[k].h, cull, med, PEER_NTRI / med / 1e3,
-                   (double)cfg[k].w * cfg[k].h / med / 1e3, f.stat_tris, f.stat_clipped);
-        }
+    }
     printf("band mode 320x240 RGB565: 16-row band %zu bytes (16-bit depth) / %zu bytes (32-bit depth) + vertex cache %zu bytes\n",
            rs_band_mem_size(320, 16, RS_FMT_RGB565, RS_DEPTH16), rs_band_mem_size(320, 16, RS_FMT_RGB565, RS_DEPTH32),
            rs_cache_mem_size(PEER_NV));
