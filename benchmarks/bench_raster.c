@@ -38,7 +38,7 @@ int main(void)
     }
     peer_scene_raster(ps, v, prims);
     nisa = rs_isa_set(RS_ISA_V3) == RS_ISA_V3 ? 2 : 1;
-    for (isa = nisa == 2 ? RS_ISA_BASE : RS_ISA_AUTO; isa <= nisa; isa++) {
+    for (isa = nisa == 2 ? RS_ISA_BASE : nisa; isa <= nisa; isa++) {     /* nisa: the automatic choice */
         if (isa == nisa) rs_isa_set(RS_ISA_AUTO);
         else rs_isa_set(isa);
         printf("bitrain raster (%s copy%s), peer scene, %d frames per configuration (median), XRGB8888 + depth32:\n",
