@@ -287,23 +287,75 @@ typedef struct pp_soa {
  * of them.
  * Steps whose values overflow (wide boxes, vertices off screen) are classified from
  * exact quantities only (outcodes, lo, hi, xl, xh) before any of the rest is read. */
-static void pp_prepass(const band *bd, pp_soa *q, int32_t n)
+/* Eight cache entries' first 16 bytes (P[0 .. 7]; x, y, d, c: as 16-bit words x, x >> 16,
+ * y, y >> 16, d, d >> 16, c, c >> 16 on these little-endian targets) transposed into slots
+ * K .. K + 7 of X, Y, C: the low words of x and y less PP_OFF (modulo 2^16: the top bit
+ * flipped) and c >> 16 (the outcode byte above the colour's red), by interleaving words,
+ * pairs of words and halves (17 shuffles; fl: PP_OFF's flip in every lane). */
+#define PP_ZIP(A, B, I0, I1, I2, I3, I4, I5, I6, I7) RS_SHUFFLE((A), (B), pp_v8, I0, I1, I2, I3, I4, I5, I6, I7)
+#define PP_T8(P, X, Y, C, K) do {                                                      \
+        pp_v8 w0, w1, w2, w3, w4, w5, w6, w7;                                          \
+        memcpy(&w0, (P)[0], 16); memcpy(&w1, (P)[1], 16); memcpy(&w2, (P)[2], 16);    \
+        memcpy(&w3, (P)[3], 16); memcpy(&w4, (P)[4], 16); memcpy(&w5, (P)[5], 16);    \
+        memcpy(&w6, (P)[6], 16); memcpy(&w7, (P)[7], 16);                              \
+        /* l01: x0 x1 x0' x1' y0 y1 y0' y1' (' the high words), h01: d0 d1 d0' d1' c0 c1 c0' c1' */ \
+        const pp_v8 l01 = PP_ZIP(w0, w1, 0, 8, 1, 9, 2, 10, 3, 11), h01 = PP_ZIP(w0, w1, 4, 12, 5, 13, 6, 14, 7, 15); \
+        const pp_v8 l23 = PP_ZIP(w2, w3, 0, 8, 1, 9, 2, 10, 3, 11), h23 = PP_ZIP(w2, w3, 4, 12, 5, 13, 6, 14, 7, 15); \
+        const pp_v8 l45 = PP_ZIP(w4, w5, 0, 8, 1, 9, 2, 10, 3, 11), h45 = PP_ZIP(w4, w5, 4, 12, 5, 13, 6, 14, 7, 15); \
+        const pp_v8 l67 = PP_ZIP(w6, w7, 0, 8, 1, 9, 2, 10, 3, 11), h67 = PP_ZIP(w6, w7, 4, 12, 5, 13, 6, 14, 7, 15); \
+        /* x03: x0 x1 x2 x3 x0' x1' x2' x3', y03 the same of y, c03 of c */          \
+        const pp_v8 x03 = PP_ZIP(l01, l23, 0, 1, 8, 9, 2, 3, 10, 11), x47 = PP_ZIP(l45, l67, 0, 1, 8, 9, 2, 3, 10, 11); \
+        const pp_v8 y03 = PP_ZIP(l01, l23, 4, 5, 12, 13, 6, 7, 14, 15), y47 = PP_ZIP(l45, l67, 4, 5, 12, 13, 6, 7, 14, 15); \
+        const pp_v8 c03 = PP_ZIP(h01, h23, 4, 5, 12, 13, 6, 7, 14, 15), c47 = PP_ZIP(h45, h67, 4, 5, 12, 13, 6, 7, 14, 15); \
+        PPS(X, K, PP_ZIP(x03, x47, 0, 1, 2, 3, 8, 9, 10, 11) ^ fl);                   \
+        PPS(Y, K, PP_ZIP(y03, y47, 0, 1, 2, 3, 8, 9, 10, 11) ^ fl);                   \
+        PPS(C, K, PP_ZIP(c03, c47, 4, 5, 6, 7, 12, 13, 14, 15));                      \
+    } while (0)
+
+static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache, const uint32_t *ip, int32_t n)
 {
     const pp_v8 zero = { 0, 0, 0, 0, 0, 0, 0, 0 }, one = zero + 1;
     const pp_v8 by0 = zero + (int16_t)(bd->y0 - PP_ROFF), by1 = zero + (int16_t)(bd->y1 - 1 - PP_ROFF);
     const pp_v8 cullm = zero - (int16_t)(bd->cull != 0);
     const pp_v8 iota = { 0, 1, 2, 3, 4, 5, 6, 7 };
+    /* x - PP_OFF modulo 2^16 is the low 16 bits with the top one flipped */
+    const pp_v8 fl = zero + (int16_t)-PP_OFF;
+    const int32_t nv = (n + 7) & ~7;    /* slots 0 .. nv: the groups of eight read slots k .. k + 8 */
     int32_t k;
+    /* the gather: vertex slot k holds ip[2 k] (even) and ip[2 k + 1] (odd) for k <= n, the
+     * slots past n repeat slot n (their lanes are ignored); eight slots at a time, their
+     * pointers kept for the strip loop and their first 16 bytes transposed */
+#define PP_SLOT(J) (k + (J))
+#define PP_SLOTC(J) (k + (J) <= n ? k + (J) : n)
+#define PP_G(J, S) pe[J] = q->ve[k + (J)] = &cache[ip[2 * S(J)]]; po[J] = q->vo[k + (J)] = &cache[ip[2 * S(J) + 1]];
+#define PP_G8(S) do {                                                                  \
+            const rs_cvert *pe[8], *po[8];                                             \
+            PP_G(0, S) PP_G(1, S) PP_G(2, S) PP_G(3, S) PP_G(4, S) PP_G(5, S) PP_G(6, S) PP_G(7, S) \
+            PP_T8(pe, q->xe, q->ye, q->ce, k);                                         \
+            PP_T8(po, q->xo, q->yo, q->co, k);                                         \
+        } while (0)
+    for (k = 0; k < nv; k += 8) {
+        if (k + 7 <= n) PP_G8(PP_SLOT);
+        else PP_G8(PP_SLOTC);
+    }
+#undef PP_SLOT
+#undef PP_SLOTC
+#undef PP_G
+#undef PP_G8
+    {
+        const rs_cvert *a0 = &cache[ip[2 * n]], *a1 = &cache[ip[2 * n + 1]];    /* slot nv alone */
+        q->ve[nv] = a0; q->vo[nv] = a1;
+        q->xe[nv] = (int16_t)(a0->x ^ PP_OFF); q->ye[nv] = (int16_t)(a0->y ^ PP_OFF); q->ce[nv] = (int16_t)(a0->c >> 16);
+        q->xo[nv] = (int16_t)(a1->x ^ PP_OFF); q->yo[nv] = (int16_t)(a1->y ^ PP_OFF); q->co[nv] = (int16_t)(a1->c >> 16);
+    }
     for (k = 0; k < n; k += 8) {
-        /* x - PP_OFF modulo 2^16 is the low 16 bits with the top one flipped */
-        const pp_v8 fl = zero + (int16_t)-PP_OFF;
-        const pp_v8 x0 = PPL(q->xe, k) ^ fl, x1 = PPL(q->xo, k) ^ fl, x2 = PPL(q->xe, k + 1) ^ fl, x3 = PPL(q->xo, k + 1) ^ fl;
-        const pp_v8 y0 = PPL(q->ye, k) ^ fl, y1 = PPL(q->yo, k) ^ fl, y2 = PPL(q->ye, k + 1) ^ fl, y3 = PPL(q->yo, k + 1) ^ fl;
+        const pp_v8 x0 = PPL(q->xe, k), x1 = PPL(q->xo, k), x2 = PPL(q->xe, k + 1), x3 = PPL(q->xo, k + 1);
+        const pp_v8 y0 = PPL(q->ye, k), y1 = PPL(q->yo, k), y2 = PPL(q->ye, k + 1), y3 = PPL(q->yo, k + 1);
         const pp_v8 c0 = PPL(q->ce, k), c1 = PPL(q->co, k), c2 = PPL(q->ce, k + 1), c3 = PPL(q->co, k + 1);
-        const pp_v8 c12 = c1 & c2 & (int16_t)(REJECT >> 24);
+        const pp_v8 c12 = c1 & c2 & (int16_t)(REJECT >> 16);
         /* slow: an outcode bit; rej: both triangles rejected by the outcodes (the per-pair
          * strip loop's test) */
-        const pp_v8 slow = ((c0 | c1 | c2 | c3) & (int16_t)((SLOW | REJECT) >> 24)) != 0;
+        const pp_v8 slow = ((c0 | c1 | c2 | c3) & (int16_t)((SLOW | REJECT) >> 16)) != 0;
         const pp_v8 rej = ((c12 & c0) != 0) & ((c12 & c3) != 0);
         const pp_v8 ymin = PP_MIN(PP_MIN(y0, y1), PP_MIN(y2, y3)), ymax = PP_MAX(PP_MAX(y0, y1), PP_MAX(y2, y3));
         const pp_v8 xmin = PP_MIN(PP_MIN(x0, x1), PP_MIN(x2, x3)), xmax = PP_MAX(PP_MAX(x0, x1), PP_MAX(x2, x3));

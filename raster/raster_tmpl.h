@@ -408,18 +408,7 @@ static void RS_FN(draw)(band *bd)
                 if ((bd->y0 == 0 && bd->y1 == f->h) || (ch && ch[0] >= bd->y0 && ch[1] < bd->y1)) {
                     pp_soa q;
                     int32_t n = (int32_t)((se - sp + 1) / 2), kk;
-                    {
-                        const uint32_t *ip = s + t0;
-                        for (kk = 0; kk <= n; kk++, ip += 2) {
-                            const rs_cvert *a0 = &cache[ip[0]], *a1 = &cache[ip[1]];
-                            q.ve[kk] = a0; q.vo[kk] = a1;
-                            q.xe[kk] = (int16_t)a0->x; q.ye[kk] = (int16_t)a0->y; q.ce[kk] = (int16_t)(a0->c >> 24);
-                            q.xo[kk] = (int16_t)a1->x; q.yo[kk] = (int16_t)a1->y; q.co[kk] = (int16_t)(a1->c >> 24);
-                        }
-                        /* up to the pre-pass's last group of eight (its lanes past n are ignored) */
-                        for (; kk <= ((n + 7) & ~7); kk++) q.xe[kk] = q.xo[kk] = q.ye[kk] = q.yo[kk] = q.ce[kk] = q.co[kk] = 0;
-                    }
-                    pp_prepass(bd, &q, n);
+                    pp_prepass(bd, &q, cache, s + t0, n);
                     for (kk = 0; kk < n; kk++) {
                         /* the step's vertices, read where used (none are carried) */
 #define v0 q.ve[kk]
