@@ -327,11 +327,14 @@ static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache, const u
      * pointers kept for the strip loop and their first 16 bytes transposed */
 #define PP_SLOT(J) (k + (J))
 #define PP_SLOTC(J) (k + (J) <= n ? k + (J) : n)
-#define PP_G(J, S) pe[J] = q->ve[k + (J)] = &cache[ip[2 * S(J)]]; po[J] = q->vo[k + (J)] = &cache[ip[2 * S(J) + 1]];
+#define PP_G(P, V, O, J, S) P[J] = q->V[k + (J)] = &cache[ip[2 * S(J) + (O)]];
 #define PP_G8(S) do {                                                                  \
             const rs_cvert *pe[8], *po[8];                                             \
-            PP_G(0, S) PP_G(1, S) PP_G(2, S) PP_G(3, S) PP_G(4, S) PP_G(5, S) PP_G(6, S) PP_G(7, S) \
+            PP_G(pe, ve, 0, 0, S) PP_G(pe, ve, 0, 1, S) PP_G(pe, ve, 0, 2, S) PP_G(pe, ve, 0, 3, S) \
+            PP_G(pe, ve, 0, 4, S) PP_G(pe, ve, 0, 5, S) PP_G(pe, ve, 0, 6, S) PP_G(pe, ve, 0, 7, S) \
             PP_T8(pe, q->xe, q->ye, q->ce, k);                                         \
+            PP_G(po, vo, 1, 0, S) PP_G(po, vo, 1, 1, S) PP_G(po, vo, 1, 2, S) PP_G(po, vo, 1, 3, S) \
+            PP_G(po, vo, 1, 4, S) PP_G(po, vo, 1, 5, S) PP_G(po, vo, 1, 6, S) PP_G(po, vo, 1, 7, S) \
             PP_T8(po, q->xo, q->yo, q->co, k);                                         \
         } while (0)
     for (k = 0; k < nv; k += 8) {
