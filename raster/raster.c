@@ -432,8 +432,15 @@ static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache, const u
              * candidate T1's edge values g01, g20 and diagonal eD = S1 - g01 - g20, T2's
              * g13, its diagonal eT (fT's) and third edge g32 = S2 - eT - g13, and a bit
              * (8 j + i: rows 0-1 in the low half, 2-3 in the high one) for each triangle
-             * whose three values are >= 0, in the lane's own box only, where every value
-             * is exact (the bound above). */
+             * whose three values are >= 0, in the lane's own rows only (j < ny: the band's
+             * clip).  In those rows every value is exact at all TINY_W columns, not just
+             * the box's: relative to the first candidate the vertices have -16 < X < 16 nx
+             * <= 128 and Y within 16 of the rows lo .. hi (hi - lo < TINY_H), the
+             * candidates 0 <= X <= 112 and rows inside lo .. hi, so each edge value,
+             * (A - P) x (B - P) plus a bias, is below 128 * 64 * 2 + 3 < 2^15 in magnitude.
+             * A centre right of the box (16 xh + 8 <= xmax < 16 xh + 24) lies strictly
+             * outside both triangles, so one of its exact values is < 0: its bits are clear
+             * with no column mask. */
             const pp_v8 isq = (kind == PK_QUAD) & (iota < (int16_t)(n - k));
             const pp_v8 qnx = VSEL(isq, xh - xl + 1, zero), qny = VSEL(isq, py1 - py0 + 1, zero);
             pp_v8 bx = PP_HMAX(qnx), by = PP_HMAX(qny);
@@ -448,14 +455,10 @@ static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache, const u
                 const pp_v8 c13 = VI(VU(SG2(VSUB(y1, y3))) << SUB);
                 const pp_v8 r01s = VI(VU(SG1(VSUB(x1, x0))) << SUB), r20s = VI(VU(SG1(VSUB(x0, x2))) << SUB);
                 const pp_v8 r13s = VI(VU(SG2(VSUB(x3, x1))) << SUB);
-                pp_v8 r01 = f01, r20 = f20, r13 = f13, cm = zero, bit = one, cnt = qnx;
-                for (i = 0; i < nxm; i++) {     /* cm: bit i for the columns i < nx */
-                    cm |= (cnt > 0) & bit;
-                    bit = VADD(bit, bit); cnt = VSUB(cnt, one);
-                }
+                pp_v8 r01 = f01, r20 = f20, r13 = f13;
                 /* row J's bits (1 << i, then masked to the lane's box) into ML / MM at bit SH */
 #define PP_ROW(J, ML, MM, SH) do {                                                     \
-                    const pp_v8 rm = cm & (qny > (J));                                 \
+                    const pp_v8 rm = qny > (J);                                        \
                     pp_v8 g01 = r01, g20 = r20, g13 = r13, b1 = zero, b2 = zero, cb = one; \
                     for (i = 0; i < nxm; i++) {                                        \
                         const pp_v8 eD = VSUB(VSUB(S1, g01), g20), eT = eD ^ same;     \
