@@ -262,31 +262,6 @@ typedef struct pp_soa {
 #define PP_HMAX1(V, A, B, C, D, E, F, G, H) PP_MAX((V), RS_SHUFFLE((V), (V), pp_v8, A, B, C, D, E, F, G, H))
 #define PP_HMAX(V) PP_HMAX1(PP_HMAX1(PP_HMAX1((V), 4, 5, 6, 7, 0, 1, 2, 3), 2, 3, 0, 1, 6, 7, 4, 5), 1, 0, 3, 2, 5, 4, 7, 6)
 
-/* The set-up of strip steps 0 .. n-1 of a chunk, eight at a time in 16-bit lanes (see
- * pp_soa above; the vertices' low 16 bits in q->xe .. q->co): for each step what
- * tri_pair, pair_tiny and tri_quad (raster_tmpl.h) compute before the coverage masks,
- * with the same values, so the pixels are theirs:
- * - kind: PK_SLOW (an outcode bit, and not both triangles rejected by the outcodes: the
- *   main pass does what the plain loop does), PK_NONE (no row of centres, an empty box in
- *   the band, neither triangle drawn (culled or of zero area), both rejected by the
- *   outcodes), PK_WIDE (more than TINY_H rows or TINY_W columns: pair_wide with lo, hi,
- *   xl, xh in py0, ny, px0, nx), PK_ONE1 / PK_ONE2 / PK_NONE2 (one candidate, both
- *   triangles drawn with the same orientation, the candidate held by T1, by T2 or by
- *   neither), PK_QUAD (any other box of up to TINY_W x TINY_H centres, either orientation
- *   for each triangle);
- * - for the one-candidate boxes the orientation-signed area and biased edge values of the
- *   triangle that holds it, as tri_quad has them; for the quads the box, the areas, the
- *   number of triangles drawn (nt) and the coverage and edge values of each candidate
- *   (see the candidate loop below).
- * Every value is computed modulo 2^16.  For the pairs that use them it is exact: all four
- * vertices are on screen, so a coordinate minus PP_OFF is in [-32760, 32760] (w, h <=
- * 4096) and the box bounds lo, hi, xl, xh (and their differences) are exact; a box of at
- * most TINY_W x TINY_H centres has every vertex within 144 x 80 sub-pixels of its first
- * candidate (xmax - xmin < 16 (xh - xl + 1) + 16), so |X| < 144, |Y| < 80, the edge values
- * and doubled areas are below 23,040 in magnitude and the biased ones and S1, S2 within 3
- * of them.
- * Steps whose values overflow (wide boxes, vertices off screen) are classified from
- * exact quantities only (outcodes, lo, hi, xl, xh) before any of the rest is read. */
 /* Eight cache entries' first 16 bytes (P[0 .. 7]; x, y, d, c: as 16-bit words x, x >> 16,
  * y, y >> 16, d, d >> 16, c, c >> 16 on these little-endian targets) transposed into slots
  * K .. K + 7 of X, Y, C: the low words of x and y less PP_OFF (modulo 2^16: the top bit
@@ -312,6 +287,29 @@ typedef struct pp_soa {
         PPS(C, K, PP_ZIP(c03, c47, 4, 5, 6, 7, 12, 13, 14, 15));                      \
     } while (0)
 
+/* The set-up of strip steps 0 .. n-1 of a chunk, eight at a time in 16-bit lanes (see
+ * pp_soa above; strip indices ip[0 .. 2 n + 1], gathered first): for each step what
+ * tri_pair, pair_tiny and tri_quad (raster_tmpl.h) compute before the coverage masks,
+ * with the same values, so the pixels are theirs:
+ * - kind: PK_SLOW (an outcode bit, and not both triangles rejected by the outcodes: the
+ *   main pass does what the plain loop does), PK_NONE (no row of centres, an empty box in
+ *   the band, neither triangle drawn (culled or of zero area), both rejected by the
+ *   outcodes), PK_WIDE (more than TINY_H rows or TINY_W columns: pair_wide with lo, hi,
+ *   xl, xh in py0, ny, px0, nx), PK_QUAD (any other box of up to TINY_W x TINY_H centres,
+ *   either orientation for each triangle).  One-candidate boxes are quads too: the
+ *   strip loop's PK_ONE1 / PK_ONE2 / PK_NONE2 (and q->f01, q->f20) are not produced
+ *   (classifying them took B 640x480 0.53 M, for 1.2 k steps per frame);
+ * - for the quads the box, the areas, the number of triangles drawn (nt) and the coverage
+ *   and edge values of each candidate (see the candidate loop below).
+ * Every value is computed modulo 2^16.  For the pairs that use them it is exact: all four
+ * vertices are on screen, so a coordinate minus PP_OFF is in [-32760, 32760] (w, h <=
+ * 4096) and the box bounds lo, hi, xl, xh (and their differences) are exact; a box of at
+ * most TINY_W x TINY_H centres has every vertex within 144 x 80 sub-pixels of its first
+ * candidate (xmax - xmin < 16 (xh - xl + 1) + 16), so |X| < 144, |Y| < 80, the edge values
+ * and doubled areas are below 23,040 in magnitude and the biased ones and S1, S2 within 3
+ * of them.
+ * Steps whose values overflow (wide boxes, vertices off screen) are classified from
+ * exact quantities only (outcodes, lo, hi, xl, xh) before any of the rest is read. */
 static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache, const uint32_t *ip, int32_t n)
 {
     const pp_v8 zero = { 0, 0, 0, 0, 0, 0, 0, 0 }, one = zero + 1;
@@ -391,7 +389,6 @@ static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache, const u
          * ok1 / ok2: the triangle is drawn (a non-zero area, not culled) */
         const pp_v8 s1 = ar1 < 0, s2 = ar2 < 0, same = ~(s1 ^ s2);
         const pp_v8 ok1 = (ar1 != 0) & (s1 | ~cullm), ok2 = (ar2 != 0) & (s2 | ~cullm);
-        const pp_v8 bsame = same & ok1 & ok2;   /* tri_quad's pairs */
 #define SG1(x) VSUB((x) ^ s1, s1)
 #define SG2(x) VSUB((x) ^ s2, s2)
         /* top-left bias masks (-1 for a biased edge): A = SG(yP - yQ) < 0, or A == 0 and
@@ -400,15 +397,11 @@ static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache, const u
 #define QB(SG, P, Q) (SG(VADD(VI(VU(VSUB(y##P, y##Q)) << 8), VSUB(x##Q, x##P))) < one)
         const pp_v8 b01 = QB(SG1, 0, 1), b12 = QB(SG1, 1, 2), b20 = QB(SG1, 2, 0), b13 = QB(SG2, 1, 3), b32 = QB(SG2, 3, 2);
         /* T2's diagonal is T1's edge reversed: with the same orientation its value is
-         * -1 - fD (the negated edge function, the complementary bias), else fD itself
+         * -1 - eD (the negated edge function, the complementary bias), else eD itself
          * (the negation twice, the same bias); bT its bias */
         const pp_v8 bT = b12 ^ same;
         const pp_v8 f01 = VADD(SG1(e01), b01), f20 = VADD(SG1(e20), b20), f13 = VADD(SG2(e13), b13);
-        const pp_v8 fD = VADD(SG1(e12), b12), f32 = VADD(SG2(e32), b32), fT = fD ^ same;
-        const pp_v8 one1 = (f01 | f20 | fD) >= 0, one2 = ~one1 & ((f13 | f32 | fT) >= 0);
-        const pp_v8 isone = (xl == xh) & (py0 == py1) & bsame, o2 = isone & ~one1;
         pp_v8 kind = zero + PK_QUAD;
-        kind = VSEL(isone, VSEL(one1, zero + PK_ONE1, VSEL(one2, zero + PK_ONE2, zero + PK_NONE2)), kind);
         kind = VSEL(~(ok1 | ok2) | bempty, zero + PK_NONE, kind);
         kind = VSEL(wide, zero + PK_WIDE, kind);
         kind = VSEL(empty, zero + PK_NONE, kind);
@@ -421,16 +414,14 @@ static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache, const u
             PPS(q->nx, k, VSEL(wk, xh + PP_ROFF, xh - xl + 1));
             PPS(q->ny, k, VSEL(wk, hi + PP_ROFF, py1 - py0 + 1));
         }
-        PPS(q->a1, k, VSEL(o2, SG2(ar2), SG1(ar1)));
+        PPS(q->a1, k, SG1(ar1));
         PPS(q->a2, k, SG2(ar2));
-        PPS(q->f01, k, VSEL(o2, fT, f01));
-        PPS(q->f20, k, VSEL(o2, f32, f20));
         PPS(q->nt, k, VSUB(zero, VADD(ok1, ok2)));
         {
             /* The quads' coverage, for the candidates of the largest quad box among
              * the eight (rows j < nym, columns i < nxm; isq: the lanes of quads): per
              * candidate T1's edge values g01, g20 and diagonal eD = S1 - g01 - g20, T2's
-             * g13, its diagonal eT (fT's) and third edge g32 = S2 - eT - g13, and a bit
+             * g13, its diagonal eT = eD or -1 - eD and third edge g32 = S2 - eT - g13, and a bit
              * (8 j + i: rows 0-1 in the low half, 2-3 in the high one) for each triangle
              * whose three values are >= 0, in the lane's own rows only (j < ny: the band's
              * clip).  In those rows every value is exact at all TINY_W columns, not just
