@@ -196,7 +196,7 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 #endif
 
 /* The strip pre-pass (pp_prepass below; used by the strip loop of raster_tmpl.h's draw):
- * the set-up and coverage of a chunk's strip pairs, eight at a time in 16-bit vector lanes
+ * the set-up and coverage of a chunk's strip pairs, PP_L (8 or 16) at a time in 16-bit vector lanes
  * (GCC's generic vectors: SSE2 on x86-64, NEON on AArch64), into pp_soa; the strip loop then
  * shades the covered centres one pair at a time.  The same values as
  * the plain per-pair code (tri_pair), so the same pixels; targets without such vectors
@@ -216,12 +216,28 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 #if RS_PREPASS
 enum { PK_NONE = 0, PK_QUAD, PK_ONE1, PK_ONE2, PK_WIDE, PK_SLOW, PK_NONE2 };
 #define PP_STEPS (RS_CHUNK / 2)
-#define PP_IN (PP_STEPS + 16)   /* vertex slots 0 .. n rounded up to 8 (n <= PP_STEPS steps); a multiple of 8 */
+#define PP_IN (PP_STEPS + 16)   /* vertex slots 0 .. n rounded up to PP_L (n <= PP_STEPS steps); a multiple of 16 */
 #define PP_OFF 32768            /* coordinates are taken as x - PP_OFF: [-32760, 32760] on screen */
 #define PP_ROFF (PP_OFF >> SUB) /* the same in rows and columns */
-typedef int16_t pp_v8 __attribute__((vector_size(16)));
-typedef uint16_t pp_v8u __attribute__((vector_size(16)));
-typedef int16_t pp_v8un __attribute__((vector_size(16), aligned(2)));
+/* PP_L steps per group: 8 in 128-bit vectors; 16 in the 256-bit ones of x86-64-v3
+ * (AVX2; raster/isa.c's second copy), where one group's instructions serve twice the
+ * steps: peer scene 640x480 in that copy, A 21.91 -> 19.86 M, B 19.58 -> 18.21 M
+ * instructions per frame (the candidate loop runs over the largest quad box among
+ * sixteen lanes instead of eight, which costs far less than the halved set-up saves).
+ * Not at SSE2 or NEON: GCC splits 256-bit generic vectors into pairs of 128-bit ones
+ * and runs out of registers (before the gather moved here: baseline x86-64 A 24.64 ->
+ * 47.7 M, B 22.57 -> 40.5 M; AArch64 A 20.66 -> 46.4 M, B 19.11 -> 39.1 M).  The
+ * gather's transposition stays in 128-bit vectors (pp_h8), eight slots at a time. */
+#if defined(__AVX2__)
+#define PP_L 16
+#else
+#define PP_L 8
+#endif
+typedef int16_t pp_v8 __attribute__((vector_size(2 * PP_L)));
+typedef uint16_t pp_v8u __attribute__((vector_size(2 * PP_L)));
+typedef int16_t pp_v8un __attribute__((vector_size(2 * PP_L), aligned(2)));
+typedef int16_t pp_h8 __attribute__((vector_size(16)));
+typedef int16_t pp_h8un __attribute__((vector_size(16), aligned(2)));
 /* A chunk's steps: vertices at even / odd strip positions (step j: v0 = even j, v1 =
  * odd j, v2 = even j+1, v3 = odd j+1; their cache entries, then the low 16 bits of x
  * and y and the outcodes), then the pre-pass's results per step (the fields after kind
@@ -250,7 +266,10 @@ typedef struct pp_soa {
 #define VSEL(m, a, b) (((a) & (m)) | ((b) & ~(m)))
 /* macros, not functions: a vector argument or result needs vector registers, which
  * check-nofloat.sh's -mgeneral-regs-only build does not have */
-#if defined(__SSE2__) && !defined(__clang__)     /* GCC's names for pminsw / pmaxsw */
+#if defined(__AVX2__) && !defined(__clang__)
+#define PP_MIN(a, b) __builtin_ia32_pminsw256((a), (b))
+#define PP_MAX(a, b) __builtin_ia32_pmaxsw256((a), (b))
+#elif defined(__SSE2__) && !defined(__clang__)     /* GCC's names for pminsw / pmaxsw */
 #define PP_MIN(a, b) __builtin_ia32_pminsw128((a), (b))
 #define PP_MAX(a, b) __builtin_ia32_pmaxsw128((a), (b))
 #else
@@ -259,32 +278,40 @@ typedef struct pp_soa {
 #endif
 
 /* The largest lane of V, in every lane (three rounds of swaps and maxima) */
+#if PP_L == 16
+#define PP_HMAX1(V, ...) PP_MAX((V), RS_SHUFFLE((V), (V), pp_v8, __VA_ARGS__))
+#define PP_HMAX(V) PP_HMAX1(PP_HMAX1(PP_HMAX1(PP_HMAX1((V), 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3, 4, 5, 6, 7), \
+    4, 5, 6, 7, 0, 1, 2, 3, 12, 13, 14, 15, 8, 9, 10, 11), 2, 3, 0, 1, 6, 7, 4, 5, 10, 11, 8, 9, 14, 15, 12, 13), \
+    1, 0, 3, 2, 5, 4, 7, 6, 9, 8, 11, 10, 13, 12, 15, 14)
+#else
 #define PP_HMAX1(V, A, B, C, D, E, F, G, H) PP_MAX((V), RS_SHUFFLE((V), (V), pp_v8, A, B, C, D, E, F, G, H))
 #define PP_HMAX(V) PP_HMAX1(PP_HMAX1(PP_HMAX1((V), 4, 5, 6, 7, 0, 1, 2, 3), 2, 3, 0, 1, 6, 7, 4, 5), 1, 0, 3, 2, 5, 4, 7, 6)
+#endif
 
 /* Eight cache entries' first 16 bytes (P[0 .. 7]; x, y, d, c: as 16-bit words x, x >> 16,
  * y, y >> 16, d, d >> 16, c, c >> 16 on these little-endian targets) transposed into slots
  * K .. K + 7 of X, Y, C: the low words of x and y less PP_OFF (modulo 2^16: the top bit
  * flipped) and c >> 16 (the outcode byte above the colour's red), by interleaving words,
  * pairs of words and halves (17 shuffles; fl: PP_OFF's flip in every lane). */
-#define PP_ZIP(A, B, I0, I1, I2, I3, I4, I5, I6, I7) RS_SHUFFLE((A), (B), pp_v8, I0, I1, I2, I3, I4, I5, I6, I7)
+#define PP_ZIP(A, B, I0, I1, I2, I3, I4, I5, I6, I7) RS_SHUFFLE((A), (B), pp_h8, I0, I1, I2, I3, I4, I5, I6, I7)
+#define PPS8(A, K, V) (*(pp_h8un *)(void *)&(A)[K] = (V))
 #define PP_T8(P, X, Y, C, K) do {                                                      \
-        pp_v8 w0, w1, w2, w3, w4, w5, w6, w7;                                          \
+        pp_h8 w0, w1, w2, w3, w4, w5, w6, w7;                                          \
         memcpy(&w0, (P)[0], 16); memcpy(&w1, (P)[1], 16); memcpy(&w2, (P)[2], 16);    \
         memcpy(&w3, (P)[3], 16); memcpy(&w4, (P)[4], 16); memcpy(&w5, (P)[5], 16);    \
         memcpy(&w6, (P)[6], 16); memcpy(&w7, (P)[7], 16);                              \
         /* l01: x0 x1 x0' x1' y0 y1 y0' y1' (' the high words), h01: d0 d1 d0' d1' c0 c1 c0' c1' */ \
-        const pp_v8 l01 = PP_ZIP(w0, w1, 0, 8, 1, 9, 2, 10, 3, 11), h01 = PP_ZIP(w0, w1, 4, 12, 5, 13, 6, 14, 7, 15); \
-        const pp_v8 l23 = PP_ZIP(w2, w3, 0, 8, 1, 9, 2, 10, 3, 11), h23 = PP_ZIP(w2, w3, 4, 12, 5, 13, 6, 14, 7, 15); \
-        const pp_v8 l45 = PP_ZIP(w4, w5, 0, 8, 1, 9, 2, 10, 3, 11), h45 = PP_ZIP(w4, w5, 4, 12, 5, 13, 6, 14, 7, 15); \
-        const pp_v8 l67 = PP_ZIP(w6, w7, 0, 8, 1, 9, 2, 10, 3, 11), h67 = PP_ZIP(w6, w7, 4, 12, 5, 13, 6, 14, 7, 15); \
+        const pp_h8 l01 = PP_ZIP(w0, w1, 0, 8, 1, 9, 2, 10, 3, 11), h01 = PP_ZIP(w0, w1, 4, 12, 5, 13, 6, 14, 7, 15); \
+        const pp_h8 l23 = PP_ZIP(w2, w3, 0, 8, 1, 9, 2, 10, 3, 11), h23 = PP_ZIP(w2, w3, 4, 12, 5, 13, 6, 14, 7, 15); \
+        const pp_h8 l45 = PP_ZIP(w4, w5, 0, 8, 1, 9, 2, 10, 3, 11), h45 = PP_ZIP(w4, w5, 4, 12, 5, 13, 6, 14, 7, 15); \
+        const pp_h8 l67 = PP_ZIP(w6, w7, 0, 8, 1, 9, 2, 10, 3, 11), h67 = PP_ZIP(w6, w7, 4, 12, 5, 13, 6, 14, 7, 15); \
         /* x03: x0 x1 x2 x3 x0' x1' x2' x3', y03 the same of y, c03 of c */          \
-        const pp_v8 x03 = PP_ZIP(l01, l23, 0, 1, 8, 9, 2, 3, 10, 11), x47 = PP_ZIP(l45, l67, 0, 1, 8, 9, 2, 3, 10, 11); \
-        const pp_v8 y03 = PP_ZIP(l01, l23, 4, 5, 12, 13, 6, 7, 14, 15), y47 = PP_ZIP(l45, l67, 4, 5, 12, 13, 6, 7, 14, 15); \
-        const pp_v8 c03 = PP_ZIP(h01, h23, 4, 5, 12, 13, 6, 7, 14, 15), c47 = PP_ZIP(h45, h67, 4, 5, 12, 13, 6, 7, 14, 15); \
-        PPS(X, K, PP_ZIP(x03, x47, 0, 1, 2, 3, 8, 9, 10, 11) ^ fl);                   \
-        PPS(Y, K, PP_ZIP(y03, y47, 0, 1, 2, 3, 8, 9, 10, 11) ^ fl);                   \
-        PPS(C, K, PP_ZIP(c03, c47, 4, 5, 6, 7, 12, 13, 14, 15));                      \
+        const pp_h8 x03 = PP_ZIP(l01, l23, 0, 1, 8, 9, 2, 3, 10, 11), x47 = PP_ZIP(l45, l67, 0, 1, 8, 9, 2, 3, 10, 11); \
+        const pp_h8 y03 = PP_ZIP(l01, l23, 4, 5, 12, 13, 6, 7, 14, 15), y47 = PP_ZIP(l45, l67, 4, 5, 12, 13, 6, 7, 14, 15); \
+        const pp_h8 c03 = PP_ZIP(h01, h23, 4, 5, 12, 13, 6, 7, 14, 15), c47 = PP_ZIP(h45, h67, 4, 5, 12, 13, 6, 7, 14, 15); \
+        PPS8(X, K, PP_ZIP(x03, x47, 0, 1, 2, 3, 8, 9, 10, 11) ^ fl);                  \
+        PPS8(Y, K, PP_ZIP(y03, y47, 0, 1, 2, 3, 8, 9, 10, 11) ^ fl);                  \
+        PPS8(C, K, PP_ZIP(c03, c47, 4, 5, 6, 7, 12, 13, 14, 15));                     \
     } while (0)
 
 /* GCC on x86-64 does not schedule before register allocation at -O2; the pre-pass's many
@@ -297,7 +324,7 @@ typedef struct pp_soa {
 #define PP_SCHED
 #endif
 
-/* The set-up of strip steps 0 .. n-1 of a chunk, eight at a time in 16-bit lanes (see
+/* The set-up of strip steps 0 .. n-1 of a chunk, PP_L at a time in 16-bit lanes (see
  * pp_soa above; strip indices ip[0 .. 2 n + 1], gathered first): for each step what
  * tri_pair, pair_tiny and tri_quad (raster_tmpl.h) compute before the coverage masks,
  * with the same values, so the pixels are theirs:
@@ -322,13 +349,14 @@ typedef struct pp_soa {
  * exact quantities only (outcodes, lo, hi, xl, xh) before any of the rest is read. */
 PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache, const uint32_t *ip, int32_t n)
 {
-    const pp_v8 zero = { 0, 0, 0, 0, 0, 0, 0, 0 }, one = zero + 1;
+    static const int16_t iota_a[16] = { 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15 };
+    const pp_v8 zero = { 0 }, one = zero + 1;
     const pp_v8 by0 = zero + (int16_t)(bd->y0 - PP_ROFF), by1 = zero + (int16_t)(bd->y1 - 1 - PP_ROFF);
     const pp_v8 cullm = zero - (int16_t)(bd->cull != 0);
-    const pp_v8 iota = { 0, 1, 2, 3, 4, 5, 6, 7 };
+    const pp_v8 iota = PPL(iota_a, 0);
     /* x - PP_OFF modulo 2^16 is the low 16 bits with the top one flipped */
-    const pp_v8 fl = zero + (int16_t)-PP_OFF;
-    const int32_t nv = (n + 7) & ~7;    /* slots 0 .. nv: the groups of eight read slots k .. k + 8 */
+    const pp_h8 fl = { -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF };
+    const int32_t nv = (n + PP_L - 1) & ~(PP_L - 1);    /* slots 0 .. nv: the groups read slots k .. k + PP_L */
     int32_t k;
     /* the gather: vertex slot k holds ip[2 k] (even) and ip[2 k + 1] (odd) for k <= n, the
      * slots past n repeat slot n (their lanes are ignored); eight slots at a time, their
@@ -359,7 +387,7 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
         q->xe[nv] = (int16_t)(a0->x ^ PP_OFF); q->ye[nv] = (int16_t)(a0->y ^ PP_OFF); q->ce[nv] = (int16_t)(a0->c >> 16);
         q->xo[nv] = (int16_t)(a1->x ^ PP_OFF); q->yo[nv] = (int16_t)(a1->y ^ PP_OFF); q->co[nv] = (int16_t)(a1->c >> 16);
     }
-    for (k = 0; k < n; k += 8) {
+    for (k = 0; k < n; k += PP_L) {
         const pp_v8 x0 = PPL(q->xe, k), x1 = PPL(q->xo, k), x2 = PPL(q->xe, k + 1), x3 = PPL(q->xo, k + 1);
         const pp_v8 y0 = PPL(q->ye, k), y1 = PPL(q->yo, k), y2 = PPL(q->ye, k + 1), y3 = PPL(q->yo, k + 1);
         const pp_v8 c0 = PPL(q->ce, k), c1 = PPL(q->co, k), c2 = PPL(q->ce, k + 1), c3 = PPL(q->co, k + 1);
@@ -377,12 +405,16 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
         const pp_v8 py0 = PP_MAX(lo, by0), py1 = PP_MIN(hi, by1);
         const pp_v8 bempty = (py0 > py1) | (xl > xh);
         {
-            /* eight steps that all draw nothing here (camera B: strips off screen, slivers
+            /* PP_L steps that all draw nothing here (camera B: strips off screen, slivers
              * near the horizon): kinds from the quantities above, nothing else is read */
             const pp_v8 skip = slow | empty | (bempty & ~wide) | (iota >= (int16_t)(n - k));
-            uint64_t w[2];
+            uint64_t w[PP_L / 4];
             memcpy(w, &skip, sizeof w);
-            if ((w[0] & w[1]) == ~(uint64_t)0) {
+            if ((w[0] & w[1]
+#if PP_L == 16
+                 & w[2] & w[3]
+#endif
+                 ) == ~(uint64_t)0) {
                 PPS(q->kind, k, VSEL(slow & ~rej, zero + PK_SLOW, zero + PK_NONE));
                 continue;
             }
@@ -429,7 +461,7 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
         PPS(q->nt, k, VSUB(zero, VADD(ok1, ok2)));
         {
             /* The quads' coverage, for the candidates of the largest quad box among
-             * the eight (rows j < nym, columns i < nxm; isq: the lanes of quads): per
+             * the PP_L (rows j < nym, columns i < nxm; isq: the lanes of quads): per
              * candidate T1's edge values g01, g20 and diagonal eD = S1 - g01 - g20, T2's
              * g13, its diagonal eT = eD or -1 - eD and third edge g32 = S2 - eT - g13, and a bit
              * (8 j + i: rows 0-1 in the low half, 2-3 in the high one) for each triangle
@@ -488,10 +520,21 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
             }
             /* as 32-bit masks: the halves interleaved */
             m1l &= ok1; m1h &= ok1; m2l &= ok2; m2h &= ok2;
+#if PP_L == 16
+#define PP_LO16 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23
+#define PP_HI16 8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31
+            PPS((int16_t *)q->m1, 2 * k, RS_SHUFFLE(m1l, m1h, pp_v8, PP_LO16));
+            PPS((int16_t *)q->m1, 2 * k + PP_L, RS_SHUFFLE(m1l, m1h, pp_v8, PP_HI16));
+            PPS((int16_t *)q->m2, 2 * k, RS_SHUFFLE(m2l, m2h, pp_v8, PP_LO16));
+            PPS((int16_t *)q->m2, 2 * k + PP_L, RS_SHUFFLE(m2l, m2h, pp_v8, PP_HI16));
+#undef PP_LO16
+#undef PP_HI16
+#else
             PPS((int16_t *)q->m1, 2 * k, RS_SHUFFLE(m1l, m1h, pp_v8, 0, 8, 1, 9, 2, 10, 3, 11));
             PPS((int16_t *)q->m1, 2 * k + 8, RS_SHUFFLE(m1l, m1h, pp_v8, 4, 12, 5, 13, 6, 14, 7, 15));
             PPS((int16_t *)q->m2, 2 * k, RS_SHUFFLE(m2l, m2h, pp_v8, 0, 8, 1, 9, 2, 10, 3, 11));
             PPS((int16_t *)q->m2, 2 * k + 8, RS_SHUFFLE(m2l, m2h, pp_v8, 4, 12, 5, 13, 6, 14, 7, 15));
+#endif
         }
 #undef SG1
 #undef SG2
