@@ -301,8 +301,13 @@ static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex 
     }
     o->x = (int32_t)sx;
     c1 = XF_C(1);
+#if XFORM_KREG  /* -q, one register fewer (x86-64: nf8 and ky are memory operands) */
+    if (!fx_divisor_trunc32(&dz, k->f8 * c1, &q)) goto slow;
+    sy = (k->ky - q) >> 4;
+#else
     if (!fx_divisor_trunc32(&dz, k->nf8 * c1, &q)) goto slow;
     sy = (q + k->ky) >> 4;
+#endif
     if (RS_UNLIKELY((uint64_t)(sy - HALF) > k->yspan)) {
         if (sy < HALF) {
             if (sy < k->gy0) goto slow;
