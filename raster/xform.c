@@ -29,21 +29,37 @@ static void chunk_rows(rs_frame *f)
     const uint32_t reject = (uint32_t)(RS_OUT_LEFT | RS_OUT_RIGHT | RS_OUT_TOP | RS_OUT_BOTTOM
                                        | RS_OUT_FAR | RS_OUT_NEAR) << 24;
     int16_t *ch = f->chunks;
+    const rs_cvert *const cache = f->cache;
     int32_t p;
     for (p = 0; p < f->nprims; p++) {
         const rs_prim *pr = &f->prims[p];
         uint32_t nt = rs_prim_tris(pr), t0;
         for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch += 2) {
-            uint32_t t1 = nt - t0 < RS_CHUNK ? nt : t0 + RS_CHUNK, i, i0, i1;
-            int32_t lo = INT32_MAX, hi = INT32_MIN;
-            uint32_t any = 0, common = reject;     /* outcodes: or, and */
+            uint32_t t1 = nt - t0 < RS_CHUNK ? nt : t0 + RS_CHUNK, i0, i1;
+            /* two sets of bounds and outcodes (or, and), one for each vertex of a pair,
+             * merged after the loop: two vertices per iteration, and gcc does not
+             * reassociate them into a min of the pair (a copy each) */
+            int32_t lo = INT32_MAX, hi = INT32_MIN, lo2 = INT32_MAX, hi2 = INT32_MIN;
+            uint32_t any = 0, common = reject, any2 = 0, common2 = reject;
+            const uint32_t *ix, *ie;
             if (pr->kind == RS_STRIP) { i0 = t0; i1 = t1 + 2; } else { i0 = 3 * t0; i1 = 3 * t1; }
-            for (i = i0; i < i1; i++) {
-                const rs_cvert *v = &f->cache[pr->idx[i]];
+            ix = pr->idx + i0; ie = pr->idx + i1;
+            if ((i1 - i0) & 1) {
+                const rs_cvert *v = &cache[*ix++];
+                any = v->c; common &= v->c; lo = hi = v->y;
+            }
+            for (; ix != ie; ix += 2) {
+                const rs_cvert *v = &cache[ix[0]], *w = &cache[ix[1]];
                 any |= v->c; common &= v->c;
                 if (v->y < lo) lo = v->y;
                 if (v->y > hi) hi = v->y;
+                any2 |= w->c; common2 &= w->c;
+                if (w->y < lo2) lo2 = w->y;
+                if (w->y > hi2) hi2 = w->y;
             }
+            any |= any2; common &= common2;
+            if (lo2 < lo) lo = lo2;
+            if (hi2 > hi) hi = hi2;
             lo = (lo + HALF - 1) >> SUB;
             hi = (hi - HALF) >> SUB;
             if (any & slow) { lo = -1; hi = f->h; }
