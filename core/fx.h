@@ -129,15 +129,22 @@ static inline fx_recip fx_recip_make(uint32_t d)    /* 1 <= d */
     return r;
 }
 
-/* floor(n / d) for n < d 2^32, d the divisor r was made from. */
-static inline uint32_t fx_udiv_r(uint64_t n, const fx_recip *r)
+/* floor(n / d) for nn = n 2^s (r->s), n < d 2^32, d the divisor r was made from: for a
+ * caller that has n 2^s at hand (a 64-bit shift by s is six instructions on 32-bit
+ * targets). */
+static inline uint32_t fx_udiv_rn(uint64_t nn, const fx_recip *r)
 {
-    const uint64_t nn = n << r->s;                /* < dn 2^32 <= 2^64 */
     const uint32_t nh = (uint32_t)(nn >> 32), nl = (uint32_t)nn;
     uint32_t q = nh + (uint32_t)(((uint64_t)nh * r->v + nl) >> 32);
     uint64_t rem = nn - (uint64_t)q * r->dn;
     while (rem >= r->dn) { q++; rem -= r->dn; }
     return q;
+}
+
+/* floor(n / d) for n < d 2^32, d the divisor r was made from. */
+static inline uint32_t fx_udiv_r(uint64_t n, const fx_recip *r)
+{
+    return fx_udiv_rn(n << r->s, r);             /* < dn 2^32 <= 2^64 */
 }
 
 /* n / d truncated toward zero, as C's `/`, for d the divisor r was made from: 1 and

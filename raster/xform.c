@@ -198,6 +198,9 @@ typedef struct xform_k {
     uint64_t dk;                /* the key's step (dx in x's half; written by the loop) */
     uint64_t kbias;             /* a vertex's (x, y) key: x's sign bit (see xform_loop) */
     int32_t kshift;             /* where x sits in the key: bit 0 or 32 */
+#if !BR_DIV64_NATIVE
+    uint64_t kds[32];           /* kd 2^s, s = 0 .. 31: the depth's shifted dividend (fx_udiv_rn) */
+#endif
 } xform_k;
 
 /* rs_pack_rgb(rgb) for rgb < 2^24, with one multiply (see above). */
@@ -334,8 +337,15 @@ static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex 
         }
     }
     o->y = (int32_t)sy;
+#if BR_DIV64_NATIVE
     (void)fx_divisor_trunc32(&dz, k->kd, &q);        /* kd = RS_DEPTH_ONE znear < c2 2^30: fits */
     o->d = (uint32_t)q;
+#else
+    /* fx_divisor_trunc32's quotient without the sign, range and shift work: kd > 0,
+     * kd < c2 2^30, and c2 <= zfar < 2^31 always has its reciprocal (dz.r.s = clz c2,
+     * kd 2^s < 2^62) */
+    o->d = fx_udiv_rn(k->kds[dz.r.s], &dz.r);
+#endif
     o->cp = xform_pack(k, rgb);
     if (tex) { o->u = v->uv[0]; o->v = v->uv[1]; }
     return;
@@ -417,6 +427,9 @@ br_status rs_frame_prepare(rs_frame *f)
         k.gx0 = (int64_t)w * HALF - GUARD_S; k.gx1 = (int64_t)w * HALF + GUARD_S;
         k.gy0 = (int64_t)h * HALF - GUARD_S; k.gy1 = (int64_t)h * HALF + GUARD_S;
         k.pmul = 0x4000001u; k.pmask = 0x3fc00000000ffu;
+#if !BR_DIV64_NATIVE
+        for (i = 0; i < 32; i++) k.kds[i] = (uint64_t)k.kd << i;   /* (wraps only for s unused) */
+#endif
         k.s[0] = k.s[1] = k.s[2] = 0;
         k.dk = 0;
         {   /* the key's layout, from the target's byte order */
