@@ -209,6 +209,24 @@ static RS_INLINE uint64_t xform_pack(const xform_k *k, uint32_t rgb)
     return (((uint64_t)rgb * k->pmul) & k->pmask) | ((uint64_t)(rgb & 0xff00u) << 13);
 }
 
+#if !BR_DIV64_NATIVE
+/* fx_divisor_trunc32(dz, f8 c, q) for 0 < f8 < 2^28 and |c| < 2^34 on targets without
+ * a 64-bit divide, in fewer 32-bit instructions, the same quotient and refusal:
+ * |f8 c| = f8 |c| (one 32 x 64-bit multiply after the absolute value, not a 64 x 64 one
+ * before it), and the shift of fx_udiv_r by s = clz c2 as two 32-bit halves with the
+ * caller's sr = 32 - s, as c2 < 2^31 makes 1 <= s <= 31. */
+static RS_INLINE int xform_div(const fx_divisor *dz, uint32_t f8, int64_t c, uint32_t sr, int64_t *q)
+{
+    const uint64_t m = (uint64_t)f8 * (c < 0 ? 0 - (uint64_t)c : (uint64_t)c);
+    const uint32_t mh = (uint32_t)(m >> 32), ml = (uint32_t)m, s = (uint32_t)dz->r.s;
+    uint32_t u;
+    if (mh >= dz->r.dn >> s) return 0;
+    u = fx_udiv_rn(((uint64_t)((mh << s) | (ml >> sr)) << 32) | (ml << s), &dz->r);
+    *q = c < 0 ? -(int64_t)u : (int64_t)u;
+    return 1;
+}
+#endif
+
 /* The stepping along rows (see above) on 64-bit targets only: on 32-bit ones the two
  * products and the add are multiply-accumulates, the 64-bit key compare and steps
  * cost more than they save, and three 64-bit sums held across the divides take six
@@ -253,6 +271,9 @@ static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex 
     const uint32_t rgb = v->rgb & 0xffffffu;
     int64_t c0, c1, c2, sx, sy, q;
     fx_divisor dz;          /* c2, for the three quotients */
+#if !BR_DIV64_NATIVE
+    uint32_t sr;            /* 32 - dz.r.s (xform_div) */
+#endif
 #if XFORM_STEP
     uint64_t key;           /* p[0], p[1] as one word, x's sign bit flipped */
     memcpy(&key, v->p, sizeof key);
@@ -307,7 +328,12 @@ static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex 
     o->c = rgb;
     /* without a 64-bit divide, |q| >= 2^32 (far beyond the guard band) is left to
      * xform_slow, where the native path ends too */
+#if BR_DIV64_NATIVE
     if (!fx_divisor_trunc32(&dz, k->f8 * c0, &q)) goto slow;
+#else
+    sr = 32u - (uint32_t)dz.r.s;
+    if (!xform_div(&dz, (uint32_t)k->f8, c0, sr, &q)) goto slow;
+#endif
     sx = (q + k->kx) >> 4;
     if (RS_UNLIKELY((uint64_t)(sx - HALF) > k->xspan)) {
         if (sx < HALF) {
@@ -320,7 +346,10 @@ static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex 
     }
     o->x = (int32_t)sx;
     c1 = XF_C(1);
-#if XFORM_KREG  /* -q, one register fewer (x86-64: nf8 and ky are memory operands) */
+#if !BR_DIV64_NATIVE
+    if (!xform_div(&dz, (uint32_t)k->f8, c1, sr, &q)) goto slow;
+    sy = (k->ky - q) >> 4;
+#elif XFORM_KREG  /* -q, one register fewer (x86-64: nf8 and ky are memory operands) */
     if (!fx_divisor_trunc32(&dz, k->f8 * c1, &q)) goto slow;
     sy = (k->ky - q) >> 4;
 #else
