@@ -185,14 +185,23 @@ typedef int64_t xform_rq;
 #else
 typedef int32_t xform_rq;
 #endif
+/* Screen positions before the guard band is settled (see xform_div): int32 on targets
+ * without a 64-bit divide, where xform_div's quotients are below 2^30 in magnitude. */
+#if BR_DIV64_NATIVE
+typedef int64_t xform_sc;
+typedef uint64_t xform_usc;
+#else
+typedef int32_t xform_sc;
+typedef uint32_t xform_usc;
+#endif
 typedef struct xform_k {
     xform_rq r[3][3];           /* view matrix (Q30, |r| <= 2^30) */
     int64_t t[3];               /* translation (Q30 world units) */
     int64_t tzn, zn, zspan;     /* t2 - znear 2^30; znear; zfar - znear */
     int64_t f8, nf8, kd;        /* f (Q8 pixels), -f, RS_DEPTH_ONE znear */
-    int64_t kx, ky;             /* 16 cx + 8, 16 cy + 7 (cx, cy: centre, sub-pixels) */
-    int64_t gx0, gx1, gy0, gy1; /* cx -+ GUARD_S, cy -+ GUARD_S */
-    uint64_t xspan, yspan;      /* on screen: sx - HALF <= xspan, sy - HALF <= yspan */
+    xform_sc kx, ky;            /* 16 cx + 8, 16 cy + 7 (cx, cy: centre, sub-pixels) */
+    xform_sc gx0, gx1, gy0, gy1;    /* cx -+ GUARD_S, cy -+ GUARD_S */
+    xform_usc xspan, yspan;     /* on screen: sx - HALF <= xspan, sy - HALF <= yspan */
     uint64_t pmul, pmask;       /* colour packing: 1 + 2^26, bits of B (0..7) and R (42..49) */
     int64_t s[3];               /* the loop's steps r[i][0] dx (written by the loop) */
     uint64_t dk;                /* the key's step (dx in x's half; written by the loop) */
@@ -211,18 +220,21 @@ static RS_INLINE uint64_t xform_pack(const xform_k *k, uint32_t rgb)
 
 #if !BR_DIV64_NATIVE
 /* fx_divisor_trunc32(dz, f8 c, q) for 0 < f8 < 2^28 and |c| < 2^34 on targets without
- * a 64-bit divide, in fewer 32-bit instructions, the same quotient and refusal:
- * |f8 c| = f8 |c| (one 32 x 64-bit multiply after the absolute value, not a 64 x 64 one
- * before it), and the shift of fx_udiv_r by s = clz c2 as two 32-bit halves with the
- * caller's sr = 32 - s, as c2 < 2^31 makes 1 <= s <= 31. */
-static RS_INLINE int xform_div(const fx_divisor *dz, uint32_t f8, int64_t c, uint32_t sr, int64_t *q)
+ * a 64-bit divide, in fewer 32-bit instructions, the same quotient: |f8 c| = f8 |c| (one
+ * 32 x 64-bit multiply after the absolute value, not a 64 x 64 one before it), and the
+ * shift of fx_udiv_r by s = clz c2 as two 32-bit halves with the caller's sr = 32 - s,
+ * as c2 < 2^31 makes 1 <= s <= 31.  It refuses (0) |q| >= 2^30 as well, far beyond the
+ * guard band (|q| < 2^22 inside; xform_slow decides), so the screen position is int32
+ * arithmetic: |q| + 16 cx + 8 < 2^30 + 2^20 (xform_sc). */
+static RS_INLINE int xform_div(const fx_divisor *dz, uint32_t f8, int64_t c, uint32_t sr, int32_t *q)
 {
     const uint64_t m = (uint64_t)f8 * (c < 0 ? 0 - (uint64_t)c : (uint64_t)c);
     const uint32_t mh = (uint32_t)(m >> 32), ml = (uint32_t)m, s = (uint32_t)dz->r.s;
     uint32_t u;
     if (mh >= dz->r.dn >> s) return 0;
     u = fx_udiv_rn(((uint64_t)((mh << s) | (ml >> sr)) << 32) | (ml << s), &dz->r);
-    *q = c < 0 ? -(int64_t)u : (int64_t)u;
+    if (u >> 30) return 0;
+    *q = c < 0 ? -(int32_t)u : (int32_t)u;
     return 1;
 }
 #endif
@@ -269,7 +281,8 @@ static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex 
     const int64_t x = v->p[0], y = v->p[1], z = v->p[2];
 #endif
     const uint32_t rgb = v->rgb & 0xffffffu;
-    int64_t c0, c1, c2, sx, sy, q;
+    int64_t c0, c1, c2;
+    xform_sc sx, sy, q;
     fx_divisor dz;          /* c2, for the three quotients */
 #if !BR_DIV64_NATIVE
     uint32_t sr;            /* 32 - dz.r.s (xform_div) */
@@ -335,7 +348,7 @@ static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex 
     if (!xform_div(&dz, (uint32_t)k->f8, c0, sr, &q)) goto slow;
 #endif
     sx = (q + k->kx) >> 4;
-    if (RS_UNLIKELY((uint64_t)(sx - HALF) > k->xspan)) {
+    if (RS_UNLIKELY((xform_usc)(sx - HALF) > k->xspan)) {
         if (sx < HALF) {
             if (sx < k->gx0) goto slow;
             o->c = rgb + ((uint32_t)RS_OUT_LEFT << 24);
@@ -356,7 +369,7 @@ static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex 
     if (!fx_divisor_trunc32(&dz, k->nf8 * c1, &q)) goto slow;
     sy = (q + k->ky) >> 4;
 #endif
-    if (RS_UNLIKELY((uint64_t)(sy - HALF) > k->yspan)) {
+    if (RS_UNLIKELY((xform_usc)(sy - HALF) > k->yspan)) {
         if (sy < HALF) {
             if (sy < k->gy0) goto slow;
             o->c += (uint32_t)RS_OUT_TOP << 24;
@@ -451,10 +464,11 @@ br_status rs_frame_prepare(rs_frame *f)
         k.tzn = vp->t[2] - ((int64_t)vp->znear << 30);
         k.zn = vp->znear; k.zspan = (int64_t)vp->zfar - vp->znear;
         k.f8 = f8; k.nf8 = -f8; k.kd = (int64_t)RS_DEPTH_ONE * vp->znear;
-        k.kx = (int64_t)w * SUBONE * HALF + HALF; k.ky = (int64_t)h * SUBONE * HALF + HALF - 1;
-        k.xspan = (uint64_t)w * SUBONE - 2 * HALF; k.yspan = (uint64_t)h * SUBONE - 2 * HALF;
-        k.gx0 = (int64_t)w * HALF - GUARD_S; k.gx1 = (int64_t)w * HALF + GUARD_S;
-        k.gy0 = (int64_t)h * HALF - GUARD_S; k.gy1 = (int64_t)h * HALF + GUARD_S;
+        /* all below 2^20 in magnitude (w, h <= RS_MAX_DIM) */
+        k.kx = (xform_sc)w * SUBONE * HALF + HALF; k.ky = (xform_sc)h * SUBONE * HALF + HALF - 1;
+        k.xspan = (xform_usc)w * SUBONE - 2 * HALF; k.yspan = (xform_usc)h * SUBONE - 2 * HALF;
+        k.gx0 = (xform_sc)w * HALF - GUARD_S; k.gx1 = (xform_sc)w * HALF + GUARD_S;
+        k.gy0 = (xform_sc)h * HALF - GUARD_S; k.gy1 = (xform_sc)h * HALF + GUARD_S;
         k.pmul = 0x4000001u; k.pmask = 0x3fc00000000ffu;
 #if !BR_DIV64_NATIVE
         for (i = 0; i < 32; i++) k.kds[i] = (uint64_t)k.kd << i;   /* (wraps only for s unused) */
