@@ -328,7 +328,12 @@ static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex 
         goto slow;
     }
     c2 += k->zn;
+#if BR_DIV64_NATIVE
     fx_divisor_make(&dz, c2);      /* 1 <= znear <= c2 <= zfar < 2^31 */
+#else   /* fx_divisor_make without its test: c2 < 2^31 always has its reciprocal */
+    dz.d = c2;
+    dz.r = fx_recip_make((uint32_t)c2);
+#endif
     c0 = XF_C(0);
     /* one axis at a time, each settled and stored before the next divide (c1 is
      * formed only then: one register move fewer).  Off screen: inside the guard
