@@ -344,8 +344,8 @@ static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex 
      * one lea (rgb | bit took a copy and an or: peer camera B has 15,700 vertices
      * off screen in x per frame) */
     o->c = rgb;
-    /* without a 64-bit divide, |q| >= 2^32 (far beyond the guard band) is left to
-     * xform_slow, where the native path ends too */
+    /* without a 64-bit divide, |q| >= 2^30 (far beyond the guard band) is left to
+     * xform_slow (xform_div), where the native path ends too */
 #if BR_DIV64_NATIVE
     if (!fx_divisor_trunc32(&dz, k->f8 * c0, &q)) goto slow;
 #else
