@@ -414,8 +414,15 @@ static RS_INLINE void xform_loop(const rs_frame *f, xform_k *k, int tex)
     rs_cvert *o = f->cache;
     xform_st st;
 #if XFORM_KREG
-    xform_k kl = *k;    /* see XFORM_KREG */
+    /* see XFORM_KREG; the multiplier and (when the byte order is known here) the key's
+     * bias as constants, so neither takes a register: the multiply becomes a shifted
+     * add (AArch64 peer A / B 640x480 20.02 / 18.49 -> 19.95 / 18.43 M) */
+    xform_k kl = *k;
     k = &kl;
+    kl.pmul = 0x4000001u;
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    kl.kbias = (uint64_t)1 << 31;
+#endif
 #endif
     /* the first vertex's key is never ek (its complement) */
     st.a0 = st.a1 = st.a2 = 0;
