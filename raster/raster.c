@@ -214,7 +214,13 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 #endif
 #endif
 #if RS_PREPASS
-enum { PK_NONE = 0, PK_QUAD, PK_ONE1, PK_ONE2, PK_WIDE, PK_SLOW, PK_NONE2 };
+/* Index of the lowest set bit of m (m != 0), 32 bits (the strip loop's work list). */
+static uint32_t ctz32(uint32_t m)
+{
+    return (uint32_t)__builtin_ctz(m);      /* (RS_PREPASS: GCC or clang) */
+}
+
+enum { PK_NONE = 0, PK_QUAD, PK_WIDE, PK_SLOW };
 #define PP_STEPS (RS_CHUNK / 2)
 #define PP_IN (PP_STEPS + 16)   /* vertex slots 0 .. n rounded up to PP_L (n <= PP_STEPS steps); a multiple of 16 */
 #define PP_OFF 32768            /* coordinates are taken as x - PP_OFF: [-32760, 32760] on screen */
@@ -246,7 +252,7 @@ typedef struct pp_soa {
     const rs_cvert *ve[PP_IN], *vo[PP_IN];
     int16_t xe[PP_IN], xo[PP_IN], ye[PP_IN], yo[PP_IN], ce[PP_IN], co[PP_IN];
     int16_t kind[PP_STEPS], px0[PP_STEPS], py0[PP_STEPS], nx[PP_STEPS], ny[PP_STEPS];
-    int16_t a1[PP_STEPS], a2[PP_STEPS], f01[PP_STEPS], f20[PP_STEPS], nt[PP_STEPS];
+    int16_t a1[PP_STEPS], a2[PP_STEPS], nt[PP_STEPS];
     /* PK_QUAD steps: the coverage of T1 / T2 (bit 8 j + i: candidate (px0 + i, py0 + j)
      * of the step's nx x ny box), and for
      * each covered candidate the two edge values shading needs: e[cand][0 / 1][step]
@@ -254,7 +260,16 @@ typedef struct pp_soa {
      * v3) */
     uint32_t m1[PP_STEPS], m2[PP_STEPS];
     int16_t e[TINY_W * TINY_H][4][PP_STEPS];
+    uint32_t work;      /* the strip loop's work list (the end of pp_prepass) */
 } pp_soa;
+/* The strip loop reads a step's fields (raster_tmpl.h's pp_steps) as q.F[st] where one
+ * operand adds a base, a scaled index and a displacement (x86); elsewhere (ARM: an
+ * index register or an offset, not both) from a base per field size, st added once. */
+#if defined(__x86_64__) || defined(__i386__)
+#define PP_IDX 1
+#else
+#define PP_IDX 0
+#endif
 #define PPL(A, K) (*(const pp_v8un *)(const void *)&(A)[K])
 #define PPS(A, K, V) (*(pp_v8un *)(void *)&(A)[K] = (V))
 /* wrapping arithmetic (unsigned lanes); comparisons and >> on the signed ones */
@@ -286,6 +301,28 @@ typedef struct pp_soa {
 #else
 #define PP_HMAX1(V, A, B, C, D, E, F, G, H) PP_MAX((V), RS_SHUFFLE((V), (V), pp_v8, A, B, C, D, E, F, G, H))
 #define PP_HMAX(V) PP_HMAX1(PP_HMAX1(PP_HMAX1((V), 4, 5, 6, 7, 0, 1, 2, 3), 2, 3, 0, 1, 6, 7, 4, 5), 1, 0, 3, 2, 5, 4, 7, 6)
+#endif
+
+/* The strip loop's work list from the kinds (the end of pp_prepass).  Eight lanes:
+ * PP_BITS2(M, V, W), bit i of M for each lane i of V, bit 8 + i for W (vectors of all-ones
+ * or zero lanes; packsswb and pmovmskb, elsewhere lane i's bit, the lanes folded with or;
+ * two groups per call: one per call cost A 640x480 +0.17 M).  Sixteen (AVX2): PP_BITS(M,
+ * V), bit i for lane i, from the bytes' top bits (vpmovmskb), every other one (pext). */
+#if PP_L == 16
+typedef char pp_v32c __attribute__((vector_size(32)));
+#define PP_BITS(M, V) ((M) = __builtin_ia32_pext_si((uint32_t)__builtin_ia32_pmovmskb256((pp_v32c)(V)), 0x55555555u))
+#elif defined(__SSE2__) && !defined(__clang__)
+typedef char pp_v16c __attribute__((vector_size(16)));
+#define PP_BITS2(M, V, W) ((M) = (uint32_t)__builtin_ia32_pmovmskb128((pp_v16c)__builtin_ia32_packsswb128((V), (W))))
+#else
+#define PP_BITS2(M, V, W) do {                                                         \
+        const pp_v8 b_ = ((V) & (pp_v8){ 1, 2, 4, 8, 16, 32, 64, 128 })                \
+                         | ((W) & (pp_v8){ 256, 512, 1024, 2048, 4096, 8192, 16384, -32768 }); \
+        uint64_t w_[2];                                                                \
+        memcpy(w_, &b_, sizeof w_);                                                    \
+        w_[0] |= w_[1]; w_[0] |= w_[0] >> 32;                                          \
+        (M) = (uint32_t)(w_[0] | w_[0] >> 16) & 0xffffu;                               \
+    } while (0)
 #endif
 
 /* Eight cache entries' first 16 bytes (P[0 .. 7]; x, y, d, c: as 16-bit words x, x >> 16,
@@ -333,9 +370,9 @@ typedef struct pp_soa {
  *   the band, neither triangle drawn (culled or of zero area), both rejected by the
  *   outcodes), PK_WIDE (more than TINY_H rows or TINY_W columns: pair_wide with lo, hi,
  *   xl, xh in py0, ny, px0, nx), PK_QUAD (any other box of up to TINY_W x TINY_H centres,
- *   either orientation for each triangle).  One-candidate boxes are quads too: the
- *   strip loop's PK_ONE1 / PK_ONE2 / PK_NONE2 (and q->f01, q->f20) are not produced
- *   (classifying them took B 640x480 0.53 M, for 1.2 k steps per frame);
+ *   either orientation for each triangle).  One-candidate boxes are quads too (kinds of
+ *   their own, shaded by tiny_pixel, took B 640x480 0.53 M to classify, for 1.2 k
+ *   steps per frame);
  * - for the quads the box, the areas, the number of triangles drawn (nt) and the coverage
  *   and edge values of each candidate (see the candidate loop below).
  * Every value is computed modulo 2^16.  For the pairs that use them it is exact: all four
@@ -539,6 +576,26 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
 #undef SG1
 #undef SG2
 #undef QB
+    }
+    {
+        /* The strip loop's work list, from the kinds above: bit k of q->work for each step
+         * k < n whose kind is not PK_NONE (the lanes past n of the last group are not
+         * defined: masked off) */
+        uint32_t work = 0, b;
+#if PP_L == 16
+        for (k = 0; k < n; k += 16) {
+            PP_BITS(b, PPL(q->kind, k) == PK_NONE);
+            work |= (b ^ 0xffffu) << k;
+        }
+#else
+        /* (two groups per PP_BITS2: the kinds past the last group zeroed first) */
+        for (k = (n + 7) & ~7; k < PP_STEPS; k += 8) PPS(q->kind, k, zero);
+        for (k = 0; k < n; k += 16) {
+            PP_BITS2(b, PPL(q->kind, k) == PK_NONE, PPL(q->kind, k + 8) == PK_NONE);
+            work |= (b ^ 0xffffu) << k;
+        }
+#endif
+        q->work = work & (uint32_t)(((uint64_t)1 << n) - 1);
     }
 }
 #endif
