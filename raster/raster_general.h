@@ -89,9 +89,9 @@ RS_NOINLINE static void gs_lanes_make(gs_lanes *L, uint32_t gzu, uint64_t gc, in
 
 /* Triangles whose bounding box has more than TINY_W x TINY_H candidate centres (kept
  * out of tri_raster so that the tiny path's code stays small). */
-RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
-                                           int32_t xmin, int32_t xmax, int32_t ymin, int32_t ymax,
-                                           int32_t px0, int32_t px1, int32_t py0, int32_t py1)
+RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                          int32_t px0, int32_t px1, int32_t py0, int32_t py1,
+                                          const int small, const int wide)
 {
     int32_t py;
     int64_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, S, e0r, e2r, sx0, sx2, sy0, sy2;
@@ -148,7 +148,6 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
         const int64_t dcc0 = DCH(c, 0), dcc1 = DCH(c, 1), dcc2 = DCH(c, 2);
 #undef DCH
         uint64_t gc;
-        int small = xmax - xmin < SMALL && ymax - ymin < SMALL;
         gzn = dzb * dy2 - dzc * dy1;
         if (small) {
             /* area2 < 2^21 and |colour numerator| < 2^19: products below 2^59 */
@@ -201,7 +200,7 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
 #endif
         /* wide boxes: the row spans' divisors |16 A| (1 for a zero step, never divided by) */
         fx_divisor q0 = FX_DIVISOR_INIT, q1 = FX_DIVISOR_INIT, q2 = FX_DIVISOR_INIT;    /* made when wide */
-        if (px1 - px0 >= NARROW) {
+        if (wide) {
             const int64_t s1_ = sx0 + sx2;
             fx_divisor_make(&q0, sx0 < 0 ? -sx0 : sx0 ? sx0 : 1);
             fx_divisor_make(&q1, s1_ < 0 ? -s1_ : s1_ ? s1_ : 1);
@@ -217,7 +216,7 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
         for (py = py0; py <= py1; py++, e0r += sy0, e2r += sy2, crow += cstride, zrow += w) {
             int32_t xl = px0, xr = px1;
             int64_t e0, e2;
-            if (px1 - px0 < NARROW) {
+            if (!wide) {
                 int64_t e1;
                 e0 = e0r; e2 = e2r; e1 = S - e0 - e2;
                 while ((e0 | e1 | e2) < 0) {
@@ -409,3 +408,34 @@ RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs
         }
     }
 }
+
+#if RS_TEX || RS_COUNT
+RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                           int32_t px0, int32_t px1, int32_t py0, int32_t py1, int small, int wide)
+{
+    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py1, small, wide);
+}
+#else
+RS_NOINLINE static void RS_FN(tri_gen_sw)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                          int32_t px0, int32_t px1, int32_t py0, int32_t py1)
+{
+    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py1, 1, 1);
+}
+RS_NOINLINE static void RS_FN(tri_gen_sn)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                          int32_t px0, int32_t px1, int32_t py0, int32_t py1)
+{
+    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py1, 1, 0);
+}
+RS_NOINLINE static void RS_FN(tri_gen_l)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                         int32_t px0, int32_t px1, int32_t py0, int32_t py1, int wide)
+{
+    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py1, 0, wide);
+}
+RS_INLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                         int32_t px0, int32_t px1, int32_t py0, int32_t py1, int small, int wide)
+{
+    if (!small) RS_FN(tri_gen_l)(bd, a, b, c, px0, px1, py0, py1, wide);
+    else if (wide) RS_FN(tri_gen_sw)(bd, a, b, c, px0, px1, py0, py1);
+    else RS_FN(tri_gen_sn)(bd, a, b, c, px0, px1, py0, py1);
+}
+#endif
