@@ -91,7 +91,7 @@ RS_NOINLINE static void gs_lanes_make(gs_lanes *L, uint32_t gzu, uint64_t gc, in
  * out of tri_raster so that the tiny path's code stays small). */
 RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                           int32_t px0, int32_t px1, int32_t py0, int32_t py1,
-                                          const int small, const int wide)
+                                          const int small, const int wide, const int one)
 {
     int32_t py;
     int64_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, S, e0r, e2r, sx0, sx2, sy0, sy2;
@@ -213,6 +213,7 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
         uint8_t *crow = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
         RS_Z *zrow = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)w;
         const size_t cstride = bd->stride;
+        if (one) py1 = py0;
         for (py = py0; py <= py1; py++, e0r += sy0, e2r += sy2, crow += cstride, zrow += w) {
             int32_t xl = px0, xr = px1;
             int64_t e0, e2;
@@ -413,28 +414,34 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
 RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                            int32_t px0, int32_t px1, int32_t py0, int32_t py1, int small, int wide)
 {
-    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py1, small, wide);
+    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py1, small, wide, 0);
 }
 #else
 RS_NOINLINE static void RS_FN(tri_gen_sw)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                           int32_t px0, int32_t px1, int32_t py0, int32_t py1)
 {
-    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py1, 1, 1);
+    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py1, 1, 1, 0);
+}
+RS_NOINLINE static void RS_FN(tri_gen_sw1)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                          int32_t px0, int32_t px1, int32_t py0)
+{
+    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py0, 1, 1, 1);
 }
 RS_NOINLINE static void RS_FN(tri_gen_sn)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                           int32_t px0, int32_t px1, int32_t py0, int32_t py1)
 {
-    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py1, 1, 0);
+    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py1, 1, 0, 0);
 }
 RS_NOINLINE static void RS_FN(tri_gen_l)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                          int32_t px0, int32_t px1, int32_t py0, int32_t py1, int wide)
 {
-    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py1, 0, wide);
+    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py1, 0, wide, 0);
 }
 RS_INLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                          int32_t px0, int32_t px1, int32_t py0, int32_t py1, int small, int wide)
 {
     if (!small) RS_FN(tri_gen_l)(bd, a, b, c, px0, px1, py0, py1, wide);
+    else if (wide && py0 == py1) RS_FN(tri_gen_sw1)(bd, a, b, c, px0, px1, py0);
     else if (wide) RS_FN(tri_gen_sw)(bd, a, b, c, px0, px1, py0, py1);
     else RS_FN(tri_gen_sn)(bd, a, b, c, px0, px1, py0, py1);
 }
