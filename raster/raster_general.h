@@ -6,8 +6,11 @@
  * purpose. */
 
 /* The plain span (no texture, no counting) four pixels at a time in 32-bit vector lanes
- * (GCC's generic vectors: SSE2 on x86-64, NEON on AArch64), for spans of four or more
- * pixels; shorter spans and targets without such vectors keep the scalar loop.  Same
+ * (GCC's generic vectors: SSE2 on x86-64, NEON on AArch64), for spans of eight or more
+ * pixels; shorter spans and targets without such vectors keep the scalar loop (a span's
+ * two end groups cost about as many instructions as eight scalar pixels: from four
+ * pixels on, B 640x480 took 0.15 M more per frame, from ten or twelve 0.015 M fewer,
+ * kept at eight for the data-dependent branches of the scalar loop).  Same
  * pixels: see the span code below.  RS_SPANV defaults to RS_PREPASS (raster.c), so the
  * -mgeneral-regs-only builds of check-nofloat.sh (RS_PREPASS=0 and 1) compile both
  * paths (GCC lowers the vectors to general registers there) and the RS_PREPASS=0 test
@@ -62,11 +65,11 @@ typedef uint16_t gs_v8hn __attribute__((vector_size(16), aligned(2)));
  * each value from the span start plus (j + l) times its step, so the lanes start at
  * {0, 1, 2, 3} steps (the *off) and step by 4 (the *step). */
 typedef struct gs_lanes { gs_v4u zoff, roff, goff, boff, zstep, rstep, gstep, bstep; } gs_lanes;
-/* Made at a triangle's first span of four or more pixels (a call draws 2.5 rows on
- * average; on B 640x480 2.1 K of the 4.3 K calls per frame draw such a span), out of
+/* Made at a triangle's first span of eight or more pixels (a call draws 2.5 rows on
+ * average; on B 640x480 0.9 K of the 4.3 K calls per frame draw such a span), out of
  * line and into memory: inline, GCC may hoist it out of the row loop (it is loop
  * invariant), making it for every call.  The signed colour gradients G_k from the packed
- * gc = G_R 2^42 + G_G 2^21 + G_B (mod 2^64): on a span of n >= 4 pixels the fields at
+ * gc = G_R 2^42 + G_G 2^21 + G_B (mod 2^64): on a span of n >= 8 pixels the fields at
  * pixels 0 and 3 both lie in [0, 2^21), so 3 |G_k| < 2^21 and |G_k| < 2^20, which the
  * 21-bit sign extensions recover exactly, field by field from the bottom.  rl: R's
  * shift (see GS_PX). */
@@ -158,7 +161,7 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
         while ((area2 >> esh) >= ((int64_t)1 << 20)) esh++;
 #endif
 #if RS_SPANV && !RS_TEX && !RS_COUNT
-        gs_lanes L;             /* made at the first span of four or more pixels */
+        gs_lanes L;             /* made at the first span of eight or more pixels */
         int lanes = 0;
 #endif
         /* wide boxes: the row spans' divisors |16 A|; a zero step is never divided by,
@@ -299,7 +302,7 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
                     ptrdiff_t j = -(ptrdiff_t)n;      /* n >= 1; one counter to 0 */
                     (void)i;
 #if RS_SPANV
-                    if (n >= GS_N) {
+                    if (n >= 8) {       /* (>= GS_N: the groups need GS_N pixels) */
                         /* Four pixels per group, lane l of the group at pixel j holding
                          * pixel j + l: groups at pixels 0, 4, .. below n - 4, then one at
                          * n - 4 (overlapping the one before it unless 4 divides n), so
