@@ -107,7 +107,7 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
 {
     int32_t py;
     int64_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, S, e0r, e2r, sx0, sx2, sy0, sy2;
-    int32_t bias0, bias1, bias2;
+    int64_t bias0, bias1, bias2;
     const int32_t w = bd->w;
 
     dx1 = (int64_t)b->x - a->x; dy1 = (int64_t)b->y - a->y;
@@ -129,13 +129,15 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
      * a->b (the weight of c), 1 = b->c (weight of a), 2 = c->a (weight of b); since
      * E0 + E1 + E2 = area2 everywhere, E1 is never evaluated.  Edges that are not
      * top-left (A > 0, or A == 0 and B > 0) are biased by -1 so that E == 0 there is
-     * outside: e_k = E_k - bias_k, inside iff all e_k >= 0, and e1 = S - e0 - e2. */
+     * outside: e_k = E_k - bias_k, inside iff all e_k >= 0, and e1 = S - e0 - e2.
+     * bias_k = [2 A_k + (B_k > 0) <= 0] as the sign bit of 2 A_k + (B_k > 0) - 1 (A_k is
+     * a vertex difference, far below 2^62; B 640x480: 0.02 M fewer than the compare). */
     A0 = -dy1; B0 = dx1;
     A2 = dy2; B2 = -dx2;
     A1 = -(A0 + A2); B1 = -(B0 + B2);
-    bias0 = (2 * A0 + (B0 > 0)) <= 0;
-    bias1 = (2 * A1 + (B1 > 0)) <= 0;
-    bias2 = (2 * A2 + (B2 > 0)) <= 0;
+    bias0 = (int64_t)((uint64_t)(2 * A0 + (B0 > 0) - 1) >> 63);
+    bias1 = (int64_t)((uint64_t)(2 * A1 + (B1 > 0) - 1) >> 63);
+    bias2 = (int64_t)((uint64_t)(2 * A2 + (B2 > 0) - 1) >> 63);
     S = area2 - bias0 - bias1 - bias2;
     {
         int64_t ox = (int64_t)px0 * SUBONE + HALF - a->x, oy = (int64_t)py0 * SUBONE + HALF - a->y;
