@@ -209,7 +209,8 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
          * triangles: area2 < 2^21 and |colour numerator| < 2^19, products below 2^59;
          * large ones: the quotients by area2, gradients here, row starts below.  A span
          * of two or more pixels bounds |gz| by the depth range (< 2^31); the clamp only
-         * affects one-pixel spans, where the step is never used.
+         * affects one-pixel spans, where the step is never used, and the reciprocal's gz
+         * needs none (|gzn| < 2^22, inv <= 2^40: |gz| < 2^26).
          * The row start's R and G in one pair of products: with v_k = dcb_k w1 + dcc_k w2
          * (|v_k| <= 255 (w1 + w2) < 2^30, as w1, w2 >= 0 and w1 + w2 <= 2^22: the weights
          * of inside centres, e0 + e2 <= S <= area2), rg = v_R 2^32 + v_G + 2^30 (every
@@ -219,6 +220,7 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
 #define DCH(V, K) ((int64_t)((((V)->cp - a->cp + RS_C256) >> (42 - 21 * (K))) & 0x1fffffu) - 256)
 #define GC_S(B, C, K) ((uint64_t)((((B) * dy2 - (C) * dy1) * inv) >> 23) << (42 - 21 * (K)))
 #define GC_L(B, C, K) ((uint64_t)fx_divisor_trunc(&ad, ((B) * dy2 - (C) * dy1) * ((int64_t)1 << 17)) << (42 - 21 * (K)))
+#define GZ_CLAMP() do { if (gz > INT32_MAX) gz = INT32_MAX; if (gz < -INT32_MAX) gz = -INT32_MAX; } while (0)
 #define GEN_GRAD() do { \
             int64_t gzn; \
             dzb = (int64_t)b->d - a->d; dzc = (int64_t)c->d - a->d; \
@@ -231,14 +233,13 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
                 inv = fx_div40((uint32_t)area2); \
                 gc = GC_S(dcb0, dcc0, 0) + GC_S(dcb1, dcc1, 1) + GC_S(dcb2, dcc2, 2); \
                 if (gzn < ((int64_t)1 << 22) && gzn > -((int64_t)1 << 22)) gz = (gzn * inv) >> 36; \
-                else gz = gzn * SUBONE / area2;     /* rare: no divisor made for it */ \
+                else { gz = gzn * SUBONE / area2; GZ_CLAMP(); }    /* rare: no divisor made for it */ \
             } else { \
                 fx_divisor_make(&ad, area2); \
                 gc = GC_L(dcb0, dcc0, 0) + GC_L(dcb1, dcc1, 1) + GC_L(dcb2, dcc2, 2); \
                 gz = fx_divisor_trunc(&ad, gzn * SUBONE); \
+                GZ_CLAMP(); \
             } \
-            if (gz > INT32_MAX) gz = INT32_MAX; \
-            if (gz < -INT32_MAX) gz = -INT32_MAX; \
             prg_b = dcb0 * ((int64_t)1 << 32) + dcb1; prg_c = dcc0 * ((int64_t)1 << 32) + dcc1; \
             ca = (a->cp << 13) + RS_CBIAS - ((uint64_t)1 << 42); } while (0)
         if (!one) GEN_GRAD();
@@ -441,6 +442,7 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
         }
     }
 #undef GEN_GRAD
+#undef GZ_CLAMP
 #undef GC_L
 #undef GC_S
 #undef DCH
