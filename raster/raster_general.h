@@ -205,7 +205,8 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
          * taller boxes, as lazily in the loop it cost 0.07 M more).  Colour differences
          * per channel k (0 = R, 1 = G, 2 = B; straight-line, no arrays) from the packed
          * colours: the difference plus 256 in each 21-bit field is in [1, 511], so the
-         * fields of v->cp - a->cp + 256 (1 + 2^21 + 2^42) do not borrow.  Small
+         * fields of v->cp - a->cp + 256 (1 + 2^21 + 2^42) do not borrow, and the
+         * whole is below 2^51: R's field, the top one, needs no mask.  Small
          * triangles: area2 < 2^21 and |colour numerator| < 2^19, products below 2^59;
          * large ones: the quotients by area2, gradients here, row starts below.  A span
          * of two or more pixels bounds |gz| by the depth range (< 2^31); the clamp only
@@ -217,7 +218,7 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
          * partial sum below 2^63 in magnitude) has v_G + 2^30 in [0, 2^32) as its low 32
          * bits, so rg >> 41 = floor(v_R / 2^9) and (low 32 bits) >> 9 =
          * floor(v_G / 2^9) + 2^21, whose 2^21 (times 2^21) ca takes back. */
-#define DCH(V, K) ((int64_t)((((V)->cp - a->cp + RS_C256) >> (42 - 21 * (K))) & 0x1fffffu) - 256)
+#define DCH(V, K) ((int64_t)((((V)->cp - a->cp + RS_C256) >> (42 - 21 * (K))) & ((K) ? (uint64_t)0x1fffff : ~(uint64_t)0)) - 256)
 #define GC_S(B, C, K) ((uint64_t)((((B) * dy2 - (C) * dy1) * inv) >> 23) << (42 - 21 * (K)))
 #define GC_L(B, C, K) ((uint64_t)fx_divisor_trunc(&ad, ((B) * dy2 - (C) * dy1) * ((int64_t)1 << 17)) << (42 - 21 * (K)))
 #define GZ_CLAMP() do { if (gz > INT32_MAX) gz = INT32_MAX; if (gz < -INT32_MAX) gz = -INT32_MAX; } while (0)
