@@ -100,7 +100,11 @@ RS_NOINLINE static void gs_lanes_make(gs_lanes *L, uint32_t gzu, uint64_t gc, in
 #endif
 
 /* Triangles whose bounding box has more than TINY_W x TINY_H candidate centres (kept
- * out of tri_raster so that the tiny path's code stays small). */
+ * out of tri_raster so that the tiny path's code stays small).  The body of the copies
+ * below: small (box below SMALL in both directions: gradients and row starts through a
+ * reciprocal), wide (more than NARROW columns: spans by division, else by scanning) and
+ * one (py0 == py1: no row loop) are constants of each copy; for a given triangle and
+ * band the values are the same whichever copy draws it. */
 RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                           int32_t px0, int32_t px1, int32_t py0, int32_t py1,
                                           const int small, const int wide, const int one)
@@ -449,6 +453,13 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
 #undef DCH
 }
 
+/* tri_general: the general path's entry, from tri_box (which finds small and wide).
+ * The plain variants have a copy per case, so that GCC folds the case's branches and
+ * allocates registers for it alone (B 640x480: -0.13 M instructions per frame): small
+ * and wide (1.8 K calls per frame, 0.8 K narrow, 0.1 K large), and of those the boxes of
+ * one row (1.6 K, mostly thin slivers near the horizon: -0.08 M more; a copy for two
+ * rows saved nothing).  Textured and counting variants: one copy, the flags at run
+ * time. */
 #if RS_TEX || RS_COUNT
 RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                            int32_t px0, int32_t px1, int32_t py0, int32_t py1, int small, int wide)

@@ -53,7 +53,9 @@ RS_INLINE static void RS_FN(tri_box)(band *bd, const rs_cvert *a, const rs_cvert
         if (px0 > px1) return;
     }
     if (RS_UNLIKELY(!tiny)) {
-        RS_FN(tri_general)(bd, a, b, c, px0, px1, py0, py1, xmax - xmin < SMALL && ymax - ymin < SMALL, px1 - px0 >= NARROW);
+        /* small: the reciprocal's bounds (raster_general.h); wide: the span by division */
+        RS_FN(tri_general)(bd, a, b, c, px0, px1, py0, py1, xmax - xmin < SMALL && ymax - ymin < SMALL,
+                           px1 - px0 >= NARROW);
         return;
     }
     RS_FN(tri_tiny_own)(bd, a, b, c, px0, px1 - px0 + 1, py0, py1 - py0 + 1);
