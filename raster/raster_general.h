@@ -278,11 +278,11 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
                 int64_t l = 0, r = px1 - px0;
 /* (~K of a copy of K that GEN_OPAQUE hides from the optimiser: GCC's induction
  * variables would otherwise step ~K of every edge on every row, a derived value it keeps
- * in memory; the earlier K ^ (K >> 63) no longer fooled it: 0.03 M more on B 640x480) */
+ * in memory; the earlier K ^ (K >> 63) no longer fooled it: 0.03 M more on B 640x480.
+ * K's sign tested first, then SX's: the same cases, 0.04 M fewer than SX's first) */
 #define GEN_EDGE(SX, K, Q) do { \
-        if ((SX) > 0) { if ((K) < 0) { int64_t k_ = (K); GEN_OPAQUE(k_); \
-                                       { const int64_t t_ = fx_divisor_trunc((Q), ~k_) + 1; if (t_ > l) l = t_; } } } \
-        else if ((K) < 0) goto empty; \
+        if ((K) < 0) { if ((SX) > 0) { int64_t k_ = (K); GEN_OPAQUE(k_); \
+                                       { const int64_t t_ = fx_divisor_trunc((Q), ~k_) + 1; if (t_ > l) l = t_; } } else goto empty; } \
         else if ((SX) < 0) { const int64_t t_ = fx_divisor_trunc((Q), (K)); if (t_ < r) r = t_; } } while (0)
                 GEN_EDGE(sx0, e0r, &q0);
                 GEN_EDGE(-(sx0 + sx2), S - e0r - e2r, &q1);
