@@ -195,6 +195,18 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 #define RS_SHUFFLE(V, W, MT, ...) __builtin_shuffle((V), (W), (MT){ __VA_ARGS__ })
 #endif
 
+/* GCC on x86-64 does not schedule before register allocation at -O2; the pre-pass's many
+ * live vectors spill less when it does, with the register pressure in mind (what GCC does
+ * by default on ARM): x86-64 640x480 A -0.28 M, B -0.18 M.  (Scheduling without the
+ * pressure model spills more: B +0.22 M.)  The strip loop (raster_tmpl.h's draw) too:
+ * A -0.03 M, B -0.01 M.  Everywhere (-fschedule-insns -fsched-pressure): the general
+ * path +0.07 M on B. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define PP_SCHED __attribute__((optimize("schedule-insns", "sched-pressure")))
+#else
+#define PP_SCHED
+#endif
+
 /* The strip pre-pass (pp_prepass below; used by the strip loop of raster_tmpl.h's draw):
  * the set-up and coverage of a chunk's strip pairs, PP_L (8 or 16) at a time in 16-bit vector lanes
  * (GCC's generic vectors: SSE2 on x86-64, NEON on AArch64), into pp_soa; the strip loop then
@@ -350,16 +362,6 @@ typedef char pp_v16c __attribute__((vector_size(16)));
         PPS8(Y, K, PP_ZIP(y03, y47, 0, 1, 2, 3, 8, 9, 10, 11) ^ fl);                  \
         PPS8(C, K, PP_ZIP(c03, c47, 4, 5, 6, 7, 12, 13, 14, 15));                     \
     } while (0)
-
-/* GCC on x86-64 does not schedule before register allocation at -O2; the pre-pass's many
- * live vectors spill less when it does, with the register pressure in mind (what GCC does
- * by default on ARM): x86-64 640x480 A -0.28 M, B -0.18 M.  (Scheduling without the
- * pressure model spills more: B +0.22 M.) */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define PP_SCHED __attribute__((optimize("schedule-insns", "sched-pressure")))
-#else
-#define PP_SCHED
-#endif
 
 /* The set-up of strip steps 0 .. n-1 of a chunk, PP_L at a time in 16-bit lanes (see
  * pp_soa above; strip indices ip[0 .. 2 n + 1], gathered first): for each step what
@@ -838,9 +840,9 @@ int rs_variant_built(int32_t fmt, int32_t depth, int textured)
  * store overlapping the one before it (its offset n - 32 is a multiple of the period, so
  * it writes the same bytes there); shorter rows and other compilers a word at a time.
  * The frame's clear: 640x480 XRGB8888 + 32-bit depth took 0.26 M instructions a frame
- * as a filled row copied with memcpy; this way the portable copy takes 0.06 M fewer
- * (four 16-byte stores per 64 bytes where memcpy loads and stores) and the v3 copy
- * 0.13 M fewer. */
+ * as a filled row copied with memcpy (a load and a store per 32 bytes); with eight
+ * stores a pass it takes 0.18 M in the baseline copy (16-byte stores) and 0.11 M in the
+ * v3 copy (32-byte ones). */
 #if defined(__GNUC__)
 typedef uint32_t fill_v8 __attribute__((vector_size(32), aligned(1)));
 #endif
@@ -850,9 +852,11 @@ static void fill32(uint8_t *p, size_t n, uint32_t v)
     if (n >= 32) {
         const fill_v8 vv = (fill_v8){ v, v, v, v, v, v, v, v };
         uint8_t *const last = p + n - 32;
-        for (; p + 96 < last; p += 128) {       /* four stores a pass */
+        for (; p + 224 < last; p += 256) {      /* eight stores a pass */
             *(fill_v8 *)(void *)p = vv; *(fill_v8 *)(void *)(p + 32) = vv;
             *(fill_v8 *)(void *)(p + 64) = vv; *(fill_v8 *)(void *)(p + 96) = vv;
+            *(fill_v8 *)(void *)(p + 128) = vv; *(fill_v8 *)(void *)(p + 160) = vv;
+            *(fill_v8 *)(void *)(p + 192) = vv; *(fill_v8 *)(void *)(p + 224) = vv;
         }
         for (; p < last; p += 32) *(fill_v8 *)(void *)p = vv;
         *(fill_v8 *)(void *)last = vv;

@@ -437,7 +437,7 @@ RS_INLINE static void RS_FN(pp_steps)(band *bd, const pp_soa *q, const uint32_t 
 }
 #endif
 
-static void RS_FN(draw)(band *bd)
+PP_SCHED static void RS_FN(draw)(band *bd)
 {
     const rs_frame *f = bd->f;
     const rs_cvert *cache = f->cache;
