@@ -462,9 +462,10 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
  * allocates registers for it alone (B 640x480: -0.13 M instructions per frame): small
  * and wide (1.8 K calls per frame, 0.8 K narrow, 0.1 K large), and of those the boxes of
  * one row (1.6 K, mostly thin slivers near the horizon: -0.08 M more; a copy for two
- * rows saved nothing).  Textured and counting variants: one copy, the flags at run
- * time. */
-#if RS_TEX || RS_COUNT
+ * rows saved nothing).  Textured and counting variants, and builds for size (-Os: the
+ * boards with little flash; the copies are 2-3 KB each per variant): one copy, the
+ * flags at run time. */
+#if RS_TEX || RS_COUNT || defined(__OPTIMIZE_SIZE__)
 RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                            int32_t px0, int32_t px1, int32_t py0, int32_t py1, int small, int wide)
 {
