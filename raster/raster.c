@@ -207,6 +207,15 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 #define PP_SCHED
 #endif
 
+/* The bytes of the generic vectors of the pre-pass (PP_L 16-bit lanes) and the general
+ * path's spans (GS_N 32-bit lanes, raster_general.h): 32 in the x86-64-v3 copy (AVX2;
+ * raster/isa.c), 16 elsewhere (SSE2, NEON). */
+#if defined(__AVX2__)
+#define RS_VBYTES 32
+#else
+#define RS_VBYTES 16
+#endif
+
 /* The strip pre-pass (pp_prepass below; used by the strip loop of raster_tmpl.h's draw):
  * the set-up and coverage of a chunk's strip pairs, PP_L (8 or 16) at a time in 16-bit vector lanes
  * (GCC's generic vectors: SSE2 on x86-64, NEON on AArch64), into pp_soa; the strip loop then
@@ -246,11 +255,7 @@ enum { PK_NONE = 0, PK_QUAD, PK_WIDE, PK_SLOW };
  * and runs out of registers (before the gather moved here: baseline x86-64 A 24.64 ->
  * 47.7 M, B 22.57 -> 40.5 M; AArch64 A 20.66 -> 46.4 M, B 19.11 -> 39.1 M).  The
  * gather's transposition stays in 128-bit vectors (pp_h8), eight slots at a time. */
-#if defined(__AVX2__)
-#define PP_L 16
-#else
-#define PP_L 8
-#endif
+#define PP_L (RS_VBYTES / 2)
 typedef int16_t pp_v8 __attribute__((vector_size(2 * PP_L)));
 typedef uint16_t pp_v8u __attribute__((vector_size(2 * PP_L)));
 typedef int16_t pp_v8un __attribute__((vector_size(2 * PP_L), aligned(2)));

@@ -34,11 +34,7 @@
  * same).  Everything below holds for either: the spans take groups from GS_N pixels on,
  * and gs_lanes_make's bound (the fields at pixels 0 and GS_N - 1 of such a span both in
  * [0, 2^21)) only gets tighter. */
-#if defined(__AVX2__)
-#define GS_N 8
-#else
-#define GS_N 4
-#endif
+#define GS_N (RS_VBYTES / 4)
 typedef uint32_t gs_v4u __attribute__((vector_size(4 * GS_N)));
 typedef int32_t gs_v4i __attribute__((vector_size(4 * GS_N)));
 typedef uint32_t gs_v4un __attribute__((vector_size(4 * GS_N), aligned(2)));  /* at any 16-bit boundary */
