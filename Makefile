@@ -8,6 +8,9 @@
 #   benchmarks/bench_*.c              -> one benchmark program each (make bench)
 #   tests/fuzz_*.c                    -> one libFuzzer harness each (make fuzz, clang)
 
+# The first rule below is not `all` (the ISA flag rules come first): name the goal.
+.DEFAULT_GOAL := all
+
 CC      ?= cc
 ifeq ($(origin CC),default)
 CC      = cc
@@ -95,7 +98,8 @@ $(B)/obj/raster/%_v3.o: raster/%.c
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -march=x86-64-v3 -DRS_BUILD_V3 -c -o $@ $<
 
-$(B)/obj/%.o: %.c
+# `| deps`: with -j the packages are installed before the first compile, not beside it.
+$(B)/obj/%.o: %.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) $(ISA_FLAGS) $(if $(filter platform/% tests/% benchmarks/%,$<),$(shell pkg-config --cflags $(PKGS))) -c -o $@ $<
 
@@ -158,6 +162,6 @@ fuzz: deps
 	@sh tests/fuzz.sh $(FUZZ_SECONDS)
 
 clean:
-	rm -rf $(B) bitrain tests/out benchmarks/out
+	rm -rf $(B) bitrain tests/out benchmarks/out out
 
 -include $(shell find $(B) -name '*.d' 2>/dev/null)

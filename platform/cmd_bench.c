@@ -1,3 +1,4 @@
+#define _POSIX_C_SOURCE 200809L   /* clock_gettime under -std=c99 (no SDL flags to bring it) */
 /* platform/cmd_bench.c — bitrain bench: render the peer benchmark scene of
  * ../shared/bench/PEERS.md with bitrain's integer rasteriser, nothing else, so that
  * one process (or one callgrind run) measures one configuration.
