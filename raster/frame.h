@@ -49,13 +49,7 @@
 
 #define RS_PIPE_MAX_PASSES 8
 
-/* What one band cost; summed by the caller (per band, so threads need no lock). */
-typedef struct rs_band_stats {
-    uint32_t tris;              /* triangles set up (not rejected before set-up) */
-    uint32_t clipped;           /* triangles that went through the clipper */
-    uint32_t pixels;            /* pixels written (depth test passed) */
-    uint32_t passes_run;        /* bit i: pass i ran on this band (not skipped) */
-} rs_band_stats;
+/* rs_band_stats (raster.h): what one band cost, summed by the caller per band. */
 
 /* One band being drawn.  color/depth are the band's rows [y0, y0 + rows): colour in the
  * pipe's format, stride bytes per row; depth w * rows entries (uint32 or uint16). */

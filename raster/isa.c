@@ -3,7 +3,7 @@
  * With RS_ISA_DISPATCH=1 (the Makefile sets it on x86-64 when the compiler takes
  * -march=x86-64-v3 and __builtin_cpu_supports("x86-64-v3")), raster.c and xform.c are
  * in the library twice (raster_int.h names the copies): the baseline one and the v3
- * one.  This file defines the public rs_frame_prepare, rs_render_band and rs_render,
+ * one.  This file defines the public rs_frame_prepare and rs_draw_band,
  * which call the copy chosen here.  Why a second copy: the strip pre-pass and the
  * spans are written with 128-bit generic vectors, and at baseline x86-64 (SSE2, two
  * operands) a third of the pre-pass's per-group instructions are register copies; the
@@ -18,11 +18,11 @@
 
 #if defined(RS_ISA_DISPATCH) && RS_ISA_DISPATCH
 br_status rs_frame_prepare_base(rs_frame *f);
-br_status rs_render_band_base(rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth);
-br_status rs_render_base(rs_frame *f, int32_t band_rows, void *mem, rs_sink sink, void *user);
+br_status rs_draw_band_base(const rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth,
+                            rs_band_stats *st);
 br_status rs_frame_prepare_v3(rs_frame *f);
-br_status rs_render_band_v3(rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth);
-br_status rs_render_v3(rs_frame *f, int32_t band_rows, void *mem, rs_sink sink, void *user);
+br_status rs_draw_band_v3(const rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth,
+                          rs_band_stats *st);
 
 static int g_isa;       /* 0 until chosen */
 
@@ -49,16 +49,11 @@ br_status rs_frame_prepare(rs_frame *f)
     return rs_isa() == RS_ISA_V3 ? rs_frame_prepare_v3(f) : rs_frame_prepare_base(f);
 }
 
-br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth)
+br_status rs_draw_band(const rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth,
+                       rs_band_stats *st)
 {
-    return rs_isa() == RS_ISA_V3 ? rs_render_band_v3(f, y0, rows, color, stride, depth)
-                                 : rs_render_band_base(f, y0, rows, color, stride, depth);
-}
-
-br_status rs_render(rs_frame *f, int32_t band_rows, void *mem, rs_sink sink, void *user)
-{
-    return rs_isa() == RS_ISA_V3 ? rs_render_v3(f, band_rows, mem, sink, user)
-                                 : rs_render_base(f, band_rows, mem, sink, user);
+    return rs_isa() == RS_ISA_V3 ? rs_draw_band_v3(f, y0, rows, color, stride, depth, st)
+                                 : rs_draw_band_base(f, y0, rows, color, stride, depth, st);
 }
 #else
 int rs_isa_set(int isa) { (void)isa; return RS_ISA_BASE; }

@@ -515,7 +515,8 @@ static void fill32(uint8_t *p, size_t n, uint32_t v)
     if (n) memcpy(p, &v, 2);
 }
 
-br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth)
+br_status rs_draw_band(const rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth,
+                       rs_band_stats *st)
 {
     const draw_fn draw = draw_for(f->fmt, f->depth, f->tex != 0, f->debug_count != 0);
     band bd;
@@ -546,26 +547,10 @@ br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, siz
         else for (y = 0; y < rows; y++) fill32(bd.color + (size_t)y * stride, crow, cv);
     }
     draw(&bd);
-    f->stat_tris += bd.tris;
-    f->stat_clipped += bd.clipped;
-    f->stat_pixels += bd.pixels;
-    return BR_OK;
-}
-
-br_status rs_render(rs_frame *f, int32_t band_rows, void *mem, rs_sink sink, void *user)
-{
-    int32_t y0;
-    size_t bpp = f->fmt == RS_FMT_RGB565 ? 2 : 4;
-    if (band_rows < 1 || !mem || !sink) return BR_E_ARG;
-    if (band_rows > f->h) band_rows = f->h;
-    for (y0 = 0; y0 < f->h; y0 += band_rows) {
-        int32_t rows = f->h - y0 < band_rows ? f->h - y0 : band_rows;
-        uint8_t *color = (uint8_t *)mem;
-        void *depth = color + (size_t)f->w * (size_t)band_rows * bpp;
-        br_status s = rs_render_band(f, y0, rows, color, (size_t)f->w * bpp, depth);
-        if (s != BR_OK) return s;
-        s = sink(user, y0, rows, color, (size_t)f->w * bpp);
-        if (s != BR_OK) return s;
+    if (st) {
+        st->tris += bd.tris;
+        st->clipped += bd.clipped;
+        st->pixels += bd.pixels;
     }
     return BR_OK;
 }

@@ -164,9 +164,24 @@ void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint3
 /* Checks the frame and transforms every vertex once into the cache (per frame). */
 br_status rs_frame_prepare(rs_frame *f);
 
+/* What drawing one band cost (raster/frame.h sums them per band, so that bands drawn on
+ * several threads share nothing). */
+typedef struct rs_band_stats {
+    uint32_t tris;              /* triangles set up (not rejected before set-up) */
+    uint32_t clipped;           /* triangles that went through the clipper */
+    uint32_t pixels;            /* pixels written (depth test passed) */
+    uint32_t passes_run;        /* raster/frame.h: bit i set when pass i ran on the band */
+} rs_band_stats;
+
 /* Renders rows [y0, y0+rows) into caller buffers: colour (stride bytes per row) and a
- * depth buffer of w*rows entries (uint32 or uint16).  Clears both first.
+ * depth buffer of w*rows entries (uint32 or uint16).  Clears both first.  Reads f only
+ * (several threads may draw bands of one prepared frame at once) and ADDS the band's
+ * cost to *st (st may be NULL).
  * BR_E_UNSUPPORTED: this build left the frame's variant out (rs_variant_built). */
+br_status rs_draw_band(const rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth,
+                       rs_band_stats *st);
+
+/* rs_draw_band adding the band's cost into f->stat_* (one thread only). */
 br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth);
 
 /* Renders the whole frame as successive bands of band_rows rows (the last may be

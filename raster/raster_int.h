@@ -16,8 +16,8 @@
  * raster.c and xform.c twice, the second time with -march=x86-64-v3 -DRS_BUILD_V3, and
  * the first with -DRS_ISA_DISPATCH=1.  The copies' external functions get their own
  * names (set before raster.h declares them, so the prototypes follow): the v3 copy's
- * all end in _v3; in the baseline copy the three that draw (rs_frame_prepare,
- * rs_render_band, rs_render) end in _base, and isa.c defines the public names, which
+ * all end in _v3; in the baseline copy the two that draw (rs_frame_prepare,
+ * rs_draw_band) end in _base, and isa.c defines the public names, which
  * call one copy or the other.  Other builds (boards, the sanitizer and test builds)
  * define neither and compile one copy under the public names. */
 #if defined(RS_BUILD_V3)
@@ -26,14 +26,12 @@
 #define rs_band_mem_size rs_band_mem_size_v3
 #define rs_cvert_set rs_cvert_set_v3
 #define rs_frame_prepare rs_frame_prepare_v3
-#define rs_render_band rs_render_band_v3
-#define rs_render rs_render_v3
+#define rs_draw_band rs_draw_band_v3
 #define rs_variant_built rs_variant_built_v3
 #define rs_to_rgb888 rs_to_rgb888_v3
 #elif defined(RS_ISA_DISPATCH) && RS_ISA_DISPATCH
 #define rs_frame_prepare rs_frame_prepare_base
-#define rs_render_band rs_render_band_base
-#define rs_render rs_render_base
+#define rs_draw_band rs_draw_band_base
 #endif
 #include <stdint.h>
 #include "raster/raster.h"

@@ -27,8 +27,7 @@
 #define rs_chunk_mem_size min_chunk_mem_size
 #define rs_cvert_set min_cvert_set
 #define rs_frame_prepare min_frame_prepare
-#define rs_render_band min_render_band
-#define rs_render min_render
+#define rs_draw_band min_draw_band
 #define rs_variant_built min_variant_built
 #define rs_to_rgb888 min_to_rgb888
 /* raster.h is already included under the real names, so the renamed copy has no
@@ -47,10 +46,20 @@
 #undef rs_chunk_mem_size
 #undef rs_cvert_set
 #undef rs_frame_prepare
-#undef rs_render_band
-#undef rs_render
+#undef rs_draw_band
 #undef rs_variant_built
 #undef rs_to_rgb888
+
+/* the reduced copy's band call in rs_render_band's form */
+static br_status min_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth)
+{
+    rs_band_stats st = { 0, 0, 0, 0 };
+    br_status s = min_draw_band(f, y0, rows, color, stride, depth, &st);
+    f->stat_tris += st.tris;
+    f->stat_clipped += st.clipped;
+    f->stat_pixels += st.pixels;
+    return s;
+}
 
 #define W 320
 #define H 240
