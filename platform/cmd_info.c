@@ -6,19 +6,10 @@
 #include <string.h>
 #include "platform/cmd.h"
 #include "platform/dem_args.h"
+#include "platform/opt.h"
 #include "platform/load.h"
 
-static void usage(FILE *f)
-{
-    fprintf(f, "usage: bitrain info [--json] [--merge] [--png-encoding grey|terrain-rgb|terrarium]\n"
-               "                    [--scale S] [--offset O] [--xyz-depth] FILE...\n"
-               "  --json          one JSON object per file (or per merge) per line\n"
-               "  --merge         merge the files by georeference and report the result\n"
-               "  --png-encoding  how PNG pixels hold heights (default: grey for grey PNGs,\n"
-               "                  terrain-rgb for colour ones)\n"
-               "  --scale S, --offset O  grey PNG: metres = raw * S + O (default 1, 0)\n"
-               "  --xyz-depth     XYZ: the third column is depth (positive down); also --depth\n");
-}
+#define INFO_SYNOPSIS "[options] FILE..."
 
 /* z * num / den metres as an exact decimal when den divides a power of ten <= 10^9 */
 static void fmt_m(char *buf, size_t bn, int64_t z, int32_t num, int32_t den)
@@ -93,24 +84,21 @@ int cmd_info(int argc, char **argv)
     dem_opts o;
     int json = 0, merge = 0, i, nf = 0, rc = 0, r;
     const char **files = calloc((size_t)(argc > 0 ? argc : 1), sizeof *files);
+    opt_spec dem_t[DEM_ARGS_N];
+    const opt_spec own[] = {
+        { "--json", OPT_FLAG, &json, 0, 0, 0, NULL, NULL, "one JSON object per file (or per merge) per line", NULL },
+        { "--merge", OPT_FLAG, &merge, 0, 0, 0, NULL, NULL, "merge the files by georeference and report the result", NULL },
+        { "--depth", OPT_FLAG, &o.xyz_depth, 0, 0, 0, NULL, NULL, "same as --xyz-depth", NULL },
+        OPT_END
+    };
+    const opt_spec *const tables[] = { own, dem_t, NULL };
     memset(&o, 0, sizeof o);
     if (!files) { fprintf(stderr, "bitrain info: out of memory\n"); return 1; }
-    for (i = 0; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "--json")) json = 1;
-        else if (!strcmp(a, "--merge")) merge = 1;
-        else if (!strcmp(a, "--depth")) o.xyz_depth = 1;
-        else if ((r = dem_args_parse(&o, argc, argv, &i, "info")) != 0) {
-            if (r < 0) { free(files); return 2; }
-        } else if (!strcmp(a, "-h") || !strcmp(a, "--help")) { usage(stdout); free(files); return 0; }
-        else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "bitrain info: unknown option '%s'\n", a);
-            usage(stderr);
-            free(files);
-            return 2;
-        } else files[nf++] = a;
-    }
-    if (nf == 0) { usage(stderr); free(files); return 2; }
+    dem_args_table(&o, dem_t);
+    r = opt_parse("info", INFO_SYNOPSIS, tables, argc, argv, files, argc > 0 ? argc : 1, &nf);
+    if (r != OPT_OK) { free(files); return r == OPT_HELP ? 0 : 2; }
+    dem_args_finish(&o);
+    if (nf == 0) { fprintf(stderr, "bitrain info: no input file (`bitrain info --help`)\n"); free(files); return 2; }
     if (merge) {
         hf f;
         br_err e;

@@ -26,6 +26,8 @@
 #include "core/cam.h"
 #include "platform/cmd.h"
 #include "platform/dem_args.h"
+#include "platform/opt.h"
+#include "platform/scene_args.h"
 #include "platform/load.h"
 #include "platform/scene.h"
 #include "platform/png_io.h"
@@ -65,24 +67,36 @@ static double ms_now(void)
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
 }
 
-static int usage(void)
-{
-    fprintf(stderr,
-            "usage: bitrain render IN... -o out.png [--size WxH] [--camera EX,EY,EZ,TX,TY,TZ] [--fov DEG]\n"
-            "         [--max-error M | --pixel-error P | --full [STEP]] [--bands ROWS]\n"
-            "         [--format rgb565|rgb888] [--depth 32|16] [--colors FILE] [--texture PNG] [--no-cull]\n"
-            "         [--sun AZ,ALT] [--ambient A] [--zscale F]\n"
-            "  camera in metres: x east from the west edge, y north from the south edge, z height\n");
-    return 2;
-}
+#define RENDER_SYNOPSIS "IN... -o OUT.png [options]\n" \
+    "  camera in metres: x east from the west edge, y north from the south edge, z height (times --zscale)"
 
 int cmd_render(int argc, char **argv)
 {
     const char *in[64], *out = NULL;
-    int nin = 0, i, w = 800, h = 600, have_cam = 0, mode = BT_VIEW, full_step = 0, bands = 0, r;
-    int fmt = RS_FMT_XRGB8888, depth = RS_DEPTH32, no_cull = 0;
+    int nin = 0, size[2] = { 800, 600 }, w, h, have_cam = 0, have_max = 0, have_pix = 0, mode = BT_VIEW;
+    int full_step = 0, bands = 0, fmt = RS_FMT_XRGB8888, depth_choice = 0, depth, no_cull = 0, r;
     double camv[6], fov = 50, max_err = 0, pix_err = 1;
     scene_opts so;
+    scene_args sa;
+    opt_spec dem_t[DEM_ARGS_N], look_t[SCENE_ARGS_N];
+    const opt_spec own[] = {
+        { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT.png", "the image to write", NULL },
+        { "--size", OPT_SIZE, size, 1, RS_MAX_DIM, 0, NULL, "WxH", "image size (default 800x600)", NULL },
+        { "--camera", OPT_NUMS, camv, -1e7, 1e7, 6, NULL, "EX,EY,EZ,TX,TY,TZ", "eye and target, metres",
+          &have_cam },
+        { "--fov", OPT_NUM, &fov, 1, 170, 0, NULL, "DEG", "vertical field of view (default 50)", NULL },
+        { "--max-error", OPT_NUM, &max_err, 0, 100000, 0, NULL, "M",
+          "fidelity mesh: true vertical error at most M metres", &have_max },
+        { "--pixel-error", OPT_NUM, &pix_err, 0.01, 1000, 0, NULL, "P",
+          "view-dependent mesh: screen error at most P pixels (default 1)", &have_pix },
+        { "--full", OPT_INT_OPT, &full_step, 1, 4096, 0, NULL, "[STEP]", "the full grid (every STEP-th sample)", NULL },
+        { "--bands", OPT_INT, &bands, 0, RS_MAX_DIM, 0, NULL, "ROWS", "render in bands of ROWS rows (0: whole frame)", NULL },
+        { "--format", OPT_CHOICE, &fmt, 0, 0, 0, "rgb888|rgb565", "F", "pixel format of the frame", NULL },
+        { "--depth", OPT_CHOICE, &depth_choice, 0, 0, 0, "32|16", "BITS", "depth buffer bits", NULL },
+        { "--no-cull", OPT_FLAG, &no_cull, 0, 0, 0, NULL, NULL, "draw back faces too", NULL },
+        OPT_END
+    };
+    const opt_spec *const tables[] = { own, look_t, dem_t, NULL };
     scene s;
     br_err err;
     cam c;
@@ -100,42 +114,21 @@ int cmd_render(int argc, char **argv)
     memset(&s, 0, sizeof s);
     memset(&fr, 0, sizeof fr);
     memset(&ps, 0, sizeof ps);
-    for (i = 0; i < argc; i++) {
-        const char *a = argv[i], *n = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "-o") && n) { out = n; i++; }
-        else if (!strcmp(a, "--size") && n) { if (sscanf(n, "%dx%d", &w, &h) != 2) return usage(); i++; }
-        else if (!strcmp(a, "--camera") && n) {
-            if (sscanf(n, "%lf,%lf,%lf,%lf,%lf,%lf", &camv[0], &camv[1], &camv[2], &camv[3], &camv[4], &camv[5]) != 6)
-                return usage();
-            have_cam = 1; i++;
-        } else if (!strcmp(a, "--fov") && n) { fov = atof(n); i++; }
-        else if (!strcmp(a, "--max-error") && n) { max_err = atof(n); mode = BT_FIDELITY; i++; }
-        else if (!strcmp(a, "--pixel-error") && n) { pix_err = atof(n); mode = BT_VIEW; i++; }
-        else if (!strcmp(a, "--full")) {
-            full_step = 1;
-            if (n && isdigit((unsigned char)n[0])) { full_step = atoi(n); i++; }
-        } else if (!strcmp(a, "--bands") && n) { bands = atoi(n); i++; }
-        else if (!strcmp(a, "--format") && n) {
-            if (!strcmp(n, "rgb565")) fmt = RS_FMT_RGB565;
-            else if (!strcmp(n, "rgb888")) fmt = RS_FMT_XRGB8888;
-            else return usage();
-            i++;
-        } else if (!strcmp(a, "--depth") && n) { depth = atoi(n) == 16 ? RS_DEPTH16 : RS_DEPTH32; i++; }
-        else if (!strcmp(a, "--colors") && n) { so.colors = n; i++; }
-        else if (!strcmp(a, "--texture") && n) { so.texture = n; i++; }
-        else if (!strcmp(a, "--no-cull")) no_cull = 1;
-        else if (!strcmp(a, "--sun") && n) { if (sscanf(n, "%lf,%lf", &so.sun_az, &so.sun_alt) != 2) return usage(); i++; }
-        else if (!strcmp(a, "--ambient") && n) { so.ambient = atof(n); i++; }
-        else if (!strcmp(a, "--zscale") && n) { so.zscale = atof(n); i++; }
-        else if ((r = dem_args_parse(&so.dem, argc, argv, &i, "render")) != 0) { if (r < 0) return 2; }
-        else if (!strcmp(a, "-h") || !strcmp(a, "--help")) { usage(); return 0; }
-        else if (a[0] == '-' && a[1]) { fprintf(stderr, "bitrain render: unknown option '%s'\n", a); return usage(); }
-        else if (nin < 64) in[nin++] = a;
-    }
-    if (!nin || !out || w < 1 || h < 1 || w > RS_MAX_DIM || h > RS_MAX_DIM || !(fov >= 1 && fov <= 170)
-        || full_step < 0 || bands < 0 || !(so.ambient >= 0 && so.ambient <= 1) || !(pix_err > 0) || max_err < 0
-        || !(so.zscale >= 0 && so.zscale <= 1000))
-        return usage();
+    dem_args_table(&so.dem, dem_t);
+    scene_args_table(&sa, &so, look_t);
+    r = opt_parse("render", RENDER_SYNOPSIS, tables, argc, argv, in, 64, &nin);
+    if (r != OPT_OK) return r == OPT_HELP ? 0 : 2;
+    dem_args_finish(&so.dem);
+    if (scene_args_finish(&sa, "render") != OPT_OK) return 2;
+    if (!nin) { fprintf(stderr, "bitrain render: no input file (`bitrain render --help`)\n"); return 2; }
+    if (!out) { fprintf(stderr, "bitrain render: no output file: -o OUT.png\n"); return 2; }
+    if (have_max && have_pix) return opt_fail("render", "--max-error", "cannot be used with --pixel-error");
+    if (full_step && (have_max || have_pix))
+        return opt_fail("render", "--full", "cannot be used with --max-error or --pixel-error");
+    mode = have_max ? BT_FIDELITY : BT_VIEW;
+    w = size[0];
+    h = size[1];
+    depth = depth_choice ? RS_DEPTH16 : RS_DEPTH32;
     if (bands == 0 || bands > h) bands = h;
 
     t0 = ms_now();

@@ -1,40 +1,25 @@
 /* platform/dem_args.c — see dem_args.h. */
 #include "platform/dem_args.h"
-#include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
-static int num_arg(const char *cmd, const char *opt, const char *v, double *out)
+/* the choices in DEM_PNG_* order, then the American spelling of grey */
+#define PNG_ENCODINGS "auto|grey|terrain-rgb|terrarium|gray"
+#define PNG_GRAY_INDEX 4
+
+void dem_args_table(dem_opts *o, opt_spec t[DEM_ARGS_N])
 {
-    char *end;
-    if (!v) { fprintf(stderr, "bitrain %s: %s needs a value\n", cmd, opt); return -1; }
-    *out = strtod(v, &end);
-    if (end == v || *end || *out != *out || *out > 1e9 || *out < -1e9) {
-        fprintf(stderr, "bitrain %s: %s: '%s' is not a usable number\n", cmd, opt, v);
-        return -1;
-    }
-    return 1;
+    const opt_spec src[DEM_ARGS_N] = {
+        { "--png-encoding", OPT_CHOICE, &o->png_encoding, 0, 0, 0, PNG_ENCODINGS, "E",
+          "how PNG pixels hold heights (auto: grey PNGs grey, colour ones terrain-RGB)", NULL },
+        { "--scale", OPT_NUM, &o->png_scale, -1e9, 1e9, 0, NULL, "S", "grey PNG: metres = raw * S + O", NULL },
+        { "--offset", OPT_NUM, &o->png_offset, -1e9, 1e9, 0, NULL, "O", "grey PNG: metres added after scaling", NULL },
+        { "--xyz-depth", OPT_FLAG, &o->xyz_depth, 0, 0, 0, NULL, NULL, "XYZ: third column is depth (positive down)", NULL },
+        OPT_END
+    };
+    memcpy(t, src, sizeof src);
 }
 
-int dem_args_parse(dem_opts *o, int argc, char **argv, int *i, const char *cmd)
+void dem_args_finish(dem_opts *o)
 {
-    const char *a = argv[*i], *v = *i + 1 < argc ? argv[*i + 1] : NULL;
-    if (!strcmp(a, "--xyz-depth")) { o->xyz_depth = 1; return 1; }
-    if (!strcmp(a, "--scale") || !strcmp(a, "--offset")) {
-        int r = num_arg(cmd, a, v, a[2] == 's' ? &o->png_scale : &o->png_offset);
-        if (r > 0) (*i)++;
-        return r;
-    }
-    if (!strcmp(a, "--png-encoding")) {
-        if (v && (!strcmp(v, "grey") || !strcmp(v, "gray"))) o->png_encoding = DEM_PNG_GREY;
-        else if (v && !strcmp(v, "terrain-rgb")) o->png_encoding = DEM_PNG_TERRAIN_RGB;
-        else if (v && !strcmp(v, "terrarium")) o->png_encoding = DEM_PNG_TERRARIUM;
-        else {
-            fprintf(stderr, "bitrain %s: --png-encoding must be grey, terrain-rgb or terrarium\n", cmd);
-            return -1;
-        }
-        (*i)++;
-        return 1;
-    }
-    return 0;
+    if (o->png_encoding == PNG_GRAY_INDEX) o->png_encoding = DEM_PNG_GREY;
 }

@@ -1,20 +1,21 @@
-/* platform/dem_args.h — the reader flags every command that reads DEM files
- * accepts (info, hillshade, mesh, render, view, run), parsed in one place:
- *   --png-encoding grey|terrain-rgb|terrarium   how PNG pixels hold heights
- *   --scale S, --offset O                       grey PNG: metres = raw * S + O
- *   --xyz-depth                                 XYZ: third column is depth (positive down)
+/* platform/dem_args.h — the reader flags every command that reads DEM files accepts
+ * (info, hillshade, mesh, render, view, run), as one option table (platform/opt.h):
+ *   --png-encoding auto|grey|terrain-rgb|terrarium   how PNG pixels hold heights
+ *   --scale S, --offset O                            grey PNG: metres = raw * S + O
+ *   --xyz-depth                                      XYZ: third column is depth (positive down)
  * (`info` also accepts --depth for --xyz-depth.) */
 #ifndef BR_DEM_ARGS_H
 #define BR_DEM_ARGS_H
 #include "platform/load.h"
+#include "platform/opt.h"
 
-#define DEM_ARGS_USAGE \
-    "  reader flags: --png-encoding grey|terrain-rgb|terrarium, --scale S --offset O (grey PNG:\n" \
-    "    metres = raw * S + O), --xyz-depth (XYZ third column is depth, positive down)\n"
+#define DEM_ARGS_N 5    /* entries of the table, OPT_END included */
 
-/* If argv[*i] is a reader flag, applies it to o (consuming its value, *i advanced)
- * and returns 1; returns 0 when it is not one; prints "bitrain CMD: ..." and
- * returns -1 when its value is missing or bad. */
-int dem_args_parse(dem_opts *o, int argc, char **argv, int *i, const char *cmd);
+/* Fills t with the reader flags, writing into *o (t points into o: keep both alive
+ * while parsing). */
+void dem_args_table(dem_opts *o, opt_spec t[DEM_ARGS_N]);
+
+/* After opt_parse: turns the parsed spelling into dem_opts' values (gray is grey). */
+void dem_args_finish(dem_opts *o);
 
 #endif

@@ -22,7 +22,8 @@ typedef struct scene_opts {          /* zero = defaults */
     const char *colors;              /* gdaldem color-relief file, or NULL for the built-in ramp */
     const char *texture;             /* colour map / orthophoto PNG over the whole grid, or NULL */
     double sun_az, sun_alt;          /* degrees (both 0: 315, 45) */
-    double ambient;                  /* 0..1 (0: 0.3) */
+    double ambient;                  /* 0..1, used when ambient_set (else 0.3) */
+    int ambient_set;
     double zscale;                   /* vertical scale (0: 1, or automatic for grids without a
                                         georeference whose relief dwarfs the assumed 1 m spacing) */
     int quiet;                       /* do not print the automatic vertical scale */
