@@ -67,7 +67,7 @@ static void report(const char *label, const hf *f, int json)
                "\"unit\":%s,\"z_num\":%d,\"z_den\":%d,\"spacing\":{\"dx\":%.6f,\"dy\":%.6f},"
                "\"origin\":{\"kind\":\"%s\"",
                f->w, f->h, all_void ? "null" : mn, all_void ? "null" : mx, (long long)st.voids, unit,
-               f->z_num, f->z_den, f->dx_um * 1e-6, f->dy_um * 1e-6, kind);
+               f->z_num, f->z_den, (double)f->dx_um * 1e-6, (double)f->dy_um * 1e-6, kind);
         if (f->geo.kind != HF_GEO_NONE)
             printf(",\"x\":%.9f,\"y\":%.9f,\"sx\":%.9f,\"sy\":%.9f", (double)f->geo.x0 * gs,
                    (double)f->geo.y0 * gs, (double)f->geo.sx * gs, (double)f->geo.sy * gs);
@@ -78,7 +78,7 @@ static void report(const char *label, const hf *f, int json)
     if (st.voids == (int64_t)f->w * f->h) printf("  heights: all void\n");
     else printf("  heights: %s .. %s m (kept in units of %s m)\n", mn, mx, unit);
     printf("  voids:   %lld\n", (long long)st.voids);
-    printf("  spacing: %.6f x %.6f m\n", f->dx_um * 1e-6, f->dy_um * 1e-6);
+    printf("  spacing: %.6f x %.6f m\n", (double)f->dx_um * 1e-6, (double)f->dy_um * 1e-6);
     if (f->geo.kind == HF_GEO_DEGREES)
         printf("  origin:  sample (0,0) centre at lon %.9f, lat %.9f; step %.9f x %.9f degrees\n",
                (double)f->geo.x0 * gs, (double)f->geo.y0 * gs, (double)f->geo.sx * gs, (double)f->geo.sy * gs);

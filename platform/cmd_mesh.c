@@ -49,7 +49,7 @@ static int write_mesh(const char *out, int kind, const hf *f, const bt_mesh *m, 
 {
     FILE *fp;
     uint32_t i;
-    double sx = f->dx_um * 1e-6, sy = f->dy_um * 1e-6, sz = (double)f->z_num / f->z_den;
+    double sx = (double)f->dx_um * 1e-6, sy = (double)f->dy_um * 1e-6, sz = (double)f->z_num / f->z_den;
     fp = fopen(out, kind == 2 ? "wb" : "w");
     if (!fp) return br_err_set(e, BR_E_IO, out, "cannot open for writing");
 #define VX(i) (m->v[i].x * sx)

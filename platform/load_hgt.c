@@ -55,8 +55,8 @@ br_status dem_read_hgt(const char *name, const uint8_t *p, size_t n, const dem_o
     } else {
         double m_lat, m_lon;
         dem_m_per_degree(0, &m_lat, &m_lon);
-        f.dx_um = (int32_t)llround(m_lon / (double)(side - 1) * 1e6);
-        f.dy_um = (int32_t)llround(m_lat / (double)(side - 1) * 1e6);
+        f.dx_um = llround(m_lon / (double)(side - 1) * 1e6);
+        f.dy_um = llround(m_lat / (double)(side - 1) * 1e6);
         if (f.dx_um < 1) f.dx_um = 1;
         if (f.dy_um < 1) f.dy_um = 1;
     }

@@ -11,10 +11,10 @@
 #include <stdint.h>
 #include "platform/load.h"
 
-/* Largest decompressed .gz file or .zip member we accept, in bytes (a 16385^2
- * HGT is 537 MB).  The fuzz build lowers it so a zip bomb stays cheap. */
+/* Ceiling on a decompressed .gz file or .zip member, in bytes, on top of the
+ * format caps (dem_format_cap); the fuzz build lowers it so a zip bomb stays cheap. */
 #ifndef DEM_MAX_INFLATE
-#define DEM_MAX_INFLATE ((size_t)1 << 30)
+#define DEM_MAX_INFLATE SIZE_MAX
 #endif
 
 typedef br_status dem_reader(const char *name, const uint8_t *p, size_t n,
@@ -69,10 +69,23 @@ int dem_has_ext(const char *name, const char *ext);
 /* SRTM tile name (N50E008...) in the basename: lower-left corner in degrees. */
 int dem_srtm_name(const char *name, int *lat, int *lon);
 
-/* Inflates src into a malloc'd buffer (windowBits as zlib: 15+16 gzip,
- * -15 raw deflate); at most DEM_MAX_INFLATE bytes. */
-br_status dem_inflate_alloc(const char *name, const uint8_t *src, size_t n, int window_bits,
-                            size_t size_hint, uint8_t **out, size_t *outn, br_err *err);
+/* The most bytes a file of the format shown by its first n bytes (n may be 0)
+ * and its name can have while holding at most BR_MAX_SAMPLES samples; *what
+ * names the format for messages.  Headers that state the size (BT) or the
+ * dimensions (PNG's IHDR) tighten it. */
+uint64_t dem_format_cap(const char *name, const uint8_t *p, size_t n, const char **what);
+/* Reads a regular file whole (malloc'd), refusing other kinds of file and
+ * files beyond dem_format_cap. */
+br_status dem_read_file(const char *path, uint8_t **data, size_t *n, br_err *err);
+
+enum { DEM_DECLARED_NONE = 0, DEM_DECLARED_EXACT = 1, DEM_DECLARED_MOD32 = 2 };
+/* Inflates src into a malloc'd buffer (windowBits as zlib: 15+16 gzip, -15 raw
+ * deflate).  inner names the payload (its format's cap applies); declared is
+ * the size its container states, exactly (zip) or modulo 2^32 (gzip ISIZE).
+ * A zip size beyond the cap is refused before inflating; inflation stops with
+ * BR_E_TOO_BIG one byte past the declared size or the cap (load_io.c). */
+br_status dem_inflate_alloc(const char *name, const char *inner, const uint8_t *src, size_t n, int window_bits,
+                            uint64_t declared, int declared_kind, uint8_t **out, size_t *outn, br_err *err);
 /* Inflates a zlib stream into exactly dn bytes of dst (GeoTIFF deflate tiles). */
 br_status dem_inflate_into(const char *name, const uint8_t *src, size_t n, uint8_t *dst,
                            size_t dn, br_err *err);
