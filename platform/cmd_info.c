@@ -11,13 +11,17 @@
 static void usage(FILE *f)
 {
     fprintf(f, "usage: bitrain info [--json] [--merge] [--png-encoding grey|terrain-rgb|terrarium]\n"
-               "                    [--scale S] [--offset O] [--xyz-depth] FILE...\n"
+               "                    [--scale S] [--offset O] [--xyz-depth] [--nodata V]\n"
+               "                    [--merge-prefer first|last] FILE...\n"
                "  --json          one JSON object per file (or per merge) per line\n"
                "  --merge         merge the files by georeference and report the result\n"
-               "  --png-encoding  how PNG pixels hold heights (default: grey for grey PNGs,\n"
-               "                  terrain-rgb for colour ones)\n"
+               "  --png-encoding  how PNG pixels hold heights (default: grey for grey PNGs and\n"
+               "                  grey palettes, terrain-rgb for colour ones)\n"
                "  --scale S, --offset O  grey PNG: metres = raw * S + O (default 1, 0)\n"
-               "  --xyz-depth     XYZ: the third column is depth (positive down); also --depth\n");
+               "  --xyz-depth     XYZ, GeoClaw: values are depths (positive down); also --depth\n"
+               "  --nodata V      samples equal to V (as the file stores them; or nan) are voids too\n"
+               "  --merge-prefer first|last  where merged tiles disagree, that file's height wins\n"
+               "                  (default: refuse)\n");
 }
 
 /* z * num / den metres as an exact decimal when den divides a power of ten <= 10^9 */

@@ -2,7 +2,11 @@
  * accepts (info, hillshade, mesh, render, view, run), parsed in one place:
  *   --png-encoding grey|terrain-rgb|terrarium   how PNG pixels hold heights
  *   --scale S, --offset O                       grey PNG: metres = raw * S + O
- *   --xyz-depth                                 XYZ: third column is depth (positive down)
+ *   --xyz-depth                                 XYZ, GeoClaw: values are depths (positive down)
+ *   --nodata V                                  samples equal to V are voids too (any finite
+ *                                               number as the file stores it, or nan)
+ *   --merge-prefer first|last                   where merged tiles disagree, that file's height
+ *                                               wins (default: refuse)
  * (`info` also accepts --depth for --xyz-depth.) */
 #ifndef BR_DEM_ARGS_H
 #define BR_DEM_ARGS_H
@@ -10,7 +14,9 @@
 
 #define DEM_ARGS_USAGE \
     "  reader flags: --png-encoding grey|terrain-rgb|terrarium, --scale S --offset O (grey PNG:\n" \
-    "    metres = raw * S + O), --xyz-depth (XYZ third column is depth, positive down)\n"
+    "    metres = raw * S + O), --xyz-depth (XYZ/GeoClaw values are depths, positive down),\n" \
+    "    --nodata V (samples equal to V are voids), --merge-prefer first|last (where merged\n" \
+    "    tiles disagree, that file wins; default: refuse)\n"
 
 /* If argv[*i] is a reader flag, applies it to o (consuming its value, *i advanced)
  * and returns 1; returns 0 when it is not one; prints "bitrain CMD: ..." and

@@ -21,6 +21,15 @@
 
 /* ---- helpers shared by the readers ---- */
 
+static dem_note_fn *note_fn;
+
+void dem_set_note(dem_note_fn *fn) { note_fn = fn; }
+
+void dem_note(const char *name, const char *msg)
+{
+    if (note_fn) note_fn(name, msg);
+}
+
 br_status dem_alloc(hf *out, int64_t w, int64_t h, const char *name, br_err *err)
 {
     br_status s = hf_check_dims(w, h);
@@ -223,7 +232,7 @@ void dem_token_str(const uint8_t *tok, size_t len, char out[32])
 
 int dem_looks_degrees(double xmin, double ymin, double xmax, double ymax, double sx, double sy)
 {
-    return sx <= 0.1 && sy <= 0.1 && xmin >= -360 && xmax <= 360 && ymin >= -90 && ymax <= 90 &&
+    return sx <= 1 && sy <= 1 && xmin >= -360 && xmax <= 360 && ymin >= -90 && ymax <= 90 &&
            !(xmin == 0 && ymin == 0);
 }
 
@@ -460,8 +469,12 @@ static br_status load_mem_depth(const char *name, const uint8_t *p, size_t n, co
     else if (dem_has_ext(en, ".png")) rd = dem_read_png;
     else if (dem_has_ext(en, ".tif") || dem_has_ext(en, ".tiff")) rd = dem_read_tif;
     else if (dem_has_ext(en, ".bt")) rd = dem_read_bt;
+    else if (dem_geoclaw_start(p, n)) rd = dem_read_geoclaw;   /* before the text extensions */
+    else if (dem_has_ext(en, ".tt2") || dem_has_ext(en, ".tt3") || dem_has_ext(en, ".topotype2") ||
+             dem_has_ext(en, ".topotype3")) rd = dem_read_geoclaw;
     else if (dem_has_ext(en, ".asc")) rd = dem_read_asc;
-    else if (dem_has_ext(en, ".xyz") || dem_has_ext(en, ".txt")) rd = dem_read_xyz;
+    else if (dem_has_ext(en, ".xyz") || dem_has_ext(en, ".txt") || dem_has_ext(en, ".tt1") ||
+             dem_has_ext(en, ".topotype1") || dem_has_ext(en, ".txyz")) rd = dem_read_xyz;
     else if (is_text_start(p, n, "ncols") || is_text_start(p, n, "nrows")) rd = dem_read_asc;
     else if (is_square_hgt(n)) rd = dem_read_hgt;
     else if (is_numeric_start(p, n)) rd = dem_read_xyz;
@@ -499,7 +512,7 @@ br_status dem_load_many(const char *const *paths, int n, const dem_opts *o, hf *
     tiles = calloc((size_t)n, sizeof *tiles);
     if (!tiles) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
     for (i = 0; i < n && s == BR_OK; i++) s = dem_load(paths[i], o, &tiles[i], err);
-    if (s == BR_OK) s = dem_merge(tiles, paths, n, out, err);
+    if (s == BR_OK) s = dem_merge_prefer(tiles, paths, n, o ? o->merge_prefer : DEM_MERGE_REFUSE, out, err);
     for (k = 0; k < n; k++) dem_free(&tiles[k]);
     free(tiles);
     return s;

@@ -20,7 +20,11 @@
 typedef br_status dem_reader(const char *name, const uint8_t *p, size_t n,
                              const dem_opts *o, hf *out, br_err *err);
 
-dem_reader dem_read_hgt, dem_read_png, dem_read_asc, dem_read_bt, dem_read_tif, dem_read_xyz;
+dem_reader dem_read_hgt, dem_read_png, dem_read_asc, dem_read_bt, dem_read_tif, dem_read_xyz, dem_read_geoclaw;
+
+/* 1 when the text starts like a GeoClaw topotype 2/3 header: a number, then
+ * a keyword (ncols, nrows, mx, my) on the first line that is not blank. */
+int dem_geoclaw_start(const uint8_t *p, size_t n);
 
 /* Checks w x h against core/hf.h's limits (before allocating), mallocs the
  * heights and sets defaults: unit 1 m, spacing 1 m, no georeference. */
@@ -50,6 +54,14 @@ int32_t dem_float_z(double h, int32_t den);
  * fractions); returns 0 if no approximation within 1e-9 relative exists. */
 int dem_rational(double v, int64_t maxden, int64_t *num, int64_t *den);
 
+/* The values of a text grid (ASC, GeoClaw) from pos: exactly w*h numbers,
+ * north row first; have_nd/nd (the header's) and o->nodata mark voids; negate
+ * for depths.  Heights keep 1 m when all are integers, else the float rule.
+ * fmt names the format in messages.  Fills *out (malloc'd) on success. */
+br_status dem_text_values(const char *name, const char *fmt, const uint8_t *p, size_t n, size_t pos,
+                          int64_t w, int64_t h, int have_nd, double nd, int negate, const dem_opts *o,
+                          hf *out, br_err *err);
+
 /* Text: skips separators (white space; also ',' and ';' when commas) from *pos
  * up to n and reads one number token.  Returns 1 with *v set, 0 at the end of
  * data, -1 for a token that is not a number, -2 for NaN or infinity; *tok and
@@ -59,9 +71,13 @@ int dem_scan_number(const uint8_t *p, size_t n, size_t *pos, int commas, double 
 /* Copies a token for a message: at most 24 printable characters. */
 void dem_token_str(const uint8_t *tok, size_t len, char out[32]);
 
-/* Coordinates that look geographic: a step of at most 0.1 and a grid inside
+/* Coordinates that look geographic: a step of at most 1 (one-degree grids
+ * such as ETOPO's coarsest are geographic) and a grid inside
  * [-360, 360] x [-90, 90] whose first corner is not (0, 0). */
 int dem_looks_degrees(double xmin, double ymin, double xmax, double ymax, double sx, double sy);
+
+/* Passes a note about name to the function set by dem_set_note, if any. */
+void dem_note(const char *name, const char *msg);
 
 const char *dem_basename(const char *name);
 /* 1 if name ends with ext (".hgt"), case-insensitive. */

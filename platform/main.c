@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "platform/cmd.h"
+#include "platform/load.h"
 
 static const struct { const char *name; int (*fn)(int, char **); const char *usage; } cmds[] = {
     { "info",      cmd_info,      "info [--json] [--merge] FILE...      size, heights, voids, spacing, origin" },
@@ -21,9 +22,12 @@ static void usage(FILE *f)
     fprintf(f, "\n`bitrain COMMAND --help` for a command's options.\n");
 }
 
+static void note(const char *name, const char *msg) { fprintf(stderr, "bitrain: %s: %s\n", name, msg); }
+
 int main(int argc, char **argv)
 {
     size_t i;
+    dem_set_note(note);
     if (argc < 2) { usage(stderr); return 2; }
     if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help") || !strcmp(argv[1], "help")) {
         usage(stdout);
