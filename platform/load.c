@@ -233,7 +233,7 @@ void dem_token_str(const uint8_t *tok, size_t len, char out[32])
 int dem_looks_degrees(double xmin, double ymin, double xmax, double ymax, double sx, double sy)
 {
     return sx <= 1 && sy <= 1 && xmin >= -360 && xmax <= 360 && ymin >= -90 && ymax <= 90 &&
-           !(xmin == 0 && ymin == 0);
+           !(fabs(xmin) <= 1e-3 * sx && fabs(ymin) <= 1e-3 * sy);
 }
 
 const char *dem_basename(const char *name)

@@ -161,7 +161,7 @@ br_status dem_read_geoclaw(const char *name, const uint8_t *p, size_t n, const d
     x0 = val[G_X] + (corner[0] ? sx / 2 : 0);
     y0 = val[G_Y] + (corner[1] ? sy / 2 : 0) + (double)(h - 1) * sy;
     /* judged on the data points, as the XYZ reader does (a lab grid starts at (0, 0)) */
-    ymin = y0 - (double)(h - 1) * sy;
+    ymin = val[G_Y] + (corner[1] ? sy / 2 : 0);
     if (dem_looks_degrees(x0, ymin, x0 + (double)(w - 1) * sx, y0, sx, sy))
         s = dem_geo_degrees(&f, x0, y0, sx, sy, name, err);
     else

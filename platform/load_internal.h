@@ -73,7 +73,8 @@ void dem_token_str(const uint8_t *tok, size_t len, char out[32]);
 
 /* Coordinates that look geographic: a step of at most 1 (one-degree grids
  * such as ETOPO's coarsest are geographic) and a grid inside
- * [-360, 360] x [-90, 90] whose first corner is not (0, 0). */
+ * [-360, 360] x [-90, 90] whose first corner is not (0, 0) (within 1/1000
+ * of a step: text rounding; lab grids start there). */
 int dem_looks_degrees(double xmin, double ymin, double xmax, double ymax, double sx, double sy);
 
 /* Passes a note about name to the function set by dem_set_note, if any. */
