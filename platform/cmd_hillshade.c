@@ -59,6 +59,7 @@ int cmd_hillshade(int argc, char **argv)
     hf f;
     br_err err;
     fx_q14 l[3];
+    dem_args da;
     opt_spec dem_t[DEM_ARGS_N];
     const opt_spec own[] = {
         { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT.png", "the image to write", NULL },
@@ -68,12 +69,12 @@ int cmd_hillshade(int argc, char **argv)
     };
     const opt_spec *const tables[] = { own, dem_t, NULL };
     memset(&o, 0, sizeof o);
-    dem_args_table(&o, dem_t);
+    dem_args_table(&da, &o, dem_t);
     r = opt_parse("hillshade", "IN... -o OUT.png [options]\n"
                   "  shaded relief (gdaldem defaults: azimuth 315, altitude 45, z-factor 1); adjacent tiles are merged first",
                   tables, argc, argv, in, 64, &n);
     if (r != OPT_OK) return r == OPT_HELP ? 0 : 2;
-    dem_args_finish(&o);
+    if (dem_args_finish(&da, "hillshade") != OPT_OK) return 2;
     if (!n) { fprintf(stderr, "bitrain hillshade: no input file (`bitrain hillshade --help`)\n"); return 2; }
     if (!out) { fprintf(stderr, "bitrain hillshade: no output file: -o OUT.png\n"); return 2; }
     if (dem_load_many(in, n, &o, &f, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); return 1; }

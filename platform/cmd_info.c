@@ -58,7 +58,7 @@ static void report(const char *label, const hf *f, int json)
                "\"unit\":%s,\"z_num\":%d,\"z_den\":%d,\"spacing\":{\"dx\":%.6f,\"dy\":%.6f},"
                "\"origin\":{\"kind\":\"%s\"",
                f->w, f->h, all_void ? "null" : mn, all_void ? "null" : mx, (long long)st.voids, unit,
-               f->z_num, f->z_den, f->dx_um * 1e-6, f->dy_um * 1e-6, kind);
+               f->z_num, f->z_den, (double)f->dx_um * 1e-6, (double)f->dy_um * 1e-6, kind);
         if (f->geo.kind != HF_GEO_NONE)
             printf(",\"x\":%.9f,\"y\":%.9f,\"sx\":%.9f,\"sy\":%.9f", (double)f->geo.x0 * gs,
                    (double)f->geo.y0 * gs, (double)f->geo.sx * gs, (double)f->geo.sy * gs);
@@ -69,7 +69,7 @@ static void report(const char *label, const hf *f, int json)
     if (st.voids == (int64_t)f->w * f->h) printf("  heights: all void\n");
     else printf("  heights: %s .. %s m (kept in units of %s m)\n", mn, mx, unit);
     printf("  voids:   %lld\n", (long long)st.voids);
-    printf("  spacing: %.6f x %.6f m\n", f->dx_um * 1e-6, f->dy_um * 1e-6);
+    printf("  spacing: %.6f x %.6f m\n", (double)f->dx_um * 1e-6, (double)f->dy_um * 1e-6);
     if (f->geo.kind == HF_GEO_DEGREES)
         printf("  origin:  sample (0,0) centre at lon %.9f, lat %.9f; step %.9f x %.9f degrees\n",
                (double)f->geo.x0 * gs, (double)f->geo.y0 * gs, (double)f->geo.sx * gs, (double)f->geo.sy * gs);
@@ -84,6 +84,7 @@ int cmd_info(int argc, char **argv)
     dem_opts o;
     int json = 0, merge = 0, i, nf = 0, rc = 0, r;
     const char **files = calloc((size_t)(argc > 0 ? argc : 1), sizeof *files);
+    dem_args da;
     opt_spec dem_t[DEM_ARGS_N];
     const opt_spec own[] = {
         { "--json", OPT_FLAG, &json, 0, 0, 0, NULL, NULL, "one JSON object per file (or per merge) per line", NULL },
@@ -94,10 +95,10 @@ int cmd_info(int argc, char **argv)
     const opt_spec *const tables[] = { own, dem_t, NULL };
     memset(&o, 0, sizeof o);
     if (!files) { fprintf(stderr, "bitrain info: out of memory\n"); return 1; }
-    dem_args_table(&o, dem_t);
+    dem_args_table(&da, &o, dem_t);
     r = opt_parse("info", INFO_SYNOPSIS, tables, argc, argv, files, argc > 0 ? argc : 1, &nf);
     if (r != OPT_OK) { free(files); return r == OPT_HELP ? 0 : 2; }
-    dem_args_finish(&o);
+    if (dem_args_finish(&da, "info") != OPT_OK) { free(files); return 2; }
     if (nf == 0) { fprintf(stderr, "bitrain info: no input file (`bitrain info --help`)\n"); free(files); return 2; }
     if (merge) {
         hf f;

@@ -36,7 +36,7 @@ static int write_mesh(FILE *fp, const char *out, int kind, const hf *f, const bt
                       uint32_t nt, br_err *e)
 {
     uint32_t i;
-    double sx = f->dx_um * 1e-6, sy = f->dy_um * 1e-6, sz = (double)f->z_num / f->z_den;
+    double sx = (double)f->dx_um * 1e-6, sy = (double)f->dy_um * 1e-6, sz = (double)f->z_num / f->z_den;
 #define VX(i) (m->v[i].x * sx)
 #define VY(i) ((f->h - 1 - m->v[i].y) * sy)
 #define VZ(i) (m->v[i].z * sz)
@@ -112,6 +112,7 @@ int cmd_mesh(int argc, char **argv)
     uint64_t cnt;
     cam c;
     FILE *fp = NULL;
+    dem_args da;
     opt_spec dem_t[DEM_ARGS_N];
     const opt_spec own[] = {
         { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT", ".obj, .ply or .stl (binary); omit to only print the figures", NULL },
@@ -133,10 +134,10 @@ int cmd_mesh(int argc, char **argv)
     memset(&o, 0, sizeof o);
     memset(&e, 0, sizeof e);
     memset(&f, 0, sizeof f);
-    dem_args_table(&o, dem_t);
+    dem_args_table(&da, &o, dem_t);
     r = opt_parse("mesh", MESH_SYNOPSIS, tables, argc, argv, files, 64, &nf);
     if (r != OPT_OK) return r == OPT_HELP ? 0 : 2;
-    dem_args_finish(&o);
+    if (dem_args_finish(&da, "mesh") != OPT_OK) return 2;
     if (nf == 0) { fprintf(stderr, "bitrain mesh: no input file (`bitrain mesh --help`)\n"); return 2; }
     metric = metric_choice ? BT_METRIC_CURVATURE : BT_METRIC_EXACT;
     kind = out ? out_kind(out) : -1;

@@ -78,6 +78,7 @@ int cmd_render(int argc, char **argv)
     double camv[6], fov = 50, max_err = 0, pix_err = 1;
     scene_opts so;
     scene_args sa;
+    dem_args da;
     opt_spec dem_t[DEM_ARGS_N], look_t[SCENE_ARGS_N];
     const opt_spec own[] = {
         { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT.png", "the image to write", NULL },
@@ -114,11 +115,11 @@ int cmd_render(int argc, char **argv)
     memset(&s, 0, sizeof s);
     memset(&fr, 0, sizeof fr);
     memset(&ps, 0, sizeof ps);
-    dem_args_table(&so.dem, dem_t);
+    dem_args_table(&da, &so.dem, dem_t);
     scene_args_table(&sa, &so, look_t);
     r = opt_parse("render", RENDER_SYNOPSIS, tables, argc, argv, in, 64, &nin);
     if (r != OPT_OK) return r == OPT_HELP ? 0 : 2;
-    dem_args_finish(&so.dem);
+    if (dem_args_finish(&da, "render") != OPT_OK) return 2;
     if (scene_args_finish(&sa, "render") != OPT_OK) return 2;
     if (!nin) { fprintf(stderr, "bitrain render: no input file (`bitrain render --help`)\n"); return 2; }
     if (!out) { fprintf(stderr, "bitrain render: no output file: -o OUT.png\n"); return 2; }

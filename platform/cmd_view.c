@@ -83,6 +83,7 @@ int cmd_view(int argc, char **argv)
     uint32_t *depth = NULL, *last = NULL;
     Uint64 t_prev;
     double mesh_ms = 0, raster_ms = 0, sum_mesh = 0, sum_raster = 0, sum_tri = 0;
+    dem_args da;
     opt_spec dem_t[DEM_ARGS_N], look_t[SCENE_ARGS_N];
     const opt_spec own[] = {
         { "--size", OPT_SIZE, size, 16, RS_MAX_DIM, 0, NULL, "WxH", "window size (default 1024x640)", NULL },
@@ -98,11 +99,11 @@ int cmd_view(int argc, char **argv)
     memset(&so, 0, sizeof so);
     memset(&v, 0, sizeof v);
     v.fov = 60; v.pix_err = 1.5; v.hyst = 1; v.morph = 1;
-    dem_args_table(&so.dem, dem_t);
+    dem_args_table(&da, &so.dem, dem_t);
     scene_args_table(&sa, &so, look_t);
     r = opt_parse("view", VIEW_SYNOPSIS, tables, argc, argv, in, 64, &nin);
     if (r != OPT_OK) return r == OPT_HELP ? 0 : 2;
-    dem_args_finish(&so.dem);
+    if (dem_args_finish(&da, "view") != OPT_OK) return 2;
     if (scene_args_finish(&sa, "view") != OPT_OK) return 2;
     if (!nin) { fprintf(stderr, "bitrain view: no input file (`bitrain view --help`)\n"); return 2; }
     w = size[0];

@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "platform/cmd.h"
+#include "platform/load.h"
 
 /* The release; `bitrain --version` prints it. */
 #define BR_VERSION "0.6.0"
@@ -24,9 +25,12 @@ static void usage(FILE *f)
     fprintf(f, "\n`bitrain COMMAND --help` for a command's options; `bitrain --version` for the release.\n");
 }
 
+static void note(const char *name, const char *msg) { fprintf(stderr, "bitrain: %s: %s\n", name, msg); }
+
 int main(int argc, char **argv)
 {
     size_t i;
+    dem_set_note(note);
     if (argc < 2) { usage(stderr); return 2; }
     if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "version")) {
         printf("bitrain %s\n", BR_VERSION);

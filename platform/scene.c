@@ -130,8 +130,8 @@ br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o
     hf_stats_get(&s->f, &s->st);
     s->zmin_m = (double)hf_z_to_mm(&s->f, s->st.zmin) / 1000;
     s->zmax_m = (double)hf_z_to_mm(&s->f, s->st.zmax) / 1000;
-    s->width_m = (double)(s->f.w - 1) * s->f.dx_um / 1e6;
-    s->depth_m = (double)(s->f.h - 1) * s->f.dy_um / 1e6;
+    s->width_m = (double)(s->f.w - 1) * (double)s->f.dx_um / 1e6;
+    s->depth_m = (double)(s->f.h - 1) * (double)s->f.dy_um / 1e6;
     if (o->colors) {
         if (read_colors(o->colors, &s->ramp, hf_z_to_mm(&s->f, s->st.zmin), hf_z_to_mm(&s->f, s->st.zmax), err) != BR_OK) {
             scene_close(s);
@@ -208,7 +208,7 @@ void scene_default_view(const scene *s, double fovy_deg, double eye[3], double t
 
 double scene_ground(const scene *s, double x, double y)
 {
-    double gx = x * 1e6 / s->f.dx_um, gy = (double)(s->f.h - 1) - y * 1e6 / s->f.dy_um;
+    double gx = x * 1e6 / (double)s->f.dx_um, gy = (double)(s->f.h - 1) - y * 1e6 / (double)s->f.dy_um;
     int32_t z;
     if (!(gx >= 0 && gy >= 0 && gx <= s->f.w - 1 && gy <= s->f.h - 1)) return (double)NAN;
     z = s->f.z[(size_t)lround(gy) * (size_t)s->f.w + (size_t)lround(gx)];
