@@ -1,0 +1,204 @@
+/* tests/test_pictures.c — what the pictures of real DEMs must not show (issue 16,
+ * "wrong pictures"), checked by numbers rather than by golden images:
+ * heights at their real value in the world frame (hugo_site.asc, metre heights on a
+ * 760 m grid: the Q16 vertical scale must fit its int32), line triangles of the
+ * bitree strips that draw nothing (no vertical slivers: fidelity streaks, floating
+ * dashes above the far edge), and grid edges at an odd row or column that the view
+ * mesh reaches whole (no notch per sample). */
+#include <math.h>
+#include "tests/test.h"
+#include "tests/support/btcheck.h"
+#include "core/bitree.h"
+#include "platform/scene.h"
+
+/* ------------------------------------------------------------- vertical scale */
+
+/* World z of sample (x, y) against its height in millimetres, in world units. */
+static int64_t z_error(const scene *s, int32_t x, int32_t y)
+{
+    rs_vertex v;
+    int32_t z = s->f.z[(size_t)y * s->f.w + x];
+    int64_t want = rt_mm_to_world(&s->rt, (int64_t)llround((double)hf_z_to_mm(&s->f, z) * s->zscale));
+    rt_vertex(&s->rt, x, y, z, &v);
+    return v.p[2] > want ? v.p[2] - want : want - v.p[2];
+}
+
+static void test_world_height(void)
+{
+    static const double zs[] = { 1, 3, 40 };
+    const char *in[1];
+    size_t k;
+    in[0] = t_data("asc/hugo_site.asc");
+    for (k = 0; k < sizeof zs / sizeof zs[0]; k++) {
+        scene s;
+        scene_opts o;
+        br_err err;
+        int32_t x, y, bx = -1, by = -1;
+        memset(&o, 0, sizeof o);
+        o.zscale = zs[k];
+        o.quiet = 1;
+        if (scene_open(&s, in, 1, &o, &err) != BR_OK) { CHECK_MSG(0, "%s", err.msg); return; }
+        for (y = 0; y < s.f.h; y++)
+            for (x = 0; x < s.f.w; x++)
+                if (s.f.z[(size_t)y * s.f.w + x] == s.st.zmax) { bx = x; by = y; }
+        CHECK(bx >= 0);
+        CHECK_EQ(hf_z_to_mm(&s.f, s.st.zmax), 1711000);
+        /* within 1 world unit of 1711 m * zscale (rounding of the vertical scale) */
+        CHECK_MSG(z_error(&s, bx, by) <= 1 + (int64_t)zs[k], "zscale %g: world z off by %lld units (2^%d m)",
+                  zs[k], (long long)z_error(&s, bx, by), -s.rt.shift);
+        CHECK(s.rt.shift <= 14);
+        scene_close(&s);
+    }
+}
+
+/* ------------------------------------------------------------- line triangles */
+
+/* Grid-collinear strip triangles of distinct vertices whose heights are off their
+ * line (vertical slivers), except those under the surface that rim_line allows
+ * (void-free grid, middle vertex above the chord, not along the grid's edge). */
+static uint32_t visible_slivers(const bt_tree *t, const bt_mesh *m)
+{
+    uint32_t k, n = 0;
+    int nov = t->nvalid == (int64_t)t->f->w * t->f->h;
+    for (k = 0; k + 2 < m->ns; k++) {
+        const bt_vert *p[3];
+        int64_t dx1, dy1, dx2, dy2, dz1, dz2;
+        int i, mid;
+        if (m->strip[k] == m->strip[k + 1] || m->strip[k + 1] == m->strip[k + 2] || m->strip[k] == m->strip[k + 2])
+            continue;
+        for (i = 0; i < 3; i++) p[i] = &m->v[m->strip[k + i]];
+        dx1 = p[1]->x - p[0]->x; dy1 = p[1]->y - p[0]->y; dz1 = (int64_t)p[1]->z - p[0]->z;
+        dx2 = p[2]->x - p[0]->x; dy2 = p[2]->y - p[0]->y; dz2 = (int64_t)p[2]->z - p[0]->z;
+        if (dx1 * dy2 - dy1 * dx2 != 0) continue;                    /* a real triangle */
+        if (dz1 * dx2 == dz2 * dx1 && dz1 * dy2 == dz2 * dy1) continue; /* flat: draws nothing */
+        /* the middle one of the three along the line */
+        for (mid = 0; mid < 3; mid++) {
+            const bt_vert *a = p[(mid + 1) % 3], *b = p[(mid + 2) % 3], *c = p[mid];
+            int64_t ta = a->x != b->x ? a->x : a->y, tb = a->x != b->x ? b->x : b->y, tc = a->x != b->x ? c->x : c->y;
+            if ((tc - ta) * (tc - tb) < 0) {
+                int edge = (a->x == b->x && (a->x == 0 || a->x == t->f->w - 1)) ||
+                           (a->y == b->y && (a->y == 0 || a->y == t->f->h - 1));
+                int64_t above = ((int64_t)c->z - a->z) * (tb - ta) - ((int64_t)b->z - a->z) * (tc - ta);
+                if (tb < ta) above = -above;
+                if (!(nov && !edge && above > 0)) n++;
+                break;
+            }
+        }
+    }
+    return n;
+}
+
+static void test_line_triangles_draw_nothing(void)
+{
+    const char *in[1];
+    scene s;
+    scene_opts o;
+    br_err err;
+    cam c;
+    double cv[6] = { 37000, 55000, 3000, 45000, 0, 1500 };   /* the issue's dashes */
+    bt_params p;
+    uint64_t nt = 0;
+    int mode;
+    in[0] = "assets/N47E009.hgt.gz";
+    memset(&o, 0, sizeof o);
+    if (scene_open(&s, in, 1, &o, &err) != BR_OK) { CHECK_MSG(0, "%s", err.msg); return; }
+    CHECK_EQ(scene_camera(&s, cv, cv + 3, 60, 1280, 720, &c), BR_OK);
+    CHECK_EQ(scene_tree(&s, &err), BR_OK);
+    CHECK_EQ(scene_reserve(&s, 1200000, &err), BR_OK);
+    for (mode = 0; mode < 3; mode++) {
+        memset(&p, 0, sizeof p);
+        p.mode = mode == 0 ? BT_VIEW : BT_FIDELITY;
+        p.max_err = mode == 1 ? 5 : 20;
+        p.c = &c;
+        p.fr = s.rt.fr;
+        CHECK_EQ(bt_count(&s.tree, &p, &nt), BR_OK);
+        CHECK(nt < 1200000);
+        CHECK_EQ(bt_extract(&s.tree, &p, &s.mesh), BR_OK);
+        CHECK(s.mesh.nline > 1000);
+        CHECK_MSG(visible_slivers(&s.tree, &s.mesh) == 0, "mode %d: %u slivers of %u line triangles", mode,
+                  visible_slivers(&s.tree, &s.mesh), s.mesh.nline);
+    }
+    scene_close(&s);
+}
+
+/* A void-free grid (rim_line's relaxed rule applies) */
+static void test_line_triangles_void_free(void)
+{
+    hf f;
+    bt_tree t;
+    bt_params p;
+    bt_mesh m;
+    void *tm, *sc, *mm = NULL;
+    int32_t x, y;
+    if (btc_load("png/fuji.png", &f)) { CHECK(0); return; }
+    for (y = 0; y < 257; y++)                 /* the north-west 257 x 257 (2^8 + 1): no padding */
+        for (x = 0; x < 257; x++) f.z[y * 257 + x] = f.z[(size_t)y * f.w + x];
+    f.w = f.h = 257;
+    tm = malloc(bt_mem_size(f.w, f.h));
+    sc = malloc(bt_scratch_size(f.w, f.h));
+    CHECK_EQ(bt_build(&t, &f, BT_METRIC_EXACT, tm, bt_mem_size(f.w, f.h), sc, bt_scratch_size(f.w, f.h)), BR_OK);
+    CHECK_EQ(t.nvalid, 257 * 257);
+    memset(&p, 0, sizeof p);
+    p.mode = BT_FIDELITY;
+    p.max_err = 30;
+    CHECK_EQ(btc_extract(&t, &p, 0, &m, &mm), 0);
+    CHECK(m.nline > 100);
+    CHECK_EQ(visible_slivers(&t, &m), 0);
+    free(mm); free(tm); free(sc); free(f.z);
+}
+
+/* ------------------------------------------------------------- odd edges */
+
+/* Colorado (240x144: last row 143, last column 239, both odd): the view mesh,
+ * culling off, covers the whole grid (doubled grid area 2 (w-1)(h-1)). */
+static void test_odd_edges_whole(void)
+{
+    const char *in[1];
+    scene s;
+    scene_opts o;
+    br_err err;
+    cam c;
+    double e[3], tg[3];
+    bt_params p;
+    uint64_t nt = 0, area2 = 0;
+    uint32_t *tri, n, k;
+    int32_t x;
+    in[0] = t_data("asc/colorado_front_range.asc");
+    memset(&o, 0, sizeof o);
+    if (scene_open(&s, in, 1, &o, &err) != BR_OK) { CHECK_MSG(0, "%s", err.msg); return; }
+    scene_default_view(&s, 50, e, tg);
+    CHECK_EQ(scene_camera(&s, e, tg, 50, 640, 400, &c), BR_OK);
+    CHECK_EQ(scene_tree(&s, &err), BR_OK);
+    /* every finest diamond on the last row holds a height range (ZLO <= ZHI) */
+    for (x = 1; x < s.f.w - 1; x++) {
+        uint32_t nv = s.tree.node[(size_t)(s.f.h - 1) * s.tree.n + x];
+        CHECK_MSG(BT_NODE_ZLO(nv) <= BT_NODE_ZHI(nv), "x %d", x);
+    }
+    memset(&p, 0, sizeof p);
+    p.mode = BT_VIEW;
+    p.c = &c;
+    p.fr = s.rt.fr;
+    p.no_cull = 1;
+    CHECK_EQ(bt_count(&s.tree, &p, &nt), BR_OK);
+    CHECK_EQ(scene_reserve(&s, (uint32_t)nt + 16, &err), BR_OK);
+    CHECK_EQ(bt_extract(&s.tree, &p, &s.mesh), BR_OK);
+    tri = malloc(sizeof *tri * 3 * (s.mesh.ns + 1));
+    n = bt_strip_to_list(&s.mesh, tri);
+    for (k = 0; k < n; k++) {
+        const bt_vert *a = &s.mesh.v[tri[3 * k]], *b = &s.mesh.v[tri[3 * k + 1]], *d = &s.mesh.v[tri[3 * k + 2]];
+        int64_t cr = (int64_t)(b->x - a->x) * (d->y - a->y) - (int64_t)(b->y - a->y) * (d->x - a->x);
+        area2 += (uint64_t)(cr < 0 ? -cr : cr);
+    }
+    CHECK_EQ(area2, 2 * (uint64_t)(s.f.w - 1) * (uint64_t)(s.f.h - 1));
+    free(tri);
+    scene_close(&s);
+}
+
+int main(void)
+{
+    T_RUN(test_world_height);
+    T_RUN(test_line_triangles_draw_nothing);
+    T_RUN(test_line_triangles_void_free);
+    T_RUN(test_odd_edges_whole);
+    return t_finish();
+}
