@@ -12,8 +12,8 @@
  * (every STEP-th sample) as row strips instead.  Colours: a gdaldem color-relief file
  * (--colors) or the built-in ramp, lit by a sun (azimuth 315, altitude 45 by default)
  * with 30 % ambient.  --zscale F multiplies heights (default 1; grids without
- * georeference whose relief exceeds half their extent get an automatic scale, since
- * the loader can only assume 1 m spacing for them).  The frame is rendered in bands of ROWS rows (default: whole
+ * georeference get an automatic scale that brings their steep slopes to 0.75, since
+ * the loader can only assume 1 m spacing for them: platform/scene.c).  The frame is rendered in bands of ROWS rows (default: whole
  * frame) and streamed to the PNG band by band.  --texture PNG stretches a colour map or
  * orthophoto over the whole grid (perspective-correct, nearest texel), lit by the sun. */
 #include <ctype.h>

@@ -24,7 +24,8 @@ typedef struct scene_opts {          /* zero = defaults */
     double sun_az, sun_alt;          /* degrees (both 0: 315, 45) */
     double ambient;                  /* 0..1 (0: 0.3) */
     double zscale;                   /* vertical scale (0: 1, or automatic for grids without a
-                                        georeference whose relief dwarfs the assumed 1 m spacing) */
+                                        georeference: 99 % of the slopes at most 0.75 at the
+                                        assumed 1 m spacing) */
     int quiet;                       /* do not print the automatic vertical scale */
 } scene_opts;
 

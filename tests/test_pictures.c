@@ -3,8 +3,9 @@
  * heights at their real value in the world frame (hugo_site.asc, metre heights on a
  * 760 m grid: the Q16 vertical scale must fit its int32), line triangles of the
  * bitree strips that draw nothing (no vertical slivers: fidelity streaks, floating
- * dashes above the far edge), and grid edges at an odd row or column that the view
- * mesh reaches whole (no notch per sample). */
+ * dashes above the far edge), grid edges at an odd row or column that the view
+ * mesh reaches whole (no notch per sample), and the automatic vertical scale of
+ * grids without georeference (plausible relief, no spikes). */
 #include <math.h>
 #include "tests/test.h"
 #include "tests/support/btcheck.h"
@@ -194,11 +195,52 @@ static void test_odd_edges_whole(void)
     scene_close(&s);
 }
 
+/* ------------------------------------------------------------- automatic scale */
+
+/* Grids without georeference: the relief over the extent stays plausible (Puget
+ * Sound's real ratio is about 0.027; 0.25 was a field of spikes); georeferenced
+ * grids keep scale 1. */
+static void test_auto_zscale(void)
+{
+    static const struct { const char *rel; double lo, hi; } c[] = {
+        { "png/ps_height_1k.png", 0.01, 0.05 },   /* relief / extent after scaling */
+        { "png/fuji.png", 0.05, 0.3 },
+    };
+    size_t k;
+    for (k = 0; k < sizeof c / sizeof c[0]; k++) {
+        const char *in[1];
+        scene s;
+        scene_opts o;
+        br_err err;
+        double ratio;
+        in[0] = t_data(c[k].rel);
+        memset(&o, 0, sizeof o);
+        o.quiet = 1;
+        if (scene_open(&s, in, 1, &o, &err) != BR_OK) { CHECK_MSG(0, "%s", err.msg); continue; }
+        ratio = (s.zmax_m - s.zmin_m) / s.width_m;
+        CHECK_MSG(ratio >= c[k].lo && ratio <= c[k].hi, "%s: relief / extent %g (scale %g)", c[k].rel, ratio, s.zscale);
+        scene_close(&s);
+    }
+    {
+        const char *in[1];
+        scene s;
+        scene_opts o;
+        br_err err;
+        in[0] = t_data("asc/colorado_front_range.asc");
+        memset(&o, 0, sizeof o);
+        o.quiet = 1;
+        if (scene_open(&s, in, 1, &o, &err) != BR_OK) { CHECK_MSG(0, "%s", err.msg); return; }
+        CHECK(s.zscale == 1);
+        scene_close(&s);
+    }
+}
+
 int main(void)
 {
     T_RUN(test_world_height);
     T_RUN(test_line_triangles_draw_nothing);
     T_RUN(test_line_triangles_void_free);
     T_RUN(test_odd_edges_whole);
+    T_RUN(test_auto_zscale);
     return t_finish();
 }
