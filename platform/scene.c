@@ -166,6 +166,10 @@ br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o
         return br_err_set(err, BR_E_ARG, in[0], "vertical scale or ambient out of range");
     if (dem_load_many(in, n, &o->dem, &s->f, err) != BR_OK) return err ? err->code : BR_E_IO;
     hf_stats_get(&s->f, &s->st);
+    if (s->st.voids == (int64_t)s->f.w * s->f.h) {
+        dem_free(&s->f);
+        return br_err_set(err, BR_E_VALUE, in[0], "every sample is a void (nodata): nothing to draw");
+    }
     s->zmin_m = (double)hf_z_to_mm(&s->f, s->st.zmin) / 1000;
     s->zmax_m = (double)hf_z_to_mm(&s->f, s->st.zmax) / 1000;
     s->width_m = (double)(s->f.w - 1) * s->f.dx_um / 1e6;

@@ -46,7 +46,8 @@ typedef struct scene {
     void *tree_mem, *mesh_mem;
 } scene;
 
-/* Loads the files (merged when several), the ramp, texture and vertical scale. */
+/* Loads the files (merged when several), the ramp, texture and vertical scale.
+ * A grid whose every sample is a void is refused (BR_E_VALUE): nothing to draw. */
 br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o, br_err *err);
 /* Builds the bitree (exact metric) once. */
 br_status scene_tree(scene *s, br_err *err);

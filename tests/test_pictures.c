@@ -5,11 +5,15 @@
  * bitree strips that draw nothing (no vertical slivers: fidelity streaks, floating
  * dashes above the far edge), grid edges at an odd row or column that the view
  * mesh reaches whole (no notch per sample), and the automatic vertical scale of
- * grids without georeference (plausible relief, no spikes). */
+ * grids without georeference (plausible relief, no spikes), small grids in the
+ * default view's frame, all-void grids refused. */
 #include <math.h>
 #include "tests/test.h"
 #include "tests/support/btcheck.h"
 #include "core/bitree.h"
+#include "platform/cmd.h"
+#include "platform/load.h"
+#include "platform/png_io.h"
 #include "platform/scene.h"
 
 /* ------------------------------------------------------------- vertical scale */
@@ -235,6 +239,71 @@ static void test_auto_zscale(void)
     }
 }
 
+/* ------------------------------------------------------------- small grids */
+
+/* Writes the n x n block of f at (x0, y0) as an ESRI ASCII grid with 10 m cells
+ * (nodata -9999; all void when void_all). */
+static int write_asc(const char *path, const hf *f, int32_t x0, int32_t y0, int32_t n, int void_all)
+{
+    FILE *fp = fopen(path, "w");
+    int32_t x, y;
+    if (!fp) return -1;
+    fprintf(fp, "ncols %d\nnrows %d\nxllcorner 0\nyllcorner 0\ncellsize 10\nNODATA_value -9999\n", n, n);
+    for (y = 0; y < n; y++) {
+        for (x = 0; x < n; x++) {
+            int32_t z = f->z[(size_t)(y0 + y) * f->w + x0 + x];
+            fprintf(fp, "%s%ld", x ? " " : "", void_all ? -9999L : (long)hf_z_to_mm(f, z) / 1000);
+        }
+        fputc('\n', fp);
+    }
+    return fclose(fp) == 0 ? 0 : -1;
+}
+
+/* Share (per mille) of non-sky pixels and their centroid, in per mille of the frame. */
+static int terrain_stats(const char *path, int *cx, int *cy)
+{
+    int w, h, i, n = 0;
+    long sx = 0, sy = 0;
+    uint8_t *rgb;
+    br_err err;
+    if (png_read_rgb(path, &w, &h, &rgb, &err) != BR_OK) return -1;
+    for (i = 0; i < w * h; i++)
+        if (!(rgb[3 * i] == 0x99 && rgb[3 * i + 1] == 0xcc && rgb[3 * i + 2] == 0xff)) { n++; sx += i % w; sy += i / w; }
+    free(rgb);
+    *cx = n ? (int)(sx * 1000 / n / w) : -1;
+    *cy = n ? (int)(sy * 1000 / n / h) : -1;
+    return (int)((long)n * 1000 / ((long)w * h));
+}
+
+/* Crops of 2x2 to 17x17 samples of hugo_site.asc (metre heights near 1,700 m on
+ * 10 m cells: world unit 2^-14 m) with the default view: the terrain is in the
+ * frame and near its centre.  An all-void grid is refused. */
+static void test_small_grids(void)
+{
+    static const int32_t sizes[] = { 2, 3, 4, 5, 8, 9, 16, 17 };
+    hf f;
+    br_err err;
+    size_t k;
+    char asc[256], png[256], sz[] = "--size", wh[] = "160x100", o[] = "-o";
+    char *argv[6];
+    if (dem_load(t_data("asc/hugo_site.asc"), NULL, &f, &err) != BR_OK) { CHECK_MSG(0, "%s", err.msg); return; }
+    snprintf(asc, sizeof asc, "%s/small.asc", t_outdir());
+    snprintf(png, sizeof png, "%s/small.png", t_outdir());
+    argv[0] = asc; argv[1] = sz; argv[2] = wh; argv[3] = o; argv[4] = png; argv[5] = NULL;
+    for (k = 0; k < sizeof sizes / sizeof sizes[0]; k++) {
+        int pm, cx = -1, cy = -1;
+        CHECK_EQ(write_asc(asc, &f, 32, 3, sizes[k], 0), 0);
+        CHECK_EQ(cmd_render(5, argv), 0);
+        pm = terrain_stats(png, &cx, &cy);
+        CHECK_MSG(pm >= 30, "%dx%d: %d per mille terrain", sizes[k], sizes[k], pm);
+        CHECK_MSG(cx > 350 && cx < 650 && cy > 300 && cy < 700, "%dx%d: terrain centred at (%d, %d) per mille",
+                  sizes[k], sizes[k], cx, cy);
+    }
+    CHECK_EQ(write_asc(asc, &f, 32, 3, 4, 1), 0);
+    CHECK(cmd_render(5, argv) != 0);
+    dem_free(&f);
+}
+
 int main(void)
 {
     T_RUN(test_world_height);
@@ -242,5 +311,6 @@ int main(void)
     T_RUN(test_line_triangles_void_free);
     T_RUN(test_odd_edges_whole);
     T_RUN(test_auto_zscale);
+    T_RUN(test_small_grids);
     return t_finish();
 }
