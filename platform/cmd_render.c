@@ -149,26 +149,44 @@ int cmd_render(int argc, char **argv)
 
     /* mesh */
     if (full_step > 0) {
-        int32_t gw = (s.f.w - 1) / full_step + 1, gh = (s.f.h - 1) / full_step + 1, x, y;
+        int32_t gw = (s.f.w - 1) / full_step + 1, gh = (s.f.h - 1) / full_step + 1, x, y, pass;
+        size_t nruns = 0;
         nv = (uint32_t)gw * (uint32_t)gh;
         verts = malloc(sizeof *verts * nv);
         idx = malloc(sizeof *idx * (size_t)2 * (size_t)gw * (size_t)(gh - 1 > 0 ? gh - 1 : 1));
-        prims = malloc(sizeof *prims * (size_t)(gh > 1 ? gh - 1 : 1));
-        if (!verts || !idx || !prims) { fprintf(stderr, "bitrain: out of memory\n"); goto done; }
+        if (!verts || !idx) { fprintf(stderr, "bitrain: out of memory\n"); goto done; }
         for (y = 0; y < gh; y++)
             for (x = 0; x < gw; x++) {
                 int32_t z = s.f.z[(size_t)y * full_step * (size_t)s.f.w + (size_t)x * full_step];
                 rt_vertex(&s.rt, x * full_step, y * full_step, z == HF_NODATA ? 0 : z, &verts[y * gw + x]);
             }
-        /* row strips, south-west first vertex: CCW seen from +z (row y is north of y+1) */
-        for (y = 0; y + 1 < gh; y++) {
-            uint32_t *sp = idx + nidx;
-            for (x = 0; x < gw; x++) {
-                sp[2 * x] = (uint32_t)(y * gw + x);
-                sp[2 * x + 1] = (uint32_t)((y + 1) * gw + x);
+        /* row strips, south-west first vertex: CCW seen from +z (row y is north of y+1),
+         * one per run of columns whose two samples are valid: a void is a hole, as in
+         * the bitree's meshes (no triangle touches a void sample) */
+        for (pass = 0; pass < 2; pass++) {
+            if (pass == 1 && !(prims = malloc(sizeof *prims * (nruns ? nruns : 1)))) {
+                fprintf(stderr, "bitrain: out of memory\n");
+                goto done;
             }
-            prims[nprims].kind = RS_STRIP; prims[nprims].n = (uint32_t)(2 * gw); prims[nprims].idx = sp;
-            nprims++; nidx += (uint32_t)(2 * gw);
+            for (y = 0; y + 1 < gh; y++) {
+                int32_t a = 0, b;
+                while (a < gw) {
+                    const int32_t *zr = s.f.z + (size_t)y * full_step * (size_t)s.f.w;
+                    const int32_t *zn = s.f.z + (size_t)(y + 1) * full_step * (size_t)s.f.w;
+                    for (b = a; b < gw && zr[(size_t)b * full_step] != HF_NODATA && zn[(size_t)b * full_step] != HF_NODATA; b++) {}
+                    if (b - a >= 2 && pass == 0) nruns++;
+                    else if (b - a >= 2) {
+                        uint32_t *sp = idx + nidx;
+                        for (x = a; x < b; x++) {
+                            sp[2 * (x - a)] = (uint32_t)(y * gw + x);
+                            sp[2 * (x - a) + 1] = (uint32_t)((y + 1) * gw + x);
+                        }
+                        prims[nprims].kind = RS_STRIP; prims[nprims].n = (uint32_t)(2 * (b - a)); prims[nprims].idx = sp;
+                        nprims++; nidx += (uint32_t)(2 * (b - a));
+                    }
+                    a = b + 1;
+                }
+            }
         }
     } else {
         bt_params bp;

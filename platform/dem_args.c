@@ -20,6 +20,8 @@ int dem_args_parse(dem_opts *o, int argc, char **argv, int *i, const char *cmd)
 {
     const char *a = argv[*i], *v = *i + 1 < argc ? argv[*i + 1] : NULL;
     if (!strcmp(a, "--xyz-depth")) { o->xyz_depth = 1; return 1; }
+    /* voids (platform/fill.h) */
+    if (!strcmp(a, "--fill-voids")) { o->fill_voids = 1; return 1; }
     if (!strcmp(a, "--scale") || !strcmp(a, "--offset")) {
         int r = num_arg(cmd, a, v, a[2] == 's' ? &o->png_scale : &o->png_offset);
         if (r > 0) (*i)++;

@@ -3,6 +3,7 @@
  *   --png-encoding grey|terrain-rgb|terrarium   how PNG pixels hold heights
  *   --scale S, --offset O                       grey PNG: metres = raw * S + O
  *   --xyz-depth                                 XYZ: third column is depth (positive down)
+ *   --fill-voids                                fill voids from their borders (platform/fill.h)
  * (`info` also accepts --depth for --xyz-depth.) */
 #ifndef BR_DEM_ARGS_H
 #define BR_DEM_ARGS_H
@@ -10,7 +11,8 @@
 
 #define DEM_ARGS_USAGE \
     "  reader flags: --png-encoding grey|terrain-rgb|terrarium, --scale S --offset O (grey PNG:\n" \
-    "    metres = raw * S + O), --xyz-depth (XYZ third column is depth, positive down)\n"
+    "    metres = raw * S + O), --xyz-depth (XYZ third column is depth, positive down),\n" \
+    "    --fill-voids (voids take the inverse-distance mean of the valid samples around them)\n"
 
 /* If argv[*i] is a reader flag, applies it to o (consuming its value, *i advanced)
  * and returns 1; returns 0 when it is not one; prints "bitrain CMD: ..." and

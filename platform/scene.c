@@ -157,6 +157,7 @@ static void apply_zscale(scene *s, const scene_opts *o, const char *name)
 br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o, br_err *err)
 {
     scene_opts d;
+    dem_opts dd;
     fx_q14 sun[3];
     int def_sun;
     memset(s, 0, sizeof *s);
@@ -164,7 +165,11 @@ br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o
     if (!o) o = &d;
     if (!(o->zscale >= 0 && o->zscale <= 1000) || !(o->ambient >= 0 && o->ambient <= 1))
         return br_err_set(err, BR_E_ARG, in[0], "vertical scale or ambient out of range");
-    if (dem_load_many(in, n, &o->dem, &s->f, err) != BR_OK) return err ? err->code : BR_E_IO;
+    dd = o->dem;
+    dd.filled_out = &s->filled;
+    if (dem_load_many(in, n, &dd, &s->f, err) != BR_OK) return err ? err->code : BR_E_IO;
+    if (dd.fill_voids && !o->quiet)
+        printf("%s: %lld void samples filled from their borders (--fill-voids)\n", in[0], (long long)s->filled);
     hf_stats_get(&s->f, &s->st);
     if (s->st.voids == (int64_t)s->f.w * s->f.h) {
         dem_free(&s->f);

@@ -37,6 +37,7 @@ typedef struct scene {
     rs_texture tex;                  /* valid when rt.tex_w > 0 */
     uint32_t *texpx;
     double zscale;
+    int64_t filled;                  /* samples filled by --fill-voids (dem_opts.fill_voids) */
     double width_m, depth_m, zmin_m, zmax_m;  /* extent; heights times zscale */
     /* bitree paths (scene_tree, scene_reserve) */
     bt_tree tree;

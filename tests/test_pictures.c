@@ -6,12 +6,14 @@
  * dashes above the far edge), grid edges at an odd row or column that the view
  * mesh reaches whole (no notch per sample), and the automatic vertical scale of
  * grids without georeference (plausible relief, no spikes), small grids in the
- * default view's frame, all-void grids refused. */
+ * default view's frame, all-void grids refused, voids as holes in every path and
+ * --fill-voids. */
 #include <math.h>
 #include "tests/test.h"
 #include "tests/support/btcheck.h"
 #include "core/bitree.h"
 #include "platform/cmd.h"
+#include "platform/fill.h"
 #include "platform/load.h"
 #include "platform/png_io.h"
 #include "platform/scene.h"
@@ -304,6 +306,113 @@ static void test_small_grids(void)
     dem_free(&f);
 }
 
+/* ------------------------------------------------------------- voids */
+
+/* --fill-voids: a square hole cut into real terrain (N47E009, 24x24 samples) is
+ * filled from its border, inside the border's range and close to the removed
+ * heights; a hole farther than DEM_FILL_MAX_DIST from any valid sample stays. */
+static void test_fill_voids(void)
+{
+    hf f;
+    br_err err;
+    dem_opts o;
+    int64_t filled = -1, sum = 0, n = 0;
+    int32_t x, y, x0 = 600, y0 = 300, k = 24, lo = INT32_MAX, hi = INT32_MIN, *orig;
+    const char *in[1];
+    in[0] = "assets/N47E009.hgt.gz";
+    memset(&o, 0, sizeof o);
+    if (dem_load_many(in, 1, &o, &f, &err) != BR_OK) { CHECK_MSG(0, "%s", err.msg); return; }
+    orig = malloc(sizeof *orig * (size_t)k * k);
+    for (y = y0 - 1; y <= y0 + k; y++)
+        for (x = x0 - 1; x <= x0 + k; x++) {
+            int32_t z = f.z[(size_t)y * f.w + x];
+            if (x >= x0 && x < x0 + k && y >= y0 && y < y0 + k) {
+                orig[(y - y0) * k + x - x0] = z;
+                f.z[(size_t)y * f.w + x] = HF_NODATA;
+            } else { lo = z < lo ? z : lo; hi = z > hi ? z : hi; }
+        }
+    CHECK_EQ(dem_fill_voids(&f, &filled, &err), BR_OK);
+    CHECK_EQ(filled, (int64_t)k * k);
+    for (y = y0; y < y0 + k; y++)
+        for (x = x0; x < x0 + k; x++) {
+            int32_t z = f.z[(size_t)y * f.w + x], d = z - orig[(y - y0) * k + x - x0];
+            CHECK(z >= lo && z <= hi);
+            sum += d < 0 ? -d : d;
+            n++;
+        }
+    /* mean error against the removed heights, m (the hole spans 1.5 km of hills) */
+    CHECK_MSG(sum <= 60 * n, "mean |filled - original| %lld m", (long long)(sum / n));
+    dem_free(&f);
+    free(orig);
+    /* out of reach: a 300 x 300 void in the middle of a 301 x 301 grid of one valid ring */
+    {
+        hf g;
+        int32_t *z = malloc(sizeof *z * 401 * 401);
+        memset(&g, 0, sizeof g);
+        g.w = g.h = 401; g.z = z; g.z_num = g.z_den = 1; g.dx_um = g.dy_um = 1000000;
+        for (y = 0; y < 401; y++)
+            for (x = 0; x < 401; x++) z[y * 401 + x] = (x == 0 || y == 0 || x == 400 || y == 400) ? 100 : HF_NODATA;
+        CHECK_EQ(dem_fill_voids(&g, &filled, &err), BR_OK);
+        CHECK_EQ(z[200 * 401 + 200], HF_NODATA);     /* 200 samples from the ring */
+        CHECK_EQ(z[50 * 401 + 50], 100);
+        CHECK(filled > 0 && filled < 399 * 399);
+        free(z);
+    }
+    /* through the reader flag */
+    o.fill_voids = 1;
+    o.filled_out = &filled;
+    in[0] = t_data("asc/hugo_site.asc");
+    if (dem_load_many(in, 1, &o, &f, &err) != BR_OK) { CHECK_MSG(0, "%s", err.msg); return; }
+    CHECK_EQ(filled, 2028);
+    dem_free(&f);
+}
+
+/* One rule for voids, the bitree's: a hole.  --full used to draw a void sample at
+ * 0 m, a pit; looking straight down into a hole cut into hugo_site, its centre
+ * shows the sky in both paths. */
+static void test_void_is_hole(void)
+{
+    hf f;
+    br_err err;
+    char asc[256], png[256], sz[] = "--size", wh[] = "64x64", o[] = "-o", camo[] = "--camera";
+    char cv[] = "80,80,2400,80,80.5,1600", fov[] = "--fov", fv[] = "10", full[] = "--full";
+    char *argv[10];
+    int pass;
+    if (dem_load(t_data("asc/hugo_site.asc"), NULL, &f, &err) != BR_OK) { CHECK_MSG(0, "%s", err.msg); return; }
+    snprintf(asc, sizeof asc, "%s/hole.asc", t_outdir());
+    snprintf(png, sizeof png, "%s/hole.png", t_outdir());
+    {
+        /* the 17 x 17 valid block of test_small_grids with its 5 x 5 centre void */
+        FILE *fp = fopen(asc, "w");
+        int32_t x, y;
+        CHECK(fp != NULL);
+        if (!fp) { dem_free(&f); return; }
+        fprintf(fp, "ncols 17\nnrows 17\nxllcorner 0\nyllcorner 0\ncellsize 10\nNODATA_value -9999\n");
+        for (y = 0; y < 17; y++) {
+            for (x = 0; x < 17; x++) {
+                long z = (long)hf_z_to_mm(&f, f.z[(size_t)(3 + y) * f.w + 32 + x]) / 1000;
+                fprintf(fp, "%s%ld", x ? " " : "", (x >= 6 && x <= 10 && y >= 6 && y <= 10) ? -9999L : z);
+            }
+            fputc('\n', fp);
+        }
+        fclose(fp);
+    }
+    dem_free(&f);
+    for (pass = 0; pass < 2; pass++) {
+        uint8_t *rgb;
+        int w, h;
+        argv[0] = asc; argv[1] = sz; argv[2] = wh; argv[3] = o; argv[4] = png; argv[5] = camo; argv[6] = cv;
+        argv[7] = fov; argv[8] = fv; argv[9] = full;
+        CHECK_EQ(cmd_render(pass ? 10 : 9, argv), 0);
+        if (png_read_rgb(png, &w, &h, &rgb, &err) != BR_OK) { CHECK(0); continue; }
+        CHECK_MSG(rgb[3 * (32 * w + 32)] == 0x99 && rgb[3 * (32 * w + 32) + 1] == 0xcc && rgb[3 * (32 * w + 32) + 2] == 0xff,
+                  "%s: the hole shows #%02x%02x%02x", pass ? "--full" : "bitree", rgb[3 * (32 * w + 32)],
+                  rgb[3 * (32 * w + 32) + 1], rgb[3 * (32 * w + 32) + 2]);
+        CHECK(rgb[0] != 0x99 || rgb[1] != 0xcc);        /* the terrain around it is drawn */
+        free(rgb);
+    }
+}
+
 int main(void)
 {
     T_RUN(test_world_height);
@@ -312,5 +421,7 @@ int main(void)
     T_RUN(test_odd_edges_whole);
     T_RUN(test_auto_zscale);
     T_RUN(test_small_grids);
+    T_RUN(test_fill_voids);
+    T_RUN(test_void_is_hole);
     return t_finish();
 }
