@@ -40,7 +40,7 @@ static void json_str(const char *s)
     putchar('"');
 }
 
-static void report(const char *label, const hf *f, int json)
+static void report(const char *label, const hf *f, int json, int64_t filled)
 {
     hf_stats st;
     char mn[48], mx[48], unit[48];
@@ -62,13 +62,16 @@ static void report(const char *label, const hf *f, int json)
         if (f->geo.kind != HF_GEO_NONE)
             printf(",\"x\":%.9f,\"y\":%.9f,\"sx\":%.9f,\"sy\":%.9f", (double)f->geo.x0 * gs,
                    (double)f->geo.y0 * gs, (double)f->geo.sx * gs, (double)f->geo.sy * gs);
-        printf("}}\n");
+        printf("}");
+        if (filled >= 0) printf(",\"filled\":%lld", (long long)filled);
+        printf("}\n");
         return;
     }
     printf("%s: %dx%d samples\n", label, f->w, f->h);
     if (st.voids == (int64_t)f->w * f->h) printf("  heights: all void\n");
     else printf("  heights: %s .. %s m (kept in units of %s m)\n", mn, mx, unit);
     printf("  voids:   %lld\n", (long long)st.voids);
+    if (filled >= 0) printf("  filled:  %lld voids (--fill-voids: inverse-distance mean of the border)\n", (long long)filled);
     printf("  spacing: %.6f x %.6f m\n", (double)f->dx_um * 1e-6, (double)f->dy_um * 1e-6);
     if (f->geo.kind == HF_GEO_DEGREES)
         printf("  origin:  sample (0,0) centre at lon %.9f, lat %.9f; step %.9f x %.9f degrees\n",
@@ -83,6 +86,7 @@ int cmd_info(int argc, char **argv)
 {
     dem_opts o;
     int json = 0, merge = 0, i, nf = 0, rc = 0, r;
+    int64_t filled = 0;
     const char **files = calloc((size_t)(argc > 0 ? argc : 1), sizeof *files);
     dem_args da;
     opt_spec dem_t[DEM_ARGS_N];
@@ -94,6 +98,7 @@ int cmd_info(int argc, char **argv)
     };
     const opt_spec *const tables[] = { own, dem_t, NULL };
     memset(&o, 0, sizeof o);
+    o.filled_out = &filled;
     if (!files) { fprintf(stderr, "bitrain info: out of memory\n"); return 1; }
     dem_args_table(&da, &o, dem_t);
     r = opt_parse("info", INFO_SYNOPSIS, tables, argc, argv, files, argc > 0 ? argc : 1, &nf);
@@ -107,19 +112,19 @@ int cmd_info(int argc, char **argv)
             fprintf(stderr, "bitrain info: %s\n", e.msg);
             rc = 1;
         } else {
-            report(nf == 1 ? files[0] : "merged", &f, json);
+            report(nf == 1 ? files[0] : "merged", &f, json, o.fill_voids ? filled : -1);
             dem_free(&f);
         }
     } else {
         for (i = 0; i < nf; i++) {
             hf f;
             br_err e;
-            if (dem_load(files[i], &o, &f, &e) != BR_OK) {
+            if (dem_load_many(&files[i], 1, &o, &f, &e) != BR_OK) {
                 fprintf(stderr, "bitrain info: %s\n", e.msg);
                 rc = 1;
                 continue;
             }
-            report(files[i], &f, json);
+            report(files[i], &f, json, o.fill_voids ? filled : -1);
             dem_free(&f);
         }
     }

@@ -12,8 +12,8 @@
  * (every STEP-th sample) as row strips instead.  Colours: a gdaldem color-relief file
  * (--colors) or the built-in ramp, lit by a sun (azimuth 315, altitude 45 by default)
  * with 30 % ambient.  --zscale F multiplies heights (default 1; grids without
- * georeference whose relief exceeds half their extent get an automatic scale, since
- * the loader can only assume 1 m spacing for them).  The frame is rendered in bands of ROWS rows (default: whole
+ * georeference get an automatic scale that brings their steep slopes to 0.75, since
+ * the loader can only assume 1 m spacing for them: platform/scene.c).  The frame is rendered in bands of ROWS rows (default: whole
  * frame) and streamed to the PNG band by band.  --texture PNG stretches a colour map or
  * orthophoto over the whole grid (perspective-correct, nearest texel), lit by the sun. */
 #include <ctype.h>
@@ -143,26 +143,44 @@ int cmd_render(int argc, char **argv)
 
     /* mesh */
     if (full_step > 0) {
-        int32_t gw = (s.f.w - 1) / full_step + 1, gh = (s.f.h - 1) / full_step + 1, x, y;
+        int32_t gw = (s.f.w - 1) / full_step + 1, gh = (s.f.h - 1) / full_step + 1, x, y, pass;
+        size_t nruns = 0;
         nv = (uint32_t)gw * (uint32_t)gh;
         verts = malloc(sizeof *verts * nv);
         idx = malloc(sizeof *idx * (size_t)2 * (size_t)gw * (size_t)(gh - 1 > 0 ? gh - 1 : 1));
-        prims = malloc(sizeof *prims * (size_t)(gh > 1 ? gh - 1 : 1));
-        if (!verts || !idx || !prims) { fprintf(stderr, "bitrain: out of memory\n"); goto done; }
+        if (!verts || !idx) { fprintf(stderr, "bitrain: out of memory\n"); goto done; }
         for (y = 0; y < gh; y++)
             for (x = 0; x < gw; x++) {
                 int32_t z = s.f.z[(size_t)y * full_step * (size_t)s.f.w + (size_t)x * full_step];
                 rt_vertex(&s.rt, x * full_step, y * full_step, z == HF_NODATA ? 0 : z, &verts[y * gw + x]);
             }
-        /* row strips, south-west first vertex: CCW seen from +z (row y is north of y+1) */
-        for (y = 0; y + 1 < gh; y++) {
-            uint32_t *sp = idx + nidx;
-            for (x = 0; x < gw; x++) {
-                sp[2 * x] = (uint32_t)(y * gw + x);
-                sp[2 * x + 1] = (uint32_t)((y + 1) * gw + x);
+        /* row strips, south-west first vertex: CCW seen from +z (row y is north of y+1),
+         * one per run of columns whose two samples are valid: a void is a hole, as in
+         * the bitree's meshes (no triangle touches a void sample) */
+        for (pass = 0; pass < 2; pass++) {
+            if (pass == 1 && !(prims = malloc(sizeof *prims * (nruns ? nruns : 1)))) {
+                fprintf(stderr, "bitrain: out of memory\n");
+                goto done;
             }
-            prims[nprims].kind = RS_STRIP; prims[nprims].n = (uint32_t)(2 * gw); prims[nprims].idx = sp;
-            nprims++; nidx += (uint32_t)(2 * gw);
+            for (y = 0; y + 1 < gh; y++) {
+                int32_t a = 0, b;
+                while (a < gw) {
+                    const int32_t *zr = s.f.z + (size_t)y * full_step * (size_t)s.f.w;
+                    const int32_t *zn = s.f.z + (size_t)(y + 1) * full_step * (size_t)s.f.w;
+                    for (b = a; b < gw && zr[(size_t)b * full_step] != HF_NODATA && zn[(size_t)b * full_step] != HF_NODATA; b++) {}
+                    if (b - a >= 2 && pass == 0) nruns++;
+                    else if (b - a >= 2) {
+                        uint32_t *sp = idx + nidx;
+                        for (x = a; x < b; x++) {
+                            sp[2 * (x - a)] = (uint32_t)(y * gw + x);
+                            sp[2 * (x - a) + 1] = (uint32_t)((y + 1) * gw + x);
+                        }
+                        prims[nprims].kind = RS_STRIP; prims[nprims].n = (uint32_t)(2 * (b - a)); prims[nprims].idx = sp;
+                        nprims++; nidx += (uint32_t)(2 * (b - a));
+                    }
+                    a = b + 1;
+                }
+            }
         }
     } else {
         bt_params bp;

@@ -20,6 +20,8 @@ void dem_args_table(dem_args *a, dem_opts *o, opt_spec t[DEM_ARGS_N])
           "samples equal to V (as the file stores it, or nan) are voids too", NULL },
         { "--merge-prefer", OPT_CHOICE, &a->merge_choice, 0, 0, 0, "none|first|last", "F",
           "where merged tiles disagree, that file's height wins (default none: refuse)", NULL },
+        { "--fill-voids", OPT_FLAG, &o->fill_voids, 0, 0, 0, NULL, NULL,
+          "fill voids from their borders, as gdal_fillnodata (default: voids are holes)", NULL },
         OPT_END
     };
     memset(a, 0, sizeof *a);

@@ -7,13 +7,14 @@
  *                                                    number as the file stores it, or nan)
  *   --merge-prefer first|last                        where merged tiles disagree, that file's height
  *                                                    wins (default: refuse)
+ *   --fill-voids                                     fill voids from their borders (platform/fill.h)
  * (`info` also accepts --depth for --xyz-depth.) */
 #ifndef BR_DEM_ARGS_H
 #define BR_DEM_ARGS_H
 #include "platform/load.h"
 #include "platform/opt.h"
 
-#define DEM_ARGS_N 7    /* entries of the table, OPT_END included */
+#define DEM_ARGS_N 8    /* entries of the table, OPT_END included */
 
 typedef struct dem_args {
     dem_opts *o;

@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <zlib.h>
+#include "platform/fill.h"
 #include "platform/load.h"
 #include "platform/load_internal.h"
 #include "platform/merge.h"
@@ -508,13 +509,16 @@ br_status dem_load_many(const char *const *paths, int n, const dem_opts *o, hf *
     int i, k;
     br_status s = BR_OK;
     if (n < 1 || !paths) return br_err_set(err, BR_E_ARG, NULL, "no input files");
-    if (n == 1) return dem_load(paths[0], o, out, err);
-    tiles = calloc((size_t)n, sizeof *tiles);
-    if (!tiles) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
-    for (i = 0; i < n && s == BR_OK; i++) s = dem_load(paths[i], o, &tiles[i], err);
-    if (s == BR_OK) s = dem_merge_prefer(tiles, paths, n, o ? o->merge_prefer : DEM_MERGE_REFUSE, out, err);
-    for (k = 0; k < n; k++) dem_free(&tiles[k]);
-    free(tiles);
+    if (n == 1) s = dem_load(paths[0], o, out, err);
+    else {
+        tiles = calloc((size_t)n, sizeof *tiles);
+        if (!tiles) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
+        for (i = 0; i < n && s == BR_OK; i++) s = dem_load(paths[i], o, &tiles[i], err);
+        if (s == BR_OK) s = dem_merge_prefer(tiles, paths, n, o ? o->merge_prefer : DEM_MERGE_REFUSE, out, err);
+        for (k = 0; k < n; k++) dem_free(&tiles[k]);
+        free(tiles);
+    }
+    if (s == BR_OK && o && o->fill_voids && (s = dem_fill_voids(out, o->filled_out, err)) != BR_OK) dem_free(out);
     return s;
 }
 

@@ -25,6 +25,8 @@ typedef struct dem_opts {     /* zero = defaults */
                                  sample; terrain-RGB, Terrarium: metres); NaN: NaN samples of
                                  float TIFF and BT files are voids */
     int merge_prefer;         /* DEM_MERGE_*: what a merge does where tiles disagree */
+    int fill_voids;           /* dem_load_many: fill voids from their borders (platform/fill.h) */
+    int64_t *filled_out;      /* with fill_voids: receives the number of filled samples (or NULL) */
 } dem_opts;
 
 /* Merging tiles whose samples disagree where they overlap: refuse (default), or
@@ -44,7 +46,8 @@ br_status dem_load(const char *path, const dem_opts *o, hf *out, br_err *err);
 br_status dem_load_mem(const char *name, const uint8_t *bytes, size_t len, const dem_opts *o,
                        hf *out, br_err *err);
 /* Loads n files and, when n > 1, merges them by georeference (shared edges kept
- * once; overlaps with different values or gaps are errors). */
+ * once; overlaps with different values or gaps are errors); with o->fill_voids,
+ * fills the voids of the result (after the merge, so across seams too). */
 br_status dem_load_many(const char *const *paths, int n, const dem_opts *o, hf *out, br_err *err);
 void dem_free(hf *f);
 

@@ -172,7 +172,7 @@ static void test_voids_view_ply_stl(void)
     CHECK_EQ(run_mesh(10, argv, out), 0);
     CHECK_EQ(read_json(out, &gv), 0);
     CHECK(gv.tri > 100 && gv.tri < g.tri);
-    CHECK(2 * gv.refs <= 3 * gv.tri);
+    CHECK(50 * gv.refs <= 77 * gv.tri);   /* test_bitree.c one_dem: 1.54 */
     {
         hf f;
         br_err err;
