@@ -75,6 +75,8 @@ int cmd_bench(int argc, char **argv)
     rs_cvert *cache;
     void *color, *zbuf, *mem = NULL;
     double *ms;
+    for (i = 0; i + 1 < argc; i++)   /* the users' scene: platform/bench_default.c */
+        if (!strcmp(argv[i], "--scene") && !strcmp(argv[i + 1], "default")) return cmd_bench_default(argc, argv);
     for (i = 0; i < argc; i++) {
         const char *a = argv[i], *n = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "--scene") && n) { scene = n; i++; }
