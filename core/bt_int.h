@@ -27,6 +27,8 @@ typedef struct ctx {
     int32_t *ub;           /* 2 per diamond: upper bound of each half's error (exact metric) */
     const uint8_t *vblk;   /* per 16 x 16 block of the domain: 1 if it holds a void (NULL: none) */
     int32_t bw;            /* blocks per row */
+    uint8_t *emp;          /* per diamond, bit (1 << half): that half is EMPTY (see
+                              bte_diamond); n*n, zero = has content */
     int32_t tabn[16];
 } ctx;
 
