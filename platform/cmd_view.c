@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include "platform/campath.h"
 #include "platform/cmd.h"
 #include "platform/dem_args.h"
 #include "platform/png_io.h"
@@ -58,7 +59,8 @@ static int usage(void)
 {
     fprintf(stderr,
             "usage: bitrain view IN... [--size WxH] [--fov DEG] [--pixel-error P]\n"
-            "         [--camera EX,EY,EZ,TX,TY,TZ] [--frames N] [--screenshot OUT.png]\n"
+            "         [--camera EX,EY,EZ,TX,TY,TZ] [--path FILE] [--frames N] [--screenshot OUT.png]\n"
+            "  --path FILE: fly a camera path, one --camera line a frame (# comments)\n"
             "  camera in metres: x east from the west edge, y north from the south edge, z height\n"
             "  --frames N: quit after N frames (with --screenshot: save the last one)\n"
             "controls: mouse drag look, W/S forward/back, A/D left/right, E/Q up/down, arrows turn,\n"
@@ -69,7 +71,8 @@ static int usage(void)
 
 int cmd_view(int argc, char **argv)
 {
-    const char *in[64], *shot = NULL;
+    const char *in[64], *shot = NULL, *cpath = NULL;
+    campath cp = {NULL, 0};
     int r, nin = 0, i, w = 1024, h = 640, have_cam = 0, frames = 0, nframe = 0, shots = 0, rc = 1, quit = 0;
     double camv[6];
     view_state v;
@@ -93,6 +96,7 @@ int cmd_view(int argc, char **argv)
         else if (!strcmp(a, "--pixel-error") && n) { v.pix_err = atof(n); i++; }
         else if (!strcmp(a, "--frames") && n) { frames = atoi(n); i++; }
         else if (!strcmp(a, "--screenshot") && n) { shot = n; i++; }
+        else if (!strcmp(a, "--path") && n) { cpath = n; i++; }
         else if (!strcmp(a, "--camera") && n) {
             if (sscanf(n, "%lf,%lf,%lf,%lf,%lf,%lf", &camv[0], &camv[1], &camv[2], &camv[3], &camv[4], &camv[5]) != 6)
                 return usage();
@@ -107,7 +111,9 @@ int cmd_view(int argc, char **argv)
         !(v.pix_err > 0) || frames < 0)
         return usage();
 
-    if (scene_open(&s, in, nin, &so, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); return 1; }
+    if (cpath && campath_read(cpath, &cp, &err) != BR_OK) { fprintf(stderr, "bitrain view: %s\n", err.msg); return 1; }
+    if (cpath && (!frames || frames > cp.n)) frames = cp.n;
+    if (scene_open(&s, in, nin, &so, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); campath_free(&cp); return 1; }
     if (scene_tree(&s, &err) != BR_OK || scene_reserve(&s, VIEW_MAX_TRI, &err) != BR_OK) {
         fprintf(stderr, "bitrain: %s: %s\n", in[0], err.msg);
         scene_close(&s);
@@ -199,7 +205,10 @@ int cmd_view(int argc, char **argv)
         ground = scene_ground(&s, v.pos[0], v.pos[1]);
         if (!isnan(ground) && v.pos[2] < ground + 2) v.pos[2] = ground + 2;
         for (i = 0; i < 3; i++) tgt[i] = v.pos[i] + d[i] * 1000;
+        if (cp.n) look_from(&v, cp.cam[nframe % cp.n], cp.cam[nframe % cp.n] + 3);   /* --path: line nframe */
+        if (cp.n) for (i = 0; i < 3; i++) tgt[i] = cp.cam[nframe % cp.n][3 + i];
         if (scene_camera(&s, v.pos, tgt, v.fov, w, h, &c) != BR_OK) {
+            if (cp.n) { fprintf(stderr, "bitrain view: %s: frame %d: unusable camera\n", cpath, nframe + 1); goto done; }
             double e[3], t[3];
             scene_default_view(&s, v.fov, e, t);   /* flew out of the world's range: back home */
             look_from(&v, e, t);
@@ -257,5 +266,6 @@ done:
     if (win) SDL_DestroyWindow(win);
     SDL_Quit();
     scene_close(&s);
+    campath_free(&cp);
     return rc;
 }
