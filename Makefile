@@ -74,7 +74,8 @@ SAN_TEST_BIN = $(TEST_SRC:tests/%.c=$(B)/san-tests/%)
 DIV32_FLAGS = $(OPT) -g -DBR_DIV64_NATIVE=0 -DFX_TEST_IDIV -DRS_TEST_32BIT -DRS_PREPASS=0
 DIV32_LIB_OBJ = $(LIB_SRC:%.c=$(B)/div32/%.o)
 DIV32_SUP_OBJ = $(SUPPORT_SRC:%.c=$(B)/div32/%.o)
-DIV32_TEST_BIN = $(B)/div32-tests/test_raster $(B)/div32-tests/test_raster_render $(B)/div32-tests/test_fx
+DIV32_TEST_BIN = $(B)/div32-tests/test_raster $(B)/div32-tests/test_raster_render $(B)/div32-tests/test_fx \
+                 $(B)/div32-tests/test_framecost
 
 .SECONDARY:
 .PHONY: all run test test-fast bench fuzz clean deps check-nofloat FORCE

@@ -32,6 +32,17 @@
  * BT_CODE_SPLIT (always split); one with no valid sample gets 0 (never emitted:
  * its corners are voids).  Diamond triangles always have >= 4 samples, so
  * splitting mixed ones ends at unit triangles whose 3 corners decide.
+ * Empty triangles: what a mixed triangle finally contributes are its descendant
+ * unit triangles with 3 valid corners (its CONTENT, computed bottom-up: a unit
+ * pair's corners, else the OR of the two child halves).  A mixed triangle with no
+ * content and a void corner is EMPTY: it gets 0 like an all-void one, so nothing
+ * forces it to split, and when left unsplit the selection drops it by its void
+ * corner; splitting it all the way would have emitted nothing either, so every
+ * mesh is the one the SPLIT rule gives minus needless splits.  This is what makes
+ * the padding beyond w x h (voids to n x n) cost nothing along the data's east and
+ * south edges: a triangle outside whose only valid samples lie on the edge is
+ * empty, not mixed.  (A mixed triangle whose 3 corners are valid stays SPLIT even
+ * without content: left unsplit it would be drawn over its voids.)
  *
  * Curvature metric (001 eq. 2-4, 004): per sample the Frobenius norm of the
  * centred-difference Hessian, kappa = isqrt(kxx^2 + kxy^2 + kyx^2 + kyy^2) / 8
@@ -66,9 +77,10 @@ size_t bt_scratch_size(int32_t w, int32_t h)
     if (hf_check_dims(w, h) != BR_OK || w < 2 || h < 2) return 0;
     /* sanitised heights (int32), per-row void prefix counts (uint16, w+1 per row),
      * then per-diamond half bounds (exact metric: 2 x int32 per padded sample) or
-     * curvature (int32 per sample), whichever is used, plus the row spans */
+     * curvature (int32 per sample), whichever is used, the empty-half bits (a byte
+     * per padded sample), plus the row spans */
     size_t n = (size_t)(((int32_t)1 << padded_k(w, h)) + 1);
-    return (size_t)w * (size_t)h * 4 + n * n * 8 + (size_t)(w + 1) * (size_t)h * 2 + 64 + 16 * TAB_MAX * 12
+    return (size_t)w * (size_t)h * 4 + n * n * 9 + (size_t)(w + 1) * (size_t)h * 2 + 64 + 16 * TAB_MAX * 12
          + (size_t)(w / 16 + 1) * (size_t)(h / 16 + 1)
          + (size_t)(((int32_t)1 << padded_k(w, h)) + 1) * 12;
 }
@@ -369,6 +381,26 @@ static void tri_eval(const ctx *c, const int32_t a[2], const int32_t cc[2], cons
 
 
 
+/* 1 when the mixed half (a, p, b), apex p, of diamond (x, y) is EMPTY (see the top
+ * of this file): a void corner and no content.  Its children are the unit
+ * triangles (a, m, p), (p, m, b) for an A diamond of h = 1, else the halves of the
+ * diamonds at the legs' midpoints whose apex is m = (x, y), built before it. */
+static int half_empty(const ctx *c, int32_t x, int32_t y, int32_t h, int typeD,
+                      const int32_t a[2], const int32_t p[2], const int32_t b[2])
+{
+    int32_t z, m1x, m1y, m2x, m2y;
+    int va = samp(c, a[0], a[1], &z), vb = samp(c, b[0], b[1], &z), vp = samp(c, p[0], p[1], &z);
+    if (va && vb && vp) return 0;
+    if (!typeD && h == 1) {
+        int vm = samp(c, x, y, &z);
+        return !(vm && vp && (va || vb));
+    }
+    m1x = (a[0] + p[0]) >> 1; m1y = (a[1] + p[1]) >> 1;
+    m2x = (b[0] + p[0]) >> 1; m2y = (b[1] + p[1]) >> 1;
+    return (c->emp[(size_t)m1y * c->n + m1x] >> half_of(m1x, m1y, x, y) & 1) &&
+           (c->emp[(size_t)m2y * c->n + m2x] >> half_of(m2x, m2y, x, y) & 1);
+}
+
 /* Per-triangle upper bounds ub (exact when scanned) let most triangles skip the
  * scan: |plane_T - z| <= e_m + |plane_C - z| on each child C (the planes agree
  * on C's other two vertices and differ by e_m at the midpoint m), so
@@ -469,6 +501,10 @@ void bte_diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int 
             tri_eval(c, a, ap[i], b, ti, dclean, &r);
         }
         if (c->ub) c->ub[hv] = r.cls == 0 && r.err < UB_INF ? (int32_t)r.err : UB_INF;
+        /* a mixed triangle with no descendant unit triangle of three valid corners draws
+         * nothing: empty, not split (the padding to (2^k+1)^2 keeps no edge samples) */
+        if (r.cls == 1 && half_empty(c, x, y, h, typeD, a, ap[i], b)) r.cls = 2;
+        if (r.cls == 2) c->emp[idx] |= (uint8_t)(1u << (hv & 1));
         if (r.cls == 1) {
             /* mixed: always split, and its volume holds its valid corners and
              * centre, the heights of the valid leaves it ends in at h = 1 (no child
@@ -603,8 +639,10 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
         c.ub = metric == BT_METRIC_EXACT ? (int32_t *)(void *)q : NULL;
         c.vblk = NULL;
         c.bw = w / 16 + 1;
-        if (voids) {   /* void block map after the bounds / curvature region */
-            uint8_t *vb = q + (size_t)n * n * 8;
+        c.emp = q + (size_t)n * n * 8;
+        memset(c.emp, 0, nn);
+        if (voids) {   /* void block map after the bounds / curvature and empty-half regions */
+            uint8_t *vb = q + (size_t)n * n * 9;
             memset(vb, 0, (size_t)c.bw * (size_t)(h / 16 + 1));
             for (y = 0; y < h; y++)
                 for (x = 0; x < w; x++)

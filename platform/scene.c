@@ -226,6 +226,11 @@ br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err)
     s->cache = malloc(rs_cache_mem_size(s->mesh.cap_v ? s->mesh.cap_v : 1));
     if (!s->verts || !s->cache)
         return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for %u vertices", s->mesh.cap_v);
+    if (rt_cache_mem_size(&s->f) > 0) s->lit_mem = malloc(rt_cache_mem_size(&s->f));
+    if (s->lit_mem && rt_scene_cache(&s->rt, s->lit_mem, rt_cache_mem_size(&s->f)) != BR_OK) {
+        free(s->lit_mem);
+        s->lit_mem = NULL;
+    }
     return BR_OK;
 }
 
@@ -235,6 +240,7 @@ void scene_close(scene *s)
     free(s->cache);
     free(s->tree_mem);
     free(s->mesh_mem);
+    free(s->lit_mem);
     free(s->texpx);
     dem_free(&s->f);
     memset(s, 0, sizeof *s);

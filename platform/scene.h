@@ -46,6 +46,7 @@ typedef struct scene {
     rs_vertex *verts;                /* mesh.cap_v of them */
     rs_cvert *cache;                 /* vertex cache for the rasteriser */
     void *tree_mem, *mesh_mem;
+    void *lit_mem;                   /* the vertex colour cache (rt_scene_cache), 4 bytes a sample */
 } scene;
 
 /* Loads the files (merged when several), the ramp, texture and vertical scale.
@@ -54,7 +55,8 @@ br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o
 /* Builds the bitree (exact metric) once. */
 br_status scene_tree(scene *s, br_err *err);
 /* Allocates the mesh (max_tri triangles; beyond it the bitree falls back to its
- * budget mode), its raster vertices and the vertex cache. */
+ * budget mode), its raster vertices, the vertex cache and the per-sample colour
+ * cache of rt_scene_cache (4 bytes a sample; none when that allocation fails). */
 br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err);
 void scene_close(scene *s);
 
