@@ -40,6 +40,10 @@ typedef struct view_app {
     uint32_t *px;               /* the frame, w * h */
     size_t px_cap;
     int16_t *chunks;
+    rs_vertex *lod_v;           /* LOD colouring: a list of triangles with vertices of their own */
+    uint32_t *lod_idx;
+    rs_cvert *lod_cache;
+    size_t lod_cap;
     int band_rows;
     double base_err;            /* --pixel-error: where --fps starts and where it settles when idle */
     FILE *rec;
@@ -62,6 +66,30 @@ static br_status sink_frame(void *user, int32_t y0, int32_t rows, const void *px
 }
 
 static void smooth(double *acc, double x, int first) { *acc = first ? x : 0.9 * *acc + 0.1 * x; }
+
+/* LOD colouring: the frame draws the mesh as a list of separately tinted triangles
+ * (memory grows with the mesh, only in this mode). */
+static int lod_frame(view_app *a, rs_frame *fr, rs_prim *prim)
+{
+    size_t need = a->s.mesh.ns > 2 ? 3 * (size_t)(a->s.mesh.ns - 2) : 3;
+    if (need > a->lod_cap) {
+        rs_vertex *lv = realloc(a->lod_v, need * sizeof *lv);
+        uint32_t *li = lv ? realloc(a->lod_idx, need * sizeof *li) : NULL;
+        rs_cvert *lc = li ? realloc(a->lod_cache, rs_cache_mem_size((uint32_t)need)) : NULL;
+        if (lv) a->lod_v = lv;
+        if (li) a->lod_idx = li;
+        if (lc) a->lod_cache = lc;
+        if (!lc) return 0;
+        a->lod_cap = need;
+    }
+    prim->kind = RS_LIST;
+    prim->n = view_lod_list(&a->s.mesh, a->s.verts, a->lod_v, a->lod_idx);
+    prim->idx = a->lod_idx;
+    fr->v = a->lod_v;
+    fr->nv = prim->n;
+    fr->cache = a->lod_cache;
+    return 1;
+}
 
 /* Draws one frame into a->px; 0 on failure (message printed). */
 static int draw_frame(view_app *a)
@@ -97,12 +125,12 @@ static int draw_frame(view_app *a)
     if (bt_extract(&a->s.tree, &bp, &a->s.mesh) != BR_OK) { fprintf(stderr, "bitrain view: mesh selection failed\n"); return 0; }
     t1 = now_s();
     rt_from_mesh(&a->s.rt, &a->s.mesh, a->s.verts);
-    if (v->on[VT_LOD]) view_lod_tint(&a->s.mesh, a->s.verts);
     prim.kind = RS_STRIP; prim.n = a->s.mesh.ns; prim.idx = a->s.mesh.strip;
     fr.w = a->w; fr.h = a->h; fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32;
     fr.no_cull = v->on[VT_NOCULL];
     fr.clear_rgb = SKY_RGB;
     fr.v = a->s.verts; fr.nv = a->s.mesh.nv; fr.cache = a->s.cache;
+    if (v->on[VT_LOD] && !lod_frame(a, &fr, &prim)) view_note(v, 3, "LOD colouring: out of memory");
     fr.prims = &prim; fr.nprims = 1;
     fr.tex = a->s.rt.tex_w > 0 ? &a->s.tex : NULL;
     fr.chunks = a->chunks;
@@ -118,6 +146,7 @@ static int draw_frame(view_app *a)
     a->ov.wire = v->on[VT_WIRE];
     a->ov.band_rows = v->on[VT_BANDS] ? a->band_rows : 0;
     a->ov.scale = a->w >= 1600 ? 2 : 1;
+    a->ov.h = a->h;
     a->st.w = a->w; a->st.h = a->h;
     view_hud_text(v, &a->st, a->hud, sizeof a->hud);
     a->ov.hud = v->on[VT_HUD] ? a->hud : NULL;
@@ -284,8 +313,8 @@ static void handle_window(view_app *a, const SDL_Event *ev)
 static int loop(view_app *a, int frames, double seconds)
 {
     view_state *v = &a->v;
-    double t_prev = now_s(), t_start = t_prev, fps_t = t_prev, note_shown = 0;
-    int fps_n = 0, settle = 2;
+    double t_prev = now_s(), t_start = t_prev, t_last = t_prev, note_shown = 0;
+    int settle = 2;
     while (!v->quit) {
         SDL_Event ev;
         double t;
@@ -316,12 +345,14 @@ static int loop(view_app *a, int frames, double seconds)
         if (v->note[0] && v->note_until > v->now) note_shown = v->note_until;
         if (v->shot) screenshot(a);
         if (a->st.target_fps > 0 && (moved || settle == 2)) hold_fps(a);
-        fps_n++;
-        if (now_s() - fps_t >= 0.5) {
-            a->st.fps = fps_n / (now_s() - fps_t);
-            fps_n = 0;
-            fps_t = now_s();
-        } else if (a->nframe == 1) a->st.fps = 1 / fmax(1e-3, now_s() - t);
+        /* frames per second while frames follow each other; after an idle wait, what
+         * the frame itself cost */
+        {
+            double tn = now_s(), dt = tn - t_last;
+            double rate = dt < 0.5 && a->nframe > 1 ? 1 / dt : 1e3 / fmax(1e-3, a->st.frame_ms);
+            smooth(&a->st.fps, rate, a->nframe == 1);
+            t_last = tn;
+        }
         if (frames && a->nframe >= frames) break;
     }
     return 1;
@@ -454,6 +485,9 @@ done:
     pt_close(a.pool);
     free(a.px);
     free(a.chunks);
+    free(a.lod_v);
+    free(a.lod_idx);
+    free(a.lod_cache);
     if (a.tex) SDL_DestroyTexture(a.tex);
     if (a.ren) SDL_DestroyRenderer(a.ren);
     if (a.win) SDL_DestroyWindow(a.win);

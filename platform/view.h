@@ -86,14 +86,16 @@ typedef struct view_overlay {
     const char *hud;            /* NULL: none */
     const char *help;           /* NULL: none */
     int32_t scale;              /* text scale */
+    int32_t h;                  /* the frame's height */
 } view_overlay;
 
 /* The post hook (raster/frame.h rs_post_fn); user is a view_overlay. */
 br_status view_post(const void *user, rs_band *b, rs_band_stats *st);
 /* The HUD text for the state and the last frame's figures. */
 void view_hud_text(const view_state *v, const view_stats *st, char *buf, size_t n);
-/* Tints the frame's vertices by the bitree level that introduced them (LOD colouring):
- * rewrites the colours of verts[0..nv) from the mesh's grid positions. */
-void view_lod_tint(const bt_mesh *m, rs_vertex *verts);
+/* LOD colouring: the mesh's strip as a triangle list with three vertices of its own per
+ * triangle, each triangle tinted by its size in the grid (its level in the bitree);
+ * out and idx hold 3 * (m->ns - 2) entries.  Returns the vertices (= indices) written. */
+uint32_t view_lod_list(const bt_mesh *m, const rs_vertex *verts, rs_vertex *out, uint32_t *idx);
 
 #endif

@@ -87,7 +87,17 @@ static void wire(rs_band *b, const rs_frame *f)
     for (pi = 0; pi < f->nprims; pi++) {
         const rs_prim *pr = &f->prims[pi];
         uint32_t k;
-        if (pr->kind != RS_STRIP || pr->n < 3) continue;
+        if (pr->kind == RS_LIST) {
+            for (k = 0; k + 2 < pr->n; k += 3) {
+                const rs_cvert *t0 = &f->cache[pr->idx[k]], *t1 = &f->cache[pr->idx[k + 1]], *t2 = &f->cache[pr->idx[k + 2]];
+                if ((t0->c | t1->c | t2->c) & bad) continue;
+                wire_line(b, t0, t1);
+                wire_line(b, t1, t2);
+                wire_line(b, t2, t0);
+            }
+            continue;
+        }
+        if (pr->n < 3) continue;
         for (k = 1; k < pr->n; k++) {
             uint32_t a = pr->idx[k], c = pr->idx[k - 1];
             const rs_cvert *va = &f->cache[a];
@@ -118,7 +128,8 @@ br_status view_post(const void *user, rs_band *b, rs_band_stats *st)
     }
     if (o->help) {
         int32_t pw = font_width(o->help, s) + 16 * s, ph = font_lines(o->help) * FONT_LINE * s + 14 * s;
-        int32_t px = (b->w - pw) / 2, py = 0;
+        int32_t px = (b->w - pw) / 2, py = (o->h - ph) / 2;
+        if (py < 0) py = 0;
         font_panel(b, px, py, pw, ph);
         font_draw(b, px + 8 * s, py + 8 * s, s, 0xffffc0u, o->help);
     }
@@ -164,29 +175,42 @@ void view_hud_text(const view_state *v, const view_stats *st, char *buf, size_t 
 
 /* ---------------------------------------------------------------- LOD colours */
 
-/* The level of grid point (x, y) in the bitree: a point first appears as the midpoint
- * of a hypotenuse; with t trailing zero bits common to x and y, it is the centre of a
- * square of side 2^(t+1) when both x >> t and y >> t are odd (a diagonal hypotenuse),
- * else the midpoint of a square's side: the finer the level, the smaller t.  Returns
- * 2t + 1 for square centres, 2t for side midpoints (larger: coarser). */
-static int level_of(int32_t x, int32_t y)
+/* floor(log2(x)) for x > 0. */
+static int ilog2(uint64_t x)
 {
-    uint32_t m = (uint32_t)x | (uint32_t)y;
-    int t = 0;
-    if (m == 0) return 63;
-    while (!(m & 1u) && t < 30) { m >>= 1; t++; }
-    return 2 * t + ((x >> t & 1) && (y >> t & 1));
+    int n = 0;
+    while (x >>= 1) n++;
+    return n;
 }
 
-void view_lod_tint(const bt_mesh *m, rs_vertex *verts)
+uint32_t view_lod_list(const bt_mesh *m, const rs_vertex *verts, rs_vertex *out, uint32_t *idx)
 {
-    static const uint32_t pal[8] = { 0xff3030u, 0xff9020u, 0xf0e020u, 0x40d040u, 0x20c0c0u, 0x3070ffu, 0x9040ffu, 0xff40c0u };
-    uint32_t i;
-    for (i = 0; i < m->nv; i++) {
-        uint32_t c = verts[i].rgb, p = pal[level_of(m->v[i].x, m->v[i].y) % 8], out = 0;
-        int sh;
-        /* half the shaded colour, half the level's */
-        for (sh = 0; sh <= 16; sh += 8) out |= ((((c >> sh) & 0xffu) + ((p >> sh) & 0xffu)) >> 1) << sh;
-        verts[i].rgb = out;
+    /* finest (red) to coarsest (purple), one colour per doubling of the legs */
+    static const uint32_t pal[8] = { 0xff2020u, 0xff8020u, 0xf0e020u, 0x60e040u, 0x20d0b0u, 0x2090ffu, 0x4040ffu, 0x9020c0u };
+    uint32_t k, n = 0;
+    for (k = 0; k + 2 < m->ns; k++) {
+        /* strip triangle k: s[k], s[k+1], s[k+2], the first two swapped for odd k */
+        uint32_t t[3], j, p;
+        const bt_vert *a, *b, *c;
+        int64_t area2;
+        t[0] = m->strip[k + (k & 1)]; t[1] = m->strip[k + 1 - (k & 1)]; t[2] = m->strip[k + 2];
+        a = &m->v[t[0]]; b = &m->v[t[1]]; c = &m->v[t[2]];
+        area2 = (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(b->y - a->y) * (c->x - a->x);
+        if (area2 == 0) continue;                       /* line triangle */
+        /* a right isosceles triangle of legs L has |area2| = L^2: two levels per
+         * doubling of L */
+        j = (uint32_t)ilog2((uint64_t)(area2 < 0 ? -area2 : area2)) / 2;
+        p = pal[j > 7 ? 7 : j];
+        for (j = 0; j < 3; j++) {
+            uint32_t sc = verts[t[j]].rgb, o = 0;
+            int sh;
+            /* a third of the shaded colour (the relief stays readable), two thirds the level's */
+            for (sh = 0; sh <= 16; sh += 8) o |= ((((sc >> sh) & 0xffu) + 2 * ((p >> sh) & 0xffu)) / 3) << sh;
+            out[n] = verts[t[j]];
+            out[n].rgb = o;
+            idx[n] = n;
+            n++;
+        }
     }
+    return n;
 }

@@ -39,7 +39,7 @@ static const control controls[] = {
     { { SDLK_f, 0 }, "F", "fog", A_FOG },
     { { SDLK_v, 0 }, "V", "water", A_WATER },
     { { SDLK_m, 0 }, "M", "wireframe: the mesh's edges over the image", A_WIRE },
-    { { SDLK_l, 0 }, "L", "LOD colouring: vertices tinted by bitree level", A_LOD },
+    { { SDLK_l, 0 }, "L", "LOD colouring: triangles tinted by bitree level", A_LOD },
     { { SDLK_c, 0 }, "C", "back-face culling", A_CULL },
     { { SDLK_h, 0 }, "H", "hysteresis", A_HYST },
     { { SDLK_g, 0 }, "G", "geomorphing", A_MORPH },
