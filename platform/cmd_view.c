@@ -365,7 +365,7 @@ static int loop(view_app *a, int frames, double seconds)
     "  the controls follow the options (F1 or ? in the window shows them too)"
 
 typedef struct view_opts {
-    int size[2], win[2], size_seen, win_seen, have_cam, frames, threads, bands, fullscreen;
+    int size[2], win[2], size_seen, win_seen, have_cam, frames, threads, bands, fullscreen, no_hud;
     double camv[6], fov, pix_err, fps, seconds;
     const char *shot, *record;
 } view_opts;
@@ -394,6 +394,7 @@ static int setup(view_app *a, view_opts *o, int argc, char **argv)
         { "--record", OPT_STR, &o->record, 0, 0, 0, NULL, "FILE", "write the camera path: one EX,EY,EZ,TX,TY,TZ line per frame", NULL },
         { "--frames", OPT_INT, &o->frames, 0, 100000000, 0, NULL, "N", "draw N frames and quit (0: until Esc)", NULL },
         { "--seconds", OPT_NUM, &o->seconds, 0, 1e6, 0, NULL, "S", "quit after S seconds (0: until Esc)", NULL },
+        { "--no-hud", OPT_FLAG, &o->no_hud, 0, 0, 0, NULL, NULL, "start with the HUD off (T toggles it)", NULL },
         { "--screenshot", OPT_STR, &o->shot, 0, 0, 0, NULL, "OUT.png", "save the last frame on quitting", NULL },
         OPT_END
     };
@@ -458,6 +459,7 @@ int cmd_view(int argc, char **argv)
     a.v.fov = o.fov;
     a.v.pix_err = o.pix_err;
     view_init(&a.v, &a.s, eye, tgt);
+    a.v.on[VT_HUD] = !o.no_hud;
     a.base_err = o.pix_err;
     a.st.target_fps = o.fps;
     a.st.threads = o.threads;

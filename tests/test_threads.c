@@ -6,6 +6,7 @@
 #include "tests/test.h"
 #include "platform/pipe_threads.h"
 #include "platform/scene.h"
+#include "platform/view.h"
 
 #define W 640
 #define H 480
@@ -148,6 +149,51 @@ static void test_threads_low_view(void)
     check_view(eye, tgt);
 }
 
+/* The viewer's post hook (wireframe, HUD and help text) gives the same pixels on 3
+ * threads in bands of 7 rows as on one thread over the whole frame, and draws. */
+static void test_threads_view_overlay(void)
+{
+    const double eye[3] = { 20000, 20000, 3500 }, tgt[3] = { 40000, 70000, 800 };
+    rs_frame fr;
+    rs_prim prim;
+    rs_pipe p;
+    view_overlay ov;
+    frame_sink ref, got, plain;
+    pt_pool *pool;
+    void *mem;
+    size_t ms;
+    long k, differ = 0;
+    CHECK(open_scene());
+    if (!sc_ok) return;
+    CHECK(prepare(eye, tgt, &fr, &prim, &p));
+    memset(&ov, 0, sizeof ov);
+    memset(&ref, 0, sizeof ref);
+    memset(&got, 0, sizeof got);
+    memset(&plain, 0, sizeof plain);
+    ref.px = malloc((size_t)W * H * 4);
+    got.px = malloc((size_t)W * H * 4);
+    plain.px = malloc((size_t)W * H * 4);
+    ms = rs_pipe_mem_size(&p, H);
+    mem = malloc(ms);
+    CHECK(ref.px && got.px && plain.px && mem);
+    if (!ref.px || !got.px || !plain.px || !mem) return;
+    p.post = NULL;
+    CHECK_EQ(rs_pipe_run(&p, H, mem, ms, sink_copy, &plain, NULL), BR_OK);
+    ov.fr = &fr; ov.wire = 1; ov.scale = 2; ov.h = H;
+    ov.hud = "12.3 fps  HUD text\ncrossing band 0 and 1";
+    ov.help = view_controls_text();
+    p.post = view_post;
+    p.post_user = &ov;
+    CHECK_EQ(rs_pipe_run(&p, H, mem, ms, sink_copy, &ref, NULL), BR_OK);
+    CHECK_EQ(pt_open(&pool, 3), BR_OK);
+    CHECK_EQ(pt_run(pool, &p, 7, sink_copy, &got, NULL), BR_OK);
+    pt_close(pool);
+    CHECK(!memcmp(got.px, ref.px, (size_t)W * H * 4));
+    for (k = 0; k < (long)W * H; k++) differ += got.px[k] != plain.px[k];
+    CHECK(differ > (long)W * H / 20);
+    free(ref.px); free(got.px); free(plain.px); free(mem);
+}
+
 /* A sink error stops the frame: later bands never reach the sink, the error comes back,
  * and the pool still draws the next frame whole. */
 static void test_threads_sink_error(void)
@@ -190,6 +236,7 @@ int main(void)
 {
     T_RUN(test_threads_default_view);
     T_RUN(test_threads_low_view);
+    T_RUN(test_threads_view_overlay);
     T_RUN(test_threads_sink_error);
     T_RUN(test_threads_bad_args);
     scene_close(&sc);
