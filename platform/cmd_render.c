@@ -26,6 +26,8 @@
 #include "core/cam.h"
 #include "platform/cmd.h"
 #include "platform/dem_args.h"
+#include "platform/geocam.h"
+#include "platform/pipe_threads.h"
 #include "platform/opt.h"
 #include "platform/scene_args.h"
 #include "platform/load.h"
@@ -75,6 +77,13 @@ int cmd_render(int argc, char **argv)
     const char *in[64], *out = NULL;
     int nin = 0, size[2] = { 800, 600 }, w, h, have_cam = 0, have_max = 0, have_pix = 0, mode = BT_VIEW;
     int full_step = 0, bands = 0, fmt = RS_FMT_XRGB8888, depth_choice = 0, depth, no_cull = 0, r;
+    int threads = pt_online_cores();
+    geocam_args ga;
+    opt_spec geo_t[GEOCAM_ARGS_N];
+    pt_pool *pool = NULL;
+    rs_pipe pipe;
+    rs_pass terrain;
+    rs_band_stats tot;
     double camv[6], fov = 50, max_err = 0, pix_err = 1;
     scene_opts so;
     scene_args sa;
@@ -95,9 +104,11 @@ int cmd_render(int argc, char **argv)
         { "--format", OPT_CHOICE, &fmt, 0, 0, 0, "rgb888|rgb565", "F", "pixel format of the frame", NULL },
         { "--depth", OPT_CHOICE, &depth_choice, 0, 0, 0, "32|16", "BITS", "depth buffer bits", NULL },
         { "--no-cull", OPT_FLAG, &no_cull, 0, 0, 0, NULL, NULL, "draw back faces too", NULL },
+        { "--threads", OPT_INT, &threads, 1, PT_MAX_THREADS, 0, NULL, "N",
+          "drawing threads (default: online cores; bands of 64 rows unless --bands)", NULL },
         OPT_END
     };
-    const opt_spec *const tables[] = { own, look_t, dem_t, NULL };
+    const opt_spec *const tables[] = { own, look_t, geo_t, dem_t, NULL };
     scene s;
     br_err err;
     cam c;
@@ -106,7 +117,6 @@ int cmd_render(int argc, char **argv)
     rs_prim *prims = NULL;
     int32_t nprims = 0;
     rs_frame fr;
-    void *bandmem = NULL;
     png_sink ps;
     double t0, t1, t2;
     int rc = 1;
@@ -117,6 +127,7 @@ int cmd_render(int argc, char **argv)
     memset(&ps, 0, sizeof ps);
     dem_args_table(&da, &so.dem, dem_t);
     scene_args_table(&sa, &so, look_t);
+    geocam_args_table(&ga, geo_t);
     r = opt_parse("render", RENDER_SYNOPSIS, tables, argc, argv, in, 64, &nin);
     if (r != OPT_OK) return r == OPT_HELP ? 0 : 2;
     if (dem_args_finish(&da, "render") != OPT_OK) return 2;
@@ -130,10 +141,15 @@ int cmd_render(int argc, char **argv)
     w = size[0];
     h = size[1];
     depth = depth_choice ? RS_DEPTH16 : RS_DEPTH32;
-    if (bands == 0 || bands > h) bands = h;
+    if (have_cam && (ga.from_seen || ga.at_seen)) return opt_fail("render", "--camera", "cannot be used with --look-from/--look-at");
+    if (bands == 0) bands = threads > 1 ? 64 : h;
+    if (bands > h) bands = h;
 
     t0 = ms_now();
     if (scene_open(&s, in, nin, &so, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); return 1; }
+    r = geocam_resolve(&ga, &s, "render", camv);
+    if (r < 0) { scene_close(&s); return 2; }
+    if (r) have_cam = 1;
     if (!have_cam) scene_default_view(&s, fov, camv, camv + 3);
     if (scene_camera(&s, camv, camv + 3, fov, w, h, &c) != BR_OK) {
         fprintf(stderr, "bitrain render: unusable camera (eye equals target, or too far from the terrain: "
@@ -213,15 +229,20 @@ int cmd_render(int argc, char **argv)
     fr.tex = s.rt.tex_w > 0 ? &s.tex : NULL;
     fr.v = full_step ? verts : s.verts; fr.nv = nv; fr.prims = prims; fr.nprims = nprims;
     fr.cache = full_step ? malloc(rs_cache_mem_size(nv ? nv : 1)) : s.cache;
-    fr.chunks = bands < h ? malloc(rs_chunk_mem_size(prims, nprims) + 4) : NULL;
-    bandmem = malloc(rs_band_mem_size(w, bands, fmt, depth));
+    fr.chunks = malloc(rs_chunk_mem_size(prims, nprims) + 4);
     ps.rgb = malloc((size_t)w * 3);
-    if (!fr.cache || !bandmem || !ps.rgb) { fprintf(stderr, "bitrain: out of memory\n"); goto done; }
+    if (!fr.cache || !fr.chunks || !ps.rgb) { fprintf(stderr, "bitrain: out of memory\n"); goto done; }
+    if (pt_open(&pool, threads) != BR_OK) { fprintf(stderr, "bitrain render: cannot start %d threads\n", threads); goto done; }
     cam_viewproj(&c, &fr.vp);
-    if (rs_frame_prepare(&fr) != BR_OK) { fprintf(stderr, "bitrain: bad frame parameters\n"); goto done; }
+    memset(&pipe, 0, sizeof pipe);
+    pipe.w = w; pipe.h = h; pipe.fmt = fmt; pipe.depth = depth;
+    if (rs_frame_prepare(&fr) != BR_OK || rs_pass_terrain(&terrain, &fr) != BR_OK || rs_pipe_add(&pipe, &terrain) != BR_OK) {
+        fprintf(stderr, "bitrain: bad frame parameters\n");
+        goto done;
+    }
     if (png_out_open(&ps.po, out, w, h, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
     ps.w = w; ps.fmt = fmt; ps.err = &err;
-    if (rs_render(&fr, bands, bandmem, sink_png, &ps) != BR_OK) {
+    if (pt_run(pool, &pipe, bands, sink_png, &ps, &tot) != BR_OK) {
         png_out_abort(ps.po);
         fprintf(stderr, "bitrain: %s\n", err.msg[0] ? err.msg : "render failed");
         goto done;
@@ -229,14 +250,15 @@ int cmd_render(int argc, char **argv)
     if (png_out_close(ps.po, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
     t2 = ms_now();
     printf("%s: %dx%d, %u vertices, %s, %u triangles drawn (%u clipped), load+mesh %.1f ms, "
-           "render+write %.1f ms, world unit 2^%d m, band %d rows (%zu bytes + %zu bytes vertex cache)\n",
+           "render+write %.1f ms, world unit 2^%d m, band %d rows (%zu bytes + %zu bytes vertex cache), %d threads\n",
            out, w, h, nv, full_step ? "full grid" : (mode == BT_FIDELITY ? "bitree fidelity" : "bitree view"),
-           fr.stat_tris, fr.stat_clipped, t1 - t0, t2 - t1, -s.rt.shift, bands,
-           rs_band_mem_size(w, bands, fmt, depth), rs_cache_mem_size(nv));
+           tot.tris, tot.clipped, t1 - t0, t2 - t1, -s.rt.shift, bands,
+           rs_band_mem_size(w, bands, fmt, depth), rs_cache_mem_size(nv), threads);
     rc = 0;
 done:
     if (full_step) free(fr.cache);
-    free(verts); free(idx); free(prims); free(fr.chunks); free(bandmem); free(ps.rgb);
+    pt_close(pool);
+    free(verts); free(idx); free(prims); free(fr.chunks); free(ps.rgb);
     scene_close(&s);
     return rc;
 }
