@@ -35,17 +35,17 @@ static uint64_t g_sum = 0xcbf29ce484222325u;
 
 /* One frame, as platform/cmd_bench.c's bench_frame (same name, so callgrind's
  * --toggle-collect=bench_frame works here too). */
-__attribute__((noinline)) br_status bench_frame(rs_frame *f, void *color, void *depth);
-__attribute__((noinline)) br_status bench_frame(rs_frame *f, void *color, void *depth)
+__attribute__((noinline)) br_status bench_frame(rs_frame *f, void *color, void *depth, rs_band_stats *st);
+__attribute__((noinline)) br_status bench_frame(rs_frame *f, void *color, void *depth, rs_band_stats *st)
 {
     br_status s = rs_frame_prepare(f);
     int32_t y0;
     if (s != BR_OK) return s;
-    f->stat_tris = f->stat_clipped = f->stat_pixels = 0;
-    if (!g_board) return rs_render_band(f, 0, f->h, color, (size_t)f->w * 4u, depth);
+    memset(st, 0, sizeof *st);
+    if (!g_board) return rs_draw_band(f, 0, f->h, color, (size_t)f->w * 4u, depth, st);
     for (y0 = 0; y0 < f->h; y0 += BOARD_ROWS) {
         const int32_t rows = f->h - y0 < BOARD_ROWS ? f->h - y0 : BOARD_ROWS;
-        s = rs_render_band(f, y0, rows, color, (size_t)f->w * 2u, depth);
+        s = rs_draw_band(f, y0, rows, color, (size_t)f->w * 2u, depth, st);
         if (s != BR_OK) return s;
         if (g_sum_now) {
             const uint16_t *px = (const uint16_t *)color;
@@ -72,6 +72,7 @@ int main(int argc, char **argv)
     int frames, found = 0, n;
     cam c;
     rs_frame f;
+    rs_band_stats st;
     if (argc < 5 || argc > 6 || sscanf(argv[3], "%dx%d", &w, &h) != 2 || (frames = atoi(argv[4])) < 1 || w < 1 ||
         h < 1 || w > RS_MAX_DIM || h > RS_MAX_DIM || (argc == 6 && strcmp(argv[5], "board") != 0)) {
         fprintf(stderr, "usage: peer_run SCENE.bin A|B WxH FRAMES [board]\n");
@@ -130,20 +131,21 @@ int main(int argc, char **argv)
     f.v = v; f.nv = nv; f.prims = prims; f.nprims = (int32_t)nstrip;
     cam_viewproj(&c, &f.vp);
     f.cache = (rs_cvert *)malloc(rs_cache_mem_size(nv));
-    if (g_board) f.chunks = (int16_t *)malloc(rs_chunk_mem_size(prims, f.nprims));
+    f.chunks = (int16_t *)malloc(rs_chunk_mem_size(prims, f.nprims));
+    f.one_band = !g_board;
     {   /* a board holds one band: rs_band_mem_size of BOARD_ROWS rows, colour + depth */
         const size_t rows = (size_t)(g_board ? (h < BOARD_ROWS ? h : BOARD_ROWS) : h);
         color = (uint32_t *)malloc((size_t)w * rows * 4);
         zbuf = (uint32_t *)malloc((size_t)w * rows * 4);
     }
-    if (!f.cache || !color || !zbuf || (g_board && !f.chunks)) { fprintf(stderr, "peer_run: out of memory\n"); return 1; }
+    if (!f.cache || !color || !zbuf || !f.chunks) { fprintf(stderr, "peer_run: out of memory\n"); return 1; }
     for (n = 0; n < frames; n++) {
         g_sum_now = n == frames - 1;
-        if (bench_frame(&f, color, zbuf) != BR_OK) { fprintf(stderr, "peer_run: render failed\n"); return 1; }
+        if (bench_frame(&f, color, zbuf, &st) != BR_OK) { fprintf(stderr, "peer_run: render failed\n"); return 1; }
     }
     printf("camera=%c size=%dx%d checksum=%016llx drawn_tris=%u clipped=%u span_px=%u\n", argv[2][0], w, h,
-           (unsigned long long)(g_board ? g_sum : pf_checksum(color, w, h, (size_t)w)), f.stat_tris, f.stat_clipped,
-           f.stat_pixels);
+           (unsigned long long)(g_board ? g_sum : pf_checksum(color, w, h, (size_t)w)), st.tris, st.clipped,
+           st.pixels);
     free(f.chunks);
     free(buf); free(v); free(idx); free(prims); free(f.cache); free(color); free(zbuf);
     return 0;
