@@ -7,10 +7,13 @@
  * With synthetic passes: a pass with a margin and a scratch band sees exactly the rows
  * [y0 - margin, y0 + rows + margin) clipped to the frame, a later pass reads them, and
  * rows_touched skips a pass for the bands it cannot touch.  The raw RGB565 sink writes
- * big-endian RGB565, the same bytes from an XRGB8888 frame as from an RGB565 one. */
+ * big-endian RGB565, the same bytes from an XRGB8888 frame as from an RGB565 one, and
+ * `bitrain render --output-format rgb565` writes the frame its PNG shows. */
 #include "raster/frame.h"
 #include "raster/raster.h"
+#include "platform/cmd.h"
 #include "platform/peer_scene.h"
+#include "platform/png_io.h"
 #include "platform/sink_rgb565.h"
 #include "tests/test.h"
 
@@ -381,6 +384,43 @@ static void test_rgb565_sink(void)
     CHECK(strstr(err.msg, "x.rgb565") != NULL);
 }
 
+/* `bitrain render --output-format rgb565` on real terrain (N47E009) in 5-row bands: the
+ * PNG of the same frame, pixel for pixel (RGB565 expanded by bit replication), and the
+ * same bytes from an XRGB8888 frame. */
+static void test_render_raw(void)
+{
+    char raw[512], raw888[512], png[512];
+    const char *dem = t_data("hgt/N47E009.hgt");
+    const char *a1[] = { dem, "-o", raw, "--size", "40x30", "--bands", "5", "--format", "rgb565",
+                         "--output-format", "rgb565" };
+    const char *a2[] = { dem, "-o", raw888, "--size", "40x30", "--output-format", "rgb565" };
+    const char *a3[] = { dem, "-o", png, "--size", "40x30", "--format", "rgb565" };
+    unsigned char *r1, *r2;
+    uint8_t *rgb = NULL;
+    size_t n1 = 0, n2 = 0;
+    int w = 0, h = 0, i, bad = 0;
+    br_err err;
+    snprintf(raw, sizeof raw, "%s/render.rgb565", t_outdir());
+    snprintf(raw888, sizeof raw888, "%s/render888.rgb565", t_outdir());
+    snprintf(png, sizeof png, "%s/render565.png", t_outdir());
+    CHECK_EQ(cmd_render(11, (char **)(uintptr_t)a1), 0);
+    CHECK_EQ(cmd_render(7, (char **)(uintptr_t)a2), 0);
+    CHECK_EQ(cmd_render(7, (char **)(uintptr_t)a3), 0);
+    r1 = t_read_file(raw, &n1);
+    r2 = t_read_file(raw888, &n2);
+    CHECK(r1 && r2 && n1 == 40 * 30 * 2 && n2 == n1 && !memcmp(r1, r2, n1));
+    CHECK_EQ(png_read_rgb(png, &w, &h, &rgb, &err), BR_OK);
+    if (r1 && rgb && n1 == 40 * 30 * 2 && w == 40 && h == 30)
+        for (i = 0; i < 40 * 30; i++) {
+            uint32_t v = (uint32_t)r1[2 * i] << 8 | r1[2 * i + 1], r = v >> 11, g = (v >> 5) & 63, b = v & 31;
+            bad += rgb[3 * i] != ((r << 3) | (r >> 2)) || rgb[3 * i + 1] != ((g << 2) | (g >> 4))
+                   || rgb[3 * i + 2] != ((b << 3) | (b >> 2));
+        }
+    else CHECK(0);
+    CHECK_EQ(bad, 0);
+    free(r1); free(r2); free(rgb);
+}
+
 int main(void)
 {
     T_RUN(test_bands_equal_whole_frame);
@@ -388,6 +428,7 @@ int main(void)
     T_RUN(test_margin_scratch_skip);
     T_RUN(test_chunk_table_required);
     T_RUN(test_rgb565_sink);
+    T_RUN(test_render_raw);
     free(g_ps);
     return t_finish();
 }
