@@ -1,3 +1,4 @@
+#define _POSIX_C_SOURCE 200809L   /* setenv (the SDL test picks the dummy video driver) */
 /* tests/test_pipeline.c — the one frame driver (raster/frame.h) and the sinks.
  *
  * On the peer scene (real fuji.png terrain, ../shared/bench/PEERS.md): a frame through
@@ -8,13 +9,15 @@
  * [y0 - margin, y0 + rows + margin) clipped to the frame, a later pass reads them, and
  * rows_touched skips a pass for the bands it cannot touch.  The raw RGB565 sink writes
  * big-endian RGB565, the same bytes from an XRGB8888 frame as from an RGB565 one, and
- * `bitrain render --output-format rgb565` writes the frame its PNG shows. */
+ * `bitrain render --output-format rgb565` writes the frame its PNG shows; the SDL sink
+ * fills a streaming texture with the frame. */
 #include "raster/frame.h"
 #include "raster/raster.h"
 #include "platform/cmd.h"
 #include "platform/peer_scene.h"
 #include "platform/png_io.h"
 #include "platform/sink_rgb565.h"
+#include "platform/sink_sdl.h"
 #include "tests/test.h"
 
 #define W 320
@@ -421,6 +424,59 @@ static void test_render_raw(void)
     free(r1); free(r2); free(rgb);
 }
 
+/* The SDL sink into a streaming texture (SDL's dummy video driver, software renderer):
+ * the texture, read back, and the keep buffer hold the whole frame, in bands of 64 rows. */
+static void test_sdl_sink(void)
+{
+    static uint32_t whole[W * H], zb[W * H], keep[W * H], back[W * H];
+    SDL_Window *win = NULL;
+    SDL_Renderer *ren = NULL;
+    SDL_Texture *tex = NULL;
+    sink_sdl ss;
+    rs_frame f;
+    rs_pipe p;
+    rs_pass terrain;
+    size_t size;
+    void *mem;
+    setenv("SDL_VIDEODRIVER", "dummy", 1);
+    if (SDL_Init(SDL_INIT_VIDEO) != 0) {
+        printf("  test_sdl_sink: skipped (no SDL video driver: %s)\n", SDL_GetError());
+        return;
+    }
+    win = SDL_CreateWindow("test", 0, 0, W, H, SDL_WINDOW_HIDDEN);
+    ren = win ? SDL_CreateRenderer(win, -1, SDL_RENDERER_SOFTWARE) : NULL;
+    tex = ren ? SDL_CreateTexture(ren, sink_sdl_format(RS_FMT_XRGB8888), SDL_TEXTUREACCESS_STREAMING, W, H) : NULL;
+    CHECK_MSG(tex != NULL, "SDL: %s", SDL_GetError());
+    CHECK(peer(&f, 'B', RS_FMT_XRGB8888, RS_DEPTH32, 0));
+    CHECK_EQ(rs_draw_band(&f, 0, H, whole, W * 4, zb, NULL), BR_OK);
+    pipe_init(&p, RS_FMT_XRGB8888, RS_DEPTH32);
+    CHECK_EQ(rs_pass_terrain(&terrain, &f), BR_OK);
+    CHECK_EQ(rs_pipe_add(&p, &terrain), BR_OK);
+    size = rs_pipe_mem_size(&p, 64);
+    mem = malloc(size);
+    if (tex && mem) {
+        sink_sdl_init(&ss, tex, W, H, RS_FMT_XRGB8888, keep);
+        CHECK_EQ(sink_sdl_band(&ss, 0, 1, whole, W * 4), BR_E_ARG);    /* not locked */
+        CHECK_EQ(sink_sdl_lock(&ss), BR_OK);
+        CHECK_EQ(rs_pipe_run(&p, 64, mem, size, sink_sdl_band, &ss, NULL), BR_OK);
+        CHECK_EQ(sink_sdl_band(&ss, H - 1, 2, whole, W * 4), BR_E_ARG);   /* beyond the texture */
+        sink_sdl_unlock(&ss);
+        CHECK(!memcmp(keep, whole, sizeof whole));
+        CHECK_EQ(SDL_RenderCopy(ren, tex, NULL, NULL), 0);
+        CHECK_EQ(SDL_RenderReadPixels(ren, NULL, SDL_PIXELFORMAT_RGB888, back, W * 4), 0);
+        {
+            int32_t i, bad = 0;
+            for (i = 0; i < W * H; i++) bad += (back[i] & 0xffffffu) != whole[i];
+            CHECK_EQ(bad, 0);
+        }
+    }
+    free(mem);
+    if (tex) SDL_DestroyTexture(tex);
+    if (ren) SDL_DestroyRenderer(ren);
+    if (win) SDL_DestroyWindow(win);
+    SDL_Quit();
+}
+
 int main(void)
 {
     T_RUN(test_bands_equal_whole_frame);
@@ -429,6 +485,7 @@ int main(void)
     T_RUN(test_chunk_table_required);
     T_RUN(test_rgb565_sink);
     T_RUN(test_render_raw);
+    T_RUN(test_sdl_sink);
     free(g_ps);
     return t_finish();
 }
