@@ -29,6 +29,7 @@ if sh mk/check-layout.sh "$B" >$log 2>&1; then
 else
   echo "0 passed, 1 failed" >>$log; count "layout: include direction, guards, file and function sizes, call cycles" $log 1
 fi
+sh mk/check-install.sh "${MAKE:-make}" >$log 2>&1; rc=$?; count "make install into a DESTDIR + a program built against bitrain.pc" $log $rc
 for t in "$B"/tests/test_*; do
   [ -x "$t" ] || continue
   "$t" >$log 2>&1; rc=$?; count "$(basename "$t")" $log $rc
