@@ -34,12 +34,15 @@ LDLIBS  = $(PKG_LIBS) -lm
 B       = build
 CORE_SRC   = $(sort $(wildcard core/*.c))
 RASTER_SRC = $(sort $(wildcard raster/*.c))
-PLAT_SRC   = $(sort $(filter-out platform/main.c,$(wildcard platform/*.c)))
+# the program's own sources (not in libbitrain.a): main, and `bitrain bench` with the
+# benchmark scene it draws (benchmarks/peer_scene.c, also linked into tests and benches)
+PROG_SRC   = platform/main.c platform/cmd_bench.c benchmarks/peer_scene.c
+PLAT_SRC   = $(sort $(filter-out $(PROG_SRC),$(wildcard platform/*.c)))
 LIB_SRC    = $(CORE_SRC) $(RASTER_SRC) $(PLAT_SRC)
 TEST_SRC   = $(sort $(wildcard tests/test_*.c))
 BENCH_SRC  = $(sort $(wildcard benchmarks/bench_*.c))
 FUZZ_SRC   = $(sort $(wildcard tests/fuzz_*.c))
-SUPPORT_SRC= $(sort $(wildcard tests/support/*.c))
+SUPPORT_SRC= $(sort $(wildcard tests/support/*.c)) benchmarks/peer_scene.c
 
 LIB_OBJ    = $(LIB_SRC:%.c=$(B)/obj/%.o)
 # x86-64: the drawing code (raster.c, xform.c) a second time for x86-64-v3 CPUs (AVX2,
@@ -84,7 +87,7 @@ deps:
 	@sh mk/deps.sh
 
 # pkg-config is asked again here: deps may have just installed the packages.
-$(B)/bitrain: $(B)/obj/platform/main.o $(B)/libbitrain.a
+$(B)/bitrain: $(PROG_SRC:%.c=$(B)/obj/%.o) $(B)/libbitrain.a
 	$(CC) $(ALL_CFLAGS) -o $@ $^ $(shell pkg-config --libs $(PKGS)) -lm
 
 bitrain: $(B)/bitrain

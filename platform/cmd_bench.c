@@ -22,7 +22,7 @@
 #include "platform/cmd.h"
 #include "platform/png_io.h"
 #include "raster/raster.h"
-#include "platform/peer_scene.h"
+#include "benchmarks/peer_scene.h"
 
 static double now_ms(void)
 {

@@ -140,7 +140,10 @@ typedef struct rs_frame {
                                    the rows they can touch, filled by rs_frame_prepare;
                                    bands then skip chunks that miss them (band mode) */
     int32_t debug_count;        /* tests: colour must be XRGB8888; each covered pixel's
-                                   32-bit value counts the writes (no depth test, no sky) */
+                                   32-bit value counts the writes (no depth test, no sky).
+                                   Only builds with RS_WITH_COUNT = 1 draw it (the tests'
+                                   tests/support/raster_count.c); the library refuses it
+                                   with BR_E_UNSUPPORTED */
     /* statistics since rs_frame_prepare (summed over the bands rendered) */
     uint32_t stat_tris, stat_clipped, stat_pixels;
 } rs_frame;
@@ -175,10 +178,8 @@ br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, siz
 br_status rs_render(rs_frame *f, int32_t band_rows, void *mem, rs_sink sink, void *user);
 
 /* 1 when this build draws frames of this pixel format, depth size and texturing.
- * Every combination is compiled by default; boards with little flash compile
- * raster/raster.c with RS_WITH_888, RS_WITH_565, RS_WITH_Z32, RS_WITH_Z16, RS_WITH_TEX
- * or RS_WITH_COUNT (the tests' write-counting variant) defined to 0 to leave variants
- * out (each is about 20 KB of code on x86-64; docs/raster.md gives the sizes). */
+ * Every combination is compiled by default; boards with little flash leave variants out
+ * with core/config.h's RS_WITH_* knobs (each is about 20 KB of code on x86-64). */
 int rs_variant_built(int32_t fmt, int32_t depth, int textured);
 
 /* The instruction set the drawing code runs with.  x86-64 builds carry two copies of it,
