@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include "platform/peer_scene.h"
+#include "benchmarks/peer_scene.h"
 #include "tests/support/timing.h"
 #include "core/cam.h"
 #include "raster/raster.h"

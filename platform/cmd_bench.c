@@ -24,7 +24,7 @@
 #include "platform/png_io.h"
 #include "raster/frame.h"
 #include "raster/raster.h"
-#include "platform/peer_scene.h"
+#include "benchmarks/peer_scene.h"
 
 static double now_ms(void)
 {

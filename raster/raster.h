@@ -151,7 +151,10 @@ typedef struct rs_frame {
                                    and the terrain pass (raster/frame.h) refuses shorter
                                    bands.  0 (default): any bands */
     int32_t debug_count;        /* tests: colour must be XRGB8888; each covered pixel's
-                                   32-bit value counts the writes (no depth test, no sky) */
+                                   32-bit value counts the writes (no depth test, no sky).
+                                   Only builds with RS_WITH_COUNT = 1 draw it (the tests'
+                                   tests/support/raster_count.c); the library refuses it
+                                   with BR_E_UNSUPPORTED */
 } rs_frame;
 /* A prepared rs_frame is read-only to drawing: what a band cost comes back in the
  * caller's rs_band_stats (below), so bands on several threads share nothing. */
@@ -200,10 +203,8 @@ br_status rs_draw_band(const rs_frame *f, int32_t y0, int32_t rows, void *color,
 br_status rs_render_band(const rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth);
 
 /* 1 when this build draws frames of this pixel format, depth size and texturing.
- * Every combination is compiled by default; boards with little flash compile
- * raster/raster.c with RS_WITH_888, RS_WITH_565, RS_WITH_Z32, RS_WITH_Z16, RS_WITH_TEX
- * or RS_WITH_COUNT (the tests' write-counting variant) defined to 0 to leave variants
- * out (each is about 20 KB of code on x86-64; docs/raster.md gives the sizes). */
+ * Every combination is compiled by default; boards with little flash leave variants out
+ * with core/config.h's RS_WITH_* knobs (each is about 20 KB of code on x86-64). */
 int rs_variant_built(int32_t fmt, int32_t depth, int textured);
 
 /* The instruction set the drawing code runs with.  x86-64 builds carry two copies of it,

@@ -6,7 +6,7 @@
  * one copy it says so and checks that rs_isa_set falls back to it. */
 #include "raster/raster.h"
 #include "core/cam.h"
-#include "platform/peer_scene.h"
+#include "benchmarks/peer_scene.h"
 #include "tests/test.h"
 
 static peer_scene *g_ps;

@@ -14,7 +14,7 @@
 #include "raster/frame.h"
 #include "raster/raster.h"
 #include "platform/cmd.h"
-#include "platform/peer_scene.h"
+#include "benchmarks/peer_scene.h"
 #include "platform/png_io.h"
 #include "platform/sink_rgb565.h"
 #include "platform/sink_sdl.h"

@@ -1,7 +1,8 @@
 /* tests/test_raster.c — the integer rasteriser, pixel-exact.
  *
  * Fill rule (screen-space input through rs_cvert_set, write counting through
- * rs_frame.debug_count): grids and fans of triangles sharing edges cover every pixel
+ * rs_frame.debug_count, drawn by tests/support/raster_count.c: every frame here goes through
+ * that copy, the library's code plus the counting variant): grids and fans of triangles sharing edges cover every pixel
  * exactly once, ties on pixel centres included; degenerate, line, tiny and huge
  * triangles.  World-space input: near-plane crossings, cameras below and inside real
  * terrain (N47E009), vertices far outside the guard band.  Bands of 1, 7, 16 and 240
@@ -17,6 +18,7 @@
 #include "platform/load.h"
 #include "platform/png_io.h"
 #include "raster/raster.h"
+#include "tests/support/raster_count.h"
 #include "raster/ramp.h"
 #include "raster/terrain.h"
 
@@ -36,7 +38,7 @@ static void *render_full(rs_frame *f)
     void *z = calloc((size_t)f->w * (size_t)f->h, 4);
     CHECK(c && z);
     memset(&g_st, 0, sizeof g_st);
-    CHECK_EQ(rs_draw_band(f, 0, f->h, c, (size_t)f->w * bpp, z, &g_st), BR_OK);
+    CHECK_EQ(cnt_draw_band(f, 0, f->h, c, (size_t)f->w * bpp, z, &g_st), BR_OK);
     free(z);
     return c;
 }
@@ -239,7 +241,7 @@ static void test_clear(void)
                     f.vp.znear = 3; f.vp.zfar = 1000;
                     dfar = (uint32_t)((int64_t)RS_DEPTH_ONE * 3 / 1000);
                     memset(cbuf, 0xa5, sizeof cbuf); memset(zbuf, 0xa5, sizeof zbuf);
-                    CHECK_EQ(rs_draw_band(&f, 0, ROWS, cbuf, stride, zbuf, NULL), BR_OK);
+                    CHECK_EQ(cnt_draw_band(&f, 0, ROWS, cbuf, stride, zbuf, NULL), BR_OK);
                     for (y = 0; y < ROWS; y++) {
                         for (x = 0; x < w; x++) {
                             const uint8_t *c = cbuf + (size_t)y * stride + (size_t)x * (size_t)cb;
@@ -366,7 +368,7 @@ static void terrain_frame(rs_frame *f, rs_cvert *cache, int32_t w, int32_t h, co
     f->chunks = g_chunks;
     CHECK(rs_chunk_mem_size(f->prims, f->nprims) <= sizeof g_chunks);
     cam_viewproj(&c, &f->vp);
-    CHECK_EQ(rs_frame_prepare(f), BR_OK);
+    CHECK_EQ(cnt_frame_prepare(f), BR_OK);
 }
 
 /* Terrain crop: ~14.6 km (east) x 23.7 km (north) at 57 x 92 m spacing. */
@@ -395,10 +397,10 @@ static void test_bands_and_formats(void)
                 uint8_t *img = malloc((size_t)w * h * bpp);
                 void *mem = malloc(rs_band_mem_size(w, rows, fmt, dep));
                 f.one_band = k == 4;
-                CHECK_EQ(rs_frame_prepare(&f), BR_OK);
+                CHECK_EQ(cnt_frame_prepare(&f), BR_OK);
                 for (y0 = 0; y0 < h; y0 += rows) {
                     int32_t r = h - y0 < rows ? h - y0 : rows;
-                    CHECK_EQ(rs_draw_band(&f, y0, r, img + (size_t)y0 * w * bpp, (size_t)w * bpp, mem, NULL), BR_OK);
+                    CHECK_EQ(cnt_draw_band(&f, y0, r, img + (size_t)y0 * w * bpp, (size_t)w * bpp, mem, NULL), BR_OK);
                 }
                 CHECK_MSG(!memcmp(img, full, (size_t)w * h * bpp), "bands of %d rows differ (fmt %d depth %d one_band %d)",
                           rows, fmt, dep, f.one_band);
@@ -484,7 +486,7 @@ static void test_near_plane_and_inside(void)
         img = render_full(&f);
         band = malloc((size_t)w * h * 4);
         for (y0 = 0; y0 < h; y0 += 7)
-            rs_draw_band(&f, y0, h - y0 < 7 ? h - y0 : 7, band + (size_t)y0 * w * 4, (size_t)w * 4, mem, NULL);
+            cnt_draw_band(&f, y0, h - y0 < 7 ? h - y0 : 7, band + (size_t)y0 * w * 4, (size_t)w * 4, mem, NULL);
         CHECK(!memcmp(band, img, (size_t)w * h * 4));
         free(img); free(band); free(mem);
     }
@@ -510,7 +512,7 @@ static void test_far_outside_guard(void)
     f.w = w; f.h = h; f.v = v; f.nv = 5; f.cache = cache; f.prims = &pr; f.nprims = 1; f.debug_count = 1;
     f.chunks = g_chunks;
     cam_viewproj(&c, &f.vp);
-    CHECK_EQ(rs_frame_prepare(&f), BR_OK);
+    CHECK_EQ(cnt_frame_prepare(&f), BR_OK);
     cnt = render_full(&f);
     /* looking horizontally: the lower half is ground, the upper half sky */
     for (y = 0; y < h; y++) {
@@ -555,7 +557,7 @@ static void test_near_plane_grid(void)
     f.w = w; f.h = h; f.v = v; f.nv = (uint32_t)(n * n); f.cache = cache; f.prims = &pr; f.nprims = 1;
     f.debug_count = 1; f.chunks = g_chunks;
     cam_viewproj(&c, &f.vp);
-    CHECK_EQ(rs_frame_prepare(&f), BR_OK);
+    CHECK_EQ(cnt_frame_prepare(&f), BR_OK);
     cnt = render_full(&f);
     CHECK(g_st.clipped > 0);
     for (y = 0; y < h; y++)
@@ -611,7 +613,7 @@ static void texture_case(int32_t n, int fmt, int low)
     f.w = w; f.h = h; f.fmt = fmt; f.v = v; f.nv = (uint32_t)((n + 1) * (n + 1)); f.cache = cache;
     f.prims = &pr; f.nprims = 1; f.tex = &tex; f.clear_rgb = 0x000000u; f.chunks = g_chunks;
     cam_viewproj(&c, &f.vp);
-    CHECK_EQ(rs_frame_prepare(&f), BR_OK);
+    CHECK_EQ(cnt_frame_prepare(&f), BR_OK);
     img = render_full(&f);
     {
         double R[3][3], fo = (double)c.f_q16 / 65536.0;
@@ -820,7 +822,7 @@ static void test_transform(void)
             }
         }
         f.nv = NV - (uint32_t)(k % 5);    /* every remainder of the loop's unrolling */
-        CHECK_EQ(rs_frame_prepare(&f), BR_OK);
+        CHECK_EQ(cnt_frame_prepare(&f), BR_OK);
         bad += cache_mismatches(&f, cls);
     }
     if (getenv("BITRAIN_VERBOSE"))

@@ -1,4 +1,4 @@
-/* benchmarks/arm/peer_dump.c — writes the peer scene (platform/peer_scene.c, built from
+/* benchmarks/arm/peer_dump.c — writes the peer scene (benchmarks/peer_scene.c, built from
  * fuji.png with libpng) as the raw file of peer_file.h, for peer_run on a foreign
  * architecture.  With CAM and WxH it also renders that frame the way `bitrain bench`
  * does (peer_frame + rs_frame_prepare + rs_render_band) and prints its checksum
@@ -9,7 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "platform/peer_scene.h"
+#include "benchmarks/peer_scene.h"
 #include "benchmarks/arm/peer_file.h"
 
 static int put(FILE *f, uint32_t v)

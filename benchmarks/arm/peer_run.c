@@ -132,7 +132,7 @@ int main(int argc, char **argv)
         }
     }
     if (!found) { fprintf(stderr, "peer_run: no camera '%s' in the file\n", argv[2]); return 2; }
-    /* peer_frame() of platform/peer_scene.c, from the integer camera */
+    /* peer_frame() of benchmarks/peer_scene.c, from the integer camera */
     if (cam_look_at(&c, eye, tg, fovy, w, h, zn, zf) != BR_OK) { fprintf(stderr, "peer_run: camera refused\n"); return 1; }
     memset(&f, 0, sizeof f);
     f.w = w; f.h = h; f.no_cull = 1;
