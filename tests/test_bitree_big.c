@@ -295,7 +295,9 @@ static void variant(const spec *sp)
     o[no].what = "fidelity"; o[no].partial = 0; o[no].thr = p.max_err;
     CHECK_EQ(o[no].m.ntri, sp->fid_tri);
     CHECK_EQ(o[no].m.overflow, 0);
-    CHECK(o[no].m.ns * 2 <= o[no].m.ntri * 3);   /* <= 1.5 references per triangle (issue 3), voids too */
+    /* <= 1.54 references per triangle, voids too: 1.5 (issue 3) until line triangles that are
+     * not flat in 3-D (vertical slivers) were replaced by swaps */
+    CHECK(o[no].m.ns * 50 <= o[no].m.ntri * 77);
     mh = btc_mesh_hash(&o[no].m);
     CHECK(mh == sp->mesh_fnv[0]);
     printf("  fidelity %lld m (%lld units): count + extract %.1f s, %u triangles, mesh fnv %llu\n",
