@@ -28,6 +28,7 @@
 #include "platform/dem_args.h"
 #include "platform/load.h"
 #include "platform/scene.h"
+#include "platform/water_scene.h"
 #include "platform/png_io.h"
 #include "raster/raster.h"
 #include "raster/ramp.h"
@@ -72,8 +73,43 @@ static int usage(void)
             "         [--max-error M | --pixel-error P | --full [STEP]] [--bands ROWS]\n"
             "         [--format rgb565|rgb888] [--depth 32|16] [--colors FILE] [--texture PNG] [--no-cull]\n"
             "         [--sun AZ,ALT] [--ambient A] [--zscale F]\n"
+            "         [--water-level M | --water FILE | --no-water] [--fog | --no-fog] [--time T]\n"
+            "         [--reflection full|half|quarter|none]\n"
             "  camera in metres: x east from the west edge, y north from the south edge, z height\n");
     return 2;
+}
+
+/* ---------------------------------------------------------------- water and atmosphere options
+ * (platform/water_scene.h): --water-level M, --no-water, --water FILE, --time T,
+ * --fog / --no-fog, --reflection full|half|quarter|none.  1: taken, 0: not one of
+ * these, -1: bad value. */
+static int water_args(ws_opts *o, int argc, char **argv, int *i)
+{
+    const char *a = argv[*i], *n = *i + 1 < argc ? argv[*i + 1] : NULL;
+    char *end;
+    if (!strcmp(a, "--no-water")) { o->no_water = 1; return 1; }
+    if (!strcmp(a, "--fog")) { o->no_fog = 0; return 1; }
+    if (!strcmp(a, "--no-fog")) { o->no_fog = 1; return 1; }
+    if (!n) return 0;
+    if (!strcmp(a, "--water")) { o->water_file = n; ++*i; return 1; }
+    if (!strcmp(a, "--water-level") || !strcmp(a, "--time")) {
+        double v = strtod(n, &end);
+        if (end == n || *end || !isfinite(v) || fabs(v) > 1e6) {
+            fprintf(stderr, "bitrain render: %s '%s' is not a number (|value| <= 1e6)\n", a, n);
+            return -1;
+        }
+        if (a[2] == 'w') { o->have_level = 1; o->level_m = v; } else o->time_s = v;
+        ++*i;
+        return 1;
+    }
+    if (!strcmp(a, "--reflection")) {
+        static const char *const names[] = { "full", "half", "quarter", "none" };
+        int k;
+        for (k = 0; k < 4; k++) if (!strcmp(n, names[k])) { o->reflection = k + 1; ++*i; return 1; }
+        fprintf(stderr, "bitrain render: --reflection '%s': expected full, half, quarter or none\n", n);
+        return -1;
+    }
+    return 0;
 }
 
 int cmd_render(int argc, char **argv)
@@ -95,11 +131,16 @@ int cmd_render(int argc, char **argv)
     png_sink ps;
     double t0, t1, t2;
     int rc = 1;
+    ws_opts wo;
+    water_scene ws;
+    int use_pipe;
 
     memset(&so, 0, sizeof so);
     memset(&s, 0, sizeof s);
     memset(&fr, 0, sizeof fr);
     memset(&ps, 0, sizeof ps);
+    memset(&wo, 0, sizeof wo);
+    memset(&ws, 0, sizeof ws);
     for (i = 0; i < argc; i++) {
         const char *a = argv[i], *n = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "-o") && n) { out = n; i++; }
@@ -127,6 +168,7 @@ int cmd_render(int argc, char **argv)
         else if (!strcmp(a, "--sun") && n) { if (sscanf(n, "%lf,%lf", &so.sun_az, &so.sun_alt) != 2) return usage(); i++; }
         else if (!strcmp(a, "--ambient") && n) { so.ambient = atof(n); i++; }
         else if (!strcmp(a, "--zscale") && n) { so.zscale = atof(n); i++; }
+        else if ((r = water_args(&wo, argc, argv, &i)) != 0) { if (r < 0) return usage(); }
         else if ((r = dem_args_parse(&so.dem, argc, argv, &i, "render")) != 0) { if (r < 0) return 2; }
         else if (!strcmp(a, "-h") || !strcmp(a, "--help")) { usage(); return 0; }
         else if (a[0] == '-' && a[1]) { fprintf(stderr, "bitrain render: unknown option '%s'\n", a); return usage(); }
@@ -139,7 +181,10 @@ int cmd_render(int argc, char **argv)
     if (bands == 0 || bands > h) bands = h;
 
     t0 = ms_now();
+    use_pipe = !(wo.no_water && wo.no_fog);
+    so.ramp_abs = use_pipe;
     if (scene_open(&s, in, nin, &so, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); return 1; }
+    if (use_pipe && ws_open(&ws, &s, &wo, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
     if (!have_cam) scene_default_view(&s, fov, camv, camv + 3);
     if (scene_camera(&s, camv, camv + 3, fov, w, h, &c) != BR_OK) {
         fprintf(stderr, "bitrain render: unusable camera (eye equals target, or too far from the terrain: "
@@ -201,15 +246,31 @@ int cmd_render(int argc, char **argv)
     fr.tex = s.rt.tex_w > 0 ? &s.tex : NULL;
     fr.v = full_step ? verts : s.verts; fr.nv = nv; fr.prims = prims; fr.nprims = nprims;
     fr.cache = full_step ? malloc(rs_cache_mem_size(nv ? nv : 1)) : s.cache;
-    fr.chunks = bands < h ? malloc(rs_chunk_mem_size(prims, nprims) + 4) : NULL;
-    bandmem = malloc(rs_band_mem_size(w, bands, fmt, depth));
+    fr.chunks = bands < h || use_pipe ? malloc(rs_chunk_mem_size(prims, nprims) + 4) : NULL;
+    bandmem = use_pipe ? NULL : malloc(rs_band_mem_size(w, bands, fmt, depth));
     ps.rgb = malloc((size_t)w * 3);
-    if (!fr.cache || !bandmem || !ps.rgb) { fprintf(stderr, "bitrain: out of memory\n"); goto done; }
+    if (!fr.cache || (!bandmem && !use_pipe) || !ps.rgb) { fprintf(stderr, "bitrain: out of memory\n"); goto done; }
     cam_viewproj(&c, &fr.vp);
     if (rs_frame_prepare(&fr) != BR_OK) { fprintf(stderr, "bitrain: bad frame parameters\n"); goto done; }
     if (png_out_open(&ps.po, out, w, h, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
     ps.w = w; ps.fmt = fmt; ps.err = &err;
-    if (rs_render(&fr, bands, bandmem, sink_png, &ps) != BR_OK) {
+    if (use_pipe) {     /* water and atmosphere: the frame pipe (platform/water_scene.h) */
+        size_t mb;
+        rs_band_stats tot;
+        if (ws_frame(&ws, &s, &c, &fr, (int32_t)lround(pix_err * 256), &err) != BR_OK) {
+            png_out_abort(ps.po);
+            fprintf(stderr, "bitrain: %s\n", err.msg);
+            goto done;
+        }
+        mb = rs_pipe_mem_size(&ws.pipe, bands);
+        bandmem = malloc(mb);
+        if (!bandmem || rs_pipe_run(&ws.pipe, bands, bandmem, mb, sink_png, &ps, &tot) != BR_OK) {
+            png_out_abort(ps.po);
+            fprintf(stderr, "bitrain: %s\n", err.msg[0] ? err.msg : "render failed");
+            goto done;
+        }
+        fr.stat_tris = tot.tris; fr.stat_clipped = tot.clipped;
+    } else if (rs_render(&fr, bands, bandmem, sink_png, &ps) != BR_OK) {
         png_out_abort(ps.po);
         fprintf(stderr, "bitrain: %s\n", err.msg[0] ? err.msg : "render failed");
         goto done;
@@ -225,6 +286,7 @@ int cmd_render(int argc, char **argv)
 done:
     if (full_step) free(fr.cache);
     free(verts); free(idx); free(prims); free(fr.chunks); free(bandmem); free(ps.rgb);
+    if (use_pipe) ws_close(&ws);
     scene_close(&s);
     return rc;
 }

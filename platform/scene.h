@@ -26,6 +26,8 @@ typedef struct scene_opts {          /* zero = defaults */
     double zscale;                   /* vertical scale (0: 1, or automatic for grids without a
                                         georeference whose relief dwarfs the assumed 1 m spacing) */
     int quiet;                       /* do not print the automatic vertical scale */
+    int ramp_abs;                    /* 1: georeferenced grids take the absolute-elevation ramp
+                                        (rs_ramp_absolute) instead of the relative one */
 } scene_opts;
 
 typedef struct scene {
