@@ -27,6 +27,8 @@
  *   y = row that is cross((p1-p0),(p2-p0)) < 0: meshcheck orientation -1, the
  *   OBJ/GL convention).  Degenerate ("line") triangles (a repeated index, or
  *   three collinear vertices) draw nothing; nline counts them, ntri the real ones,
+ *   and their heights are on their line too, or below the surface where it covers
+ *   both sides (core/bt_emit.c rim_line), so no vertical sliver shows;
  *   ns - 2 = ntri + nline when ns >= 3.
  * The real triangles form a conforming mesh: watertight (each interior edge in
  * exactly two triangles), no T-junctions, void samples never inside or on a

@@ -15,12 +15,37 @@ static int collinear(const bt_mesh *m, uint32_t a, uint32_t b, uint32_t c)
     return bt_cross(&m->v[a], &m->v[b], &m->v[c]) == 0;
 }
 
+/* The straight rim q-z-r2 of two leaves around one pivot (z between q and r2, both
+ * leaves' edges on it) may serve as a line triangle when it draws nothing visible:
+ * collinear in (x, y, z) too (bt_flat), or with z above the chord q-r2 where
+ * the mesh covers both sides of the rim (no void in the grid, the rim not on its
+ * edge).  Then the sliver (q, z, r2) lies in the vertical plane of the rim, below
+ * the polyline q-z-r2 that is the surface there, so any ray from above the surface
+ * to a point of it crosses the surface first: the depth test hides it.  Any other
+ * grid-collinear triple is a vertical sliver standing out of the surface (or
+ * hanging off an edge), drawn by the rasteriser. */
+static int rim_line(const em *e, uint32_t q, uint32_t z, uint32_t r2)
+{
+    const bt_mesh *m = e->m;
+    const bt_vert *a = &m->v[q], *c = &m->v[z], *b = &m->v[r2];
+    int32_t w = e->t->f->w, h = e->t->f->h, tb, tc;
+    if (!collinear(m, q, z, r2)) return 0;
+    if (bt_flat(a, c, b)) return 1;
+    if (e->t->nvalid != (int64_t)w * h) return 0;
+    if ((a->x == 0 && b->x == 0) || (a->x == w - 1 && b->x == w - 1) ||
+        (a->y == 0 && b->y == 0) || (a->y == h - 1 && b->y == h - 1)) return 0;
+    tb = b->x != a->x ? b->x - a->x : b->y - a->y;    /* position along the rim */
+    tc = b->x != a->x ? c->x - a->x : c->y - a->y;
+    if (tb < 0) { tb = -tb; tc = -tc; }
+    return ((int64_t)c->z - a->z) * tb > ((int64_t)b->z - a->z) * tc;
+}
+
 /* Writes leaf L (the next leaf N, if any, is known: one leaf of lookahead).
  * Returns 1 when N was written too.  The strip's last two indices are kept equal
  * to the written leaf's exit edge, so the next leaf shares them.  When L must
  * swap (its pivot is the older index) and N turns around the same pivot with
  * L's new vertex, the old one and N's new vertex collinear (a straight rim of
- * the fan), the rim itself makes the line triangle (002 figure 10, 004's
+ * the fan that draws nothing visible: rim_line), the rim itself makes the line triangle (002 figure 10, 004's
  * collinearity): "z r2 P" writes both leaves with one line triangle instead of
  * two swaps, and leaves the pivot newest for N's successor. */
 int btw_write_leaf(em *e, const pend *L, const pend *N)
@@ -52,7 +77,7 @@ int btw_write_leaf(em *e, const pend *L, const pend *N)
                 if (N && ((N->o0 == p && N->o1 != z) || (N->o1 == p && N->o0 != z))) {
                     uint32_t r2 = N->o0 == p ? N->o1 : N->o0;
                     int nhas = (N->ia == p || N->ic == p || N->ib == p) && (N->ia == z || N->ic == z || N->ib == z);
-                    if (nhas && r2 != q && collinear(m, q, z, r2)) {
+                    if (nhas && r2 != q && rim_line(e, q, z, r2)) {
                         push(m, z); push(m, r2); push(m, p);
                         m->nline++;
                         return 1;

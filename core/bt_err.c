@@ -469,8 +469,22 @@ void bte_diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int 
             tri_eval(c, a, ap[i], b, ti, dclean, &r);
         }
         if (c->ub) c->ub[hv] = r.cls == 0 && r.err < UB_INF ? (int32_t)r.err : UB_INF;
-        if (r.cls == 1) code = BT_CODE_SPLIT;
-        else if (r.cls == 0) {
+        if (r.cls == 1) {
+            /* mixed: always split, and its volume holds its valid corners and
+             * centre, the heights of the valid leaves it ends in at h = 1 (no child
+             * diamond holds them there): an empty range reads as all void and the
+             * view modes would cull those leaves, notching an edge at an odd row or
+             * column one sample in two */
+            int32_t zv, k;
+            const int32_t px[4] = { a[0], b[0], ap[i][0], x }, py[4] = { a[1], b[1], ap[i][1], y };
+            code = BT_CODE_SPLIT;
+            for (k = 0; k < 4; k++)
+                if (samp(c, px[k], py[k], &zv)) {
+                    uint8_t l = q_lo(c, zv), u = q_hi(c, zv);
+                    if (l < lo) lo = l;
+                    if (u > hi) hi = u;
+                }
+        } else if (r.cls == 0) {
             uint16_t e = bt_code_encode(r.err);
             uint8_t l = q_lo(c, r.zlo), u = q_hi(c, r.zhi);
             if (e > code) code = e;

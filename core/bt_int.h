@@ -42,6 +42,17 @@ static inline int64_t bt_cross(const bt_vert *a, const bt_vert *b, const bt_vert
     return (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(b->y - a->y) * (c->x - a->x);
 }
 
+/* 1 when distinct grid-collinear vertices (bt_cross == 0) are collinear in (x, y, z)
+ * too, so the triangle they make is empty in the world frame as well: a line
+ * triangle whose heights are not on one line is a vertical sliver that the
+ * rasteriser draws.  |dz| < 2^29 (BR_Z_LIMIT) and |dx|, |dy| < 2^15 keep the products
+ * below 2^44. */
+static inline int bt_flat(const bt_vert *a, const bt_vert *b, const bt_vert *c)
+{
+    int64_t dz1 = (int64_t)b->z - a->z, dz2 = (int64_t)c->z - a->z;
+    return dz1 * (c->x - a->x) == dz2 * (b->x - a->x) && dz1 * (c->y - a->y) == dz2 * (b->y - a->y);
+}
+
 /* 1 when the box [x0, x1] x [y0, y1] (x0, y0 >= 0) lies inside w x h and touches
  * no 16 x 16 block that holds a void: every sample in it is valid */
 static inline int clean(const ctx *c, int32_t x0, int32_t y0, int32_t x1, int32_t y1)

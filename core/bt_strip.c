@@ -5,8 +5,9 @@
  * does not share the strip's last edge.  Instead of a fixed restart (2 or 4
  * line triangles), bts_bridge finds by breadth-first search the SHORTEST
  * sequence of indices that draws, after the strip's current end, only line
- * triangles (a repeated index, or three collinear vertices: 002 figure 10,
- * 004's collinearity test) and then leaf L, and then (when the next leaf N is
+ * triangles (a repeated index, or three vertices collinear in (x, y, z): 002
+ * figure 10, 004's collinearity test, with the heights on the line too, since a
+ * triangle collinear in (x, y) only is a vertical sliver) and then leaf L, and then (when the next leaf N is
  * known) only line triangles and N, each with the contract's winding
  * (counter-clockwise seen from +z: grid cross < 0 in drawing order).  Only the
  * part up to L is written: N is written by the next call from the state that
@@ -28,14 +29,18 @@ static int key_of(int a, int b, int ph, int par) { return ((a * NCAND + b) * 3 +
 /* The search's view of the candidates: positions, the leaves as bit masks of
  * candidate slots, and the orientation of each triple (computed on first use). */
 typedef struct bsearch {
+    const bt_vert *v[NCAND];
     int32_t x[NCAND], y[NCAND];
     unsigned lm, nm;                 /* candidates of L, of N */
-    int8_t sg[NCAND * NCAND * NCAND]; /* sign of cross(b - a, r - a); 2: not yet known */
+    int8_t sg[NCAND * NCAND * NCAND]; /* sign of cross(b - a, r - a), 3: collinear in (x, y)
+                                        only (a vertical sliver, bt_flat); 2: not yet known */
     int8_t hc[NCAND * NCAND * 3];     /* hcost by state (without parity); -1: not yet known */
 } bsearch;
 
 /* Triangle (a, b, r) of candidate slots appended at strip length len: 0 line
- * triangle, 1 it draws the target (mask tm) with the right winding, -1 else. */
+ * triangle (collinear in (x, y, z): it draws nothing), 1 it draws the target (mask
+ * tm) with the right winding, -1 else (a triangle that is not the target, or a
+ * vertical sliver). */
 static int step(bsearch *q, int a, int b, int r, uint32_t len, unsigned tm)
 {
     int8_t *g = &q->sg[(a * NCAND + b) * NCAND + r];
@@ -45,9 +50,11 @@ static int step(bsearch *q, int a, int b, int r, uint32_t len, unsigned tm)
         int64_t cr = (int64_t)(q->x[b] - q->x[a]) * (q->y[r] - q->y[a]) -
                      (int64_t)(q->y[b] - q->y[a]) * (q->x[r] - q->x[a]);
         *g = (int8_t)((cr > 0) - (cr < 0));
+        if (cr == 0 && !bt_flat(q->v[a], q->v[b], q->v[r])) *g = 3;
     }
     sgn = *g;
     if (sgn == 0) return 0;
+    if (sgn == 3) return -1;
     if (((tm >> a) & (tm >> b) & (tm >> r) & 1u) == 0) return -1;
     if (len & 1) sgn = -sgn;          /* odd triangles are drawn (b, a, r) */
     return sgn < 0 ? 1 : -1;
@@ -118,6 +125,7 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
     memset(q.hc, 0xff, sizeof q.hc);
     q.lm = q.nm = 0;
     for (i = 0; i < nc; i++) {
+        q.v[i] = &m->v[cand[i]];
         q.x[i] = m->v[cand[i]].x; q.y[i] = m->v[cand[i]].y;
         if (cand[i] == L[0] || cand[i] == L[1] || cand[i] == L[2]) q.lm |= 1u << i;
         if (N && (cand[i] == N[0] || cand[i] == N[1] || cand[i] == N[2])) q.nm |= 1u << i;

@@ -12,7 +12,8 @@ br_status hf_validate(const hf *f)
 {
     br_status s = hf_check_dims(f->w, f->h);
     if (s != BR_OK) return s;
-    if (!f->z || f->z_num <= 0 || f->z_den <= 0 || f->dx_um <= 0 || f->dy_um <= 0) return BR_E_ARG;
+    if (!f->z || f->z_num <= 0 || f->z_den <= 0 || f->dx_um <= 0 || f->dy_um <= 0 ||
+        f->dx_um > HF_MAX_SPACING_UM || f->dy_um > HF_MAX_SPACING_UM) return BR_E_ARG;
     return BR_OK;
 }
 

@@ -6,7 +6,8 @@
  * Terrarium 1/256, files with decimal heights a power of ten chosen to keep at least 1 mm),
  * |z| <= BR_Z_LIMIT; HF_NODATA marks a void (never triangulated, never shaded).
  * Ground spacing: dx_um between columns, dy_um between rows, in micrometres
- * (for geographic grids: metres per degree at the grid's centre latitude).
+ * (for geographic grids: metres per degree at the grid's centre latitude),
+ * 1 .. HF_MAX_SPACING_UM.
  * Georeference (optional): where sample (0,0) lies and the step per column/row,
  * in nano-degrees (geographic) or micrometres (projected).
  *
@@ -20,6 +21,13 @@
 
 #define HF_NODATA INT32_MIN
 
+/* Largest ground spacing, 2^37 um = 137.4 km: above one degree at the equator
+ * (111.32 km), so ETOPO/GEBCO-class grids up to 1.2 degrees fit.  The bound keeps
+ * every product of a spacing in int64: bt_frame_auto's w * dx_um << 10 is below
+ * 16385 * 2^37 * 2^10 < 2^62; raster/terrain.c's dx_um << 16 is below 2^53; and
+ * core/shade.c brings dx_um, dy_um below 2^31 by at most 6 halvings. */
+#define HF_MAX_SPACING_UM ((int64_t)1 << 37)
+
 enum { HF_GEO_NONE = 0, HF_GEO_DEGREES = 1, HF_GEO_PROJECTED = 2 };
 
 typedef struct hf_geo {
@@ -32,7 +40,7 @@ typedef struct hf {
     int32_t w, h;       /* samples per row, rows */
     int32_t *z;         /* w*h heights, HF_NODATA = void */
     int32_t z_num, z_den; /* metres = z * z_num / z_den; both > 0 */
-    int32_t dx_um, dy_um; /* ground spacing in micrometres; both > 0 */
+    int64_t dx_um, dy_um; /* ground spacing in micrometres, 1 .. HF_MAX_SPACING_UM */
     hf_geo geo;
 } hf;
 

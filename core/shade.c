@@ -12,25 +12,32 @@
 
 br_status shade_init(shade_ctx *c, const hf *f)
 {
-    int64_t kx, ky, kz;
+    int64_t kx, ky, kz, dx = f->dx_um, dy = f->dy_um;
+    int32_t s = 0;
     if (hf_validate(f) != BR_OK) return BR_E_ARG;
+    /* Spacings of 2^31 um and more (hf.h allows up to 2^37): the direction is
+     * 2^s (zn*dy', zn*dx', 8*zd*dx'*dy' * 2^s / 1e6) with dx = dx' 2^s, dy = dy' 2^s,
+     * so the steps below run on dx', dy' < 2^31 and the final division is by
+     * 1e6 / 2^s, exact for s <= 6 (1e6 = 2^6 * 15625).  s = 0 for every spacing
+     * under 2.1 km, which leaves those constants as they were. */
+    while (dx >= ((int64_t)1 << 31) || dy >= ((int64_t)1 << 31)) { dx >>= 1; dy >>= 1; s++; }
     /* Divided by 1e6: (-gx*zn*dy_um, -gy*zn*dx_um, 8*zd*dx_um*dy_um/1e6).
      * kx, ky, zd*dx_um < 2^62 (int32 factors); 8*zd*dx_um would reach 2^65, so
      * zd*dx_um is first halved (kx, ky alike) below 2^59, then kz = 8*zd*dx_um is
      * brought below 2^32 before it is multiplied by dy_um.  (For zd*dx_um < 2^59,
      * every unit the loaders make, the first loop does nothing.) */
-    kx = (int64_t)f->z_num * f->dy_um;
-    ky = (int64_t)f->z_num * f->dx_um;
-    kz = (int64_t)f->z_den * f->dx_um;
+    kx = (int64_t)f->z_num * dy;
+    ky = (int64_t)f->z_num * dx;
+    kz = (int64_t)f->z_den * dx;
     while (kz >= ((int64_t)1 << 59)) { kx = (kx + 1) >> 1; ky = (ky + 1) >> 1; kz = (kz + 1) >> 1; }
     kz *= 8;
     while (kz >= ((int64_t)1 << 32)) { kx = (kx + 1) >> 1; ky = (ky + 1) >> 1; kz = (kz + 1) >> 1; }
-    kz = kz * f->dy_um;
+    kz = kz * dy;
     /* keep precision through the division: scale all three up while they are small */
     while (kz < ((int64_t)1 << 52) && kx < ((int64_t)1 << 52) && ky < ((int64_t)1 << 52)) {
         kx <<= 1; ky <<= 1; kz <<= 1;
     }
-    kz /= 1000000;
+    kz /= 1000000 >> s;
     if (kz < 1) kz = 1;
     while (kx >= ((int64_t)1 << 24) || ky >= ((int64_t)1 << 24) || kz >= ((int64_t)1 << 24)) {
         kx = (kx + 1) >> 1; ky = (ky + 1) >> 1; kz = (kz + 1) >> 1;

@@ -20,6 +20,7 @@
 #include <string.h>
 #include <time.h>
 #include "platform/cmd.h"
+#include "platform/opt.h"
 #include "platform/png_io.h"
 #include "raster/raster.h"
 #include "platform/peer_scene.h"
@@ -62,12 +63,31 @@ static br_status bench_band_sink(void *user, int32_t y0, int32_t rows, const voi
     return BR_OK;
 }
 
+#define BENCH_SYNOPSIS "--scene peer [options]\n" \
+    "  the peer benchmark scene of ../shared/bench/PEERS.md, drawn by the rasteriser alone"
+
 int cmd_bench(int argc, char **argv)
 {
-    const char *scene = NULL, *out = NULL, *dem = "../shared/data/dem/png/fuji.png";
-    char camc = 'A';
-    int w = 640, h = 480, frames = 10, warm = 3, cull = 0, fmt = RS_FMT_XRGB8888, depth = RS_DEPTH32, bands = 0;
-    int i;
+    const char *out = NULL, *dem = "../shared/data/dem/png/fuji.png", *pos[1];
+    char camc;
+    int size[2] = { 640, 480 }, w, h, frames = 10, warm = 3, cull = 0, fmt = RS_FMT_XRGB8888, depth_choice = 0;
+    int depth, bands = 0, scene_choice = -1, cam_choice = 0, isa_choice = 0, npos, r, i;
+    const opt_spec own[] = {
+        { "--scene", OPT_CHOICE, &scene_choice, 0, 0, 0, "peer", "S", "the scene (peer: ../shared/bench/PEERS.md)", NULL },
+        { "--camera", OPT_CHOICE, &cam_choice, 0, 0, 0, "A|B|a|b", "C", "the peer camera", NULL },
+        { "--size", OPT_SIZE, size, 1, RS_MAX_DIM, 0, NULL, "WxH", "frame size (default 640x480)", NULL },
+        { "--frames", OPT_INT, &frames, 1, 1000000, 0, NULL, "N", "timed frames (default 10)", NULL },
+        { "--warmup", OPT_INT, &warm, 0, 1000000, 0, NULL, "W", "untimed frames first (default 3)", NULL },
+        { "--cull", OPT_FLAG, &cull, 0, 0, 0, NULL, NULL, "cull back faces", NULL },
+        { "--format", OPT_CHOICE, &fmt, 0, 0, 0, "rgb888|rgb565", "F", "pixel format", NULL },
+        { "--depth", OPT_CHOICE, &depth_choice, 0, 0, 0, "32|16", "BITS", "depth buffer bits", NULL },
+        { "--bands", OPT_INT, &bands, 0, RS_MAX_DIM, 0, NULL, "ROWS", "band mode with bands of ROWS rows (0: whole frame)", NULL },
+        { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT.png", "write the last frame", NULL },
+        { "--dem", OPT_STR, &dem, 0, 0, 0, NULL, "FILE", "the peer scene's terrain (default ../shared/data/dem/png/fuji.png)", NULL },
+        { "--isa", OPT_CHOICE, &isa_choice, 0, 0, 0, "auto|x86-64|x86-64-v3", "ISA", "the copy of the drawing code (default auto)", NULL },
+        OPT_END
+    };
+    const opt_spec *const tables[] = { own, NULL };
     peer_scene *ps;
     rs_vertex *v;
     rs_prim prims[PEER_NSTRIP];
@@ -75,40 +95,20 @@ int cmd_bench(int argc, char **argv)
     rs_cvert *cache;
     void *color, *zbuf, *mem = NULL;
     double *ms;
-    for (i = 0; i < argc; i++) {
-        const char *a = argv[i], *n = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "--scene") && n) { scene = n; i++; }
-        else if (!strcmp(a, "--camera") && n) { camc = n[0]; i++; }
-        else if (!strcmp(a, "--size") && n) { if (sscanf(n, "%dx%d", &w, &h) != 2) goto usage; i++; }
-        else if (!strcmp(a, "--frames") && n) { frames = atoi(n); i++; }
-        else if (!strcmp(a, "--warmup") && n) { warm = atoi(n); i++; }
-        else if (!strcmp(a, "--cull")) cull = 1;
-        else if (!strcmp(a, "--format") && n) {
-            if (!strcmp(n, "rgb565")) fmt = RS_FMT_RGB565;
-            else if (!strcmp(n, "rgb888")) fmt = RS_FMT_XRGB8888;
-            else goto usage;
-            i++;
-        } else if (!strcmp(a, "--depth") && n) { depth = atoi(n) == 16 ? RS_DEPTH16 : RS_DEPTH32; i++; }
-        else if (!strcmp(a, "--bands") && n) { bands = atoi(n); i++; }
-        else if (!strcmp(a, "-o") && n) { out = n; i++; }
-        else if (!strcmp(a, "--dem") && n) { dem = n; i++; }
-        else if (!strcmp(a, "--isa") && n) {
-            /* the copy of the drawing code (raster.h rs_isa_set): auto, x86-64, x86-64-v3 */
-            int want = !strcmp(n, "auto") ? RS_ISA_AUTO : !strcmp(n, "x86-64-v3") ? RS_ISA_V3
-                       : !strcmp(n, rs_isa_name(RS_ISA_BASE)) ? RS_ISA_BASE : -1;
-            if (want < 0) goto usage;
-            if (rs_isa_set(want) != want && want != RS_ISA_AUTO) {
-                fprintf(stderr, "bitrain bench: --isa %s: this build or CPU has no such copy\n", n);
-                return 1;
-            }
-            i++;
+    r = opt_parse("bench", BENCH_SYNOPSIS, tables, argc, argv, pos, 0, &npos);
+    if (r != OPT_OK) return r == OPT_HELP ? 0 : 2;
+    if (scene_choice < 0) { fprintf(stderr, "bitrain bench: which scene? --scene peer\n"); return 2; }
+    camc = "ABab"[cam_choice];
+    w = size[0];
+    h = size[1];
+    depth = depth_choice ? RS_DEPTH16 : RS_DEPTH32;
+    if (isa_choice) {
+        int want = isa_choice == 1 ? RS_ISA_BASE : RS_ISA_V3;
+        if (rs_isa_set(want) != want) {
+            fprintf(stderr, "bitrain bench: --isa %s: this build or CPU has no such copy\n", isa_choice == 1 ? "x86-64" : "x86-64-v3");
+            return 1;
         }
-        else if (!strcmp(a, "-h") || !strcmp(a, "--help")) goto usage;
-        else { fprintf(stderr, "bitrain bench: unknown option '%s'\n", a); goto usage; }
     }
-    if (!scene || strcmp(scene, "peer") || frames < 1 || warm < 0 || w < 1 || h < 1 || w > RS_MAX_DIM || h > RS_MAX_DIM)
-        goto usage;
-    if (camc != 'A' && camc != 'a' && camc != 'B' && camc != 'b') goto usage;
     ps = (peer_scene *)malloc(sizeof *ps);
     v = (rs_vertex *)malloc(sizeof(rs_vertex) * PEER_NV);
     cache = (rs_cvert *)malloc(rs_cache_mem_size(PEER_NV));
@@ -160,10 +160,4 @@ int cmd_bench(int argc, char **argv)
     }
     free(ps); free(v); free(f.cache); free(color); free(zbuf); free(ms); free(mem); free(f.chunks);
     return 0;
-usage:
-    fprintf(stderr, "usage: bitrain bench --scene peer --camera A|B --size WxH --frames N [--cull]\n"
-                    "       [--format rgb888|rgb565] [--depth 32|16] [--bands ROWS] [-o last.png] [--dem fuji.png]\n"
-                    "       [--warmup W]   (W untimed frames first, default 3)\n"
-                    "       [--isa auto|x86-64|x86-64-v3]   (the copy of the drawing code, default auto)\n");
-    return 2;
 }

@@ -12,6 +12,7 @@
 #include "core/shade.h"
 #include "platform/cmd.h"
 #include "platform/dem_args.h"
+#include "platform/opt.h"
 #include "platform/hillshade.h"
 #include "platform/load.h"
 #include "platform/png_io.h"
@@ -52,30 +53,30 @@ br_status hillshade_write_png(const hf *f, const fx_q14 l[3], const char *out, b
 int cmd_hillshade(int argc, char **argv)
 {
     const char *out = NULL, *in[64];
-    int n = 0, i, r;
+    int n = 0, r;
     double az = 315, alt = 45;
     dem_opts o;
     hf f;
     br_err err;
     fx_q14 l[3];
+    dem_args da;
+    opt_spec dem_t[DEM_ARGS_N];
+    const opt_spec own[] = {
+        { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT.png", "the image to write", NULL },
+        { "--azimuth", OPT_NUM, &az, 0, 360, 0, NULL, "DEG", "light from this azimuth, clockwise from north (default 315)", NULL },
+        { "--altitude", OPT_NUM, &alt, 0, 90, 0, NULL, "DEG", "light altitude above the horizon (default 45)", NULL },
+        OPT_END
+    };
+    const opt_spec *const tables[] = { own, dem_t, NULL };
     memset(&o, 0, sizeof o);
-    for (i = 0; i < argc; i++) {
-        if (!strcmp(argv[i], "-o") && i + 1 < argc) out = argv[++i];
-        else if (!strcmp(argv[i], "--azimuth") && i + 1 < argc) az = atof(argv[++i]);
-        else if (!strcmp(argv[i], "--altitude") && i + 1 < argc) alt = atof(argv[++i]);
-        else if ((r = dem_args_parse(&o, argc, argv, &i, "hillshade")) != 0) {
-            if (r < 0) return 2;
-        } else if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
-            printf("usage: bitrain hillshade IN... -o OUT.png [--azimuth DEG] [--altitude DEG]\n"
-                   "  shaded relief (gdaldem defaults: azimuth 315, altitude 45, z-factor 1);\n"
-                   "  several adjacent tiles are merged first.\n" DEM_ARGS_USAGE);
-            return 0;
-        } else if (argv[i][0] == '-' && argv[i][1]) {
-            fprintf(stderr, "bitrain hillshade: unknown option '%s'\n", argv[i]);
-            return 2;
-        } else if (n < 64) in[n++] = argv[i];
-    }
-    if (!n || !out) { fprintf(stderr, "usage: bitrain hillshade IN... -o OUT.png\n"); return 2; }
+    dem_args_table(&da, &o, dem_t);
+    r = opt_parse("hillshade", "IN... -o OUT.png [options]\n"
+                  "  shaded relief (gdaldem defaults: azimuth 315, altitude 45, z-factor 1); adjacent tiles are merged first",
+                  tables, argc, argv, in, 64, &n);
+    if (r != OPT_OK) return r == OPT_HELP ? 0 : 2;
+    if (dem_args_finish(&da, "hillshade") != OPT_OK) return 2;
+    if (!n) { fprintf(stderr, "bitrain hillshade: no input file (`bitrain hillshade --help`)\n"); return 2; }
+    if (!out) { fprintf(stderr, "bitrain hillshade: no output file: -o OUT.png\n"); return 2; }
     if (dem_load_many(in, n, &o, &f, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); return 1; }
     hillshade_light(az, alt, l);
     if (hillshade_write_png(&f, l, out, &err) != BR_OK) {

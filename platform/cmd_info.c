@@ -6,19 +6,10 @@
 #include <string.h>
 #include "platform/cmd.h"
 #include "platform/dem_args.h"
+#include "platform/opt.h"
 #include "platform/load.h"
 
-static void usage(FILE *f)
-{
-    fprintf(f, "usage: bitrain info [--json] [--merge] [--png-encoding grey|terrain-rgb|terrarium]\n"
-               "                    [--scale S] [--offset O] [--xyz-depth] FILE...\n"
-               "  --json          one JSON object per file (or per merge) per line\n"
-               "  --merge         merge the files by georeference and report the result\n"
-               "  --png-encoding  how PNG pixels hold heights (default: grey for grey PNGs,\n"
-               "                  terrain-rgb for colour ones)\n"
-               "  --scale S, --offset O  grey PNG: metres = raw * S + O (default 1, 0)\n"
-               "  --xyz-depth     XYZ: the third column is depth (positive down); also --depth\n");
-}
+#define INFO_SYNOPSIS "[options] FILE..."
 
 /* z * num / den metres as an exact decimal when den divides a power of ten <= 10^9 */
 static void fmt_m(char *buf, size_t bn, int64_t z, int32_t num, int32_t den)
@@ -49,7 +40,7 @@ static void json_str(const char *s)
     putchar('"');
 }
 
-static void report(const char *label, const hf *f, int json)
+static void report(const char *label, const hf *f, int json, int64_t filled)
 {
     hf_stats st;
     char mn[48], mx[48], unit[48];
@@ -67,18 +58,21 @@ static void report(const char *label, const hf *f, int json)
                "\"unit\":%s,\"z_num\":%d,\"z_den\":%d,\"spacing\":{\"dx\":%.6f,\"dy\":%.6f},"
                "\"origin\":{\"kind\":\"%s\"",
                f->w, f->h, all_void ? "null" : mn, all_void ? "null" : mx, (long long)st.voids, unit,
-               f->z_num, f->z_den, f->dx_um * 1e-6, f->dy_um * 1e-6, kind);
+               f->z_num, f->z_den, (double)f->dx_um * 1e-6, (double)f->dy_um * 1e-6, kind);
         if (f->geo.kind != HF_GEO_NONE)
             printf(",\"x\":%.9f,\"y\":%.9f,\"sx\":%.9f,\"sy\":%.9f", (double)f->geo.x0 * gs,
                    (double)f->geo.y0 * gs, (double)f->geo.sx * gs, (double)f->geo.sy * gs);
-        printf("}}\n");
+        printf("}");
+        if (filled >= 0) printf(",\"filled\":%lld", (long long)filled);
+        printf("}\n");
         return;
     }
     printf("%s: %dx%d samples\n", label, f->w, f->h);
     if (st.voids == (int64_t)f->w * f->h) printf("  heights: all void\n");
     else printf("  heights: %s .. %s m (kept in units of %s m)\n", mn, mx, unit);
     printf("  voids:   %lld\n", (long long)st.voids);
-    printf("  spacing: %.6f x %.6f m\n", f->dx_um * 1e-6, f->dy_um * 1e-6);
+    if (filled >= 0) printf("  filled:  %lld voids (--fill-voids: inverse-distance mean of the border)\n", (long long)filled);
+    printf("  spacing: %.6f x %.6f m\n", (double)f->dx_um * 1e-6, (double)f->dy_um * 1e-6);
     if (f->geo.kind == HF_GEO_DEGREES)
         printf("  origin:  sample (0,0) centre at lon %.9f, lat %.9f; step %.9f x %.9f degrees\n",
                (double)f->geo.x0 * gs, (double)f->geo.y0 * gs, (double)f->geo.sx * gs, (double)f->geo.sy * gs);
@@ -92,25 +86,25 @@ int cmd_info(int argc, char **argv)
 {
     dem_opts o;
     int json = 0, merge = 0, i, nf = 0, rc = 0, r;
+    int64_t filled = 0;
     const char **files = calloc((size_t)(argc > 0 ? argc : 1), sizeof *files);
+    dem_args da;
+    opt_spec dem_t[DEM_ARGS_N];
+    const opt_spec own[] = {
+        { "--json", OPT_FLAG, &json, 0, 0, 0, NULL, NULL, "one JSON object per file (or per merge) per line", NULL },
+        { "--merge", OPT_FLAG, &merge, 0, 0, 0, NULL, NULL, "merge the files by georeference and report the result", NULL },
+        { "--depth", OPT_FLAG, &o.xyz_depth, 0, 0, 0, NULL, NULL, "same as --xyz-depth", NULL },
+        OPT_END
+    };
+    const opt_spec *const tables[] = { own, dem_t, NULL };
     memset(&o, 0, sizeof o);
+    o.filled_out = &filled;
     if (!files) { fprintf(stderr, "bitrain info: out of memory\n"); return 1; }
-    for (i = 0; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "--json")) json = 1;
-        else if (!strcmp(a, "--merge")) merge = 1;
-        else if (!strcmp(a, "--depth")) o.xyz_depth = 1;
-        else if ((r = dem_args_parse(&o, argc, argv, &i, "info")) != 0) {
-            if (r < 0) { free(files); return 2; }
-        } else if (!strcmp(a, "-h") || !strcmp(a, "--help")) { usage(stdout); free(files); return 0; }
-        else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "bitrain info: unknown option '%s'\n", a);
-            usage(stderr);
-            free(files);
-            return 2;
-        } else files[nf++] = a;
-    }
-    if (nf == 0) { usage(stderr); free(files); return 2; }
+    dem_args_table(&da, &o, dem_t);
+    r = opt_parse("info", INFO_SYNOPSIS, tables, argc, argv, files, argc > 0 ? argc : 1, &nf);
+    if (r != OPT_OK) { free(files); return r == OPT_HELP ? 0 : 2; }
+    if (dem_args_finish(&da, "info") != OPT_OK) { free(files); return 2; }
+    if (nf == 0) { fprintf(stderr, "bitrain info: no input file (`bitrain info --help`)\n"); free(files); return 2; }
     if (merge) {
         hf f;
         br_err e;
@@ -118,19 +112,19 @@ int cmd_info(int argc, char **argv)
             fprintf(stderr, "bitrain info: %s\n", e.msg);
             rc = 1;
         } else {
-            report(nf == 1 ? files[0] : "merged", &f, json);
+            report(nf == 1 ? files[0] : "merged", &f, json, o.fill_voids ? filled : -1);
             dem_free(&f);
         }
     } else {
         for (i = 0; i < nf; i++) {
             hf f;
             br_err e;
-            if (dem_load(files[i], &o, &f, &e) != BR_OK) {
+            if (dem_load_many(&files[i], 1, &o, &f, &e) != BR_OK) {
                 fprintf(stderr, "bitrain info: %s\n", e.msg);
                 rc = 1;
                 continue;
             }
-            report(files[i], &f, json);
+            report(files[i], &f, json, o.fill_voids ? filled : -1);
             dem_free(&f);
         }
     }

@@ -10,32 +10,18 @@
  * triangles and the TRUE maximum vertical error (evaluated at every grid sample),
  * or the same as one JSON object with --json.  Camera coordinates are metres in
  * the same frame as the output. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "platform/cmd.h"
 #include "platform/load.h"
+#include "platform/dem_args.h"
+#include "platform/opt.h"
 #include "core/bitree.h"
 #include "core/cam.h"
 
-static void usage(FILE *f)
-{
-    fprintf(f,
-        "usage: bitrain mesh IN... -o OUT.{obj,ply,stl} [--max-error M] [--json]\n"
-        "                   [--metric exact|curvature] [--no-line-triangles]\n"
-        "                   [--camera EX,EY,EZ,TX,TY,TZ --fov DEG --pixel-error P --size WxH]\n"
-        "                   [--budget N]\n"
-        "  --max-error M     fidelity mesh: true vertical error <= M metres (default 1)\n"
-        "  --metric          exact (default: a true bound) or curvature (001's indicator)\n"
-        "  --no-line-triangles  count the strip as a list without line triangles (004)\n"
-        "  --camera ...      view-dependent mesh: eye and target in metres (x east from\n"
-        "                    the west column, y north from the south row, z up)\n"
-        "  --fov DEG         vertical field of view (default 60)\n"
-        "  --pixel-error P   screen-space error threshold in pixels (default 1)\n"
-        "  --size WxH        viewport (default 640x480)\n"
-        "  --budget N        at most N triangles, spent where the (screen-space) error is largest\n"
-        "  -o OUT            .obj, .ply or .stl (binary); omit to only print the figures\n");
-}
+#define MESH_SYNOPSIS "IN... [-o OUT.obj|.ply|.stl] [options]"
 
 /* Output format from the file name: 0 OBJ, 1 PLY, 2 STL, -1 unknown. */
 static int out_kind(const char *path)
@@ -44,14 +30,13 @@ static int out_kind(const char *path)
     return !strcmp(ext, "obj") ? 0 : !strcmp(ext, "ply") ? 1 : !strcmp(ext, "stl") ? 2 : -1;
 }
 
-static int write_mesh(const char *out, int kind, const hf *f, const bt_mesh *m, const uint32_t *list, uint32_t nt,
-                      br_err *e)
+/* Writes the mesh to fp (opened by the caller before any work, so that a path that
+ * cannot be written fails at once) and closes it. */
+static int write_mesh(FILE *fp, const char *out, int kind, const hf *f, const bt_mesh *m, const uint32_t *list,
+                      uint32_t nt, br_err *e)
 {
-    FILE *fp;
     uint32_t i;
-    double sx = f->dx_um * 1e-6, sy = f->dy_um * 1e-6, sz = (double)f->z_num / f->z_den;
-    fp = fopen(out, kind == 2 ? "wb" : "w");
-    if (!fp) return br_err_set(e, BR_E_IO, out, "cannot open for writing");
+    double sx = (double)f->dx_um * 1e-6, sy = (double)f->dy_um * 1e-6, sz = (double)f->z_num / f->z_den;
 #define VX(i) (m->v[i].x * sx)
 #define VY(i) ((f->h - 1 - m->v[i].y) * sy)
 #define VZ(i) (m->v[i].z * sz)
@@ -112,8 +97,8 @@ static int write_mesh(const char *out, int kind, const hf *f, const bt_mesh *m, 
 int cmd_mesh(int argc, char **argv)
 {
     const char *files[64], *out = NULL;
-    int nf = 0, i, json = 0, nolines = 0, have_cam = 0, rc = 1, kind;
-    int32_t metric = BT_METRIC_EXACT, vw = 640, vh = 480;
+    int nf = 0, json = 0, nolines = 0, have_cam = 0, rc = 1, kind, r, metric_choice = 0, vsize[2] = { 640, 480 };
+    int32_t metric;
     double maxerr = 1.0, fov = 60, pixerr = 1.0, camv[6];
     long budget = 0;
     hf f;
@@ -126,39 +111,45 @@ int cmd_mesh(int argc, char **argv)
     uint32_t *list = NULL, nt;
     uint64_t cnt;
     cam c;
+    FILE *fp = NULL;
+    dem_args da;
+    opt_spec dem_t[DEM_ARGS_N];
+    const opt_spec own[] = {
+        { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT", ".obj, .ply or .stl (binary); omit to only print the figures", NULL },
+        { "--max-error", OPT_NUM, &maxerr, 0, 100000, 0, NULL, "M", "fidelity mesh: true vertical error <= M metres (default 1)", NULL },
+        { "--json", OPT_FLAG, &json, 0, 0, 0, NULL, NULL, "print the figures as one JSON object", NULL },
+        { "--metric", OPT_CHOICE, &metric_choice, 0, 0, 0, "exact|curvature", "K",
+          "exact (a true bound, default) or curvature (001's indicator)", NULL },
+        { "--no-line-triangles", OPT_FLAG, &nolines, 0, 0, 0, NULL, NULL, "count the strip as a list without line triangles (004)", NULL },
+        { "--camera", OPT_NUMS, camv, -1e7, 1e7, 6, NULL, "EX,EY,EZ,TX,TY,TZ",
+          "view-dependent mesh: eye and target in metres (x east, y north, z up)", &have_cam },
+        { "--fov", OPT_NUM, &fov, 1, 170, 0, NULL, "DEG", "vertical field of view (default 60)", NULL },
+        { "--pixel-error", OPT_NUM, &pixerr, 0.01, 1000, 0, NULL, "P", "screen-space error threshold, pixels (default 1)", NULL },
+        { "--size", OPT_SIZE, vsize, 1, 16384, 0, NULL, "WxH", "viewport (default 640x480)", NULL },
+        { "--budget", OPT_LONG, &budget, 1, 268435456, 0, NULL, "N",
+          "at most N triangles, spent where the (screen-space) error is largest", NULL },
+        OPT_END
+    };
+    const opt_spec *const tables[] = { own, dem_t, NULL };
     memset(&o, 0, sizeof o);
     memset(&e, 0, sizeof e);
-    for (i = 0; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) { usage(stdout); return 0; }
-        else if (!strcmp(a, "-o") && i + 1 < argc) out = argv[++i];
-        else if (!strcmp(a, "--max-error") && i + 1 < argc) maxerr = atof(argv[++i]);
-        else if (!strcmp(a, "--json")) json = 1;
-        else if (!strcmp(a, "--no-line-triangles")) nolines = 1;
-        else if (!strcmp(a, "--metric") && i + 1 < argc) {
-            const char *v = argv[++i];
-            if (!strcmp(v, "exact")) metric = BT_METRIC_EXACT;
-            else if (!strcmp(v, "curvature")) metric = BT_METRIC_CURVATURE;
-            else { usage(stderr); return 2; }
-        } else if (!strcmp(a, "--camera") && i + 1 < argc) {
-            if (sscanf(argv[++i], "%lf,%lf,%lf,%lf,%lf,%lf", &camv[0], &camv[1], &camv[2], &camv[3],
-                       &camv[4], &camv[5]) != 6) { usage(stderr); return 2; }
-            have_cam = 1;
-        } else if (!strcmp(a, "--fov") && i + 1 < argc) fov = atof(argv[++i]);
-        else if (!strcmp(a, "--pixel-error") && i + 1 < argc) pixerr = atof(argv[++i]);
-        else if (!strcmp(a, "--size") && i + 1 < argc) {
-            if (sscanf(argv[++i], "%dx%d", &vw, &vh) != 2) { usage(stderr); return 2; }
-        } else if (!strcmp(a, "--budget") && i + 1 < argc) budget = atol(argv[++i]);
-        else if (a[0] == '-' && a[1]) { fprintf(stderr, "bitrain mesh: unknown option %s\n", a); usage(stderr); return 2; }
-        else if (nf < 64) files[nf++] = a;
-    }
-    if (nf == 0 || maxerr < 0 || (budget < 0) || (budget > 0x10000000L)) { usage(stderr); return 2; }
+    memset(&f, 0, sizeof f);
+    dem_args_table(&da, &o, dem_t);
+    r = opt_parse("mesh", MESH_SYNOPSIS, tables, argc, argv, files, 64, &nf);
+    if (r != OPT_OK) return r == OPT_HELP ? 0 : 2;
+    if (dem_args_finish(&da, "mesh") != OPT_OK) return 2;
+    if (nf == 0) { fprintf(stderr, "bitrain mesh: no input file (`bitrain mesh --help`)\n"); return 2; }
+    metric = metric_choice ? BT_METRIC_CURVATURE : BT_METRIC_EXACT;
     kind = out ? out_kind(out) : -1;
     if (out && kind < 0) {
         fprintf(stderr, "bitrain mesh: %s: unknown output format (want .obj, .ply or .stl)\n", out);
         return 2;   /* before any work: the mesh of a large DEM takes a while */
     }
-    if (dem_load_many(files, nf, &o, &f, &e) != BR_OK) { fprintf(stderr, "bitrain mesh: %s\n", e.msg); return 1; }
+    if (out && !(fp = fopen(out, kind == 2 ? "wb" : "w"))) {
+        fprintf(stderr, "bitrain mesh: %s: cannot open for writing\n", out);
+        return 1;
+    }
+    if (dem_load_many(files, nf, &o, &f, &e) != BR_OK) { fprintf(stderr, "bitrain mesh: %s\n", e.msg); goto done; }
     mem = malloc(bt_mem_size(f.w, f.h));
     scr = malloc(bt_scratch_size(f.w, f.h));
     if (!mem || !scr) { fprintf(stderr, "bitrain mesh: %s: out of memory\n", files[0]); goto done; }
@@ -177,14 +168,14 @@ int cmd_mesh(int argc, char **argv)
         if (bt_frame_auto(&f, &p.fr, &ushift) != BR_OK) { fprintf(stderr, "bitrain mesh: %s: grid too large for a world frame\n", files[0]); goto done; }
         scale = ushift >= 0 ? (double)(1 << ushift) : 1.0 / (1 << -ushift);
         for (k = 0; k < 3; k++) { eye[k] = (int32_t)(camv[k] * scale); tgt[k] = (int32_t)(camv[3 + k] * scale); }
-        if (cam_look_at(&c, eye, tgt, (int32_t)(fov * 1000), vw, vh, (int32_t)(scale / 4 > 1 ? scale / 4 : 1),
+        if (cam_look_at(&c, eye, tgt, (int32_t)(fov * 1000), vsize[0], vsize[1], (int32_t)(scale / 4 > 1 ? scale / 4 : 1),
                         (int32_t)(1 << 29)) != BR_OK) {
             fprintf(stderr, "bitrain mesh: bad camera (eye == target, fov or size out of range)\n");
             goto done;
         }
         p.mode = BT_VIEW;
         p.c = &c;
-        p.pixel_err_q8 = (int32_t)(pixerr * 256);
+        p.pixel_err_q8 = (int32_t)lround(pixerr * 256);
         p.morph_q8 = 256;   /* geomorph: a vertex reaches its real height at 2x the threshold */
     }
     if (budget > 0) {
@@ -217,9 +208,14 @@ int cmd_mesh(int argc, char **argv)
                    "line triangles %u\ntrue max error %.6f m (at column %d, row %d)\n",
                    nt, m.nv, m.nfict, refs, nt ? (double)refs / nt : 0.0, lines, em, ex, ey);
     }
-    if (out && write_mesh(out, kind, &f, &m, list, nt, &e) != BR_OK) { fprintf(stderr, "bitrain mesh: %s\n", e.msg); goto done; }
+    if (fp) {
+        br_status ws = write_mesh(fp, out, kind, &f, &m, list, nt, &e);
+        fp = NULL;
+        if (ws != BR_OK) { fprintf(stderr, "bitrain mesh: %s\n", e.msg); goto done; }
+    }
     rc = 0;
 done:
+    if (fp) { fclose(fp); remove(out); }   /* nothing written: no empty file left behind */
     free(list); free(mm); free(mem); free(scr);
     dem_free(&f);
     return rc;

@@ -12,8 +12,8 @@
  * (every STEP-th sample) as row strips instead.  Colours: a gdaldem color-relief file
  * (--colors) or the built-in ramp, lit by a sun (azimuth 315, altitude 45 by default)
  * with 30 % ambient.  --zscale F multiplies heights (default 1; grids without
- * georeference whose relief exceeds half their extent get an automatic scale, since
- * the loader can only assume 1 m spacing for them).  The frame is rendered in bands of ROWS rows (default: whole
+ * georeference get an automatic scale that brings their steep slopes to 0.75, since
+ * the loader can only assume 1 m spacing for them: platform/scene.c).  The frame is rendered in bands of ROWS rows (default: whole
  * frame) and streamed to the PNG band by band.  --texture PNG stretches a colour map or
  * orthophoto over the whole grid (perspective-correct, nearest texel), lit by the sun. */
 #include <ctype.h>
@@ -26,6 +26,8 @@
 #include "core/cam.h"
 #include "platform/cmd.h"
 #include "platform/dem_args.h"
+#include "platform/opt.h"
+#include "platform/scene_args.h"
 #include "platform/load.h"
 #include "platform/scene.h"
 #include "platform/water_scene.h"
@@ -66,59 +68,38 @@ static double ms_now(void)
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
 }
 
-static int usage(void)
-{
-    fprintf(stderr,
-            "usage: bitrain render IN... -o out.png [--size WxH] [--camera EX,EY,EZ,TX,TY,TZ] [--fov DEG]\n"
-            "         [--max-error M | --pixel-error P | --full [STEP]] [--bands ROWS]\n"
-            "         [--format rgb565|rgb888] [--depth 32|16] [--colors FILE] [--texture PNG] [--no-cull]\n"
-            "         [--sun AZ,ALT] [--ambient A] [--zscale F]\n"
-            "         [--water-level M | --water FILE | --no-water] [--fog | --no-fog] [--time T]\n"
-            "         [--reflection full|half|quarter|none]\n"
-            "  camera in metres: x east from the west edge, y north from the south edge, z height\n");
-    return 2;
-}
-
-/* ---------------------------------------------------------------- water and atmosphere options
- * (platform/water_scene.h): --water-level M, --no-water, --water FILE, --time T,
- * --fog / --no-fog, --reflection full|half|quarter|none.  1: taken, 0: not one of
- * these, -1: bad value. */
-static int water_args(ws_opts *o, int argc, char **argv, int *i)
-{
-    const char *a = argv[*i], *n = *i + 1 < argc ? argv[*i + 1] : NULL;
-    char *end;
-    if (!strcmp(a, "--no-water")) { o->no_water = 1; return 1; }
-    if (!strcmp(a, "--fog")) { o->no_fog = 0; return 1; }
-    if (!strcmp(a, "--no-fog")) { o->no_fog = 1; return 1; }
-    if (!n) return 0;
-    if (!strcmp(a, "--water")) { o->water_file = n; ++*i; return 1; }
-    if (!strcmp(a, "--water-level") || !strcmp(a, "--time")) {
-        double v = strtod(n, &end);
-        if (end == n || *end || !isfinite(v) || fabs(v) > 1e6) {
-            fprintf(stderr, "bitrain render: %s '%s' is not a number (|value| <= 1e6)\n", a, n);
-            return -1;
-        }
-        if (a[2] == 'w') { o->have_level = 1; o->level_m = v; } else o->time_s = v;
-        ++*i;
-        return 1;
-    }
-    if (!strcmp(a, "--reflection")) {
-        static const char *const names[] = { "full", "half", "quarter", "none" };
-        int k;
-        for (k = 0; k < 4; k++) if (!strcmp(n, names[k])) { o->reflection = k + 1; ++*i; return 1; }
-        fprintf(stderr, "bitrain render: --reflection '%s': expected full, half, quarter or none\n", n);
-        return -1;
-    }
-    return 0;
-}
+#define RENDER_SYNOPSIS "IN... -o OUT.png [options]\n" \
+    "  camera in metres: x east from the west edge, y north from the south edge, z height (times --zscale)"
 
 int cmd_render(int argc, char **argv)
 {
     const char *in[64], *out = NULL;
-    int nin = 0, i, w = 800, h = 600, have_cam = 0, mode = BT_VIEW, full_step = 0, bands = 0, r;
-    int fmt = RS_FMT_XRGB8888, depth = RS_DEPTH32, no_cull = 0;
+    int nin = 0, size[2] = { 800, 600 }, w, h, have_cam = 0, have_max = 0, have_pix = 0, mode = BT_VIEW;
+    int full_step = 0, bands = 0, fmt = RS_FMT_XRGB8888, depth_choice = 0, depth, no_cull = 0, r;
     double camv[6], fov = 50, max_err = 0, pix_err = 1;
     scene_opts so;
+    scene_args sa;
+    dem_args da;
+    opt_spec dem_t[DEM_ARGS_N], look_t[SCENE_ARGS_N], water_t[WS_ARGS_N];
+    ws_args wa;
+    const opt_spec own[] = {
+        { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT.png", "the image to write", NULL },
+        { "--size", OPT_SIZE, size, 1, RS_MAX_DIM, 0, NULL, "WxH", "image size (default 800x600)", NULL },
+        { "--camera", OPT_NUMS, camv, -1e7, 1e7, 6, NULL, "EX,EY,EZ,TX,TY,TZ", "eye and target, metres",
+          &have_cam },
+        { "--fov", OPT_NUM, &fov, 1, 170, 0, NULL, "DEG", "vertical field of view (default 50)", NULL },
+        { "--max-error", OPT_NUM, &max_err, 0, 100000, 0, NULL, "M",
+          "fidelity mesh: true vertical error at most M metres", &have_max },
+        { "--pixel-error", OPT_NUM, &pix_err, 0.01, 1000, 0, NULL, "P",
+          "view-dependent mesh: screen error at most P pixels (default 1)", &have_pix },
+        { "--full", OPT_INT_OPT, &full_step, 1, 4096, 0, NULL, "[STEP]", "the full grid (every STEP-th sample)", NULL },
+        { "--bands", OPT_INT, &bands, 0, RS_MAX_DIM, 0, NULL, "ROWS", "render in bands of ROWS rows (0: whole frame)", NULL },
+        { "--format", OPT_CHOICE, &fmt, 0, 0, 0, "rgb888|rgb565", "F", "pixel format of the frame", NULL },
+        { "--depth", OPT_CHOICE, &depth_choice, 0, 0, 0, "32|16", "BITS", "depth buffer bits", NULL },
+        { "--no-cull", OPT_FLAG, &no_cull, 0, 0, 0, NULL, NULL, "draw back faces too", NULL },
+        OPT_END
+    };
+    const opt_spec *const tables[] = { own, look_t, water_t, dem_t, NULL };
     scene s;
     br_err err;
     cam c;
@@ -141,43 +122,23 @@ int cmd_render(int argc, char **argv)
     memset(&ps, 0, sizeof ps);
     memset(&wo, 0, sizeof wo);
     memset(&ws, 0, sizeof ws);
-    for (i = 0; i < argc; i++) {
-        const char *a = argv[i], *n = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "-o") && n) { out = n; i++; }
-        else if (!strcmp(a, "--size") && n) { if (sscanf(n, "%dx%d", &w, &h) != 2) return usage(); i++; }
-        else if (!strcmp(a, "--camera") && n) {
-            if (sscanf(n, "%lf,%lf,%lf,%lf,%lf,%lf", &camv[0], &camv[1], &camv[2], &camv[3], &camv[4], &camv[5]) != 6)
-                return usage();
-            have_cam = 1; i++;
-        } else if (!strcmp(a, "--fov") && n) { fov = atof(n); i++; }
-        else if (!strcmp(a, "--max-error") && n) { max_err = atof(n); mode = BT_FIDELITY; i++; }
-        else if (!strcmp(a, "--pixel-error") && n) { pix_err = atof(n); mode = BT_VIEW; i++; }
-        else if (!strcmp(a, "--full")) {
-            full_step = 1;
-            if (n && isdigit((unsigned char)n[0])) { full_step = atoi(n); i++; }
-        } else if (!strcmp(a, "--bands") && n) { bands = atoi(n); i++; }
-        else if (!strcmp(a, "--format") && n) {
-            if (!strcmp(n, "rgb565")) fmt = RS_FMT_RGB565;
-            else if (!strcmp(n, "rgb888")) fmt = RS_FMT_XRGB8888;
-            else return usage();
-            i++;
-        } else if (!strcmp(a, "--depth") && n) { depth = atoi(n) == 16 ? RS_DEPTH16 : RS_DEPTH32; i++; }
-        else if (!strcmp(a, "--colors") && n) { so.colors = n; i++; }
-        else if (!strcmp(a, "--texture") && n) { so.texture = n; i++; }
-        else if (!strcmp(a, "--no-cull")) no_cull = 1;
-        else if (!strcmp(a, "--sun") && n) { if (sscanf(n, "%lf,%lf", &so.sun_az, &so.sun_alt) != 2) return usage(); i++; }
-        else if (!strcmp(a, "--ambient") && n) { so.ambient = atof(n); i++; }
-        else if (!strcmp(a, "--zscale") && n) { so.zscale = atof(n); i++; }
-        else if ((r = water_args(&wo, argc, argv, &i)) != 0) { if (r < 0) return usage(); }
-        else if ((r = dem_args_parse(&so.dem, argc, argv, &i, "render")) != 0) { if (r < 0) return 2; }
-        else if (!strcmp(a, "-h") || !strcmp(a, "--help")) { usage(); return 0; }
-        else if (a[0] == '-' && a[1]) { fprintf(stderr, "bitrain render: unknown option '%s'\n", a); return usage(); }
-        else if (nin < 64) in[nin++] = a;
-    }
-    if (!nin || !out || w < 1 || h < 1 || w > RS_MAX_DIM || h > RS_MAX_DIM || !(fov >= 1 && fov <= 170)
-        || full_step < 0 || bands < 0 || !(so.ambient >= 0 && so.ambient <= 1) || !(pix_err > 0) || max_err < 0
-        || !(so.zscale >= 0 && so.zscale <= 1000))
-        return usage();
+    dem_args_table(&da, &so.dem, dem_t);
+    scene_args_table(&sa, &so, look_t);
+    ws_args_table(&wa, &wo, water_t);
+    r = opt_parse("render", RENDER_SYNOPSIS, tables, argc, argv, in, 64, &nin);
+    if (r != OPT_OK) return r == OPT_HELP ? 0 : 2;
+    if (dem_args_finish(&da, "render") != OPT_OK) return 2;
+    if (scene_args_finish(&sa, "render") != OPT_OK) return 2;
+    if (ws_args_finish(&wa, "render") != OPT_OK) return 2;
+    if (!nin) { fprintf(stderr, "bitrain render: no input file (`bitrain render --help`)\n"); return 2; }
+    if (!out) { fprintf(stderr, "bitrain render: no output file: -o OUT.png\n"); return 2; }
+    if (have_max && have_pix) return opt_fail("render", "--max-error", "cannot be used with --pixel-error");
+    if (full_step && (have_max || have_pix))
+        return opt_fail("render", "--full", "cannot be used with --max-error or --pixel-error");
+    mode = have_max ? BT_FIDELITY : BT_VIEW;
+    w = size[0];
+    h = size[1];
+    depth = depth_choice ? RS_DEPTH16 : RS_DEPTH32;
     if (bands == 0 || bands > h) bands = h;
 
     t0 = ms_now();
@@ -194,26 +155,44 @@ int cmd_render(int argc, char **argv)
 
     /* mesh */
     if (full_step > 0) {
-        int32_t gw = (s.f.w - 1) / full_step + 1, gh = (s.f.h - 1) / full_step + 1, x, y;
+        int32_t gw = (s.f.w - 1) / full_step + 1, gh = (s.f.h - 1) / full_step + 1, x, y, pass;
+        size_t nruns = 0;
         nv = (uint32_t)gw * (uint32_t)gh;
         verts = malloc(sizeof *verts * nv);
         idx = malloc(sizeof *idx * (size_t)2 * (size_t)gw * (size_t)(gh - 1 > 0 ? gh - 1 : 1));
-        prims = malloc(sizeof *prims * (size_t)(gh > 1 ? gh - 1 : 1));
-        if (!verts || !idx || !prims) { fprintf(stderr, "bitrain: out of memory\n"); goto done; }
+        if (!verts || !idx) { fprintf(stderr, "bitrain: out of memory\n"); goto done; }
         for (y = 0; y < gh; y++)
             for (x = 0; x < gw; x++) {
                 int32_t z = s.f.z[(size_t)y * full_step * (size_t)s.f.w + (size_t)x * full_step];
                 rt_vertex(&s.rt, x * full_step, y * full_step, z == HF_NODATA ? 0 : z, &verts[y * gw + x]);
             }
-        /* row strips, south-west first vertex: CCW seen from +z (row y is north of y+1) */
-        for (y = 0; y + 1 < gh; y++) {
-            uint32_t *sp = idx + nidx;
-            for (x = 0; x < gw; x++) {
-                sp[2 * x] = (uint32_t)(y * gw + x);
-                sp[2 * x + 1] = (uint32_t)((y + 1) * gw + x);
+        /* row strips, south-west first vertex: CCW seen from +z (row y is north of y+1),
+         * one per run of columns whose two samples are valid: a void is a hole, as in
+         * the bitree's meshes (no triangle touches a void sample) */
+        for (pass = 0; pass < 2; pass++) {
+            if (pass == 1 && !(prims = malloc(sizeof *prims * (nruns ? nruns : 1)))) {
+                fprintf(stderr, "bitrain: out of memory\n");
+                goto done;
             }
-            prims[nprims].kind = RS_STRIP; prims[nprims].n = (uint32_t)(2 * gw); prims[nprims].idx = sp;
-            nprims++; nidx += (uint32_t)(2 * gw);
+            for (y = 0; y + 1 < gh; y++) {
+                int32_t a = 0, b;
+                while (a < gw) {
+                    const int32_t *zr = s.f.z + (size_t)y * full_step * (size_t)s.f.w;
+                    const int32_t *zn = s.f.z + (size_t)(y + 1) * full_step * (size_t)s.f.w;
+                    for (b = a; b < gw && zr[(size_t)b * full_step] != HF_NODATA && zn[(size_t)b * full_step] != HF_NODATA; b++) {}
+                    if (b - a >= 2 && pass == 0) nruns++;
+                    else if (b - a >= 2) {
+                        uint32_t *sp = idx + nidx;
+                        for (x = a; x < b; x++) {
+                            sp[2 * (x - a)] = (uint32_t)(y * gw + x);
+                            sp[2 * (x - a) + 1] = (uint32_t)((y + 1) * gw + x);
+                        }
+                        prims[nprims].kind = RS_STRIP; prims[nprims].n = (uint32_t)(2 * (b - a)); prims[nprims].idx = sp;
+                        nprims++; nidx += (uint32_t)(2 * (b - a));
+                    }
+                    a = b + 1;
+                }
+            }
         }
     } else {
         bt_params bp;

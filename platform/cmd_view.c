@@ -16,6 +16,8 @@
 #include <sys/stat.h>
 #include "platform/cmd.h"
 #include "platform/dem_args.h"
+#include "platform/opt.h"
+#include "platform/scene_args.h"
 #include "platform/png_io.h"
 #include "platform/scene.h"
 
@@ -54,27 +56,26 @@ static int save_png(const char *path, const uint32_t *px, int w, int h, br_err *
     return ok;
 }
 
-static int usage(void)
+#define VIEW_SYNOPSIS "IN... [options]\n" \
+    "  camera in metres: x east from the west edge, y north from the south edge, z height\n" \
+    "controls: mouse drag look, W/S forward/back, A/D left/right, E/Q up/down, arrows turn,\n" \
+    "  Shift faster, +/- pixel error, H hysteresis, G geomorph, C culling, P screenshot,\n" \
+    "  Space reset view, Esc quit"
+
+static void usage(void)
 {
-    fprintf(stderr,
-            "usage: bitrain view IN... [--size WxH] [--fov DEG] [--pixel-error P]\n"
-            "         [--camera EX,EY,EZ,TX,TY,TZ] [--frames N] [--screenshot OUT.png]\n"
-            "  camera in metres: x east from the west edge, y north from the south edge, z height\n"
-            "  --frames N: quit after N frames (with --screenshot: save the last one)\n"
-            "controls: mouse drag look, W/S forward/back, A/D left/right, E/Q up/down, arrows turn,\n"
-            "  Shift faster, +/- pixel error, H hysteresis, G geomorph, C culling, P screenshot,\n"
-            "  Space reset view, Esc quit\n" DEM_ARGS_USAGE);
-    return 2;
+    printf("usage: bitrain view %s\n", VIEW_SYNOPSIS);
 }
 
 int cmd_view(int argc, char **argv)
 {
     const char *in[64], *shot = NULL;
-    int r, nin = 0, i, w = 1024, h = 640, have_cam = 0, frames = 0, nframe = 0, shots = 0, rc = 1, quit = 0;
+    int r, nin = 0, i, size[2] = { 1024, 640 }, w, h, have_cam = 0, frames = 0, nframe = 0, shots = 0, rc = 1, quit = 0;
     double camv[6];
     view_state v;
     scene s;
     scene_opts so;
+    scene_args sa;
     br_err err;
     SDL_Window *win = NULL;
     SDL_Renderer *ren = NULL;
@@ -82,30 +83,31 @@ int cmd_view(int argc, char **argv)
     uint32_t *depth = NULL, *last = NULL;
     Uint64 t_prev;
     double mesh_ms = 0, raster_ms = 0, sum_mesh = 0, sum_raster = 0, sum_tri = 0;
+    dem_args da;
+    opt_spec dem_t[DEM_ARGS_N], look_t[SCENE_ARGS_N];
+    const opt_spec own[] = {
+        { "--size", OPT_SIZE, size, 16, RS_MAX_DIM, 0, NULL, "WxH", "window size (default 1024x640)", NULL },
+        { "--fov", OPT_NUM, &v.fov, 5, 150, 0, NULL, "DEG", "vertical field of view (default 60)", NULL },
+        { "--pixel-error", OPT_NUM, &v.pix_err, 0.01, 1000, 0, NULL, "P", "screen-space error, pixels (default 1.5)", NULL },
+        { "--frames", OPT_INT, &frames, 0, 100000000, 0, NULL, "N", "quit after N frames (0: never)", NULL },
+        { "--screenshot", OPT_STR, &shot, 0, 0, 0, NULL, "OUT.png", "save the last frame on quitting", NULL },
+        { "--camera", OPT_NUMS, camv, -1e7, 1e7, 6, NULL, "EX,EY,EZ,TX,TY,TZ", "eye and target, metres", &have_cam },
+        OPT_END
+    };
+    const opt_spec *const tables[] = { own, look_t, dem_t, NULL };
 
     memset(&so, 0, sizeof so);
     memset(&v, 0, sizeof v);
     v.fov = 60; v.pix_err = 1.5; v.hyst = 1; v.morph = 1;
-    for (i = 0; i < argc; i++) {
-        const char *a = argv[i], *n = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "--size") && n) { if (sscanf(n, "%dx%d", &w, &h) != 2) return usage(); i++; }
-        else if (!strcmp(a, "--fov") && n) { v.fov = atof(n); i++; }
-        else if (!strcmp(a, "--pixel-error") && n) { v.pix_err = atof(n); i++; }
-        else if (!strcmp(a, "--frames") && n) { frames = atoi(n); i++; }
-        else if (!strcmp(a, "--screenshot") && n) { shot = n; i++; }
-        else if (!strcmp(a, "--camera") && n) {
-            if (sscanf(n, "%lf,%lf,%lf,%lf,%lf,%lf", &camv[0], &camv[1], &camv[2], &camv[3], &camv[4], &camv[5]) != 6)
-                return usage();
-            have_cam = 1; i++;
-        } else if ((r = dem_args_parse(&so.dem, argc, argv, &i, "view")) != 0) {
-            if (r < 0) return 2;
-        } else if (!strcmp(a, "-h") || !strcmp(a, "--help")) { usage(); return 0; }
-        else if (a[0] == '-' && a[1]) { fprintf(stderr, "bitrain view: unknown option '%s'\n", a); return usage(); }
-        else if (nin < 64) in[nin++] = a;
-    }
-    if (!nin || w < 16 || h < 16 || w > RS_MAX_DIM || h > RS_MAX_DIM || !(v.fov >= 5 && v.fov <= 150) ||
-        !(v.pix_err > 0) || frames < 0)
-        return usage();
+    dem_args_table(&da, &so.dem, dem_t);
+    scene_args_table(&sa, &so, look_t);
+    r = opt_parse("view", VIEW_SYNOPSIS, tables, argc, argv, in, 64, &nin);
+    if (r != OPT_OK) return r == OPT_HELP ? 0 : 2;
+    if (dem_args_finish(&da, "view") != OPT_OK) return 2;
+    if (scene_args_finish(&sa, "view") != OPT_OK) return 2;
+    if (!nin) { fprintf(stderr, "bitrain view: no input file (`bitrain view --help`)\n"); return 2; }
+    w = size[0];
+    h = size[1];
 
     if (scene_open(&s, in, nin, &so, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); return 1; }
     if (scene_tree(&s, &err) != BR_OK || scene_reserve(&s, VIEW_MAX_TRI, &err) != BR_OK) {

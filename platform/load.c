@@ -6,7 +6,8 @@
  * a zip archive (PK\3\4) is read through its central directory and the member
  * that looks like heights (.hgt first, then the other height extensions) is
  * inflated, CRC-checked and read under the name "archive/member".  Containers
- * do not nest.  Decompressed sizes are capped (DEM_MAX_INFLATE). */
+ * do not nest.  Decompressed sizes are capped by what the payload's format can
+ * take (load_io.c). */
 #include <ctype.h>
 #include <limits.h>
 #include <math.h>
@@ -14,11 +15,21 @@
 #include <stdlib.h>
 #include <string.h>
 #include <zlib.h>
+#include "platform/fill.h"
 #include "platform/load.h"
 #include "platform/load_internal.h"
 #include "platform/merge.h"
 
 /* ---- helpers shared by the readers ---- */
+
+static dem_note_fn *note_fn;
+
+void dem_set_note(dem_note_fn *fn) { note_fn = fn; }
+
+void dem_note(const char *name, const char *msg)
+{
+    if (note_fn) note_fn(name, msg);
+}
 
 br_status dem_alloc(hf *out, int64_t w, int64_t h, const char *name, br_err *err)
 {
@@ -47,12 +58,13 @@ void dem_m_per_degree(double lat_deg, double *m_lat, double *m_lon)
     *m_lon = 111412.84 * cos(phi) - 93.5 * cos(3 * phi) + 0.118 * cos(5 * phi);
 }
 
-static br_status spacing_um(double metres, int32_t *out, const char *name, br_err *err)
+static br_status spacing_um(double metres, int64_t *out, const char *name, br_err *err)
 {
     double um = floor(metres * 1e6 + 0.5);
-    if (!(um < 2147483647.0))
-        return br_err_set(err, BR_E_VALUE, name, "sample spacing %.6g m is too large (limit 2147 m)", metres);
-    *out = um < 1 ? 1 : (int32_t)um;
+    if (!(um <= (double)HF_MAX_SPACING_UM))
+        return br_err_set(err, BR_E_VALUE, name, "sample spacing %.6g m is too large (limit %.0f m)", metres,
+                          (double)HF_MAX_SPACING_UM * 1e-6);
+    *out = um < 1 ? 1 : (int64_t)um;
     return BR_OK;
 }
 
@@ -85,8 +97,8 @@ br_status dem_geo_spacing(hf *f, const hf *like, const char *name, br_err *err)
         return spacing_at(f, lat_c, (double)f->geo.sx * 1e-9, (double)f->geo.sy * 1e-9, name, err);
     if (m_lon < 0) m_lon = 0;
     {
-        br_status s = spacing_um(like->dx_um * 1e-6 * m_lon / l_lon, &f->dx_um, name, err);
-        if (s == BR_OK) s = spacing_um(like->dy_um * 1e-6 * m_lat / l_lat, &f->dy_um, name, err);
+        br_status s = spacing_um((double)like->dx_um * 1e-6 * m_lon / l_lon, &f->dx_um, name, err);
+        if (s == BR_OK) s = spacing_um((double)like->dy_um * 1e-6 * m_lat / l_lat, &f->dy_um, name, err);
         return s;
     }
 }
@@ -221,8 +233,8 @@ void dem_token_str(const uint8_t *tok, size_t len, char out[32])
 
 int dem_looks_degrees(double xmin, double ymin, double xmax, double ymax, double sx, double sy)
 {
-    return sx <= 0.1 && sy <= 0.1 && xmin >= -360 && xmax <= 360 && ymin >= -90 && ymax <= 90 &&
-           !(xmin == 0 && ymin == 0);
+    return sx <= 1 && sy <= 1 && xmin >= -360 && xmax <= 360 && ymin >= -90 && ymax <= 90 &&
+           !(fabs(xmin) <= 1e-3 * sx && fabs(ymin) <= 1e-3 * sy);
 }
 
 const char *dem_basename(const char *name)
@@ -262,91 +274,6 @@ int dem_srtm_name(const char *name, int *lat, int *lon)
         return 1;
     }
     return 0;
-}
-
-br_status dem_inflate_alloc(const char *name, const uint8_t *src, size_t n, int window_bits,
-                            size_t size_hint, uint8_t **out, size_t *outn, br_err *err)
-{
-    z_stream zs;
-    uint8_t *buf = NULL;
-    size_t cap, have = 0, in_left = n;
-    int r = Z_OK;
-    /* deflate cannot expand by more than ~1032x: a larger hint is a lie */
-    if (size_hint == 0 || size_hint / 1032 > n + 64) size_hint = n * 4 + 1024;
-    cap = size_hint < DEM_MAX_INFLATE ? size_hint + 1 : DEM_MAX_INFLATE;
-    memset(&zs, 0, sizeof zs);
-    if (inflateInit2(&zs, window_bits) != Z_OK)
-        return br_err_set(err, BR_E_NOMEM, name, "cannot start zlib");
-    buf = malloc(cap ? cap : 1);
-    if (!buf) { inflateEnd(&zs); return br_err_set(err, BR_E_NOMEM, name, "out of memory"); }
-    zs.next_in = (Bytef *)(uintptr_t)src;
-    for (;;) {
-        uInt chunk_in = in_left > (1u << 30) ? (1u << 30) : (uInt)in_left;
-        size_t room;
-        if (have == cap) {
-            size_t ncap;
-            uint8_t *nb;
-            if (cap >= DEM_MAX_INFLATE) {
-                free(buf); inflateEnd(&zs);
-                return br_err_set(err, BR_E_TOO_BIG, name, "decompresses to more than %zu bytes",
-                                  (size_t)DEM_MAX_INFLATE);
-            }
-            ncap = cap * 2 > DEM_MAX_INFLATE ? DEM_MAX_INFLATE : cap * 2;
-            nb = realloc(buf, ncap);
-            if (!nb) { free(buf); inflateEnd(&zs); return br_err_set(err, BR_E_NOMEM, name, "out of memory"); }
-            buf = nb; cap = ncap;
-        }
-        room = cap - have;
-        zs.avail_in = chunk_in;
-        zs.next_out = buf + have;
-        zs.avail_out = room > (1u << 30) ? (1u << 30) : (uInt)room;
-        {
-            uInt before_out = zs.avail_out;
-            r = inflate(&zs, Z_NO_FLUSH);
-            have += before_out - zs.avail_out;
-            in_left -= chunk_in - zs.avail_in;
-        }
-        if (r == Z_STREAM_END) break;
-        if (r == Z_NEED_DICT || r == Z_DATA_ERROR || r == Z_MEM_ERROR) {
-            free(buf); inflateEnd(&zs);
-            return br_err_set(err, r == Z_MEM_ERROR ? BR_E_NOMEM : BR_E_FORMAT, name,
-                              "corrupt compressed data (%s)", zs.msg ? zs.msg : "zlib error");
-        }
-        if (r == Z_BUF_ERROR || (r == Z_OK && in_left == 0 && zs.avail_out != 0)) {
-            if (in_left == 0 && zs.avail_out != 0) {
-                free(buf); inflateEnd(&zs);
-                return br_err_set(err, BR_E_TRUNCATED, name, "compressed data ends early");
-            }
-        }
-    }
-    inflateEnd(&zs);
-    *out = buf;
-    *outn = have;
-    return BR_OK;
-}
-
-br_status dem_inflate_into(const char *name, const uint8_t *src, size_t n, uint8_t *dst,
-                           size_t dn, br_err *err)
-{
-    z_stream zs;
-    int r;
-    if (n > UINT_MAX || dn > UINT_MAX)
-        return br_err_set(err, BR_E_TOO_BIG, name, "compressed block too large");
-    memset(&zs, 0, sizeof zs);
-    if (inflateInit(&zs) != Z_OK) return br_err_set(err, BR_E_NOMEM, name, "cannot start zlib");
-    zs.next_in = (Bytef *)(uintptr_t)src;
-    zs.avail_in = (uInt)n;
-    zs.next_out = dst;
-    zs.avail_out = (uInt)dn;
-    r = inflate(&zs, Z_FINISH);
-    inflateEnd(&zs);
-    if (r == Z_STREAM_END && zs.avail_out == 0) return BR_OK;
-    /* a stream that fills dst exactly but has trailing data is accepted as GDAL does */
-    if ((r == Z_OK || r == Z_BUF_ERROR) && zs.avail_out == 0) return BR_OK;
-    if (r == Z_STREAM_END || (r == Z_BUF_ERROR && zs.avail_in == 0))
-        return br_err_set(err, BR_E_TRUNCATED, name, "compressed block holds %zu of %zu bytes",
-                          dn - zs.avail_out, dn);
-    return br_err_set(err, BR_E_FORMAT, name, "corrupt deflate block");
 }
 
 /* ---- zip ---- */
@@ -454,7 +381,7 @@ static br_status load_zip(const char *name, const uint8_t *p, size_t n, const de
     if (best_method != 8)
         return br_err_set(err, BR_E_UNSUPPORTED, inner, "zip compression method %d (only stored and deflate)",
                           best_method);
-    s = dem_inflate_alloc(inner, src, best_comp, -15, best_size, &data, &data_n, err);
+    s = dem_inflate_alloc(inner, inner, src, best_comp, -15, best_size, DEM_DECLARED_EXACT, &data, &data_n, err);
     if (s != BR_OK) return s;
     if (data_n != best_size) {
         free(data);
@@ -511,7 +438,12 @@ static br_status load_mem_depth(const char *name, const uint8_t *p, size_t n, co
         size_t dn;
         br_status s;
         if (depth) return br_err_set(err, BR_E_UNSUPPORTED, name, "nested compressed archives are not read");
-        s = dem_inflate_alloc(name, p, n, 15 + 16, n >= 4 ? dem_le32(p + n - 4) : 0, &data, &dn, err);
+        /* the payload's name is ours without ".gz" (the format's cap follows it) */
+        size_t len = strlen(name);
+        if (dem_has_ext(name, ".gz") && len - 3 < sizeof ext) { memcpy(ext, name, len - 3); ext[len - 3] = 0; }
+        else snprintf(ext, sizeof ext, "%s", name);
+        s = dem_inflate_alloc(name, ext, p, n, 15 + 16, n >= 18 ? dem_le32(p + n - 4) : 0,
+                              n >= 18 ? DEM_DECLARED_MOD32 : DEM_DECLARED_NONE, &data, &dn, err);
         if (s != BR_OK) return s;
         s = load_mem_depth(name, data, dn, o, out, err, depth + 1);
         free(data);
@@ -538,8 +470,12 @@ static br_status load_mem_depth(const char *name, const uint8_t *p, size_t n, co
     else if (dem_has_ext(en, ".png")) rd = dem_read_png;
     else if (dem_has_ext(en, ".tif") || dem_has_ext(en, ".tiff")) rd = dem_read_tif;
     else if (dem_has_ext(en, ".bt")) rd = dem_read_bt;
+    else if (dem_geoclaw_start(p, n)) rd = dem_read_geoclaw;   /* before the text extensions */
+    else if (dem_has_ext(en, ".tt2") || dem_has_ext(en, ".tt3") || dem_has_ext(en, ".topotype2") ||
+             dem_has_ext(en, ".topotype3")) rd = dem_read_geoclaw;
     else if (dem_has_ext(en, ".asc")) rd = dem_read_asc;
-    else if (dem_has_ext(en, ".xyz") || dem_has_ext(en, ".txt")) rd = dem_read_xyz;
+    else if (dem_has_ext(en, ".xyz") || dem_has_ext(en, ".txt") || dem_has_ext(en, ".tt1") ||
+             dem_has_ext(en, ".topotype1") || dem_has_ext(en, ".txyz")) rd = dem_read_xyz;
     else if (is_text_start(p, n, "ncols") || is_text_start(p, n, "nrows")) rd = dem_read_asc;
     else if (is_square_hgt(n)) rd = dem_read_hgt;
     else if (is_numeric_start(p, n)) rd = dem_read_xyz;
@@ -556,42 +492,11 @@ br_status dem_load_mem(const char *name, const uint8_t *bytes, size_t len, const
     return load_mem_depth(name, bytes, len, o, out, err, 0);
 }
 
-static br_status read_file(const char *path, uint8_t **data, size_t *n, br_err *err)
-{
-    FILE *f = fopen(path, "rb");
-    uint8_t *buf = NULL;
-    size_t cap = 0, have = 0;
-    if (!f) return br_err_set(err, BR_E_IO, path, "cannot open");
-    if (fseek(f, 0, SEEK_END) == 0) {
-        long sz = ftell(f);
-        if (sz >= 0) cap = (size_t)sz + 1;
-        if (fseek(f, 0, SEEK_SET) != 0) cap = 0;
-    }
-    if (cap == 0) cap = 1 << 16;
-    buf = malloc(cap);
-    if (!buf) { fclose(f); return br_err_set(err, BR_E_NOMEM, path, "out of memory reading the file"); }
-    for (;;) {
-        size_t got = fread(buf + have, 1, cap - have, f);
-        have += got;
-        if (have < cap) break;
-        {
-            uint8_t *nb = realloc(buf, cap * 2);
-            if (!nb) { free(buf); fclose(f); return br_err_set(err, BR_E_NOMEM, path, "out of memory reading the file"); }
-            buf = nb; cap *= 2;
-        }
-    }
-    if (ferror(f)) { free(buf); fclose(f); return br_err_set(err, BR_E_IO, path, "read error"); }
-    fclose(f);
-    *data = buf;
-    *n = have;
-    return BR_OK;
-}
-
 br_status dem_load(const char *path, const dem_opts *o, hf *out, br_err *err)
 {
     uint8_t *data;
     size_t n;
-    br_status s = read_file(path, &data, &n, err);
+    br_status s = dem_read_file(path, &data, &n, err);
     if (s != BR_OK) return s;
     s = dem_load_mem(path, data, n, o, out, err);
     free(data);
@@ -604,13 +509,16 @@ br_status dem_load_many(const char *const *paths, int n, const dem_opts *o, hf *
     int i, k;
     br_status s = BR_OK;
     if (n < 1 || !paths) return br_err_set(err, BR_E_ARG, NULL, "no input files");
-    if (n == 1) return dem_load(paths[0], o, out, err);
-    tiles = calloc((size_t)n, sizeof *tiles);
-    if (!tiles) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
-    for (i = 0; i < n && s == BR_OK; i++) s = dem_load(paths[i], o, &tiles[i], err);
-    if (s == BR_OK) s = dem_merge(tiles, paths, n, out, err);
-    for (k = 0; k < n; k++) dem_free(&tiles[k]);
-    free(tiles);
+    if (n == 1) s = dem_load(paths[0], o, out, err);
+    else {
+        tiles = calloc((size_t)n, sizeof *tiles);
+        if (!tiles) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
+        for (i = 0; i < n && s == BR_OK; i++) s = dem_load(paths[i], o, &tiles[i], err);
+        if (s == BR_OK) s = dem_merge_prefer(tiles, paths, n, o ? o->merge_prefer : DEM_MERGE_REFUSE, out, err);
+        for (k = 0; k < n; k++) dem_free(&tiles[k]);
+        free(tiles);
+    }
+    if (s == BR_OK && o && o->fill_voids && (s = dem_fill_voids(out, o->filled_out, err)) != BR_OK) dem_free(out);
     return s;
 }
 

@@ -31,19 +31,71 @@ static int key_of(const uint8_t *t, size_t len)
     return -1;
 }
 
-br_status dem_read_asc(const char *name, const uint8_t *p, size_t n, const dem_opts *o,
-                       hf *out, br_err *err)
+br_status dem_text_values(const char *name, const char *fmt, const uint8_t *p, size_t n, size_t pos,
+                          int64_t w, int64_t h, int have_nd, double nd, int negate, const dem_opts *o,
+                          hf *out, br_err *err)
 {
-    double val[K_COUNT], v, maxabs = 0, sx, sy, x0, y0, xmin, ymin;
-    int have[K_COUNT] = { 0 }, allint = 1, k, r;
-    size_t pos = 0, data_pos, i, cnt, toklen;
+    double v, maxabs = 0, sgn = negate ? -1.0 : 1.0;
+    int allint = 1, r, user_nd = o && o->has_nodata && o->nodata == o->nodata;
+    size_t data_pos, i, cnt, toklen;
     const uint8_t *tok;
     char ts[32];
-    int64_t w, h;
     int32_t den = 1;
     hf f;
     br_status s;
-    (void)o;
+    if (hf_check_dims(w, h) != BR_OK)
+        return dem_alloc(&f, w, h, name, err); /* sets the too-big message */
+    /* a grid needs at least 2 bytes of text per value: a lying header is caught before allocating */
+    cnt = (size_t)w * (size_t)h;
+    if ((n - pos) / 2 + 1 < cnt)
+        return br_err_set(err, BR_E_TRUNCATED, name, "%s header says %lldx%lld values but the file is only %zu bytes",
+                          fmt, (long long)w, (long long)h, n);
+    /* pass 1: count and check every value, find the range and whether all are integers */
+    data_pos = pos;
+    for (i = 0; i < cnt; i++) {
+        r = dem_scan_number(p, n, &pos, 0, &v, &tok, &toklen);
+        if (r == 0)
+            return br_err_set(err, BR_E_TRUNCATED, name, "%s grid has %zu of %zu values (%lldx%lld)",
+                              fmt, i, cnt, (long long)w, (long long)h);
+        if (r < 0) {
+            dem_token_str(tok, toklen, ts);
+            return br_err_set(err, BR_E_VALUE, name, "%s value '%s' at row %zu, column %zu is %s",
+                              fmt, ts, i / (size_t)w, i % (size_t)w, r == -2 ? "not finite" : "not a number");
+        }
+        if ((have_nd && v == nd) || (user_nd && v == o->nodata)) continue;
+        if (fabs(v) > maxabs) maxabs = fabs(v);
+        if (v != floor(v)) allint = 0;
+    }
+    r = dem_scan_number(p, n, &pos, 0, &v, &tok, &toklen);
+    if (r != 0)
+        return br_err_set(err, BR_E_FORMAT, name, "%s grid has more than ncols*nrows = %zu values", fmt, cnt);
+    if (allint && maxabs <= (double)BR_Z_LIMIT) den = 1;
+    else if ((den = dem_float_den(maxabs)) == 0)
+        return br_err_set(err, BR_E_VALUE, name, "%s height %g m is out of range", fmt, maxabs);
+
+    s = dem_alloc(&f, w, h, name, err);
+    if (s != BR_OK) return s;
+    f.z_den = den;
+    pos = data_pos;
+    for (i = 0; i < cnt; i++) {
+        (void)dem_scan_number(p, n, &pos, 0, &v, &tok, &toklen);
+        f.z[i] = (have_nd && v == nd) || (user_nd && v == o->nodata) ? HF_NODATA : dem_float_z(sgn * v, den);
+    }
+    *out = f;
+    return BR_OK;
+}
+
+br_status dem_read_asc(const char *name, const uint8_t *p, size_t n, const dem_opts *o,
+                       hf *out, br_err *err)
+{
+    double val[K_COUNT] = { 0 }, sx, sy, x0, y0, xmin, ymin;
+    int have[K_COUNT] = { 0 }, k, r;
+    size_t pos = 0, toklen;
+    const uint8_t *tok;
+    char ts[32];
+    int64_t w, h;
+    hf f;
+    br_status s;
 
     /* header: keyword tokens until the first token that starts like a number */
     for (;;) {
@@ -88,45 +140,8 @@ br_status dem_read_asc(const char *name, const uint8_t *p, size_t n, const dem_o
     sy = have[K_CELLSIZE] ? val[K_CELLSIZE] : val[K_DY];
     if (!(sx > 0) || !(sy > 0))
         return br_err_set(err, BR_E_VALUE, name, "ASC cell size must be positive");
-    if (hf_check_dims(w, h) != BR_OK)
-        return dem_alloc(&f, w, h, name, err); /* sets the too-big message */
-    /* a grid needs at least 2 bytes of text per value: a lying header is caught before allocating */
-    cnt = (size_t)w * (size_t)h;
-    if ((n - pos) / 2 + 1 < cnt)
-        return br_err_set(err, BR_E_TRUNCATED, name, "ASC header says %lldx%lld values but the file is only %zu bytes",
-                          (long long)w, (long long)h, n);
-
-    /* pass 1: count and check every value, find the range and whether all are integers */
-    data_pos = pos;
-    for (i = 0; i < cnt; i++) {
-        r = dem_scan_number(p, n, &pos, 0, &v, &tok, &toklen);
-        if (r == 0)
-            return br_err_set(err, BR_E_TRUNCATED, name, "ASC grid has %zu of %zu values (%lldx%lld)",
-                              i, cnt, (long long)w, (long long)h);
-        if (r < 0) {
-            dem_token_str(tok, toklen, ts);
-            return br_err_set(err, BR_E_VALUE, name, "ASC value '%s' at row %zu, column %zu is %s",
-                              ts, i / (size_t)w, i % (size_t)w, r == -2 ? "not finite" : "not a number");
-        }
-        if (have[K_NODATA] && v == val[K_NODATA]) continue;
-        if (fabs(v) > maxabs) maxabs = fabs(v);
-        if (v != floor(v)) allint = 0;
-    }
-    r = dem_scan_number(p, n, &pos, 0, &v, &tok, &toklen);
-    if (r != 0)
-        return br_err_set(err, BR_E_FORMAT, name, "ASC grid has more than ncols*nrows = %zu values", cnt);
-    if (allint && maxabs <= (double)BR_Z_LIMIT) den = 1;
-    else if ((den = dem_float_den(maxabs)) == 0)
-        return br_err_set(err, BR_E_VALUE, name, "ASC height %g m is out of range", maxabs);
-
-    s = dem_alloc(&f, w, h, name, err);
+    s = dem_text_values(name, "ASC", p, n, pos, w, h, have[K_NODATA], val[K_NODATA], 0, o, &f, err);
     if (s != BR_OK) return s;
-    f.z_den = den;
-    pos = data_pos;
-    for (i = 0; i < cnt; i++) {
-        (void)dem_scan_number(p, n, &pos, 0, &v, &tok, &toklen);
-        f.z[i] = have[K_NODATA] && v == val[K_NODATA] ? HF_NODATA : dem_float_z(v, den);
-    }
     /* georeference: centre of sample (0,0) = west column, north row */
     x0 = have[K_XLLCORNER] ? val[K_XLLCORNER] + sx / 2 : val[K_XLLCENTER];
     xmin = x0 - sx / 2;

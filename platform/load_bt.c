@@ -7,7 +7,8 @@
  * 1.3 a vertical scale (float, metres per unit, 0 = 1).  The samples are
  * stored column by column from the west, each column from SOUTH to north; we
  * transpose to our north-west-first rows.  -32768 is a void (VTP's
- * INVALID_ELEVATION); NaN/inf are errors.  int16/int32 with scale 1 keep 1 m;
+ * INVALID_ELEVATION), and so is dem_opts.nodata; NaN/inf are errors (NaN a
+ * void with nodata NaN).  int16/int32 with scale 1 keep 1 m;
  * float or scaled data use the float rule (at least 1 mm). */
 #include <math.h>
 #include <string.h>
@@ -40,7 +41,10 @@ br_status dem_read_bt(const char *name, const uint8_t *p, size_t n, const dem_op
     int scaled;
     hf f;
     br_status s;
-    (void)o;
+    /* dem_opts.nodata: compared with the stored sample (float samples as float32) */
+    int user_nd = o && o->has_nodata, nd_nan = user_nd && o->nodata != o->nodata;
+    float nd_f = user_nd && !nd_nan ? (float)o->nodata : 0;
+    double nd_d = user_nd && !nd_nan ? o->nodata : 0;
     if (n < 10 || memcmp(p, "binterr1.", 9) != 0)
         return br_err_set(err, BR_E_FORMAT, name, "not a VTP BT file (wrong magic)");
     if (p[9] < '0' || p[9] > '3')
@@ -90,13 +94,14 @@ br_status dem_read_bt(const char *name, const uint8_t *p, size_t n, const dem_op
         double v;
         if (isfloat) {
             float fv = le_float(q);
+            if (nd_nan && fv != fv) continue;
             if (!isfinite(fv))
                 return br_err_set(err, BR_E_VALUE, name, "BT sample %zu (column %zu) is not finite", i, i / (size_t)rows);
-            if (fv == -32768.0f) continue;
+            if (fv == -32768.0f || (user_nd && !nd_nan && fv == nd_f)) continue;
             v = (double)fv;
         } else {
             int32_t iv = dsize == 2 ? (int16_t)dem_le16(q) : (int32_t)dem_le32(q);
-            if (iv == -32768) continue;
+            if (iv == -32768 || (user_nd && (double)iv == nd_d)) continue;
             v = iv;
         }
         v = fabs(v * vscale);
@@ -117,10 +122,12 @@ br_status dem_read_bt(const char *name, const uint8_t *p, size_t n, const dem_op
             int32_t *dst = &f.z[(size_t)(rows - 1 - r) * (size_t)cols + (size_t)c];
             if (isfloat) {
                 float fv = le_float(q);
-                *dst = fv == -32768.0f ? HF_NODATA : dem_float_z((double)fv * vscale, den);
+                *dst = fv == -32768.0f || fv != fv || (user_nd && !nd_nan && fv == nd_f) ? HF_NODATA
+                       : dem_float_z((double)fv * vscale, den);
             } else {
                 int32_t iv = dsize == 2 ? (int16_t)dem_le16(q) : (int32_t)dem_le32(q);
-                *dst = iv == -32768 ? HF_NODATA : scaled ? dem_float_z(iv * vscale, den) : iv;
+                *dst = iv == -32768 || (user_nd && (double)iv == nd_d) ? HF_NODATA
+                       : scaled ? dem_float_z(iv * vscale, den) : iv;
             }
         }
     }

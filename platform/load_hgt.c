@@ -24,7 +24,7 @@ br_status dem_read_hgt(const char *name, const uint8_t *p, size_t n, const dem_o
     int lat, lon;
     hf f;
     br_status s;
-    (void)o;
+    int user_nd = o && o->has_nodata && o->nodata == o->nodata;
     side = isqrt_size(n / 2);
     if (n % 2 || side * side * 2 != n) {
         /* name the nearest standard tile so a cut download reads as such */
@@ -48,15 +48,15 @@ br_status dem_read_hgt(const char *name, const uint8_t *p, size_t n, const dem_o
     cnt = side * side;
     for (i = 0; i < cnt; i++) {
         int16_t v = (int16_t)dem_be16(p + 2 * i);
-        f.z[i] = v == -32768 ? HF_NODATA : v;
+        f.z[i] = v == -32768 || (user_nd && v == o->nodata) ? HF_NODATA : v;
     }
     if (dem_srtm_name(name, &lat, &lon)) {
         s = dem_geo_degrees(&f, lon, lat + 1, 1.0 / (double)(side - 1), 1.0 / (double)(side - 1), name, err);
     } else {
         double m_lat, m_lon;
         dem_m_per_degree(0, &m_lat, &m_lon);
-        f.dx_um = (int32_t)llround(m_lon / (double)(side - 1) * 1e6);
-        f.dy_um = (int32_t)llround(m_lat / (double)(side - 1) * 1e6);
+        f.dx_um = llround(m_lon / (double)(side - 1) * 1e6);
+        f.dy_um = llround(m_lat / (double)(side - 1) * 1e6);
         if (f.dx_um < 1) f.dx_um = 1;
         if (f.dy_um < 1) f.dy_um = 1;
     }

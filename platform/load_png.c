@@ -8,8 +8,11 @@
  *               exactly in units of a rational g/D (scale 0.1 -> 1/10 m);
  *   terrain-RGB Mapbox: metres = -10000 + (R*65536 + G*256 + B) * 0.1, unit 1/10 m;
  *   Terrarium   metres = R*256 + G + B/256 - 32768, unit 1/256 m.
- * AUTO is grey for grey PNGs and terrain-RGB for colour ones.  A sample whose
- * alpha is 0 is a void. */
+ * AUTO is grey for grey PNGs and for palette PNGs whose entries are all grey
+ * levels (a palette index stands for its grey level), terrain-RGB for other
+ * colour ones; a choice that is not plain grey is said (dem_note).  A sample
+ * whose alpha (or tRNS entry) is 0 is a void, and so is one equal to
+ * dem_opts.nodata (the raw grey sample; terrain-RGB/Terrarium: the metres). */
 #include <png.h>
 #include <setjmp.h>
 #include <stdlib.h>
@@ -24,7 +27,22 @@ typedef struct png_src {
     png_bytep *rows;
     int64_t za, zb;          /* grey: z = raw*za + zb */
     int32_t num, den;        /* unit of z */
+    int pal_grey;            /* a palette whose entries are all grey levels */
+    char why[64];            /* else the first colour entry, for messages */
 } png_src;
+
+static void palette_kind(png_structp png, png_infop info, png_src *s)
+{
+    png_colorp pal = NULL;
+    int npal = 0, k;
+    s->pal_grey = png_get_PLTE(png, info, &pal, &npal) != 0 && npal > 0;
+    for (k = 0; s->pal_grey && k < npal; k++)
+        if (pal[k].red != pal[k].green || pal[k].red != pal[k].blue) {
+            s->pal_grey = 0;
+            snprintf(s->why, sizeof s->why, "palette entry %d is (%d, %d, %d)", k, pal[k].red, pal[k].green,
+                     pal[k].blue);
+        }
+}
 
 static void read_fn(png_structp png, png_bytep dst, size_t len)
 {
@@ -99,6 +117,7 @@ static br_status decode(const char *name, png_src *s, const dem_opts *o, hf *out
     png_structp png;
     png_infop info;
     png_uint_32 w, h, y;
+    int user_nd = o->has_nodata && o->nodata == o->nodata;
     int bits, ctype, enc, ch, x;
     size_t rowbytes;
     br_status st;
@@ -131,16 +150,29 @@ static br_status decode(const char *name, png_src *s, const dem_opts *o, hf *out
                               (unsigned)w, (unsigned)h);
         }
     }
+    if (ctype == PNG_COLOR_TYPE_PALETTE) palette_kind(png, info, s);
     enc = o->png_encoding;
-    if (enc == DEM_PNG_AUTO)
-        enc = (ctype == PNG_COLOR_TYPE_GRAY || ctype == PNG_COLOR_TYPE_GRAY_ALPHA) ? DEM_PNG_GREY : DEM_PNG_TERRAIN_RGB;
-    if (enc == DEM_PNG_GREY) {
-        if (ctype != PNG_COLOR_TYPE_GRAY && ctype != PNG_COLOR_TYPE_GRAY_ALPHA) {
-            png_destroy_read_struct(&png, &info, NULL);
-            return br_err_set(err, BR_E_UNSUPPORTED, name, "grey heights asked for, but the PNG is in colour");
+    if (enc == DEM_PNG_AUTO) {
+        if (ctype == PNG_COLOR_TYPE_GRAY || ctype == PNG_COLOR_TYPE_GRAY_ALPHA) enc = DEM_PNG_GREY;
+        else if (s->pal_grey) {
+            enc = DEM_PNG_GREY;
+            dem_note(name, "heights read as grey: a palette PNG whose entries are all grey levels "
+                           "(--png-encoding to choose another encoding)");
+        } else {
+            enc = DEM_PNG_TERRAIN_RGB;
+            dem_note(name, "heights read as terrain-RGB (Mapbox): the default for colour PNGs "
+                           "(--png-encoding terrarium or grey to choose another)");
         }
-        if (bits < 8) png_set_expand_gray_1_2_4_to_8(png);
-        st = grey_unit(o, bits < 8 ? 8 : bits, &s->za, &s->zb, &s->num, &s->den, name, err);
+    }
+    if (enc == DEM_PNG_GREY) {
+        if (ctype != PNG_COLOR_TYPE_GRAY && ctype != PNG_COLOR_TYPE_GRAY_ALPHA && !s->pal_grey) {
+            png_destroy_read_struct(&png, &info, NULL);
+            return br_err_set(err, BR_E_UNSUPPORTED, name, "grey heights asked for, but the PNG is in colour%s%s",
+                              s->why[0] ? ": " : "", s->why);
+        }
+        if (s->pal_grey) png_set_palette_to_rgb(png);   /* grey level in R (= G = B), tRNS as alpha */
+        else if (bits < 8) png_set_expand_gray_1_2_4_to_8(png);
+        st = grey_unit(o, bits < 8 || s->pal_grey ? 8 : bits, &s->za, &s->zb, &s->num, &s->den, name, err);
         if (st != BR_OK) { png_destroy_read_struct(&png, &info, NULL); return st; }
     } else if (enc == DEM_PNG_TERRAIN_RGB || enc == DEM_PNG_TERRARIUM) {
         if (ctype == PNG_COLOR_TYPE_GRAY || ctype == PNG_COLOR_TYPE_GRAY_ALPHA || bits != 8) {
@@ -190,14 +222,15 @@ static br_status decode(const char *name, png_src *s, const dem_opts *o, hf *out
                     if (ch == 2) alpha = r[x * 4 + 2] << 8 | r[x * 4 + 3];
                 } else {
                     raw = r[x * ch];
-                    if (ch == 2) alpha = r[x * 2 + 1];
+                    if (ch == 2 || ch == 4) alpha = r[x * ch + ch - 1];
                 }
-                z[x] = alpha ? (int32_t)(raw * s->za + s->zb) : HF_NODATA;
+                z[x] = alpha && !(user_nd && (double)raw == o->nodata) ? (int32_t)(raw * s->za + s->zb) : HF_NODATA;
             } else {
                 const uint8_t *px = r + x * ch;
                 int32_t v = px[0] << 16 | px[1] << 8 | px[2];
                 if (ch == 4 && px[3] == 0) z[x] = HF_NODATA;
                 else z[x] = enc == DEM_PNG_TERRARIUM ? v - 8388608 : v - 100000;
+                if (user_nd && z[x] != HF_NODATA && (double)z[x] / s->den == o->nodata) z[x] = HF_NODATA;
             }
         }
     }

@@ -10,8 +10,9 @@
  * PixelIsArea or PixelIsPoint (GTRasterTypeGeoKey 1025), geographic when
  * GTModelTypeGeoKey (1024) is 2, projected (metres, or feet by
  * ProjLinearUnitsGeoKey 3076) when 1, guessed from the numbers without keys.
- * GDAL_NODATA (42113) marks voids ("nan" makes NaN a void); other NaN/inf
- * samples are errors.  Integers keep 1 m; floats use the float rule. */
+ * GDAL_NODATA (42113) marks voids ("nan" makes NaN a void), and so does
+ * dem_opts.nodata (besides the tag; float samples compared as float32); other
+ * NaN/inf samples are errors.  Integers keep 1 m; floats use the float rule. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -174,7 +175,8 @@ br_status dem_read_tif(const char *name, const uint8_t *p, size_t n, const dem_o
     int32_t den = 1;
     hf f;
     br_status s = BR_OK;
-    (void)o;
+    int user_nd = 0;
+    double user_v = 0;
 
     memset(&t, 0, sizeof t);
     memset(g, 0, sizeof g);
@@ -284,6 +286,10 @@ br_status dem_read_tif(const char *name, const uint8_t *p, size_t n, const dem_o
                               b, bc, (unsigned long long)need);
     }
     have_nodata = parse_nodata(&t, &g[G_NODATA], &nodata, &nodata_nan);
+    if (o && o->has_nodata) {           /* the user's value, besides the tag's */
+        if (o->nodata != o->nodata) nodata_nan = 1;
+        else { user_nd = 1; user_v = sfmt == 3 ? (double)(float)o->nodata : o->nodata; }
+    }
     if (g[G_GEOKEYS].present && g[G_GEOKEYS].type == T_SHORT && g[G_GEOKEYS].count >= 4) {
         uint32_t nk = tag_uint(&t, &g[G_GEOKEYS], 3, &ok), k;
         for (k = 0; k < nk && 4 + 4 * k + 3 < g[G_GEOKEYS].count; k++) {
@@ -371,7 +377,7 @@ br_status dem_read_tif(const char *name, const uint8_t *p, size_t n, const dem_o
                            (size_t)i / w, (size_t)i % w);
             goto fail;
         }
-        if (have_nodata && v == nodata) continue;
+        if ((have_nodata && v == nodata) || (user_nd && v == user_v)) continue;
         if (fabs(v) > maxabs) maxabs = fabs(v);
     }
     if (sfmt != 3) {
@@ -390,7 +396,7 @@ br_status dem_read_tif(const char *name, const uint8_t *p, size_t n, const dem_o
         double v;
         int bad;
         SAMPLE(i, v, bad);
-        f.z[i] = bad || (have_nodata && v == nodata) ? HF_NODATA : sfmt == 3 ? dem_float_z(v, den) : (int32_t)v;
+        f.z[i] = bad || (have_nodata && v == nodata) || (user_nd && v == user_v) ? HF_NODATA : sfmt == 3 ? dem_float_z(v, den) : (int32_t)v;
     }
 #undef SAMPLE
     free(raw);

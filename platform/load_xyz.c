@@ -8,7 +8,8 @@
  * cell without a point is a void, but at least half the cells must be present
  * (checked before allocating) and no cell may be given twice.  Row 0 is the
  * largest y (north).  Heights use the float rule; dem_opts.xyz_depth negates
- * z (depth positive down).  Coordinates are metres unless they look
+ * z (depth positive down); a z equal to dem_opts.nodata (as written) is a
+ * void.  Coordinates are metres unless they look
  * geographic (dem_looks_degrees). */
 #include <ctype.h>
 #include <math.h>
@@ -26,16 +27,19 @@ static int cmp_double(const void *a, const void *b)
 static br_status lattice(double *v, size_t n, const char *axis, double *vmin, double *step,
                          int64_t *count, const char *name, br_err *err)
 {
-    double span, tol, gap = 0;
+    double span, gap = 0;
     size_t i;
     qsort(v, n, sizeof *v, cmp_double);
     span = v[n - 1] - v[0];
     *vmin = v[0];
-    /* values closer than 1e-5 of the span are one grid line (text rounding);
-     * the finest grid we accept has steps of span / 16384 > 6e-5 span */
-    tol = 1e-5 * span + 1e-12 * (fabs(v[0]) + fabs(v[n - 1]));
+    /* Neighbouring values closer than text rounding allows are one grid line:
+     * 1e-5 of their own magnitude (six significant digits, as "%e" and "%g"
+     * print) plus 1e-9 of the span.  Judged per pair, not on the whole span, so
+     * one far outlier does not widen the tolerance until distinct grid lines
+     * merge (it makes the span too many steps instead, refused below). */
     for (i = 1; i < n; i++) {
         double d = v[i] - v[i - 1];
+        double tol = 1e-5 * fmax(fabs(v[i]), fabs(v[i - 1])) + 1e-9 * span;
         if (d > tol && (gap == 0 || d < gap)) gap = d;
     }
     if (gap == 0) { *step = 0; *count = 1; return BR_OK; }
@@ -64,8 +68,10 @@ br_status dem_read_xyz(const char *name, const uint8_t *p, size_t n, const dem_o
     hf f;
     br_status s;
     char ts[32];
+    int user_nd;
 
     sgn = o && o->xyz_depth ? -1.0 : 1.0;
+    user_nd = o && o->has_nodata && o->nodata == o->nodata;
     memset(&f, 0, sizeof f);
     while (pos < n) {
         size_t e = pos, lp;
@@ -107,7 +113,7 @@ br_status dem_read_xyz(const char *name, const uint8_t *p, size_t n, const dem_o
         pt[np * 3] = v[0];
         pt[np * 3 + 1] = v[1];
         pt[np * 3 + 2] = v[2] * sgn;
-        if (fabs(v[2]) > maxabs) maxabs = fabs(v[2]);
+        if (fabs(v[2]) > maxabs && !(user_nd && v[2] == o->nodata)) maxabs = fabs(v[2]);
         np++;
         pos = e + 1;
     }
@@ -151,7 +157,7 @@ br_status dem_read_xyz(const char *name, const uint8_t *p, size_t n, const dem_o
             break;
         }
         seen[k] = 1;
-        f.z[k] = dem_float_z(pt[i * 3 + 2], den);
+        f.z[k] = user_nd && pt[i * 3 + 2] * sgn == o->nodata ? HF_NODATA : dem_float_z(pt[i * 3 + 2], den);
     }
     free(seen);
     free(pt);

@@ -2,6 +2,10 @@
 #include <stdio.h>
 #include <string.h>
 #include "platform/cmd.h"
+#include "platform/load.h"
+
+/* The release; `bitrain --version` prints it. */
+#define BR_VERSION "0.6.0"
 
 static const struct { const char *name; int (*fn)(int, char **); const char *usage; } cmds[] = {
     { "info",      cmd_info,      "info [--json] [--merge] FILE...      size, heights, voids, spacing, origin" },
@@ -18,13 +22,20 @@ static void usage(FILE *f)
     size_t i;
     fprintf(f, "usage: bitrain COMMAND [ARGS]\n\ncommands:\n");
     for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++) fprintf(f, "  bitrain %s\n", cmds[i].usage);
-    fprintf(f, "\n`bitrain COMMAND --help` for a command's options.\n");
+    fprintf(f, "\n`bitrain COMMAND --help` for a command's options; `bitrain --version` for the release.\n");
 }
+
+static void note(const char *name, const char *msg) { fprintf(stderr, "bitrain: %s: %s\n", name, msg); }
 
 int main(int argc, char **argv)
 {
     size_t i;
+    dem_set_note(note);
     if (argc < 2) { usage(stderr); return 2; }
+    if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "version")) {
+        printf("bitrain %s\n", BR_VERSION);
+        return 0;
+    }
     if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help") || !strcmp(argv[1], "help")) {
         usage(stdout);
         return 0;

@@ -30,7 +30,12 @@ static int64_t div_round(int64_t a, int64_t b)
 
 br_status dem_merge(const hf *tiles, const char *const *names, int n, hf *out, br_err *err)
 {
-    int i;
+    return dem_merge_prefer(tiles, names, n, DEM_MERGE_REFUSE, out, err);
+}
+
+br_status dem_merge_prefer(const hf *tiles, const char *const *names, int n, int prefer, hf *out, br_err *err)
+{
+    int i, ix = 0, iy = 0;   /* the tiles that set the west and north edges: the grid's reference */
     int64_t xmin, ymax, sx, sy, W = 0, H = 0, G = 0, L = 1;
     int64_t *cx = NULL, *ry = NULL, *fac = NULL;
     uint8_t *seen = NULL;   /* one bit per merged sample: covered yet (page faults cost, so not a byte) */
@@ -59,8 +64,8 @@ br_status dem_merge(const hf *tiles, const char *const *names, int n, hf *out, b
         if (llabs64(tiles[i].geo.sx - sx) > tx || llabs64(tiles[i].geo.sy - sy) > ty)
             return br_err_set(err, BR_E_MERGE, nm(names, i), "sample step differs from %s's (resolutions differ)",
                               nm(names, 0));
-        if (tiles[i].geo.x0 < xmin) xmin = tiles[i].geo.x0;
-        if (tiles[i].geo.y0 > ymax) ymax = tiles[i].geo.y0;
+        if (tiles[i].geo.x0 < xmin) { xmin = tiles[i].geo.x0; ix = i; }
+        if (tiles[i].geo.y0 > ymax) { ymax = tiles[i].geo.y0; iy = i; }
     }
     cx = calloc((size_t)n, sizeof *cx);
     ry = calloc((size_t)n, sizeof *ry);
@@ -70,9 +75,15 @@ br_status dem_merge(const hf *tiles, const char *const *names, int n, hf *out, b
         int64_t dx = tiles[i].geo.x0 - xmin, dy = ymax - tiles[i].geo.y0;
         cx[i] = div_round(dx, sx);
         ry[i] = div_round(dy, sy);
-        if (llabs64(dx - cx[i] * sx) > sx / 100 || llabs64(dy - ry[i] * sy) > sy / 100) {
-            s = br_err_set(err, BR_E_MERGE, nm(names, i), "is not aligned with the sample grid of %s",
-                           nm(names, 0));
+        /* The steps are rounded to whole nano-degrees (micrometres): 1/1200 degree
+         * is kept as 833333, a third of a unit short, so k steps are known to
+         * +-k/2 units; besides that a tile may sit 1% of a step off the grid. */
+        if (llabs64(dx - cx[i] * sx) > sx / 100 + llabs64(cx[i]) / 2 + 1 ||
+            llabs64(dy - ry[i] * sy) > sy / 100 + llabs64(ry[i]) / 2 + 1) {
+            int x_off = llabs64(dx - cx[i] * sx) > sx / 100 + llabs64(cx[i]) / 2 + 1;
+            s = br_err_set(err, BR_E_MERGE, nm(names, i), "is not aligned with the sample grid of %s "
+                           "(%s %.3f samples from it)", nm(names, x_off ? ix : iy), x_off ? "west edge" : "north edge",
+                           x_off ? (double)dx / (double)sx : (double)dy / (double)sy);
             goto done;
         }
         if (cx[i] + tiles[i].w > W) W = cx[i] + tiles[i].w;
@@ -115,12 +126,17 @@ br_status dem_merge(const hf *tiles, const char *const *names, int n, hf *out, b
                 int32_t v = src[c] == HF_NODATA ? HF_NODATA : (int32_t)(src[c] * fac[i]);
                 size_t q = base + c;
                 if (seen[q >> 3] & (1u << (q & 7))) {
-                    if (m.z[q] != v) {
+                    if (m.z[q] != v && prefer != DEM_MERGE_REFUSE && (v == HF_NODATA || m.z[q] == HF_NODATA)) {
+                        if (m.z[q] == HF_NODATA) m.z[q] = v;     /* a void never replaces a height */
+                    } else if (m.z[q] != v && prefer == DEM_MERGE_LAST) {
+                        m.z[q] = v;
+                    } else if (m.z[q] != v && prefer == DEM_MERGE_REFUSE) {
                         int j = 0;     /* an earlier tile that covers this sample */
                         while (j < i && !(cx[i] + c >= cx[j] && cx[i] + c < cx[j] + tiles[j].w &&
                                           ry[i] + r >= ry[j] && ry[i] + r < ry[j] + tiles[j].h)) j++;
                         s = br_err_set(err, BR_E_MERGE, nm(names, i),
-                                       "overlaps %s with different heights at merged sample (%lld, %lld)",
+                                       "overlaps %s with different heights at merged sample (%lld, %lld) "
+                                       "(--merge-prefer first|last to let one win)",
                                        nm(names, j), (long long)(cx[i] + c), (long long)(ry[i] + r));
                         break;
                     }

@@ -94,19 +94,57 @@ static br_status load_texture(scene *s, const char *path, br_err *err)
     return BR_OK;
 }
 
-/* Vertical scale: o->zscale, or automatic for grids without georeference whose
- * relief dwarfs their extent at the loader's default 1 m spacing. */
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The 99th percentile of |dz| / spacing between valid east and south neighbours
+ * (metres per metre) over a regular subsample of at most 2^19 samples; 0 when the
+ * grid has no such pair or no memory. */
+static double slope_p99(const hf *f)
+{
+    int32_t sx = 1, sy = 1, x, y;
+    size_t n = 0;
+    double *g, dx = (double)f->dx_um / 1e6, dy = (double)f->dy_um / 1e6, zu = (double)f->z_num / f->z_den, r;
+    while ((int64_t)((f->w + sx - 1) / sx) * ((f->h + sy - 1) / sy) > (1 << 19)) { sx *= 2; sy *= 2; }
+    g = malloc(sizeof *g * 2 * (size_t)((f->w + sx - 1) / sx) * (size_t)((f->h + sy - 1) / sy));
+    if (!g) return 0;
+    for (y = 0; y < f->h; y += sy)
+        for (x = 0; x < f->w; x += sx) {
+            const int32_t *p = f->z + (size_t)y * f->w + x;
+            if (*p == HF_NODATA) continue;
+            if (x + 1 < f->w && p[1] != HF_NODATA) g[n++] = fabs((double)p[1] - *p) * zu / dx;
+            if (y + 1 < f->h && p[f->w] != HF_NODATA) g[n++] = fabs((double)p[f->w] - *p) * zu / dy;
+        }
+    if (n == 0) { free(g); return 0; }
+    qsort(g, n, sizeof *g, cmp_double);
+    r = g[n * 99 / 100];
+    free(g);
+    return r;
+}
+
+/* Vertical scale: o->zscale, or automatic for grids without georeference (their
+ * spacing is the loader's assumption, 1 m, so heights and spacing may be in
+ * unrelated units).  The rule keeps the slopes plausible: the 99th percentile of
+ * the slopes between neighbouring samples is brought down to 0.75 (37 degrees;
+ * georeferenced SRTM tiles of the Alps and Mount Rainier and the Crater Lake BT
+ * grid have 0.75 to 0.89, lowland tiles 0.13 to 0.6); a grid whose slopes are
+ * already below it keeps scale 1. */
+#define SCENE_SLOPE_P99 0.75
 static void apply_zscale(scene *s, const scene_opts *o, const char *name)
 {
-    double relief = s->zmax_m - s->zmin_m, ext = s->width_m > s->depth_m ? s->width_m : s->depth_m;
     double zs = o->zscale;
     if (zs == 0) {
+        double p99 = s->f.geo.kind == HF_GEO_NONE ? slope_p99(&s->f) : 0;
         zs = 1;
-        if (s->f.geo.kind == HF_GEO_NONE && relief > 0.5 * ext && relief > 0) {
-            zs = ext / (4 * relief);
+        if (p99 > SCENE_SLOPE_P99) {
+            zs = SCENE_SLOPE_P99 / p99;
+            if (zs < 1e-6) zs = 1e-6;
             if (!o->quiet)
-                printf("%s: no georeference and %.0f m of relief over %.0f m (1 m spacing assumed): "
-                       "vertical scale %.4g (override with --zscale)\n", name, relief, ext, zs);
+                printf("%s: no georeference (1 m spacing assumed) and 99 %% of the slopes up to %.3g: vertical "
+                       "scale %.4g brings them to %.2g (override with --zscale)\n", name, p99, zs, SCENE_SLOPE_P99);
         }
     }
     if (zs != 1) /* as the rational round(zs * 2^20) / 2^20: zs <= 1000 fits int32 */
@@ -119,6 +157,7 @@ static void apply_zscale(scene *s, const scene_opts *o, const char *name)
 br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o, br_err *err)
 {
     scene_opts d;
+    dem_opts dd;
     fx_q14 sun[3];
     int def_sun;
     memset(s, 0, sizeof *s);
@@ -126,12 +165,20 @@ br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o
     if (!o) o = &d;
     if (!(o->zscale >= 0 && o->zscale <= 1000) || !(o->ambient >= 0 && o->ambient <= 1))
         return br_err_set(err, BR_E_ARG, in[0], "vertical scale or ambient out of range");
-    if (dem_load_many(in, n, &o->dem, &s->f, err) != BR_OK) return err ? err->code : BR_E_IO;
+    dd = o->dem;
+    dd.filled_out = &s->filled;
+    if (dem_load_many(in, n, &dd, &s->f, err) != BR_OK) return err ? err->code : BR_E_IO;
+    if (dd.fill_voids && !o->quiet)
+        printf("%s: %lld void samples filled from their borders (--fill-voids)\n", in[0], (long long)s->filled);
     hf_stats_get(&s->f, &s->st);
+    if (s->st.voids == (int64_t)s->f.w * s->f.h) {
+        dem_free(&s->f);
+        return br_err_set(err, BR_E_VALUE, in[0], "every sample is a void (nodata): nothing to draw");
+    }
     s->zmin_m = (double)hf_z_to_mm(&s->f, s->st.zmin) / 1000;
     s->zmax_m = (double)hf_z_to_mm(&s->f, s->st.zmax) / 1000;
-    s->width_m = (double)(s->f.w - 1) * s->f.dx_um / 1e6;
-    s->depth_m = (double)(s->f.h - 1) * s->f.dy_um / 1e6;
+    s->width_m = (double)(s->f.w - 1) * (double)s->f.dx_um / 1e6;
+    s->depth_m = (double)(s->f.h - 1) * (double)s->f.dy_um / 1e6;
     if (o->colors) {
         if (read_colors(o->colors, &s->ramp, hf_z_to_mm(&s->f, s->st.zmin), hf_z_to_mm(&s->f, s->st.zmax), err) != BR_OK) {
             scene_close(s);
@@ -141,7 +188,7 @@ br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o
     else rs_ramp_default(&s->ramp, hf_z_to_mm(&s->f, s->st.zmin), hf_z_to_mm(&s->f, s->st.zmax));
     def_sun = o->sun_az == 0 && o->sun_alt == 0;
     rs_sun_dir((int32_t)lround((def_sun ? 315 : o->sun_az) * 1000), (int32_t)lround((def_sun ? 45 : o->sun_alt) * 1000), sun);
-    if (rt_scene_init(&s->rt, &s->f, &s->ramp, sun, (int32_t)lround((o->ambient > 0 ? o->ambient : 0.3) * FX_Q14_ONE)) != BR_OK) {
+    if (rt_scene_init(&s->rt, &s->f, &s->ramp, sun, (int32_t)lround((o->ambient_set ? o->ambient : 0.3) * FX_Q14_ONE)) != BR_OK) {
         scene_close(s);
         return br_err_set(err, BR_E_ARG, in[0], "invalid heightfield");
     }
@@ -209,7 +256,7 @@ void scene_default_view(const scene *s, double fovy_deg, double eye[3], double t
 
 double scene_ground(const scene *s, double x, double y)
 {
-    double gx = x * 1e6 / s->f.dx_um, gy = (double)(s->f.h - 1) - y * 1e6 / s->f.dy_um;
+    double gx = x * 1e6 / (double)s->f.dx_um, gy = (double)(s->f.h - 1) - y * 1e6 / (double)s->f.dy_um;
     int32_t z;
     if (!(gx >= 0 && gy >= 0 && gx <= s->f.w - 1 && gy <= s->f.h - 1)) return (double)NAN;
     z = s->f.z[(size_t)lround(gy) * (size_t)s->f.w + (size_t)lround(gx)];

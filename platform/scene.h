@@ -22,9 +22,11 @@ typedef struct scene_opts {          /* zero = defaults */
     const char *colors;              /* gdaldem color-relief file, or NULL for the built-in ramp */
     const char *texture;             /* colour map / orthophoto PNG over the whole grid, or NULL */
     double sun_az, sun_alt;          /* degrees (both 0: 315, 45) */
-    double ambient;                  /* 0..1 (0: 0.3) */
+    double ambient;                  /* 0..1, used when ambient_set (else 0.3) */
+    int ambient_set;
     double zscale;                   /* vertical scale (0: 1, or automatic for grids without a
-                                        georeference whose relief dwarfs the assumed 1 m spacing) */
+                                        georeference: 99 % of the slopes at most 0.75 at the
+                                        assumed 1 m spacing) */
     int quiet;                       /* do not print the automatic vertical scale */
     int ramp_abs;                    /* 1: georeferenced grids take the absolute-elevation ramp
                                         (rs_ramp_absolute) instead of the relative one */
@@ -38,6 +40,7 @@ typedef struct scene {
     rs_texture tex;                  /* valid when rt.tex_w > 0 */
     uint32_t *texpx;
     double zscale;
+    int64_t filled;                  /* samples filled by --fill-voids (dem_opts.fill_voids) */
     double width_m, depth_m, zmin_m, zmax_m;  /* extent; heights times zscale */
     /* bitree paths (scene_tree, scene_reserve) */
     bt_tree tree;
@@ -47,7 +50,8 @@ typedef struct scene {
     void *tree_mem, *mesh_mem;
 } scene;
 
-/* Loads the files (merged when several), the ramp, texture and vertical scale. */
+/* Loads the files (merged when several), the ramp, texture and vertical scale.
+ * A grid whose every sample is a void is refused (BR_E_VALUE): nothing to draw. */
 br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o, br_err *err);
 /* Builds the bitree (exact metric) once. */
 br_status scene_tree(scene *s, br_err *err);

@@ -55,7 +55,7 @@ static br_status find_water(water_scene *w, scene *s, int32_t *wz, br_err *err)
         wt_params p;
         size_t ws = wt_work_size(f->w, f->h);
         void *work = malloc(ws);
-        double cell = (double)f->dx_um * f->dy_um / 1e12;
+        double cell = (double)f->dx_um * (double)f->dy_um / 1e12;
         br_status st;
         if (!work) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for water detection");
         memset(&p, 0, sizeof p);

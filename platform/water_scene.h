@@ -13,6 +13,7 @@
 #include "platform/scene.h"
 #include "raster/frame.h"
 #include "raster/water.h"
+#include "platform/opt.h"
 
 #define WS_DEPTH_MM 3000        /* least depth under flattened water (SRTM lakes and sea) */
 #define WS_TINT_MM 4000         /* absorption length of the depth tint */
@@ -57,6 +58,16 @@ typedef struct water_scene {
     rs_pass tpass;
     rs_pipe pipe;
 } water_scene;
+
+/* The options --no-water, --water-level M, --water FILE, --fog, --no-fog, --time T,
+ * --reflection full|half|quarter|none as a table for opt_parse (platform/water_args.c). */
+#define WS_ARGS_N 8     /* entries of the table, OPT_END included */
+typedef struct ws_args {
+    ws_opts *o;
+    int fog, refl, refl_seen;
+} ws_args;
+void ws_args_table(ws_args *a, ws_opts *o, opt_spec t[WS_ARGS_N]);
+int ws_args_finish(ws_args *a, const char *cmd);
 
 br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err);
 /* Builds this frame's water mesh, reflection frame and pipe for camera c and the

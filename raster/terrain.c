@@ -1,49 +1,78 @@
 /* raster/terrain.c — heightfield / bitree mesh to raster vertices (see terrain.h). */
 #include "raster/terrain.h"
 
-br_status rt_scene_init(rt_scene *s, const hf *f, const rs_ramp *ramp, const fx_q14 sun[3],
-                        int32_t ambient_q14)
+/* The vertical scale in Q16 world units per height unit for world unit 2^-shift m
+ * and exaggeration num/den: z_num / z_den * num / den * 2^(shift + 16), rounded in
+ * two steps (the unexaggerated scale first).  -1 when it exceeds INT32_MAX: z_num <
+ * 2^31 and shift + 16 <= 32 keep z_num << (shift + 16) below 2^63, and the first
+ * step's result is <= INT32_MAX before it is multiplied by num < 2^31. */
+static int64_t zscale_q16(const hf *f, int32_t shift, int32_t num, int32_t den)
+{
+    int64_t sz = (((int64_t)f->z_num << (shift + 16)) + f->z_den / 2) / f->z_den;
+    if (sz > INT32_MAX) return -1;
+    if (num != den) sz = fx_div_round(sz * num, den);
+    if (sz > INT32_MAX) return -1;
+    return sz < 1 ? 1 : sz;
+}
+
+/* Largest shift in [-8, hi] for which the extent (width, depth, and |height| times
+ * num/den, in mm) times 2^shift / 1000 stays <= 2^27 and the vertical scale fits an
+ * int32 (zscale_q16); -8 when none does. */
+static int32_t frame_shift(const hf *f, int32_t hi, int32_t num, int32_t den)
 {
     hf_stats st;
     int64_t ext_mm, ex, ey, ez;
     int32_t shift;
-    if (hf_validate(f) != BR_OK || shade_init(&s->sc, f) != BR_OK) return BR_E_ARG;
     hf_stats_get(f, &st);
     ex = (int64_t)f->w * f->dx_um / 1000;
     ey = (int64_t)f->h * f->dy_um / 1000;
     ez = hf_z_to_mm(f, st.zmax);
     if (-hf_z_to_mm(f, st.zmin) > ez) ez = -hf_z_to_mm(f, st.zmin);
+    if (num != den) {   /* ez * num / den without overflow: quotient and remainder apart */
+        int64_t q = ez / den, r = ez % den;
+        ez = q > INT32_MAX ? (int64_t)1 << 62 : q * num + r * num / den;
+    }
     ext_mm = ex > ey ? ex : ey;
     if (ez > ext_mm) ext_mm = ez;
     if (ext_mm < 1) ext_mm = 1;
-    /* largest shift with ext_mm * 2^shift / 1000 <= 2^27 */
-    for (shift = 16; shift > -8; shift--) {
+    for (shift = hi; shift > -8; shift--) {
         int64_t v = shift >= 0 ? (ext_mm << shift) / 1000 : (ext_mm >> -shift) / 1000;
-        if (v <= ((int64_t)1 << 27)) break;
+        if (v <= ((int64_t)1 << 27) && zscale_q16(f, shift, num, den) > 0) break;
     }
-    s->f = f;
+    return shift;
+}
+
+/* The world frame for a shift (terrain.h); sz = zscale_q16 (or INT32_MAX at shift -8
+ * if even that does not fit). */
+static void set_frame(rt_scene *s, int32_t shift, int32_t num, int32_t den)
+{
+    const hf *f = s->f;
+    int64_t sx, sy, sz = zscale_q16(f, shift, num, den);
+    if (shift >= 0) {
+        sx = (((int64_t)f->dx_um << shift) + 500000) / 1000000;
+        sy = (((int64_t)f->dy_um << shift) + 500000) / 1000000;
+    } else {
+        sx = ((int64_t)f->dx_um + (500000LL << -shift)) / (1000000LL << -shift);
+        sy = ((int64_t)f->dy_um + (500000LL << -shift)) / (1000000LL << -shift);
+    }
     s->shift = shift;
+    s->fr.ox = 0; s->fr.oz = 0;
+    s->fr.sx = (int32_t)(sx < 1 ? 1 : sx);
+    s->fr.sy = (int32_t)(sy < 1 ? 1 : sy);
+    s->fr.sz_q16 = (int32_t)(sz < 1 ? INT32_MAX : sz);
+    s->fr.oy = (f->h - 1) * s->fr.sy;
+}
+
+br_status rt_scene_init(rt_scene *s, const hf *f, const rs_ramp *ramp, const fx_q14 sun[3],
+                        int32_t ambient_q14)
+{
+    if (hf_validate(f) != BR_OK || shade_init(&s->sc, f) != BR_OK) return BR_E_ARG;
+    s->f = f;
     s->ramp = ramp;
     s->sun[0] = sun[0]; s->sun[1] = sun[1]; s->sun[2] = sun[2];
     s->ambient_q14 = ambient_q14;
     s->tex_w = s->tex_h = 0;
-    s->fr.ox = 0; s->fr.oz = 0;
-    {
-        int64_t sx, sy, sz;
-        if (shift >= 0) {
-            sx = (((int64_t)f->dx_um << shift) + 500000) / 1000000;
-            sy = (((int64_t)f->dy_um << shift) + 500000) / 1000000;
-            sz = (((int64_t)f->z_num << (shift + 16)) + f->z_den / 2) / f->z_den;
-        } else {
-            sx = ((int64_t)f->dx_um + (500000LL << -shift)) / (1000000LL << -shift);
-            sy = ((int64_t)f->dy_um + (500000LL << -shift)) / (1000000LL << -shift);
-            sz = (((int64_t)f->z_num << (16 + shift > 0 ? 16 + shift : 0)) + f->z_den / 2) / f->z_den;
-        }
-        s->fr.sx = (int32_t)(sx < 1 ? 1 : sx);
-        s->fr.sy = (int32_t)(sy < 1 ? 1 : sy);
-        s->fr.sz_q16 = (int32_t)(sz < 1 ? 1 : (sz > INT32_MAX ? INT32_MAX : sz));
-    }
-    s->fr.oy = (f->h - 1) * s->fr.sy;
+    set_frame(s, frame_shift(f, 16, 1, 1), 1, 1);
     return BR_OK;
 }
 
@@ -57,7 +86,8 @@ br_status rt_scene_zscale(rt_scene *s, int32_t num, int32_t den)
 {
     if (num <= 0 || den <= 0) return BR_E_ARG;
     if (num == den) return BR_OK;
-    s->fr.sz_q16 = (int32_t)scale_at_least_1(s->fr.sz_q16, num, den, INT32_MAX);
+    /* the frame keeps its unit unless the exaggerated heights no longer fit it */
+    set_frame(s, frame_shift(s->f, s->shift, num, den), num, den);
     if (num < den) {
         s->sc.kx = scale_at_least_1(s->sc.kx, num, den, INT64_MAX);
         s->sc.ky = scale_at_least_1(s->sc.ky, num, den, INT64_MAX);

@@ -3,8 +3,10 @@
  *
  * World frame: the world unit is 2^-shift metres, shift chosen per heightfield as
  * the largest in [-8, 16] for which the terrain's extent (width, depth and |height|,
- * in metres) times 2^shift stays <= 2^27, so the scene and cameras up to several
- * extents away fit CAM_COORD_MAX (2^30) with headroom.  x east from the west edge
+ * in metres, heights times the vertical exaggeration) times 2^shift stays <= 2^27,
+ * so the scene and cameras up to several extents away fit CAM_COORD_MAX (2^30) with
+ * headroom, and for which the vertical scale sz_q16 fits an int32 (heights in whole
+ * metres allow at most shift 14: sz_q16 = 2^(shift + 16)).  x east from the west edge
  * (column 0), y north from the south edge (last row), z up from 0 m (sea level):
  *   wx = x * sx, wy = (h - 1 - y) * sy, wz = z * sz_q16 >> 16   (bt_frame form)
  * with sx = dx_um * 2^shift / 10^6 rounded (>= 1; for a DEM of up to 16385 columns
@@ -39,7 +41,8 @@ br_status rt_scene_init(rt_scene *s, const hf *f, const rs_ramp *ramp, const fx_
                         int32_t ambient_q14);
 
 /* Vertical exaggeration num/den (0 < num, den < 2^31; the scene's heights are
- * multiplied by it): scales the world frame's z and makes the shading normals
+ * multiplied by it; call it once, after rt_scene_init): scales the world frame's z
+ * (lowering the shift when the exaggerated heights or their scale would not fit) and makes the shading normals
  * follow the scaled surface (n = (-gx kx, -gy ky, kz) of core/shade.h: kx, ky
  * scale down when num < den, kz scales down otherwise, so the constants stay
  * below 2^24).  BR_E_ARG (s unchanged) for a non-positive ratio. */

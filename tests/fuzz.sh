@@ -1,10 +1,14 @@
 #!/bin/sh
-# tests/fuzz.sh [SECONDS] — `make fuzz`: build one libFuzzer harness per reader and one for the rasteriser
-# (tests/fuzz_*.c) with clang -fsanitize=fuzzer,address,undefined from the loader
-# sources, seed each corpus from the real data (small crops: tests/data, heads of
-# ../shared/data/dem files), run them for SECONDS in total (default 30) split
-# evenly, and print one summary line per harness.  Exit 1 if any harness found
-# a crash, a leak, a timeout or an out-of-memory (artifacts under $B/fuzz/artifacts).
+# tests/fuzz.sh [SECONDS] — `make fuzz`: build one libFuzzer harness per reader, one for the
+# whole path from files on disk to a rendered band (fuzz_file) and one for the rasteriser
+# (tests/fuzz_*.c) with clang -fsanitize=fuzzer,address,undefined, seed each corpus from
+# the real data (small crops: tests/data, heads of ../shared/data/dem files), and print
+# one summary line per harness.  Exit 1 if any harness found a crash, a leak, a timeout
+# or an out-of-memory (artifacts under $B/fuzz/artifacts).
+# Time: SECONDS (default 30; make passes FUZZ_SECONDS) is the total.  The harnesses run
+# one after another and each gets SECONDS / N of it (N = the number run, rounded down,
+# at least 1 s), so 30 s over 9 harnesses is 3 s each; FUZZ_ONLY="file zip" runs only
+# those harnesses and divides the same total among them.
 # Build directory: $B, else the B=... given to make, else build.
 set -u
 T=${1:-30}
@@ -37,7 +41,7 @@ PKG_LIBS=$(pkg-config --libs libpng zlib)
 FLAGS="-std=c99 -g -O1 -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all -I. $PKG_CFLAGS"
 # decompressed archives capped at 64 MB so a zip bomb is a quick refusal, not an OOM
 DEFS="-DDEM_MAX_INFLATE=((size_t)64<<20)"
-SRC="$(ls core/*.c raster/*.c) platform/err.c platform/merge.c $(ls platform/load*.c)"
+SRC="$(ls core/*.c raster/*.c) platform/err.c platform/merge.c platform/scene.c platform/png_io.c $(ls platform/load*.c)"
 OBJ=""
 for s in $SRC; do
   o="$D/obj/$(echo "$s" | tr / _ | sed 's/\.c$/.o/')"
@@ -59,11 +63,22 @@ cp tests/data/tif/*.tif "$S/tif/"
 head -n 488 "$DATA/xyz/monai_valley_bathymetry.txt" >"$S/xyz/monai_2cols.txt"   # two whole x columns
 cp tests/data/zip/*.zip "$S/zip/"
 gzip -9 -n -c "$S/hgt/n47e009_61x61.hgt" >"$S/zip/n47e009_61x61.hgt.gz"
+# fuzz_file: byte 0 picks the extension (tests/fuzz_file.c's table), byte 1 the split
+mkdir -p "$S/file" "$D/corpus/file"
+sel() { printf "\\$(printf '%03o' "$1")\\$(printf '%03o' "${4:-0}")" | cat - "$2" >"$S/file/$3"; }
+sel 0 "$S/hgt/n47e009_61x61.hgt" hgt; sel 16 "$S/hgt/n47e009_61x61.hgt" hgt_two 128
+sel 1 tests/data/png/ps_height_crop.png png; sel 2 tests/data/tif/ref_int16.tif tif
+sel 3 tests/data/bt/crater_crop.bt bt; sel 4 "$S/asc/hugo_site.asc" asc
+sel 5 "$S/xyz/monai_2cols.txt" xyz; sel 7 "$S/zip/n47e009_61x61.hgt.gz" hgtgz
+sel 8 tests/data/zip/N47E009_61x61.hgt.zip hgtzip
+{ printf '%s\n' '3 ncols' '2 nrows' '0 xlower' '0 ylower' '0.014 cellsize' '-9999 nodata_value'
+  head -n 6 "$DATA/xyz/monai_valley_bathymetry.txt" | awk '{ print $3 }'; } >"$S/file/tt2.raw"   # GeoClaw topotype 2
+sel 10 "$S/file/tt2.raw" tt2; rm -f "$S/file/tt2.raw"
 
-harnesses=$(ls tests/fuzz_*.c | sed 's/.*fuzz_\(.*\)\.c/\1/')
+harnesses=${FUZZ_ONLY:-$(ls tests/fuzz_*.c | sed 's/.*fuzz_\(.*\)\.c/\1/')}
 n=$(echo $harnesses | wc -w)
 per=$((T / n)); [ "$per" -lt 1 ] && per=1
-echo "fuzz: $n harnesses, ${per}s each (${T}s in all), build dir $D"
+echo "fuzz: ${T}s divided evenly among $n harnesses: ${per}s each, one after another (build dir $D)"
 status=0
 for h in $harnesses; do
   $CC $FLAGS -fsanitize=fuzzer "$DEFS" -o "$D/fuzz_$h" "tests/fuzz_$h.c" $OBJ $PKG_LIBS -lm ||

@@ -115,8 +115,8 @@ static void test_fuji_10m(void)
     CHECK(judge(&g, &o, 0, 0, &r, &sr));
     CHECK(!mc_err_exceeds(&r, 10000LL * g.z_den, 1000LL * g.z_num));
     CHECK_EQ(r.tjunctions, 0);
-    CHECK(btc_mesh_hash(&o.m) == 17595611661356056590ull);  /* determinism: fixed bytes */
-    CHECK(o.m.ns * 2 <= o.m.ntri * 3);                 /* <= 1.5 strip references per triangle */
+    CHECK(btc_mesh_hash(&o.m) == 16123431594418414837ull);  /* determinism: fixed bytes */
+    CHECK(o.m.ns * 50 <= o.m.ntri * 77);               /* <= 1.54 strip references per triangle (one_dem) */
     CHECK_EQ(o.m.nfict, 59);    /* vertices whose height is their hypotenuse's interpolation */
     printf("fuji 513 @10 m: %u triangles, %u vertices, %u refs (%.3f/tri), %u line, max err %lld/%lld\n",
            o.m.ntri, o.m.nv, o.m.ns, (double)o.m.ns / o.m.ntri, o.m.nline,
@@ -127,8 +127,11 @@ static void test_fuji_10m(void)
 }
 
 /* Every DEM: fidelity mesh at ~0.5 % of its height range, judged.  On the full
- * grid the strip's references per triangle must be <= 1.5 (issue 3's target) and
- * <= refs_pm / 1000 (the measured figure: a regression bound). */
+ * grid the strip's references per triangle must be <= 1.54 and <= refs_pm / 1000
+ * (the measured figure: a regression bound).  Issue 3's target, 1.5, held only while
+ * any three grid-collinear vertices counted as a line triangle; those whose heights
+ * are off the line are vertical slivers the rasteriser draws, and the strip writer
+ * no longer uses them (test_line_triangles_draw_nothing). */
 static void one_dem(const char *rel, int crop, uint32_t refs_pm)
 {
     hf f, g;
@@ -162,7 +165,7 @@ static void one_dem(const char *rel, int crop, uint32_t refs_pm)
     if (!crop) {
         CHECK_MSG((uint64_t)o.m.ns * 1000 <= (uint64_t)o.m.ntri * refs_pm, "%s: %u refs for %u triangles > %u/1000",
                   rel, o.m.ns, o.m.ntri, refs_pm);
-        CHECK_MSG((uint64_t)o.m.ns * 2 <= (uint64_t)o.m.ntri * 3, "%s: %u refs for %u triangles > 1.5 (issue 3)",
+        CHECK_MSG((uint64_t)o.m.ns * 50 <= (uint64_t)o.m.ntri * 77, "%s: %u refs for %u triangles > 1.54",
                   rel, o.m.ns, o.m.ntri);
     }
     CHECK_MSG(!mc_err_exceeds(&r, thr, 1), "%s: error %lld/%lld > %lld", rel,
@@ -182,11 +185,11 @@ static void test_every_dem(void)
      * bridges (before the reorder pass of bt_mesh.c) they were 1.497, 1.499, 1.499, 1.497,
      * 1.488 (HGT), 1.488, 1.496 (unchanged: no breaks), 1.514, 1.502, 1.578, 1.515, 1.545 */
     static const struct { const char *rel; uint32_t refs_pm; } dems[] = {
-        { "hgt/N47E009.hgt", 1405 }, { "hgt/N50E008.hgt", 1404 }, { "hgt/N50E009.hgt", 1405 },
-        { "hgt/N50E010.hgt", 1404 }, { "hgt/N57E011.hgt", 1407 }, { "png/ps_height_1k.png", 1489 },
-        { "bt/crater_0513.bt", 1496 }, { "png/fuji.png", 1405 }, { "asc/colorado_front_range.asc", 1409 },
-        { "asc/hugo_site.asc", 1459 }, { "tif/mt_rainier_90m.tif", 1416 },
-        { "xyz/monai_valley_bathymetry.txt", 1425 }
+        { "hgt/N47E009.hgt", 1416 }, { "hgt/N50E008.hgt", 1420 }, { "hgt/N50E009.hgt", 1421 },
+        { "hgt/N50E010.hgt", 1419 }, { "hgt/N57E011.hgt", 1417 }, { "png/ps_height_1k.png", 1533 },
+        { "bt/crater_0513.bt", 1525 }, { "png/fuji.png", 1416 }, { "asc/colorado_front_range.asc", 1420 },
+        { "asc/hugo_site.asc", 1482 }, { "tif/mt_rainier_90m.tif", 1435 },
+        { "xyz/monai_valley_bathymetry.txt", 1435 }
     };
     size_t i;
     for (i = 0; i < sizeof dems / sizeof dems[0]; i++) one_dem(dems[i].rel, sanitized(), dems[i].refs_pm);
@@ -377,7 +380,7 @@ static void test_view(void)
     CHECK_EQ(nf, o.m.nfict);
     CHECK(nf > 0);                          /* some vertices are still morphing */
     CHECK_EQ(o.m.ntri, 4250);
-    CHECK(btc_mesh_hash(&o.m) == 12832302367714380740ull);  /* same bytes on every build */
+    CHECK(btc_mesh_hash(&o.m) == 8096220497785971780ull);  /* same bytes on every build */
     /* the same frame again: hysteresis keeps everything split, nothing is lost */
     {
         uint32_t t1 = o.m.ntri;

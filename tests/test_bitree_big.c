@@ -282,8 +282,8 @@ static void variant(const spec *sp)
     CHECK_EQ(b.t.zmin, sp->zlo);
     CHECK_EQ(b.t.zmax, sp->zhi);
     th = tree_hash(&b.t);
-    printf("%s: %d x %d, heights %lld..%lld x %d/%d m, spacing %d um: build %.1f s, %lld valid, tree fnv %llu\n",
-           sp->name, sp->side, sp->rows, (long long)sp->zlo, (long long)sp->zhi, sp->z_num, sp->z_den, g.dx_um,
+    printf("%s: %d x %d, heights %lld..%lld x %d/%d m, spacing %lld um: build %.1f s, %lld valid, tree fnv %llu\n",
+           sp->name, sp->side, sp->rows, (long long)sp->zlo, (long long)sp->zhi, sp->z_num, sp->z_den, (long long)g.dx_um,
            ms / 1000, (long long)b.t.nvalid, (unsigned long long)th);
     CHECK(th == sp->tree_fnv);       /* same bytes under -O2 and the sanitizers' -O1 */
     /* fidelity at thr_m metres: a coarse mesh over the whole grid */

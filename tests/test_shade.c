@@ -13,7 +13,7 @@ static int have_lake;
 /* gdaldem's hillshade (Horn, edges repeated) in double, from the same units. */
 static double ref_value(const hf *f, int x, int y, double az, double alt)
 {
-    double z[3][3], mz = (double)f->z_num / f->z_den, dx = f->dx_um * 1e-6, dy = f->dy_um * 1e-6;
+    double z[3][3], mz = (double)f->z_num / f->z_den, dx = (double)f->dx_um * 1e-6, dy = (double)f->dy_um * 1e-6;
     double gx, gy, nx, ny, nz, len, lx, ly, lz, d;
     int i, j;
     int32_t e = f->z[(size_t)y * f->w + x];
@@ -86,6 +86,27 @@ static void test_extreme_units(void)
     /* and the other extreme: z_num large, the finest spacing */
     g.z_num = INT32_MAX; g.z_den = 1; g.dx_um = 1; g.dy_um = 1;
     CHECK_EQ(shade_init(&c, &g), BR_OK);
+    /* the coarsest spacings (up to 2^37 um, halved below 2^31 first), unequal, with
+     * heights large enough that the slopes are not flat: the double formula's values */
+    {
+        static const int32_t nums[2] = { 10000, INT32_MAX };
+        int k;
+        for (k = 0; k < 2; k++) {
+            g = lake;
+            g.z_num = nums[k]; g.z_den = 1;
+            g.dx_um = HF_MAX_SPACING_UM; g.dy_um = ((int64_t)1 << 31) + 12345;
+            CHECK_EQ(shade_init(&c, &g), BR_OK);
+            row = malloc((size_t)g.w);
+            shade_hill_row(&c, g.h / 2, l, row);
+            worst = 0;
+            for (x = 0; x < g.w; x++) {
+                int d = abs((int)row[x] - (int)lround(ref_value(&g, x, g.h / 2, 315, 45)));
+                if (d > worst) worst = d;
+            }
+            free(row);
+            CHECK_MSG(worst <= 1, "spacing 2^37 um, z_num %d: max difference %d", nums[k], worst);
+        }
+    }
 }
 
 static void test_flat_lake_value(void)
