@@ -236,7 +236,7 @@ int cmd_render(int argc, char **argv)
     if (use_pipe) {     /* water and atmosphere: the frame pipe (platform/water_scene.h) */
         size_t mb;
         rs_band_stats tot;
-        if (ws_frame(&ws, &s, &c, &fr, (int32_t)lround(pix_err * 256), &err) != BR_OK) {
+        if (ws_frame(&ws, &s, &c, &fr, &err) != BR_OK) {
             png_out_abort(ps.po);
             fprintf(stderr, "bitrain: %s\n", err.msg);
             goto done;

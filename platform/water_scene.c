@@ -73,6 +73,31 @@ static br_status find_water(water_scene *w, scene *s, int32_t *wz, br_err *err)
     return BR_OK;
 }
 
+/* The water surfaces' mesh, once per scene (platform/water_mesh.c), as world vertices
+ * carrying their body's id, and its chunk table. */
+static br_status water_mesh_once(water_scene *w, scene *s, br_err *err)
+{
+    uint32_t i;
+    size_t cb;
+    if (wm_build(&s->f, w->id, w->wf.z, w->bodies.level, w->nbodies, &w->mesh) != BR_OK)
+        return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for the water surfaces' mesh");
+    w->wverts = malloc(sizeof *w->wverts * (w->mesh.nv ? w->mesh.nv : 1));
+    w->wcache = malloc(rs_cache_mem_size(w->mesh.nv ? w->mesh.nv : 1));
+    if (!w->wverts || !w->wcache) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
+    for (i = 0; i < w->mesh.nv; i++) {
+        const wm_vert *v = &w->mesh.v[i];
+        rt_vertex(&s->rt, v->x, v->y, v->z, &w->wverts[i]);
+        w->wverts[i].uv[0] = w->wverts[i].uv[1] = 0;
+        w->wverts[i].rgb = RW_ID_RGB(v->id);
+    }
+    w->wprim.kind = RS_LIST; w->wprim.n = w->mesh.nidx; w->wprim.idx = w->mesh.idx;
+    cb = rs_chunk_mem_size(&w->wprim, 1) + 4;
+    w->wchunks = malloc(cb);
+    if (!w->wchunks) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
+    if (!w->o.quiet) printf("water surfaces: %u triangles, %u vertices\n", w->mesh.nidx / 3, w->mesh.nv);
+    return BR_OK;
+}
+
 br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err)
 {
     hf *f = &s->f;
@@ -80,7 +105,6 @@ br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err)
     int64_t relief_mm = hf_z_to_mm(f, s->st.zmax) - hf_z_to_mm(f, s->st.zmin);
     int32_t depth;
     int32_t *wz;
-    uint8_t *id2;
     size_t i;
     memset(w, 0, sizeof *w);
     if (o) w->o = *o;
@@ -89,9 +113,8 @@ br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err)
     if (w->o.no_water) return BR_OK;
     w->id = malloc(n);
     wz = malloc(n * sizeof *wz);
-    id2 = malloc(n);
-    if (!w->id || !wz || !id2) { free(wz); free(id2); return br_err_set(err, BR_E_NOMEM, NULL, "out of memory"); }
-    if (find_water(w, s, wz, err) != BR_OK) { free(wz); free(id2); return err->code; }
+    if (!w->id || !wz) { free(wz); return br_err_set(err, BR_E_NOMEM, NULL, "out of memory"); }
+    if (find_water(w, s, wz, err) != BR_OK) { free(wz); return err->code; }
     w->nbodies = w->bodies.n;
     if (!w->o.quiet)
         for (i = 0; i < (size_t)w->bodies.n; i++)
@@ -99,7 +122,7 @@ br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err)
                    w->bodies.kind[i] == WT_SEA ? "sea" : w->bodies.kind[i] == WT_LAKE ? "lake" : "user",
                    (double)hf_z_to_mm(f, w->bodies.level[i]) / 1000, (long long)w->bodies.area[i],
                    w->bodies.joined[i] > 1 ? " (flat regions joined along a seam)" : "");
-    if (!w->nbodies) { free(wz); free(id2); return BR_OK; }
+    if (!w->nbodies) { free(wz); return BR_OK; }
     /* flattened water (terrain at or above its surface) lies on a bottom 1/8 of the
      * relief below it (at least WS_DEPTH_MM): deep enough that the terrain's LOD refines
      * along the shore instead of cutting through the surface */
@@ -107,92 +130,29 @@ br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err)
     if (depth < 1) depth = 1;
     for (i = 0; i < n; i++)
         if (w->id[i] && f->z[i] != HF_NODATA && f->z[i] > wz[i] - depth) f->z[i] = wz[i] - depth;
-    /* the surface reaches one sample onto the shore, so the water mesh (triangles of
-     * valid samples only) meets the terrain there instead of stopping short of it */
-    memcpy(id2, w->id, n);
-    for (i = 0; i < n; i++) {
-        size_t x = i % (size_t)f->w, y = i / (size_t)f->w, nb[4];
-        int k, nn = 0;
-        if (w->id[i]) continue;
-        if (x > 0) nb[nn++] = i - 1;
-        if (x + 1 < (size_t)f->w) nb[nn++] = i + 1;
-        if (y > 0) nb[nn++] = i - (size_t)f->w;
-        if (y + 1 < (size_t)f->h) nb[nn++] = i + (size_t)f->w;
-        for (k = 0; k < nn; k++)
-            if (w->id[nb[k]]) { id2[i] = w->id[nb[k]]; wz[i] = wz[nb[k]]; break; }
-    }
-    memcpy(w->id, id2, n);
-    free(id2);
-    /* dry samples lie far below every terrain sample (half the relief): the surface is
-     * defined everywhere (the bitree then refines along the shore, where the height
-     * steps by more than the screen error, instead of dropping coarse triangles that
-     * touch a void) and under the ground where dry */
-    {
-        int32_t deep = s->st.zmin - 4 * depth - (s->st.zmax - s->st.zmin) / 2;
-        for (i = 0; i < n; i++) if (!w->id[i]) wz[i] = deep;
-    }
+    for (i = 0; i < n; i++) if (!w->id[i]) wz[i] = HF_NODATA;
     w->wf = *f;
     w->wf.z = wz;
-    {
-        size_t tb = bt_mem_size(f->w, f->h), sb = bt_scratch_size(f->w, f->h), mb = bt_mesh_mem_size(200000);
-        void *scratch = malloc(sb);
-        w->tree_mem = malloc(tb);
-        w->mesh_mem = malloc(mb);
-        if (!scratch || !w->tree_mem || !w->mesh_mem) { free(scratch); return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for the water bitree"); }
-        if (bt_build(&w->tree, &w->wf, BT_METRIC_EXACT, w->tree_mem, tb, scratch, sb) != BR_OK
-            || bt_mesh_init(&w->mesh, 200000, w->mesh_mem, mb) != BR_OK) {
-            free(scratch);
-            return br_err_set(err, BR_E_ARG, NULL, "cannot build the water surfaces' bitree");
-        }
-        free(scratch);
-        w->wverts = malloc(sizeof *w->wverts * w->mesh.cap_v);
-        w->wcache = malloc(rs_cache_mem_size(w->mesh.cap_v));
-        if (!w->wverts || !w->wcache) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
-    }
-    return BR_OK;
+    return water_mesh_once(w, s, err);
 }
 
 void ws_close(water_scene *w)
 {
     if (w->wf.z) free(w->wf.z);
-    free(w->id); free(w->tree_mem); free(w->mesh_mem); free(w->wverts); free(w->wcache); free(w->wchunks);
+    free(w->id); wm_free(&w->mesh); free(w->wverts); free(w->wcache); free(w->wchunks);
     free(w->rstrip); free(w->rcache); free(w->rchunks); free(w->rw);
     memset(w, 0, sizeof *w);
 }
 
-/* The water mesh for camera c into w->wfr (prepared); 0 triangles when none shows. */
-static br_status water_mesh(water_scene *w, scene *s, const cam *c, const rs_frame *tf, int32_t pe)
+/* This frame's water frame: the scene's water mesh seen by the terrain's camera. */
+static br_status water_frame(water_scene *w, const rs_frame *tf)
 {
-    bt_params bp;
-    uint32_t i;
-    size_t cb;
-    memset(&bp, 0, sizeof bp);
-    bp.mode = BT_VIEW; bp.c = c; bp.fr = s->rt.fr; bp.pixel_err_q8 = pe;
-    if (bt_extract(&w->tree, &bp, &w->mesh) != BR_OK) return BR_E_ARG;
-    for (i = 0; i < w->mesh.nv; i++) {
-        const bt_vert *v = &w->mesh.v[i];
-        int32_t p[3];
-        bt_world(&s->rt.fr, v, p);
-        w->wverts[i].p[0] = p[0]; w->wverts[i].p[1] = p[1]; w->wverts[i].p[2] = p[2];
-        w->wverts[i].uv[0] = w->wverts[i].uv[1] = 0;
-        {   /* dry vertices: the largest body's id (shore triangles keep one id where
-             * only one body is near) and RW_DRY */
-            uint8_t id = w->id[(size_t)v->y * (size_t)s->f.w + (size_t)v->x];
-            w->wverts[i].rgb = id ? RW_ID_RGB(id) : RW_ID_RGB(1) | RW_DRY;
-        }
-    }
-    w->wprim.kind = RS_STRIP; w->wprim.n = w->mesh.ns; w->wprim.idx = w->mesh.strip;
     memset(&w->wfr, 0, sizeof w->wfr);
     w->wfr.w = tf->w; w->wfr.h = tf->h; w->wfr.fmt = tf->fmt; w->wfr.depth = tf->depth;
-    w->wfr.clear_rgb = 0;
     w->wfr.v = w->wverts; w->wfr.nv = w->mesh.nv; w->wfr.cache = w->wcache;
     w->wfr.prims = &w->wprim; w->wfr.nprims = 1;
-    w->wfr.vp = tf->vp;
-    cb = rs_chunk_mem_size(&w->wprim, 1) + 4;
-    free(w->wchunks);
-    w->wchunks = malloc(cb);
-    if (!w->wchunks) return BR_E_NOMEM;
     w->wfr.chunks = w->wchunks;
+    w->wfr.vp = tf->vp;
     return rs_frame_prepare(&w->wfr);
 }
 
@@ -205,11 +165,10 @@ static int32_t biggest_body(const water_scene *w)
     int32_t best = 0, i;
     const uint32_t *ix = w->wprim.idx;
     memset(area, 0, sizeof area);
-    for (k = 0; k + 2 < w->wprim.n; k++) {
+    for (k = 0; k + 2 < w->wprim.n; k += 3) {
         const rs_cvert *a = &w->wcache[ix[k]], *b = &w->wcache[ix[k + 1]], *c = &w->wcache[ix[k + 2]];
         uint32_t id = (w->wverts[ix[k]].rgb >> 19) & 31u;
         int64_t ar;
-        if ((w->wverts[ix[k]].rgb | w->wverts[ix[k + 1]].rgb | w->wverts[ix[k + 2]].rgb) & RW_DRY) continue;
         if ((a->c | b->c | c->c) & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)) ar = (int64_t)1 << 40;
         else if (a->c & b->c & c->c & ((uint32_t)0x1f << 24)) ar = 0;
         else ar = ((int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(c->x - a->x) * (b->y - a->y));
@@ -278,7 +237,7 @@ static void fog_range(const scene *s, const cam *c, rw_params *p)
     if (p->fog_start < 1) p->fog_start = 1;
 }
 
-br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, int32_t pe, br_err *err)
+br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err *err)
 {
     static const int32_t res_of[5] = { 1, 0, 1, 2, -1 };
     rw_params p;
@@ -287,11 +246,12 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, int32_t
     const rs_frame *wfr = NULL, *rfr = NULL;
     int64_t relief_mm = hf_z_to_mm(&s->f, s->st.zmax) - hf_z_to_mm(&s->f, s->st.zmin);
     rs_pass pass;
+    int32_t k;
     memset(&p, 0, sizeof p);
     p.sky_on = 1;
     if (!w->o.no_fog) fog_range(s, c, &p);
     if (w->nbodies) {
-        if (water_mesh(w, s, c, tf, pe) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "cannot mesh the water");
+        if (water_frame(w, tf) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "cannot set up the water frame");
         wfr = &w->wfr;
         body = biggest_body(w);
     }
@@ -310,6 +270,11 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, int32_t
         p.wave_amp = hgt / 60;
         p.fresnel_one = w->o.fresnel_one;
         p.res_shift = res < 0 ? 0 : res;
+        p.wet = w->id;
+        p.wet_w = s->f.w; p.wet_h = s->f.h;
+        p.grid_ox = s->rt.fr.ox; p.grid_oy = s->rt.fr.oy;
+        p.grid_sx = s->rt.fr.sx; p.grid_sy = s->rt.fr.sy;
+        for (k = 0; k < w->nbodies && k < RW_MAX_ID; k++) p.body_z[k + 1] = world_z(s, w->bodies.level[k]);
         if (body && res >= 0 && c->eye[2] > p.plane_z && tf->nprims == 1) {
             if (refl_frame(w, tf, p.plane_z, res) != BR_OK)
                 return br_err_set(err, BR_E_NOMEM, NULL, "cannot set up the reflection");

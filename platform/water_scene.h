@@ -20,6 +20,24 @@
 #define WS_MIN_AREA_M2 1000000  /* a flat region of at least 1 km^2 is a lake */
 #define WS_JOIN_DZ_MM 5000      /* the seam rule joins flat regions within 5 m */
 
+/* The water surfaces' mesh (platform/water_mesh.c): grid vertices (x column, y row, z in
+ * heightfield units, body id), triangles counter-clockwise seen from +z, watertight. */
+typedef struct wm_vert {
+    int32_t x, y, z;
+    uint8_t id;
+} wm_vert;
+typedef struct wm_mesh {
+    wm_vert *v;
+    uint32_t nv;
+    uint32_t *idx;              /* 3 per triangle */
+    uint32_t nidx;
+} wm_mesh;
+/* Meshes the surfaces once: id per sample (0: none), wz the surface height where id is
+ * set, level[b - 1] body b's level, bodies 1 .. nbodies.  BR_E_NOMEM. */
+br_status wm_build(const hf *f, const uint8_t *id, const int32_t *wz, const int32_t *level, int32_t nbodies,
+                   wm_mesh *m);
+void wm_free(wm_mesh *m);
+
 typedef struct ws_opts {        /* zero = defaults: water found automatically, fog on */
     int no_water;               /* --no-water */
     int have_level;             /* --water-level M */
@@ -36,11 +54,10 @@ typedef struct water_scene {
     ws_opts o;
     wt_bodies bodies;
     int nbodies;
-    uint8_t *id;                /* per sample: body id (dilated by one sample), 0 dry */
-    hf wf;                      /* water surface heights (terrain units), nodata dry */
-    bt_tree tree;
-    bt_mesh mesh;
-    void *tree_mem, *mesh_mem;
+    uint8_t *id;                /* per sample: body id (wet, or dry land the body's surface
+                                   goes on under), 0 where no water is drawn */
+    hf wf;                      /* water surface heights (terrain units), nodata where none */
+    wm_mesh mesh;               /* the water surfaces, meshed once by ws_open */
     rs_vertex *wverts;
     rs_cvert *wcache;
     int16_t *wchunks;
@@ -70,9 +87,9 @@ void ws_args_table(ws_args *a, ws_opts *o, opt_spec t[WS_ARGS_N]);
 int ws_args_finish(ws_args *a, const char *cmd);
 
 br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err);
-/* Builds this frame's water mesh, reflection frame and pipe for camera c and the
- * prepared terrain frame tf (its chunk table set). */
-br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, int32_t pixel_err_q8, br_err *err);
+/* Builds this frame's water frame (the scene's water mesh transformed), reflection frame
+ * and pipe for camera c and the prepared terrain frame tf (its chunk table set). */
+br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err *err);
 void ws_close(water_scene *w);
 
 #endif

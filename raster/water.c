@@ -78,7 +78,7 @@ static void water_rows(rw_frame *r)
     for (i = 0; i < wf->nv; i++) {
         const rs_cvert *v = &wf->cache[i];
         if (wf->v[i].rgb & RW_DRY) continue;
-        if (v->c & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)) { lo = -1; hi = r->h; break; }
+        if (v->c & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)) { r->wlo = 0; r->whi = r->h - 1; return; }
         if (v->y < lo) lo = v->y;
         if (v->y > hi) hi = v->y;
     }
@@ -146,6 +146,7 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
                               : terrain->clear_rgb;
         /* the plane point of the row's rays: E + lam ray, lam = (H - ez) / ray_z */
         r->wbase[y][0] = r->wbase[y][1] = r->wstep[y][0] = r->wstep[y][1] = 0;
+        r->tkr[y] = -1;
         if (rz < 0 && r->eye[2] > p->plane_z) {
             int64_t lam = (((int64_t)p->plane_z - r->eye[2]) << 12) / rz;    /* world units per unit ray */
             if (lam > ((int64_t)1 << 31)) lam = (int64_t)1 << 31;
@@ -154,6 +155,9 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
                 r->wbase[y][k] = r->eye[k] + ((lam * ray) >> 12);
                 r->wstep[y][k] = (lam * c->right[k]) >> 30;
             }
+            /* the ray's forward component is 1: lam is the plane point's zc */
+            r->tkr[y] = p->water_on ? ((lam << 21) / p->tint_len) : -1;
+            if (r->tkr[y] > ((int64_t)1 << 40)) r->tkr[y] = (int64_t)1 << 40;
         }
     }
     for (k = 0; k < 2; k++) {
@@ -170,9 +174,14 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         /* waves fade beyond 8 wave lengths */
         r->wave_fade_d = (uint32_t)(K / (8 * (p->wave_len > 0 ? p->wave_len : 1)) > 0xffffffffLL ? 0xffffffffu
                                     : K / (8 * (p->wave_len > 0 ? p->wave_len : 1)));
-        /* tint: x32 = 32 L / tint_len = tint_k (1/dt - 1/dw), tint_k = 32 K / tint_len */
-        r->tint_k = p->water_on ? (uint64_t)(32 * K / p->tint_len) : 0;
     }
+    for (k = 0; k <= RW_MAX_ID; k++) {     /* the bodies' plane points from the reflected plane's */
+        const int64_t e0 = r->eye[2] - p->plane_z, eb = r->eye[2] - p->body_z[k];
+        int64_t q = e0 > 0 && eb > 0 ? (eb << 16) / e0 : 0;
+        r->bratio[k] = (int32_t)(q > ((int64_t)1 << 20) ? 0 : q);
+    }
+    r->inv_sx = p->grid_sx > 0 ? ((((uint64_t)1 << 32) + (uint64_t)p->grid_sx - 1) / (uint64_t)p->grid_sx) : 0;
+    r->inv_sy = p->grid_sy > 0 ? ((((uint64_t)1 << 32) + (uint64_t)p->grid_sy - 1) / (uint64_t)p->grid_sy) : 0;
     if (p->fog_on) fog_table(r, K);
     water_rows(r);
     return BR_OK;
@@ -338,22 +347,57 @@ static uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int3
             if (get_depth(r->depth, rv->dep + o * dbp, rx) != r->rdfar) refl = get_rgb(r->fmt, rv->col + o * bpp, rx);
         }
     }
-    /* refraction: x32 = 32 L / tint_len = tint_k (1/dt - 1/dw), with both depths brought
-     * to 16 bits (dt < dw) */
-    {
+    /* refraction: x32 = 32 L / tint_len, L = zc_w (dw / dt - 1) (dt < dw), zc_w the
+     * body's plane point's zc = the reflected plane's times bratio: tkr[y] bratio q >> 48
+     * with q = (dw - dt) / dt, Q16, from both depths brought to 16 bits */
+    x32 = 255;
+    if (r->tkr[y] >= 0 && r->bratio[id] && dt < dw) {
         int32_t sh = 0;
         uint32_t w16, t16;
-        uint64_t num;
         while ((dw >> sh) >= 65536u) sh++;
         w16 = dw >> sh; t16 = dt >> sh;
-        if (t16 == 0) x32 = 255;
-        else {
-            num = (uint64_t)(w16 - t16) * (r->tint_k >> sh);
-            x32 = num >= ((uint64_t)w16 * t16) << 8 ? 255u : (uint32_t)(num / ((uint64_t)w16 * t16));
+        if (t16) {
+            uint32_t q = ((w16 - t16) << 16) / t16;
+            int64_t tb = (r->tkr[y] * r->bratio[id]) >> 16;
+            uint64_t v;
+            if (tb > ((int64_t)1 << 40)) tb = (int64_t)1 << 40;
+            v = ((uint64_t)tb * (q > (1u << 20) ? (1u << 20) : q)) >> 32;
+            x32 = v > 255u ? 255u : (uint32_t)v;
         }
     }
     refr = mix_rgb(ct, r->p.water_rgb, r->tint[x32 > 255u ? 255u : x32]);
     return mix_rgb(refr, refl, fr);
+}
+
+/* The shore test for water pixel (x, y) of body id whose terrain is nearer (dt > dw): 1
+ * when the terrain's point on the pixel's ray lies on a sample wet with that body (the
+ * terrain LOD over flattened water), 0 otherwise (land, or no plane point for the row).
+ * P_t = E + (P_0 - E) bratio dw / dt, P_0 the reflected plane's point; dw / dt from the
+ * depths brought to 16 bits (a 32-bit division); the grid sample nearest P_t. */
+static int shore_wet(const rw_frame *r, int32_t x, int32_t y, uint32_t id, uint32_t dt, uint32_t dw)
+{
+    int64_t f, p[2], gx, gy;
+    uint32_t q, t16, w16;
+    int32_t sh = 0, k;
+    size_t ix, iy;
+    if (!r->p.wet || r->tkr[y] < 0 || !r->bratio[id]) return 0;
+    while ((dt >> sh) >= 65536u) sh++;
+    t16 = dt >> sh; w16 = dw >> sh;
+    if (!t16) return 0;
+    q = (w16 << 16) / t16;
+    f = ((int64_t)r->bratio[id] * q) >> 16;
+    for (k = 0; k < 2; k++) {
+        const int64_t d = r->wbase[y][k] + (((int64_t)r->aq[x] * r->wstep[y][k]) >> 12) - r->eye[k];
+        p[k] = r->eye[k] + ((d * f) >> 16);
+    }
+    gx = p[0] - r->p.grid_ox + r->p.grid_sx / 2;
+    gy = r->p.grid_oy - p[1] + r->p.grid_sy / 2;
+    if (gx < 0 || gy < 0 || gx >= (int64_t)r->p.wet_w * r->p.grid_sx || gy >= (int64_t)r->p.wet_h * r->p.grid_sy)
+        return 0;
+    ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);
+    iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);
+    if (ix >= (size_t)r->p.wet_w || iy >= (size_t)r->p.wet_h) return 0;
+    return r->p.wet[iy * (size_t)r->p.wet_w + ix] == id;
 }
 
 br_status rw_post(const void *user, rs_band *b, rs_band_stats *st)
@@ -404,10 +448,7 @@ br_status rw_post(const void *user, rs_band *b, rs_band_stats *st)
                 d = dt << dsh;
                 if (wc) {
                     const uint32_t id = get_id(r->fmt, wc, x), dw = get_depth(r->depth, wd, x);
-                    /* water wins unless the terrain is nearer by more than 2^-10 of the
-                     * distance: the coarse terrain LOD may cut the default depth under
-                     * the surface */
-                    if (id && dw + (dw >> 10) > dt) {
+                    if (id && (dw > dt || shore_wet(r, x, y, id, dt << dsh, dw << dsh))) {
                         rgb = water_px(r, &rv, x, y, get_rgb(r->fmt, crow, x), dt << dsh, dw << dsh, id);
                         d = dw << dsh;
                         changed = 1;

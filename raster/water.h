@@ -14,7 +14,12 @@
  *   water (scratch, no margin): the water surfaces' strips, their vertex colour the body
  *     id (RW_ID_RGB), into the pass's scratch: id and depth of the water per pixel.
  * POST HOOK rw_post (user: the rw_frame):
- *   water pixels (a water id whose depth is nearer than the terrain's):
+ *   water pixels: a water id whose depth is nearer than the terrain's, or whose terrain
+ *     lies on a wet sample of that body (the shore test: the terrain's point on the
+ *     pixel's ray, found from the plane's point by the ratio of the two depths, looked up
+ *     in `wet`): the coarse terrain LOD may draw the bottom under flattened water above
+ *     the surface (its screen error allows it far away), while dry land, however low,
+ *     stays land and hills in front of the water stay in front;
  *     colour = refraction (1 - F) + reflection F,
  *     F = R0 + (1 - R0)(1 - cos t)^5 (Schlick), R0 = ((n - 1)/(n + 1))^2, n = 1.33,
  *       cos t = |ray_z| / |ray| of the pixel's view ray, from a table by cos^2 t;
@@ -23,7 +28,8 @@
  *       bodies other than refl_body reflect the sky only (the cheaper approximation);
  *     refraction: the terrain under the water tinted towards water_rgb by
  *       1 - exp(-L / tint_len), L the path through the water along the ray
- *       (zc_terrain - zc_water, from the two depths);
+ *       (zc_terrain - zc_water = zc_water (dw / dt - 1): zc_water of the row's plane point,
+ *       dw / dt from the two depths brought to 16 bits, a 32-bit division);
  *   sky pixels (the terrain pass's far depth): the sky gradient by row, horizon to zenith
  *     by the sine of the row's elevation (the camera's pitch included);
  *   fog: every non-sky pixel mixed towards its row's sky colour by a weight rising from
@@ -69,6 +75,14 @@ typedef struct rw_params {      /* zero = off / defaults as stated */
     int64_t wave_len;           /* world units, the longer of the two waves (> 0) */
     int64_t wave_amp;           /* world units: displacement at distance 1 scales as f / zc */
     int32_t fresnel_one;        /* tests: F = 1 everywhere */
+    /* Where the water is (the shore test below; NULL: none, nearer terrain always wins):
+     * wet[y * wet_w + x] the body id of grid sample (x, y) where it is wet, 0 dry; the grid
+     * maps to world x = grid_ox + x grid_sx, y = grid_oy - y grid_sy; body_z[id] the world
+     * height of body id's plane. */
+    const uint8_t *wet;
+    int32_t wet_w, wet_h;
+    int64_t grid_ox, grid_oy, grid_sx, grid_sy;
+    int32_t body_z[RW_MAX_ID + 1];
 } rw_params;
 
 typedef struct rw_frame {
@@ -87,7 +101,10 @@ typedef struct rw_frame {
     int64_t kx[2], ky[2], kt[2];        /* wave phase per world unit (x, y) and per ms, 2^-24 turns */
     int64_t amp_m;              /* displacement, Q8 pixels = (d * amp_m) >> 32 */
     uint32_t wave_fade_d;       /* depth (30-bit) beyond which the waves fade */
-    uint64_t tint_k;            /* L / tint_len from depths (see rw_post) */
+    int64_t tkr[RS_MAX_DIM];    /* per row: 32 zc / tint_len of the reflected plane's point,
+                                   Q16 (-1: the row does not meet the plane) */
+    int32_t bratio[RW_MAX_ID + 1];      /* (eye z - body z) / (eye z - plane_z), Q16 (0: none) */
+    uint64_t inv_sx, inv_sy;    /* 2^32 / grid step, rounded up */
     int32_t fog_sh;             /* fog table index: depth >> fog_sh */
     uint8_t fres[RW_TAB + 1];   /* F by cos^2 t, Q8 (256 = 1) */
     uint8_t skyw[RW_TAB + 1];   /* zenith weight by sin^2 of elevation, Q8 */
