@@ -31,12 +31,11 @@ br_status rw_mirror_vp(const cam_vp *vp, int32_t plane_z, int32_t res_shift, int
 
 static uint32_t mix_rgb(uint32_t a, uint32_t b, uint32_t t)    /* t Q8: a (0) .. b (256) */
 {
-    uint32_t out = 0, k;
-    for (k = 0; k < 24; k += 8) {
-        uint32_t ca = (a >> k) & 255u, cb = (b >> k) & 255u;
-        out |= ((ca * (256u - t) + cb * t + 128u) >> 8) << k;
-    }
-    return out;
+    /* red and blue in one word, green in another: each field's sum is below 2^16 */
+    const uint32_t u = 256u - t;
+    const uint32_t rb = ((a & 0xff00ffu) * u + (b & 0xff00ffu) * t + 0x800080u) >> 8;
+    const uint32_t g = ((a & 0xff00u) * u + (b & 0xff00u) * t + 0x8000u) >> 8;
+    return (rb & 0xff00ffu) | (g & 0xff00u);
 }
 
 static void tables(rw_frame *r)
@@ -183,6 +182,15 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
     r->inv_sx = p->grid_sx > 0 ? ((((uint64_t)1 << 32) + (uint64_t)p->grid_sx - 1) / (uint64_t)p->grid_sx) : 0;
     r->inv_sy = p->grid_sy > 0 ? ((((uint64_t)1 << 32) + (uint64_t)p->grid_sy - 1) / (uint64_t)p->grid_sy) : 0;
     if (p->fog_on) fog_table(r, K);
+    {   /* dquiet: terrain pixels at least this near (buffer units) get no fog */
+        uint64_t d30 = 0;
+        int32_t i;
+        if (p->fog_on)
+            for (i = RW_TAB; i >= 0; i--)
+                if (r->fog[i]) { d30 = (uint64_t)(i + 1) << r->fog_sh; break; }
+        if (r->depth == RS_DEPTH16) d30 = (d30 + (1u << 14) - 1) >> 14;
+        r->dquiet = d30 > r->dfar ? (d30 > 0xffffffffu ? 0xffffffffu : (uint32_t)d30) : r->dfar + 1;
+    }
     water_rows(r);
     return BR_OK;
 }
@@ -400,14 +408,64 @@ static int shore_wet(const rw_frame *r, int32_t x, int32_t y, uint32_t id, uint3
     return r->p.wet[iy * (size_t)r->p.wet_w + ix] == id;
 }
 
+/* The hook's pixels for one band, specialised by the compiler for each format and depth
+ * (fmt, depth are constants at every call). */
+static inline void post_rows(const rw_frame *r, rs_band *b, const refl_view *rv, const uint8_t *wcol,
+                             const uint8_t *wdep, int32_t wy0, int32_t wrows, const int32_t fmt, const int32_t depth)
+{
+    const size_t dbp = depth == RS_DEPTH16 ? 2u : 4u;
+    const int32_t dsh = depth == RS_DEPTH16 ? 14 : 0;
+    int32_t row, x;
+    for (row = 0; row < b->rows; row++) {
+        const int32_t y = b->y0 + row;
+        uint8_t *crow = (uint8_t *)b->color + (size_t)row * b->stride;
+        const uint8_t *drow = (const uint8_t *)b->depth + (size_t)row * (size_t)b->w * dbp;
+        const uint8_t *wc = NULL, *wd = NULL;
+        const uint32_t sky = r->sky[y];
+        if (wcol && y >= wy0 && y < wy0 + wrows) {
+            wc = wcol + (size_t)(y - wy0) * b->stride;
+            wd = wdep + (size_t)(y - wy0) * (size_t)b->w * dbp;
+        }
+        for (x = 0; x < b->w; x++) {
+            const uint32_t dt = get_depth(depth, drow, x);
+            uint32_t rgb, d, fw;
+            int changed = 0;
+            if (dt >= r->dquiet && !wc) continue;   /* near terrain, no water in the row */
+            if (dt == r->dfar) {                    /* sky */
+                if (!r->p.sky_on) continue;
+                rgb = sky;
+                changed = 1;
+                d = 0;
+            } else {
+                rgb = 0;
+                d = dt << dsh;
+                if (wc) {
+                    const uint32_t id = get_id(fmt, wc, x), dw = get_depth(depth, wd, x);
+                    if (id && (dw > dt || shore_wet(r, x, y, id, dt << dsh, dw << dsh))) {
+                        rgb = water_px(r, rv, x, y, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id);
+                        d = dw << dsh;
+                        changed = 1;
+                    }
+                }
+                if (r->p.fog_on && (d >> r->fog_sh) <= RW_TAB && (fw = r->fog[d >> r->fog_sh]) != 0) {
+                    if (!changed) rgb = get_rgb(fmt, crow, x);
+                    rgb = mix_rgb(rgb, sky, fw);
+                    changed = 1;
+                }
+            }
+            if (!changed) continue;
+            if (fmt == RS_FMT_RGB565) ((uint16_t *)(void *)crow)[x] = pack565_dither(rgb, x, y);
+            else ((uint32_t *)(void *)crow)[x] = rgb;
+        }
+    }
+}
+
 br_status rw_post(const void *user, rs_band *b, rs_band_stats *st)
 {
     const rw_frame *r = (const rw_frame *)user;
-    const size_t dbp = r->depth == RS_DEPTH16 ? 2u : 4u;
-    const int32_t dsh = r->depth == RS_DEPTH16 ? 14 : 0;
     refl_view rv;
     const uint8_t *wcol = NULL, *wdep = NULL;
-    int32_t wy0 = 0, wrows = 0, row, x;
+    int32_t wy0 = 0, wrows = 0;
     (void)st;
     memset(&rv, 0, sizeof rv);
     if (r->refl_pass >= 0 && r->refl_pass < RS_PIPE_MAX_PASSES && b->scratch[r->refl_pass] && r->refl) {
@@ -424,46 +482,10 @@ br_status rw_post(const void *user, rs_band *b, rs_band_stats *st)
         wy0 = b->scratch_y0[i];
         wrows = b->scratch_rows[i];
     }
-    for (row = 0; row < b->rows; row++) {
-        const int32_t y = b->y0 + row;
-        uint8_t *crow = (uint8_t *)b->color + (size_t)row * b->stride;
-        const uint8_t *drow = (const uint8_t *)b->depth + (size_t)row * (size_t)b->w * dbp;
-        const uint8_t *wc = NULL, *wd = NULL;
-        const uint32_t sky = r->sky[y];
-        if (wcol && y >= wy0 && y < wy0 + wrows) {
-            wc = wcol + (size_t)(y - wy0) * b->stride;
-            wd = wdep + (size_t)(y - wy0) * (size_t)b->w * dbp;
-        }
-        for (x = 0; x < b->w; x++) {
-            const uint32_t dt = get_depth(r->depth, drow, x);
-            uint32_t rgb, d, fw;
-            int changed = 0;
-            if (dt == r->dfar) {                    /* sky */
-                if (!r->p.sky_on) continue;
-                rgb = sky;
-                changed = 1;
-                d = 0;
-            } else {
-                rgb = 0;
-                d = dt << dsh;
-                if (wc) {
-                    const uint32_t id = get_id(r->fmt, wc, x), dw = get_depth(r->depth, wd, x);
-                    if (id && (dw > dt || shore_wet(r, x, y, id, dt << dsh, dw << dsh))) {
-                        rgb = water_px(r, &rv, x, y, get_rgb(r->fmt, crow, x), dt << dsh, dw << dsh, id);
-                        d = dw << dsh;
-                        changed = 1;
-                    }
-                }
-                if (r->p.fog_on && (d >> r->fog_sh) <= RW_TAB && (fw = r->fog[d >> r->fog_sh]) != 0) {
-                    if (!changed) rgb = get_rgb(r->fmt, crow, x);
-                    rgb = mix_rgb(rgb, sky, fw);
-                    changed = 1;
-                }
-            }
-            if (!changed) continue;
-            if (r->fmt == RS_FMT_RGB565) ((uint16_t *)(void *)crow)[x] = pack565_dither(rgb, x, y);
-            else ((uint32_t *)(void *)crow)[x] = rgb;
-        }
-    }
+    if (r->fmt == RS_FMT_RGB565) {
+        if (r->depth == RS_DEPTH16) post_rows(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_RGB565, RS_DEPTH16);
+        else post_rows(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_RGB565, RS_DEPTH32);
+    } else if (r->depth == RS_DEPTH16) post_rows(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_XRGB8888, RS_DEPTH16);
+    else post_rows(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_XRGB8888, RS_DEPTH32);
     return BR_OK;
 }

@@ -106,6 +106,7 @@ typedef struct rw_frame {
     int32_t bratio[RW_MAX_ID + 1];      /* (eye z - body z) / (eye z - plane_z), Q16 (0: none) */
     uint64_t inv_sx, inv_sy;    /* 2^32 / grid step, rounded up */
     int32_t fog_sh;             /* fog table index: depth >> fog_sh */
+    uint32_t dquiet;            /* buffer depth from which terrain gets no fog (> dfar) */
     uint8_t fres[RW_TAB + 1];   /* F by cos^2 t, Q8 (256 = 1) */
     uint8_t skyw[RW_TAB + 1];   /* zenith weight by sin^2 of elevation, Q8 */
     uint8_t tint[256];          /* 1 - exp(-x / 32), Q8, by x = L / tint_len in 1/32 */
