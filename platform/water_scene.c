@@ -128,8 +128,9 @@ br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err)
      * along the shore instead of cutting through the surface */
     depth = mm_to_units(f, relief_mm / 8 > WS_DEPTH_MM ? relief_mm / 8 : WS_DEPTH_MM);
     if (depth < 1) depth = 1;
-    for (i = 0; i < n; i++)
-        if (w->id[i] && f->z[i] != HF_NODATA && f->z[i] > wz[i] - depth) f->z[i] = wz[i] - depth;
+    if (!w->o.water_file && !w->o.have_level)     /* the user's water keeps its bathymetry */
+        for (i = 0; i < n; i++)
+            if (w->id[i] && f->z[i] != HF_NODATA && f->z[i] > wz[i] - depth) f->z[i] = wz[i] - depth;
     for (i = 0; i < n; i++) if (!w->id[i]) wz[i] = HF_NODATA;
     w->wf = *f;
     w->wf.z = wz;

@@ -131,12 +131,12 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
     for (k = 0; k < 3; k++) r->eye[k] = c->eye[k];
     tables(r);
     f16 = vp->f_q16;
-    for (x = 0; x < r->w; x++) r->aq[x] = (int32_t)(((int64_t)(2 * x + 1 - r->w) << 27) / f16);
+    for (x = 0; x < r->w; x++) r->aq[x] = (int32_t)(((int64_t)(2 * x + 1 - r->w) * ((int64_t)1 << 27)) / f16);
     for (y = 0; y < r->h; y++) {
-        int64_t b = ((int64_t)(r->h - 2 * y - 1) << 27) / f16, rz, len2;
+        int64_t b = ((int64_t)(r->h - 2 * y - 1) * ((int64_t)1 << 27)) / f16, rz, len2;
         uint32_t s2;
         r->bq[y] = (int32_t)b;
-        rz = ((int64_t)c->up[2] * b + ((int64_t)c->fwd[2] << 12)) >> 30;
+        rz = ((int64_t)c->up[2] * b + (int64_t)c->fwd[2] * Q12) >> 30;
         r->rz[y] = (int32_t)rz;
         len2 = b * b + (int64_t)Q12 * Q12;
         /* the zenith weight 1.5 sin(elevation) of the row's centre ray, Q8 */
@@ -147,7 +147,7 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         r->wbase[y][0] = r->wbase[y][1] = r->wstep[y][0] = r->wstep[y][1] = 0;
         r->tkr[y] = -1;
         if (rz < 0 && r->eye[2] > p->plane_z) {
-            int64_t lam = (((int64_t)p->plane_z - r->eye[2]) << 12) / rz;    /* world units per unit ray */
+            int64_t lam = (((int64_t)p->plane_z - r->eye[2]) * Q12) / rz;    /* world units per unit ray */
             if (lam > ((int64_t)1 << 31)) lam = (int64_t)1 << 31;
             for (k = 0; k < 2; k++) {
                 int64_t ray = (((int64_t)c->up[k] * b) >> 30) + (c->fwd[k] >> 18);   /* Q12 */
@@ -162,8 +162,8 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
     for (k = 0; k < 2; k++) {
         int64_t len = k == 0 ? p->wave_len : p->wave_len * 5 / 8;
         if (len < 1) len = 1;
-        r->kx[k] = ((int64_t)dir[k][0] << 18) / len;        /* 2^32 turns per world unit */
-        r->ky[k] = ((int64_t)dir[k][1] << 18) / len;
+        r->kx[k] = ((int64_t)dir[k][0] * ((int64_t)1 << 18)) / len;        /* 2^32 turns per world unit */
+        r->ky[k] = ((int64_t)dir[k][1] * ((int64_t)1 << 18)) / len;
         r->kt[k] = ((int64_t)1 << 32) / (k == 0 ? 2100 : 1300);
     }
     {   /* displacement Q8 px = d amp_m >> 32 = A f 2^8 / zc */

@@ -1,11 +1,14 @@
 /* tests/test_water.c — water and atmosphere: the detection rules on real tiles (Lake
  * Constance's seam in N47E009, the Kattegat in N57E011), the clipper's water plane, and
  * `bitrain render` with water, waves and fog giving the same frame in bands of 1, 7, 16
- * and 240 rows, in RGB888 and RGB565. */
+ * and 240 rows, in RGB888 and RGB565; golden images of the lake (from the water), the
+ * sea (from high) and Monai Valley (its still-water level over its wet points as a
+ * --water layer) in RGB888 and RGB565 at a fixed --time. */
 #include "tests/test.h"
 #include "core/water.h"
 #include "platform/cmd.h"
 #include "platform/load.h"
+#include "platform/png_io.h"
 #include "raster/raster.h"
 
 #define RUN(a) run(a, (int)(sizeof a / sizeof a[0]))
@@ -138,10 +141,77 @@ static void test_bands(void)
     }
 }
 
+/* Monai's water surface: the still-water level (0 m) over the wet points of its
+ * bathymetry (depth > 0), nodata elsewhere, as an ESRI ASCII grid of the same size. */
+static int monai_water(const char *path)
+{
+    hf f;
+    br_err err;
+    dem_opts d;
+    FILE *o;
+    int32_t x, y;
+    memset(&d, 0, sizeof d);
+    d.xyz_depth = 1;
+    if (dem_load(t_data("xyz/monai_valley_bathymetry.txt"), &d, &f, &err) != BR_OK) return 0;
+    o = fopen(path, "w");
+    if (!o) { dem_free(&f); return 0; }
+    fprintf(o, "ncols %d\nnrows %d\nxllcorner 0\nyllcorner 0\ncellsize 0.014\nNODATA_value -9999\n", f.w, f.h);
+    for (y = 0; y < f.h; y++)
+        for (x = 0; x < f.w; x++) {
+            int32_t z = f.z[(size_t)y * (size_t)f.w + (size_t)x];
+            fprintf(o, "%s%c", z != HF_NODATA && z < 0 ? "0" : "-9999", x + 1 < f.w ? ' ' : '\n');
+        }
+    dem_free(&f);
+    return fclose(o) == 0;
+}
+
+static void golden(const char *name, const char *out)
+{
+    char gpath[256];
+    uint8_t *a = NULL, *g = NULL;
+    int aw = 0, ah = 0, gw = 0, gh = 0;
+    br_err err;
+    snprintf(gpath, sizeof gpath, "tests/golden/%s.png", name);
+    if (png_read_rgb(out, &aw, &ah, &a, &err) != BR_OK) { CHECK_MSG(0, "cannot read %s", out); return; }
+    if (getenv("BITRAIN_UPDATE_GOLDEN")) CHECK_EQ(png_write_rgb(gpath, aw, ah, a, (size_t)aw * 3, &err), BR_OK);
+    if (png_read_rgb(gpath, &gw, &gh, &g, &err) != BR_OK) CHECK_MSG(0, "cannot read %s (BITRAIN_UPDATE_GOLDEN=1 writes it)", gpath);
+    else CHECK_MSG(aw == gw && ah == gh && !memcmp(a, g, (size_t)aw * (size_t)ah * 3), "%s differs from %s", out, gpath);
+    free(a); free(g);
+}
+
+/* Golden images: lake, sea, Monai, RGB888 and RGB565, --time 1.5. */
+static void test_goldens(void)
+{
+    static const char *const fmts[2] = { "rgb888", "rgb565" };
+    char water[256], dem_lake[256], dem_sea[256], dem_monai[256];
+    int f, k;
+    snprintf(water, sizeof water, "%s/monai_water.asc", t_outdir());
+    CHECK(monai_water(water));
+    snprintf(dem_lake, sizeof dem_lake, "%s", t_data("hgt/N47E009.hgt"));
+    snprintf(dem_sea, sizeof dem_sea, "%s", t_data("hgt/N57E011.hgt"));
+    snprintf(dem_monai, sizeof dem_monai, "%s", t_data("xyz/monai_valley_bathymetry.txt"));
+    for (f = 0; f < 2; f++)
+        for (k = 0; k < 3; k++) {
+            static const char *const names[3] = { "lake", "sea", "monai" };
+            char out[256], name[64];
+            const char *lake[] = { dem_lake, "-o", out, "--size", "160x96", "--format", fmts[f], "--time", "1.5",
+                                   "--camera", "40000,66000,420,60000,50000,500" };
+            const char *sea[] = { dem_sea, "-o", out, "--size", "160x96", "--format", fmts[f], "--time", "1.5",
+                                  "--camera", "10000,20000,3000,40000,60000,0" };
+            const char *monai[] = { dem_monai, "--xyz-depth", "--water", water, "-o", out, "--size", "160x96",
+                                    "--format", fmts[f], "--time", "1.5" };
+            snprintf(name, sizeof name, "water_%s_%s", names[k], fmts[f]);
+            snprintf(out, sizeof out, "%s/%s.png", t_outdir(), name);
+            CHECK_EQ(k == 0 ? RUN(lake) : k == 1 ? RUN(sea) : RUN(monai), 0);
+            golden(name, out);
+        }
+}
+
 int main(void)
 {
     T_RUN(test_detect);
     T_RUN(test_clip_plane);
     T_RUN(test_bands);
+    T_RUN(test_goldens);
     return t_finish();
 }
