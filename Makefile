@@ -1,6 +1,6 @@
 # bitrain — terrain on boards with no GPU.
 # The only two commands a user needs: `make run` and `make test`.
-# Other targets: all (default: ./bitrain + build/libbitrain.a), bench, fuzz, clean.
+# Other targets: all (default: ./bitrain + build/libbitrain.a), install, bench, fuzz, clean.
 #
 # Sources are found by folder, so adding a module is adding its .c/.h pair:
 #   core/*.c raster/*.c platform/*.c  -> build/libbitrain.a (platform/main.c -> ./bitrain)
@@ -34,12 +34,15 @@ LDLIBS  = $(PKG_LIBS) -lm
 B       = build
 CORE_SRC   = $(sort $(wildcard core/*.c))
 RASTER_SRC = $(sort $(wildcard raster/*.c))
-PLAT_SRC   = $(sort $(filter-out platform/main.c,$(wildcard platform/*.c)))
+# the program's own sources (not in libbitrain.a): main, and `bitrain bench` with the
+# benchmark scene it draws (benchmarks/peer_scene.c, also linked into tests and benches)
+PROG_SRC   = platform/main.c platform/cmd_bench.c benchmarks/peer_scene.c
+PLAT_SRC   = $(sort $(filter-out $(PROG_SRC),$(wildcard platform/*.c)))
 LIB_SRC    = $(CORE_SRC) $(RASTER_SRC) $(PLAT_SRC)
 TEST_SRC   = $(sort $(wildcard tests/test_*.c))
 BENCH_SRC  = $(sort $(wildcard benchmarks/bench_*.c))
 FUZZ_SRC   = $(sort $(wildcard tests/fuzz_*.c))
-SUPPORT_SRC= $(sort $(wildcard tests/support/*.c))
+SUPPORT_SRC= $(sort $(wildcard tests/support/*.c)) benchmarks/peer_scene.c
 
 LIB_OBJ    = $(LIB_SRC:%.c=$(B)/obj/%.o)
 # x86-64: the drawing code (raster.c, xform.c) a second time for x86-64-v3 CPUs (AVX2,
@@ -74,17 +77,18 @@ SAN_TEST_BIN = $(TEST_SRC:tests/%.c=$(B)/san-tests/%)
 DIV32_FLAGS = $(OPT) -g -DBR_DIV64_NATIVE=0 -DFX_TEST_IDIV -DRS_TEST_32BIT -DRS_PREPASS=0
 DIV32_LIB_OBJ = $(LIB_SRC:%.c=$(B)/div32/%.o)
 DIV32_SUP_OBJ = $(SUPPORT_SRC:%.c=$(B)/div32/%.o)
-DIV32_TEST_BIN = $(B)/div32-tests/test_raster $(B)/div32-tests/test_raster_render $(B)/div32-tests/test_fx
+DIV32_TEST_BIN = $(B)/div32-tests/test_raster $(B)/div32-tests/test_raster_render $(B)/div32-tests/test_fx \
+                 $(B)/div32-tests/test_framecost
 
 .SECONDARY:
-.PHONY: all run test test-fast bench fuzz clean deps check-nofloat FORCE
+.PHONY: all run test test-fast bench fuzz clean deps check-nofloat install FORCE
 all: deps bitrain $(B)/libbitrain.a
 
 deps:
 	@sh mk/deps.sh
 
 # pkg-config is asked again here: deps may have just installed the packages.
-$(B)/bitrain: $(B)/obj/platform/main.o $(B)/libbitrain.a
+$(B)/bitrain: $(PROG_SRC:%.c=$(B)/obj/%.o) $(B)/libbitrain.a
 	$(CC) $(ALL_CFLAGS) -o $@ $^ $(shell pkg-config --libs $(PKGS)) -lm
 
 bitrain: $(B)/bitrain
@@ -152,6 +156,25 @@ test: deps
 	@sh mk/deps.sh --optional $(TEST_PKGS)
 	@$(MAKE) --no-print-directory bitrain $(TEST_BIN) $(SAN_TEST_BIN) $(DIV32_TEST_BIN)
 	@sh tests/run.sh $(B)
+
+# make install [PREFIX=/usr/local] [DESTDIR=]: the program, libbitrain.a, the public
+# headers under include/bitrain/ (so that "core/hf.h" etc. resolve with the .pc's
+# -I), and bitrain.pc.  Internal headers (*_int.h, *_internal.h, core/bt_em.h, the
+# raster's own raster_*.h, platform/cmd.h) stay out.
+VERSION ?= 0.1
+PREFIX  ?= /usr/local
+BINDIR  ?= $(PREFIX)/bin
+LIBDIR  ?= $(PREFIX)/lib
+INCDIR  ?= $(PREFIX)/include
+PUB_HDR  = $(sort $(filter-out %_int.h %_internal.h core/bt_em.h raster/raster_%.h platform/cmd.h platform/peer_scene.h,\
+             $(wildcard core/*.h raster/*.h platform/*.h)))
+install: bitrain $(B)/libbitrain.a
+	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(LIBDIR)/pkgconfig $(addprefix $(DESTDIR)$(INCDIR)/bitrain/,core raster platform)
+	install -m 755 bitrain $(DESTDIR)$(BINDIR)/bitrain
+	install -m 644 $(B)/libbitrain.a $(DESTDIR)$(LIBDIR)/libbitrain.a
+	for h in $(PUB_HDR); do install -m 644 $$h $(DESTDIR)$(INCDIR)/bitrain/$$h || exit 1; done
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(LIBDIR)|' -e 's|@INCDIR@|$(INCDIR)|' \
+	    -e 's|@VERSION@|$(VERSION)|' mk/bitrain.pc.in > $(DESTDIR)$(LIBDIR)/pkgconfig/bitrain.pc
 
 # Benchmarks print figures; they never fail on time.
 bench: all $(BENCH_BIN)

@@ -55,7 +55,7 @@ mkdir -p "$OUT" || exit 1
 $CC -std=c99 -O2 $WARN -shared -fPIC -fvisibility=hidden -o "$OUT/qemu_insn.so" benchmarks/qemu_insn.c \
   || { echo "arm-count: cannot build the qemu plugin"; exit 1; }
 $CC -std=c99 -O2 $WARN -I. $(pkg-config --cflags libpng) -o "$OUT/peer_dump" benchmarks/arm/peer_dump.c \
-  platform/peer_scene.c platform/png_io.c platform/err.c $RSRC $(pkg-config --libs libpng zlib) -lm \
+  benchmarks/peer_scene.c platform/png_io.c platform/err.c $RSRC $(pkg-config --libs libpng zlib) -lm \
   || { echo "arm-count: cannot build peer_dump"; exit 1; }
 $CC -std=c99 -O2 $WARN -I. -o "$OUT/peer_run-x86-64" benchmarks/arm/peer_run.c $RSRC \
   || { echo "arm-count: cannot build the native peer_run"; exit 1; }

@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include "platform/peer_scene.h"
+#include "benchmarks/peer_scene.h"
 #include "tests/support/timing.h"
 #include "core/cam.h"
 #include "raster/raster.h"
@@ -27,11 +27,12 @@ int main(void)
     peer_scene *ps = malloc(sizeof *ps);
     rs_vertex *v = malloc(sizeof *v * PEER_NV);
     rs_cvert *cache = malloc(rs_cache_mem_size(PEER_NV));
+    int16_t *chunks = malloc(2 * sizeof(int16_t) * (PEER_NTRI / RS_CHUNK + PEER_NSTRIP));   /* >= rs_chunk_mem_size */
     void *color = malloc(640 * 480 * 4), *zbuf = malloc(640 * 480 * 4);
     double *ms = malloc(sizeof(double) * (size_t)(frames > 0 ? frames : 1));
     rs_prim prims[PEER_NSTRIP];
     if (frames < 1) frames = 1;
-    if (!ps || !v || !cache || !color || !zbuf || !ms) { printf("bench_raster: out of memory\n"); return 0; }
+    if (!ps || !v || !cache || !chunks || !color || !zbuf || !ms) { printf("bench_raster: out of memory\n"); return 0; }
     if (peer_scene_build("../shared/data/dem/png/fuji.png", ps) != 0) {
         printf("bench_raster: skipped (fuji.png not found; run from the repo root)\n");
         return 0;
@@ -46,24 +47,26 @@ int main(void)
         for (cull = 0; cull < 2; cull++)
             for (k = 0; k < 4; k++) {
                 rs_frame f;
+                rs_band_stats st;
                 double med;
                 peer_frame(cfg[k].cam, cfg[k].w, cfg[k].h, v, prims, &f);
-                f.cache = cache; f.no_cull = !cull;
+                f.cache = cache; f.chunks = chunks; f.no_cull = !cull; f.one_band = 1;
                 for (i = 0; i < frames; i++) {
                     double t0 = tm_now_ms();
+                    memset(&st, 0, sizeof st);
                     rs_frame_prepare(&f);
-                    rs_render_band(&f, 0, f.h, color, (size_t)f.w * 4, zbuf);
+                    rs_draw_band(&f, 0, f.h, color, (size_t)f.w * 4, zbuf, &st);
                     ms[i] = tm_now_ms() - t0;
                 }
                 med = tm_median(ms, frames);
                 printf("  camera %c %dx%d cull=%d: %.2f ms/frame, %.1f Mtri/s, %.1f Mpix/s (%u triangles set up, %u clipped)\n",
                        cfg[k].cam, cfg[k].w, cfg[k].h, cull, med, PEER_NTRI / med / 1e3,
-                       (double)cfg[k].w * cfg[k].h / med / 1e3, f.stat_tris, f.stat_clipped);
+                       (double)cfg[k].w * cfg[k].h / med / 1e3, st.tris, st.clipped);
             }
     }
     printf("band mode 320x240 RGB565: 16-row band %zu bytes (16-bit depth) / %zu bytes (32-bit depth) + vertex cache %zu bytes\n",
            rs_band_mem_size(320, 16, RS_FMT_RGB565, RS_DEPTH16), rs_band_mem_size(320, 16, RS_FMT_RGB565, RS_DEPTH32),
            rs_cache_mem_size(PEER_NV));
-    free(ps); free(v); free(cache); free(color); free(zbuf); free(ms);
+    free(ps); free(v); free(cache); free(chunks); free(color); free(zbuf); free(ms);
     return 0;
 }

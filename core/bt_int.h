@@ -6,6 +6,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "core/bitree.h"
+#include "core/fx.h"
 
 #define TAB_MAX 48   /* samples per small-level table (D4: 45 - 3 vertices) */
 
@@ -27,6 +28,8 @@ typedef struct ctx {
     int32_t *ub;           /* 2 per diamond: upper bound of each half's error (exact metric) */
     const uint8_t *vblk;   /* per 16 x 16 block of the domain: 1 if it holds a void (NULL: none) */
     int32_t bw;            /* blocks per row */
+    uint8_t *emp;          /* per diamond, bit (1 << half): that half is EMPTY (see
+                              bte_diamond); n*n, zero = has content */
     int32_t tabn[16];
 } ctx;
 
@@ -92,6 +95,32 @@ static inline uint8_t q_hi(const ctx *c, int64_t z)
 }
 
 static inline uint16_t enc_small(int64_t e) { return e < 4096 ? (uint16_t)e : bt_code_encode(e); }
+
+static inline int bt_bits(uint64_t v) { int b = 0; while (v >> b) b++; return b; }
+
+/* The geomorph weight of a split vertex (core/bt_mesh.c morph_of) for rho =
+ * floor(lhs / d), without a 64-bit divide: with q = rho - tau, 0 for q < 0, ONE for
+ * q >= span, else floor(q 2^15 / span).  rho >= tau iff lhs >= tau d, rho >= tau +
+ * span iff lhs >= (tau + span) d (products in 128 bits by halves, so exact); between
+ * them q = floor((lhs - tau d) / d) < span and the two quotients have at most
+ * bits(span) and 15 bits.  lhs >= 0, d > 0, tau >= 0, span > 0 (all < 2^63). */
+static inline int bt_mul_ge(uint64_t l, uint64_t a, uint64_t b)   /* l >= a b ? */
+{
+    uint64_t a0 = a & 0xffffffffu, a1 = a >> 32, b0 = b & 0xffffffffu, b1 = b >> 32;
+    uint64_t m1 = a1 * b0, m2 = a0 * b1, lo = a0 * b0, hi = a1 * b1, mid, r;
+    mid = (lo >> 32) + (m1 & 0xffffffffu) + (m2 & 0xffffffffu);
+    hi += (m1 >> 32) + (m2 >> 32) + (mid >> 32);
+    r = (mid << 32) | (lo & 0xffffffffu);
+    return hi == 0 && l >= r;
+}
+static inline uint16_t bt_morph_nodiv(int64_t lhs, int64_t d, int64_t tau, int64_t span)
+{
+    uint64_t L = (uint64_t)lhs, D = (uint64_t)d, q;
+    if (!bt_mul_ge(L, (uint64_t)tau, D)) return 0;
+    if (bt_mul_ge(L, (uint64_t)(tau + span), D)) return BT_MORPH_ONE;
+    q = fx_udiv_bits(L - (uint64_t)tau * D, D, bt_bits((uint64_t)span));
+    return (uint16_t)fx_udiv_bits(q << 15, (uint64_t)span, 15);
+}
 
 void bte_diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int typeD);
 void bte_level1(bt_tree *t, const ctx *c);

@@ -42,6 +42,7 @@
 #include <string.h>
 #include "core/bitree.h"
 #include "core/bt_int.h"
+#include "core/config.h"
 
 enum { ST_PREV = 1, ST_SPLIT = 2, ST_PUSHED = 4, ST_CUR = 8 };
 
@@ -132,11 +133,18 @@ static int32_t dscale(int32_t x, int32_t y, int32_t S, int *typeD)
 }
 
 /* ------------------------------------------------------------ view */
+/* a * b for a, b >= 0, INT64_MAX when it is larger (no divide: the high half of
+ * the 64 x 64 product from 32-bit halves) */
 static int64_t isat_mul(int64_t a, int64_t b)
 {
-    if (a == 0 || b == 0) return 0;
-    if (a > INT64_MAX / b) return INT64_MAX;
-    return a * b;
+    uint64_t ua = (uint64_t)a, ub = (uint64_t)b, a1 = ua >> 32, b1 = ub >> 32, mid, lo, r;
+    if ((ua | ub) < ((uint64_t)1 << 31)) return a * b;
+    if (a1 && b1) return INT64_MAX;
+    mid = a1 * (ub & 0xffffffffu) + b1 * (ua & 0xffffffffu);   /* one term is 0: < 2^63 */
+    if (mid >> 31) return INT64_MAX;
+    lo = (ua & 0xffffffffu) * (ub & 0xffffffffu);
+    r = (mid << 32) + lo;
+    return r < lo || r > (uint64_t)INT64_MAX ? INT64_MAX : (int64_t)r;
 }
 
 /* Lower bound of the distance from the eye to the box [lo, hi] (world units):
@@ -251,6 +259,18 @@ static uint16_t morph_of(const em *e, int64_t rho)
     return (uint16_t)((q * BT_MORPH_ONE) / e->morph_span);
 }
 
+/* morph_of(e, lhs / d) for lhs = ew f >= 0 and d > 0: with a 64-bit divide as
+ * written, without one by bt_morph_nodiv (core/bt_int.h), the same weight. */
+static uint16_t morph_at(const em *e, int64_t lhs, int64_t d)
+{
+#if BR_DIV64_NATIVE
+    return morph_of(e, lhs / d);
+#else
+    (void)morph_of;
+    return bt_morph_nodiv(lhs, d, e->tau, e->morph_span);
+#endif
+}
+
 /* returns 1 split, 0 leaf, -1 drop (culled); *morph set for split vertices;
  * *mask: frustum planes still to test (view and budget modes) */
 static int decide(em *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
@@ -266,7 +286,7 @@ static int decide(em *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
         r = view_err(e, x, y, mask, &ew, &d);
         if (r < 0) return -1;
         if (!(t->st[idx] & ST_SPLIT)) return 0;
-        if (e->morph_span > 0 && r == 0 && d > 0) *morph = morph_of(e, isat_mul(ew, e->fq8) / d);
+        if (e->morph_span > 0 && r == 0 && d > 0) *morph = morph_at(e, isat_mul(ew, e->fq8), d);
         return 1;
     }
     r = view_err(e, x, y, mask, &ew, &d);
@@ -277,7 +297,7 @@ static int decide(em *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
         int64_t lhs = isat_mul(ew, e->fq8);
         int sp = lhs > isat_mul(e->tau, d) ||
                  ((t->st[idx] & ST_PREV) && lhs > isat_mul(e->tau_lo, d));
-        if (sp && e->morph_span > 0) *morph = morph_of(e, d > 0 ? lhs / d : INT64_MAX);
+        if (sp && e->morph_span > 0) *morph = d > 0 ? morph_at(e, lhs, d) : BT_MORPH_ONE;
         return sp;
     }
 }
@@ -570,12 +590,20 @@ static br_status setup(em *e, bt_tree *t, const bt_params *p)
     if (p->mode != BT_VIEW && p->mode != BT_BUDGET) return BR_E_ARG;
     if (!p->c || p->fr.sx <= 0 || p->fr.sy <= 0 || p->fr.sz_q16 <= 0) return BR_E_ARG;
     {
-        int64_t range = (int64_t)t->zmax - t->zmin;
+        /* the quantised heights zmin + floor / ceil(range i / 255), range <= 2^30
+         * (hf.h's BR_Z_LIMIT): quotient and remainder stepped by range's, so the
+         * frame divides only in 32 bits */
+        uint32_t range = (uint32_t)((int64_t)t->zmax - t->zmin), qs = range / 255u, rs = range % 255u;
+        int64_t q = 0;
+        uint32_t rem = 0;
         int i;
         for (i = 0; i < 256; i++) {
-            int64_t zl = t->zmin + (range * i) / 255, zh = t->zmin + (range * i + 254) / 255;
+            int64_t zl = t->zmin + q, zh = zl + (rem != 0);
             e->wz_lo[i] = p->fr.oz + ((zl * p->fr.sz_q16) >> 16);
             e->wz_hi[i] = p->fr.oz + ((zh * p->fr.sz_q16 + 65535) >> 16);
+            q += qs;
+            rem += rs;
+            if (rem >= 255u) { rem -= 255u; q++; }
         }
         /* the volumes' corners are camera inputs: every world coordinate of the
          * padded grid's box must be within CAM_COORD_MAX (core/cam.h), which keeps

@@ -40,6 +40,105 @@
 #endif
 #endif
 
+/* ------------------------------------------------------------------ raster/ */
+
+/* Which variants of the per-triangle code are compiled (raster/raster_pixel.h): pixel
+ * format XRGB8888 / RGB565, depth size 32 / 16 bits, textured frames, and the tests'
+ * write-counting variant.  Each left-out variant saves its copy of the triangle code
+ * (about 10-20 KB of flash each at -O2; the counting one is left out of the shipped
+ * library and compiled by tests/support/raster_count.c); rs_render_band refuses a frame
+ * of a left-out variant with BR_E_UNSUPPORTED.  A board drawing RGB565 with 16-bit
+ * depth: -DRS_WITH_888=0 -DRS_WITH_Z32=0 -DRS_WITH_TEX=0.  Pixels: unchanged (a variant
+ * is drawn by its own copy or refused). */
+#ifndef RS_WITH_888
+#define RS_WITH_888 1
+#endif
+#ifndef RS_WITH_565
+#define RS_WITH_565 1
+#endif
+#ifndef RS_WITH_Z32
+#define RS_WITH_Z32 1
+#endif
+#ifndef RS_WITH_Z16
+#define RS_WITH_Z16 1
+#endif
+#ifndef RS_WITH_TEX
+#define RS_WITH_TEX 1
+#endif
+#ifndef RS_WITH_COUNT
+#define RS_WITH_COUNT 0
+#endif
+#if !((RS_WITH_888 || RS_WITH_565) && (RS_WITH_Z32 || RS_WITH_Z16))
+#error "core/config.h: RS_WITH_* leave no pixel format x depth variant to compile"
+#endif
+
+/* The strip pre-pass (raster/raster_prepass.h): the set-up and coverage of a chunk's
+ * strip pairs in 16-bit vector lanes (GCC's generic vectors: SSE2 on x86-64, NEON on
+ * AArch64), then shading per pair; 0: the per-pair code of targets without vector
+ * registers (32-bit ARM without NEON, Cortex-M, other compilers).  Same values, same
+ * pixels; costs the pp_soa of a chunk (about 6 KB of stack) and the pre-pass's code.
+ * Default: 1 with GCC or clang on little-endian SSE2 / NEON targets.
+ * RS_SPANV: the general path's plain spans GS_N pixels at a time in 32-bit vector lanes
+ * (raster/raster_general.h); default RS_PREPASS.  Same pixels.  Both need GCC's vector
+ * extensions and little-endian lane order (16-bit pixels widened through a uint64):
+ * elsewhere they would not compile or would change pixels, so they are refused. */
+#ifndef RS_PREPASS
+#if defined(__GNUC__) && (defined(__SSE2__) || defined(__ARM_NEON)) \
+    && !(defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__)
+#define RS_PREPASS 1
+#else
+#define RS_PREPASS 0
+#endif
+#endif
+#ifndef RS_SPANV
+#define RS_SPANV RS_PREPASS
+#endif
+#if (RS_PREPASS || RS_SPANV) && (!defined(__GNUC__) \
+    || (defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__))
+#error "core/config.h: RS_PREPASS and RS_SPANV need GCC vectors on a little-endian target"
+#endif
+
+/* RS_NARROW: triangles of the general path whose box has at most this many columns
+ * find each row's span by stepping the edge functions pixel by pixel, wider ones by an
+ * exact division per edge (three 64-bit divisions a row).  Both give the same pixels;
+ * 8 is the fastest on the peer scene at 640x480 (docs/perf-history.md).  >= 1. */
+#ifndef RS_NARROW
+#define RS_NARROW 8
+#endif
+#if RS_NARROW < 1
+#error "core/config.h: RS_NARROW must be at least 1"
+#endif
+
+/* RS_TINY_W x RS_TINY_H: bounding boxes of at most this many candidate centres take the
+ * tiny path (coverage masks in 16-bit lanes, two groups of four columns, four rows
+ * unrolled).  Not a free knob: raster_tiny.h's lane bound (every edge value below 2^15)
+ * is proved for 8 x 4 and the lane layout is built for it; other values would overflow
+ * the lanes and change pixels, so they are refused.
+ * RS_SMALL: general-path boxes below this many sub-pixels in both directions use a
+ * reciprocal of the area instead of a division (area2 < 2^21 keeps the products below
+ * 2^59, raster_general.h); above 2^10 the bound fails, so it is refused. */
+#ifndef RS_TINY_W
+#define RS_TINY_W 8
+#endif
+#ifndef RS_TINY_H
+#define RS_TINY_H 4
+#endif
+#if RS_TINY_W != 8 || RS_TINY_H != 4
+#error "core/config.h: the tiny path's lane bound holds for RS_TINY_W = 8, RS_TINY_H = 4 only"
+#endif
+#ifndef RS_SMALL
+#define RS_SMALL (1 << 10)
+#endif
+#if RS_SMALL > (1 << 10) || RS_SMALL < 1
+#error "core/config.h: RS_SMALL must be in 1 .. 2^10 (the reciprocal's product bound)"
+#endif
+
+/* Set by the Makefile, not by hand: RS_ISA_DISPATCH=1 compiles the baseline copy of the
+ * drawing code beside an x86-64-v3 copy (RS_BUILD_V3), chosen at run time by
+ * raster/isa.c; RS_TEST_32BIT selects the 32-bit targets' code on a 64-bit host (make
+ * test's BR_DIV64_NATIVE=0 build).  Neither changes a pixel (tests/test_isa.c, the
+ * div32 tests). */
+
 /* The code relies on two's complement and arithmetic right shift of negative
  * values (every compiler we target does it; C99 leaves it to the implementation). */
 _Static_assert((-1 >> 1) == -1, "arithmetic right shift of negative values required");

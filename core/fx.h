@@ -46,6 +46,18 @@ int64_t fx_div_round(int64_t n, int64_t d);
 /* floor(n / d) and ceil(n / d) for any signs; d != 0. */
 int64_t fx_div_floor(int64_t n, int64_t d);
 int64_t fx_div_ceil(int64_t n, int64_t d);
+/* floor(n / d) for d > 0 and n < d 2^b (0 <= b <= 63), by restoring division, b
+ * steps of a compare and a subtract: no divide instruction and no libgcc call on
+ * 32-bit targets, for quotients known to be short. */
+static inline uint64_t fx_udiv_bits(uint64_t n, uint64_t d, int b)
+{
+    uint64_t q = 0;
+    int i;
+    for (i = b - 1; i >= 0; i--)
+        if ((n >> i) >= d) { n -= d << i; q |= (uint64_t)1 << i; }
+    return q;
+}
+
 /* floor(n / d) for d > 0, inline for inner loops (the rasteriser's span limits):
  * the truncated quotient, minus 1 when the remainder is negative. */
 static inline int64_t fx_div_floor_pos(int64_t n, int64_t d)

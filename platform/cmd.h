@@ -11,6 +11,7 @@ int cmd_run(int argc, char **argv);       /* bitrain run [IN...]: the default jo
 int cmd_mesh(int argc, char **argv);      /* bitrain mesh IN... --max-error M -o out.{obj,ply,stl} */
 int cmd_render(int argc, char **argv);    /* bitrain render IN... -o out.png ... */
 int cmd_bench(int argc, char **argv);     /* bitrain bench --scene peer ... */
+int cmd_bench_default(int argc, char **argv); /* bitrain bench --scene default ... (bench_default.c) */
 int cmd_view(int argc, char **argv);      /* bitrain view IN...: SDL2 window */
 
 #endif

@@ -22,8 +22,9 @@
 #include "platform/cmd.h"
 #include "platform/opt.h"
 #include "platform/png_io.h"
+#include "raster/frame.h"
 #include "raster/raster.h"
-#include "platform/peer_scene.h"
+#include "benchmarks/peer_scene.h"
 
 static double now_ms(void)
 {
@@ -38,28 +39,41 @@ static int cmp_d(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
-/* One frame: transform, clear, draw.  Not static and not inlined: callgrind toggles on it. */
-__attribute__((noinline)) br_status bench_frame(rs_frame *f, void *color, void *depth);
-__attribute__((noinline)) br_status bench_frame(rs_frame *f, void *color, void *depth)
+/* One frame: transform, clear, draw, as one whole-frame band of the frame driver.  Not
+ * static and not inlined: callgrind toggles on it. */
+__attribute__((noinline)) br_status bench_frame(rs_frame *f, const rs_pipe *p, void *mem, size_t size,
+                                                rs_band *b, rs_band_stats *st);
+__attribute__((noinline)) br_status bench_frame(rs_frame *f, const rs_pipe *p, void *mem, size_t size,
+                                                rs_band *b, rs_band_stats *st)
 {
     br_status s = rs_frame_prepare(f);
     if (s != BR_OK) return s;
-    f->stat_tris = f->stat_clipped = f->stat_pixels = 0;
-    return rs_render_band(f, 0, f->h, color, (size_t)f->w * (f->fmt == RS_FMT_RGB565 ? 2u : 4u), depth);
+    return rs_pipe_band(p, 0, f->h, mem, size, b, st);
 }
 
-/* A warm-up frame outside bench_frame, so callgrind does not count it (no statistics
- * reset: the body differs from bench_frame's, so the compiler cannot fold the two). */
-__attribute__((noinline)) static br_status warm_frame(rs_frame *f, void *color, void *depth)
+/* A warm-up frame outside bench_frame, so callgrind does not count it (the bodies must
+ * differ, or the compiler may fold the two: this one checks the band it drew). */
+__attribute__((noinline)) static br_status warm_frame(rs_frame *f, const rs_pipe *p, void *mem, size_t size,
+                                                      rs_band *b, rs_band_stats *st)
 {
     br_status s = rs_frame_prepare(f);
     if (s != BR_OK) return s;
-    return rs_render_band(f, 0, f->h, color, (size_t)f->w * (f->fmt == RS_FMT_RGB565 ? 2u : 4u), depth);
+    s = rs_pipe_band(p, 0, f->h, mem, size, b, st);
+    return s == BR_OK && b->rows != f->h ? BR_E_ARG : s;
 }
+
+/* Band mode's sink: the bands into one frame (colour, w pixels a row), for -o. */
+typedef struct frame_copy {
+    uint8_t *px;
+    size_t row_bytes;
+} frame_copy;
 
 static br_status bench_band_sink(void *user, int32_t y0, int32_t rows, const void *px, size_t stride)
 {
-    (void)user; (void)y0; (void)rows; (void)px; (void)stride;
+    const frame_copy *fc = (const frame_copy *)user;
+    int32_t y;
+    for (y = 0; y < rows; y++)
+        memcpy(fc->px + (size_t)(y0 + y) * fc->row_bytes, (const uint8_t *)px + (size_t)y * stride, fc->row_bytes);
     return BR_OK;
 }
 
@@ -71,9 +85,9 @@ int cmd_bench(int argc, char **argv)
     const char *out = NULL, *dem = "../shared/data/dem/png/fuji.png", *pos[1];
     char camc;
     int size[2] = { 640, 480 }, w, h, frames = 10, warm = 3, cull = 0, fmt = RS_FMT_XRGB8888, depth_choice = 0;
-    int depth, bands = 0, scene_choice = -1, cam_choice = 0, isa_choice = 0, npos, r, i;
+    int depth, bands = 0, band_rows, scene_choice = -1, cam_choice = 0, isa_choice = 0, npos, r, i;
     const opt_spec own[] = {
-        { "--scene", OPT_CHOICE, &scene_choice, 0, 0, 0, "peer", "S", "the scene (peer: ../shared/bench/PEERS.md)", NULL },
+        { "--scene", OPT_CHOICE, &scene_choice, 0, 0, 0, "peer|default", "S", "the scene (peer: ../shared/bench/PEERS.md; default: `bitrain bench --scene default --help`)", NULL },
         { "--camera", OPT_CHOICE, &cam_choice, 0, 0, 0, "A|B|a|b", "C", "the peer camera", NULL },
         { "--size", OPT_SIZE, size, 1, RS_MAX_DIM, 0, NULL, "WxH", "frame size (default 640x480)", NULL },
         { "--frames", OPT_INT, &frames, 1, 1000000, 0, NULL, "N", "timed frames (default 10)", NULL },
@@ -92,9 +106,16 @@ int cmd_bench(int argc, char **argv)
     rs_vertex *v;
     rs_prim prims[PEER_NSTRIP];
     rs_frame f;
-    rs_cvert *cache;
-    void *color, *zbuf, *mem = NULL;
+    rs_pipe pipe;
+    rs_pass terrain;
+    rs_band band = { 0 };
+    rs_band_stats st;
+    frame_copy fc;
+    size_t bpp, memsize;
+    void *mem;
     double *ms;
+    for (i = 0; i + 1 < argc; i++)   /* the users' scene: platform/bench_default.c */
+        if (!strcmp(argv[i], "--scene") && !strcmp(argv[i + 1], "default")) return cmd_bench_default(argc, argv);
     r = opt_parse("bench", BENCH_SYNOPSIS, tables, argc, argv, pos, 0, &npos);
     if (r != OPT_OK) return r == OPT_HELP ? 0 : 2;
     if (scene_choice < 0) { fprintf(stderr, "bitrain bench: which scene? --scene peer\n"); return 2; }
@@ -102,6 +123,8 @@ int cmd_bench(int argc, char **argv)
     w = size[0];
     h = size[1];
     depth = depth_choice ? RS_DEPTH16 : RS_DEPTH32;
+    bpp = fmt == RS_FMT_RGB565 ? 2u : 4u;
+    band_rows = bands == 0 || bands > h ? h : bands;
     if (isa_choice) {
         int want = isa_choice == 1 ? RS_ISA_BASE : RS_ISA_V3;
         if (rs_isa_set(want) != want) {
@@ -111,27 +134,32 @@ int cmd_bench(int argc, char **argv)
     }
     ps = (peer_scene *)malloc(sizeof *ps);
     v = (rs_vertex *)malloc(sizeof(rs_vertex) * PEER_NV);
-    cache = (rs_cvert *)malloc(rs_cache_mem_size(PEER_NV));
-    color = malloc((size_t)w * (size_t)h * 4);
-    zbuf = malloc((size_t)w * (size_t)h * 4);
     ms = (double *)malloc(sizeof(double) * (size_t)frames);
-    if (!ps || !v || !cache || !color || !zbuf || !ms) { fprintf(stderr, "bitrain bench: out of memory\n"); return 1; }
+    if (!ps || !v || !ms) { fprintf(stderr, "bitrain bench: out of memory\n"); return 1; }
     if (peer_scene_build(dem, ps) != 0) return 1;
     peer_scene_raster(ps, v, prims);
     if (peer_frame(camc, w, h, v, prims, &f) != 0) { fprintf(stderr, "bitrain bench: bad camera\n"); return 1; }
-    f.cache = cache; f.fmt = fmt; f.depth = depth; f.no_cull = !cull;
-    if (bands > 0) {   /* band mode: with the chunk table, bands skip what misses them */
-        mem = malloc(rs_band_mem_size(w, bands, fmt, depth));
-        f.chunks = malloc(rs_chunk_mem_size(prims, PEER_NSTRIP));
-        if (!mem || !f.chunks) return 1;
-    }
+    f.cache = (rs_cvert *)malloc(rs_cache_mem_size(PEER_NV));
+    f.chunks = (int16_t *)malloc(rs_chunk_mem_size(prims, PEER_NSTRIP));
+    f.fmt = fmt; f.depth = depth; f.no_cull = !cull;
+    f.one_band = bands == 0;
+    memset(&pipe, 0, sizeof pipe);
+    pipe.w = w; pipe.h = h; pipe.fmt = fmt; pipe.depth = depth;
+    if (rs_pass_terrain(&terrain, &f) != BR_OK || rs_pipe_add(&pipe, &terrain) != BR_OK) return 1;
+    memsize = rs_pipe_mem_size(&pipe, band_rows);
+    mem = malloc(memsize);
+    fc.row_bytes = (size_t)w * bpp;
+    fc.px = (uint8_t *)malloc(fc.row_bytes * (size_t)h);
+    if (!f.cache || !f.chunks || !mem || !fc.px) { fprintf(stderr, "bitrain bench: out of memory\n"); return 1; }
+    memset(&st, 0, sizeof st);
     for (i = -warm; i < frames; i++) {   /* i < 0: untimed warm-up, outside bench_frame */
         double t0 = now_ms();
         br_status s;
-        if (bands > 0) {
+        if (bands > 0) {   /* band mode: the driver's band loop into fc */
             s = rs_frame_prepare(&f);
-            if (s == BR_OK) s = rs_render(&f, bands, mem, bench_band_sink, NULL);
-        } else s = i < 0 ? warm_frame(&f, color, zbuf) : bench_frame(&f, color, zbuf);
+            if (s == BR_OK) s = rs_pipe_run(&pipe, band_rows, mem, memsize, bench_band_sink, &fc, &st);
+        } else s = i < 0 ? warm_frame(&f, &pipe, mem, memsize, &band, &st)
+                         : bench_frame(&f, &pipe, mem, memsize, &band, &st);
         if (s != BR_OK) { fprintf(stderr, "bitrain bench: render failed (%d)\n", (int)s); return 1; }
         if (i >= 0) ms[i] = now_ms() - t0;
     }
@@ -142,22 +170,20 @@ int cmd_bench(int argc, char **argv)
                "Mtri/s=%.1f Mpix/s=%.1f drawn_tris=%u clipped=%u span_px=%u isa=%s\n",
                camc, w, h, cull, fmt == RS_FMT_RGB565 ? "rgb565" : "rgb888", depth == RS_DEPTH16 ? 16 : 32,
                bands, frames, med, PEER_NTRI / med / 1e3, (double)w * h / med / 1e3,
-               f.stat_tris, f.stat_clipped, f.stat_pixels, rs_isa_name(rs_isa()));
+               st.tris, st.clipped, st.pixels, rs_isa_name(rs_isa()));
     }
     if (out) {
         br_err err;
         uint8_t *rgb = (uint8_t *)malloc((size_t)w * (size_t)h * 3);
         if (!rgb) return 1;
-        if (bands > 0) bench_frame(&f, color, zbuf);
-        for (i = 0; i < h; i++)
-            rs_to_rgb888(fmt, (uint8_t *)color + (size_t)i * (size_t)w * (fmt == RS_FMT_RGB565 ? 2 : 4), w,
-                         rgb + (size_t)i * (size_t)w * 3);
+        if (bands == 0) bench_band_sink(&fc, 0, h, band.color, band.stride);
+        for (i = 0; i < h; i++) rs_to_rgb888(fmt, fc.px + (size_t)i * fc.row_bytes, w, rgb + (size_t)i * (size_t)w * 3);
         if (png_write_rgb(out, w, h, rgb, (size_t)w * 3, &err) != BR_OK) {
             fprintf(stderr, "bitrain bench: %s\n", err.msg);
             return 1;
         }
         free(rgb);
     }
-    free(ps); free(v); free(f.cache); free(color); free(zbuf); free(ms); free(mem); free(f.chunks);
+    free(ps); free(v); free(f.cache); free(f.chunks); free(mem); free(fc.px); free(ms);
     return 0;
 }

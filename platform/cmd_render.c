@@ -3,7 +3,7 @@
  *   bitrain render IN... -o out.png [--size WxH] [--camera EX,EY,EZ,TX,TY,TZ] [--fov DEG]
  *          [--max-error M | --pixel-error P | --full [STEP]] [--bands ROWS]
  *          [--format rgb565|rgb888] [--depth 32|16] [--colors FILE] [--texture PNG] [--no-cull]
- *          [--sun AZ,ALT] [--ambient A] [--zscale F]
+ *          [--sun AZ,ALT] [--ambient A] [--zscale F] [--output-format png|rgb565]
  * Camera in the heightfield's metres: x east from the west edge, y north from the
  * south edge, z height above 0 m (times --zscale).  Default camera: from the south-west, above the
  * terrain, looking at its centre.  Mesh: the bitree (core/bitree.h), by default
@@ -12,9 +12,12 @@
  * (every STEP-th sample) as row strips instead.  Colours: a gdaldem color-relief file
  * (--colors) or the built-in ramp, lit by a sun (azimuth 315, altitude 45 by default)
  * with 30 % ambient.  --zscale F multiplies heights (default 1; grids without
- * georeference get an automatic scale that brings their steep slopes to 0.75, since
- * the loader can only assume 1 m spacing for them: platform/scene.c).  The frame is rendered in bands of ROWS rows (default: whole
- * frame) and streamed to the PNG band by band.  --texture PNG stretches a colour map or
+ * georeference whose relief exceeds half their extent get an automatic scale, since
+ * the loader can only assume 1 m spacing for them).  The frame is rendered in bands of ROWS rows (default: whole
+ * frame) by the frame driver (raster/frame.h: scene_terrain's terrain pass) and streamed
+ * band by band to the PNG sink (platform/sink_png.c) or, with --output-format rgb565, to
+ * the raw big-endian RGB565 sink of SPI displays (platform/sink_rgb565.c; -o - is
+ * standard output).  --texture PNG stretches a colour map or
  * orthophoto over the whole grid (perspective-correct, nearest texel), lit by the sun. */
 #include <ctype.h>
 #include <math.h>
@@ -26,38 +29,19 @@
 #include "core/cam.h"
 #include "platform/cmd.h"
 #include "platform/dem_args.h"
+#include "platform/geocam.h"
+#include "platform/pipe_threads.h"
 #include "platform/opt.h"
 #include "platform/scene_args.h"
 #include "platform/load.h"
 #include "platform/scene.h"
+#include "platform/sink_png.h"
+#include "platform/sink_rgb565.h"
 #include "platform/water_scene.h"
-#include "platform/png_io.h"
+#include "raster/frame.h"
 #include "raster/raster.h"
 #include "raster/ramp.h"
 #include "raster/terrain.h"
-
-/* ---------------------------------------------------------------- PNG sink */
-
-typedef struct png_sink {
-    png_out *po;
-    int32_t w, fmt;
-    uint8_t *rgb;
-    br_err *err;
-} png_sink;
-
-static br_status sink_png(void *user, int32_t y0, int32_t rows, const void *px, size_t stride)
-{
-    png_sink *s = (png_sink *)user;
-    int32_t y;
-    (void)y0;
-    for (y = 0; y < rows; y++) {
-        br_status st;
-        rs_to_rgb888(s->fmt, (const uint8_t *)px + (size_t)y * stride, s->w, s->rgb);
-        st = png_out_rows(s->po, s->rgb, 1, (size_t)s->w * 3, s->err);
-        if (st != BR_OK) return st;
-    }
-    return BR_OK;
-}
 
 /* ---------------------------------------------------------------- command */
 
@@ -71,17 +55,65 @@ static double ms_now(void)
 #define RENDER_SYNOPSIS "IN... -o OUT.png [options]\n" \
     "  camera in metres: x east from the west edge, y north from the south edge, z height (times --zscale)"
 
+/* The frame's sink: the PNG or the raw RGB565 stream. */
+typedef struct render_out {
+    int raw;
+    sink_png png;
+    sink_rgb565 rgb565;
+} render_out;
+
+static br_status out_open(render_out *o, const char *path, int32_t w, int32_t h, int32_t fmt, br_err *err)
+{
+    return o->raw ? sink_rgb565_open(&o->rgb565, path, w, fmt, err) : sink_png_open(&o->png, path, w, h, fmt, err);
+}
+
+static br_status out_close(render_out *o, br_err *err)
+{
+    return o->raw ? sink_rgb565_close(&o->rgb565, err) : sink_png_close(&o->png, err);
+}
+
+static void out_abort(render_out *o)
+{
+    if (o->raw) sink_rgb565_close(&o->rgb565, NULL);
+    else sink_png_abort(&o->png);
+}
+
+/* The scene's terrain mesh: the bitree's (view-dependent or fidelity) or the full grid. */
+static br_status make_mesh(scene *s, const cam *c, int full_step, int mode, double max_err, double pix_err,
+                           br_err *err)
+{
+    bt_params bp;
+    uint64_t ntri = 0;
+    if (full_step > 0) return scene_grid(s, full_step, err);
+    memset(&bp, 0, sizeof bp);
+    bp.mode = mode;
+    bp.max_err = bt_mm_to_units(&s->f, (int64_t)llround(max_err * 1000));
+    bp.c = c;
+    bp.fr = s->rt.fr;
+    bp.pixel_err_q8 = (int32_t)lround(pix_err * 256);
+    if (scene_tree(s, err) != BR_OK) return err->code;
+    if (bt_count(&s->tree, &bp, &ntri) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "bad mesh parameters");
+    if (scene_reserve(s, (uint32_t)(ntri + 16 > 16000000 ? 16000000 : ntri + 16), err) != BR_OK) return err->code;
+    if (scene_mesh(s, c, &bp) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "cannot extract the mesh");
+    return BR_OK;
+}
+
 int cmd_render(int argc, char **argv)
 {
     const char *in[64], *out = NULL;
     int nin = 0, size[2] = { 800, 600 }, w, h, have_cam = 0, have_max = 0, have_pix = 0, mode = BT_VIEW;
-    int full_step = 0, bands = 0, fmt = RS_FMT_XRGB8888, depth_choice = 0, depth, no_cull = 0, r;
+    int full_step = 0, bands = 0, fmt = RS_FMT_XRGB8888, depth_choice = 0, no_cull = 0, r;
+    int threads = pt_online_cores();
+    geocam_args ga;
+    dem_args da;
+    opt_spec geo_t[GEOCAM_ARGS_N];
+    pt_pool *pool = NULL;
     double camv[6], fov = 50, max_err = 0, pix_err = 1;
     scene_opts so;
     scene_args sa;
-    dem_args da;
     opt_spec dem_t[DEM_ARGS_N], look_t[SCENE_ARGS_N], water_t[WS_ARGS_N];
     ws_args wa;
+    render_out ro;
     const opt_spec own[] = {
         { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT.png", "the image to write", NULL },
         { "--size", OPT_SIZE, size, 1, RS_MAX_DIM, 0, NULL, "WxH", "image size (default 800x600)", NULL },
@@ -97,33 +129,39 @@ int cmd_render(int argc, char **argv)
         { "--format", OPT_CHOICE, &fmt, 0, 0, 0, "rgb888|rgb565", "F", "pixel format of the frame", NULL },
         { "--depth", OPT_CHOICE, &depth_choice, 0, 0, 0, "32|16", "BITS", "depth buffer bits", NULL },
         { "--no-cull", OPT_FLAG, &no_cull, 0, 0, 0, NULL, NULL, "draw back faces too", NULL },
+        { "--output-format", OPT_CHOICE, &ro.raw, 0, 0, 0, "png|rgb565", "F",
+          "png, or rgb565: raw big-endian RGB565 rows as an SPI display takes them (-o -: stdout)", NULL },
+        { "--threads", OPT_INT, &threads, 1, PT_MAX_THREADS, 0, NULL, "N",
+          "drawing threads (default: online cores; bands of 64 rows unless --bands)", NULL },
         OPT_END
     };
-    const opt_spec *const tables[] = { own, look_t, water_t, dem_t, NULL };
+    const opt_spec *const tables[] = { own, look_t, water_t, geo_t, dem_t, NULL };
     scene s;
     br_err err;
     cam c;
-    rs_vertex *verts = NULL;
-    uint32_t nv = 0, *idx = NULL, nidx = 0;
-    rs_prim *prims = NULL;
-    int32_t nprims = 0;
     rs_frame fr;
-    void *bandmem = NULL;
-    png_sink ps;
+    rs_pipe pipe;
+    rs_pass terrain;
+    rs_band_stats total;
+    size_t memsize = 0;
     double t0, t1, t2;
     int rc = 1;
     ws_opts wo;
     water_scene ws;
     int use_pipe;
+    rs_pipe *run;
 
     memset(&so, 0, sizeof so);
     memset(&s, 0, sizeof s);
     memset(&fr, 0, sizeof fr);
-    memset(&ps, 0, sizeof ps);
+    memset(&pipe, 0, sizeof pipe);
+    memset(&ro, 0, sizeof ro);
+    memset(&err, 0, sizeof err);
     memset(&wo, 0, sizeof wo);
     memset(&ws, 0, sizeof ws);
     dem_args_table(&da, &so.dem, dem_t);
     scene_args_table(&sa, &so, look_t);
+    geocam_args_table(&ga, geo_t);
     ws_args_table(&wa, &wo, water_t);
     r = opt_parse("render", RENDER_SYNOPSIS, tables, argc, argv, in, 64, &nin);
     if (r != OPT_OK) return r == OPT_HELP ? 0 : 2;
@@ -138,133 +176,62 @@ int cmd_render(int argc, char **argv)
     mode = have_max ? BT_FIDELITY : BT_VIEW;
     w = size[0];
     h = size[1];
-    depth = depth_choice ? RS_DEPTH16 : RS_DEPTH32;
-    if (bands == 0 || bands > h) bands = h;
+    if (have_cam && (ga.from_seen || ga.at_seen)) return opt_fail("render", "--camera", "cannot be used with --look-from/--look-at");
+    if (bands == 0) bands = threads > 1 ? 64 : h;
+    if (bands > h) bands = h;
+    if (ro.raw && !strcmp(out, "-")) so.quiet = 1;   /* stdout carries the pixels only */
 
     t0 = ms_now();
     use_pipe = !(wo.no_water && wo.no_fog);
     so.ramp_abs = use_pipe;
     if (scene_open(&s, in, nin, &so, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); return 1; }
     if (use_pipe && ws_open(&ws, &s, &wo, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
+    r = geocam_resolve(&ga, &s, "render", camv);
+    if (r < 0) { scene_close(&s); return 2; }
+    if (r) have_cam = 1;
     if (!have_cam) scene_default_view(&s, fov, camv, camv + 3);
     if (scene_camera(&s, camv, camv + 3, fov, w, h, &c) != BR_OK) {
         fprintf(stderr, "bitrain render: unusable camera (eye equals target, or too far from the terrain: "
                 "world unit 2^%d m)\n", -s.rt.shift);
         goto done;
     }
-
-    /* mesh */
-    if (full_step > 0) {
-        int32_t gw = (s.f.w - 1) / full_step + 1, gh = (s.f.h - 1) / full_step + 1, x, y, pass;
-        size_t nruns = 0;
-        nv = (uint32_t)gw * (uint32_t)gh;
-        verts = malloc(sizeof *verts * nv);
-        idx = malloc(sizeof *idx * (size_t)2 * (size_t)gw * (size_t)(gh - 1 > 0 ? gh - 1 : 1));
-        if (!verts || !idx) { fprintf(stderr, "bitrain: out of memory\n"); goto done; }
-        for (y = 0; y < gh; y++)
-            for (x = 0; x < gw; x++) {
-                int32_t z = s.f.z[(size_t)y * full_step * (size_t)s.f.w + (size_t)x * full_step];
-                rt_vertex(&s.rt, x * full_step, y * full_step, z == HF_NODATA ? 0 : z, &verts[y * gw + x]);
-            }
-        /* row strips, south-west first vertex: CCW seen from +z (row y is north of y+1),
-         * one per run of columns whose two samples are valid: a void is a hole, as in
-         * the bitree's meshes (no triangle touches a void sample) */
-        for (pass = 0; pass < 2; pass++) {
-            if (pass == 1 && !(prims = malloc(sizeof *prims * (nruns ? nruns : 1)))) {
-                fprintf(stderr, "bitrain: out of memory\n");
-                goto done;
-            }
-            for (y = 0; y + 1 < gh; y++) {
-                int32_t a = 0, b;
-                while (a < gw) {
-                    const int32_t *zr = s.f.z + (size_t)y * full_step * (size_t)s.f.w;
-                    const int32_t *zn = s.f.z + (size_t)(y + 1) * full_step * (size_t)s.f.w;
-                    for (b = a; b < gw && zr[(size_t)b * full_step] != HF_NODATA && zn[(size_t)b * full_step] != HF_NODATA; b++) {}
-                    if (b - a >= 2 && pass == 0) nruns++;
-                    else if (b - a >= 2) {
-                        uint32_t *sp = idx + nidx;
-                        for (x = a; x < b; x++) {
-                            sp[2 * (x - a)] = (uint32_t)(y * gw + x);
-                            sp[2 * (x - a) + 1] = (uint32_t)((y + 1) * gw + x);
-                        }
-                        prims[nprims].kind = RS_STRIP; prims[nprims].n = (uint32_t)(2 * (b - a)); prims[nprims].idx = sp;
-                        nprims++; nidx += (uint32_t)(2 * (b - a));
-                    }
-                    a = b + 1;
-                }
-            }
-        }
-    } else {
-        bt_params bp;
-        uint64_t ntri = 0;
-        memset(&bp, 0, sizeof bp);
-        bp.mode = mode;
-        bp.max_err = bt_mm_to_units(&s.f, (int64_t)llround(max_err * 1000));
-        bp.c = &c;
-        bp.fr = s.rt.fr;
-        bp.pixel_err_q8 = (int32_t)lround(pix_err * 256);
-        if (scene_tree(&s, &err) != BR_OK) { fprintf(stderr, "bitrain: %s: %s\n", in[0], err.msg); goto done; }
-        if (bt_count(&s.tree, &bp, &ntri) != BR_OK) { fprintf(stderr, "bitrain: bad mesh parameters\n"); goto done; }
-        if (scene_reserve(&s, (uint32_t)(ntri + 16 > 16000000 ? 16000000 : ntri + 16), &err) != BR_OK) {
-            fprintf(stderr, "bitrain: %s: %s\n", in[0], err.msg);
-            goto done;
-        }
-        if (bt_extract(&s.tree, &bp, &s.mesh) != BR_OK) { fprintf(stderr, "bitrain: cannot extract the mesh\n"); goto done; }
-        nv = s.mesh.nv;
-        rt_from_mesh(&s.rt, &s.mesh, s.verts);
-        prims = malloc(sizeof *prims);
-        if (!prims) { fprintf(stderr, "bitrain: out of memory\n"); goto done; }
-        prims[0].kind = RS_STRIP; prims[0].n = s.mesh.ns; prims[0].idx = s.mesh.strip;
-        nprims = 1;
+    if (make_mesh(&s, &c, full_step, mode, max_err, pix_err, &err) != BR_OK) {
+        fprintf(stderr, "bitrain: %s: %s\n", in[0], err.msg);
+        goto done;
     }
     t1 = ms_now();
 
-    /* render in bands, streaming to the PNG */
-    fr.w = w; fr.h = h; fr.fmt = fmt; fr.depth = depth; fr.no_cull = no_cull;
+    /* one pass, the terrain, in bands through the frame driver to the sink */
+    fr.fmt = fmt; fr.depth = depth_choice ? RS_DEPTH16 : RS_DEPTH32; fr.no_cull = no_cull;
     fr.clear_rgb = 0x99ccffu;
-    fr.tex = s.rt.tex_w > 0 ? &s.tex : NULL;
-    fr.v = full_step ? verts : s.verts; fr.nv = nv; fr.prims = prims; fr.nprims = nprims;
-    fr.cache = full_step ? malloc(rs_cache_mem_size(nv ? nv : 1)) : s.cache;
-    fr.chunks = bands < h || use_pipe ? malloc(rs_chunk_mem_size(prims, nprims) + 4) : NULL;
-    bandmem = use_pipe ? NULL : malloc(rs_band_mem_size(w, bands, fmt, depth));
-    ps.rgb = malloc((size_t)w * 3);
-    if (!fr.cache || (!bandmem && !use_pipe) || !ps.rgb) { fprintf(stderr, "bitrain: out of memory\n"); goto done; }
-    cam_viewproj(&c, &fr.vp);
-    if (rs_frame_prepare(&fr) != BR_OK) { fprintf(stderr, "bitrain: bad frame parameters\n"); goto done; }
-    if (png_out_open(&ps.po, out, w, h, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
-    ps.w = w; ps.fmt = fmt; ps.err = &err;
-    if (use_pipe) {     /* water and atmosphere: the frame pipe (platform/water_scene.h) */
-        size_t mb;
-        rs_band_stats tot;
-        if (ws_frame(&ws, &s, &c, &fr, &err) != BR_OK) {
-            png_out_abort(ps.po);
-            fprintf(stderr, "bitrain: %s\n", err.msg);
-            goto done;
-        }
-        mb = rs_pipe_mem_size(&ws.pipe, bands);
-        bandmem = malloc(mb);
-        if (!bandmem || rs_pipe_run(&ws.pipe, bands, bandmem, mb, sink_png, &ps, &tot) != BR_OK) {
-            png_out_abort(ps.po);
-            fprintf(stderr, "bitrain: %s\n", err.msg[0] ? err.msg : "render failed");
-            goto done;
-        }
-        fr.stat_tris = tot.tris; fr.stat_clipped = tot.clipped;
-    } else if (rs_render(&fr, bands, bandmem, sink_png, &ps) != BR_OK) {
-        png_out_abort(ps.po);
+    fr.one_band = bands == h;
+    if (scene_terrain(&s, &c, &fr, &terrain) != BR_OK) { fprintf(stderr, "bitrain: bad frame parameters\n"); goto done; }
+    pipe.w = w; pipe.h = h; pipe.fmt = fr.fmt; pipe.depth = fr.depth;
+    if (rs_pipe_add(&pipe, &terrain) != BR_OK) goto done;
+    run = &pipe;
+    if (use_pipe) {     /* water and atmosphere: their passes and post hook (platform/water_scene.h) */
+        if (ws_frame(&ws, &s, &c, &fr, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
+        run = &ws.pipe;
+    }
+    memsize = rs_pipe_mem_size(run, bands);
+    if (pt_open(&pool, threads) != BR_OK) { fprintf(stderr, "bitrain render: cannot start %d threads\n", threads); goto done; }
+    if (out_open(&ro, out, w, h, fmt, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
+    if (pt_run(pool, run, bands, ro.raw ? sink_rgb565_band : sink_png_band,
+               ro.raw ? (void *)&ro.rgb565 : (void *)&ro.png, &total) != BR_OK) {
+        out_abort(&ro);
         fprintf(stderr, "bitrain: %s\n", err.msg[0] ? err.msg : "render failed");
         goto done;
     }
-    if (png_out_close(ps.po, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
+    if (out_close(&ro, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
     t2 = ms_now();
-    printf("%s: %dx%d, %u vertices, %s, %u triangles drawn (%u clipped), load+mesh %.1f ms, "
-           "render+write %.1f ms, world unit 2^%d m, band %d rows (%zu bytes + %zu bytes vertex cache)\n",
-           out, w, h, nv, full_step ? "full grid" : (mode == BT_FIDELITY ? "bitree fidelity" : "bitree view"),
-           fr.stat_tris, fr.stat_clipped, t1 - t0, t2 - t1, -s.rt.shift, bands,
-           rs_band_mem_size(w, bands, fmt, depth), rs_cache_mem_size(nv));
+    fprintf(ro.raw && !strcmp(out, "-") ? stderr : stdout,
+            "%s: %dx%d, %u vertices, %s, %u triangles drawn (%u clipped), load+mesh %.1f ms, "
+            "render+write %.1f ms, world unit 2^%d m, band %d rows (%zu bytes + %zu bytes vertex cache), %d threads\n",
+            out, w, h, fr.nv, full_step ? "full grid" : (mode == BT_FIDELITY ? "bitree fidelity" : "bitree view"),
+            total.tris, total.clipped, t1 - t0, t2 - t1, -s.rt.shift, bands, memsize, rs_cache_mem_size(fr.nv), threads);
     rc = 0;
 done:
-    if (full_step) free(fr.cache);
-    free(verts); free(idx); free(prims); free(fr.chunks); free(bandmem); free(ps.rgb);
+    pt_close(pool);
     if (use_pipe) ws_close(&ws);
     scene_close(&s);
     return rc;

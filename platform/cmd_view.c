@@ -1,48 +1,247 @@
+#define _POSIX_C_SOURCE 200809L   /* mkdir, access */
 /* platform/cmd_view.c — bitrain view IN...: the interactive viewer (SDL2 window).
  *
  * Each frame: the bitree's view-dependent mesh for the camera (hysteresis and
- * geomorphing on), turned into raster vertices, drawn by the integer rasteriser
- * band by band straight into a streaming SDL texture (XRGB8888), which SDL then
- * shows.  No allocation per frame.
- *
- * Controls: mouse drag look, W/S forward/back, A/D left/right, E/Q or PgUp/PgDn
- * up/down, arrow keys turn, Shift = 5x speed, +/- pixel error, H hysteresis,
- * G geomorph, C back-face culling, P screenshot, Space reset view, Esc quit. */
-#include <SDL.h>
+ * geomorphing on), its raster vertices, then the frame driver (raster/frame.h: the
+ * terrain pass and the viewer's post hook, platform/view_hud.c) on N threads
+ * (platform/pipe_threads.h) in bands of --bands rows into the frame buffer, which goes
+ * to a streaming SDL texture.  The internal resolution follows the window (re-rendered
+ * at the new size when it changes) unless --size fixes it, and then SDL scales it up.
+ * Nothing is drawn while nothing moves.  No allocation per frame (only when the
+ * window grows). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include "platform/cmd.h"
+#include "platform/campath.h"
 #include "platform/dem_args.h"
+#include "platform/geocam.h"
 #include "platform/opt.h"
-#include "platform/scene_args.h"
+#include "platform/pipe_threads.h"
 #include "platform/png_io.h"
-#include "platform/scene.h"
+#include "platform/scene_args.h"
+#include "platform/view.h"
 
-#define VIEW_BAND_ROWS 64
 #define VIEW_MAX_TRI 2000000  /* beyond it the bitree falls back to its budget mode */
+#define SKY_RGB 0x99ccffu
 
-typedef struct view_state {
-    double pos[3], yaw, pitch;       /* metres; radians, yaw clockwise from north */
-    double fov, pix_err;
-    int hyst, morph, no_cull;
-} view_state;
+typedef struct view_app {
+    scene s;
+    view_state v;
+    view_stats st;
+    view_overlay ov;
+    pt_pool *pool;
+    SDL_Window *win;
+    SDL_Renderer *ren;
+    SDL_Texture *tex;
+    int w, h, fixed;            /* internal resolution; 1: fixed by --size */
+    uint32_t *px;               /* the frame, w * h */
+    size_t px_cap;
+    int16_t *chunks;
+    rs_vertex *lod_v;           /* LOD colouring: a list of triangles with vertices of their own */
+    uint32_t *lod_idx;
+    rs_cvert *lod_cache;
+    size_t lod_cap;
+    int band_rows;
+    double base_err;            /* --pixel-error: where --fps starts and where it settles when idle */
+    FILE *rec;
+    campath path;               /* --path: one camera a frame (path.n == 0: the user flies) */
+    int nframe, shots, sdl_on;
+    char hud[1024];
+    double sum_ms, sum_tri;
+} view_app;
 
-static void look_from(view_state *v, const double eye[3], const double target[3])
+/* ---------------------------------------------------------------- frame */
+
+static double now_s(void) { return (double)SDL_GetPerformanceCounter() / (double)SDL_GetPerformanceFrequency(); }
+
+static br_status sink_frame(void *user, int32_t y0, int32_t rows, const void *px, size_t stride)
 {
-    double dx = target[0] - eye[0], dy = target[1] - eye[1], dz = target[2] - eye[2];
-    memcpy(v->pos, eye, sizeof v->pos);
-    v->yaw = atan2(dx, dy);
-    v->pitch = atan2(dz, sqrt(dx * dx + dy * dy));
+    view_app *a = (view_app *)user;
+    int32_t y;
+    for (y = 0; y < rows; y++)
+        memcpy(a->px + (size_t)(y0 + y) * (size_t)a->w, (const uint8_t *)px + (size_t)y * stride, (size_t)a->w * 4);
+    return BR_OK;
 }
 
-static void view_dir(const view_state *v, double d[3])
+static void smooth(double *acc, double x, int first) { *acc = first ? x : 0.9 * *acc + 0.1 * x; }
+
+/* LOD colouring: the frame draws the mesh as a list of separately tinted triangles
+ * (memory grows with the mesh, only in this mode). */
+static int lod_frame(view_app *a, rs_frame *fr, rs_prim *prim)
 {
-    d[0] = sin(v->yaw) * cos(v->pitch);
-    d[1] = cos(v->yaw) * cos(v->pitch);
-    d[2] = sin(v->pitch);
+    size_t need = a->s.mesh.ns > 2 ? 3 * (size_t)(a->s.mesh.ns - 2) : 3;
+    if (need > a->lod_cap) {
+        rs_vertex *lv = realloc(a->lod_v, need * sizeof *lv);
+        uint32_t *li = lv ? realloc(a->lod_idx, need * sizeof *li) : NULL;
+        rs_cvert *lc = li ? realloc(a->lod_cache, rs_cache_mem_size((uint32_t)need)) : NULL;
+        if (lv) a->lod_v = lv;
+        if (li) a->lod_idx = li;
+        if (lc) a->lod_cache = lc;
+        if (!lc) return 0;
+        a->lod_cap = need;
+    }
+    prim->kind = RS_LIST;
+    prim->n = view_lod_list(&a->s.mesh, a->s.verts, a->lod_v, a->lod_idx);
+    prim->idx = a->lod_idx;
+    fr->v = a->lod_v;
+    fr->nv = prim->n;
+    fr->cache = a->lod_cache;
+    return 1;
+}
+
+/* Draws one frame into a->px; 0 on failure (message printed). */
+static int draw_frame(view_app *a)
+{
+    view_state *v = &a->v;
+    double eye[3], tgt[3], t0, t1, t2, t3;
+    cam c;
+    bt_params bp;
+    rs_frame fr;
+    rs_prim prim;
+    rs_pass terrain;
+    rs_pipe p;
+    rs_band_stats tot;
+    int first = a->nframe == 0;
+    if (a->path.n) {
+        const double *k = a->path.cam[a->nframe % a->path.n];
+        memcpy(eye, k, sizeof eye);
+        memcpy(tgt, k + 3, sizeof tgt);
+    } else view_eye_target(v, eye, tgt);
+    if (scene_camera(&a->s, eye, tgt, v->fov, a->w, a->h, &c) != BR_OK) {
+        view_note(v, 3, "camera out of range: back to the start");
+        v->cam = v->home;
+        v->orbit = 0;
+        view_eye_target(v, eye, tgt);
+        if (scene_camera(&a->s, eye, tgt, v->fov, a->w, a->h, &c) != BR_OK) return 0;
+    }
+    memset(&bp, 0, sizeof bp);
+    memset(&fr, 0, sizeof fr);
+    memset(&p, 0, sizeof p);
+    bp.mode = BT_VIEW;
+    bp.c = &c;
+    bp.fr = a->s.rt.fr;
+    bp.pixel_err_q8 = (int32_t)lround(v->pix_err * 256);
+    bp.hyst_q8 = v->on[VT_HYST] ? 64 : 0;
+    bp.morph_q8 = v->on[VT_MORPH] ? 128 : 0;
+    t0 = now_s();
+    if (bt_extract(&a->s.tree, &bp, &a->s.mesh) != BR_OK) { fprintf(stderr, "bitrain view: mesh selection failed\n"); return 0; }
+    t1 = now_s();
+    rt_from_mesh(&a->s.rt, &a->s.mesh, a->s.verts);
+    prim.kind = RS_STRIP; prim.n = a->s.mesh.ns; prim.idx = a->s.mesh.strip;
+    fr.w = a->w; fr.h = a->h; fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32;
+    fr.no_cull = v->on[VT_NOCULL];
+    fr.clear_rgb = SKY_RGB;
+    fr.v = a->s.verts; fr.nv = a->s.mesh.nv; fr.cache = a->s.cache;
+    if (v->on[VT_LOD] && !lod_frame(a, &fr, &prim)) view_note(v, 3, "LOD colouring: out of memory");
+    fr.prims = &prim; fr.nprims = 1;
+    fr.tex = a->s.rt.tex_w > 0 ? &a->s.tex : NULL;
+    fr.chunks = a->chunks;
+    cam_viewproj(&c, &fr.vp);
+    if (rs_frame_prepare(&fr) != BR_OK || rs_pass_terrain(&terrain, &fr) != BR_OK) {
+        fprintf(stderr, "bitrain view: bad frame\n");
+        return 0;
+    }
+    t2 = now_s();
+    p.w = a->w; p.h = a->h; p.fmt = RS_FMT_XRGB8888; p.depth = RS_DEPTH32;
+    rs_pipe_add(&p, &terrain);
+    a->ov.fr = &fr;
+    a->ov.wire = v->on[VT_WIRE];
+    a->ov.band_rows = v->on[VT_BANDS] ? a->band_rows : 0;
+    a->ov.scale = a->w >= 1600 ? 2 : 1;
+    a->ov.h = a->h;
+    a->st.w = a->w; a->st.h = a->h;
+    view_hud_text(v, &a->st, a->hud, sizeof a->hud);
+    a->ov.hud = v->on[VT_HUD] ? a->hud : NULL;
+    a->ov.help = v->on[VT_HELP] ? view_controls_text() : NULL;
+    p.post = view_post;
+    p.post_user = &a->ov;
+    if (pt_run(a->pool, &p, a->band_rows, sink_frame, a, &tot) != BR_OK) {
+        fprintf(stderr, "bitrain view: drawing the frame failed\n");
+        return 0;
+    }
+    t3 = now_s();
+    a->ov.fr = NULL;
+    smooth(&a->st.select_ms, 1e3 * (t1 - t0), first);
+    smooth(&a->st.vert_ms, 1e3 * (t2 - t1), first);
+    smooth(&a->st.raster_ms, 1e3 * (t3 - t2), first);
+    smooth(&a->st.frame_ms, 1e3 * (t3 - t0), first);
+    smooth(&a->st.tris_per_s, a->s.mesh.ntri / fmax(1e-6, t3 - t0), first);
+    a->st.tris = a->s.mesh.ntri;
+    a->sum_ms += 1e3 * (t3 - t0);
+    a->sum_tri += a->s.mesh.ntri;
+    if (a->rec) fprintf(a->rec, "%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n", eye[0], eye[1], eye[2], tgt[0], tgt[1], tgt[2]);
+    a->nframe++;
+    return 1;
+}
+
+/* ---------------------------------------------------------------- window */
+
+/* (Re)creates the texture and frame buffer for w x h; 0 on failure. */
+static int set_size(view_app *a, int w, int h)
+{
+    if (w < 16) w = 16;
+    if (h < 16) h = 16;
+    if (w > RS_MAX_DIM) w = RS_MAX_DIM;
+    if (h > RS_MAX_DIM) h = RS_MAX_DIM;
+    if (a->tex && w == a->w && h == a->h) return 1;
+    if ((size_t)w * (size_t)h > a->px_cap) {
+        uint32_t *px = realloc(a->px, (size_t)w * (size_t)h * 4);
+        if (!px) return 0;
+        a->px = px;
+        a->px_cap = (size_t)w * (size_t)h;
+    }
+    if (a->tex) SDL_DestroyTexture(a->tex);
+    a->tex = SDL_CreateTexture(a->ren, SDL_PIXELFORMAT_RGB888, SDL_TEXTUREACCESS_STREAMING, w, h);
+    a->w = w;
+    a->h = h;
+    if (a->fixed) SDL_RenderSetLogicalSize(a->ren, w, h);
+    return a->tex != NULL;
+}
+
+static int open_window(view_app *a, const int win[2], int fullscreen)
+{
+    Uint32 flags = SDL_WINDOW_RESIZABLE | (fullscreen ? SDL_WINDOW_FULLSCREEN_DESKTOP : 0);
+    int ow, oh;
+    if (SDL_Init(SDL_INIT_VIDEO) != 0) {
+        fprintf(stderr, "bitrain view: cannot open a display: %s\n", SDL_GetError());
+        return 0;
+    }
+    a->sdl_on = 1;
+    SDL_SetHint(SDL_HINT_RENDER_SCALE_QUALITY, "0");     /* nearest: crisp when --size scales up */
+    a->win = SDL_CreateWindow("bitrain", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, win[0], win[1], flags);
+    a->ren = a->win ? SDL_CreateRenderer(a->win, -1, 0) : NULL;
+    if (!a->ren) {
+        fprintf(stderr, "bitrain view: cannot create the window: %s\n", SDL_GetError());
+        return 0;
+    }
+    if (!a->fixed && SDL_GetRendererOutputSize(a->ren, &ow, &oh) == 0) { a->w = ow; a->h = oh; }
+    if (!set_size(a, a->w, a->h)) {
+        fprintf(stderr, "bitrain view: cannot create a %dx%d texture: %s\n", a->w, a->h, SDL_GetError());
+        return 0;
+    }
+    return 1;
+}
+
+static void present(view_app *a)
+{
+    int y, shown = a->v.on[VT_BANDS] ? 0 : a->h;
+    /* band preview: the new frame appears band by band over the last one */
+    for (y = a->band_rows; shown < a->h && y < a->h + a->band_rows; y += a->band_rows) {
+        SDL_Rect r = { 0, 0, a->w, y < a->h ? y : a->h };
+        SDL_UpdateTexture(a->tex, &r, a->px, a->w * 4);
+        SDL_RenderClear(a->ren);
+        SDL_RenderCopy(a->ren, a->tex, NULL, NULL);
+        SDL_RenderPresent(a->ren);
+        SDL_Delay(25);
+    }
+    SDL_UpdateTexture(a->tex, NULL, a->px, a->w * 4);
+    SDL_RenderClear(a->ren);
+    SDL_RenderCopy(a->ren, a->tex, NULL, NULL);
+    SDL_RenderPresent(a->ren);
 }
 
 static int save_png(const char *path, const uint32_t *px, int w, int h, br_err *err)
@@ -56,208 +255,260 @@ static int save_png(const char *path, const uint32_t *px, int w, int h, br_err *
     return ok;
 }
 
-#define VIEW_SYNOPSIS "IN... [options]\n" \
-    "  camera in metres: x east from the west edge, y north from the south edge, z height\n" \
-    "controls: mouse drag look, W/S forward/back, A/D left/right, E/Q up/down, arrows turn,\n" \
-    "  Shift faster, +/- pixel error, H hysteresis, G geomorph, C culling, P screenshot,\n" \
-    "  Space reset view, Esc quit"
-
-static void usage(void)
+/* The requests of the last input that need the window or the terminal. */
+static void requests(view_app *a)
 {
-    printf("usage: bitrain view %s\n", VIEW_SYNOPSIS);
+    view_state *v = &a->v;
+    if (v->fullscreen) {
+        int on = !(SDL_GetWindowFlags(a->win) & SDL_WINDOW_FULLSCREEN_DESKTOP);
+        SDL_SetWindowFullscreen(a->win, on ? SDL_WINDOW_FULLSCREEN_DESKTOP : 0);
+        v->fullscreen = 0;
+    }
+    if (v->print_cam) {
+        char arg[200];
+        view_camera_arg(v, arg, sizeof arg);
+        printf("--camera %s --fov %g --pixel-error %g --size %dx%d\n", arg, v->fov, v->pix_err, a->w, a->h);
+        fflush(stdout);
+        view_note(v, 3, "camera printed on the terminal");
+        v->print_cam = 0;
+    }
+}
+
+static void screenshot(view_app *a)
+{
+    char path[64];
+    br_err err;
+    mkdir("out", 0777);
+    do snprintf(path, sizeof path, "out/view-%d.png", ++a->shots); while (access(path, F_OK) == 0 && a->shots < 100000);
+    if (save_png(path, a->px, a->w, a->h, &err)) {
+        printf("%s\n", path);
+        fflush(stdout);
+        view_note(&a->v, 3, "saved %s", path);
+    } else fprintf(stderr, "bitrain view: %s\n", err.msg);
+    a->v.shot = 0;
+}
+
+/* --fps: the pixel error that holds the frame rate (the triangle count goes roughly
+ * with 1 / error^2, so the error moves with the square root of the time ratio, a
+ * bounded step per frame so that it does not oscillate). */
+static void hold_fps(view_app *a)
+{
+    double r = a->st.frame_ms / (1000.0 / a->st.target_fps), f;
+    if (r > 0.9 && r < 1.1) return;
+    f = sqrt(r);
+    f = f < 0.9 ? 0.9 : f > 1.15 ? 1.15 : f;
+    a->v.pix_err = fmin(64.0, fmax(0.25, a->v.pix_err * f));
+}
+
+/* ---------------------------------------------------------------- loop */
+
+static void handle_window(view_app *a, const SDL_Event *ev)
+{
+    if (ev->type != SDL_WINDOWEVENT) return;
+    if (ev->window.event == SDL_WINDOWEVENT_SIZE_CHANGED && !a->fixed) {
+        int ow, oh;
+        if (SDL_GetRendererOutputSize(a->ren, &ow, &oh) == 0 && !set_size(a, ow, oh))
+            fprintf(stderr, "bitrain view: cannot resize to %dx%d\n", ow, oh);
+        a->v.dirty = 1;
+    } else if (ev->window.event == SDL_WINDOWEVENT_EXPOSED || ev->window.event == SDL_WINDOWEVENT_SIZE_CHANGED) {
+        a->v.dirty = 1;
+    }
+}
+
+/* Runs until Esc, the window closes, --frames or --seconds; 0 on failure. */
+static int loop(view_app *a, int frames, double seconds)
+{
+    view_state *v = &a->v;
+    double t_prev = now_s(), t_start = t_prev, t_last = t_prev, note_shown = 0;
+    int settle = 2;
+    while (!v->quit) {
+        SDL_Event ev;
+        double t;
+        int moved;
+        v->now = now_s();
+        if (a->path.n) v->dirty = 1;            /* a camera path animates every frame */
+        /* idle: nothing moves and nothing changed: wait for input (a board idles) */
+        if (!v->dirty && !settle && !frames && SDL_WaitEventTimeout(&ev, 250)) {
+            v->now = now_s();
+            view_event(v, &ev);
+            handle_window(a, &ev);
+        }
+        while (SDL_PollEvent(&ev)) { view_event(v, &ev); handle_window(a, &ev); }
+        t = now_s();
+        v->now = t;
+        moved = view_move(v, t - t_prev);
+        t_prev = t;
+        requests(a);
+        if (note_shown > 0 && v->now >= note_shown) { v->dirty = 1; note_shown = 0; }
+        if (seconds > 0 && t - t_start >= seconds) break;
+        if (moved || v->dirty) settle = 2;      /* hysteresis settles one frame after a move */
+        else if (!settle && !frames) {
+            if (a->st.target_fps > 0 && v->pix_err > a->base_err) { v->pix_err = a->base_err; settle = 1; }
+            continue;
+        } else if (settle) settle--;
+        v->dirty = 0;
+        if (!draw_frame(a)) return 0;
+        present(a);
+        if (v->note[0] && v->note_until > v->now) note_shown = v->note_until;
+        if (v->shot) screenshot(a);
+        if (a->st.target_fps > 0 && (moved || settle == 2)) hold_fps(a);
+        /* frames per second while frames follow each other; after an idle wait, what
+         * the frame itself cost */
+        {
+            double tn = now_s(), dt = tn - t_last;
+            double rate = dt < 0.5 && a->nframe > 1 ? 1 / dt : 1e3 / fmax(1e-3, a->st.frame_ms);
+            smooth(&a->st.fps, rate, a->nframe == 1);
+            t_last = tn;
+        }
+        if (frames && a->nframe >= frames) break;
+        if (a->path.n && !frames && a->nframe >= a->path.n) break;   /* the path flown once */
+    }
+    return 1;
+}
+
+/* ---------------------------------------------------------------- command */
+
+#define VIEW_SYNOPSIS "IN... [options]\n" \
+    "  camera in metres: x east from the west edge, y north from the south edge, z height (times --zscale);\n" \
+    "  the controls follow the options (F1 or ? in the window shows them too)"
+
+typedef struct view_opts {
+    int size[2], win[2], size_seen, win_seen, have_cam, frames, threads, bands, fullscreen, no_hud;
+    double camv[6], fov, pix_err, fps, seconds;
+    const char *shot, *record, *path;
+} view_opts;
+
+/* Parses the options and opens the scene; returns -1 to go on, else the exit code. */
+static int setup(view_app *a, view_opts *o, int argc, char **argv)
+{
+    const char *in[64];
+    int r, nin = 0;
+    scene_opts so;
+    scene_args sa;
+    dem_args da;
+    geocam_args ga;
+    br_err err;
+    opt_spec dem_t[DEM_ARGS_N], look_t[SCENE_ARGS_N], geo_t[GEOCAM_ARGS_N];
+    const opt_spec own[] = {
+        { "--size", OPT_SIZE, o->size, 16, RS_MAX_DIM, 0, NULL, "WxH",
+          "internal resolution, scaled up by SDL to the window (default: the window's)", &o->size_seen },
+        { "--window", OPT_SIZE, o->win, 16, RS_MAX_DIM, 0, NULL, "WxH", "window size (default 1024x640)", &o->win_seen },
+        { "--fullscreen", OPT_FLAG, &o->fullscreen, 0, 0, 0, NULL, NULL, "start fullscreen (F11 toggles)", NULL },
+        { "--fov", OPT_NUM, &o->fov, 5, 150, 0, NULL, "DEG", "vertical field of view (default 60)", NULL },
+        { "--pixel-error", OPT_NUM, &o->pix_err, 0.25, 64, 0, NULL, "P", "screen-space error, pixels (default 1)", NULL },
+        { "--fps", OPT_NUM, &o->fps, 1, 240, 0, NULL, "N", "hold N frames per second by adjusting the pixel error", NULL },
+        { "--camera", OPT_NUMS, o->camv, -1e7, 1e7, 6, NULL, "EX,EY,EZ,TX,TY,TZ", "eye and target, metres", &o->have_cam },
+        { "--threads", OPT_INT, &o->threads, 1, PT_MAX_THREADS, 0, NULL, "N", "drawing threads (default: online cores)", NULL },
+        { "--bands", OPT_INT, &o->bands, 1, RS_MAX_DIM, 0, NULL, "ROWS", "band height (default 64)", NULL },
+        { "--path", OPT_STR, &o->path, 0, 0, 0, NULL, "FILE",
+          "fly a camera path (one --camera line a frame, # comments; assets/*.cam), then quit", NULL },
+        { "--record", OPT_STR, &o->record, 0, 0, 0, NULL, "FILE", "write the camera path: one EX,EY,EZ,TX,TY,TZ line per frame", NULL },
+        { "--frames", OPT_INT, &o->frames, 0, 100000000, 0, NULL, "N", "draw N frames and quit (0: until Esc)", NULL },
+        { "--seconds", OPT_NUM, &o->seconds, 0, 1e6, 0, NULL, "S", "quit after S seconds (0: until Esc)", NULL },
+        { "--no-hud", OPT_FLAG, &o->no_hud, 0, 0, 0, NULL, NULL, "start with the HUD off (T toggles it)", NULL },
+        { "--screenshot", OPT_STR, &o->shot, 0, 0, 0, NULL, "OUT.png", "save the last frame on quitting", NULL },
+        OPT_END
+    };
+    const opt_spec *const tables[] = { own, look_t, geo_t, dem_t, NULL };
+    memset(&so, 0, sizeof so);
+    dem_args_table(&da, &so.dem, dem_t);
+    scene_args_table(&sa, &so, look_t);
+    geocam_args_table(&ga, geo_t);
+    r = opt_parse("view", VIEW_SYNOPSIS, tables, argc, argv, in, 64, &nin);
+    if (r == OPT_HELP) { view_controls_print(stdout); return 0; }
+    if (r != OPT_OK) return 2;
+    if (dem_args_finish(&da, "view") != OPT_OK) return 2;
+    if (scene_args_finish(&sa, "view") != OPT_OK) return 2;
+    if (!nin) { fprintf(stderr, "bitrain view: no input file (`bitrain view --help`)\n"); return 2; }
+    if (o->have_cam && (ga.from_seen || ga.at_seen)) return opt_fail("view", "--camera", "cannot be used with --look-from/--look-at");
+    if (o->record && !(a->rec = fopen(o->record, "w"))) {
+        fprintf(stderr, "bitrain view: %s: cannot write the camera path\n", o->record);
+        return 1;
+    }
+    if (o->path && campath_read(o->path, &a->path, &err) != BR_OK) { fprintf(stderr, "bitrain view: %s\n", err.msg); return 1; }
+    if (o->path && (o->have_cam || ga.from_seen || ga.at_seen))
+        return opt_fail("view", "--path", "cannot be used with --camera or --look-from/--look-at");
+    if (scene_open(&a->s, in, nin, &so, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); return 1; }
+    r = geocam_resolve(&ga, &a->s, "view", o->camv);
+    if (r < 0) return 2;
+    o->have_cam |= r;
+    if (scene_tree(&a->s, &err) != BR_OK || scene_reserve(&a->s, VIEW_MAX_TRI, &err) != BR_OK) {
+        fprintf(stderr, "bitrain: %s: %s\n", in[0], err.msg);
+        return 1;
+    }
+    {
+        rs_prim cap;
+        cap.kind = RS_STRIP; cap.n = a->s.mesh.cap_s; cap.idx = NULL;
+        a->chunks = malloc(rs_chunk_mem_size(&cap, 1) + 4);
+        if (!a->chunks) { fprintf(stderr, "bitrain: out of memory\n"); return 1; }
+    }
+    return -1;
 }
 
 int cmd_view(int argc, char **argv)
 {
-    const char *in[64], *shot = NULL;
-    int r, nin = 0, i, size[2] = { 1024, 640 }, w, h, have_cam = 0, frames = 0, nframe = 0, shots = 0, rc = 1, quit = 0;
-    double camv[6];
-    view_state v;
-    scene s;
-    scene_opts so;
-    scene_args sa;
-    br_err err;
-    SDL_Window *win = NULL;
-    SDL_Renderer *ren = NULL;
-    SDL_Texture *tex = NULL;
-    uint32_t *depth = NULL, *last = NULL;
-    Uint64 t_prev;
-    double mesh_ms = 0, raster_ms = 0, sum_mesh = 0, sum_raster = 0, sum_tri = 0;
-    dem_args da;
-    opt_spec dem_t[DEM_ARGS_N], look_t[SCENE_ARGS_N];
-    const opt_spec own[] = {
-        { "--size", OPT_SIZE, size, 16, RS_MAX_DIM, 0, NULL, "WxH", "window size (default 1024x640)", NULL },
-        { "--fov", OPT_NUM, &v.fov, 5, 150, 0, NULL, "DEG", "vertical field of view (default 60)", NULL },
-        { "--pixel-error", OPT_NUM, &v.pix_err, 0.01, 1000, 0, NULL, "P", "screen-space error, pixels (default 1.5)", NULL },
-        { "--frames", OPT_INT, &frames, 0, 100000000, 0, NULL, "N", "quit after N frames (0: never)", NULL },
-        { "--screenshot", OPT_STR, &shot, 0, 0, 0, NULL, "OUT.png", "save the last frame on quitting", NULL },
-        { "--camera", OPT_NUMS, camv, -1e7, 1e7, 6, NULL, "EX,EY,EZ,TX,TY,TZ", "eye and target, metres", &have_cam },
-        OPT_END
-    };
-    const opt_spec *const tables[] = { own, look_t, dem_t, NULL };
-
-    memset(&so, 0, sizeof so);
-    memset(&v, 0, sizeof v);
-    v.fov = 60; v.pix_err = 1.5; v.hyst = 1; v.morph = 1;
-    dem_args_table(&da, &so.dem, dem_t);
-    scene_args_table(&sa, &so, look_t);
-    r = opt_parse("view", VIEW_SYNOPSIS, tables, argc, argv, in, 64, &nin);
-    if (r != OPT_OK) return r == OPT_HELP ? 0 : 2;
-    if (dem_args_finish(&da, "view") != OPT_OK) return 2;
-    if (scene_args_finish(&sa, "view") != OPT_OK) return 2;
-    if (!nin) { fprintf(stderr, "bitrain view: no input file (`bitrain view --help`)\n"); return 2; }
-    w = size[0];
-    h = size[1];
-
-    if (scene_open(&s, in, nin, &so, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); return 1; }
-    if (scene_tree(&s, &err) != BR_OK || scene_reserve(&s, VIEW_MAX_TRI, &err) != BR_OK) {
-        fprintf(stderr, "bitrain: %s: %s\n", in[0], err.msg);
-        scene_close(&s);
-        return 1;
+    view_app a;
+    view_opts o;
+    int rc = 1;
+    double eye[3], tgt[3];
+    memset(&a, 0, sizeof a);
+    memset(&o, 0, sizeof o);
+    o.fov = 60; o.pix_err = 1; o.bands = 64; o.threads = pt_online_cores();
+    o.win[0] = 1024; o.win[1] = 640;
+    rc = setup(&a, &o, argc, argv);
+    if (rc >= 0) goto done;
+    rc = 1;
+    if (pt_open(&a.pool, o.threads) != BR_OK) { fprintf(stderr, "bitrain view: cannot start %d threads\n", o.threads); goto done; }
+    a.band_rows = o.bands;
+    a.fixed = o.size_seen;
+    a.w = o.size_seen ? o.size[0] : o.win[0];
+    a.h = o.size_seen ? o.size[1] : o.win[1];
+    if (o.size_seen && !o.win_seen) {       /* an internal size scaled up a whole number of times */
+        int k = 1;
+        while ((k + 1) * o.size[0] <= 1280 && (k + 1) * o.size[1] <= 800) k++;
+        o.win[0] = k * o.size[0]; o.win[1] = k * o.size[1];
     }
-    if (have_cam) look_from(&v, camv, camv + 3);
-    else { double e[3], t[3]; scene_default_view(&s, v.fov, e, t); look_from(&v, e, t); }
-
-    if (SDL_Init(SDL_INIT_VIDEO) != 0) {
-        fprintf(stderr, "bitrain view: cannot open a display: %s\n", SDL_GetError());
-        scene_close(&s);
-        return 1;
-    }
-    win = SDL_CreateWindow("bitrain", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, w, h, 0);
-    ren = win ? SDL_CreateRenderer(win, -1, 0) : NULL;
-    tex = ren ? SDL_CreateTexture(ren, SDL_PIXELFORMAT_RGB888, SDL_TEXTUREACCESS_STREAMING, w, h) : NULL;
-    depth = malloc(rs_band_mem_size(w, VIEW_BAND_ROWS, RS_FMT_XRGB8888, RS_DEPTH32));
-    last = malloc((size_t)w * (size_t)h * 4);
-    if (!tex || !depth || !last) {
-        fprintf(stderr, "bitrain view: cannot create the window: %s\n", SDL_GetError());
-        goto done;
-    }
-    printf("bitrain view: %dx%d heightfield, %.1f x %.1f km, heights %.0f..%.0f m; F1 or --help for controls\n",
-           s.f.w, s.f.h, s.width_m / 1000, s.depth_m / 1000, s.zmin_m, s.zmax_m);
-    t_prev = SDL_GetPerformanceCounter();
-    while (!quit) {
-        SDL_Event ev;
-        const Uint8 *k;
-        double dt, d[3], speed, right[2], ground, tgt[3];
-        Uint64 t_now, ta, tb, tc;
-        cam c;
-        bt_params bp;
-        rs_frame fr;
-        rs_prim prim;
-        void *px;
-        int pitch, y0;
-        char title[256];
-
-        while (SDL_PollEvent(&ev)) {
-            if (ev.type == SDL_QUIT) quit = 1;
-            else if (ev.type == SDL_MOUSEMOTION && (ev.motion.state & SDL_BUTTON_LMASK)) {
-                v.yaw += ev.motion.xrel * 0.004;
-                v.pitch -= ev.motion.yrel * 0.004;
-            } else if (ev.type == SDL_KEYDOWN) {
-                switch (ev.key.keysym.sym) {
-                case SDLK_ESCAPE: quit = 1; break;
-                case SDLK_PLUS: case SDLK_EQUALS: case SDLK_KP_PLUS: v.pix_err *= 1.5; break;
-                case SDLK_MINUS: case SDLK_KP_MINUS: if (v.pix_err > 0.2) v.pix_err /= 1.5; break;
-                case SDLK_h: v.hyst = !v.hyst; break;
-                case SDLK_g: v.morph = !v.morph; break;
-                case SDLK_c: v.no_cull = !v.no_cull; break;
-                case SDLK_F1: usage(); break;
-                case SDLK_SPACE: { double e[3], t[3]; scene_default_view(&s, v.fov, e, t); look_from(&v, e, t); } break;
-                case SDLK_p: {
-                    char path[64];
-                    mkdir("out", 0777);
-                    snprintf(path, sizeof path, "out/view-%d.png", ++shots);
-                    if (save_png(path, last, w, h, &err)) printf("%s\n", path);
-                    else fprintf(stderr, "bitrain: %s\n", err.msg);
-                } break;
-                default: break;
-                }
-            }
-        }
-        t_now = SDL_GetPerformanceCounter();
-        dt = (double)(t_now - t_prev) / (double)SDL_GetPerformanceFrequency();
-        t_prev = t_now;
-        if (dt > 0.1) dt = 0.1;
-        k = SDL_GetKeyboardState(NULL);
-        if (k[SDL_SCANCODE_LEFT]) v.yaw -= 1.2 * dt;
-        if (k[SDL_SCANCODE_RIGHT]) v.yaw += 1.2 * dt;
-        if (k[SDL_SCANCODE_UP]) v.pitch += 0.8 * dt;
-        if (k[SDL_SCANCODE_DOWN]) v.pitch -= 0.8 * dt;
-        if (v.pitch > 1.5) v.pitch = 1.5;
-        if (v.pitch < -1.5) v.pitch = -1.5;
-        ground = scene_ground(&s, v.pos[0], v.pos[1]);
-        if (isnan(ground)) ground = s.zmin_m;
-        speed = fmax(20.0, 0.6 * (v.pos[2] - ground)) * ((k[SDL_SCANCODE_LSHIFT] || k[SDL_SCANCODE_RSHIFT]) ? 5 : 1);
-        view_dir(&v, d);
-        right[0] = cos(v.yaw); right[1] = -sin(v.yaw);
-        for (i = 0; i < 3; i++) {
-            double m = (k[SDL_SCANCODE_W] ? 1 : 0) - (k[SDL_SCANCODE_S] ? 1 : 0);
-            v.pos[i] += d[i] * m * speed * dt;
-        }
-        for (i = 0; i < 2; i++)
-            v.pos[i] += right[i] * ((k[SDL_SCANCODE_D] ? 1 : 0) - (k[SDL_SCANCODE_A] ? 1 : 0)) * speed * dt;
-        v.pos[2] += ((k[SDL_SCANCODE_E] || k[SDL_SCANCODE_PAGEUP] ? 1 : 0) -
-                     (k[SDL_SCANCODE_Q] || k[SDL_SCANCODE_PAGEDOWN] ? 1 : 0)) * speed * dt;
-        ground = scene_ground(&s, v.pos[0], v.pos[1]);
-        if (!isnan(ground) && v.pos[2] < ground + 2) v.pos[2] = ground + 2;
-        for (i = 0; i < 3; i++) tgt[i] = v.pos[i] + d[i] * 1000;
-        if (scene_camera(&s, v.pos, tgt, v.fov, w, h, &c) != BR_OK) {
-            double e[3], t[3];
-            scene_default_view(&s, v.fov, e, t);   /* flew out of the world's range: back home */
-            look_from(&v, e, t);
-            continue;
-        }
-
-        ta = SDL_GetPerformanceCounter();
-        memset(&bp, 0, sizeof bp);
-        memset(&fr, 0, sizeof fr);
-        bp.pixel_err_q8 = (int32_t)lround(v.pix_err * 256);
-        bp.hyst_q8 = v.hyst ? 64 : 0;
-        bp.morph_q8 = v.morph ? 128 : 0;
-        fr.fmt = RS_FMT_XRGB8888;
-        fr.depth = RS_DEPTH32;
-        fr.no_cull = v.no_cull;
-        fr.clear_rgb = 0x99ccffu;
-        if (scene_frame(&s, &c, &bp, &fr, &prim) != BR_OK) { fprintf(stderr, "bitrain view: frame failed\n"); goto done; }
-        tb = SDL_GetPerformanceCounter();
-        if (SDL_LockTexture(tex, NULL, &px, &pitch) != 0) { fprintf(stderr, "bitrain view: %s\n", SDL_GetError()); goto done; }
-        for (y0 = 0; y0 < h; y0 += VIEW_BAND_ROWS) {
-            int rows = h - y0 < VIEW_BAND_ROWS ? h - y0 : VIEW_BAND_ROWS;
-            rs_render_band(&fr, y0, rows, (uint8_t *)px + (size_t)y0 * (size_t)pitch, (size_t)pitch, depth);
-        }
-        for (y0 = 0; y0 < h; y0++) memcpy(last + (size_t)y0 * (size_t)w, (uint8_t *)px + (size_t)y0 * (size_t)pitch, (size_t)w * 4);
-        SDL_UnlockTexture(tex);
-        tc = SDL_GetPerformanceCounter();
-        SDL_RenderCopy(ren, tex, NULL, NULL);
-        SDL_RenderPresent(ren);
-        {
-            double m_ms = 1e3 * (double)(tb - ta) / (double)SDL_GetPerformanceFrequency();
-            double r_ms = 1e3 * (double)(tc - tb) / (double)SDL_GetPerformanceFrequency();
-            mesh_ms = nframe ? 0.9 * mesh_ms + 0.1 * m_ms : m_ms;
-            raster_ms = nframe ? 0.9 * raster_ms + 0.1 * r_ms : r_ms;
-            sum_mesh += m_ms; sum_raster += r_ms; sum_tri += s.mesh.ntri;
-        }
-        snprintf(title, sizeof title, "bitrain  %u triangles  mesh %.1f ms  raster %.1f ms  pixel error %.2f%s%s",
-                 s.mesh.ntri, mesh_ms, raster_ms, v.pix_err, v.hyst ? "" : "  (no hysteresis)",
-                 v.morph ? "" : "  (no geomorph)");
-        SDL_SetWindowTitle(win, title);
-        if (++nframe >= frames && frames) quit = 1;
-    }
-    if (nframe)
-        printf("bitrain view: %d frames, mean %.0f triangles, mesh %.2f ms, raster %.2f ms per frame\n",
-               nframe, sum_tri / nframe, sum_mesh / nframe, sum_raster / nframe);
-    if (shot) {
-        if (!save_png(shot, last, w, h, &err)) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
-        printf("%s\n", shot);
+    if (o.have_cam) { memcpy(eye, o.camv, sizeof eye); memcpy(tgt, o.camv + 3, sizeof tgt); }
+    else scene_default_view(&a.s, o.fov, eye, tgt);
+    a.v.fov = o.fov;
+    a.v.pix_err = o.pix_err;
+    view_init(&a.v, &a.s, eye, tgt);
+    a.v.on[VT_HUD] = !o.no_hud;
+    a.base_err = o.pix_err;
+    a.st.target_fps = o.fps;
+    a.st.threads = o.threads;
+    a.st.cores = pt_online_cores();
+    a.st.band_rows = o.bands;
+    if (a.rec)
+        fprintf(a.rec, "# bitrain view --record: camera path, one EX,EY,EZ,TX,TY,TZ line per frame drawn (metres)\n"
+                       "# --fov %g --pixel-error %g (hysteresis and geomorph on in the viewer)\n", o.fov, o.pix_err);
+    if (!open_window(&a, o.win, o.fullscreen)) goto done;
+    printf("bitrain view: %dx%d heightfield, %.1f x %.1f km, heights %.0f..%.0f m; F1 in the window for the controls\n",
+           a.s.f.w, a.s.f.h, a.s.width_m / 1000, a.s.depth_m / 1000, a.s.zmin_m, a.s.zmax_m);
+    fflush(stdout);
+    if (!loop(&a, o.frames, o.seconds)) goto done;
+    if (a.nframe)
+        printf("bitrain view: %d frames drawn, mean %.0f triangles, %.2f ms per frame (%d threads)\n",
+               a.nframe, a.sum_tri / a.nframe, a.sum_ms / a.nframe, o.threads);
+    if (o.shot) {
+        br_err err;
+        if (!save_png(o.shot, a.px, a.w, a.h, &err)) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
+        printf("%s\n", o.shot);
     }
     rc = 0;
 done:
-    free(depth);
-    free(last);
-    if (tex) SDL_DestroyTexture(tex);
-    if (ren) SDL_DestroyRenderer(ren);
-    if (win) SDL_DestroyWindow(win);
-    SDL_Quit();
-    scene_close(&s);
+    if (a.rec && fclose(a.rec) != 0 && rc == 0) { fprintf(stderr, "bitrain view: %s: write failed\n", o.record); rc = 1; }
+    pt_close(a.pool);
+    free(a.px);
+    free(a.chunks);
+    free(a.lod_v);
+    free(a.lod_idx);
+    free(a.lod_cache);
+    if (a.tex) SDL_DestroyTexture(a.tex);
+    if (a.ren) SDL_DestroyRenderer(a.ren);
+    if (a.win) SDL_DestroyWindow(a.win);
+    if (a.sdl_on) SDL_Quit();
+    scene_close(&a.s);
+    campath_free(&a.path);
     return rc;
 }

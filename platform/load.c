@@ -1,5 +1,5 @@
 /* platform/load.c — choose a reader by content and extension, unpack .gz and
- * .zip, load and merge several files (see load.h), and the helpers the readers
+ * .zip, load one file (see load.h; several files: merge.c), and the helpers the readers
  * share (load_internal.h).
  *
  * Containers: a gzip stream (1f 8b) is inflated and the name loses its ".gz";
@@ -15,10 +15,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <zlib.h>
-#include "platform/fill.h"
 #include "platform/load.h"
 #include "platform/load_internal.h"
-#include "platform/merge.h"
 
 /* ---- helpers shared by the readers ---- */
 
@@ -494,31 +492,12 @@ br_status dem_load_mem(const char *name, const uint8_t *bytes, size_t len, const
 
 br_status dem_load(const char *path, const dem_opts *o, hf *out, br_err *err)
 {
-    uint8_t *data;
-    size_t n;
+    uint8_t *data = NULL;
+    size_t n = 0;
     br_status s = dem_read_file(path, &data, &n, err);
     if (s != BR_OK) return s;
     s = dem_load_mem(path, data, n, o, out, err);
     free(data);
-    return s;
-}
-
-br_status dem_load_many(const char *const *paths, int n, const dem_opts *o, hf *out, br_err *err)
-{
-    hf *tiles;
-    int i, k;
-    br_status s = BR_OK;
-    if (n < 1 || !paths) return br_err_set(err, BR_E_ARG, NULL, "no input files");
-    if (n == 1) s = dem_load(paths[0], o, out, err);
-    else {
-        tiles = calloc((size_t)n, sizeof *tiles);
-        if (!tiles) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
-        for (i = 0; i < n && s == BR_OK; i++) s = dem_load(paths[i], o, &tiles[i], err);
-        if (s == BR_OK) s = dem_merge_prefer(tiles, paths, n, o ? o->merge_prefer : DEM_MERGE_REFUSE, out, err);
-        for (k = 0; k < n; k++) dem_free(&tiles[k]);
-        free(tiles);
-    }
-    if (s == BR_OK && o && o->fill_voids && (s = dem_fill_voids(out, o->filled_out, err)) != BR_OK) dem_free(out);
     return s;
 }
 

@@ -6,7 +6,9 @@
  * lands twice with a different value is an error, never a silent seam. */
 #include <stdlib.h>
 #include <string.h>
+#include "platform/load.h"
 #include "platform/load_internal.h"
+#include "platform/fill.h"
 #include "platform/merge.h"
 
 static const char *nm(const char *const *names, int i)
@@ -171,5 +173,26 @@ done:
     free(cx);
     free(ry);
     free(fac);
+    return s;
+}
+
+/* Several files: each loaded on its own (load.c), then merged.  Here rather than in
+ * load.c so that calls run one way only, merge.c -> load.c. */
+br_status dem_load_many(const char *const *paths, int n, const dem_opts *o, hf *out, br_err *err)
+{
+    hf *tiles;
+    int i, k;
+    br_status s = BR_OK;
+    if (n < 1 || !paths) return br_err_set(err, BR_E_ARG, NULL, "no input files");
+    if (n == 1) s = dem_load(paths[0], o, out, err);
+    else {
+        tiles = calloc((size_t)n, sizeof *tiles);
+        if (!tiles) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
+        for (i = 0; i < n && s == BR_OK; i++) s = dem_load(paths[i], o, &tiles[i], err);
+        if (s == BR_OK) s = dem_merge_prefer(tiles, paths, n, o ? o->merge_prefer : DEM_MERGE_REFUSE, out, err);
+        for (k = 0; k < n; k++) dem_free(&tiles[k]);
+        free(tiles);
+    }
+    if (s == BR_OK && o && o->fill_voids && (s = dem_fill_voids(out, o->filled_out, err)) != BR_OK) dem_free(out);
     return s;
 }

@@ -217,6 +217,18 @@ br_status scene_tree(scene *s, br_err *err)
     return BR_OK;
 }
 
+/* Grows the chunk table to at least n bytes. */
+static br_status chunks_reserve(scene *s, size_t n)
+{
+    int16_t *c;
+    if (n <= s->chunks_size) return BR_OK;
+    c = realloc(s->chunks, n);
+    if (!c) return BR_E_NOMEM;
+    s->chunks = c;
+    s->chunks_size = n;
+    return BR_OK;
+}
+
 br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err)
 {
     size_t mb = bt_mesh_mem_size(max_tri);
@@ -227,15 +239,36 @@ br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err)
     s->cache = malloc(rs_cache_mem_size(s->mesh.cap_v ? s->mesh.cap_v : 1));
     if (!s->verts || !s->cache)
         return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for %u vertices", s->mesh.cap_v);
+    if (rt_cache_mem_size(&s->f) > 0) s->lit_mem = malloc(rt_cache_mem_size(&s->f));
+    if (s->lit_mem && rt_scene_cache(&s->rt, s->lit_mem, rt_cache_mem_size(&s->f)) != BR_OK) {
+        free(s->lit_mem);
+        s->lit_mem = NULL;
+    }
+    {   /* the chunk table of the longest strip the mesh can hold */
+        rs_prim longest;
+        longest.kind = RS_STRIP; longest.n = s->mesh.cap_s; longest.idx = NULL;
+        if (chunks_reserve(s, rs_chunk_mem_size(&longest, 1)) != BR_OK)
+            return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for the chunk table");
+    }
     return BR_OK;
+}
+
+static void grid_free(scene *s)
+{
+    free(s->grid_v); free(s->grid_idx); free(s->grid_prims); free(s->grid_cache);
+    s->grid_v = NULL; s->grid_idx = NULL; s->grid_prims = NULL; s->grid_cache = NULL;
+    s->grid_nv = 0; s->grid_nprims = 0;
 }
 
 void scene_close(scene *s)
 {
+    grid_free(s);
+    free(s->chunks);
     free(s->verts);
     free(s->cache);
     free(s->tree_mem);
     free(s->mesh_mem);
+    free(s->lit_mem);
     free(s->texpx);
     dem_free(&s->f);
     memset(s, 0, sizeof *s);
@@ -287,26 +320,102 @@ br_status scene_camera(const scene *s, const double eye[3], const double target[
     return cam_look_at(out, e, t, (int32_t)lround(fovy_deg * 1000), w, h, znear, zfar);
 }
 
-br_status scene_frame(scene *s, const cam *c, bt_params *p, rs_frame *fr, rs_prim *prim)
+br_status scene_mesh(scene *s, const cam *c, bt_params *p)
 {
     br_status st;
-    p->mode = BT_VIEW;
     p->c = c;
     p->fr = s->rt.fr;
     st = bt_extract(&s->tree, p, &s->mesh);
     if (st != BR_OK) return st;
     rt_from_mesh(&s->rt, &s->mesh, s->verts);
-    prim->kind = RS_STRIP;
-    prim->n = s->mesh.ns;
-    prim->idx = s->mesh.strip;
+    s->prim.kind = RS_STRIP;
+    s->prim.n = s->mesh.ns;
+    s->prim.idx = s->mesh.strip;
+    s->prims = &s->prim;
+    s->nprims = 1;
+    return BR_OK;
+}
+
+br_status scene_grid(scene *s, int32_t step, br_err *err)
+{
+    int32_t gw, gh, x, y;
+    uint32_t nidx = 0;
+    if (step < 1) return br_err_set(err, BR_E_ARG, NULL, "grid step %d (at least 1)", step);
+    gw = (s->f.w - 1) / step + 1;
+    gh = (s->f.h - 1) / step + 1;
+    grid_free(s);
+    s->grid_nv = (uint32_t)gw * (uint32_t)gh;
+    s->grid_v = malloc(sizeof *s->grid_v * s->grid_nv);
+    s->grid_idx = malloc(sizeof *s->grid_idx * (size_t)2 * (size_t)gw * (size_t)(gh > 1 ? gh - 1 : 1));
+    /* at most one run per two columns of a row (a void between runs) */
+    s->grid_prims = malloc(sizeof *s->grid_prims * (size_t)(gh > 1 ? gh - 1 : 1) * (size_t)(gw / 2 + 1));
+    s->grid_cache = malloc(rs_cache_mem_size(s->grid_nv));
+    if (!s->grid_v || !s->grid_idx || !s->grid_prims || !s->grid_cache) {
+        grid_free(s);
+        return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for a grid of %d x %d vertices", gw, gh);
+    }
+    for (y = 0; y < gh; y++)
+        for (x = 0; x < gw; x++) {
+            int32_t z = s->f.z[(size_t)y * (size_t)step * (size_t)s->f.w + (size_t)x * (size_t)step];
+            rt_vertex(&s->rt, x * step, y * step, z == HF_NODATA ? 0 : z, &s->grid_v[y * gw + x]);
+        }
+    /* row strips, south-west first vertex: CCW seen from +z (row y is north of y+1),
+     * one per run of columns whose two samples are valid: a void is a hole, as in the
+     * bitree's meshes (no triangle touches a void sample) */
+    for (y = 0; y + 1 < gh; y++) {
+        const int32_t *zr = s->f.z + (size_t)y * (size_t)step * (size_t)s->f.w;
+        const int32_t *zn = s->f.z + (size_t)(y + 1) * (size_t)step * (size_t)s->f.w;
+        int32_t a = 0, b;
+        while (a < gw) {
+            for (b = a; b < gw && zr[(size_t)b * (size_t)step] != HF_NODATA && zn[(size_t)b * (size_t)step] != HF_NODATA; b++) {}
+            if (b - a >= 2) {
+                uint32_t *sp = s->grid_idx + nidx;
+                rs_prim *pr = &s->grid_prims[s->grid_nprims++];
+                for (x = a; x < b; x++) {
+                    sp[2 * (x - a)] = (uint32_t)(y * gw + x);
+                    sp[2 * (x - a) + 1] = (uint32_t)((y + 1) * gw + x);
+                }
+                pr->kind = RS_STRIP; pr->n = (uint32_t)(2 * (b - a)); pr->idx = sp;
+                nidx += (uint32_t)(2 * (b - a));
+            }
+            a = b + 1;
+        }
+    }
+    if (chunks_reserve(s, rs_chunk_mem_size(s->grid_prims, s->grid_nprims)) != BR_OK) {
+        grid_free(s);
+        return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for the chunk table");
+    }
+    s->prims = s->grid_prims;
+    s->nprims = s->grid_nprims;
+    return BR_OK;
+}
+
+br_status scene_terrain(scene *s, const cam *c, rs_frame *fr, rs_pass *pass)
+{
+    br_status st;
+    int grid = s->prims == s->grid_prims && s->grid_prims;
+    if (!s->prims || rs_chunk_mem_size(s->prims, s->nprims) > s->chunks_size) return BR_E_ARG;
     fr->w = c->w;
     fr->h = c->h;
-    fr->v = s->verts;
-    fr->nv = s->mesh.nv;
-    fr->cache = s->cache;
-    fr->prims = prim;
-    fr->nprims = 1;
+    fr->v = grid ? s->grid_v : s->verts;
+    fr->nv = grid ? s->grid_nv : s->mesh.nv;
+    fr->cache = grid ? s->grid_cache : s->cache;
+    fr->prims = s->prims;
+    fr->nprims = s->nprims;
+    fr->chunks = s->chunks;
     fr->tex = s->rt.tex_w > 0 ? &s->tex : NULL;
     cam_viewproj(c, &fr->vp);
-    return rs_frame_prepare(fr);
+    st = rs_frame_prepare(fr);
+    if (st == BR_OK && pass) st = rs_pass_terrain(pass, fr);
+    return st;
+}
+
+br_status scene_frame(scene *s, const cam *c, bt_params *p, rs_frame *fr, rs_prim *prim)
+{
+    br_status st;
+    p->mode = BT_VIEW;
+    st = scene_mesh(s, c, p);
+    if (st != BR_OK) return st;
+    *prim = s->prim;
+    return scene_terrain(s, c, fr, NULL);
 }

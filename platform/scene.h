@@ -2,8 +2,8 @@
  * the loaded heightfield, its colour ramp (built-in or a gdaldem colour file),
  * optional colour map / orthophoto, vertical scale, world frame
  * (raster/terrain.h), the default camera and near/far choice, and, for the
- * bitree paths, the tree built once plus mesh and vertex buffers allocated once,
- * so a frame (scene_frame) allocates nothing.
+ * bitree paths, the tree built once plus mesh, vertex buffers and the rasteriser's
+ * chunk table allocated once, so a frame (scene_mesh + scene_terrain) allocates nothing.
  *
  * Positions are in metres in the scene's frame: x east from the west edge,
  * y north from the south edge, z height above 0 m times the vertical scale (the
@@ -14,6 +14,7 @@
 #include "core/hf.h"
 #include "platform/err.h"
 #include "platform/load.h"
+#include "raster/frame.h"
 #include "raster/raster.h"
 #include "raster/terrain.h"
 
@@ -48,6 +49,19 @@ typedef struct scene {
     rs_vertex *verts;                /* mesh.cap_v of them */
     rs_cvert *cache;                 /* vertex cache for the rasteriser */
     void *tree_mem, *mesh_mem;
+    void *lit_mem;                   /* the vertex colour cache (rt_scene_cache), 4 bytes a sample */
+    /* full-grid path (scene_grid): row strips of every step-th sample */
+    rs_vertex *grid_v;
+    uint32_t grid_nv, *grid_idx;
+    rs_prim *grid_prims;
+    int32_t grid_nprims;
+    rs_cvert *grid_cache;
+    /* the terrain the next frame draws: the last scene_mesh or scene_grid */
+    rs_prim prim;                    /* the bitree mesh's strip */
+    const rs_prim *prims;
+    int32_t nprims;
+    int16_t *chunks;                 /* the rasteriser's chunk table, chunks_size bytes */
+    size_t chunks_size;
 } scene;
 
 /* Loads the files (merged when several), the ramp, texture and vertical scale.
@@ -56,7 +70,8 @@ br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o
 /* Builds the bitree (exact metric) once. */
 br_status scene_tree(scene *s, br_err *err);
 /* Allocates the mesh (max_tri triangles; beyond it the bitree falls back to its
- * budget mode), its raster vertices and the vertex cache. */
+ * budget mode), its raster vertices, the vertex cache and the per-sample colour
+ * cache of rt_scene_cache (4 bytes a sample; none when that allocation fails). */
 br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err);
 void scene_close(scene *s);
 
@@ -73,10 +88,21 @@ double scene_ground(const scene *s, double x, double y);
  * BR_E_ARG when the camera is unusable (too far away, eye == target). */
 br_status scene_camera(const scene *s, const double eye[3], const double target[3], double fovy_deg,
                        int32_t w, int32_t h, cam *out);
-/* The view-dependent mesh for c (pixel error, hysteresis, geomorph in p; the mode,
- * camera and frame are filled in here) and its raster vertices; sets up fr (w, h,
- * vertices, strip, cache, texture, view-projection) for rs_render/rs_render_band.
- * Needs scene_tree and scene_reserve. */
+/* The bitree mesh for c (p->mode BT_VIEW: pixel error, hysteresis, geomorph in p;
+ * BT_FIDELITY: p->max_err; the camera and frame are filled in here) and its raster
+ * vertices become the scene's terrain.  Needs scene_tree and scene_reserve. */
+br_status scene_mesh(scene *s, const cam *c, bt_params *p);
+/* The full grid, every step-th sample (step >= 1) as row strips, becomes the scene's
+ * terrain (allocated here, once per step; scene_close frees it). */
+br_status scene_grid(scene *s, int32_t step, br_err *err);
+/* Sets up fr for the scene's terrain (the last scene_mesh or scene_grid) seen by c: w, h,
+ * vertices, primitives, vertex cache, chunk table, texture, view-projection (the caller
+ * sets fmt, depth, no_cull, clear_rgb and one_band first), prepares it (rs_frame_prepare) and, when
+ * pass is not NULL, makes the terrain pass that draws it (rs_pass_terrain,
+ * raster/frame.h).  fr must outlive the pass. */
+br_status scene_terrain(scene *s, const cam *c, rs_frame *fr, rs_pass *pass);
+/* The viewer's frame: scene_mesh in BT_VIEW mode (p->mode is set here), then
+ * scene_terrain without a pass; *prim gets the mesh's strip. */
 br_status scene_frame(scene *s, const cam *c, bt_params *p, rs_frame *fr, rs_prim *prim);
 
 #endif

@@ -115,6 +115,7 @@ static br_status terrain_run(const void *user, rs_band *b, int32_t self, rs_band
 {
     const rs_frame *f = (const rs_frame *)user;
     (void)self;
+    if (f->one_band && b->rows != f->h) return BR_E_ARG;   /* its chunk table says "every row" */
     return rs_draw_band(f, b->y0, b->rows, b->color, b->stride, b->depth, st);
 }
 
@@ -128,34 +129,9 @@ br_status rs_pass_terrain(rs_pass *pass, const rs_frame *f)
     return BR_OK;
 }
 
-/* ---------------------------------------------------------------- one-pass wrappers */
+/* ---------------------------------------------------------------- compatibility */
 
-br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth)
+br_status rs_render_band(const rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth)
 {
-    rs_band_stats st;
-    br_status s;
-    memset(&st, 0, sizeof st);
-    s = rs_draw_band(f, y0, rows, color, stride, depth, &st);
-    f->stat_tris += st.tris;
-    f->stat_clipped += st.clipped;
-    f->stat_pixels += st.pixels;
-    return s;
-}
-
-br_status rs_render(rs_frame *f, int32_t band_rows, void *mem, rs_sink sink, void *user)
-{
-    int32_t y0;
-    size_t bpp = bytes_per_px(f->fmt);
-    if (band_rows < 1 || !mem || !sink) return BR_E_ARG;
-    if (band_rows > f->h) band_rows = f->h;
-    for (y0 = 0; y0 < f->h; y0 += band_rows) {
-        int32_t rows = f->h - y0 < band_rows ? f->h - y0 : band_rows;
-        uint8_t *color = (uint8_t *)mem;
-        void *depth = color + (size_t)f->w * (size_t)band_rows * bpp;
-        br_status s = rs_render_band(f, y0, rows, color, (size_t)f->w * bpp, depth);
-        if (s != BR_OK) return s;
-        s = sink(user, y0, rows, color, (size_t)f->w * bpp);
-        if (s != BR_OK) return s;
-    }
-    return BR_OK;
+    return rs_draw_band(f, y0, rows, color, stride, depth, NULL);
 }

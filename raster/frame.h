@@ -119,7 +119,8 @@ br_status rs_pipe_run(const rs_pipe *p, int32_t band_rows, void *mem, size_t mem
 
 /* The terrain pass: draws the prepared rs_frame f (rs_frame_prepare done; chunk table
  * required: rs_pass_terrain fills pass->user = f and fails with BR_E_ARG when
- * f->chunks is NULL) into the band. */
+ * f->chunks is NULL) into the band.  A frame prepared with one_band set is drawn only
+ * as one whole-frame band: the pass fails with BR_E_ARG on a shorter band. */
 br_status rs_pass_terrain(rs_pass *pass, const rs_frame *f);
 
 #endif

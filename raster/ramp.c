@@ -46,7 +46,13 @@ uint32_t rs_ramp_rgb(const rs_ramp *r, int64_t z_mm)
             int64_t z0 = r->z_mm[i - 1], z1 = r->z_mm[i], t, out = 0;
             int k;
             /* t in Q16; (z - z0) < 2^48 for any sane elevation so the product fits */
+            /* 0 < z - z0 <= z1 - z0: t <= 2^16, 17 quotient bits (no 64-bit divide
+             * on 32-bit targets, where this runs per vertex per frame) */
+#if BR_DIV64_NATIVE
             t = z1 > z0 ? ((z_mm - z0) << 16) / (z1 - z0) : 65536;
+#else
+            t = z1 > z0 ? (int64_t)fx_udiv_bits((uint64_t)(z_mm - z0) << 16, (uint64_t)(z1 - z0), 17) : 65536;
+#endif
             for (k = 16; k >= 0; k -= 8) {
                 int64_t c0 = (r->rgb[i - 1] >> k) & 255, c1 = (r->rgb[i] >> k) & 255;
                 int64_t c = c0 + (((c1 - c0) * t + 32768) >> 16);

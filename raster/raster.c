@@ -17,37 +17,12 @@
 #include <string.h>
 #include "raster/raster_int.h"
 
-/* Build-time choice of the compiled variants (see raster.h): each pixel format x depth
- * size x texture combination, and the write-counting test variant, is its own
- * specialised copy of raster_tmpl.h; a board with little flash keeps only the one it
- * draws, e.g. -DRS_WITH_888=0 -DRS_WITH_Z32=0 -DRS_WITH_TEX=0 -DRS_WITH_COUNT=0 for
- * RGB565 with 16-bit depth.  Left-out variants are refused by rs_render_band
- * (BR_E_UNSUPPORTED) and reported by rs_variant_built. */
-#ifndef RS_WITH_888
-#define RS_WITH_888 1
-#endif
-#ifndef RS_WITH_565
-#define RS_WITH_565 1
-#endif
-#ifndef RS_WITH_Z32
-#define RS_WITH_Z32 1
-#endif
-#ifndef RS_WITH_Z16
-#define RS_WITH_Z16 1
-#endif
-#ifndef RS_WITH_TEX
-#define RS_WITH_TEX 1
-#endif
-#ifndef RS_WITH_COUNT
-#define RS_WITH_COUNT 1
-#endif
-#if !((RS_WITH_888 || RS_WITH_565) && (RS_WITH_Z32 || RS_WITH_Z16))
-#error "raster.c: RS_WITH_* leave no pixel format x depth variant to compile"
-#endif
-
-#define NARROW 8          /* boxes of at most this many columns are scanned pixel by pixel, wider ones by division (three 64-bit divisions per row): 8 rather than 5 is 1.4 % faster on B 640x480 for 0.07 M more instructions per frame; all by division is 0.3 M fewer but 2 % slower */
-#define TINY_W 8          /* bounding boxes of at most TINY_W x TINY_H centres: coverage mask + per-pixel weights */
-#define TINY_H 4          /* (two groups of four 16-bit lanes per row; the lane bound is in raster_tmpl.h) */
+/* Build-time knobs (RS_WITH_*, RS_PREPASS, RS_SPANV, RS_NARROW, RS_TINY_*, RS_SMALL):
+ * core/config.h, with their defaults and costs. */
+#define NARROW RS_NARROW
+#define TINY_W RS_TINY_W
+#define TINY_H RS_TINY_H
+#define SMALL RS_SMALL
 /* Colour is interpolated in one uint64 with three 21-bit fields (R at bit 42, G at 21,
  * B at 0), each 8 integer + 13 fraction bits.  Sums and products of packed values are
  * exact modulo 2^64, so a packed value whose true fields are all in [0, 2^21) unpacks
@@ -58,7 +33,6 @@
 #define RS_CBIAS (((uint64_t)1 << 54) | ((uint64_t)1 << 33) | ((uint64_t)1 << 12))
 #define RS_C256 (((uint64_t)256 << 42) | ((uint64_t)256 << 21) | (uint64_t)256)   /* 256 in each field */
 
-#define SMALL (1 << 10)   /* triangles smaller than 64 px use a reciprocal for gradients */
 
 typedef struct band {
     const rs_frame *f;
@@ -127,8 +101,7 @@ static uint32_t ctz64(uint64_t m)
 #endif
 }
 
-typedef void (*tri_fn)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c);
-static void tri_clip(band *bd, tri_fn draw, uint32_t ia, uint32_t ib, uint32_t ic);
+static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf);
 
 #define REJECT ((uint32_t)(RS_OUT_LEFT | RS_OUT_RIGHT | RS_OUT_TOP | RS_OUT_BOTTOM | RS_OUT_FAR | RS_OUT_NEAR \
                               | RS_OUT_CLIPZ) << 24)
@@ -145,8 +118,9 @@ static void tri_clip(band *bd, tri_fn draw, uint32_t ia, uint32_t ib, uint32_t i
 #define PACK888(v) ((uint32_t)((((v) & 0x7f800000001fe000u) * 0x4000401u) >> 39) | ((uint32_t)((v) >> 26) & 0xff00u))
 #define PACK565(v) ((uint16_t)((((v) >> 47) & 0xf800u) | (((v) >> 31) & 0x07e0u) | (((v) >> 16) & 0x001fu)))
 
-/* ---------------------------------------------------------------- texture helpers */
-#if RS_WITH_TEX
+/* ---------------------------------------------------------------- texture helpers
+ * (referenced by every variant's code, drawn by the textured ones only: in builds
+ * without them, RS_BUILT folds the calls away and the helpers with them) */
 
 /* Shift that brings the largest of three depths below 2^16 (1/w weights). */
 static int32_t tex_shift(uint32_t da, uint32_t db, uint32_t dc)
@@ -185,8 +159,6 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
     return out;
 }
 
-#endif
-
 /* The lanes of two vectors V, W picked by constant indices (MT: the integer vector type
  * of the indices, which GCC's __builtin_shuffle takes; clang's __builtin_shufflevector
  * takes them as arguments), for the pre-pass (raster_prepass.h) and raster_general.h's spans. */
@@ -217,24 +189,12 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 #define RS_VBYTES 16
 #endif
 
-/* The strip pre-pass (pp_prepass in raster_prepass.h; used by the strip loop of raster_tmpl.h's draw):
- * the set-up and coverage of a chunk's strip pairs, PP_L (8 or 16) at a time in 16-bit vector lanes
- * (GCC's generic vectors: SSE2 on x86-64, NEON on AArch64), into pp_soa; the strip loop then
- * shades the covered centres one pair at a time.  The same values as
- * the plain per-pair code (tri_pair), so the same pixels; targets without such vectors
- * (32-bit ARM without NEON, Cortex-M, other compilers) keep the per-pair code.
- * RS_PREPASS=0 or 1 overrides (check-nofloat.sh compiles the pre-pass with
- * -mgeneral-regs-only, where GCC lowers the vectors to integer registers). */
-#ifndef RS_PREPASS
-#if defined(__GNUC__) && (defined(__SSE2__) || defined(__ARM_NEON)) \
-    && !(defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__)
-/* (little-endian only: the 32-bit masks are built from 16-bit lanes, and raster_general.h's
- * spans widen 16-bit pixels through a uint64) */
-#define RS_PREPASS 1
-#else
-#define RS_PREPASS 0
-#endif
-#endif
+/* The strip pre-pass (pp_prepass in raster_prepass.h; used by raster_draw.h's
+ * draw_strips): the set-up and coverage of a chunk's strip pairs, PP_L (8 or 16) at a
+ * time in 16-bit vector lanes, into pp_soa; the strip loop then shades the covered
+ * centres one pair at a time.  The same values as the per-pair code (tri_pair), so the
+ * same pixels.  RS_PREPASS (core/config.h) chooses; check-nofloat.sh compiles it with
+ * -mgeneral-regs-only, where GCC lowers the vectors to integer registers. */
 #if RS_PREPASS
 #include "raster/raster_prepass.h"
 #endif
@@ -244,129 +204,13 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 
 typedef void (*draw_fn)(band *bd);
 
-#define RS_TEX 0
-#define RS_PACK24 PACK24_888
-#define RS_FN(n) n##_888_z32
-#define RS_PIX uint32_t
-#define RS_Z uint32_t
-#define RS_ZSH 0
-#define RS_PACK PACK888
-#define RS_COUNT 0
-#if RS_WITH_888 && RS_WITH_Z32
-#include "raster/raster_tmpl.h"
-#define DRAW_888_Z32 draw_888_z32
-#else
-#define DRAW_888_Z32 ((draw_fn)0)
-#endif
-#undef RS_FN
-#undef RS_Z
-#undef RS_ZSH
-#define RS_FN(n) n##_888_z16
-#define RS_Z uint16_t
-#define RS_ZSH 14
-#if RS_WITH_888 && RS_WITH_Z16
-#include "raster/raster_tmpl.h"
-#define DRAW_888_Z16 draw_888_z16
-#else
-#define DRAW_888_Z16 ((draw_fn)0)
-#endif
-#undef RS_FN
-#undef RS_PIX
-#undef RS_PACK
-#undef RS_PACK24
-#define RS_FN(n) n##_565_z16
-#define RS_PIX uint16_t
-#define RS_PACK PACK565
-#define RS_PACK24 PACK24_565
-#if RS_WITH_565 && RS_WITH_Z16
-#include "raster/raster_tmpl.h"
-#define DRAW_565_Z16 draw_565_z16
-#else
-#define DRAW_565_Z16 ((draw_fn)0)
-#endif
-#undef RS_FN
-#undef RS_Z
-#undef RS_ZSH
-#define RS_FN(n) n##_565_z32
-#define RS_Z uint32_t
-#define RS_ZSH 0
-#if RS_WITH_565 && RS_WITH_Z32
-#include "raster/raster_tmpl.h"
-#define DRAW_565_Z32 draw_565_z32
-#else
-#define DRAW_565_Z32 ((draw_fn)0)
-#endif
-/* textured variants */
-#undef RS_TEX
-#define RS_TEX 1
-#undef RS_FN
-#define RS_FN(n) n##_565_z32_tex
-#if RS_WITH_565 && RS_WITH_Z32 && RS_WITH_TEX
-#include "raster/raster_tmpl.h"
-#define DRAW_565_Z32_TEX draw_565_z32_tex
-#else
-#define DRAW_565_Z32_TEX ((draw_fn)0)
-#endif
-#undef RS_FN
-#undef RS_Z
-#undef RS_ZSH
-#define RS_FN(n) n##_565_z16_tex
-#define RS_Z uint16_t
-#define RS_ZSH 14
-#if RS_WITH_565 && RS_WITH_Z16 && RS_WITH_TEX
-#include "raster/raster_tmpl.h"
-#define DRAW_565_Z16_TEX draw_565_z16_tex
-#else
-#define DRAW_565_Z16_TEX ((draw_fn)0)
-#endif
-#undef RS_FN
-#undef RS_PIX
-#undef RS_PACK
-#undef RS_PACK24
-#define RS_FN(n) n##_888_z16_tex
-#define RS_PIX uint32_t
-#define RS_PACK PACK888
-#define RS_PACK24 PACK24_888
-#if RS_WITH_888 && RS_WITH_Z16 && RS_WITH_TEX
-#include "raster/raster_tmpl.h"
-#define DRAW_888_Z16_TEX draw_888_z16_tex
-#else
-#define DRAW_888_Z16_TEX ((draw_fn)0)
-#endif
-#undef RS_FN
-#undef RS_Z
-#undef RS_ZSH
-#define RS_FN(n) n##_888_z32_tex
-#define RS_Z uint32_t
-#define RS_ZSH 0
-#if RS_WITH_888 && RS_WITH_Z32 && RS_WITH_TEX
-#include "raster/raster_tmpl.h"
-#define DRAW_888_Z32_TEX draw_888_z32_tex
-#else
-#define DRAW_888_Z32_TEX ((draw_fn)0)
-#endif
-#undef RS_TEX
-#define RS_TEX 0
-#undef RS_FN
-#undef RS_PIX
-#undef RS_COUNT
-#define RS_FN(n) n##_count
-#define RS_PIX uint32_t
-#define RS_COUNT 1
-#if RS_WITH_COUNT
-#include "raster/raster_tmpl.h"
-#define DRAW_COUNT draw_count
-#else
-#define DRAW_COUNT ((draw_fn)0)
-#endif
-#undef RS_FN
-#undef RS_PIX
-#undef RS_Z
-#undef RS_ZSH
-#undef RS_PACK
-#undef RS_PACK24
-#undef RS_COUNT
-#undef RS_TEX
+/* The per-triangle code, specialised per variant (raster_pixel.h says how): the tiny
+ * path, the general path, then the strip pairs and the strip loop with its named
+ * copies draw_888_z32 .. draw_count. */
+#include "raster/raster_pixel.h"
+#include "raster/raster_tiny.h"
+#include "raster/raster_general.h"
+#include "raster/raster_draw.h"
 
 /* ---------------------------------------------------------------- clipping */
 
@@ -412,7 +256,11 @@ static void intersect(const clipv *P, const clipv *Q, int64_t dp, int64_t dq, in
     if (plane == 0 || o->c[2] < znear) o->c[2] = znear;
 }
 
-static void tri_clip(band *bd, tri_fn draw, uint32_t ia, uint32_t ib, uint32_t ic)
+/* A triangle with a vertex behind the near plane or outside the guard band: clipped in
+ * camera space (Sutherland-Hodgman against the near plane and the four guard-band
+ * planes: at most 3 + 5 = RS_CLIP_MAX vertices), projected, and drawn as a fan by
+ * tri_raster. */
+static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf)
 {
     const rs_frame *f = bd->f;
     const cam_vp *vp = &f->vp;
@@ -460,7 +308,7 @@ static void tri_clip(band *bd, tri_fn draw, uint32_t ia, uint32_t ib, uint32_t i
         sv[i].cp = rs_pack_rgb(sv[i].c);
         sv[i].u = v->uv[0]; sv[i].v = v->uv[1];
     }
-    for (i = 1; i + 1 < n; i++) draw(bd, &sv[0], &sv[i], &sv[i + 1]);
+    for (i = 1; i + 1 < n; i++) tri_raster(bd, &sv[0], &sv[i], &sv[i + 1], vf);
 }
 
 /* The compiled variant that draws frames of this format, depth size, texture and
@@ -468,9 +316,17 @@ static void tri_clip(band *bd, tri_fn draw, uint32_t ia, uint32_t ib, uint32_t i
 static draw_fn draw_for(int32_t fmt, int32_t depth, int tex, int count)
 {
     const int z16 = depth == RS_DEPTH16, c565 = fmt == RS_FMT_RGB565;
-    if (count) return fmt == RS_FMT_XRGB8888 ? DRAW_COUNT : (draw_fn)0;
-    if (tex) return c565 ? (z16 ? DRAW_565_Z16_TEX : DRAW_565_Z32_TEX) : (z16 ? DRAW_888_Z16_TEX : DRAW_888_Z32_TEX);
-    return c565 ? (z16 ? DRAW_565_Z16 : DRAW_565_Z32) : (z16 ? DRAW_888_Z16 : DRAW_888_Z32);
+    if (count) return fmt == RS_FMT_XRGB8888 && RS_BUILT(V_COUNT) ? draw_count : (draw_fn)0;
+    if (tex) {
+        if (c565) return z16 ? (RS_BUILT(V_565_Z16_TEX) ? draw_565_z16_tex : (draw_fn)0)
+                             : (RS_BUILT(V_565_Z32_TEX) ? draw_565_z32_tex : (draw_fn)0);
+        return z16 ? (RS_BUILT(V_888_Z16_TEX) ? draw_888_z16_tex : (draw_fn)0)
+                   : (RS_BUILT(V_888_Z32_TEX) ? draw_888_z32_tex : (draw_fn)0);
+    }
+    if (c565) return z16 ? (RS_BUILT(V_565_Z16) ? draw_565_z16 : (draw_fn)0)
+                         : (RS_BUILT(V_565_Z32) ? draw_565_z32 : (draw_fn)0);
+    return z16 ? (RS_BUILT(V_888_Z16) ? draw_888_z16 : (draw_fn)0)
+               : (RS_BUILT(V_888_Z32) ? draw_888_z32 : (draw_fn)0);
 }
 
 int rs_variant_built(int32_t fmt, int32_t depth, int textured)

@@ -45,8 +45,13 @@
  * - vertex cache: rs_cache_mem_size(nv) = 32 bytes per vertex (one transform per vertex
  *   per frame, shared by all bands);
  * - band: rs_band_mem_size(w, rows, fmt, depth) = w * rows * (2 or 4 colour + 2 or 4 depth);
- * - optional chunk table (band mode): rs_chunk_mem_size = 4 bytes per 64 triangles; without
- *   it every band walks every triangle (cheap rejects, but (h / rows) times).
+ * - chunk table: rs_chunk_mem_size(prims, nprims) = 4 bytes per RS_CHUNK = 64 triangles.
+ *   REQUIRED: rs_frame_prepare refuses a frame without it (BR_E_ARG), so no caller can
+ *   forget it; with it a band skips every chunk that cannot touch its rows, and a chunk
+ *   wholly off screen is skipped by every band.  Filling it costs about a tenth of a
+ *   whole-frame draw, which a single band gains nothing from: a frame drawn only whole
+ *   sets rs_frame.one_band (the table is then filled with "every row" for the cost of
+ *   two stores a chunk), and the frame driver refuses to band such a frame.
  *   320x240 RGB565 with 16-bit depth, bands of 16 rows: 20,480 bytes (+ 32 per vertex);
  *   with 32-bit depth 30,720 bytes.
  *
@@ -138,25 +143,34 @@ typedef struct rs_frame {
     int32_t nprims;
     cam_vp vp;                  /* from cam_viewproj; the camera's w, h must equal w, h */
     const rs_texture *tex;      /* NULL: Gouraud colour only */
-    int16_t *chunks;            /* optional, rs_chunk_mem_size bytes: per RS_CHUNK triangles
-                                   the rows they can touch, filled by rs_frame_prepare;
-                                   bands then skip chunks that miss them (band mode) */
+    int16_t *chunks;            /* required by rs_frame_prepare: rs_chunk_mem_size(prims,
+                                   nprims) bytes; per RS_CHUNK triangles the rows they can
+                                   touch, filled by rs_frame_prepare; bands skip the chunks
+                                   that miss them */
+    int32_t one_band;           /* 1: drawn only as one whole-frame band; rs_frame_prepare
+                                   then marks every chunk as touching every row instead of
+                                   computing its rows (which a single band would not use),
+                                   and the terrain pass (raster/frame.h) refuses shorter
+                                   bands.  0 (default): any bands */
     int32_t clip_z_on;          /* 1: draw only what lies at world z >= clip_z (the vertices'
                                    own z, before vp): a clip plane in the clipper (planar
                                    reflections: nothing under the water plane leaks in) */
     int32_t clip_z;
     int32_t debug_count;        /* tests: colour must be XRGB8888; each covered pixel's
-                                   32-bit value counts the writes (no depth test, no sky) */
-    /* statistics since rs_frame_prepare (summed over the bands rendered) */
-    uint32_t stat_tris, stat_clipped, stat_pixels;
+                                   32-bit value counts the writes (no depth test, no sky).
+                                   Only builds with RS_WITH_COUNT = 1 draw it (the tests'
+                                   tests/support/raster_count.c); the library refuses it
+                                   with BR_E_UNSUPPORTED */
 } rs_frame;
+/* A prepared rs_frame is read-only to drawing: what a band cost comes back in the
+ * caller's rs_band_stats (below), so bands on several threads share nothing. */
 
 /* Called with each finished band: rows [y0, y0+rows) of the frame, pixels in the
  * frame's format, stride bytes apart.  Return BR_OK to continue. */
 typedef br_status (*rs_sink)(void *user, int32_t y0, int32_t rows, const void *pixels, size_t stride);
 
 size_t rs_cache_mem_size(uint32_t nv);
-/* Bytes for rs_frame.chunks: 4 per RS_CHUNK triangles of each primitive. */
+/* Bytes for rs_frame.chunks: 4 per RS_CHUNK triangles of each primitive (at least 4). */
 #define RS_CHUNK 64
 size_t rs_chunk_mem_size(const rs_prim *prims, int32_t nprims);
 size_t rs_band_mem_size(int32_t w, int32_t rows, int32_t fmt, int32_t depth);
@@ -167,7 +181,10 @@ size_t rs_band_mem_size(int32_t w, int32_t rows, int32_t fmt, int32_t depth);
  * (< RS_GUARD_PX * 16 from the screen centre); the clipper is never needed. */
 void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint32_t d, uint32_t rgb);
 
-/* Checks the frame and transforms every vertex once into the cache (per frame). */
+/* Checks the frame (BR_E_ARG when chunks or cache is NULL, or a field is out of range),
+ * transforms every vertex once into the cache and fills the chunk table (per frame).
+ * A frame set up with rs_cvert_set instead may leave chunks NULL: rs_draw_band then walks
+ * every triangle in every band. */
 br_status rs_frame_prepare(rs_frame *f);
 
 /* What drawing one band cost (raster/frame.h sums them per band, so that bands drawn on
@@ -187,19 +204,13 @@ typedef struct rs_band_stats {
 br_status rs_draw_band(const rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth,
                        rs_band_stats *st);
 
-/* rs_draw_band adding the band's cost into f->stat_* (one thread only). */
-br_status rs_render_band(rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth);
-
-/* Renders the whole frame as successive bands of band_rows rows (the last may be
- * shorter) in mem (rs_band_mem_size(w, band_rows, ...) bytes, suitably aligned),
- * handing each to sink. */
-br_status rs_render(rs_frame *f, int32_t band_rows, void *mem, rs_sink sink, void *user);
+/* rs_draw_band without statistics, for callers not yet on the frame driver
+ * (raster/frame.h); new code draws frames with rs_pipe_run or rs_pipe_band. */
+br_status rs_render_band(const rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth);
 
 /* 1 when this build draws frames of this pixel format, depth size and texturing.
- * Every combination is compiled by default; boards with little flash compile
- * raster/raster.c with RS_WITH_888, RS_WITH_565, RS_WITH_Z32, RS_WITH_Z16, RS_WITH_TEX
- * or RS_WITH_COUNT (the tests' write-counting variant) defined to 0 to leave variants
- * out (each is about 20 KB of code on x86-64; docs/raster.md gives the sizes). */
+ * Every combination is compiled by default; boards with little flash leave variants out
+ * with core/config.h's RS_WITH_* knobs (each is about 20 KB of code on x86-64). */
 int rs_variant_built(int32_t fmt, int32_t depth, int textured);
 
 /* The instruction set the drawing code runs with.  x86-64 builds carry two copies of it,

@@ -1,37 +1,27 @@
 /* raster/raster_general.h — the general path of the per-triangle code: triangles whose
  * bounding box has more than TINY_W x TINY_H candidate centres, drawn row by row (exact
- * row starts from the barycentric weights, stepped gradients along the row).  Part of
- * the template: included by raster_tmpl.h, once per variant, with its macros (RS_FN,
- * RS_PIX, RS_Z, RS_ZSH, RS_PACK, RS_PACK24, RS_TEX, RS_COUNT).  No header guard on
- * purpose. */
+ * row starts from the barycentric weights, stepped gradients along the row).  raster.c's
+ * own, included once; every function takes the variant as its constant last argument
+ * (raster_pixel.h).
+ *
+ * The plain span (no texture, no counting) is drawn GS_N pixels at a time in 32-bit
+ * vector lanes (GCC's generic vectors: SSE2 on x86-64, NEON on AArch64) for spans of
+ * eight or more pixels; shorter spans and targets without such vectors keep the scalar
+ * loop (a span's two end groups cost about as many instructions as eight scalar
+ * pixels).  Same pixels: see gen_span_plain.  RS_SPANV (core/config.h) chooses. */
+#ifndef BR_RASTER_GENERAL_H
+#define BR_RASTER_GENERAL_H
 
-/* The plain span (no texture, no counting) four pixels at a time in 32-bit vector lanes
- * (GCC's generic vectors: SSE2 on x86-64, NEON on AArch64), for spans of eight or more
- * pixels; shorter spans and targets without such vectors keep the scalar loop (a span's
- * two end groups cost about as many instructions as eight scalar pixels: from four
- * pixels on, B 640x480 took 0.15 M more per frame, from ten or twelve 0.015 M fewer,
- * kept at eight for the data-dependent branches of the scalar loop).  Same
- * pixels: see the span code below.  RS_SPANV defaults to RS_PREPASS (raster.c), so the
- * -mgeneral-regs-only builds of check-nofloat.sh (RS_PREPASS=0 and 1) compile both
- * paths (GCC lowers the vectors to general registers there) and the RS_PREPASS=0 test
- * build runs the scalar one; RS_SPANV=0 or 1 overrides.  The types and the memory
- * macros once for all the variants (no header guard for the rest of the file). */
-#ifndef RS_SPANV
-#define RS_SPANV RS_PREPASS
-#endif
 /* GEN_OPAQUE(x): x's value unknown to the optimiser from here on (an empty asm with x as
  * its in-out operand; no code), to keep GCC from deriving induction variables from it */
-#ifndef GEN_OPAQUE
 #if defined(__GNUC__)
 #define GEN_OPAQUE(X) __asm__("" : "+r"(X))
 #else
 #define GEN_OPAQUE(X) ((void)0)
 #endif
-#endif
-#if RS_SPANV && !defined(GS_LD)
+#if RS_SPANV
 /* GS_N pixels a group: 4 in 128-bit vectors, 8 in the 256-bit ones of x86-64-v3 (AVX2;
- * raster/isa.c's second copy; B 640x480 19.60 -> 19.01 M instructions per frame, A the
- * same).  Everything below holds for either: the spans take groups from GS_N pixels on,
+ * raster/isa.c's second copy).  Everything below holds for either: the spans take groups from GS_N pixels on,
  * and gs_lanes_make's bound (the fields at pixels 0 and GS_N - 1 of such a span both in
  * [0, 2^21)) only gets tighter. */
 #define GS_N (RS_VBYTES / 4)
@@ -40,7 +30,7 @@ typedef int32_t gs_v4i __attribute__((vector_size(4 * GS_N)));
 typedef uint32_t gs_v4un __attribute__((vector_size(4 * GS_N), aligned(2)));  /* at any 16-bit boundary */
 typedef uint16_t gs_v8h __attribute__((vector_size(16)));
 typedef uint64_t gs_v2q __attribute__((vector_size(16)));
-/* Four depths or pixels at P (uint32_t or uint16_t, by sizeof) to the 32-bit lanes of V,
+/* Four depths or pixels at P (SZ = 4: uint32_t, 2: uint16_t) to the 32-bit lanes of V,
  * and back; macros, not functions: a vector argument or result needs vector registers,
  * which -mgeneral-regs-only does not have.  16-bit elements come as eight bytes into
  * the low half, interleaved with zeros (SSE2 punpcklwd, NEON zip1), and go back as the
@@ -50,19 +40,19 @@ typedef uint64_t gs_v2q __attribute__((vector_size(16)));
 #if GS_N == 8
 /* (eight 16-bit elements: one 16-byte load widened, vpmovzxwd; back by truncation) */
 typedef uint16_t gs_v8hn __attribute__((vector_size(16), aligned(2)));
-#define GS_LD(V, P) do { \
-        if (sizeof *(P) == 4) V = *(const gs_v4un *)(const void *)(P); \
+#define GS_LD(V, P, SZ) do { \
+        if ((SZ) == 4) V = *(const gs_v4un *)(const void *)(P); \
         else V = __builtin_convertvector(*(const gs_v8hn *)(const void *)(P), gs_v4u); } while (0)
-#define GS_ST(P, V) do { \
-        if (sizeof *(P) == 4) *(gs_v4un *)(void *)(P) = (V); \
+#define GS_ST(P, V, SZ) do { \
+        if ((SZ) == 4) *(gs_v4un *)(void *)(P) = (V); \
         else *(gs_v8hn *)(void *)(P) = __builtin_convertvector((V), gs_v8hn); } while (0)
 #else
-#define GS_LD(V, P) do { \
-        if (sizeof *(P) == 4) V = *(const gs_v4un *)(const void *)(P); \
+#define GS_LD(V, P, SZ) do { \
+        if ((SZ) == 4) V = *(const gs_v4un *)(const void *)(P); \
         else { uint64_t u_; gs_v2q q_; memcpy(&u_, (const void *)(P), 8); q_ = (gs_v2q){ u_, 0 }; \
                V = (gs_v4u)RS_SHUFFLE((gs_v8h)q_, (gs_v8h)(q_ - q_), gs_v8h, 0, 8, 1, 9, 2, 10, 3, 11); } } while (0)
-#define GS_ST(P, V) do { \
-        if (sizeof *(P) == 4) *(gs_v4un *)(void *)(P) = (V); \
+#define GS_ST(P, V, SZ) do { \
+        if ((SZ) == 4) *(gs_v4un *)(void *)(P) = (V); \
         else { gs_v2q q_ = (gs_v2q)(V); uint64_t u_; q_ |= q_ >> 16; \
                u_ = ((gs_v2q)RS_SHUFFLE((gs_v4u)q_, (gs_v4u)q_, gs_v4u, 0, 2, 0, 2))[0]; memcpy((void *)(P), &u_, 8); } } while (0)
 #endif
@@ -95,15 +85,267 @@ RS_NOINLINE static void gs_lanes_make(gs_lanes *L, uint32_t gzu, uint64_t gc, in
 }
 #endif
 
+
+/* The gradients and row-start constants of one triangle (gen_grad).  x-gradients per
+ * pixel: colour per channel in Q13, packed into the 21-bit fields (exact modulo 2^64,
+ * see RS_CBIAS in raster.c) as gc; depth in Q0 as gz. */
+typedef struct gen_grad_t {
+    int64_t gz, inv, dzb, dzc, prg_b, prg_c, dcb2, dcc2;
+    uint64_t gc, ca;
+} gen_grad_t;
+
+/* Colour difference of channel k (0 = R, 1 = G, 2 = B) between v and a, from the packed
+ * colours: the difference plus 256 in each 21-bit field is in [1, 511], so the fields of
+ * v->cp - a->cp + 256 (1 + 2^21 + 2^42) do not borrow, and the whole is below 2^51: R's
+ * field, the top one, needs no mask. */
+RS_INLINE static int64_t gen_dch(const rs_cvert *v, const rs_cvert *a, const int k)
+{
+    return (int64_t)(((v->cp - a->cp + RS_C256) >> (42 - 21 * k)) & (k ? (uint64_t)0x1fffff : ~(uint64_t)0)) - 256;
+}
+
+/* Made before the row loop, or, for one-row boxes, once the row's span is known not to
+ * be empty (gen_tri's `one`).  Small triangles (box below SMALL, area2 < 2^21): through
+ * the reciprocal inv = 2^40 / area2, |colour numerator| < 2^19, products below 2^59;
+ * large ones: quotients by the divisor ad of area2, made here.  A span of two or more
+ * pixels bounds |gz| by the depth range (< 2^31); the clamp only affects one-pixel spans,
+ * where the step is never used, and the reciprocal's gz needs none (|gzn| < 2^22, inv <=
+ * 2^40: |gz| < 2^26).  The row start's R and G in one pair of products (prg_b, prg_c:
+ * see gen_tri's row start). */
+RS_INLINE static void gen_grad(gen_grad_t *g, fx_divisor *ad, const rs_cvert *a, const rs_cvert *b,
+                               const rs_cvert *c, int64_t dy1, int64_t dy2, int64_t area2, const int small)
+{
+    int64_t gzn;
+    g->dzb = (int64_t)b->d - a->d; g->dzc = (int64_t)c->d - a->d;
+    const int64_t dcb0 = gen_dch(b, a, 0), dcb1 = gen_dch(b, a, 1);
+    g->dcb2 = gen_dch(b, a, 2);
+    const int64_t dcc0 = gen_dch(c, a, 0), dcc1 = gen_dch(c, a, 1);
+    g->dcc2 = gen_dch(c, a, 2);
+    gzn = g->dzb * dy2 - g->dzc * dy1;
+    if (small) {
+        const int64_t inv = fx_div40((uint32_t)area2);
+        g->inv = inv;
+        g->gc = ((uint64_t)(((dcb0 * dy2 - dcc0 * dy1) * inv) >> 23) << 42)
+              + ((uint64_t)(((dcb1 * dy2 - dcc1 * dy1) * inv) >> 23) << 21)
+              + (uint64_t)(((g->dcb2 * dy2 - g->dcc2 * dy1) * inv) >> 23);
+        if (gzn < ((int64_t)1 << 22) && gzn > -((int64_t)1 << 22)) g->gz = (gzn * inv) >> 36;
+        else {      /* rare: no divisor made for it */
+            g->gz = gzn * SUBONE / area2;
+            if (g->gz > INT32_MAX) g->gz = INT32_MAX;
+            if (g->gz < -INT32_MAX) g->gz = -INT32_MAX;
+        }
+    } else {
+        fx_divisor_make(ad, area2);
+        g->gc = ((uint64_t)fx_divisor_trunc(ad, (dcb0 * dy2 - dcc0 * dy1) * ((int64_t)1 << 17)) << 42)
+              + ((uint64_t)fx_divisor_trunc(ad, (dcb1 * dy2 - dcc1 * dy1) * ((int64_t)1 << 17)) << 21)
+              + (uint64_t)fx_divisor_trunc(ad, (g->dcb2 * dy2 - g->dcc2 * dy1) * ((int64_t)1 << 17));
+        g->gz = fx_divisor_trunc(ad, gzn * SUBONE);
+        if (g->gz > INT32_MAX) g->gz = INT32_MAX;
+        if (g->gz < -INT32_MAX) g->gz = -INT32_MAX;
+    }
+    g->prg_b = dcb0 * ((int64_t)1 << 32) + dcb1; g->prg_c = dcc0 * ((int64_t)1 << 32) + dcc1;
+    g->ca = (a->cp << 13) + RS_CBIAS - ((uint64_t)1 << 42);
+}
+
+/* Narrow boxes: a row's span [*xl, *xr] found by scanning from px0, e1 stepped by its own
+ * x step (the same values as S - e0 - e2, exact integers); *e0, *e2 the edge values at
+ * *xl.  0 when the row has no centre inside. */
+RS_INLINE static int gen_scan(int32_t px0, int32_t px1, int64_t e0r, int64_t e2r, int64_t S, int64_t sx0,
+                              int64_t sx2, int32_t *xl, int32_t *xr, int64_t *e0, int64_t *e2)
+{
+    int64_t a0 = e0r, a2 = e2r, a1 = S - e0r - e2r;
+    const int64_t sx1 = -(sx0 + sx2);
+    int32_t l = px0, r;
+    while ((a0 | a1 | a2) < 0) {
+        if (++l > px1) return 0;
+        a0 += sx0; a1 += sx1; a2 += sx2;
+    }
+    {
+        int64_t f0 = a0 + sx0, f1 = a1 + sx1, f2 = a2 + sx2;
+        r = l;
+        while (r < px1 && (f0 | f1 | f2) >= 0) { r++; f0 += sx0; f1 += sx1; f2 += sx2; }
+    }
+    *xl = l; *xr = r; *e0 = a0; *e2 = a2;
+    return 1;
+}
+
+/* Wide boxes, one edge K + s l (l the column relative to px0; floor((K + s px0) / s) =
+ * floor(K / s) + px0: the same centres as from column 0, with no products by px0 to keep
+ * across the rows), q the divisor |s|:
+ *   s > 0: l >= ceil(-K / s), no limit for K >= 0 (l >= 0), else with m = -K >= 1,
+ *     ceil(m / s) = floor((m - 1) / s) + 1, m - 1 = ~K >= 0;
+ *   s < 0: l <= floor(K / |s|): none for K < 0, else the truncated quotient;
+ *   s == 0: all or none, as K >= 0.
+ * In 64 bits, so no clamps (the quotients may lie far outside the box).  0: no column.
+ * (~K of a copy of K that GEN_OPAQUE hides from the optimiser: GCC's induction
+ * variables would otherwise step ~K of every edge on every row, a derived value it keeps
+ * in memory.  K's sign is tested first, then s's: the same cases, fewer instructions.) */
+RS_INLINE static int gen_edge(int64_t s, int64_t K, const fx_divisor *q, int64_t *l, int64_t *r)
+{
+    if (K < 0) {
+        if (s > 0) {
+            int64_t k = K;
+            GEN_OPAQUE(k);
+            const int64_t t = fx_divisor_trunc(q, ~k) + 1;
+            if (t > *l) *l = t;
+        } else return 0;
+    } else if (s < 0) {
+        const int64_t t = fx_divisor_trunc(q, K);
+        if (t < *r) *r = t;
+    }
+    return 1;
+}
+
+#if RS_SPANV
+/* The lanes at pixel j from the scalar depth Z and packed colour C there, into ZV, RV,
+ * GV, BV (depth with its top bit flipped, for the signed compare of 32-bit depths).  R
+ * and G are taken with the bits below them in C (shifts, no masks): lane k holds (F + k
+ * G) 2^RL + junk modulo 2^32 with F + k G the true field, in [0, 2^21), so adding the
+ * junk changes no bit that GS_PX takes.  R: C >> (42 - RL), junk the top RL bits of G's
+ * field (< 2^RL, below the multiple of 2^RL: no carry); G: C >> 21, junk R's low bits
+ * times 2^21 (above the field, which neither borrows nor carries into them), cut by
+ * GS_PX's mask.  B's field has G's bits above it, which GS_PX's BV >> 13 or >> 16 would
+ * take: masked. */
+#define GS_LANES(ZV, RV, GV, BV, L, RL, Z, C) do { \
+        ZV = ((Z) ^ 0x80000000u) + (L).zoff; RV = (uint32_t)((C) >> (42 - (RL))) + (L).roff; \
+        GV = (uint32_t)((C) >> 21) + (L).goff; BV = ((uint32_t)(C) & 0x1fffffu) + (L).boff; } while (0)
+/* The depth test of a group: its depths OD against the lanes' ZV, the write mask M and
+ * the depths to store ND (OD ^ ((OD ^ zz) & M) picks zz where M is set).  32-bit depths:
+ * the unsigned compare as a signed one with the top bits flipped (ZV has its top bit
+ * flipped already, and odb ^ ZV = OD ^ zz); 16-bit depths (Z16): both sides below 2^16,
+ * a signed compare (the flipped top bit of ZV lies above the 16 bits that the shift by
+ * 14 and the mask take). */
+#define GS_TEST(OD, ND, M, ZV, Z16) do { \
+        if (Z16) { const gs_v4u zz_ = ((ZV) >> 14) & 0xffffu; \
+                   M = (gs_v4u)((gs_v4i)zz_ > (gs_v4i)(OD)); ND = (OD) ^ (((OD) ^ zz_) & (M)); } \
+        else { const gs_v4u odb_ = (OD) ^ 0x80000000u; \
+               M = (gs_v4u)((gs_v4i)(ZV) > (gs_v4i)odb_); ND = (OD) ^ ((odb_ ^ (ZV)) & (M)); } } while (0)
+/* The pixels of lanes RV, GV, BV, the bits of each field that px_pack takes: XRGB8888
+ * bits 13..20 (R's at 16..23 after the lanes' << 3, which saves a shift), RGB565 (C565)
+ * bits 16..20, 15..20, 16..20. */
+#define GS_PX(RV, GV, BV, C565) (!(C565) ? ((RV) & 0xff0000u) | (((GV) >> 5) & 0xff00u) | ((BV) >> 13) \
+                                 : (((RV) >> 5) & 0xf800u) | (((GV) >> 10) & 0x07e0u) | ((BV) >> 16))
+#else
+typedef struct gs_lanes { int unused; } gs_lanes;      /* (no vector spans) */
+#endif
+
+/* The plain span (no texture, no counting): n >= 1 pixels ending at ze / ce (depth and
+ * colour one past the last pixel), depth z and packed colour col at the first, steps gzu
+ * and gc per pixel: depth test, colour step, write.
+ * With RS_SPANV and n >= 8: GS_N pixels per group, lane l of the group at pixel j holding
+ * pixel j + l: groups at pixels 0, GS_N, .. below n - GS_N, then one at n - GS_N
+ * (overlapping the one before it unless GS_N divides n), so every access is inside the
+ * span and there is no scalar tail.  The same pixels as the scalar loop: its depth is z
+ * + j gzu modulo 2^32, as in the lanes; its colour fields are exact (their true values
+ * lie in [0, 2^21), RS_CBIAS in raster.c), field k at pixel j being F_k + j G_k (F_k that
+ * of col, G_k the signed gradient), which the lanes compute modulo 2^32, exactly since
+ * the result lies in [0, 2^21) (R times 8 for XRGB8888: below 2^24), and the pixel takes
+ * the same bits of each field as px_pack.  Each pixel's test reads and writes only its
+ * own depth (the pixels of a span are distinct), so GS_N at once give the same bytes;
+ * lanes that fail write back what they read.  The last group is loaded and computed
+ * before the others are stored: where it overlaps the group before it, both start from
+ * the same bytes and so store the same ones (loading it after that store would give the
+ * same bytes too, but a load partly overlapping a just-made store waits for it).
+ * L / lanes: the triangle's lane constants, made at its first such span. */
+RS_INLINE static void gen_span_plain(void *const ze, void *const ce, int32_t n, uint32_t z, uint64_t col,
+                                     uint32_t gzu, uint64_t gc, gs_lanes *L, int *lanes, const int vf)
+{
+    ptrdiff_t j = -(ptrdiff_t)n;      /* n >= 1; one counter to 0 */
+#if RS_SPANV
+    if (n >= 8) {       /* (>= GS_N: the groups need GS_N pixels) */
+        const size_t zb = z_bytes(vf), cb = px_bytes(vf);
+        const int rl = (vf & VF_565) ? 0 : 3;     /* R << 3: see GS_PX */
+        const uint32_t tl = (uint32_t)n - GS_N;
+        void *const ze4 = z_at(ze, -GS_N, vf), *const ce4 = px_at(ce, -GS_N, vf);
+        gs_v4u ndl, npl, m;
+        if (!*lanes) { gs_lanes_make(L, gzu, gc, rl); *lanes = 1; }
+        {
+            const uint32_t zl = z + tl * gzu;
+            const uint64_t cl = col + tl * gc;
+            gs_v4u zv, rv, gv, bv, od, op;
+            GS_LD(od, ze4, zb); GS_LD(op, ce4, cb);
+            GS_LANES(zv, rv, gv, bv, *L, rl, zl, cl);
+            GS_TEST(od, ndl, m, zv, vf & VF_Z16);
+            npl = op ^ ((op ^ GS_PX(rv, gv, bv, vf & VF_565)) & m);
+        }
+        if (j < -GS_N) {
+            const gs_v4u zstep = L->zstep, rstep = L->rstep, gstep = L->gstep, bstep = L->bstep;
+            gs_v4u zv, rv, gv, bv;
+            /* the groups at ze4 + k, k = j + GS_N .. < 0 (inside the span): the loop
+             * test is the sign of k */
+            ptrdiff_t k = j + GS_N;
+            GS_LANES(zv, rv, gv, bv, *L, rl, z, col);
+            do {
+                gs_v4u od, op, nd;
+                GS_LD(od, z_at(ze4, k, vf), zb); GS_LD(op, px_at(ce4, k, vf), cb);
+                GS_TEST(od, nd, m, zv, vf & VF_Z16);
+                GS_ST(z_at(ze4, k, vf), nd, zb);
+                GS_ST(px_at(ce4, k, vf), op ^ ((op ^ GS_PX(rv, gv, bv, vf & VF_565)) & m), cb);
+                zv += zstep; rv += rstep; gv += gstep; bv += bstep;
+            } while ((k += GS_N) < 0);
+        }
+        GS_ST(ze4, ndl, zb);
+        GS_ST(ce4, npl, cb);
+        return;
+    }
+#else
+    (void)L; (void)lanes;
+#endif
+    do {
+        const uint32_t zz = z_store(z, vf);
+        void *const zp = z_at(ze, j, vf);
+        if (zz > z_get(zp, vf)) { z_put(zp, zz, vf); px_put(px_at(ce, j, vf), px_pack(col, vf), vf); }
+        z += gzu; col += gc;
+    } while (++j);
+}
+
+/* The textured and counting spans: n pixels from zp / cp, depth z and colour col at the
+ * first; textured: the perspective-correct coordinates at every pixel from its exact
+ * edge values te0, te2 (stepped by sx0, sx2; e1 = S - e0 - e2), as gen_tri says. */
+typedef struct gen_tex_t {
+    const rs_texture *tx;
+    int32_t esh;
+    int64_t qa, qb, qc, qua, qub, quc, qva, qvb, qvc;
+} gen_tex_t;
+
+RS_INLINE static void gen_span_other(void *zp, void *cp, int32_t n, uint32_t z, uint64_t col, uint32_t gzu,
+                                     uint64_t gc, const gen_tex_t *tx, int64_t te0, int64_t te2, int64_t S,
+                                     int64_t sx0, int64_t sx2, const int vf)
+{
+    int32_t i;
+    for (i = 0; i < n; i++) {
+        if (vf & VF_COUNT) {
+            ((uint32_t *)cp)[i] += 1;
+        } else {
+            const uint32_t zz = z_store(z, vf);
+            void *const zq = z_at(zp, i, vf);
+            if (zz > z_get(zq, vf)) {
+                z_put(zq, zz, vf);
+                if (vf & VF_TEX) {
+                    const int64_t f0 = te0 >> tx->esh, f2 = te2 >> tx->esh, f1 = (S - te0 - te2) >> tx->esh;
+                    const int64_t den = f1 * tx->qa + f2 * tx->qb + f0 * tx->qc;
+                    px_put(px_at(cp, i, vf), px_pack24(tex_mod(tex_fetch(tx->tx, tex_div(f1 * tx->qua + f2 * tx->qub + f0 * tx->quc, den),
+                                                                         tex_div(f1 * tx->qva + f2 * tx->qvb + f0 * tx->qvc, den)), col), vf), vf);
+                } else {
+                    px_put(px_at(cp, i, vf), px_pack(col, vf), vf);
+                }
+            }
+        }
+        z += gzu; col += gc;
+        if (vf & VF_TEX) { te0 += sx0; te2 += sx2; }
+    }
+}
+
 /* Triangles whose bounding box has more than TINY_W x TINY_H candidate centres (kept
- * out of tri_raster so that the tiny path's code stays small).  The body of the copies
- * below: small (box below SMALL in both directions: gradients and row starts through a
- * reciprocal), wide (more than NARROW columns: spans by division, else by scanning) and
- * one (py0 == py1: no row loop) are constants of each copy; for a given triangle and
- * band the values are the same whichever copy draws it. */
-RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
-                                          int32_t px0, int32_t px1, int32_t py0, int32_t py1,
-                                          const int small, const int wide, const int one)
+ * out of tri_raster so that the tiny path's code stays small).  small (box below SMALL
+ * in both directions: gradients and row starts through a reciprocal), wide (more than
+ * NARROW columns: spans by division, else by scanning) and one (py0 == py1: no row loop)
+ * are constants of each out-of-line copy (tri_general); for a given triangle and band
+ * the values are the same whichever copy draws it.  Row starts are computed exactly from
+ * the barycentric weights at the first inside centre of the row (no stepping across
+ * rows), so a row's values do not depend on which band it is drawn in. */
+RS_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                              int32_t px0, int32_t px1, int32_t py0, int32_t py1,
+                              const int small, const int wide, const int one, const int vf)
 {
     int32_t py;
     int64_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, S, e0r, e2r, sx0, sx2, sy0, sy2;
@@ -113,8 +355,7 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
     dx1 = (int64_t)b->x - a->x; dy1 = (int64_t)b->y - a->y;
     dx2 = (int64_t)c->x - a->x; dy2 = (int64_t)c->y - a->y;
     area2 = dx1 * dy2 - dx2 * dy1;
-    /* y points down: counter-clockwise as seen (a front face) has area2 < 0 */
-    if (area2 >= 0) {
+    if (!is_front(area2)) {
         if (area2 == 0 || bd->cull) return;
     } else {
         const rs_cvert *t = b;
@@ -125,19 +366,15 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
         area2 = -area2;
     }
     bd->tris++;
-    /* Edge P->Q: E = A (X - P.x) + B (Y - P.y) >= 0 inside, at pixel centres.  Edge 0 =
-     * a->b (the weight of c), 1 = b->c (weight of a), 2 = c->a (weight of b); since
-     * E0 + E1 + E2 = area2 everywhere, E1 is never evaluated.  Edges that are not
-     * top-left (A > 0, or A == 0 and B > 0) are biased by -1 so that E == 0 there is
-     * outside: e_k = E_k - bias_k, inside iff all e_k >= 0, and e1 = S - e0 - e2.
-     * bias_k = [2 A_k + (B_k > 0) <= 0] as the sign bit of 2 A_k + (B_k > 0) - 1 (A_k is
-     * a vertex difference, far below 2^62; B 640x480: 0.02 M fewer than the compare). */
+    /* Edge functions (Pineda 1988) as in tri_tiny (raster_tiny.h), in 64 bits: edge 0 =
+     * a->b (the weight of c), 1 = b->c (weight of a), 2 = c->a (weight of b), biased by
+     * the top-left rule (tl_bias64); inside iff all e_k >= 0, e1 = S - e0 - e2. */
     A0 = -dy1; B0 = dx1;
     A2 = dy2; B2 = -dx2;
     A1 = -(A0 + A2); B1 = -(B0 + B2);
-    bias0 = (int64_t)((uint64_t)(2 * A0 + (B0 > 0) - 1) >> 63);
-    bias1 = (int64_t)((uint64_t)(2 * A1 + (B1 > 0) - 1) >> 63);
-    bias2 = (int64_t)((uint64_t)(2 * A2 + (B2 > 0) - 1) >> 63);
+    bias0 = tl_bias64(A0, B0);
+    bias1 = tl_bias64(A1, B1);
+    bias2 = tl_bias64(A2, B2);
     S = area2 - bias0 - bias1 - bias2;
     {
         int64_t ox = (int64_t)px0 * SUBONE + HALF - a->x, oy = (int64_t)py0 * SUBONE + HALF - a->y;
@@ -147,38 +384,29 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
     sx0 = A0 * SUBONE; sx2 = A2 * SUBONE; sy0 = B0 * SUBONE; sy2 = B2 * SUBONE;
 
     {
-        /* General path.  x-gradients per pixel: colour per channel in Q13, packed into
-         * the 21-bit fields (exact modulo 2^64, see RS_CBIAS in raster.c); depth in Q0.
-         * Row starts are computed exactly from the barycentric weights at the first
-         * inside centre of the row (no stepping across rows), so a row's values do not
-         * depend on which band it is drawn in. */
-        int64_t gz = 0, inv = 0, dzb = 0, dzc = 0, prg_b = 0, prg_c = 0, dcb2 = 0, dcc2 = 0;
-        uint64_t gc = 0, ca = 0;
+        gen_grad_t g = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
         fx_divisor ad = FX_DIVISOR_INIT;     /* area2, made for large triangles only */
-#if RS_TEX
-        /* Perspective-correct texture coordinates at every pixel from its exact edge
-         * values: with q = d >> tsh (1/w, <= 2^16) and the edge values e (barycentric
-         * weights times area2, shifted right by esh so that they stay below 2^20),
-         *   u = (e1 qa ua + e2 qb ub + e0 qc uc) / (e1 qa + e2 qb + e0 qc),
-         * products < 2^58 (u <= 2^22 texels Q8).  The edge values step exactly, so there
-         * is no drift along long spans; the only errors are the 2^-20 truncation of the
-         * weights and the 16 bits of q. */
-        const rs_texture *tx = bd->f->tex;
-        const int32_t tsh = tex_shift(a->d, b->d, c->d);
-        int32_t esh = 0;
-        const int64_t qa = a->d >> tsh, qb = b->d >> tsh, qc = c->d >> tsh;
-        const int64_t qua = qa * a->u, qub = qb * b->u, quc = qc * c->u;
-        const int64_t qva = qa * a->v, qvb = qb * b->v, qvc = qc * c->v;
-        while ((area2 >> esh) >= ((int64_t)1 << 20)) esh++;
-#endif
-#if RS_SPANV && !RS_TEX && !RS_COUNT
+        gen_tex_t tx = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
         gs_lanes L;             /* made at the first span of eight or more pixels */
         int lanes = 0;
-#endif
+        if (vf & VF_TEX) {
+            /* Perspective-correct texture coordinates at every pixel from its exact edge
+             * values: with q = d >> tsh (1/w, <= 2^16) and the edge values e (barycentric
+             * weights times area2, shifted right by esh so that they stay below 2^20),
+             *   u = (e1 qa ua + e2 qb ub + e0 qc uc) / (e1 qa + e2 qb + e0 qc),
+             * products < 2^58 (u <= 2^22 texels Q8).  The edge values step exactly, so
+             * there is no drift along long spans; the only errors are the 2^-20
+             * truncation of the weights and the 16 bits of q. */
+            const int32_t tsh = tex_shift(a->d, b->d, c->d);
+            tx.tx = bd->f->tex;
+            tx.qa = a->d >> tsh; tx.qb = b->d >> tsh; tx.qc = c->d >> tsh;
+            tx.qua = tx.qa * a->u; tx.qub = tx.qb * b->u; tx.quc = tx.qc * c->u;
+            tx.qva = tx.qa * a->v; tx.qvb = tx.qb * b->v; tx.qvc = tx.qc * c->v;
+            while ((area2 >> tx.esh) >= ((int64_t)1 << 20)) tx.esh++;
+        }
         /* wide boxes: the row spans' divisors |16 A|; a zero step is never divided by,
          * so with a 64-bit divide (C's `/`, no reciprocal) its divisor may stay 0
-         * (branch-free: B 640x480 0.02 M fewer instructions per frame), without one it is
-         * 1 (fx_recip_make needs d > 0) */
+         * (branch-free), without one it is 1 (fx_recip_make needs d > 0) */
         fx_divisor q0 = FX_DIVISOR_INIT, q1 = FX_DIVISOR_INIT, q2 = FX_DIVISOR_INIT;    /* made when wide */
         if (wide) {
             const int64_t s1_ = sx0 + sx2;
@@ -193,307 +421,154 @@ RS_INLINE static void RS_FN(tri_gen_body)(band *bd, const rs_cvert *a, const rs_
 #endif
         }
         /* the row's colour and depth, stepped across the rows (one past the band's last
-         * row at the end at most); per drawn row, products by the row and the band's
-         * fields reloaded (the pixel stores may alias them) cost 0.09 M instructions per
-         * frame more on B 640x480 */
+         * row at the end at most); the band's fields are read once, before the loop (the
+         * pixel stores may alias them) */
         uint8_t *crow = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
-        RS_Z *zrow = (RS_Z *)bd->depth + (size_t)(py0 - bd->y0) * (size_t)w;
-        const size_t cstride = bd->stride;
-        /* The gradients and the row start's constants (a macro: made before the row loop,
-         * or, for one-row boxes, once the row's span is known not to be empty: 0.28 K of
-         * B 640x480's 1.6 K one-row calls per frame draw nothing; before the loop for
-         * taller boxes, as lazily in the loop it cost 0.07 M more).  Colour differences
-         * per channel k (0 = R, 1 = G, 2 = B; straight-line, no arrays) from the packed
-         * colours: the difference plus 256 in each 21-bit field is in [1, 511], so the
-         * fields of v->cp - a->cp + 256 (1 + 2^21 + 2^42) do not borrow, and the
-         * whole is below 2^51: R's field, the top one, needs no mask.  Small
-         * triangles: area2 < 2^21 and |colour numerator| < 2^19, products below 2^59;
-         * large ones: the quotients by area2, gradients here, row starts below.  A span
-         * of two or more pixels bounds |gz| by the depth range (< 2^31); the clamp only
-         * affects one-pixel spans, where the step is never used, and the reciprocal's gz
-         * needs none (|gzn| < 2^22, inv <= 2^40: |gz| < 2^26).
-         * The row start's R and G in one pair of products: with v_k = dcb_k w1 + dcc_k w2
-         * (|v_k| <= 255 (w1 + w2) < 2^30, as w1, w2 >= 0 and w1 + w2 <= 2^22: the weights
-         * of inside centres, e0 + e2 <= S <= area2), rg = v_R 2^32 + v_G + 2^30 (every
-         * partial sum below 2^63 in magnitude) has v_G + 2^30 in [0, 2^32) as its low 32
-         * bits, so rg >> 41 = floor(v_R / 2^9) and (low 32 bits) >> 9 =
-         * floor(v_G / 2^9) + 2^21, whose 2^21 (times 2^21) ca takes back. */
-#define DCH(V, K) ((int64_t)((((V)->cp - a->cp + RS_C256) >> (42 - 21 * (K))) & ((K) ? (uint64_t)0x1fffff : ~(uint64_t)0)) - 256)
-#define GC_S(B, C, K) ((uint64_t)((((B) * dy2 - (C) * dy1) * inv) >> 23) << (42 - 21 * (K)))
-#define GC_L(B, C, K) ((uint64_t)fx_divisor_trunc(&ad, ((B) * dy2 - (C) * dy1) * ((int64_t)1 << 17)) << (42 - 21 * (K)))
-#define GZ_CLAMP() do { if (gz > INT32_MAX) gz = INT32_MAX; if (gz < -INT32_MAX) gz = -INT32_MAX; } while (0)
-#define GEN_GRAD() do { \
-            int64_t gzn; \
-            dzb = (int64_t)b->d - a->d; dzc = (int64_t)c->d - a->d; \
-            const int64_t dcb0 = DCH(b, 0), dcb1 = DCH(b, 1); \
-            dcb2 = DCH(b, 2); \
-            const int64_t dcc0 = DCH(c, 0), dcc1 = DCH(c, 1); \
-            dcc2 = DCH(c, 2); \
-            gzn = dzb * dy2 - dzc * dy1; \
-            if (small) { \
-                inv = fx_div40((uint32_t)area2); \
-                gc = GC_S(dcb0, dcc0, 0) + GC_S(dcb1, dcc1, 1) + GC_S(dcb2, dcc2, 2); \
-                if (gzn < ((int64_t)1 << 22) && gzn > -((int64_t)1 << 22)) gz = (gzn * inv) >> 36; \
-                else { gz = gzn * SUBONE / area2; GZ_CLAMP(); }    /* rare: no divisor made for it */ \
-            } else { \
-                fx_divisor_make(&ad, area2); \
-                gc = GC_L(dcb0, dcc0, 0) + GC_L(dcb1, dcc1, 1) + GC_L(dcb2, dcc2, 2); \
-                gz = fx_divisor_trunc(&ad, gzn * SUBONE); \
-                GZ_CLAMP(); \
-            } \
-            prg_b = dcb0 * ((int64_t)1 << 32) + dcb1; prg_c = dcc0 * ((int64_t)1 << 32) + dcc1; \
-            ca = (a->cp << 13) + RS_CBIAS - ((uint64_t)1 << 42); } while (0)
-        if (!one) GEN_GRAD();
+        void *zrow = z_at(bd->depth, (ptrdiff_t)((size_t)(py0 - bd->y0) * (size_t)w), vf);
+        const size_t cstride = bd->stride, zstride = (size_t)w * z_bytes(vf);
+        if (!one) gen_grad(&g, &ad, a, b, c, dy1, dy2, area2, small);
         if (one) py1 = py0;
-        for (py = py0; py <= py1; py++, e0r += sy0, e2r += sy2, crow += cstride, zrow += w) {
+        for (py = py0; py <= py1; py++, e0r += sy0, e2r += sy2, crow += cstride, zrow = (uint8_t *)zrow + zstride) {
             int32_t xl = px0, xr = px1;
             int64_t e0, e2;
             if (!wide) {
-                /* narrow boxes: scanned from px0, e1 stepped by its own x step (the same
-                 * values as S - e0 - e2, exact integers; B 640x480: 0.05 M fewer instructions
-                 * per frame than recomputing it); an empty row leaves by the wide path's
-                 * label */
-                int64_t e1;
-                const int64_t sx1 = -(sx0 + sx2);
-                e0 = e0r; e2 = e2r; e1 = S - e0 - e2;
-                while ((e0 | e1 | e2) < 0) {
-                    if (++xl > px1) goto empty;
-                    e0 += sx0; e1 += sx1; e2 += sx2;
-                }
-                {
-                    int64_t f0 = e0 + sx0, f1 = e1 + sx1, f2 = e2 + sx2;
-                    xr = xl;
-                    while (xr < px1 && (f0 | f1 | f2) >= 0) { xr++; f0 += sx0; f1 += sx1; f2 += sx2; }
-                }
+                if (!gen_scan(px0, px1, e0r, e2r, S, sx0, sx2, &xl, &xr, &e0, &e2)) continue;
             } else {
-                /* e_k(px0 + l) = e_kr + sx_k l; e1 = S - e0 - e2; columns l relative to px0
-                 * (floor((K + s px0) / s) = floor(K / s) + px0: the same centres as from
-                 * column 0, with no products by px0 to keep across the rows).  Edge K + s l:
-                 *   s > 0: l >= ceil(-K / s), no limit for K >= 0 (l >= 0), else with
-                 *     m = -K >= 1, ceil(m / s) = floor((m - 1) / s) + 1, m - 1 = ~K >= 0
-                 *     (= K ^ (K >> 63) for K < 0);
-                 *   s < 0: l <= floor(K / |s|): none for K < 0, else the truncated quotient;
-                 *   s == 0: all or none, as K >= 0.
-                 * In 64 bits, so no clamps (the quotients may lie far outside the box). */
                 int64_t l = 0, r = px1 - px0;
-/* (~K of a copy of K that GEN_OPAQUE hides from the optimiser: GCC's induction
- * variables would otherwise step ~K of every edge on every row, a derived value it keeps
- * in memory; the earlier K ^ (K >> 63) no longer fooled it: 0.03 M more on B 640x480.
- * K's sign tested first, then SX's: the same cases, 0.04 M fewer than SX's first) */
-#define GEN_EDGE(SX, K, Q) do { \
-        if ((K) < 0) { if ((SX) > 0) { int64_t k_ = (K); GEN_OPAQUE(k_); \
-                                       { const int64_t t_ = fx_divisor_trunc((Q), ~k_) + 1; if (t_ > l) l = t_; } } else goto empty; } \
-        else if ((SX) < 0) { const int64_t t_ = fx_divisor_trunc((Q), (K)); if (t_ < r) r = t_; } } while (0)
-                GEN_EDGE(sx0, e0r, &q0);
-                GEN_EDGE(-(sx0 + sx2), S - e0r - e2r, &q1);
-                GEN_EDGE(sx2, e2r, &q2);
-#undef GEN_EDGE
-                if (l > r) {
-                empty:
+                if (!gen_edge(sx0, e0r, &q0, &l, &r) || !gen_edge(-(sx0 + sx2), S - e0r - e2r, &q1, &l, &r)
+                    || !gen_edge(sx2, e2r, &q2, &l, &r) || l > r)
                     continue;
-                }
                 xl = px0 + (int32_t)l; xr = px0 + (int32_t)r;     /* 0 <= l <= r <= px1 - px0 */
                 e0 = e0r + sx0 * l; e2 = e2r + sx2 * l;
             }
-            if (one) GEN_GRAD();
+            if (one) gen_grad(&g, &ad, a, b, c, dy1, dy2, area2, small);
             {
-                /* exact barycentric weights at (xl, py): b gets edge 2, c gets edge 0 (Q22) */
+                /* Exact barycentric weights at (xl, py): b gets edge 2, c gets edge 0 (Q22).
+                 * The row start's R and G in one pair of products: with v_k = dcb_k w1 +
+                 * dcc_k w2 (|v_k| <= 255 (w1 + w2) < 2^30, as w1, w2 >= 0 and w1 + w2 <=
+                 * 2^22: the weights of inside centres, e0 + e2 <= S <= area2), rg = v_R 2^32
+                 * + v_G + 2^30 (every partial sum below 2^63 in magnitude) has v_G + 2^30 in
+                 * [0, 2^32) as its low 32 bits, so rg >> 41 = floor(v_R / 2^9) and (low 32
+                 * bits) >> 9 = floor(v_G / 2^9) + 2^21, whose 2^21 (times 2^21) ca takes back. */
                 int64_t w1, w2;
                 uint64_t col;
-                uint32_t z, gzu = (uint32_t)gz;
-                RS_PIX *cp = (RS_PIX *)(void *)crow + xl;
-                RS_Z *zp = zrow + xl;
-                int32_t n = xr - xl + 1, i;
-                if (small) { w1 = (e2 * inv) >> 18; w2 = (e0 * inv) >> 18; }
+                uint32_t z;
+                const uint32_t gzu = (uint32_t)g.gz;
+                const int32_t n = xr - xl + 1;
+                if (small) { w1 = (e2 * g.inv) >> 18; w2 = (e0 * g.inv) >> 18; }
                 else { w1 = fx_divisor_trunc(&ad, e2 * ((int64_t)1 << 22)); w2 = fx_divisor_trunc(&ad, e0 * ((int64_t)1 << 22)); }
-                z = (uint32_t)((int64_t)a->d + ((dzb * w1 + dzc * w2) >> 22));
+                z = (uint32_t)((int64_t)a->d + ((g.dzb * w1 + g.dzc * w2) >> 22));
                 {
-                    const int64_t rg = prg_b * w1 + prg_c * w2 + ((int64_t)1 << 30);
-                    col = ca + ((uint64_t)(rg >> 41) << 42) + ((uint64_t)((uint32_t)rg >> 9) << 21)
-                          + (uint64_t)((dcb2 * w1 + dcc2 * w2) >> 9);
+                    const int64_t rg = g.prg_b * w1 + g.prg_c * w2 + ((int64_t)1 << 30);
+                    col = g.ca + ((uint64_t)(rg >> 41) << 42) + ((uint64_t)((uint32_t)rg >> 9) << 21)
+                          + (uint64_t)((g.dcb2 * w1 + g.dcc2 * w2) >> 9);
                 }
                 bd->pixels += (uint32_t)n;
-#if !RS_TEX && !RS_COUNT
-                {
-                    /* the plain span: depth test, colour step, write */
-                    RS_Z *const ze = zp + n;
-                    RS_PIX *const ce = cp + n;
-                    ptrdiff_t j = -(ptrdiff_t)n;      /* n >= 1; one counter to 0 */
-                    (void)i;
-#if RS_SPANV
-                    if (n >= 8) {       /* (>= GS_N: the groups need GS_N pixels) */
-                        /* Four pixels per group, lane l of the group at pixel j holding
-                         * pixel j + l: groups at pixels 0, 4, .. below n - 4, then one at
-                         * n - 4 (overlapping the one before it unless 4 divides n), so
-                         * every access is inside [xl, xr] and there is no scalar tail.
-                         * The same pixels as the scalar loop: its depth is z + j gzu modulo
-                         * 2^32, as in the lanes; its colour fields are exact (their true
-                         * values lie in [0, 2^21), RS_CBIAS in raster.c), field k at pixel j
-                         * being F_k + j G_k (F_k that of col, G_k the signed gradient), which
-                         * the lanes compute modulo 2^32, exactly since the result lies in
-                         * [0, 2^21) (R times 8 for XRGB8888: below 2^24), and the pixel
-                         * takes the same bits of each field as RS_PACK.  Each pixel's test
-                         * reads and writes only its own depth (the pixels of a span are
-                         * distinct), so four at once give the same bytes; lanes that fail
-                         * write back what they read.  The last group is loaded and computed
-                         * before the others are stored: where it overlaps the group before
-                         * it, both start from the same bytes and so store the same ones.
-                         * (Loading it after that store would give the same bytes too (a
-                         * pixel written has depth == zz, which fails the test), but a load
-                         * partly overlapping a just-made store waits for it: no forwarding.)
-                         * Against a scalar tail (n mod 4 pixels), on B 640x480: 0.1 M fewer
-                         * instructions per frame and no data-dependent branch. */
-                        const int rl = sizeof(RS_PIX) == 4 ? 3 : 0;     /* R << 3: see GS_PX */
-                        const uint32_t tl = (uint32_t)n - GS_N;
-                        gs_v4u ndl, npl, m;
-                        if (!lanes) { gs_lanes_make(&L, gzu, gc, rl); lanes = 1; }
-/* The lanes at pixel j from the scalar depth Z and packed colour C there (depth with its
- * top bit flipped, for the signed compare of 32-bit depths).  R and G are taken with the
- * bits below them in C (shifts, no masks): lane k holds (F + k G) 2^rl + junk modulo
- * 2^32 with F + k G the true field, in [0, 2^21), so adding the junk changes no bit
- * that GS_PX takes.  R: C >> (42 - rl), junk the top rl bits of G's field (< 2^rl,
- * below the multiple of 2^rl: no carry); G: C >> 21, junk R's low bits times 2^21
- * (above the field, which neither borrows nor carries into them), cut by GS_PX's mask.
- * B's field has G's bits above it, which GS_PX's bv >> 13 or >> 16 would take: masked. */
-#define GS_LANES(Z, C) zv = ((Z) ^ 0x80000000u) + L.zoff; rv = (uint32_t)((C) >> (42 - rl)) + L.roff; \
-                       gv = (uint32_t)((C) >> 21) + L.goff; bv = ((uint32_t)(C) & 0x1fffffu) + L.boff
-/* The depth test of a group: its depths OD, the write mask M and the depths to store ND
- * (OD ^ ((OD ^ zz) & M) picks zz where M is set).  32-bit depths: the unsigned compare
- * as a signed one with the top bits flipped (zv has its top bit flipped already, and
- * odb ^ zv = OD ^ zz); 16-bit depths: both sides below 2^16, a signed compare (the
- * flipped top bit of zv lies above the 16 bits that RS_ZSH and the mask take). */
-#if RS_ZSH
-#define GS_TEST(OD, ND) do { const gs_v4u zz_ = (zv >> RS_ZSH) & 0xffffu; \
-                             m = (gs_v4u)((gs_v4i)zz_ > (gs_v4i)(OD)); ND = (OD) ^ (((OD) ^ zz_) & m); } while (0)
-#else
-#define GS_TEST(OD, ND) do { const gs_v4u odb_ = (OD) ^ 0x80000000u; \
-                             m = (gs_v4u)((gs_v4i)zv > (gs_v4i)odb_); ND = (OD) ^ ((odb_ ^ zv) & m); } while (0)
-#endif
-/* The pixels, the bits of each field that RS_PACK takes: XRGB8888 bits 13..20 (R's at
- * 16..23 after the lanes' << 3, which saves a shift), RGB565 bits 16..20, 15..20, 16..20. */
-#define GS_PX() (sizeof(RS_PIX) == 4 ? (rv & 0xff0000u) | ((gv >> 5) & 0xff00u) | (bv >> 13) \
-                 : ((rv >> 5) & 0xf800u) | ((gv >> 10) & 0x07e0u) | (bv >> 16))
-                        {
-                            const uint32_t zl = z + tl * gzu;
-                            const uint64_t cl = col + tl * gc;
-                            gs_v4u zv, rv, gv, bv, od, op;
-                            GS_LD(od, ze - GS_N); GS_LD(op, ce - GS_N);
-                            GS_LANES(zl, cl);
-                            GS_TEST(od, ndl);
-                            npl = op ^ ((op ^ GS_PX()) & m);
-                        }
-                        if (j < -GS_N) {
-                            const gs_v4u zstep = L.zstep, rstep = L.rstep, gstep = L.gstep, bstep = L.bstep;
-                            gs_v4u zv, rv, gv, bv;
-                            /* the groups at ze4 + k, k = j + 4 .. < 0 (ze4 = ze - 4, inside
-                             * the span): the loop test is the sign of k */
-                            RS_Z *const ze4 = ze - GS_N;
-                            RS_PIX *const ce4 = ce - GS_N;
-                            ptrdiff_t k = j + GS_N;
-                            GS_LANES(z, col);
-                            do {
-                                gs_v4u od, op, nd;
-                                GS_LD(od, ze4 + k); GS_LD(op, ce4 + k);
-                                GS_TEST(od, nd);
-                                GS_ST(ze4 + k, nd);
-                                GS_ST(ce4 + k, op ^ ((op ^ GS_PX()) & m));
-                                zv += zstep; rv += rstep; gv += gstep; bv += bstep;
-                            } while ((k += GS_N) < 0);
-                        }
-                        GS_ST(ze - GS_N, ndl);
-                        GS_ST(ce - GS_N, npl);
-#undef GS_LANES
-#undef GS_TEST
-#undef GS_PX
-                    } else
-#endif
-                    do {
-                        RS_Z zz = (RS_Z)(z >> RS_ZSH);
-                        if (zz > ze[j]) { ze[j] = zz; ce[j] = RS_PACK(col); }
-                        z += gzu; col += gc;
-                    } while (++j);
-                }
-#else
-                {
-#if RS_TEX
-                    int64_t te0 = e0, te2 = e2;
-#endif
-                    for (i = 0; i < n; i++) {
-#if RS_COUNT
-                        (void)zp; (void)z; (void)gzu; (void)col;
-                        cp[i] += 1;
-#else
-                        RS_Z zz = (RS_Z)(z >> RS_ZSH);
-                        if (zz > zp[i]) {
-                            zp[i] = zz;
-#if RS_TEX
-                            int64_t f0 = te0 >> esh, f2 = te2 >> esh, f1 = (S - te0 - te2) >> esh;
-                            int64_t den = f1 * qa + f2 * qb + f0 * qc;
-                            cp[i] = RS_PACK24(tex_mod(tex_fetch(tx, tex_div(f1 * qua + f2 * qub + f0 * quc, den),
-                                                                tex_div(f1 * qva + f2 * qvb + f0 * qvc, den)), col));
-#else
-                            cp[i] = RS_PACK(col);
-#endif
-                        }
-#endif
-                        z += gzu; col += gc;
-#if RS_TEX
-                        te0 += sx0; te2 += sx2;
-#endif
-                    }
-                }
-#endif
+                if (VF_SLOW(vf))
+                    gen_span_other(z_at(zrow, xl, vf), px_at(crow, xl, vf), n, z, col, gzu, g.gc, &tx, e0, e2, S,
+                                   sx0, sx2, vf);
+                else
+                    gen_span_plain(z_at(zrow, xl + n, vf), px_at(crow, xl + n, vf), n, z, col, gzu, g.gc, &L,
+                                   &lanes, vf);
             }
         }
     }
-#undef GEN_GRAD
-#undef GZ_CLAMP
-#undef GC_L
-#undef GC_S
-#undef DCH
 }
 
-/* tri_general: the general path's entry, from tri_box (which finds small and wide).
- * The plain variants have a copy per case, so that GCC folds the case's branches and
- * allocates registers for it alone (B 640x480: -0.13 M instructions per frame): small
- * and wide (1.8 K calls per frame, 0.8 K narrow, 0.1 K large), and of those the boxes of
- * one row (1.6 K, mostly thin slivers near the horizon: -0.08 M more; a copy for two
- * rows saved nothing).  Textured and counting variants, and builds for size (-Os: the
- * boards with little flash; the copies are 2-3 KB each per variant): one copy, the
- * flags at run time. */
-#if RS_TEX || RS_COUNT || defined(__OPTIMIZE_SIZE__)
-RS_NOINLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
-                                           int32_t px0, int32_t px1, int32_t py0, int32_t py1, int small, int wide)
+/* tri_general, the general path's entry from tri_box (which finds small and wide), and
+ * its out-of-line copies, one `case` per variant.  The plain variants have a copy per
+ * case, so that GCC folds the case's branches and allocates registers for it alone:
+ * small and wide, and of those the boxes of one row (mostly thin slivers near the
+ * horizon); small and narrow; large.  Textured and counting variants, and builds for
+ * size (-Os: the boards with little flash; the copies are 2-3 KB each per variant): one
+ * copy, small and wide at run time. */
+#define GEN_CASE(V, SMALL, WIDE, ONE) \
+    case V: if (RS_BUILT(V)) gen_tri(bd, a, b, c, px0, px1, py0, py1, SMALL, WIDE, ONE, V); return
+RS_NOINLINE static void tri_gen_any(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                    int32_t px0, int32_t px1, int32_t py0, int32_t py1, int small, int wide, int vf)
 {
-    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py1, small, wide, 0);
+    switch (vf) {
+#if defined(__OPTIMIZE_SIZE__)
+    GEN_CASE(V_888_Z32, small, wide, 0);
+    GEN_CASE(V_888_Z16, small, wide, 0);
+    GEN_CASE(V_565_Z16, small, wide, 0);
+    GEN_CASE(V_565_Z32, small, wide, 0);
+#endif
+    GEN_CASE(V_888_Z32_TEX, small, wide, 0);
+    GEN_CASE(V_888_Z16_TEX, small, wide, 0);
+    GEN_CASE(V_565_Z16_TEX, small, wide, 0);
+    GEN_CASE(V_565_Z32_TEX, small, wide, 0);
+    GEN_CASE(V_COUNT, small, wide, 0);
+    default: return;
+    }
 }
-#else
-RS_NOINLINE static void RS_FN(tri_gen_sw)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
-                                          int32_t px0, int32_t px1, int32_t py0, int32_t py1)
+#if !defined(__OPTIMIZE_SIZE__)
+/* small and wide */
+RS_NOINLINE static void tri_gen_sw(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                   int32_t px0, int32_t px1, int32_t py0, int32_t py1, int vf)
 {
-    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py1, 1, 1, 0);
+    switch (vf) {
+    GEN_CASE(V_888_Z32, 1, 1, 0);
+    GEN_CASE(V_888_Z16, 1, 1, 0);
+    GEN_CASE(V_565_Z16, 1, 1, 0);
+    GEN_CASE(V_565_Z32, 1, 1, 0);
+    default: return;
+    }
 }
-RS_NOINLINE static void RS_FN(tri_gen_sw1)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
-                                          int32_t px0, int32_t px1, int32_t py0)
+/* small and wide, one row (py1 = py0) */
+RS_NOINLINE static void tri_gen_sw1(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                    int32_t px0, int32_t px1, int32_t py0, int vf)
 {
-    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py0, 1, 1, 1);
+    const int32_t py1 = py0;
+    switch (vf) {
+    GEN_CASE(V_888_Z32, 1, 1, 1);
+    GEN_CASE(V_888_Z16, 1, 1, 1);
+    GEN_CASE(V_565_Z16, 1, 1, 1);
+    GEN_CASE(V_565_Z32, 1, 1, 1);
+    default: return;
+    }
 }
-RS_NOINLINE static void RS_FN(tri_gen_sn)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
-                                          int32_t px0, int32_t px1, int32_t py0, int32_t py1)
+/* small and narrow */
+RS_NOINLINE static void tri_gen_sn(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                   int32_t px0, int32_t px1, int32_t py0, int32_t py1, int vf)
 {
-    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py1, 1, 0, 0);
+    switch (vf) {
+    GEN_CASE(V_888_Z32, 1, 0, 0);
+    GEN_CASE(V_888_Z16, 1, 0, 0);
+    GEN_CASE(V_565_Z16, 1, 0, 0);
+    GEN_CASE(V_565_Z32, 1, 0, 0);
+    default: return;
+    }
 }
-RS_NOINLINE static void RS_FN(tri_gen_l)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
-                                         int32_t px0, int32_t px1, int32_t py0, int32_t py1, int wide)
+/* large (wide at run time) */
+RS_NOINLINE static void tri_gen_l(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                  int32_t px0, int32_t px1, int32_t py0, int32_t py1, int wide, int vf)
 {
-    RS_FN(tri_gen_body)(bd, a, b, c, px0, px1, py0, py1, 0, wide, 0);
+    switch (vf) {
+    GEN_CASE(V_888_Z32, 0, wide, 0);
+    GEN_CASE(V_888_Z16, 0, wide, 0);
+    GEN_CASE(V_565_Z16, 0, wide, 0);
+    GEN_CASE(V_565_Z32, 0, wide, 0);
+    default: return;
+    }
 }
-RS_INLINE static void RS_FN(tri_general)(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
-                                         int32_t px0, int32_t px1, int32_t py0, int32_t py1, int small, int wide)
+#endif
+#undef GEN_CASE
+
+RS_INLINE static void tri_general(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+                                  int32_t px0, int32_t px1, int32_t py0, int32_t py1, int small, int wide,
+                                  const int vf)
 {
-    if (!small) RS_FN(tri_gen_l)(bd, a, b, c, px0, px1, py0, py1, wide);
-    else if (wide && py0 == py1) RS_FN(tri_gen_sw1)(bd, a, b, c, px0, px1, py0);
-    else if (wide) RS_FN(tri_gen_sw)(bd, a, b, c, px0, px1, py0, py1);
-    else RS_FN(tri_gen_sn)(bd, a, b, c, px0, px1, py0, py1);
+#if !defined(__OPTIMIZE_SIZE__)
+    if (!VF_SLOW(vf)) {
+        if (!small) tri_gen_l(bd, a, b, c, px0, px1, py0, py1, wide, vf);
+        else if (wide && py0 == py1) tri_gen_sw1(bd, a, b, c, px0, px1, py0, vf);
+        else if (wide) tri_gen_sw(bd, a, b, c, px0, px1, py0, py1, vf);
+        else tri_gen_sn(bd, a, b, c, px0, px1, py0, py1, vf);
+        return;
+    }
+#endif
+    tri_gen_any(bd, a, b, c, px0, px1, py0, py1, small, wide, vf);
 }
+
 #endif

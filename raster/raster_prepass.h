@@ -4,7 +4,9 @@
  * raster.c: included by it once, when RS_PREPASS (targets with GCC's vectors, see the
  * comment above RS_PREPASS there), before the template; it uses raster.c's macros
  * (RS_SHUFFLE, PP_SCHED, RS_VBYTES, TINY_W, TINY_H, SUB, HALF, REJECT, SLOW) and band.
- * No header guard on purpose: raster.c's only. */
+ * raster.c's only. */
+#ifndef BR_RASTER_PREPASS_H
+#define BR_RASTER_PREPASS_H
 
 /* Index of the lowest set bit of m (m != 0), 32 bits (the strip loop's work list). */
 static uint32_t ctz32(uint32_t m)
@@ -139,6 +141,37 @@ typedef char pp_v16c __attribute__((vector_size(16)));
         PPS8(C, K, PP_ZIP(c03, c47, 4, 5, 6, 7, 12, 13, 14, 15));                     \
     } while (0)
 
+/* The gather: vertex slot k holds ip[2 k] (even) and ip[2 k + 1] (odd) for k <= n, the
+ * slots past n repeat slot n (their lanes are ignored); eight slots at a time, their
+ * pointers kept for the strip loop and their first 16 bytes transposed (PP_T8); slots
+ * 0 .. nv - 1 (nv: n rounded up to PP_L). */
+RS_INLINE static void pp_gather(pp_soa *q, const rs_cvert *cache, const uint32_t *ip, int32_t n, int32_t nv)
+{
+    /* x - PP_OFF modulo 2^16 is the low 16 bits with the top one flipped */
+    const pp_h8 fl = { -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF };
+    int32_t k;
+#define PP_SLOT(J) (k + (J))
+#define PP_SLOTC(J) (k + (J) <= n ? k + (J) : n)
+#define PP_G(P, V, O, J, S) P[J] = q->V[k + (J)] = &cache[ip[2 * S(J) + (O)]];
+#define PP_G8(S) do {                                                                  \
+            const rs_cvert *pe[8], *po[8];                                             \
+            PP_G(pe, ve, 0, 0, S) PP_G(pe, ve, 0, 1, S) PP_G(pe, ve, 0, 2, S) PP_G(pe, ve, 0, 3, S) \
+            PP_G(pe, ve, 0, 4, S) PP_G(pe, ve, 0, 5, S) PP_G(pe, ve, 0, 6, S) PP_G(pe, ve, 0, 7, S) \
+            PP_T8(pe, q->xe, q->ye, q->ce, k);                                         \
+            PP_G(po, vo, 1, 0, S) PP_G(po, vo, 1, 1, S) PP_G(po, vo, 1, 2, S) PP_G(po, vo, 1, 3, S) \
+            PP_G(po, vo, 1, 4, S) PP_G(po, vo, 1, 5, S) PP_G(po, vo, 1, 6, S) PP_G(po, vo, 1, 7, S) \
+            PP_T8(po, q->xo, q->yo, q->co, k);                                         \
+        } while (0)
+    for (k = 0; k < nv; k += 8) {
+        if (k + 7 <= n) PP_G8(PP_SLOT);
+        else PP_G8(PP_SLOTC);
+    }
+#undef PP_SLOT
+#undef PP_SLOTC
+#undef PP_G
+#undef PP_G8
+}
+
 /* The set-up of strip steps 0 .. n-1 of a chunk, PP_L at a time in 16-bit lanes (see
  * pp_soa above; strip indices ip[0 .. 2 n + 1], gathered first): for each step what
  * tri_pair, pair_tiny and tri_quad (raster_tmpl.h) compute before the coverage masks,
@@ -169,33 +202,9 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
     const pp_v8 by0 = zero + (int16_t)(bd->y0 - PP_ROFF), by1 = zero + (int16_t)(bd->y1 - 1 - PP_ROFF);
     const pp_v8 cullm = zero - (int16_t)(bd->cull != 0);
     const pp_v8 iota = PPL(iota_a, 0);
-    /* x - PP_OFF modulo 2^16 is the low 16 bits with the top one flipped */
-    const pp_h8 fl = { -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF };
     const int32_t nv = (n + PP_L - 1) & ~(PP_L - 1);    /* slots 0 .. nv: the groups read slots k .. k + PP_L */
     int32_t k;
-    /* the gather: vertex slot k holds ip[2 k] (even) and ip[2 k + 1] (odd) for k <= n, the
-     * slots past n repeat slot n (their lanes are ignored); eight slots at a time, their
-     * pointers kept for the strip loop and their first 16 bytes transposed */
-#define PP_SLOT(J) (k + (J))
-#define PP_SLOTC(J) (k + (J) <= n ? k + (J) : n)
-#define PP_G(P, V, O, J, S) P[J] = q->V[k + (J)] = &cache[ip[2 * S(J) + (O)]];
-#define PP_G8(S) do {                                                                  \
-            const rs_cvert *pe[8], *po[8];                                             \
-            PP_G(pe, ve, 0, 0, S) PP_G(pe, ve, 0, 1, S) PP_G(pe, ve, 0, 2, S) PP_G(pe, ve, 0, 3, S) \
-            PP_G(pe, ve, 0, 4, S) PP_G(pe, ve, 0, 5, S) PP_G(pe, ve, 0, 6, S) PP_G(pe, ve, 0, 7, S) \
-            PP_T8(pe, q->xe, q->ye, q->ce, k);                                         \
-            PP_G(po, vo, 1, 0, S) PP_G(po, vo, 1, 1, S) PP_G(po, vo, 1, 2, S) PP_G(po, vo, 1, 3, S) \
-            PP_G(po, vo, 1, 4, S) PP_G(po, vo, 1, 5, S) PP_G(po, vo, 1, 6, S) PP_G(po, vo, 1, 7, S) \
-            PP_T8(po, q->xo, q->yo, q->co, k);                                         \
-        } while (0)
-    for (k = 0; k < nv; k += 8) {
-        if (k + 7 <= n) PP_G8(PP_SLOT);
-        else PP_G8(PP_SLOTC);
-    }
-#undef PP_SLOT
-#undef PP_SLOTC
-#undef PP_G
-#undef PP_G8
+    pp_gather(q, cache, ip, n, nv);
     {
         const rs_cvert *a0 = &cache[ip[2 * n]], *a1 = &cache[ip[2 * n + 1]];    /* slot nv alone */
         q->ve[nv] = a0; q->vo[nv] = a1;
@@ -376,3 +385,5 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
         q->work = work & (uint32_t)(((uint64_t)1 << n) - 1);
     }
 }
+
+#endif

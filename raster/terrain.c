@@ -1,5 +1,6 @@
 /* raster/terrain.c — heightfield / bitree mesh to raster vertices (see terrain.h). */
 #include "raster/terrain.h"
+#include <string.h>
 
 /* The vertical scale in Q16 world units per height unit for world unit 2^-shift m
  * and exaggeration num/den: z_num / z_den * num / den * 2^(shift + 16), rounded in
@@ -72,6 +73,7 @@ br_status rt_scene_init(rt_scene *s, const hf *f, const rs_ramp *ramp, const fx_
     s->sun[0] = sun[0]; s->sun[1] = sun[1]; s->sun[2] = sun[2];
     s->ambient_q14 = ambient_q14;
     s->tex_w = s->tex_h = 0;
+    s->lit = NULL;
     set_frame(s, frame_shift(f, 16, 1, 1), 1, 1);
     return BR_OK;
 }
@@ -92,6 +94,7 @@ br_status rt_scene_zscale(rt_scene *s, int32_t num, int32_t den)
         s->sc.kx = scale_at_least_1(s->sc.kx, num, den, INT64_MAX);
         s->sc.ky = scale_at_least_1(s->sc.ky, num, den, INT64_MAX);
     } else s->sc.kz = scale_at_least_1(s->sc.kz, den, num, INT64_MAX);
+    rt_cache_clear(s);
     return BR_OK;
 }
 
@@ -101,12 +104,40 @@ int64_t rt_mm_to_world(const rt_scene *s, int64_t mm)
     return fx_div_round(mm, (int64_t)1000 << -s->shift);
 }
 
+size_t rt_cache_mem_size(const hf *f)
+{
+    uint64_t n = (uint64_t)f->w * (uint64_t)f->h * 4u;
+    return f->w > 0 && f->h > 0 && n <= (uint64_t)SIZE_MAX ? (size_t)n : 0;
+}
+
+br_status rt_scene_cache(rt_scene *s, void *mem, size_t mem_bytes)
+{
+    if (mem && (mem_bytes < rt_cache_mem_size(s->f) || rt_cache_mem_size(s->f) == 0 ||
+                ((uintptr_t)mem & 3) != 0))
+        return BR_E_ARG;
+    s->lit = (uint32_t *)mem;
+    rt_cache_clear(s);
+    return BR_OK;
+}
+
+void rt_cache_clear(rt_scene *s)
+{
+    if (s->lit) memset(s->lit, 0, (size_t)s->f->w * (size_t)s->f->h * 4u);
+}
+
+/* the shaded colour of sample (x, y) at height z (not a void) */
+static uint32_t lit_rgb(const rt_scene *s, int32_t x, int32_t y, int32_t z)
+{
+    fx_q14 n[3];
+    uint32_t rgb = s->tex_w > 0 ? 0xffffffu : rs_ramp_rgb(s->ramp, hf_z_to_mm(s->f, z));
+    shade_normal(&s->sc, x, y, n);
+    return rs_light_rgb(rgb, n, s->sun, s->ambient_q14);
+}
+
 void rt_vertex(const rt_scene *s, int32_t x, int32_t y, int32_t z, rs_vertex *out)
 {
     const hf *f = s->f;
-    fx_q14 n[3];
     int32_t zs = f->z[(size_t)y * (size_t)f->w + (size_t)x];
-    uint32_t rgb;
     out->p[0] = s->fr.ox + x * s->fr.sx;
     out->p[1] = s->fr.oy - y * s->fr.sy;
     out->p[2] = s->fr.oz + (int32_t)(((int64_t)z * s->fr.sz_q16) >> 16);
@@ -119,9 +150,13 @@ void rt_vertex(const rt_scene *s, int32_t x, int32_t y, int32_t z, rs_vertex *ou
         out->rgb = s->ramp->has_nv ? s->ramp->nv_rgb : 0;
         return;
     }
-    rgb = s->tex_w > 0 ? 0xffffffu : rs_ramp_rgb(s->ramp, hf_z_to_mm(f, z));
-    shade_normal(&s->sc, x, y, n);
-    out->rgb = rs_light_rgb(rgb, n, s->sun, s->ambient_q14);
+    if (s->lit && z == zs) {
+        uint32_t *c = &s->lit[(size_t)y * (size_t)f->w + (size_t)x];
+        if (!*c) *c = RT_LIT | lit_rgb(s, x, y, z);
+        out->rgb = *c & 0xffffffu;
+        return;
+    }
+    out->rgb = lit_rgb(s, x, y, z);
 }
 
 void rt_from_mesh(const rt_scene *s, const bt_mesh *m, rs_vertex *out)

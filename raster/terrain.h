@@ -34,7 +34,12 @@ typedef struct rt_scene {
                                 grid (sample (0,0) at texel (0,0), sample (w-1,h-1) at
                                 texel (tex_w, tex_h)) and the vertex colour is the
                                 lighting alone (lit white) */
+    uint32_t *lit;           /* NULL, or the per-sample cache (rt_scene_cache): w*h
+                                entries, 0 = not yet computed, else RT_LIT | rgb, the
+                                shaded colour at the sample's real height */
 } rt_scene;
+
+#define RT_LIT 0x01000000u
 
 /* Chooses the world frame for f and prepares shading; BR_E_ARG on a bad hf. */
 br_status rt_scene_init(rt_scene *s, const hf *f, const rs_ramp *ramp, const fx_q14 sun[3],
@@ -51,11 +56,24 @@ br_status rt_scene_zscale(rt_scene *s, int32_t num, int32_t den);
 /* Millimetres to world units (rounded to nearest). */
 int64_t rt_mm_to_world(const rt_scene *s, int64_t mm);
 
+/* Bytes of the per-sample colour cache for f (4 per sample; 0 if too big). */
+size_t rt_cache_mem_size(const hf *f);
+/* Attaches (mem != NULL) or detaches (mem == NULL) the cache, cleared.  What depends
+ * only on the heightfield, the ramp, the sun, the ambient term, the texture size and
+ * the vertical scale (the normal and the lit colour of a sample at its real height)
+ * is then computed once per sample, on first use, instead of once per vertex per
+ * frame: the same bytes as without the cache.  Call rt_cache_clear after changing
+ * any of those (rt_scene_zscale does).  BR_E_ARG when mem_bytes is too small or mem
+ * not 4-byte aligned (s unchanged). */
+br_status rt_scene_cache(rt_scene *s, void *mem, size_t mem_bytes);
+void rt_cache_clear(rt_scene *s);
+
 /* Vertex of grid sample (x, y) with height z (heightfield units), shaded; with a
  * texture, uv = (x * tex_w / (w - 1), y * tex_h / (h - 1)) texels in Q8. */
 void rt_vertex(const rt_scene *s, int32_t x, int32_t y, int32_t z, rs_vertex *out);
 
-/* The bitree mesh's vertices (m->nv of them) into out. */
+/* The bitree mesh's vertices (m->nv of them) into out; with the cache, a vertex at
+ * its real height (BT_S) takes its colour from it. */
 void rt_from_mesh(const rt_scene *s, const bt_mesh *m, rs_vertex *out);
 
 #endif

@@ -2,9 +2,9 @@
  * the conventions; raster.c draws the bands from what this file leaves in the cache).
  *
  * rs_frame_prepare checks the frame, transforms each vertex once (camera space by the
- * Q30 view matrix, then divide) into the vertex cache with an outcode, and, when the
- * caller gave chunks, notes the rows each chunk of triangles can touch, so the band loop
- * skips chunks that miss its band.
+ * Q30 view matrix, then divide) into the vertex cache with an outcode, and notes in
+ * the chunk table (required) the rows each chunk of triangles can touch, so the band
+ * loop skips chunks that miss its band (unless the frame is drawn as one band only).
  */
 #include <string.h>
 #include "raster/raster_int.h"
@@ -16,7 +16,7 @@ size_t rs_chunk_mem_size(const rs_prim *prims, int32_t nprims)
     size_t n = 0;
     int32_t p;
     for (p = 0; p < nprims; p++) n += (rs_prim_tris(&prims[p]) + RS_CHUNK - 1) / RS_CHUNK;
-    return n * 2 * sizeof(int16_t);
+    return (n ? n : 1) * 2 * sizeof(int16_t);    /* never 0: malloc(0) may give NULL */
 }
 
 /* Rows [lo, hi] that chunks' triangles can touch (conservative: the pixel-centre rows
@@ -68,6 +68,21 @@ static void chunk_rows(rs_frame *f)
             if (common) { lo = f->h; hi = -1; }
             ch[0] = (int16_t)lo;
             ch[1] = (int16_t)hi;
+        }
+    }
+}
+
+/* A frame drawn as one whole-frame band (rs_frame.one_band): every chunk may touch every
+ * row, which the band loop then treats as it treats a frame without a table. */
+static void chunk_all_rows(rs_frame *f)
+{
+    int16_t *ch = f->chunks;
+    int32_t p;
+    for (p = 0; p < f->nprims; p++) {
+        uint32_t nt = rs_prim_tris(&f->prims[p]), t0;
+        for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch += 2) {
+            ch[0] = 0;
+            ch[1] = (int16_t)(f->h - 1);
         }
     }
 }
@@ -457,7 +472,7 @@ br_status rs_frame_prepare(rs_frame *f)
     const cam_vp *vp = &f->vp;
     int64_t f8 = f_q8(vp);
     int32_t w = f->w, h = f->h;
-    if (w < 1 || h < 1 || w > RS_MAX_DIM || h > RS_MAX_DIM || !f->cache || (f->nv && !f->v)
+    if (w < 1 || h < 1 || w > RS_MAX_DIM || h > RS_MAX_DIM || !f->cache || !f->chunks || (f->nv && !f->v)
         || (f->fmt != RS_FMT_XRGB8888 && f->fmt != RS_FMT_RGB565)
         || (f->depth != RS_DEPTH32 && f->depth != RS_DEPTH16) || vp->znear <= 0
         || vp->zfar <= vp->znear || vp->cx_q16 != w * (FX_Q16_ONE / 2)
@@ -465,7 +480,6 @@ br_status rs_frame_prepare(rs_frame *f)
         || (f->tex && (!f->tex->px || f->tex->w < 1 || f->tex->h < 1 || f->tex->w > RS_MAX_TEX
                        || f->tex->h > RS_MAX_TEX)))
         return BR_E_ARG;
-    f->stat_tris = f->stat_clipped = f->stat_pixels = 0;
     if (f->nv) {
         xform_k k;
         int i, j;
@@ -501,6 +515,7 @@ br_status rs_frame_prepare(rs_frame *f)
         for (i = 0; i < f->nv; i++)
             if (f->v[i].p[2] < f->clip_z) f->cache[i].c |= (uint32_t)RS_OUT_CLIPZ << 24;
     }
-    if (f->chunks) chunk_rows(f);
+    if (f->one_band) chunk_all_rows(f);
+    else chunk_rows(f);
     return BR_OK;
 }

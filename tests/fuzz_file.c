@@ -59,7 +59,7 @@ static void frame(scene *s)
     if (scene_frame(s, &c, &p, &fr, &prim) != BR_OK) abort();
     mem = malloc(rs_band_mem_size(64, 16, fr.fmt, fr.depth));
     if (!mem) abort();
-    if (rs_render_band(&fr, 16, 16, px, 64 * 4, mem) != BR_OK) abort();
+    if (rs_draw_band(&fr, 16, 16, px, 64 * 4, mem, NULL) != BR_OK) abort();
     free(mem);
 }
 

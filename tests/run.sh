@@ -1,5 +1,6 @@
 #!/bin/sh
-# Run the whole suite: the no-floating-point check, every test program, the raster
+# Run the whole suite: the no-floating-point check, the layout check (mk/check-layout.sh),
+# every test program, the raster
 # tests again with the 32-bit boards' divide-free quotients (BR_DIV64_NATIVE=0), and
 # every test program again under AddressSanitizer + UndefinedBehaviorSanitizer.
 # Each program ends with "N passed, N failed"; we add them up and end the same way.
@@ -23,6 +24,12 @@ if sh mk/check-nofloat.sh "${CC:-cc}" core/*.c raster/*.c >$log 2>&1; then
 else
   echo "0 passed, 1 failed" >>$log; count "no floating point in core/ raster/" $log 1
 fi
+if sh mk/check-layout.sh "$B" >$log 2>&1; then
+  echo "1 passed, 0 failed" >>$log; count "layout: include direction, guards, file and function sizes, call cycles" $log 0
+else
+  echo "0 passed, 1 failed" >>$log; count "layout: include direction, guards, file and function sizes, call cycles" $log 1
+fi
+sh mk/check-install.sh "${MAKE:-make}" >$log 2>&1; rc=$?; count "make install into a DESTDIR + a program built against bitrain.pc" $log $rc
 for t in "$B"/tests/test_*; do
   [ -x "$t" ] || continue
   "$t" >$log 2>&1; rc=$?; count "$(basename "$t")" $log $rc

@@ -6,7 +6,7 @@
  * one copy it says so and checks that rs_isa_set falls back to it. */
 #include "raster/raster.h"
 #include "core/cam.h"
-#include "platform/peer_scene.h"
+#include "benchmarks/peer_scene.h"
 #include "tests/test.h"
 
 static peer_scene *g_ps;
@@ -36,18 +36,21 @@ static int frame(int isa, char camc, int32_t w, int32_t h, int32_t fmt, int32_t 
                  const rs_texture *tex, int32_t rows, rs_cvert *cache, uint8_t *colour, void *zbuf,
                  uint32_t *pixels)
 {
+    static int16_t chunks[2 * (PEER_NTRI / RS_CHUNK + PEER_NSTRIP)];
     rs_frame f;
+    rs_band_stats st = { 0, 0, 0, 0 };
     int32_t y0, bpp = fmt == RS_FMT_RGB565 ? 2 : 4;
     memset(&f, 0, sizeof f);
     if (rs_isa_set(isa) != isa || peer_frame(camc, w, h, g_v, g_prims, &f) != 0) return 0;
-    f.fmt = fmt; f.depth = depth; f.no_cull = !cull; f.tex = tex; f.cache = cache;
-    if (rs_frame_prepare(&f) != BR_OK) return 0;
+    f.fmt = fmt; f.depth = depth; f.no_cull = !cull; f.tex = tex; f.cache = cache; f.chunks = chunks;
+    f.one_band = rows >= h;
+    if (rs_chunk_mem_size(f.prims, f.nprims) > sizeof chunks || rs_frame_prepare(&f) != BR_OK) return 0;
     for (y0 = 0; y0 < h; y0 += rows) {
         int32_t n = h - y0 < rows ? h - y0 : rows;
-        if (rs_render_band(&f, y0, n, colour + (size_t)y0 * (size_t)w * (size_t)bpp, (size_t)(w * bpp), zbuf) != BR_OK)
+        if (rs_draw_band(&f, y0, n, colour + (size_t)y0 * (size_t)w * (size_t)bpp, (size_t)(w * bpp), zbuf, &st) != BR_OK)
             return 0;
     }
-    *pixels = f.stat_pixels;
+    *pixels = st.pixels;
     return 1;
 }
 

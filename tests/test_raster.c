@@ -1,7 +1,8 @@
 /* tests/test_raster.c — the integer rasteriser, pixel-exact.
  *
  * Fill rule (screen-space input through rs_cvert_set, write counting through
- * rs_frame.debug_count): grids and fans of triangles sharing edges cover every pixel
+ * rs_frame.debug_count, drawn by tests/support/raster_count.c: every frame here goes through
+ * that copy, the library's code plus the counting variant): grids and fans of triangles sharing edges cover every pixel
  * exactly once, ties on pixel centres included; degenerate, line, tiny and huge
  * triangles.  World-space input: near-plane crossings, cameras below and inside real
  * terrain (N47E009), vertices far outside the guard band.  Bands of 1, 7, 16 and 240
@@ -17,11 +18,17 @@
 #include "platform/load.h"
 #include "platform/png_io.h"
 #include "raster/raster.h"
+#include "tests/support/raster_count.h"
 #include "raster/ramp.h"
 #include "raster/terrain.h"
 
 static uint32_t lcg_state = 12345;
 static uint32_t lcg(void) { lcg_state = lcg_state * 1103515245u + 12345u; return lcg_state >> 8; }
+
+/* The chunk table rs_frame_prepare requires, for every frame prepared here (at most
+ * 4096 chunks of RS_CHUNK triangles), and what the last render_full drew. */
+static int16_t g_chunks[2 * 4096];
+static rs_band_stats g_st;
 
 /* Renders f whole (one band) into a fresh buffer (XRGB8888 or RGB565) and returns it. */
 static void *render_full(rs_frame *f)
@@ -30,7 +37,8 @@ static void *render_full(rs_frame *f)
     void *c = calloc((size_t)f->w * (size_t)f->h, bpp);
     void *z = calloc((size_t)f->w * (size_t)f->h, 4);
     CHECK(c && z);
-    CHECK_EQ(rs_render_band(f, 0, f->h, c, (size_t)f->w * bpp, z), BR_OK);
+    memset(&g_st, 0, sizeof g_st);
+    CHECK_EQ(cnt_draw_band(f, 0, f->h, c, (size_t)f->w * bpp, z, &g_st), BR_OK);
     free(z);
     return c;
 }
@@ -205,7 +213,7 @@ static void test_fill_fan(void)
     }
 }
 
-/* The clear (rs_render_band's first step, 32 bytes a store with an overlapping last
+/* The clear (rs_draw_band's first step, 32 bytes a store with an overlapping last
  * one): every pixel the sky, every depth the far plane's, and not a byte more, for
  * widths around the store sizes, both pixel formats and depth sizes, rows packed
  * (stride = row) and padded (stride = row + 8: the padding keeps its bytes). */
@@ -233,7 +241,7 @@ static void test_clear(void)
                     f.vp.znear = 3; f.vp.zfar = 1000;
                     dfar = (uint32_t)((int64_t)RS_DEPTH_ONE * 3 / 1000);
                     memset(cbuf, 0xa5, sizeof cbuf); memset(zbuf, 0xa5, sizeof zbuf);
-                    CHECK_EQ(rs_render_band(&f, 0, ROWS, cbuf, stride, zbuf), BR_OK);
+                    CHECK_EQ(cnt_draw_band(&f, 0, ROWS, cbuf, stride, zbuf, NULL), BR_OK);
                     for (y = 0; y < ROWS; y++) {
                         for (x = 0; x < w; x++) {
                             const uint8_t *c = cbuf + (size_t)y * stride + (size_t)x * (size_t)cb;
@@ -357,8 +365,10 @@ static void terrain_frame(rs_frame *f, rs_cvert *cache, int32_t w, int32_t h, co
     memset(f, 0, sizeof *f);
     f->w = w; f->h = h; f->fmt = RS_FMT_XRGB8888; f->depth = RS_DEPTH32; f->clear_rgb = 0x99ccffu;
     f->v = T.v; f->nv = T.nv; f->cache = cache; f->prims = T.prims; f->nprims = 256;
+    f->chunks = g_chunks;
+    CHECK(rs_chunk_mem_size(f->prims, f->nprims) <= sizeof g_chunks);
     cam_viewproj(&c, &f->vp);
-    CHECK_EQ(rs_frame_prepare(f), BR_OK);
+    CHECK_EQ(cnt_frame_prepare(f), BR_OK);
 }
 
 /* Terrain crop: ~14.6 km (east) x 23.7 km (north) at 57 x 92 m spacing. */
@@ -380,25 +390,21 @@ static void test_bands_and_formats(void)
             terrain_frame(&f, cache, w, h, CAM_OBLIQUE_E, CAM_OBLIQUE_T, 50, 1);
             f.fmt = fmt; f.depth = dep;
             full = render_full(&f);
-            /* bands with the chunk table (skipping chunks that miss a band) */
-            f.chunks = malloc(rs_chunk_mem_size(f.prims, f.nprims));
-            CHECK_EQ(rs_frame_prepare(&f), BR_OK);
+            /* bands with the chunk table (skipping chunks that miss a band); last, bands of
+             * 7 rows of a frame prepared as one band (its table says "every row") */
             for (k = 0; k < 5; k++) {
                 int32_t y0, rows = bands[k < 4 ? k : 1];
                 uint8_t *img = malloc((size_t)w * h * bpp);
                 void *mem = malloc(rs_band_mem_size(w, rows, fmt, dep));
+                f.one_band = k == 4;
+                CHECK_EQ(cnt_frame_prepare(&f), BR_OK);
                 for (y0 = 0; y0 < h; y0 += rows) {
                     int32_t r = h - y0 < rows ? h - y0 : rows;
-                    CHECK_EQ(rs_render_band(&f, y0, r, img + (size_t)y0 * w * bpp, (size_t)w * bpp, mem), BR_OK);
+                    CHECK_EQ(cnt_draw_band(&f, y0, r, img + (size_t)y0 * w * bpp, (size_t)w * bpp, mem, NULL), BR_OK);
                 }
-                CHECK_MSG(!memcmp(img, full, (size_t)w * h * bpp), "bands of %d rows differ (fmt %d depth %d chunks %d)",
-                          rows, fmt, dep, f.chunks != NULL);
+                CHECK_MSG(!memcmp(img, full, (size_t)w * h * bpp), "bands of %d rows differ (fmt %d depth %d one_band %d)",
+                          rows, fmt, dep, f.one_band);
                 free(img); free(mem);
-                if (k == 3) {   /* the last run: bands of 7 rows without the chunk table */
-                    free(f.chunks);
-                    f.chunks = NULL;
-                    CHECK_EQ(rs_frame_prepare(&f), BR_OK);
-                }
             }
             free(full);
         }
@@ -457,7 +463,7 @@ static void test_near_plane_and_inside(void)
         bad = 0;
         for (i = 0; i < w * h; i++) if (cnt[i] > 12) bad++;   /* nothing absurd */
         CHECK_EQ(bad, 0);
-        CHECK(f.stat_clipped > 0);
+        CHECK(g_st.clipped > 0);
         free(cnt);
     }
     {   /* camera below the whole terrain looking up: only back faces -> all sky */
@@ -480,7 +486,7 @@ static void test_near_plane_and_inside(void)
         img = render_full(&f);
         band = malloc((size_t)w * h * 4);
         for (y0 = 0; y0 < h; y0 += 7)
-            rs_render_band(&f, y0, h - y0 < 7 ? h - y0 : 7, band + (size_t)y0 * w * 4, (size_t)w * 4, mem);
+            cnt_draw_band(&f, y0, h - y0 < 7 ? h - y0 : 7, band + (size_t)y0 * w * 4, (size_t)w * 4, mem, NULL);
         CHECK(!memcmp(band, img, (size_t)w * h * 4));
         free(img); free(band); free(mem);
     }
@@ -504,8 +510,9 @@ static void test_far_outside_guard(void)
     CHECK_EQ(cam_look_at(&c, eye, tg, 60000, w, h, 1, M), BR_OK);
     memset(&f, 0, sizeof f);
     f.w = w; f.h = h; f.v = v; f.nv = 5; f.cache = cache; f.prims = &pr; f.nprims = 1; f.debug_count = 1;
+    f.chunks = g_chunks;
     cam_viewproj(&c, &f.vp);
-    CHECK_EQ(rs_frame_prepare(&f), BR_OK);
+    CHECK_EQ(cnt_frame_prepare(&f), BR_OK);
     cnt = render_full(&f);
     /* looking horizontally: the lower half is ground, the upper half sky */
     for (y = 0; y < h; y++) {
@@ -548,11 +555,11 @@ static void test_near_plane_grid(void)
     CHECK_EQ(cam_look_at(&c, eye, tg, 70000, w, h, 1, 100000), BR_OK);
     memset(&f, 0, sizeof f);
     f.w = w; f.h = h; f.v = v; f.nv = (uint32_t)(n * n); f.cache = cache; f.prims = &pr; f.nprims = 1;
-    f.debug_count = 1;
+    f.debug_count = 1; f.chunks = g_chunks;
     cam_viewproj(&c, &f.vp);
-    CHECK_EQ(rs_frame_prepare(&f), BR_OK);
+    CHECK_EQ(cnt_frame_prepare(&f), BR_OK);
     cnt = render_full(&f);
-    CHECK(f.stat_clipped > 0);
+    CHECK(g_st.clipped > 0);
     for (y = 0; y < h; y++)
         for (x = 0; x < w; x++) {
             uint32_t want = y >= h / 2 + 2 ? 1 : (y < h / 2 ? 0 : cnt[y * w + x]);
@@ -604,9 +611,9 @@ static void texture_case(int32_t n, int fmt, int low)
     CHECK_EQ(cam_look_at(&c, eye, tg, 60000, w, h, 16, 100000), BR_OK);
     memset(&f, 0, sizeof f);
     f.w = w; f.h = h; f.fmt = fmt; f.v = v; f.nv = (uint32_t)((n + 1) * (n + 1)); f.cache = cache;
-    f.prims = &pr; f.nprims = 1; f.tex = &tex; f.clear_rgb = 0x000000u;
+    f.prims = &pr; f.nprims = 1; f.tex = &tex; f.clear_rgb = 0x000000u; f.chunks = g_chunks;
     cam_viewproj(&c, &f.vp);
-    CHECK_EQ(rs_frame_prepare(&f), BR_OK);
+    CHECK_EQ(cnt_frame_prepare(&f), BR_OK);
     img = render_full(&f);
     {
         double R[3][3], fo = (double)c.f_q16 / 65536.0;
@@ -774,7 +781,7 @@ static void test_transform(void)
         zf = (int32_t)(zn + rnd_range(1, big));
         if (cam_look_at(&c, eye, tg, (int32_t)rnd_range(1000, 170000), w, h, zn, zf) != BR_OK) continue;
         memset(&f, 0, sizeof f);
-        f.w = w; f.h = h; f.v = v; f.nv = NV; f.cache = cache;
+        f.w = w; f.h = h; f.v = v; f.nv = NV; f.cache = cache; f.chunks = g_chunks;
         f.tex = k & 4 ? &tex : NULL;
         cam_viewproj(&c, &f.vp);
         for (i = 0; i < NV; i++) {
@@ -815,7 +822,7 @@ static void test_transform(void)
             }
         }
         f.nv = NV - (uint32_t)(k % 5);    /* every remainder of the loop's unrolling */
-        CHECK_EQ(rs_frame_prepare(&f), BR_OK);
+        CHECK_EQ(cnt_frame_prepare(&f), BR_OK);
         bad += cache_mismatches(&f, cls);
     }
     if (getenv("BITRAIN_VERBOSE"))

@@ -132,6 +132,7 @@ static void render_default(const char *path, uint32_t *tris, long *ground)
     bt_params p;
     rs_frame fr;
     rs_prim prim;
+    rs_band_stats st;
     double eye[3], tgt[3];
     uint32_t *px = NULL;
     void *mem = NULL;
@@ -153,8 +154,8 @@ static void render_default(const char *path, uint32_t *tris, long *ground)
         px = malloc((size_t)160 * 120 * 4);
         mem = malloc(rs_band_mem_size(160, 120, fr.fmt, fr.depth));
         if (px && mem && scene_frame(&s, &c, &p, &fr, &prim) == BR_OK &&
-            rs_render_band(&fr, 0, 120, px, 160 * 4, mem) == BR_OK) {
-            *tris = fr.stat_tris;
+            (memset(&st, 0, sizeof st), rs_draw_band(&fr, 0, 120, px, 160 * 4, mem, &st)) == BR_OK) {
+            *tris = st.tris;
             for (i = 0; i < 160 * 120; i++) *ground += (px[i] & 0xffffffu) != 0x99ccffu;
         }
     }

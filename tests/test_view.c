@@ -1,10 +1,15 @@
 #define _POSIX_C_SOURCE 200809L
 /* tests/test_view.c — the viewer and `bitrain run`, headless.
  * The viewer runs on SDL's dummy video driver for a few frames and saves its last
- * frame; `run` without a display renders the default terrain to out/terrain.png. */
+ * frame; `run` without a display renders the default terrain to out/terrain.png.
+ * What needs no window is tested directly: the controls table, the camera limits,
+ * latitude/longitude, --record, idling, thread counts. */
+#include <math.h>
 #include "tests/test.h"
 #include "platform/cmd.h"
+#include "platform/geocam.h"
 #include "platform/png_io.h"
+#include "platform/view.h"
 
 /* Fraction (per mille) of pixels that are not the sky colour. */
 static int terrain_permille(const char *path, int ew, int eh)
@@ -23,12 +28,12 @@ static int terrain_permille(const char *path, int ew, int eh)
 static void test_viewer_frames(void)
 {
     char shot[256], size[] = "--size", wh[] = "320x200", fr[] = "--frames", three[] = "3", ss[] = "--screenshot";
-    char cam[] = "--camera", cv[] = "20000,20000,3500,40000,70000,800";
+    char camo[] = "--camera", cv[] = "20000,20000,3500,40000,70000,800";
     char dem[] = "assets/N47E009.hgt.gz";
     char *argv[10];
     snprintf(shot, sizeof shot, "%s/view_frame.png", t_outdir());
     argv[0] = dem; argv[1] = size; argv[2] = wh; argv[3] = fr; argv[4] = three; argv[5] = ss; argv[6] = shot;
-    argv[7] = cam; argv[8] = cv; argv[9] = NULL;
+    argv[7] = camo; argv[8] = cv; argv[9] = NULL;
     setenv("SDL_VIDEODRIVER", "dummy", 1);
     CHECK_EQ(cmd_view(9, argv), 0);
     /* looking north from the Alps over the lake: terrain fills most of the frame */
@@ -45,6 +50,175 @@ static void test_view_bad_input(void)
     CHECK_EQ(cmd_view(3, a2), 2);
 }
 
+
+/* Runs `bitrain view` with argv (a NULL-terminated list after the input file) on the
+ * dummy video driver. */
+static int view_run(const char *const *args)
+{
+    char *argv[40];
+    char dem[] = "assets/N47E009.hgt.gz";
+    int n = 0;
+    argv[n++] = dem;
+    while (*args && n < 39) argv[n++] = (char *)*args++;
+    argv[n] = NULL;
+    setenv("SDL_VIDEODRIVER", "dummy", 1);
+    return cmd_view(n, argv);
+}
+
+static long file_lines(const char *path, long *comments)
+{
+    FILE *f = fopen(path, "r");
+    char line[512];
+    long n = 0;
+    *comments = 0;
+    if (!f) return -1;
+    while (fgets(line, sizeof line, f)) {
+        double c[6];
+        if (line[0] == '#') { (*comments)++; continue; }
+        if (sscanf(line, "%lf,%lf,%lf,%lf,%lf,%lf", &c[0], &c[1], &c[2], &c[3], &c[4], &c[5]) == 6) n++;
+        else n = -1000000;
+    }
+    fclose(f);
+    return n;
+}
+
+static int same_png(const char *a, const char *b)
+{
+    int w1, h1, w2, h2, same;
+    uint8_t *p1 = NULL, *p2 = NULL;
+    br_err err;
+    if (png_read_rgb(a, &w1, &h1, &p1, &err) != BR_OK || png_read_rgb(b, &w2, &h2, &p2, &err) != BR_OK) {
+        free(p1);
+        return 0;
+    }
+    same = w1 == w2 && h1 == h2 && !memcmp(p1, p2, (size_t)w1 * (size_t)h1 * 3);
+    free(p1);
+    free(p2);
+    return same;
+}
+
+/* --record writes one camera line per frame drawn, after # comments. */
+static void test_view_record(void)
+{
+    char rec[256];
+    long com;
+    const char *args[] = { "--size", "160x100", "--frames", "4", "--record", rec, NULL };
+    snprintf(rec, sizeof rec, "%s/view_path.txt", t_outdir());
+    CHECK_EQ(view_run(args), 0);
+    CHECK_EQ(file_lines(rec, &com), 4);
+    CHECK(com >= 1);
+}
+
+/* Nothing moves, nothing changes: the viewer draws its first frame and the one after
+ * (hysteresis settles), then waits instead of redrawing. */
+static void test_view_idle(void)
+{
+    char rec[256];
+    long com, n;
+    const char *args[] = { "--size", "160x100", "--seconds", "1.5", "--record", rec, NULL };
+    snprintf(rec, sizeof rec, "%s/view_idle.txt", t_outdir());
+    CHECK_EQ(view_run(args), 0);
+    n = file_lines(rec, &com);
+    CHECK_MSG(n >= 1 && n <= 3, "%ld frames drawn in 1.5 s of idling", n);
+}
+
+/* The same frame for 1, 2 and 3 threads and for bands of 64 and 5 rows. */
+static void test_view_threads_same(void)
+{
+    char a[256], b[256], c[256];
+    const char *base[] = { "--size", "320x200", "--frames", "2", "--no-hud", "--camera",
+                           "20000,20000,3500,40000,70000,800", "--threads", "1", "--screenshot", a, NULL };
+    const char *two[] = { "--size", "320x200", "--frames", "2", "--no-hud", "--camera",
+                          "20000,20000,3500,40000,70000,800", "--threads", "2", "--screenshot", b, NULL };
+    const char *three[] = { "--size", "320x200", "--frames", "2", "--no-hud", "--camera",
+                            "20000,20000,3500,40000,70000,800", "--threads", "3", "--bands", "5", "--screenshot", c, NULL };
+    snprintf(a, sizeof a, "%s/view_t1.png", t_outdir());
+    snprintf(b, sizeof b, "%s/view_t2.png", t_outdir());
+    snprintf(c, sizeof c, "%s/view_t3.png", t_outdir());
+    CHECK_EQ(view_run(base), 0);
+    CHECK_EQ(view_run(two), 0);
+    CHECK_EQ(view_run(three), 0);
+    CHECK(same_png(a, b));
+    CHECK(same_png(a, c));
+}
+
+/* --look-from/--look-at give the frame of the --camera they convert to. */
+static void test_view_look_from(void)
+{
+    char a[256], b[256], from[96], at[96], camarg[200];
+    const char *bad1[] = { "--look-from", "47.5,9.5,2000", NULL };
+    const char *bad2[] = { "--look-from", "47.5,9.5,2000", "--look-at", "10,10,0", NULL };
+    const char *bad3[] = { "--look-from", "47.5,9.5,2000", "--look-at", "47.6,9.5,400", "--camera", "1,2,3,4,5,6", NULL };
+    const char *geo[] = { "--size", "160x100", "--frames", "1", "--no-hud", "--look-from", from, "--look-at", at,
+                          "--screenshot", a, NULL };
+    const char *met[] = { "--size", "160x100", "--frames", "1", "--no-hud", "--camera", camarg, "--screenshot", b, NULL };
+    scene s;
+    scene_opts o;
+    br_err err;
+    const char *in[1] = { "assets/N47E009.hgt.gz" };
+    double e[3], t[3], lat, lon;
+    memset(&o, 0, sizeof o);
+    CHECK_EQ(scene_open(&s, in, 1, &o, &err), BR_OK);
+    CHECK(geocam_ok(&s));
+    /* the south-west corner sample of N47E009 is at 47 N 9 E */
+    geocam_to_deg(&s, 0, 0, &lat, &lon);
+    CHECK(fabs(lat - 47) < 1e-6 && fabs(lon - 9) < 1e-6);
+    geocam_from_deg(&s, 47.6, 9.45, 1500, e);
+    geocam_to_deg(&s, e[0], e[1], &lat, &lon);
+    CHECK(fabs(lat - 47.6) < 1e-9 && fabs(lon - 9.45) < 1e-9 && fabs(e[2] - 1500) < 1e-9);
+    geocam_from_deg(&s, 47.55, 9.6, 395, t);
+    scene_close(&s);
+    snprintf(from, sizeof from, "47.6,9.45,1500");
+    snprintf(at, sizeof at, "47.55,9.6,395");
+    snprintf(camarg, sizeof camarg, "%.6f,%.6f,%.6f,%.6f,%.6f,%.6f", e[0], e[1], e[2], t[0], t[1], t[2]);
+    snprintf(a, sizeof a, "%s/view_geo.png", t_outdir());
+    snprintf(b, sizeof b, "%s/view_met.png", t_outdir());
+    CHECK_EQ(view_run(geo), 0);
+    CHECK_EQ(view_run(met), 0);
+    CHECK(same_png(a, b));
+    CHECK(terrain_permille(a, 160, 100) > 300);
+    CHECK_EQ(view_run(bad1), 2);        /* --look-from without --look-at */
+    CHECK_EQ(view_run(bad2), 2);        /* far outside the terrain */
+    CHECK_EQ(view_run(bad3), 2);        /* with --camera */
+}
+
+/* No key does two things. */
+static void test_view_controls(void)
+{
+    const char *help = view_controls_text();
+    CHECK_EQ(view_controls_clash(), 0);
+    CHECK(strstr(help, "Esc") && strstr(help, "Tab") && strstr(help, "F11"));
+}
+
+/* The camera never ends under the terrain, past the world's edge or above the ceiling,
+ * and says so when it stops. */
+static void test_view_limits(void)
+{
+    scene s;
+    scene_opts o;
+    br_err err;
+    view_state v;
+    const char *in[1] = { "assets/N47E009.hgt.gz" };
+    double e[3] = { 30000, 40000, 0 }, t[3] = { 31000, 41000, 0 }, g;
+    memset(&o, 0, sizeof o);
+    memset(&v, 0, sizeof v);
+    CHECK_EQ(scene_open(&s, in, 1, &o, &err), BR_OK);
+    view_init(&v, &s, e, t);
+    view_limit(&v);                     /* under the ground: lifted */
+    g = scene_ground(&s, 30000, 40000);
+    CHECK(v.cam.pos[2] >= g + 2);
+    v.cam.pos[0] = -1e6;                /* far west: stopped at the edge, with a note */
+    v.now = 0;
+    view_limit(&v);
+    CHECK(v.cam.pos[0] > -0.3 * s.depth_m);
+    CHECK(strstr(v.note, "edge") != NULL && strstr(v.note, "west") != NULL);
+    v.cam.pos[2] = 1e7;                 /* above the ceiling */
+    view_limit(&v);
+    CHECK(v.cam.pos[2] <= s.zmax_m + 2 * s.depth_m);
+    CHECK(strstr(v.note, "ceiling") != NULL);
+    scene_close(&s);
+}
+
 static void test_run_headless(void)
 {
     unsetenv("DISPLAY");
@@ -58,6 +232,12 @@ int main(void)
 {
     T_RUN(test_viewer_frames);
     T_RUN(test_view_bad_input);
+    T_RUN(test_view_record);
+    T_RUN(test_view_idle);
+    T_RUN(test_view_threads_same);
+    T_RUN(test_view_look_from);
+    T_RUN(test_view_controls);
+    T_RUN(test_view_limits);
     T_RUN(test_run_headless);
     return t_finish();
 }

@@ -77,6 +77,8 @@ static void test_clip_plane(void)
     int32_t eye[3] = { 0, 0, 0 }, tgt[3] = { 0, 1000, 0 };
     static uint32_t col[W * H], dep[W * H];
     int k, x, y, above = 0, below = 0;
+    rs_band_stats st;
+    int16_t *chunks;
     /* strip: (-,-) (+,-) (-,+) (+,+), counter-clockwise seen from the origin */
     for (k = 0; k < 4; k++) {
         v[k].p[0] = (k & 1) ? -400 : 400;
@@ -90,10 +92,15 @@ static void test_clip_plane(void)
     f.v = v; f.nv = 4; f.cache = cache;
     pr.kind = RS_STRIP; pr.n = 4; pr.idx = idx;
     f.prims = &pr; f.nprims = 1;
+    chunks = malloc(rs_chunk_mem_size(&pr, 1));
+    CHECK(chunks != NULL);
+    if (!chunks) return;
+    f.chunks = chunks;
     f.clip_z_on = 1; f.clip_z = 0;
     cam_viewproj(&c, &f.vp);
     CHECK_EQ(rs_frame_prepare(&f), BR_OK);
-    CHECK_EQ(rs_render_band(&f, 0, H, col, W * 4, dep), BR_OK);
+    memset(&st, 0, sizeof st);
+    CHECK_EQ(rs_draw_band(&f, 0, H, col, W * 4, dep, &st), BR_OK);
     for (y = 0; y < H; y++)
         for (x = 0; x < W; x++) {
             if ((col[y * W + x] & 0xffffffu) != 0xff0000u) continue;
@@ -102,7 +109,7 @@ static void test_clip_plane(void)
     /* the wall covers about 33 x 24 pixels; its upper half lies above z = 0 */
     CHECK(above > 300);
     CHECK_EQ(below, 0);         /* nothing under the plane */
-    CHECK(f.stat_clipped >= 1);
+    CHECK(st.clipped >= 1);
     f.clip_z_on = 0;            /* without the plane both halves show */
     CHECK_EQ(rs_frame_prepare(&f), BR_OK);
     CHECK_EQ(rs_render_band(&f, 0, H, col, W * 4, dep), BR_OK);
@@ -110,6 +117,7 @@ static void test_clip_plane(void)
     for (y = H / 2; y < H; y++)
         for (x = 0; x < W; x++) below += (col[y * W + x] & 0xffffffu) == 0xff0000u;
     CHECK(below > 300);
+    free(chunks);
 }
 
 /* The same frame in bands of 1, 7, 16 and 240 rows, water, waves and fog on. */

@@ -1,4 +1,4 @@
-/* benchmarks/arm/peer_dump.c — writes the peer scene (platform/peer_scene.c, built from
+/* benchmarks/arm/peer_dump.c — writes the peer scene (benchmarks/peer_scene.c, built from
  * fuji.png with libpng) as the raw file of peer_file.h, for peer_run on a foreign
  * architecture.  With CAM and WxH it also renders that frame the way `bitrain bench`
  * does (peer_frame + rs_frame_prepare + rs_render_band) and prints its checksum
@@ -9,7 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "platform/peer_scene.h"
+#include "benchmarks/peer_scene.h"
 #include "benchmarks/arm/peer_file.h"
 
 static int put(FILE *f, uint32_t v)
@@ -58,6 +58,7 @@ int main(int argc, char **argv)
     if (argc == 5) {   /* the reference frame, as bitrain bench draws it */
         int w, h;
         rs_frame fr;
+        rs_band_stats st = { 0, 0, 0, 0 };
         uint32_t *color, *zbuf;
         if (sscanf(argv[4], "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > RS_MAX_DIM || h > RS_MAX_DIM) {
             fprintf(stderr, "peer_dump: bad size '%s'\n", argv[4]);
@@ -65,17 +66,19 @@ int main(int argc, char **argv)
         }
         if (peer_frame(argv[3][0], w, h, v, prims, &fr) != 0) { fprintf(stderr, "peer_dump: bad camera\n"); return 2; }
         fr.cache = (rs_cvert *)malloc(rs_cache_mem_size(PEER_NV));
+        fr.chunks = (int16_t *)malloc(rs_chunk_mem_size(prims, fr.nprims));
+        fr.one_band = 1;
         color = (uint32_t *)malloc((size_t)w * (size_t)h * 4);
         zbuf = (uint32_t *)malloc((size_t)w * (size_t)h * 4);
-        if (!fr.cache || !color || !zbuf) { fprintf(stderr, "peer_dump: out of memory\n"); return 1; }
-        if (rs_frame_prepare(&fr) != BR_OK || rs_render_band(&fr, 0, h, color, (size_t)w * 4, zbuf) != BR_OK) {
+        if (!fr.cache || !fr.chunks || !color || !zbuf) { fprintf(stderr, "peer_dump: out of memory\n"); return 1; }
+        if (rs_frame_prepare(&fr) != BR_OK || rs_draw_band(&fr, 0, h, color, (size_t)w * 4, zbuf, &st) != BR_OK) {
             fprintf(stderr, "peer_dump: render failed\n");
             return 1;
         }
         printf("camera=%c size=%dx%d checksum=%016llx drawn_tris=%u clipped=%u span_px=%u\n", argv[3][0], w, h,
-               (unsigned long long)pf_checksum(color, w, h, (size_t)w), fr.stat_tris, fr.stat_clipped,
-               fr.stat_pixels);
-        free(fr.cache); free(color); free(zbuf);
+               (unsigned long long)pf_checksum(color, w, h, (size_t)w), st.tris, st.clipped,
+               st.pixels);
+        free(fr.cache); free(fr.chunks); free(color); free(zbuf);
     }
     free(ps); free(v);
     return 0;

@@ -41,9 +41,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include "platform/peer_scene.h"
+#include "benchmarks/peer_scene.h"
 
-/* The scene is built by bitrain's own builder (platform/peer_scene.c), whose float
+/* The scene is built by bitrain's own builder (benchmarks/peer_scene.c), whose float
  * arrays are checked bit for bit against peer_scene.py's scene.bin (--check). */
 typedef peer_scene scene_t;
 #define N PEER_N

@@ -15,6 +15,6 @@ mkdir -p "$out"
 # peer_scene.c builds the frames with the fixed-point camera (core/cam.c, core/fx.c).
 ${CC:-cc} -std=c99 -O2 -g -ffp-contract=off -Wall -Wextra -Wshadow -Wdouble-promotion -Wconversion -Wno-sign-conversion \
   -I"$here/../.." $(pkg-config --cflags osmesa libpng) -o "$out/bench_osmesa" "$here/bench_osmesa.c" \
-  "$here/../../platform/peer_scene.c" "$here/../../platform/png_io.c" "$here/../../platform/err.c" \
+  "$here/../../benchmarks/peer_scene.c" "$here/../../platform/png_io.c" "$here/../../platform/err.c" \
   "$here/../../core/cam.c" "$here/../../core/fx.c" \
   $(pkg-config --libs osmesa libpng) -lm

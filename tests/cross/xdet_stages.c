@@ -32,7 +32,7 @@ static uint32_t frame_hash(rs_frame *fr, int32_t fmt, int32_t depth, int32_t ban
     fr->depth = depth;
     for (y0 = 0; y0 < fr->h; y0 += band_rows) {
         int32_t rows = fr->h - y0 < band_rows ? fr->h - y0 : band_rows, y, x;
-        rs_render_band(fr, y0, rows, col, (size_t)fr->w * bpp, zb);
+        rs_draw_band(fr, y0, rows, col, (size_t)fr->w * bpp, zb, NULL);
         /* hash pixel values, not bytes, so the hash is endian-neutral */
         for (y = 0; y < rows; y++)
             for (x = 0; x < fr->w; x++) {
@@ -100,6 +100,7 @@ void xdet_stages(const hf *f)
     fr.w = 160; fr.h = 120; fr.clear_rgb = 0x99ccffu;
     fr.v = verts; fr.nv = m.nv; fr.prims = &prim; fr.nprims = 1;
     fr.cache = malloc(rs_cache_mem_size(m.nv ? m.nv : 1));
+    fr.chunks = malloc(rs_chunk_mem_size(&prim, 1));
     cam_viewproj(&c, &fr.vp);
     if (rs_frame_prepare(&fr) != BR_OK) { printf("raster prepare-failed\n"); return; }
     {
@@ -112,6 +113,7 @@ void xdet_stages(const hf *f)
         printf("raster-565-z16 %08lx terrain-pixels %ld\n", (unsigned long)d, t3);
     }
     free(fr.cache);
+    free(fr.chunks);
     free(verts);
     free(tm); free(sm); free(mm);
 }

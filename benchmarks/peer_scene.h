@@ -1,4 +1,4 @@
-/* platform/peer_scene.h — the shared terrain benchmark scene of
+/* benchmarks/peer_scene.h — the shared terrain benchmark scene of
  * ../shared/bench/PEERS.md, rebuilt in C exactly as ../shared/bench/peer_scene.py does.
  *
  * fuji.png (terrain-RGB, h = -10000 + (R*65536 + G*256 + B) * 0.1 m) is sampled at

@@ -1,11 +1,11 @@
-/* platform/peer_scene.c — see peer_scene.h.  Platform-side code (floating point
- * allowed: it builds the scene INPUT once); part of the library, so `bitrain bench`
- * and the benchmark programs share one builder. */
+/* benchmarks/peer_scene.c — see peer_scene.h.  Platform-side code (floating point
+ * allowed: it builds the scene INPUT once); linked into the program (`bitrain bench`),
+ * the tests and the benchmark programs, never into libbitrain.a. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "platform/peer_scene.h"
+#include "benchmarks/peer_scene.h"
 #include "platform/png_io.h"
 
 static const double peer_ramp[6][4] = {

@@ -1,0 +1,206 @@
+#define _POSIX_C_SOURCE 200809L   /* clock_gettime under -std=c99 */
+/* platform/bench_default.c — bitrain bench --scene default: the frame users see, the
+ * viewer's terrain frame on the bundled default scene (assets/N47E009.hgt.gz, its
+ * default camera or a camera path), nothing else.
+ *
+ *   bitrain bench --scene default [--path FILE] [--size WxH] [--frames N] [--warmup W]
+ *                 [--pixel-error P] [--format rgb888|rgb565] [--depth 32|16]
+ *                 [--bands ROWS] [--dem FILE...] [-o last.png]
+ *
+ * A frame is what `bitrain view` does per frame, with water and fog off: the bitree's
+ * view-dependent selection and strip (hysteresis 1/4 of the threshold, geomorph 1/2,
+ * as the viewer), the raster vertices, the transform and the rasteriser band by band
+ * (64-row bands as the viewer, or --bands).  It runs inside bench_default_frame, so
+ *   valgrind --tool=callgrind --toggle-collect=bench_default_frame bitrain bench --scene default ...
+ * counts only the timed frames (divide by N); bd_select (selection, strip, vertices)
+ * and bd_raster (transform and rasteriser) split it.  With --path, frame i flies line
+ * i of the file (wrapping); W untimed warm-up frames fly the path's first W lines
+ * (default 0: the first timed frame selects from scratch, as after a jump). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include "platform/campath.h"
+#include "platform/opt.h"
+#include "platform/cmd.h"
+#include "platform/png_io.h"
+#include "platform/scene.h"
+
+#define BD_FOV 60
+#define BD_MAX_TRI 2000000
+
+typedef struct bd_run {
+    scene s;
+    int w, h, fmt, depth, bands;
+    double pix_err;
+    uint8_t *color;
+    void *zbuf;
+    rs_prim prim;
+    rs_frame fr;
+    uint64_t tris;
+    double t_mid;            /* wall clock between selection and rasteriser, ms */
+} bd_run;
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
+}
+
+/* Selection, strip and raster vertices (scene_frame), as the viewer's frame. */
+__attribute__((noinline)) br_status bd_select(bd_run *r, const cam *c);
+__attribute__((noinline)) br_status bd_select(bd_run *r, const cam *c)
+{
+    bt_params bp;
+    memset(&bp, 0, sizeof bp);
+    memset(&r->fr, 0, sizeof r->fr);
+    bp.pixel_err_q8 = (int32_t)(r->pix_err * 256 + 0.5);
+    bp.hyst_q8 = 64;
+    bp.morph_q8 = 128;
+    r->fr.fmt = r->fmt;
+    r->fr.depth = r->depth;
+    r->fr.clear_rgb = 0x99ccffu;
+    return scene_frame(&r->s, c, &bp, &r->fr, &r->prim);
+}
+
+/* The rasteriser over the frame, band by band. */
+__attribute__((noinline)) br_status bd_raster(bd_run *r);
+__attribute__((noinline)) br_status bd_raster(bd_run *r)
+{
+    size_t bpp = r->fmt == RS_FMT_RGB565 ? 2u : 4u, stride = (size_t)r->w * bpp;
+    int32_t y0;
+    for (y0 = 0; y0 < r->h; y0 += r->bands) {
+        int32_t rows = r->h - y0 < r->bands ? r->h - y0 : r->bands;
+        br_status st = rs_render_band(&r->fr, y0, rows, r->color + (size_t)y0 * stride, stride, r->zbuf);
+        if (st != BR_OK) return st;
+    }
+    return BR_OK;
+}
+
+/* One terrain frame.  Not static and not inlined: callgrind toggles on it. */
+__attribute__((noinline)) br_status bench_default_frame(bd_run *r, const cam *c);
+__attribute__((noinline)) br_status bench_default_frame(bd_run *r, const cam *c)
+{
+    br_status st = bd_select(r, c);
+    if (st != BR_OK) return st;
+    r->tris += r->s.mesh.ntri;
+    r->t_mid = now_ms();
+    return bd_raster(r);
+}
+
+static int cmp_d(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+int cmd_bench_default(int argc, char **argv)
+{
+    const char *dems[16], *path = NULL, *out = NULL;
+    int ndem = 0, frames = 10, warm = 0, i, rc = 1;
+    bd_run *r = calloc(1, sizeof *r);
+    campath cp = {NULL, 0};
+    scene_opts so;
+    br_err err;
+    double *ms = NULL, *sel_ms = NULL, eye[3], tgt[3];
+    if (!r) return 1;
+    r->w = 320; r->h = 240; r->fmt = RS_FMT_XRGB8888; r->depth = RS_DEPTH32; r->bands = 64; r->pix_err = 1;
+    {
+        int size[2] = { 320, 240 }, fmt = 0, depth = 0, scene_choice = 0, npos = 0, pr;
+        const char *dem = NULL, *pos[1];
+        const opt_spec own[] = {
+            { "--scene", OPT_CHOICE, &scene_choice, 0, 0, 0, "default", "S", "the users' scene (assets/N47E009.hgt.gz)", NULL },
+            { "--path", OPT_STR, &path, 0, 0, 0, NULL, "FILE", "camera path: one --camera line a frame (assets/*.cam)", NULL },
+            { "--size", OPT_SIZE, size, 16, RS_MAX_DIM, 0, NULL, "WxH", "frame size (default 320x240)", NULL },
+            { "--frames", OPT_INT, &frames, 1, 1000000, 0, NULL, "N", "timed frames (default 10)", NULL },
+            { "--warmup", OPT_INT, &warm, 0, 1000000, 0, NULL, "W", "untimed frames first (default 0)", NULL },
+            { "--pixel-error", OPT_NUM, &r->pix_err, 0.01, 1000, 0, NULL, "P", "screen-space error, pixels (default 1)", NULL },
+            { "--format", OPT_CHOICE, &fmt, 0, 0, 0, "rgb888|rgb565", "F", "pixel format", NULL },
+            { "--depth", OPT_CHOICE, &depth, 0, 0, 0, "32|16", "BITS", "depth buffer bits", NULL },
+            { "--bands", OPT_INT, &r->bands, 1, RS_MAX_DIM, 0, NULL, "ROWS", "band height (default 64, the viewer's)", NULL },
+            { "--dem", OPT_STR, &dem, 0, 0, 0, NULL, "FILE", "another terrain instead of the default", NULL },
+            { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT.png", "write the last frame", NULL },
+            OPT_END
+        };
+        const opt_spec *const tables[] = { own, NULL };
+        pr = opt_parse("bench", "--scene default [options]\n"
+                       "  the default scene's terrain frame: selection + strip + vertices + transform + raster",
+                       tables, argc, argv, pos, 0, &npos);
+        if (pr != OPT_OK) { free(r); return pr == OPT_HELP ? 0 : 2; }
+        r->w = size[0];
+        r->h = size[1];
+        r->fmt = fmt ? RS_FMT_RGB565 : RS_FMT_XRGB8888;
+        r->depth = depth ? RS_DEPTH16 : RS_DEPTH32;
+        if (dem) dems[ndem++] = dem;
+    }
+    if (!ndem) dems[ndem++] = "assets/N47E009.hgt.gz";
+    if (path && campath_read(path, &cp, &err) != BR_OK) { fprintf(stderr, "bitrain bench: %s\n", err.msg); goto done; }
+    memset(&so, 0, sizeof so);
+    so.quiet = 1;
+    if (scene_open(&r->s, dems, ndem, &so, &err) != BR_OK) { fprintf(stderr, "bitrain bench: %s\n", err.msg); goto done; }
+    if (scene_tree(&r->s, &err) != BR_OK || scene_reserve(&r->s, BD_MAX_TRI, &err) != BR_OK) {
+        fprintf(stderr, "bitrain bench: %s: %s\n", dems[0], err.msg);
+        goto done;
+    }
+    r->color = malloc((size_t)r->w * (size_t)r->h * 4);
+    r->zbuf = malloc(rs_band_mem_size(r->w, r->bands, r->fmt, r->depth));
+    ms = malloc(sizeof *ms * (size_t)frames);
+    sel_ms = malloc(sizeof *sel_ms * (size_t)frames);
+    if (!r->color || !r->zbuf || !ms || !sel_ms) { fprintf(stderr, "bitrain bench: out of memory\n"); goto done; }
+    scene_default_view(&r->s, BD_FOV, eye, tgt);
+    for (i = -warm; i < frames; i++) {
+        cam c;
+        double t0, t1;
+        int k = i < 0 ? i + warm : i;
+        const double *e = eye, *t = tgt;
+        br_status st;
+        if (cp.n) { e = cp.cam[k % cp.n]; t = cp.cam[k % cp.n] + 3; }
+        if (scene_camera(&r->s, e, t, BD_FOV, r->w, r->h, &c) != BR_OK) {
+            fprintf(stderr, "bitrain bench: %s: frame %d: unusable camera\n", path ? path : "default view", k + 1);
+            goto done;
+        }
+        t0 = now_ms();
+        if (i < 0) { st = bd_select(r, &c); if (st == BR_OK) st = bd_raster(r); }
+        else {
+            st = bench_default_frame(r, &c);
+            t1 = now_ms();
+            ms[i] = t1 - t0;
+            sel_ms[i] = r->t_mid - t0;
+        }
+        if (st != BR_OK) { fprintf(stderr, "bitrain bench: frame %d failed (%d)\n", k + 1, (int)st); goto done; }
+    }
+    {
+        double med, smed, tri = (double)r->tris / frames;
+        qsort(ms, (size_t)frames, sizeof *ms, cmp_d);
+        qsort(sel_ms, (size_t)frames, sizeof *sel_ms, cmp_d);
+        med = frames & 1 ? ms[frames / 2] : 0.5 * (ms[frames / 2 - 1] + ms[frames / 2]);
+        smed = frames & 1 ? sel_ms[frames / 2] : 0.5 * (sel_ms[frames / 2 - 1] + sel_ms[frames / 2]);
+        printf("bitrain scene=default path=%s size=%dx%d pixel_error=%g format=%s depth=%d bands=%d frames=%d "
+               "ms/frame=%.3f select_ms=%.3f tris/frame=%.0f Mtri/s(frame)=%.2f Mtri/s(raster)=%.2f\n",
+               path ? path : "-", r->w, r->h, r->pix_err, r->fmt == RS_FMT_RGB565 ? "rgb565" : "rgb888",
+               r->depth == RS_DEPTH16 ? 16 : 32, r->bands, frames, med, smed, tri,
+               tri / med / 1e3, med > smed ? tri / (med - smed) / 1e3 : 0.0);
+    }
+    rc = 0;
+    if (out) {
+        uint8_t *rgb = malloc((size_t)r->w * (size_t)r->h * 3);
+        size_t bpp = r->fmt == RS_FMT_RGB565 ? 2u : 4u;
+        if (!rgb) { rc = 1; goto done; }
+        for (i = 0; i < r->h; i++)
+            rs_to_rgb888(r->fmt, r->color + (size_t)i * (size_t)r->w * bpp, r->w, rgb + (size_t)i * (size_t)r->w * 3);
+        if (png_write_rgb(out, r->w, r->h, rgb, (size_t)r->w * 3, &err) != BR_OK) {
+            fprintf(stderr, "bitrain bench: %s\n", err.msg);
+            rc = 1;
+        }
+        free(rgb);
+    }
+done:
+    free(ms); free(sel_ms);
+    if (r->color) free(r->color);
+    free(r->zbuf);
+    scene_close(&r->s);
+    campath_free(&cp);
+    free(r);
+    return rc;
+}
