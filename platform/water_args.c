@@ -13,7 +13,7 @@ void ws_args_table(ws_args *a, ws_opts *o, opt_spec t[WS_ARGS_N])
           "water surface heights, nodata where dry (grid of the terrain's size)", NULL },
         { "--fog", OPT_FLAG, &a->fog, 0, 0, 0, NULL, NULL, "distance fog and sky gradient (default)", NULL },
         { "--no-fog", OPT_FLAG, &o->no_fog, 0, 0, 0, NULL, NULL, "no fog, flat sky", NULL },
-        { "--time", OPT_NUM, &o->time_s, -1e6, 1e6, 0, NULL, "T", "the instant of the waves, seconds (default 0)", NULL },
+        { "--time", OPT_NUM, &o->time_s, -1e6, 1e6, 0, NULL, "T", "the instant of the waves, seconds (render: default 0; view: default the clock)", &a->time_seen },
         { "--reflection", OPT_CHOICE, &a->refl, 0, 0, 0, "full|half|quarter|none", "R",
           "reflection resolution (default half)", &a->refl_seen },
         OPT_END

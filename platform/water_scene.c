@@ -276,7 +276,7 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err 
         p.grid_ox = s->rt.fr.ox; p.grid_oy = s->rt.fr.oy;
         p.grid_sx = s->rt.fr.sx; p.grid_sy = s->rt.fr.sy;
         for (k = 0; k < w->nbodies && k < RW_MAX_ID; k++) p.body_z[k + 1] = world_z(s, w->bodies.level[k]);
-        if (body && res >= 0 && c->eye[2] > p.plane_z && tf->nprims == 1) {
+        if (body && res >= 0 && c->eye[2] > p.plane_z && tf->nprims == 1 && tf->prims[0].kind == RS_STRIP) {
             if (refl_frame(w, tf, p.plane_z, res) != BR_OK)
                 return br_err_set(err, BR_E_NOMEM, NULL, "cannot set up the reflection");
             rfr = &w->rfr;

@@ -82,6 +82,7 @@ typedef struct water_scene {
 typedef struct ws_args {
     ws_opts *o;
     int fog, refl, refl_seen;
+    int time_seen;              /* --time given (the viewer's ripples then stand still) */
 } ws_args;
 void ws_args_table(ws_args *a, ws_opts *o, opt_spec t[WS_ARGS_N]);
 int ws_args_finish(ws_args *a, const char *cmd);
