@@ -76,7 +76,6 @@ static void water_rows(rw_frame *r)
     if (!wf || !r->p.water_on || wf->nv == 0 || wf->nprims == 0) return;
     for (i = 0; i < wf->nv; i++) {
         const rs_cvert *v = &wf->cache[i];
-        if (wf->v[i].rgb & RW_DRY) continue;
         if (v->c & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)) { r->wlo = 0; r->whi = r->h - 1; return; }
         if (v->y < lo) lo = v->y;
         if (v->y > hi) hi = v->y;

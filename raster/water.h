@@ -56,8 +56,6 @@
 #define RW_WAVE_PX 4            /* largest wave displacement of the reflection lookup, pixels */
 #define RW_MAX_ID 31            /* body ids 1 .. 31 survive RGB565 in the water pass's red bits */
 #define RW_ID_RGB(id) ((uint32_t)(id) << 19)
-#define RW_DRY 1u               /* in a water vertex's colour: a dry vertex (surface under the
-                                   ground), left out of the rows where water may show */
 #define RW_TAB 1024             /* tables by cos^2 t, Q10 */
 
 typedef struct rw_params {      /* zero = off / defaults as stated */
