@@ -37,6 +37,7 @@
 #include "platform/scene.h"
 #include "platform/sink_png.h"
 #include "platform/sink_rgb565.h"
+#include "platform/water_scene.h"
 #include "raster/frame.h"
 #include "raster/raster.h"
 #include "raster/ramp.h"
@@ -110,7 +111,8 @@ int cmd_render(int argc, char **argv)
     double camv[6], fov = 50, max_err = 0, pix_err = 1;
     scene_opts so;
     scene_args sa;
-    opt_spec dem_t[DEM_ARGS_N], look_t[SCENE_ARGS_N];
+    opt_spec dem_t[DEM_ARGS_N], look_t[SCENE_ARGS_N], water_t[WS_ARGS_N];
+    ws_args wa;
     render_out ro;
     const opt_spec own[] = {
         { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT.png", "the image to write", NULL },
@@ -133,7 +135,7 @@ int cmd_render(int argc, char **argv)
           "drawing threads (default: online cores; bands of 64 rows unless --bands)", NULL },
         OPT_END
     };
-    const opt_spec *const tables[] = { own, look_t, geo_t, dem_t, NULL };
+    const opt_spec *const tables[] = { own, look_t, water_t, geo_t, dem_t, NULL };
     scene s;
     br_err err;
     cam c;
@@ -144,6 +146,10 @@ int cmd_render(int argc, char **argv)
     size_t memsize = 0;
     double t0, t1, t2;
     int rc = 1;
+    ws_opts wo;
+    water_scene ws;
+    int use_pipe;
+    rs_pipe *run;
 
     memset(&so, 0, sizeof so);
     memset(&s, 0, sizeof s);
@@ -151,13 +157,17 @@ int cmd_render(int argc, char **argv)
     memset(&pipe, 0, sizeof pipe);
     memset(&ro, 0, sizeof ro);
     memset(&err, 0, sizeof err);
+    memset(&wo, 0, sizeof wo);
+    memset(&ws, 0, sizeof ws);
     dem_args_table(&da, &so.dem, dem_t);
     scene_args_table(&sa, &so, look_t);
     geocam_args_table(&ga, geo_t);
+    ws_args_table(&wa, &wo, water_t);
     r = opt_parse("render", RENDER_SYNOPSIS, tables, argc, argv, in, 64, &nin);
     if (r != OPT_OK) return r == OPT_HELP ? 0 : 2;
     if (dem_args_finish(&da, "render") != OPT_OK) return 2;
     if (scene_args_finish(&sa, "render") != OPT_OK) return 2;
+    if (ws_args_finish(&wa, "render") != OPT_OK) return 2;
     if (!nin) { fprintf(stderr, "bitrain render: no input file (`bitrain render --help`)\n"); return 2; }
     if (!out) { fprintf(stderr, "bitrain render: no output file: -o OUT.png\n"); return 2; }
     if (have_max && have_pix) return opt_fail("render", "--max-error", "cannot be used with --pixel-error");
@@ -172,7 +182,10 @@ int cmd_render(int argc, char **argv)
     if (ro.raw && !strcmp(out, "-")) so.quiet = 1;   /* stdout carries the pixels only */
 
     t0 = ms_now();
+    use_pipe = !(wo.no_water && wo.no_fog);
+    so.ramp_abs = use_pipe;
     if (scene_open(&s, in, nin, &so, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); return 1; }
+    if (use_pipe && ws_open(&ws, &s, &wo, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
     r = geocam_resolve(&ga, &s, "render", camv);
     if (r < 0) { scene_close(&s); return 2; }
     if (r) have_cam = 1;
@@ -195,10 +208,15 @@ int cmd_render(int argc, char **argv)
     if (scene_terrain(&s, &c, &fr, &terrain) != BR_OK) { fprintf(stderr, "bitrain: bad frame parameters\n"); goto done; }
     pipe.w = w; pipe.h = h; pipe.fmt = fr.fmt; pipe.depth = fr.depth;
     if (rs_pipe_add(&pipe, &terrain) != BR_OK) goto done;
-    memsize = rs_pipe_mem_size(&pipe, bands);
+    run = &pipe;
+    if (use_pipe) {     /* water and atmosphere: their passes and post hook (platform/water_scene.h) */
+        if (ws_frame(&ws, &s, &c, &fr, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
+        run = &ws.pipe;
+    }
+    memsize = rs_pipe_mem_size(run, bands);
     if (pt_open(&pool, threads) != BR_OK) { fprintf(stderr, "bitrain render: cannot start %d threads\n", threads); goto done; }
     if (out_open(&ro, out, w, h, fmt, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
-    if (pt_run(pool, &pipe, bands, ro.raw ? sink_rgb565_band : sink_png_band,
+    if (pt_run(pool, run, bands, ro.raw ? sink_rgb565_band : sink_png_band,
                ro.raw ? (void *)&ro.rgb565 : (void *)&ro.png, &total) != BR_OK) {
         out_abort(&ro);
         fprintf(stderr, "bitrain: %s\n", err.msg[0] ? err.msg : "render failed");
@@ -214,6 +232,7 @@ int cmd_render(int argc, char **argv)
     rc = 0;
 done:
     pt_close(pool);
+    if (use_pipe) ws_close(&ws);
     scene_close(&s);
     return rc;
 }

@@ -3,7 +3,8 @@
  *
  * Each frame: the bitree's view-dependent mesh for the camera (hysteresis and
  * geomorphing on), its raster vertices, then the frame driver (raster/frame.h: the
- * terrain pass and the viewer's post hook, platform/view_hud.c) on N threads
+ * terrain pass and the viewer's post hook, platform/view_hud.c; with water and fog the
+ * water scene's passes and its fog and sky hook first, platform/water_scene.h) on N threads
  * (platform/pipe_threads.h) in bands of --bands rows into the frame buffer, which goes
  * to a streaming SDL texture.  The internal resolution follows the window (re-rendered
  * at the new size when it changes) unless --size fixes it, and then SDL scales it up.
@@ -24,6 +25,7 @@
 #include "platform/png_io.h"
 #include "platform/scene_args.h"
 #include "platform/view.h"
+#include "platform/water_scene.h"
 
 #define VIEW_MAX_TRI 2000000  /* beyond it the bitree falls back to its budget mode */
 #define SKY_RGB 0x99ccffu
@@ -52,7 +54,43 @@ typedef struct view_app {
     int nframe, shots, sdl_on;
     char hud[1024];
     double sum_ms, sum_tri;
+    water_scene ws;             /* water and fog (ws_on: opened by ws_open) */
+    int ws_on, nbodies;         /* nbodies: the water bodies ws_open found */
+    int clock_waves;            /* 1: the ripples follow the clock (no --time) */
+    double t_start;             /* seconds, the first frame */
 } view_app;
+
+/* The two post hooks of a water frame: fog and sky (raster/water.h rw_post) first, then
+ * the HUD and wireframe over them.  Read-only while the bands are drawn. */
+typedef struct view_posts {
+    const void *rw;
+    const view_overlay *ov;
+} view_posts;
+
+static br_status post_both(const void *user, rs_band *b, rs_band_stats *st)
+{
+    const view_posts *p = (const view_posts *)user;
+    br_status r = rw_post(p->rw, b, st);
+    return r != BR_OK ? r : view_post(p->ov, b, st);
+}
+
+/* The water scene's pipe for the prepared terrain frame fr (V: water, F: fog); NULL when
+ * both are off or on failure (message in the note). */
+static rs_pipe *water_pipe(view_app *a, const cam *c, rs_frame *fr)
+{
+    view_state *v = &a->v;
+    br_err err;
+    br_status st;
+    if (!a->ws_on || (!v->on[VT_FOG] && !v->on[VT_WATER])) return NULL;
+    memset(&err, 0, sizeof err);
+    a->ws.o.no_fog = !v->on[VT_FOG];
+    a->ws.nbodies = v->on[VT_WATER] ? a->nbodies : 0;
+    if (a->clock_waves) a->ws.o.time_s = v->now - a->t_start;
+    st = ws_frame(&a->ws, &a->s, c, fr, &err);
+    a->ws.nbodies = a->nbodies;
+    if (st != BR_OK) { view_note(v, 3, "water: %s", err.msg); return NULL; }
+    return &a->ws.pipe;
+}
 
 /* ---------------------------------------------------------------- frame */
 
@@ -103,8 +141,9 @@ static int draw_frame(view_app *a)
     rs_frame fr;
     rs_prim prim;
     rs_pass terrain;
-    rs_pipe p;
+    rs_pipe p, *run;
     rs_band_stats tot;
+    view_posts posts;
     int first = a->nframe == 0;
     if (a->path.n) {
         const double *k = a->path.cam[a->nframe % a->path.n];
@@ -145,9 +184,10 @@ static int draw_frame(view_app *a)
         fprintf(stderr, "bitrain view: bad frame\n");
         return 0;
     }
-    t2 = now_s();
     p.w = a->w; p.h = a->h; p.fmt = RS_FMT_XRGB8888; p.depth = RS_DEPTH32;
     rs_pipe_add(&p, &terrain);
+    run = water_pipe(a, &c, &fr);
+    t2 = now_s();
     a->ov.fr = &fr;
     a->ov.wire = v->on[VT_WIRE];
     a->ov.band_rows = v->on[VT_BANDS] ? a->band_rows : 0;
@@ -157,9 +197,17 @@ static int draw_frame(view_app *a)
     view_hud_text(v, &a->st, a->hud, sizeof a->hud);
     a->ov.hud = v->on[VT_HUD] ? a->hud : NULL;
     a->ov.help = v->on[VT_HELP] ? view_controls_text() : NULL;
-    p.post = view_post;
-    p.post_user = &a->ov;
-    if (pt_run(a->pool, &p, a->band_rows, sink_frame, a, &tot) != BR_OK) {
+    if (run) {
+        posts.rw = run->post_user;
+        posts.ov = &a->ov;
+        run->post = post_both;
+        run->post_user = &posts;
+    } else {
+        run = &p;
+        p.post = view_post;
+        p.post_user = &a->ov;
+    }
+    if (pt_run(a->pool, run, a->band_rows, sink_frame, a, &tot) != BR_OK) {
         fprintf(stderr, "bitrain view: drawing the frame failed\n");
         return 0;
     }
@@ -320,6 +368,7 @@ static int loop(view_app *a, int frames, double seconds)
 {
     view_state *v = &a->v;
     double t_prev = now_s(), t_start = t_prev, t_last = t_prev, note_shown = 0;
+    a->t_start = t_start;
     int settle = 2;
     while (!v->quit) {
         SDL_Event ev;
@@ -388,7 +437,9 @@ static int setup(view_app *a, view_opts *o, int argc, char **argv)
     dem_args da;
     geocam_args ga;
     br_err err;
-    opt_spec dem_t[DEM_ARGS_N], look_t[SCENE_ARGS_N], geo_t[GEOCAM_ARGS_N];
+    opt_spec dem_t[DEM_ARGS_N], look_t[SCENE_ARGS_N], geo_t[GEOCAM_ARGS_N], water_t[WS_ARGS_N];
+    ws_args wa;
+    ws_opts wo;
     const opt_spec own[] = {
         { "--size", OPT_SIZE, o->size, 16, RS_MAX_DIM, 0, NULL, "WxH",
           "internal resolution, scaled up by SDL to the window (default: the window's)", &o->size_seen },
@@ -409,8 +460,10 @@ static int setup(view_app *a, view_opts *o, int argc, char **argv)
         { "--screenshot", OPT_STR, &o->shot, 0, 0, 0, NULL, "OUT.png", "save the last frame on quitting", NULL },
         OPT_END
     };
-    const opt_spec *const tables[] = { own, look_t, geo_t, dem_t, NULL };
+    const opt_spec *const tables[] = { own, look_t, water_t, geo_t, dem_t, NULL };
     memset(&so, 0, sizeof so);
+    memset(&wo, 0, sizeof wo);
+    ws_args_table(&wa, &wo, water_t);
     dem_args_table(&da, &so.dem, dem_t);
     scene_args_table(&sa, &so, look_t);
     geocam_args_table(&ga, geo_t);
@@ -419,6 +472,7 @@ static int setup(view_app *a, view_opts *o, int argc, char **argv)
     if (r != OPT_OK) return 2;
     if (dem_args_finish(&da, "view") != OPT_OK) return 2;
     if (scene_args_finish(&sa, "view") != OPT_OK) return 2;
+    if (ws_args_finish(&wa, "view") != OPT_OK) return 2;
     if (!nin) { fprintf(stderr, "bitrain view: no input file (`bitrain view --help`)\n"); return 2; }
     if (o->have_cam && (ga.from_seen || ga.at_seen)) return opt_fail("view", "--camera", "cannot be used with --look-from/--look-at");
     if (o->record && !(a->rec = fopen(o->record, "w"))) {
@@ -428,7 +482,14 @@ static int setup(view_app *a, view_opts *o, int argc, char **argv)
     if (o->path && campath_read(o->path, &a->path, &err) != BR_OK) { fprintf(stderr, "bitrain view: %s\n", err.msg); return 1; }
     if (o->path && (o->have_cam || ga.from_seen || ga.at_seen))
         return opt_fail("view", "--path", "cannot be used with --camera or --look-from/--look-at");
+    so.ramp_abs = !(wo.no_water && wo.no_fog);
     if (scene_open(&a->s, in, nin, &so, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); return 1; }
+    if (so.ramp_abs) {
+        if (ws_open(&a->ws, &a->s, &wo, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); return 1; }
+        a->ws_on = 1;
+        a->nbodies = a->ws.nbodies;
+        a->clock_waves = !wa.time_seen;
+    }
     r = geocam_resolve(&ga, &a->s, "view", o->camv);
     if (r < 0) return 2;
     o->have_cam |= r;
@@ -474,6 +535,9 @@ int cmd_view(int argc, char **argv)
     a.v.pix_err = o.pix_err;
     view_init(&a.v, &a.s, eye, tgt);
     a.v.on[VT_HUD] = !o.no_hud;
+    a.v.water_scene = a.ws_on;
+    a.v.on[VT_FOG] = a.ws_on && !a.ws.o.no_fog;
+    a.v.on[VT_WATER] = a.ws_on && !a.ws.o.no_water;
     a.base_err = o.pix_err;
     a.st.target_fps = o.fps;
     a.st.threads = o.threads;
@@ -508,6 +572,7 @@ done:
     if (a.ren) SDL_DestroyRenderer(a.ren);
     if (a.win) SDL_DestroyWindow(a.win);
     if (a.sdl_on) SDL_Quit();
+    if (a.ws_on) ws_close(&a.ws);
     scene_close(&a.s);
     campath_free(&a.path);
     return rc;

@@ -184,7 +184,8 @@ br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o
             scene_close(s);
             return err ? err->code : BR_E_FORMAT;
         }
-    } else rs_ramp_default(&s->ramp, hf_z_to_mm(&s->f, s->st.zmin), hf_z_to_mm(&s->f, s->st.zmax));
+    } else if (o->ramp_abs && s->f.geo.kind != HF_GEO_NONE) rs_ramp_absolute(&s->ramp);
+    else rs_ramp_default(&s->ramp, hf_z_to_mm(&s->f, s->st.zmin), hf_z_to_mm(&s->f, s->st.zmax));
     def_sun = o->sun_az == 0 && o->sun_alt == 0;
     rs_sun_dir((int32_t)lround((def_sun ? 315 : o->sun_az) * 1000), (int32_t)lround((def_sun ? 45 : o->sun_alt) * 1000), sun);
     if (rt_scene_init(&s->rt, &s->f, &s->ramp, sun, (int32_t)lround((o->ambient_set ? o->ambient : 0.3) * FX_Q14_ONE)) != BR_OK) {

@@ -29,6 +29,8 @@ typedef struct scene_opts {          /* zero = defaults */
                                         georeference: 99 % of the slopes at most 0.75 at the
                                         assumed 1 m spacing) */
     int quiet;                       /* do not print the automatic vertical scale */
+    int ramp_abs;                    /* 1: georeferenced grids take the absolute-elevation ramp
+                                        (rs_ramp_absolute) instead of the relative one */
 } scene_opts;
 
 typedef struct scene {

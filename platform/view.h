@@ -2,7 +2,8 @@
  *   cmd_view.c    options, window, the frame loop (driver on N threads, SDL texture)
  *   view_input.c  the controls table, key and mouse handling, camera motion and limits
  *   view_hud.c    what the post hook draws over the terrain: wireframe, band
- *                 boundaries, HUD, help
+ *                 boundaries, HUD, help (after the water scene's fog and sky hook,
+ *                 platform/water_scene.h, when that is on)
  * Positions are metres in the scene frame (platform/scene.h): x east from the west
  * edge, y north from the south edge, z height times the vertical scale. */
 #ifndef BR_VIEW_H
@@ -28,6 +29,8 @@ typedef struct view_state {
     double fov, pix_err;        /* degrees; pixels */
     double speed_mul;           /* [ ] and the wheel: 1/16 .. 16 */
     int on[VT_N];
+    int water_scene;            /* 1: the scene has the water and fog passes (F and V toggle
+                                   them); 0: --no-water --no-fog */
     /* requests for the frame loop, set by the input, cleared by the loop */
     int quit, shot, print_cam, fullscreen;
     int dirty;                  /* the view changed: draw a frame */

@@ -279,8 +279,14 @@ static void key(view_state *v, SDL_Keycode sym)
     case A_ERR_DOWN: v->pix_err = fmax(0.25, v->pix_err / 1.25); view_note(v, 2, "pixel error %.2f", v->pix_err); break;
     case A_SPEED_UP: v->speed_mul = fmin(16.0, v->speed_mul * 1.5); view_note(v, 2, "speed x%.2f", v->speed_mul); break;
     case A_SPEED_DOWN: v->speed_mul = fmax(1.0 / 16, v->speed_mul / 1.5); view_note(v, 2, "speed x%.2f", v->speed_mul); break;
-    case A_FOG: view_note(v, 3, "fog: not in this build"); break;
-    case A_WATER: view_note(v, 3, "water: not in this build"); break;
+    case A_FOG:
+        if (v->water_scene) toggle(v, VT_FOG, "fog");
+        else view_note(v, 3, "fog: off for this run (--no-water --no-fog)");
+        break;
+    case A_WATER:
+        if (v->water_scene) toggle(v, VT_WATER, "water");
+        else view_note(v, 3, "water: off for this run (--no-water --no-fog)");
+        break;
     case A_WIRE: toggle(v, VT_WIRE, "wireframe"); break;
     case A_LOD: toggle(v, VT_LOD, "LOD colouring"); break;
     case A_CULL:

@@ -21,6 +21,21 @@ void rs_ramp_default(rs_ramp *r, int64_t zmin_mm, int64_t zmax_mm)
     r->nv_rgb = 0x000000u;
 }
 
+void rs_ramp_absolute(rs_ramp *r)
+{
+    static const int32_t z_m[] = { -6000, -200, -1, 0, 250, 600, 1200, 1800, 2200, 2700, 3200 };
+    static const uint32_t col[] = { 0x0c2a5au, 0x1a4a82u, 0x5a96c8u, 0x4f8a48u, 0x6e9e50u, 0x9aa764u,
+                                    0xb49a6eu, 0x8c7460u, 0x8e8a86u, 0xd8d8d8u, 0xffffffu };
+    int32_t i;
+    for (i = 0; i < (int32_t)(sizeof z_m / sizeof z_m[0]); i++) {
+        r->z_mm[i] = (int64_t)z_m[i] * 1000;
+        r->rgb[i] = col[i];
+    }
+    r->n = i;
+    r->has_nv = 1;
+    r->nv_rgb = 0x000000u;
+}
+
 uint32_t rs_ramp_rgb(const rs_ramp *r, int64_t z_mm)
 {
     int32_t i;

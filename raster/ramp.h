@@ -28,6 +28,12 @@ typedef struct rs_ramp {
  * grey rock, white peaks; with a blue bathymetry part below 0 when zmin < 0. */
 void rs_ramp_default(rs_ramp *r, int64_t zmin_mm, int64_t zmax_mm);
 
+/* The built-in ramp by absolute elevation, for georeferenced terrain: sea-floor blues
+ * below 0 m, lowland green from 0 m, pale green to 600 m, tan to 1,200 m, brown to
+ * 1,800 m, grey rock from 2,200 m, snow from 2,700 m (white at 3,200 m): snow only
+ * high up, whatever the file's maximum. */
+void rs_ramp_absolute(rs_ramp *r);
+
 /* Colour 0xRRGGBB at elevation z_mm. */
 uint32_t rs_ramp_rgb(const rs_ramp *r, int64_t z_mm);
 

@@ -103,8 +103,9 @@ static uint32_t ctz64(uint64_t m)
 
 static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf);
 
-#define REJECT ((uint32_t)(RS_OUT_LEFT | RS_OUT_RIGHT | RS_OUT_TOP | RS_OUT_BOTTOM | RS_OUT_FAR | RS_OUT_NEAR) << 24)
-#define SLOW ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)
+#define REJECT ((uint32_t)(RS_OUT_LEFT | RS_OUT_RIGHT | RS_OUT_TOP | RS_OUT_BOTTOM | RS_OUT_FAR | RS_OUT_NEAR \
+                              | RS_OUT_CLIPZ) << 24)
+#define SLOW ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD | RS_OUT_CLIPZ) << 24)
 
 /* Pixel packing from the 21-bit colour fields (R at bit 42, G at 21, B at 0; each
  * 8 integer + 13 fraction bits).  XRGB8888: R and B move with one multiply: the masked
@@ -217,12 +218,16 @@ typedef struct clipv {
     int64_t c[3];         /* camera space, world units */
     int32_t col[3];       /* 0..255 */
     int32_t uv[2];        /* texels Q8 */
+    int64_t pz;           /* world z - clip_z (rs_frame.clip_z_on), affine like c */
 } clipv;
 
-/* Signed distance-like value of plane p (>= 0 inside): 0 near, 1..4 guard band. */
-static int64_t plane_val(int p, const int64_t c[3], int64_t f8, int64_t g8, int64_t znear)
+/* Signed distance-like value of plane p (>= 0 inside): 0 near, 1..4 guard band, 5 the
+ * world plane z >= clip_z. */
+static int64_t plane_val(int p, const clipv *v, int64_t f8, int64_t g8, int64_t znear)
 {
+    const int64_t *c = v->c;
     switch (p) {
+    case 5: return v->pz;
     case 0: return c[2] - znear;
     case 1: return g8 * c[2] + f8 * c[0];
     case 2: return g8 * c[2] - f8 * c[0];
@@ -246,6 +251,8 @@ static void intersect(const clipv *P, const clipv *Q, int64_t dp, int64_t dq, in
         o->col[k] = P->col[k] + (int32_t)((((int64_t)Q->col[k] - P->col[k]) * t) >> 24);
     for (k = 0; k < 2; k++)
         o->uv[k] = P->uv[k] + (int32_t)((((int64_t)Q->uv[k] - P->uv[k]) * t) >> 24);
+    /* |pz| < 2^32 and t <= 2^24: the product fits */
+    o->pz = plane == 5 ? 0 : P->pz + (((Q->pz - P->pz) * t) >> 24);
     if (plane == 0 || o->c[2] < znear) o->c[2] = znear;
 }
 
@@ -259,7 +266,7 @@ static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf)
     const cam_vp *vp = &f->vp;
     int64_t f8 = f_q8(vp), g8 = (int64_t)RS_GUARD_PX << 8;
     clipv buf[2][RS_CLIP_MAX];
-    int32_t n = 3, p, i, k, cur = 0;
+    int32_t n = 3, p, i, k, cur = 0, nplanes = f->clip_z_on ? 6 : 5;
     uint32_t idx[3];
     rs_cvert sv[RS_CLIP_MAX];
     idx[0] = ia; idx[1] = ib; idx[2] = ic;
@@ -269,13 +276,14 @@ static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf)
         for (k = 0; k < 3; k++) buf[0][i].col[k] = (int32_t)((rgb >> (16 - 8 * k)) & 255);
         buf[0][i].uv[0] = f->v[idx[i]].uv[0];
         buf[0][i].uv[1] = f->v[idx[i]].uv[1];
+        buf[0][i].pz = (int64_t)f->v[idx[i]].p[2] - f->clip_z;
     }
-    for (p = 0; p < 5; p++) {
+    for (p = 0; p < nplanes; p++) {
         clipv *in = buf[cur], *out = buf[cur ^ 1];
         int32_t m = 0, all_in = 1;
         int64_t d[RS_CLIP_MAX];
         for (i = 0; i < n; i++) {
-            d[i] = plane_val(p, in[i].c, f8, g8, vp->znear);
+            d[i] = plane_val(p, &in[i], f8, g8, vp->znear);
             if (d[i] < 0) all_in = 0;
         }
         if (all_in) continue;

@@ -68,7 +68,8 @@
 #define RS_GUARD_PX (1 << 14)
 #define RS_MAX_DIM 4096
 #define RS_DEPTH_ONE ((1u << 30) - (1u << 18))
-#define RS_CLIP_MAX 8   /* 3 vertices + one per clip plane (near, 4 guard-band sides) */
+#define RS_CLIP_MAX 9   /* 3 vertices + one per clip plane (near, 4 guard-band sides, the
+                           optional world plane z >= clip_z of rs_frame) */
 
 enum { RS_FMT_XRGB8888 = 0, RS_FMT_RGB565 = 1 };
 enum { RS_DEPTH32 = 0, RS_DEPTH16 = 1 };
@@ -123,7 +124,8 @@ enum {
     RS_OUT_LEFT = 1, RS_OUT_RIGHT = 2, RS_OUT_TOP = 4, RS_OUT_BOTTOM = 8,
     RS_OUT_FAR = 16,            /* zc > zfar */
     RS_OUT_NEAR = 32,           /* zc < znear: x, y, d invalid */
-    RS_OUT_GUARD = 64           /* outside the guard band: x, y invalid */
+    RS_OUT_GUARD = 64,          /* outside the guard band: x, y invalid */
+    RS_OUT_CLIPZ = 128          /* rs_frame.clip_z_on: the vertex's world z < clip_z */
 };
 
 /* One frame.  Zero-initialise, fill the inputs, call rs_frame_prepare, then render
@@ -150,6 +152,10 @@ typedef struct rs_frame {
                                    computing its rows (which a single band would not use),
                                    and the terrain pass (raster/frame.h) refuses shorter
                                    bands.  0 (default): any bands */
+    int32_t clip_z_on;          /* 1: draw only what lies at world z >= clip_z (the vertices'
+                                   own z, before vp): a clip plane in the clipper (planar
+                                   reflections: nothing under the water plane leaks in) */
+    int32_t clip_z;
     int32_t debug_count;        /* tests: colour must be XRGB8888; each covered pixel's
                                    32-bit value counts the writes (no depth test, no sky).
                                    Only builds with RS_WITH_COUNT = 1 draw it (the tests'

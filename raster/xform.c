@@ -510,6 +510,11 @@ br_status rs_frame_prepare(rs_frame *f)
         }
         (f->tex ? xform_tex : xform_plain)(f, &k);
     }
+    if (f->clip_z_on) {     /* the clip plane's outcode (its triangles go to the clipper) */
+        uint32_t i;
+        for (i = 0; i < f->nv; i++)
+            if (f->v[i].p[2] < f->clip_z) f->cache[i].c |= (uint32_t)RS_OUT_CLIPZ << 24;
+    }
     if (f->one_band) chunk_all_rows(f);
     else chunk_rows(f);
     return BR_OK;

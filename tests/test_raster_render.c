@@ -57,9 +57,11 @@ static void test_render_cli(void)
         count_px(out1, &terrain, &red);
         CHECK(terrain > 96 * 64 / 5);
     }
-    {   /* colour file: everything red except a blue top (percentages, comments, nv) */
+    {   /* colour file: everything red except a blue top (percentages, comments, nv); the
+         * plain sky and no water or fog, which this count reads (test_water.c has them) */
         const char txt[] = "# test ramp\n0 200 0 0\n50% 220,10,10\n100% 0 0 255 255\nnv 0 0 0\n";
-        const char *a[] = { dem, "-o", out3, "--size", "96x64", "--colors", col, "--full", "8", "--ambient", "1" };
+        const char *a[] = { dem, "-o", out3, "--size", "96x64", "--colors", col, "--full", "8", "--ambient", "1",
+                            "--no-water", "--no-fog" };
         CHECK(t_write_file(col, txt, sizeof txt - 1));
         CHECK_EQ(RUN(a), 0);
         count_px(out3, &terrain, &red);

@@ -127,11 +127,11 @@ static void test_view_threads_same(void)
 {
     char a[256], b[256], c[256];
     const char *base[] = { "--size", "320x200", "--frames", "2", "--no-hud", "--camera",
-                           "20000,20000,3500,40000,70000,800", "--threads", "1", "--screenshot", a, NULL };
+                           "20000,20000,3500,40000,70000,800", "--time", "1", "--threads", "1", "--screenshot", a, NULL };
     const char *two[] = { "--size", "320x200", "--frames", "2", "--no-hud", "--camera",
-                          "20000,20000,3500,40000,70000,800", "--threads", "2", "--screenshot", b, NULL };
+                          "20000,20000,3500,40000,70000,800", "--time", "1", "--threads", "2", "--screenshot", b, NULL };
     const char *three[] = { "--size", "320x200", "--frames", "2", "--no-hud", "--camera",
-                            "20000,20000,3500,40000,70000,800", "--threads", "3", "--bands", "5", "--screenshot", c, NULL };
+                            "20000,20000,3500,40000,70000,800", "--time", "1", "--threads", "3", "--bands", "5", "--screenshot", c, NULL };
     snprintf(a, sizeof a, "%s/view_t1.png", t_outdir());
     snprintf(b, sizeof b, "%s/view_t2.png", t_outdir());
     snprintf(c, sizeof c, "%s/view_t3.png", t_outdir());
@@ -149,9 +149,9 @@ static void test_view_look_from(void)
     const char *bad1[] = { "--look-from", "47.5,9.5,2000", NULL };
     const char *bad2[] = { "--look-from", "47.5,9.5,2000", "--look-at", "10,10,0", NULL };
     const char *bad3[] = { "--look-from", "47.5,9.5,2000", "--look-at", "47.6,9.5,400", "--camera", "1,2,3,4,5,6", NULL };
-    const char *geo[] = { "--size", "160x100", "--frames", "1", "--no-hud", "--look-from", from, "--look-at", at,
+    const char *geo[] = { "--size", "160x100", "--frames", "1", "--no-hud", "--time", "1", "--look-from", from, "--look-at", at,
                           "--screenshot", a, NULL };
-    const char *met[] = { "--size", "160x100", "--frames", "1", "--no-hud", "--camera", camarg, "--screenshot", b, NULL };
+    const char *met[] = { "--size", "160x100", "--frames", "1", "--no-hud", "--time", "1", "--camera", camarg, "--screenshot", b, NULL };
     scene s;
     scene_opts o;
     br_err err;
@@ -219,6 +219,59 @@ static void test_view_limits(void)
     scene_close(&s);
 }
 
+/* Pixels (per mille) of the lower half whose blue exceeds red and green by 24: water
+ * (the terrain's ramp is green to brown, the sky only in the upper half). */
+static int water_permille(const char *path)
+{
+    int w, h, x, y, n = 0;
+    uint8_t *rgb;
+    br_err err;
+    if (png_read_rgb(path, &w, &h, &rgb, &err) != BR_OK) return -1;
+    for (y = h / 2; y < h; y++)
+        for (x = 0; x < w; x++) {
+            const uint8_t *p = rgb + 3 * ((size_t)y * (size_t)w + (size_t)x);
+            n += p[2] > p[0] + 24 && p[2] > p[1] + 24;
+        }
+    free(rgb);
+    return (int)((long)n * 1000 / ((long)w * (h - h / 2)));
+}
+
+/* The viewer draws the water scene (the lake from the water, as test_water's golden):
+ * water under the horizon, none with --no-water --no-fog; F and V toggle fog and water
+ * when the scene has them, and say so when it has not. */
+static void test_view_water(void)
+{
+    char a[256], b[256];
+    const char *wet[] = { "--size", "160x96", "--frames", "1", "--no-hud", "--time", "1.5", "--camera",
+                          "40000,66000,420,60000,50000,500", "--screenshot", a, NULL };
+    const char *dry[] = { "--size", "160x96", "--frames", "1", "--no-hud", "--no-water", "--no-fog", "--camera",
+                          "40000,66000,420,60000,50000,500", "--screenshot", b, NULL };
+    view_state v;
+    SDL_Event ev;
+    snprintf(a, sizeof a, "%s/view_water.png", t_outdir());
+    snprintf(b, sizeof b, "%s/view_dry.png", t_outdir());
+    CHECK_EQ(view_run(wet), 0);
+    CHECK_EQ(view_run(dry), 0);
+    CHECK_MSG(water_permille(a) > 800, "%d per mille water", water_permille(a));
+    CHECK_MSG(water_permille(b) < 50, "%d per mille water", water_permille(b));
+    memset(&v, 0, sizeof v);
+    memset(&ev, 0, sizeof ev);
+    ev.type = SDL_KEYDOWN;
+    ev.key.keysym.sym = SDLK_f;
+    v.water_scene = 1;
+    v.on[VT_FOG] = 1;
+    view_event(&v, &ev);
+    CHECK_EQ(v.on[VT_FOG], 0);
+    ev.key.keysym.sym = SDLK_v;
+    view_event(&v, &ev);
+    CHECK_EQ(v.on[VT_WATER], 1);
+    CHECK(strstr(v.note, "water on") != NULL);
+    v.water_scene = 0;
+    view_event(&v, &ev);
+    CHECK_EQ(v.on[VT_WATER], 1);
+    CHECK(strstr(v.note, "--no-water --no-fog") != NULL);
+}
+
 static void test_run_headless(void)
 {
     unsetenv("DISPLAY");
@@ -238,6 +291,7 @@ int main(void)
     T_RUN(test_view_look_from);
     T_RUN(test_view_controls);
     T_RUN(test_view_limits);
+    T_RUN(test_view_water);
     T_RUN(test_run_headless);
     return t_finish();
 }

@@ -1,0 +1,217 @@
+/* platform/water_mesh.c — the water surfaces' mesh, built once per scene (see
+ * water_scene.h, wm_build).
+ *
+ * A quadtree of grid blocks per body: aligned blocks of s x s cells (s a power of two,
+ * corners x0 .. x0 + s, y0 .. y0 + s inclusive) from one block covering the grid.  A
+ * block is CLEAN for body b when
+ *   - it holds at least one sample wet with b,
+ *   - every wet sample in it lies at b's level (flat), and
+ *   - every other sample in it lies inside the grid, is valid and is dry land at or above
+ *     b's level (the terrain pass draws that land above the plane, so it hides the part
+ *     of the block under it by the depth test; terrain under the water was lowered);
+ * a clean block is one quad at b's level, and a block that holds water of b but is not
+ * clean is split into its four children.  A single cell that is not clean keeps those of
+ * its two triangles (split along the south-west / north-east diagonal) whose three
+ * corners pass the rule above, at the corners' own heights (wet: the surface height,
+ * dry: the level).  Blocks meet along their edges with T-junctions where a block meets
+ * smaller ones; to keep the mesh watertight (no pixel gaps along a T-junction after
+ * snapping), a block whose edges carry corners of smaller blocks of the same body is drawn
+ * as a fan around its centre through every such corner.  So a lake whose shore rises is a
+ * few dozen quads; the mesh only refines where water meets land below its level (an
+ * outlet), another body or the grid's edge.
+ *
+ * Cost: the classification visits every cell once per body (bottom-up), the fans walk
+ * every block's edges once. */
+#include <stdlib.h>
+#include <string.h>
+#include "platform/water_scene.h"
+
+typedef struct wm_ctx {
+    const hf *f;
+    const uint8_t *id;
+    const int32_t *wz;
+    uint8_t body;
+    int32_t level;
+    int32_t (*leaf)[3];         /* x0, y0, s; s negated: a cell that is not clean */
+    size_t nleaf, capleaf;
+    int oom;
+} wm_ctx;
+
+enum { WM_WET = 1, WM_FAIL = 2 };
+
+/* WM_WET when (x, y) is wet with the body at its level, WM_WET | WM_FAIL when wet but not
+ * at the level (a --water layer that is not flat), WM_FAIL when it may not lie under the
+ * body's plane, 0 for dry land at or above the level. */
+static int sample_bits(const wm_ctx *c, int32_t x, int32_t y)
+{
+    size_t i;
+    if (x >= c->f->w || y >= c->f->h) return WM_FAIL;
+    i = (size_t)y * (size_t)c->f->w + (size_t)x;
+    if (c->id[i] == c->body) return c->wz[i] == c->level ? WM_WET : WM_WET | WM_FAIL;
+    if (c->id[i] || c->f->z[i] == HF_NODATA || c->f->z[i] < c->level) return WM_FAIL;
+    return 0;
+}
+
+static void push_leaf(wm_ctx *c, int32_t x0, int32_t y0, int32_t s)
+{
+    if (c->nleaf == c->capleaf) {
+        size_t cap = c->capleaf ? 2 * c->capleaf : 256;
+        void *p = realloc(c->leaf, cap * sizeof *c->leaf);
+        if (!p) { c->oom = 1; return; }
+        c->leaf = (int32_t (*)[3])p;
+        c->capleaf = cap;
+    }
+    c->leaf[c->nleaf][0] = x0; c->leaf[c->nleaf][1] = y0; c->leaf[c->nleaf][2] = s;
+    c->nleaf++;
+}
+
+/* The block's bits (OR over its samples); its leaves appended to c->leaf. */
+static int classify(wm_ctx *c, int32_t x0, int32_t y0, int32_t s)
+{
+    size_t mark = c->nleaf;
+    int bits;
+    if (x0 >= c->f->w || y0 >= c->f->h) return WM_FAIL;
+    if (s == 1) {
+        bits = sample_bits(c, x0, y0) | sample_bits(c, x0 + 1, y0) | sample_bits(c, x0, y0 + 1)
+               | sample_bits(c, x0 + 1, y0 + 1);
+        if (bits & WM_WET) push_leaf(c, x0, y0, bits == WM_WET ? 1 : -1);
+        return bits;
+    }
+    s /= 2;
+    bits = classify(c, x0, y0, s) | classify(c, x0 + s, y0, s) | classify(c, x0, y0 + s, s)
+           | classify(c, x0 + s, y0 + s, s);
+    if (bits == WM_WET) {
+        c->nleaf = mark;
+        push_leaf(c, x0, y0, 2 * s);
+    }
+    return bits;
+}
+
+typedef struct wm_out {
+    wm_mesh *m;
+    size_t capv, capi;
+    int32_t *vmap;              /* per sample: vertex index of this body, -1 none */
+    int oom;
+} wm_out;
+
+static int32_t add_vert(wm_out *o, int32_t x, int32_t y, int32_t z, uint8_t body)
+{
+    wm_mesh *m = o->m;
+    if (m->nv == o->capv) {
+        size_t cap = o->capv ? 2 * o->capv : 1024;
+        void *p = realloc(m->v, cap * sizeof *m->v);
+        if (!p) { o->oom = 1; return 0; }
+        m->v = (wm_vert *)p;
+        o->capv = cap;
+    }
+    m->v[m->nv].x = x; m->v[m->nv].y = y; m->v[m->nv].z = z; m->v[m->nv].id = body;
+    return (int32_t)m->nv++;
+}
+
+static void add_tri(wm_out *o, int32_t a, int32_t b, int32_t c)
+{
+    wm_mesh *m = o->m;
+    if (m->nidx + 3 > o->capi) {
+        size_t cap = o->capi ? 2 * o->capi : 3072;
+        void *p = realloc(m->idx, cap * sizeof *m->idx);
+        if (!p) { o->oom = 1; return; }
+        m->idx = (uint32_t *)p;
+        o->capi = cap;
+    }
+    m->idx[m->nidx++] = (uint32_t)a; m->idx[m->nidx++] = (uint32_t)b; m->idx[m->nidx++] = (uint32_t)c;
+}
+
+/* The vertex of sample (x, y) for the body (made on first use). */
+static int32_t corner(wm_out *o, const wm_ctx *c, int32_t x, int32_t y)
+{
+    const size_t i = (size_t)y * (size_t)c->f->w + (size_t)x;
+    if (o->vmap[i] < 0) o->vmap[i] = add_vert(o, x, y, c->id[i] == c->body ? c->wz[i] : c->level, c->body);
+    return o->vmap[i];
+}
+
+/* A cell that is not clean: its triangles whose corners all pass. */
+static void emit_cell(wm_out *o, const wm_ctx *c, int32_t x0, int32_t y0)
+{
+    /* sw, se, ne, nw in grid rows (row y0 + 1 is south of y0) */
+    const int32_t cx[4] = { x0, x0 + 1, x0 + 1, x0 }, cy[4] = { y0 + 1, y0 + 1, y0, y0 };
+    int ok[4], k;
+    for (k = 0; k < 4; k++) ok[k] = !(sample_bits(c, cx[k], cy[k]) & WM_FAIL)
+                                    || (sample_bits(c, cx[k], cy[k]) & WM_WET);
+    /* counter-clockwise seen from +z (x east, y north): sw se ne, sw ne nw */
+    if (ok[0] && ok[1] && ok[2])
+        add_tri(o, corner(o, c, cx[0], cy[0]), corner(o, c, cx[1], cy[1]), corner(o, c, cx[2], cy[2]));
+    if (ok[0] && ok[2] && ok[3])
+        add_tri(o, corner(o, c, cx[0], cy[0]), corner(o, c, cx[2], cy[2]), corner(o, c, cx[3], cy[3]));
+}
+
+/* A clean block: two triangles, or a fan around its centre through every corner of a
+ * smaller block of the body on its edges (counter-clockwise from +z: the south edge west
+ * to east, the east edge south to north, the north edge east to west, the west edge north
+ * to south). */
+static void emit_block(wm_out *o, const wm_ctx *c, int32_t x0, int32_t y0, int32_t s, int32_t *loop)
+{
+    int32_t n = 0, t, k, ctr;
+    for (k = 0; k < 4; k++)
+        for (t = 0; t < s; t++) {
+            const int32_t x = k == 0 ? x0 + t : k == 1 ? x0 + s : k == 2 ? x0 + s - t : x0;
+            const int32_t y = k == 0 ? y0 + s : k == 1 ? y0 + s - t : k == 2 ? y0 : y0 + t;
+            const int32_t v = o->vmap[(size_t)y * (size_t)c->f->w + (size_t)x];
+            if (v >= 0) loop[n++] = v;
+        }
+    if (n == 4) {
+        add_tri(o, loop[0], loop[1], loop[2]);
+        add_tri(o, loop[0], loop[2], loop[3]);
+        return;
+    }
+    ctr = add_vert(o, x0 + s / 2, y0 + s / 2, c->level, c->body);
+    for (k = 0; k < n; k++) add_tri(o, ctr, loop[k], loop[(k + 1) % n]);
+}
+
+br_status wm_build(const hf *f, const uint8_t *id, const int32_t *wz, const int32_t *level, int32_t nbodies,
+                   wm_mesh *m)
+{
+    const size_t n = (size_t)f->w * (size_t)f->h;
+    wm_ctx c;
+    wm_out o;
+    int32_t S = 1, b, *loop = NULL;
+    size_t i, l;
+    memset(m, 0, sizeof *m);
+    memset(&c, 0, sizeof c);
+    memset(&o, 0, sizeof o);
+    o.m = m;
+    o.vmap = malloc(n * sizeof *o.vmap);
+    while (S < f->w - 1 || S < f->h - 1) S *= 2;
+    loop = malloc(((size_t)4 * (size_t)S + 4) * sizeof *loop);
+    if (!o.vmap || !loop) { free(o.vmap); free(loop); return BR_E_NOMEM; }
+    c.f = f; c.id = id; c.wz = wz;
+    for (b = 1; b <= nbodies; b++) {
+        c.body = (uint8_t)b;
+        c.level = level[b - 1];
+        c.nleaf = 0;
+        if (f->w < 2 || f->h < 2) break;
+        classify(&c, 0, 0, S);
+        if (c.oom) break;
+        for (i = 0; i < n; i++) o.vmap[i] = -1;
+        /* every block's corners first, so that the fans see their neighbours' */
+        for (l = 0; l < c.nleaf; l++) {
+            const int32_t x0 = c.leaf[l][0], y0 = c.leaf[l][1], s = c.leaf[l][2];
+            if (s < 0) continue;
+            corner(&o, &c, x0, y0); corner(&o, &c, x0 + s, y0);
+            corner(&o, &c, x0, y0 + s); corner(&o, &c, x0 + s, y0 + s);
+        }
+        for (l = 0; l < c.nleaf; l++)
+            if (c.leaf[l][2] < 0) emit_cell(&o, &c, c.leaf[l][0], c.leaf[l][1]);
+        for (l = 0; l < c.nleaf; l++)
+            if (c.leaf[l][2] > 0) emit_block(&o, &c, c.leaf[l][0], c.leaf[l][1], c.leaf[l][2], loop);
+        if (o.oom) break;
+    }
+    free(c.leaf); free(o.vmap); free(loop);
+    if (c.oom || o.oom) { wm_free(m); return BR_E_NOMEM; }
+    return BR_OK;
+}
+
+void wm_free(wm_mesh *m)
+{
+    free(m->v); free(m->idx);
+    memset(m, 0, sizeof *m);
+}

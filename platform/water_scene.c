@@ -1,0 +1,303 @@
+/* platform/water_scene.c — see water_scene.h. */
+#include "platform/water_scene.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "platform/load.h"
+
+static int32_t mm_to_units(const hf *f, int64_t mm)   /* rounded */
+{
+    double u = (double)mm * f->z_den / ((double)f->z_num * 1000.0);
+    return (int32_t)llround(u);
+}
+
+static int32_t world_z(const scene *s, int32_t z)   /* heightfield units -> world (as rt_vertex) */
+{
+    return s->rt.fr.oz + (int32_t)(((int64_t)z * s->rt.fr.sz_q16) >> 16);
+}
+
+/* The water from the options: id per sample and the surface heights wz (terrain units). */
+static br_status find_water(water_scene *w, scene *s, int32_t *wz, br_err *err)
+{
+    const hf *f = &s->f;
+    const size_t n = (size_t)f->w * (size_t)f->h;
+    size_t i;
+    if (w->o.water_file) {
+        hf wfile;
+        dem_opts d;
+        int64_t sum = 0, cnt = 0;
+        memset(&d, 0, sizeof d);
+        if (dem_load(w->o.water_file, &d, &wfile, err) != BR_OK) return err->code;
+        if (wfile.w != f->w || wfile.h != f->h) {
+            dem_free(&wfile);
+            return br_err_set(err, BR_E_VALUE, w->o.water_file, "water surface grid is %dx%d, the terrain %dx%d",
+                              wfile.w, wfile.h, f->w, f->h);
+        }
+        for (i = 0; i < n; i++) {
+            int32_t z = wfile.z[i];
+            w->id[i] = 0;
+            if (z == HF_NODATA || f->z[i] == HF_NODATA) continue;
+            w->id[i] = 1;
+            wz[i] = mm_to_units(f, hf_z_to_mm(&wfile, z));
+            sum += wz[i]; cnt++;
+        }
+        dem_free(&wfile);
+        memset(&w->bodies, 0, sizeof w->bodies);
+        if (cnt) {
+            w->bodies.n = 1; w->bodies.kind[0] = WT_USER; w->bodies.area[0] = cnt; w->bodies.joined[0] = 1;
+            w->bodies.level[0] = (int32_t)(sum / cnt);
+        }
+        return BR_OK;
+    }
+    if (w->o.have_level) wt_level(f, mm_to_units(f, llround(w->o.level_m * 1000)), w->id, &w->bodies);
+    else {
+        wt_params p;
+        size_t ws = wt_work_size(f->w, f->h);
+        void *work = malloc(ws);
+        double cell = (double)f->dx_um * (double)f->dy_um / 1e12;
+        br_status st;
+        if (!work) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for water detection");
+        memset(&p, 0, sizeof p);
+        p.sea_on = f->geo.kind != HF_GEO_NONE || s->st.zmin < 0;
+        p.sea_level = 0;
+        p.min_area = (int64_t)ceil(WS_MIN_AREA_M2 / (cell > 0 ? cell : 1));
+        p.join_dz = mm_to_units(f, WS_JOIN_DZ_MM);
+        st = wt_detect(f, &p, w->id, work, ws, &w->bodies);
+        free(work);
+        if (st != BR_OK) return br_err_set(err, st, NULL, "water detection failed");
+    }
+    for (i = 0; i < n; i++) if (w->id[i]) wz[i] = w->bodies.level[w->id[i] - 1];
+    if (w->bodies.n > RW_MAX_ID) w->bodies.n = RW_MAX_ID;
+    for (i = 0; i < n; i++) if (w->id[i] > RW_MAX_ID) w->id[i] = 0;
+    return BR_OK;
+}
+
+/* The water surfaces' mesh, once per scene (platform/water_mesh.c), as world vertices
+ * carrying their body's id, and its chunk table. */
+static br_status water_mesh_once(water_scene *w, scene *s, br_err *err)
+{
+    uint32_t i;
+    size_t cb;
+    if (wm_build(&s->f, w->id, w->wf.z, w->bodies.level, w->nbodies, &w->mesh) != BR_OK)
+        return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for the water surfaces' mesh");
+    w->wverts = malloc(sizeof *w->wverts * (w->mesh.nv ? w->mesh.nv : 1));
+    w->wcache = malloc(rs_cache_mem_size(w->mesh.nv ? w->mesh.nv : 1));
+    if (!w->wverts || !w->wcache) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
+    for (i = 0; i < w->mesh.nv; i++) {
+        const wm_vert *v = &w->mesh.v[i];
+        rt_vertex(&s->rt, v->x, v->y, v->z, &w->wverts[i]);
+        w->wverts[i].uv[0] = w->wverts[i].uv[1] = 0;
+        w->wverts[i].rgb = RW_ID_RGB(v->id);
+    }
+    w->wprim.kind = RS_LIST; w->wprim.n = w->mesh.nidx; w->wprim.idx = w->mesh.idx;
+    cb = rs_chunk_mem_size(&w->wprim, 1) + 4;
+    w->wchunks = malloc(cb);
+    if (!w->wchunks) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
+    if (!w->o.quiet) printf("water surfaces: %u triangles, %u vertices\n", w->mesh.nidx / 3, w->mesh.nv);
+    return BR_OK;
+}
+
+br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err)
+{
+    hf *f = &s->f;
+    const size_t n = (size_t)f->w * (size_t)f->h;
+    int64_t relief_mm = hf_z_to_mm(f, s->st.zmax) - hf_z_to_mm(f, s->st.zmin);
+    int32_t depth;
+    int32_t *wz;
+    size_t i;
+    memset(w, 0, sizeof *w);
+    if (o) w->o = *o;
+    w->rw = malloc(sizeof *w->rw);
+    if (!w->rw) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
+    if (w->o.no_water) return BR_OK;
+    w->id = malloc(n);
+    wz = malloc(n * sizeof *wz);
+    if (!w->id || !wz) { free(wz); return br_err_set(err, BR_E_NOMEM, NULL, "out of memory"); }
+    if (find_water(w, s, wz, err) != BR_OK) { free(wz); return err->code; }
+    w->nbodies = w->bodies.n;
+    if (!w->o.quiet)
+        for (i = 0; i < (size_t)w->bodies.n; i++)
+            printf("water %d: %s at %.2f m, %lld samples%s\n", (int)i + 1,
+                   w->bodies.kind[i] == WT_SEA ? "sea" : w->bodies.kind[i] == WT_LAKE ? "lake" : "user",
+                   (double)hf_z_to_mm(f, w->bodies.level[i]) / 1000, (long long)w->bodies.area[i],
+                   w->bodies.joined[i] > 1 ? " (flat regions joined along a seam)" : "");
+    if (!w->nbodies) { free(wz); return BR_OK; }
+    /* flattened water (terrain at or above its surface) lies on a bottom 1/8 of the
+     * relief below it (at least WS_DEPTH_MM): deep enough that the terrain's LOD refines
+     * along the shore instead of cutting through the surface */
+    depth = mm_to_units(f, relief_mm / 8 > WS_DEPTH_MM ? relief_mm / 8 : WS_DEPTH_MM);
+    if (depth < 1) depth = 1;
+    if (!w->o.water_file && !w->o.have_level)     /* the user's water keeps its bathymetry */
+        for (i = 0; i < n; i++)
+            if (w->id[i] && f->z[i] != HF_NODATA && f->z[i] > wz[i] - depth) f->z[i] = wz[i] - depth;
+    for (i = 0; i < n; i++) if (!w->id[i]) wz[i] = HF_NODATA;
+    w->wf = *f;
+    w->wf.z = wz;
+    return water_mesh_once(w, s, err);
+}
+
+void ws_close(water_scene *w)
+{
+    if (w->wf.z) free(w->wf.z);
+    free(w->id); wm_free(&w->mesh); free(w->wverts); free(w->wcache); free(w->wchunks);
+    free(w->rstrip); free(w->rcache); free(w->rchunks); free(w->rw);
+    memset(w, 0, sizeof *w);
+}
+
+/* This frame's water frame: the scene's water mesh seen by the terrain's camera. */
+static br_status water_frame(water_scene *w, const rs_frame *tf)
+{
+    memset(&w->wfr, 0, sizeof w->wfr);
+    w->wfr.w = tf->w; w->wfr.h = tf->h; w->wfr.fmt = tf->fmt; w->wfr.depth = tf->depth;
+    w->wfr.v = w->wverts; w->wfr.nv = w->mesh.nv; w->wfr.cache = w->wcache;
+    w->wfr.prims = &w->wprim; w->wfr.nprims = 1;
+    w->wfr.chunks = w->wchunks;
+    w->wfr.vp = tf->vp;
+    return rs_frame_prepare(&w->wfr);
+}
+
+/* The body with the largest screen area (triangles that need the clipper: near the
+ * camera, counted as the whole screen). */
+static int32_t biggest_body(const water_scene *w)
+{
+    int64_t area[RW_MAX_ID + 1];
+    uint32_t k;
+    int32_t best = 0, i;
+    const uint32_t *ix = w->wprim.idx;
+    memset(area, 0, sizeof area);
+    for (k = 0; k + 2 < w->wprim.n; k += 3) {
+        const rs_cvert *a = &w->wcache[ix[k]], *b = &w->wcache[ix[k + 1]], *c = &w->wcache[ix[k + 2]];
+        uint32_t id = (w->wverts[ix[k]].rgb >> 19) & 31u;
+        int64_t ar;
+        if ((a->c | b->c | c->c) & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)) ar = (int64_t)1 << 40;
+        else if (a->c & b->c & c->c & ((uint32_t)0x1f << 24)) ar = 0;
+        else ar = ((int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(c->x - a->x) * (b->y - a->y));
+        area[id] += ar < 0 ? -ar : ar;
+    }
+    for (i = 1; i <= RW_MAX_ID; i++) if (area[i] > area[best]) best = i;
+    return best;
+}
+
+/* The mirrored terrain frame for plane_z at res_shift, sharing tf's vertices. */
+static br_status refl_frame(water_scene *w, const rs_frame *tf, int32_t plane_z, int32_t res)
+{
+    const rs_prim *tp = &tf->prims[0];
+    size_t cb;
+    if (tf->nprims != 1 || tp->kind != RS_STRIP || tp->n < 3) return BR_E_ARG;
+    if (w->rstrip_cap < tp->n + 1) {
+        free(w->rstrip);
+        w->rstrip_cap = tp->n + 1 + tp->n / 4;
+        w->rstrip = malloc(sizeof *w->rstrip * w->rstrip_cap);
+        if (!w->rstrip) { w->rstrip_cap = 0; return BR_E_NOMEM; }
+    }
+    /* one doubled first index flips every triangle's parity: the winding the mirror
+     * reversed is reversed back, and the extra triangle has zero area */
+    w->rstrip[0] = tp->idx[0];
+    memcpy(w->rstrip + 1, tp->idx, sizeof *w->rstrip * tp->n);
+    w->rprim.kind = RS_STRIP; w->rprim.n = tp->n + 1; w->rprim.idx = w->rstrip;
+    if (w->rcache_cap < tf->nv) {
+        free(w->rcache);
+        w->rcache_cap = tf->nv + tf->nv / 4;
+        w->rcache = malloc(rs_cache_mem_size(w->rcache_cap));
+        if (!w->rcache) { w->rcache_cap = 0; return BR_E_NOMEM; }
+    }
+    cb = rs_chunk_mem_size(&w->rprim, 1) + 4;
+    if (w->rchunks_cap < cb) {
+        free(w->rchunks);
+        w->rchunks_cap = cb + cb / 4;
+        w->rchunks = malloc(w->rchunks_cap);
+        if (!w->rchunks) { w->rchunks_cap = 0; return BR_E_NOMEM; }
+    }
+    w->rfr = *tf;
+    w->rfr.w = tf->w >> res; w->rfr.h = tf->h >> res;
+    w->rfr.cache = w->rcache;
+    w->rfr.prims = &w->rprim; w->rfr.nprims = 1;
+    w->rfr.chunks = w->rchunks;
+    w->rfr.clip_z_on = 1; w->rfr.clip_z = plane_z;
+    if (rw_mirror_vp(&tf->vp, plane_z, res, tf->w, tf->h, &w->rfr.vp) != BR_OK) return BR_E_ARG;
+    return rs_frame_prepare(&w->rfr);
+}
+
+/* Fog from 55 % to 100 % of the farthest grid corner's distance along the view axis. */
+static void fog_range(const scene *s, const cam *c, rw_params *p)
+{
+    int64_t far = 0;
+    int k;
+    for (k = 0; k < 4; k++) {
+        int64_t q[3], zc;
+        q[0] = (k & 1) ? (int64_t)(s->f.w - 1) * s->rt.fr.sx : 0;
+        q[1] = (k & 2) ? (int64_t)(s->f.h - 1) * s->rt.fr.sy : 0;
+        q[2] = world_z(s, (s->st.zmin + s->st.zmax) / 2);
+        zc = ((q[0] - c->eye[0]) * c->fwd[0] + (q[1] - c->eye[1]) * c->fwd[1] + (q[2] - c->eye[2]) * c->fwd[2]) >> 30;
+        if (zc > far) far = zc;
+    }
+    p->fog_on = far > 16;
+    p->fog_end = far;
+    p->fog_start = far * 55 / 100;
+    if (p->fog_start < 1) p->fog_start = 1;
+}
+
+br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err *err)
+{
+    static const int32_t res_of[5] = { 1, 0, 1, 2, -1 };
+    rw_params p;
+    rw_frame *r = w->rw;
+    int32_t body = 0, res = res_of[w->o.reflection >= 0 && w->o.reflection < 5 ? w->o.reflection : 0];
+    const rs_frame *wfr = NULL, *rfr = NULL;
+    int64_t relief_mm = hf_z_to_mm(&s->f, s->st.zmax) - hf_z_to_mm(&s->f, s->st.zmin);
+    rs_pass pass;
+    int32_t k;
+    memset(&p, 0, sizeof p);
+    p.sky_on = 1;
+    if (!w->o.no_fog) fog_range(s, c, &p);
+    if (w->nbodies) {
+        if (water_frame(w, tf) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "cannot set up the water frame");
+        wfr = &w->wfr;
+        body = biggest_body(w);
+    }
+    if (wfr && w->wfr.nv) {
+        int64_t hgt;
+        p.water_on = 1;
+        p.refl_body = body;
+        p.plane_z = body ? world_z(s, w->bodies.level[body - 1]) : 0;
+        hgt = c->eye[2] - p.plane_z;
+        if (hgt < 1) hgt = 1;
+        p.tint_len = rt_mm_to_world(&s->rt, relief_mm / 4 < WS_TINT_MM ? relief_mm / 4 : WS_TINT_MM);
+        if (p.tint_len < 1) p.tint_len = 1;
+        p.waves_on = !w->o.no_waves;
+        p.time_ms = (int32_t)llround(w->o.time_s * 1000);
+        p.wave_len = hgt / 4 > 1 ? hgt / 4 : 1;
+        p.wave_amp = hgt / 60;
+        p.fresnel_one = w->o.fresnel_one;
+        p.res_shift = res < 0 ? 0 : res;
+        p.wet = w->id;
+        p.wet_w = s->f.w; p.wet_h = s->f.h;
+        p.grid_ox = s->rt.fr.ox; p.grid_oy = s->rt.fr.oy;
+        p.grid_sx = s->rt.fr.sx; p.grid_sy = s->rt.fr.sy;
+        for (k = 0; k < w->nbodies && k < RW_MAX_ID; k++) p.body_z[k + 1] = world_z(s, w->bodies.level[k]);
+        if (body && res >= 0 && c->eye[2] > p.plane_z && tf->nprims == 1 && tf->prims[0].kind == RS_STRIP) {
+            if (refl_frame(w, tf, p.plane_z, res) != BR_OK)
+                return br_err_set(err, BR_E_NOMEM, NULL, "cannot set up the reflection");
+            rfr = &w->rfr;
+        }
+    }
+    if (rw_setup(r, &p, c, tf, wfr, rfr) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "bad water parameters");
+    memset(&w->pipe, 0, sizeof w->pipe);
+    w->pipe.w = tf->w; w->pipe.h = tf->h; w->pipe.fmt = tf->fmt; w->pipe.depth = tf->depth;
+    if (rfr) {
+        rw_pass_reflection(&pass, r);
+        r->refl_pass = w->pipe.npasses;
+        rs_pipe_add(&w->pipe, &pass);
+    }
+    if (rs_pass_terrain(&w->tpass, tf) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "terrain frame without a chunk table");
+    rs_pipe_add(&w->pipe, &w->tpass);
+    if (wfr) {
+        rw_pass_water(&pass, r);
+        r->water_pass = w->pipe.npasses;
+        rs_pipe_add(&w->pipe, &pass);
+    }
+    w->pipe.post = rw_post;
+    w->pipe.post_user = r;
+    return BR_OK;
+}

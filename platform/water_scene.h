@@ -1,0 +1,96 @@
+/* platform/water_scene.h — water and atmosphere for a scene (platform/scene.h): finds
+ * the water (core/water.h) or takes the user's (--water-level, --water FILE), lowers the
+ * terrain under flattened water by a stated default depth, meshes the water surfaces
+ * with their own bitree, and per frame builds the reflection frame, the water frame and
+ * the pipe (raster/frame.h, raster/water.h) that `render` runs.
+ *
+ * Order: scene_open, ws_open (it changes the heightfield), scene_tree, scene_reserve;
+ * per frame: the terrain frame prepared with a chunk table, then ws_frame, then
+ * rs_pipe_run(&w->pipe, ...). */
+#ifndef BR_WATER_SCENE_H
+#define BR_WATER_SCENE_H
+#include "core/water.h"
+#include "platform/scene.h"
+#include "raster/frame.h"
+#include "raster/water.h"
+#include "platform/opt.h"
+
+#define WS_DEPTH_MM 3000        /* least depth under flattened water (SRTM lakes and sea) */
+#define WS_TINT_MM 4000         /* absorption length of the depth tint */
+#define WS_MIN_AREA_M2 1000000  /* a flat region of at least 1 km^2 is a lake */
+#define WS_JOIN_DZ_MM 5000      /* the seam rule joins flat regions within 5 m */
+
+/* The water surfaces' mesh (platform/water_mesh.c): grid vertices (x column, y row, z in
+ * heightfield units, body id), triangles counter-clockwise seen from +z, watertight. */
+typedef struct wm_vert {
+    int32_t x, y, z;
+    uint8_t id;
+} wm_vert;
+typedef struct wm_mesh {
+    wm_vert *v;
+    uint32_t nv;
+    uint32_t *idx;              /* 3 per triangle */
+    uint32_t nidx;
+} wm_mesh;
+/* Meshes the surfaces once: id per sample (0: none), wz the surface height where id is
+ * set, level[b - 1] body b's level, bodies 1 .. nbodies.  BR_E_NOMEM. */
+br_status wm_build(const hf *f, const uint8_t *id, const int32_t *wz, const int32_t *level, int32_t nbodies,
+                   wm_mesh *m);
+void wm_free(wm_mesh *m);
+
+typedef struct ws_opts {        /* zero = defaults: water found automatically, fog on */
+    int no_water;               /* --no-water */
+    int have_level;             /* --water-level M */
+    double level_m;
+    const char *water_file;     /* --water FILE: water surface heights, nodata where dry */
+    int no_fog;                 /* --no-fog */
+    int reflection;             /* 0 half (default), 1 full, 2 half, 3 quarter, 4 none */
+    double time_s;              /* --time T */
+    int no_waves, fresnel_one;  /* tests */
+    int quiet;
+} ws_opts;
+
+typedef struct water_scene {
+    ws_opts o;
+    wt_bodies bodies;
+    int nbodies;
+    uint8_t *id;                /* per sample: body id (wet, or dry land the body's surface
+                                   goes on under), 0 where no water is drawn */
+    hf wf;                      /* water surface heights (terrain units), nodata where none */
+    wm_mesh mesh;               /* the water surfaces, meshed once by ws_open */
+    rs_vertex *wverts;
+    rs_cvert *wcache;
+    int16_t *wchunks;
+    rs_prim wprim;
+    rs_frame wfr;
+    uint32_t *rstrip;           /* the terrain strip with its first index doubled */
+    uint32_t rstrip_cap;
+    rs_cvert *rcache;
+    uint32_t rcache_cap;
+    int16_t *rchunks;
+    size_t rchunks_cap;
+    rs_prim rprim;
+    rs_frame rfr;
+    rw_frame *rw;
+    rs_pass tpass;
+    rs_pipe pipe;
+} water_scene;
+
+/* The options --no-water, --water-level M, --water FILE, --fog, --no-fog, --time T,
+ * --reflection full|half|quarter|none as a table for opt_parse (platform/water_args.c). */
+#define WS_ARGS_N 8     /* entries of the table, OPT_END included */
+typedef struct ws_args {
+    ws_opts *o;
+    int fog, refl, refl_seen;
+    int time_seen;              /* --time given (the viewer's ripples then stand still) */
+} ws_args;
+void ws_args_table(ws_args *a, ws_opts *o, opt_spec t[WS_ARGS_N]);
+int ws_args_finish(ws_args *a, const char *cmd);
+
+br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err);
+/* Builds this frame's water frame (the scene's water mesh transformed), reflection frame
+ * and pipe for camera c and the prepared terrain frame tf (its chunk table set). */
+br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err *err);
+void ws_close(water_scene *w);
+
+#endif

@@ -1,0 +1,490 @@
+/* raster/water.c — reflection pass, water pass, and the post hook that composites water,
+ * sky and fog (see water.h).  Right shifts of negative values are arithmetic (checked
+ * once in core/fx.h's users; gcc and clang on every target we build). */
+#include <string.h>
+#include "core/fx.h"
+#include "raster/water.h"
+
+#define Q12 4096
+
+/* ---------------------------------------------------------------- set-up */
+
+br_status rw_mirror_vp(const cam_vp *vp, int32_t plane_z, int32_t res_shift, int32_t w, int32_t h,
+                       cam_vp *out)
+{
+    int i;
+    if (!vp || !out || res_shift < 0 || res_shift > 2 || (w >> res_shift) < 1 || (h >> res_shift) < 1
+        || plane_z > CAM_COORD_MAX / 2 || plane_z < -(CAM_COORD_MAX / 2))
+        return BR_E_ARG;
+    *out = *vp;
+    /* r (x, y, 2 H - z) + t = r' p + t' with r'[i][2] = -r[i][2], t' = t + 2 H r[i][2]:
+     * |2 H r| < 2^30 2^30, the sum stays within cam_vp's bound */
+    for (i = 0; i < 3; i++) {
+        out->r[i][2] = -vp->r[i][2];
+        out->t[i] = vp->t[i] + 2 * (int64_t)plane_z * vp->r[i][2];
+    }
+    out->f_q16 = vp->f_q16 >> res_shift;
+    out->cx_q16 = (w >> res_shift) * (FX_Q16_ONE / 2);
+    out->cy_q16 = (h >> res_shift) * (FX_Q16_ONE / 2);
+    return BR_OK;
+}
+
+static uint32_t mix_rgb(uint32_t a, uint32_t b, uint32_t t)    /* t Q8: a (0) .. b (256) */
+{
+    /* red and blue in one word, green in another: each field's sum is below 2^16 */
+    const uint32_t u = 256u - t;
+    const uint32_t rb = ((a & 0xff00ffu) * u + (b & 0xff00ffu) * t + 0x800080u) >> 8;
+    const uint32_t g = ((a & 0xff00u) * u + (b & 0xff00u) * t + 0x8000u) >> 8;
+    return (rb & 0xff00ffu) | (g & 0xff00u);
+}
+
+static void tables(rw_frame *r)
+{
+    /* R0 = ((1.33 - 1) / (1.33 + 1))^2 = 33^2 / 233^2, Q16 */
+    const uint32_t r0 = (uint32_t)((33u * 33u * 65536u + 233u * 233u / 2) / (233u * 233u));
+    uint32_t i, e = 65536u;
+    for (i = 0; i <= RW_TAB; i++) {
+        uint32_t c = fx_isqrt64((uint64_t)i << 22);        /* cos t, Q16 (i / 1024 = cos^2) */
+        uint64_t m = 65536u - (c > 65536u ? 65536u : c), p = m;
+        uint32_t f, s;
+        int k;
+        for (k = 1; k < 5; k++) p = (p * m) >> 16;          /* (1 - cos)^5, Q16 */
+        f = r0 + (uint32_t)(((65536u - r0) * p) >> 16);
+        r->fres[i] = (uint8_t)((f + 128u) >> 8 > 255u ? 255u : (f + 128u) >> 8);
+        s = (c * 3u) >> 1;                                  /* 1.5 sin of the elevation, Q16 */
+        r->skyw[i] = (uint8_t)((s + 128u) >> 8 > 255u ? 255u : (s + 128u) >> 8);
+    }
+    for (i = 0; i < 256; i++) {     /* e = exp(-i / 32), Q16: exp(-1/32) = 63520 / 65536 */
+        r->tint[i] = (uint8_t)(255u - (e >> 8 > 255u ? 255u : e >> 8));
+        e = (e * 63520u + 32768u) >> 16;
+    }
+    for (i = 0; i < 256; i++) {
+        fx_q30 s, c;
+        fx_sincos((fx_angle)(i << 24), &s, &c);
+        r->sine[i] = (int8_t)((s * (int64_t)127 + ((int64_t)1 << 29)) >> 30);
+    }
+}
+
+/* Rows where water may show: the water frame's vertices' rows (everything when one
+ * needs the clipper). */
+static void water_rows(rw_frame *r)
+{
+    const rs_frame *wf = r->water;
+    uint32_t i;
+    int32_t lo = INT32_MAX, hi = INT32_MIN;
+    r->wlo = 1; r->whi = 0;
+    if (!wf || !r->p.water_on || wf->nv == 0 || wf->nprims == 0) return;
+    for (i = 0; i < wf->nv; i++) {
+        const rs_cvert *v = &wf->cache[i];
+        if (v->c & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)) { r->wlo = 0; r->whi = r->h - 1; return; }
+        if (v->y < lo) lo = v->y;
+        if (v->y > hi) hi = v->y;
+    }
+    lo = lo < 0 ? 0 : lo >> RS_SUBPIX_BITS;
+    hi = hi >= r->h << RS_SUBPIX_BITS ? r->h - 1 : hi >> RS_SUBPIX_BITS;
+    r->wlo = lo; r->whi = hi;
+}
+
+/* Fog table: weight by depth d >> fog_sh (d in 30-bit units, D znear / zc). */
+static void fog_table(rw_frame *r, int64_t K)
+{
+    const int64_t zs = r->p.fog_start, ze = r->p.fog_end;
+    int64_t dstart = K / zs;
+    int32_t sh = 0, i;
+    while ((dstart >> sh) > RW_TAB) sh++;
+    r->fog_sh = sh;
+    for (i = 0; i <= RW_TAB; i++) {
+        int64_t d = ((int64_t)i << sh) + (((int64_t)1 << sh) >> 1), zc, t;
+        zc = d > 0 ? K / d : ze;
+        t = zc <= zs ? 0 : zc >= ze ? 256 : ((zc - zs) << 8) / (ze - zs);
+        r->fog[i] = (uint8_t)((t * t + 128) >> 8 > 255 ? 255 : (t * t + 128) >> 8);
+    }
+}
+
+br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame *terrain,
+                   const rs_frame *water, const rs_frame *refl)
+{
+    static const int32_t dir[2][2] = { { 13107, 9830 }, { -6226, 15073 } };   /* Q14 unit vectors */
+    const cam_vp *vp;
+    int64_t K, f16;
+    int32_t x, y, k;
+    if (!r || !p || !c || !terrain || terrain->w != c->w || terrain->h != c->h
+        || p->res_shift < 0 || p->res_shift > 2
+        || (p->fog_on && !(p->fog_start > 0 && p->fog_end > p->fog_start))
+        || (p->water_on && (p->tint_len <= 0 || p->wave_len <= 0 || p->wave_amp < 0))
+        || (water && (water->w != terrain->w || water->h != terrain->h))
+        || (refl && (refl->w != terrain->w >> p->res_shift || refl->h != terrain->h >> p->res_shift)))
+        return BR_E_ARG;
+    vp = &terrain->vp;
+    r->p = *p;
+    if (!r->p.water_rgb) r->p.water_rgb = 0x1c4660u;
+    if (!r->p.sky_horizon) r->p.sky_horizon = 0xc8dcf0u;
+    if (!r->p.sky_zenith) r->p.sky_zenith = 0x5a8cd2u;
+    r->terrain = terrain; r->water = water; r->refl = refl;
+    r->refl_pass = r->water_pass = -1;
+    r->w = terrain->w; r->h = terrain->h; r->fmt = terrain->fmt; r->depth = terrain->depth;
+    K = (int64_t)RS_DEPTH_ONE * vp->znear;
+    r->dfar = (uint32_t)(K / vp->zfar);
+    r->rdfar = r->dfar;
+    if (r->depth == RS_DEPTH16) { r->dfar >>= 14; r->rdfar >>= 14; }
+    for (k = 0; k < 3; k++) r->eye[k] = c->eye[k];
+    tables(r);
+    f16 = vp->f_q16;
+    for (x = 0; x < r->w; x++) r->aq[x] = (int32_t)(((int64_t)(2 * x + 1 - r->w) * ((int64_t)1 << 27)) / f16);
+    for (y = 0; y < r->h; y++) {
+        int64_t b = ((int64_t)(r->h - 2 * y - 1) * ((int64_t)1 << 27)) / f16, rz, len2;
+        uint32_t s2;
+        r->bq[y] = (int32_t)b;
+        rz = ((int64_t)c->up[2] * b + (int64_t)c->fwd[2] * Q12) >> 30;
+        r->rz[y] = (int32_t)rz;
+        len2 = b * b + (int64_t)Q12 * Q12;
+        /* the zenith weight 1.5 sin(elevation) of the row's centre ray, Q8 */
+        s2 = rz > 0 ? (uint32_t)((fx_isqrt64((uint64_t)(((rz * rz) << 24) / len2)) * 3u + 16u) >> 5) : 0;
+        r->sky[y] = p->sky_on ? mix_rgb(r->p.sky_horizon, r->p.sky_zenith, s2 > 256u ? 256u : s2)
+                              : terrain->clear_rgb;
+        /* the plane point of the row's rays: E + lam ray, lam = (H - ez) / ray_z */
+        r->wbase[y][0] = r->wbase[y][1] = r->wstep[y][0] = r->wstep[y][1] = 0;
+        r->tkr[y] = -1;
+        if (rz < 0 && r->eye[2] > p->plane_z) {
+            int64_t lam = (((int64_t)p->plane_z - r->eye[2]) * Q12) / rz;    /* world units per unit ray */
+            if (lam > ((int64_t)1 << 31)) lam = (int64_t)1 << 31;
+            for (k = 0; k < 2; k++) {
+                int64_t ray = (((int64_t)c->up[k] * b) >> 30) + (c->fwd[k] >> 18);   /* Q12 */
+                r->wbase[y][k] = r->eye[k] + ((lam * ray) >> 12);
+                r->wstep[y][k] = (lam * c->right[k]) >> 30;
+            }
+            /* the ray's forward component is 1: lam is the plane point's zc */
+            r->tkr[y] = p->water_on ? ((lam << 21) / p->tint_len) : -1;
+            if (r->tkr[y] > ((int64_t)1 << 40)) r->tkr[y] = (int64_t)1 << 40;
+        }
+    }
+    for (k = 0; k < 2; k++) {
+        int64_t len = k == 0 ? p->wave_len : p->wave_len * 5 / 8;
+        if (len < 1) len = 1;
+        r->kx[k] = ((int64_t)dir[k][0] * ((int64_t)1 << 18)) / len;        /* 2^32 turns per world unit */
+        r->ky[k] = ((int64_t)dir[k][1] * ((int64_t)1 << 18)) / len;
+        r->kt[k] = ((int64_t)1 << 32) / (k == 0 ? 2100 : 1300);
+    }
+    {   /* displacement Q8 px = d amp_m >> 32 = A f 2^8 / zc */
+        int64_t num = p->wave_amp * (f16 >> 4);
+        int64_t m = K > 0 ? fx_div_floor(num << 12, K) << 16 : 0;
+        r->amp_m = m > ((int64_t)1 << 33) ? (int64_t)1 << 33 : m;
+        /* waves fade beyond 8 wave lengths */
+        r->wave_fade_d = (uint32_t)(K / (8 * (p->wave_len > 0 ? p->wave_len : 1)) > 0xffffffffLL ? 0xffffffffu
+                                    : K / (8 * (p->wave_len > 0 ? p->wave_len : 1)));
+    }
+    for (k = 0; k <= RW_MAX_ID; k++) {     /* the bodies' plane points from the reflected plane's */
+        const int64_t e0 = r->eye[2] - p->plane_z, eb = r->eye[2] - p->body_z[k];
+        int64_t q = e0 > 0 && eb > 0 ? (eb << 16) / e0 : 0;
+        r->bratio[k] = (int32_t)(q > ((int64_t)1 << 20) ? 0 : q);
+    }
+    r->inv_sx = p->grid_sx > 0 ? ((((uint64_t)1 << 32) + (uint64_t)p->grid_sx - 1) / (uint64_t)p->grid_sx) : 0;
+    r->inv_sy = p->grid_sy > 0 ? ((((uint64_t)1 << 32) + (uint64_t)p->grid_sy - 1) / (uint64_t)p->grid_sy) : 0;
+    if (p->fog_on) fog_table(r, K);
+    {   /* dquiet: terrain pixels at least this near (buffer units) get no fog */
+        uint64_t d30 = 0;
+        int32_t i;
+        if (p->fog_on)
+            for (i = RW_TAB; i >= 0; i--)
+                if (r->fog[i]) { d30 = (uint64_t)(i + 1) << r->fog_sh; break; }
+        if (r->depth == RS_DEPTH16) d30 = (d30 + (1u << 14) - 1) >> 14;
+        r->dquiet = d30 > r->dfar ? (d30 > 0xffffffffu ? 0xffffffffu : (uint32_t)d30) : r->dfar + 1;
+    }
+    water_rows(r);
+    return BR_OK;
+}
+
+/* ---------------------------------------------------------------- passes */
+
+/* Reflection rows (of the reduced frame) stored for scratch rows [top, bottom): those
+ * the post hook can read, the water rows widened by the waves' reach. */
+static void refl_rows(const rw_frame *r, int32_t top, int32_t bottom, int32_t *h0, int32_t *h1)
+{
+    const int32_t s = r->p.res_shift;
+    int32_t lo = r->wlo - RW_WAVE_PX, hi = r->whi + RW_WAVE_PX + 1;
+    if (lo < top) lo = top;
+    if (hi > bottom) hi = bottom;
+    if (lo >= hi) { *h0 = *h1 = 0; return; }
+    *h0 = lo >> s;
+    *h1 = ((hi - 1) >> s) + 1;
+    if (*h1 > r->h >> s) *h1 = r->h >> s;
+    if (*h0 > *h1) *h0 = *h1;
+}
+
+static int refl_touched(const void *user, int32_t y0, int32_t rows)
+{
+    const rw_frame *r = (const rw_frame *)user;
+    return r->refl && r->wlo <= r->whi && y0 <= r->whi + RW_WAVE_PX && y0 + rows > r->wlo - RW_WAVE_PX;
+}
+
+static br_status refl_run(const void *user, rs_band *b, int32_t self, rs_band_stats *st)
+{
+    const rw_frame *r = (const rw_frame *)user;
+    const size_t bpp = r->fmt == RS_FMT_RGB565 ? 2u : 4u;
+    int32_t h0, h1;
+    refl_rows(r, b->scratch_y0[self], b->scratch_y0[self] + b->scratch_rows[self], &h0, &h1);
+    if (h1 <= h0) return BR_OK;
+    return rs_draw_band(r->refl, h0, h1 - h0, b->scratch[self], (size_t)r->refl->w * bpp,
+                        b->scratch_depth[self], st);
+}
+
+br_status rw_pass_reflection(rs_pass *pass, const rw_frame *r)
+{
+    if (!pass || !r || !r->refl) return BR_E_ARG;
+    memset(pass, 0, sizeof *pass);
+    pass->name = "reflection";
+    pass->margin = RW_WAVE_PX;
+    pass->scratch = 1;
+    pass->rows_touched = refl_touched;
+    pass->run = refl_run;
+    pass->user = r;
+    return BR_OK;
+}
+
+static int water_touched(const void *user, int32_t y0, int32_t rows)
+{
+    const rw_frame *r = (const rw_frame *)user;
+    return r->water && r->wlo <= r->whi && y0 <= r->whi && y0 + rows > r->wlo;
+}
+
+static br_status water_run(const void *user, rs_band *b, int32_t self, rs_band_stats *st)
+{
+    const rw_frame *r = (const rw_frame *)user;
+    return rs_draw_band(r->water, b->scratch_y0[self], b->scratch_rows[self], b->scratch[self],
+                        b->scratch_stride[self], b->scratch_depth[self], st);
+}
+
+br_status rw_pass_water(rs_pass *pass, const rw_frame *r)
+{
+    if (!pass || !r || !r->water) return BR_E_ARG;
+    memset(pass, 0, sizeof *pass);
+    pass->name = "water";
+    pass->scratch = 1;
+    pass->rows_touched = water_touched;
+    pass->run = water_run;
+    pass->user = r;
+    return BR_OK;
+}
+
+/* ---------------------------------------------------------------- the post hook */
+
+/* 4x4 ordered dither (Bayer), 0 .. 15, by screen position. */
+static const uint8_t bayer4[4][4] = { { 0, 8, 2, 10 }, { 12, 4, 14, 6 }, { 3, 11, 1, 9 }, { 15, 7, 13, 5 } };
+
+static uint16_t pack565_dither(uint32_t rgb, int32_t x, int32_t y)
+{
+    const uint32_t d = bayer4[y & 3][x & 3];
+    uint32_t rr = (((rgb >> 16) & 255u) + (d >> 1)) >> 3, g = (((rgb >> 8) & 255u) + (d >> 2)) >> 2,
+             bb = ((rgb & 255u) + (d >> 1)) >> 3;
+    if (rr > 31u) rr = 31u;
+    if (g > 63u) g = 63u;
+    if (bb > 31u) bb = 31u;
+    return (uint16_t)((rr << 11) | (g << 5) | bb);
+}
+
+static uint32_t get_rgb(int32_t fmt, const void *row, int32_t x)
+{
+    if (fmt == RS_FMT_RGB565) {
+        uint32_t v = ((const uint16_t *)row)[x], rr = v >> 11, g = (v >> 5) & 63u, bb = v & 31u;
+        return ((rr << 3 | rr >> 2) << 16) | ((g << 2 | g >> 4) << 8) | (bb << 3 | bb >> 2);
+    }
+    return ((const uint32_t *)row)[x] & 0xffffffu;
+}
+
+static uint32_t get_depth(int32_t depth, const void *row, int32_t x)
+{
+    return depth == RS_DEPTH16 ? ((const uint16_t *)row)[x] : ((const uint32_t *)row)[x];
+}
+
+/* The water id of a water-pass pixel (RW_ID_RGB: the top five bits of red). */
+static uint32_t get_id(int32_t fmt, const void *row, int32_t x)
+{
+    return fmt == RS_FMT_RGB565 ? (uint32_t)((const uint16_t *)row)[x] >> 11 : (((const uint32_t *)row)[x] >> 19) & 31u;
+}
+
+/* The reflection scratch as the hook reads it. */
+typedef struct refl_view {
+    const uint8_t *col, *dep;
+    int32_t h0, h1, rw;
+} refl_view;
+
+/* The colour of water pixel (x, y): terrain colour ct and depth dt under it, water depth
+ * dw (30-bit units), body id. */
+static uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int32_t y, uint32_t ct,
+                         uint32_t dt, uint32_t dw, uint32_t id)
+{
+    const int32_t a = r->aq[x], rz = r->rz[y], s = r->p.res_shift;
+    const int64_t b = r->bq[y];
+    uint32_t den = (uint32_t)(((int64_t)a * a + b * b + (int64_t)Q12 * Q12) >> 8);
+    uint32_t ci = (uint32_t)(((uint64_t)((int64_t)rz * rz) >> 8) << 10) / (den ? den : 1);
+    int32_t dx = 0, dy = 0;
+    uint32_t refl, refr, fr, x32;
+    if (ci > RW_TAB) ci = RW_TAB;
+    if (r->p.waves_on) {
+        const int64_t px = r->wbase[y][0] + ((a * r->wstep[y][0]) >> 12);
+        const int64_t py = r->wbase[y][1] + ((a * r->wstep[y][1]) >> 12);
+        const int64_t t = r->p.time_ms;
+        const uint32_t f0 = (uint32_t)((px * r->kx[0] + py * r->ky[0] + t * r->kt[0]) >> 24) & 255u;
+        const uint32_t f1 = (uint32_t)((px * r->kx[1] + py * r->ky[1] + t * r->kt[1]) >> 24) & 255u;
+        const int32_t c0 = r->sine[(f0 + 64u) & 255u], c1 = r->sine[(f1 + 64u) & 255u];
+        int64_t q8 = ((int64_t)dw * r->amp_m) >> 32;
+        int32_t ti;
+        if (q8 > RW_WAVE_PX * 128) q8 = RW_WAVE_PX * 128;
+        /* beyond wave_fade_d (far away) the waves fade as 1/zc^2: shorter than a pixel
+         * there, they would only alias */
+        if (dw < r->wave_fade_d) q8 = q8 * (int64_t)(dw >> 14) / (int64_t)((r->wave_fade_d >> 14) | 1);
+        dx = (int32_t)((q8 * (c0 + c1)) >> 15);
+        dy = (int32_t)((q8 * (c0 - c1)) >> 15);
+        ti = (int32_t)ci + (int32_t)(((c0 + c1) * q8) >> 10);    /* the slope tilts cos t */
+        ci = ti < 0 ? 0u : ti > RW_TAB ? (uint32_t)RW_TAB : (uint32_t)ti;
+    }
+    fr = r->p.fresnel_one ? 256u : r->fres[ci];
+    refl = mix_rgb(r->p.sky_horizon, r->p.sky_zenith, r->skyw[ci]);     /* the reflected sky */
+    if (rv->col && id == (uint32_t)r->p.refl_body) {
+        int32_t yy = y + dy, xx = x + dx, ry, rx;
+        if (yy < 0) yy = 0;
+        if (yy >= r->h) yy = r->h - 1;
+        if (xx < 0) xx = 0;
+        if (xx >= r->w) xx = r->w - 1;
+        ry = yy >> s; rx = xx >> s;
+        if (rx >= rv->rw) rx = rv->rw - 1;
+        if (ry >= rv->h0 && ry < rv->h1) {
+            const size_t o = (size_t)(ry - rv->h0) * (size_t)rv->rw;
+            const size_t bpp = r->fmt == RS_FMT_RGB565 ? 2u : 4u, dbp = r->depth == RS_DEPTH16 ? 2u : 4u;
+            if (get_depth(r->depth, rv->dep + o * dbp, rx) != r->rdfar) refl = get_rgb(r->fmt, rv->col + o * bpp, rx);
+        }
+    }
+    /* refraction: x32 = 32 L / tint_len, L = zc_w (dw / dt - 1) (dt < dw), zc_w the
+     * body's plane point's zc = the reflected plane's times bratio: tkr[y] bratio q >> 48
+     * with q = (dw - dt) / dt, Q16, from both depths brought to 16 bits */
+    x32 = 255;
+    if (r->tkr[y] >= 0 && r->bratio[id] && dt < dw) {
+        int32_t sh = 0;
+        uint32_t w16, t16;
+        while ((dw >> sh) >= 65536u) sh++;
+        w16 = dw >> sh; t16 = dt >> sh;
+        if (t16) {
+            uint32_t q = ((w16 - t16) << 16) / t16;
+            int64_t tb = (r->tkr[y] * r->bratio[id]) >> 16;
+            uint64_t v;
+            if (tb > ((int64_t)1 << 40)) tb = (int64_t)1 << 40;
+            v = ((uint64_t)tb * (q > (1u << 20) ? (1u << 20) : q)) >> 32;
+            x32 = v > 255u ? 255u : (uint32_t)v;
+        }
+    }
+    refr = mix_rgb(ct, r->p.water_rgb, r->tint[x32 > 255u ? 255u : x32]);
+    return mix_rgb(refr, refl, fr);
+}
+
+/* The shore test for water pixel (x, y) of body id whose terrain is nearer (dt > dw): 1
+ * when the terrain's point on the pixel's ray lies on a sample wet with that body (the
+ * terrain LOD over flattened water), 0 otherwise (land, or no plane point for the row).
+ * P_t = E + (P_0 - E) bratio dw / dt, P_0 the reflected plane's point; dw / dt from the
+ * depths brought to 16 bits (a 32-bit division); the grid sample nearest P_t. */
+static int shore_wet(const rw_frame *r, int32_t x, int32_t y, uint32_t id, uint32_t dt, uint32_t dw)
+{
+    int64_t f, p[2], gx, gy;
+    uint32_t q, t16, w16;
+    int32_t sh = 0, k;
+    size_t ix, iy;
+    if (!r->p.wet || r->tkr[y] < 0 || !r->bratio[id]) return 0;
+    while ((dt >> sh) >= 65536u) sh++;
+    t16 = dt >> sh; w16 = dw >> sh;
+    if (!t16) return 0;
+    q = (w16 << 16) / t16;
+    f = ((int64_t)r->bratio[id] * q) >> 16;
+    for (k = 0; k < 2; k++) {
+        const int64_t d = r->wbase[y][k] + (((int64_t)r->aq[x] * r->wstep[y][k]) >> 12) - r->eye[k];
+        p[k] = r->eye[k] + ((d * f) >> 16);
+    }
+    gx = p[0] - r->p.grid_ox + r->p.grid_sx / 2;
+    gy = r->p.grid_oy - p[1] + r->p.grid_sy / 2;
+    if (gx < 0 || gy < 0 || gx >= (int64_t)r->p.wet_w * r->p.grid_sx || gy >= (int64_t)r->p.wet_h * r->p.grid_sy)
+        return 0;
+    ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);
+    iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);
+    if (ix >= (size_t)r->p.wet_w || iy >= (size_t)r->p.wet_h) return 0;
+    return r->p.wet[iy * (size_t)r->p.wet_w + ix] == id;
+}
+
+/* The hook's pixels for one band, specialised by the compiler for each format and depth
+ * (fmt, depth are constants at every call). */
+static inline void post_rows(const rw_frame *r, rs_band *b, const refl_view *rv, const uint8_t *wcol,
+                             const uint8_t *wdep, int32_t wy0, int32_t wrows, const int32_t fmt, const int32_t depth)
+{
+    const size_t dbp = depth == RS_DEPTH16 ? 2u : 4u;
+    const int32_t dsh = depth == RS_DEPTH16 ? 14 : 0;
+    int32_t row, x;
+    for (row = 0; row < b->rows; row++) {
+        const int32_t y = b->y0 + row;
+        uint8_t *crow = (uint8_t *)b->color + (size_t)row * b->stride;
+        const uint8_t *drow = (const uint8_t *)b->depth + (size_t)row * (size_t)b->w * dbp;
+        const uint8_t *wc = NULL, *wd = NULL;
+        const uint32_t sky = r->sky[y];
+        if (wcol && y >= wy0 && y < wy0 + wrows) {
+            wc = wcol + (size_t)(y - wy0) * b->stride;
+            wd = wdep + (size_t)(y - wy0) * (size_t)b->w * dbp;
+        }
+        for (x = 0; x < b->w; x++) {
+            const uint32_t dt = get_depth(depth, drow, x);
+            uint32_t rgb, d, fw;
+            int changed = 0;
+            if (dt >= r->dquiet && !wc) continue;   /* near terrain, no water in the row */
+            if (dt == r->dfar) {                    /* sky */
+                if (!r->p.sky_on) continue;
+                rgb = sky;
+                changed = 1;
+                d = 0;
+            } else {
+                rgb = 0;
+                d = dt << dsh;
+                if (wc) {
+                    const uint32_t id = get_id(fmt, wc, x), dw = get_depth(depth, wd, x);
+                    if (id && (dw > dt || shore_wet(r, x, y, id, dt << dsh, dw << dsh))) {
+                        rgb = water_px(r, rv, x, y, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id);
+                        d = dw << dsh;
+                        changed = 1;
+                    }
+                }
+                if (r->p.fog_on && (d >> r->fog_sh) <= RW_TAB && (fw = r->fog[d >> r->fog_sh]) != 0) {
+                    if (!changed) rgb = get_rgb(fmt, crow, x);
+                    rgb = mix_rgb(rgb, sky, fw);
+                    changed = 1;
+                }
+            }
+            if (!changed) continue;
+            if (fmt == RS_FMT_RGB565) ((uint16_t *)(void *)crow)[x] = pack565_dither(rgb, x, y);
+            else ((uint32_t *)(void *)crow)[x] = rgb;
+        }
+    }
+}
+
+br_status rw_post(const void *user, rs_band *b, rs_band_stats *st)
+{
+    const rw_frame *r = (const rw_frame *)user;
+    refl_view rv;
+    const uint8_t *wcol = NULL, *wdep = NULL;
+    int32_t wy0 = 0, wrows = 0;
+    (void)st;
+    memset(&rv, 0, sizeof rv);
+    if (r->refl_pass >= 0 && r->refl_pass < RS_PIPE_MAX_PASSES && b->scratch[r->refl_pass] && r->refl) {
+        const int32_t i = r->refl_pass;
+        refl_rows(r, b->scratch_y0[i], b->scratch_y0[i] + b->scratch_rows[i], &rv.h0, &rv.h1);
+        rv.col = (const uint8_t *)b->scratch[i];
+        rv.dep = (const uint8_t *)b->scratch_depth[i];
+        rv.rw = r->refl->w;
+    }
+    if (r->water_pass >= 0 && r->water_pass < RS_PIPE_MAX_PASSES && b->scratch[r->water_pass]) {
+        const int32_t i = r->water_pass;
+        wcol = (const uint8_t *)b->scratch[i];
+        wdep = (const uint8_t *)b->scratch_depth[i];
+        wy0 = b->scratch_y0[i];
+        wrows = b->scratch_rows[i];
+    }
+    if (r->fmt == RS_FMT_RGB565) {
+        if (r->depth == RS_DEPTH16) post_rows(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_RGB565, RS_DEPTH16);
+        else post_rows(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_RGB565, RS_DEPTH32);
+    } else if (r->depth == RS_DEPTH16) post_rows(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_XRGB8888, RS_DEPTH16);
+    else post_rows(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_XRGB8888, RS_DEPTH32);
+    return BR_OK;
+}

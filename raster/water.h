@@ -1,0 +1,131 @@
+/* raster/water.h — water and atmosphere on the one frame driver (raster/frame.h):
+ * the reflection pass, the water pass and the post hook that composites water, sky
+ * gradient and fog.  Integer only; every pixel from frame-wide data, so any band height
+ * gives the frame's pixels (DESIGN.md invariant 4).
+ *
+ * PASSES (the caller adds them in this order around the terrain pass):
+ *   reflection (scratch, margin RW_WAVE_PX): the terrain mirrored in the reflected water
+ *     plane z = plane_z (z -> 2 plane_z - z by the view matrix, rw_mirror_vp), only what
+ *     lies at or above the plane (rs_frame.clip_z: the clipper's plane, so nothing under
+ *     the water leaks in), winding flipped by the caller (the strip with its first index
+ *     doubled), drawn at full, half or quarter resolution (res_shift 0, 1, 2) into the
+ *     pass's scratch band; skipped in bands where no water shows (rows wlo .. whi);
+ *   terrain (rs_pass_terrain);
+ *   water (scratch, no margin): the water surfaces' strips, their vertex colour the body
+ *     id (RW_ID_RGB), into the pass's scratch: id and depth of the water per pixel.
+ * POST HOOK rw_post (user: the rw_frame):
+ *   water pixels: a water id whose depth is nearer than the terrain's, or whose terrain
+ *     lies on a wet sample of that body (the shore test: the terrain's point on the
+ *     pixel's ray, found from the plane's point by the ratio of the two depths, looked up
+ *     in `wet`): the coarse terrain LOD may draw the bottom under flattened water above
+ *     the surface (its screen error allows it far away), while dry land, however low,
+ *     stays land and hills in front of the water stay in front;
+ *     colour = refraction (1 - F) + reflection F,
+ *     F = R0 + (1 - R0)(1 - cos t)^5 (Schlick), R0 = ((n - 1)/(n + 1))^2, n = 1.33,
+ *       cos t = |ray_z| / |ray| of the pixel's view ray, from a table by cos^2 t;
+ *     reflection: the reflection scratch at the pixel moved by the waves (RW_WAVE_PX at
+ *       most), or, where it holds no terrain, the sky gradient in the reflected direction;
+ *       bodies other than refl_body reflect the sky only (the cheaper approximation);
+ *     refraction: the terrain under the water tinted towards water_rgb by
+ *       1 - exp(-L / tint_len), L the path through the water along the ray
+ *       (zc_terrain - zc_water = zc_water (dw / dt - 1): zc_water of the row's plane point,
+ *       dw / dt from the two depths brought to 16 bits, a 32-bit division);
+ *   sky pixels (the terrain pass's far depth): the sky gradient by row, horizon to zenith
+ *     by the sine of the row's elevation (the camera's pitch included);
+ *   fog: every non-sky pixel mixed towards its row's sky colour by a weight rising from
+ *     0 at fog_start to 1 at fog_end (squared), distances along the view axis;
+ *   RGB565: the pixels this hook writes get a 4x4 ordered dither before the 5/6/5
+ *     truncation (fixed by screen position, so bands stay exact).
+ * Waves: two travelling sines of world position on the water plane and time (003's
+ * parametric wave of per-vertex time and flow direction, per pixel here); their slopes
+ * move the reflection lookup (at most RW_WAVE_PX pixels, scaled by 1/distance) and tilt
+ * cos t.  time_ms fixes the instant.
+ *
+ * Approximations (docs/water.md): the per-row ray z ignores the camera's roll term (cam
+ * look-at cameras have none); the reflection at half or quarter resolution is sampled
+ * nearest; one plane per frame gets a mirror.
+ *
+ * MEMORY: rw_frame is caller-owned (about 200 KB: per-row and per-column tables for up to
+ * RS_MAX_DIM), filled once per frame by rw_setup; nothing is allocated. */
+#ifndef BR_RWATER_H
+#define BR_RWATER_H
+#include <stdint.h>
+#include "core/cam.h"
+#include "raster/frame.h"
+
+#define RW_WAVE_PX 4            /* largest wave displacement of the reflection lookup, pixels */
+#define RW_MAX_ID 31            /* body ids 1 .. 31 survive RGB565 in the water pass's red bits */
+#define RW_ID_RGB(id) ((uint32_t)(id) << 19)
+#define RW_TAB 1024             /* tables by cos^2 t, Q10 */
+
+typedef struct rw_params {      /* zero = off / defaults as stated */
+    int32_t water_on;           /* 1: reflection and water passes run */
+    int32_t fog_on, sky_on;     /* 1: fog; 1: sky gradient */
+    int32_t res_shift;          /* reflection resolution: 0 full, 1 half, 2 quarter */
+    int32_t plane_z;            /* world units: the reflected plane */
+    int32_t refl_body;          /* body id with the mirror (0: none, sky only) */
+    uint32_t water_rgb;         /* deep water colour (0: 0x1c4660) */
+    uint32_t sky_horizon, sky_zenith;   /* (0: 0xc8dcf0, 0x5a8cd2) */
+    int64_t fog_start, fog_end; /* world units along the view axis, 0 < start < end */
+    int64_t tint_len;           /* world units: light falls to 1/e over this path (> 0) */
+    int32_t waves_on;
+    int32_t time_ms;            /* the instant drawn */
+    int64_t wave_len;           /* world units, the longer of the two waves (> 0) */
+    int64_t wave_amp;           /* world units: displacement at distance 1 scales as f / zc */
+    int32_t fresnel_one;        /* tests: F = 1 everywhere */
+    /* Where the water is (the shore test below; NULL: none, nearer terrain always wins):
+     * wet[y * wet_w + x] the body id of grid sample (x, y) where it is wet, 0 dry; the grid
+     * maps to world x = grid_ox + x grid_sx, y = grid_oy - y grid_sy; body_z[id] the world
+     * height of body id's plane. */
+    const uint8_t *wet;
+    int32_t wet_w, wet_h;
+    int64_t grid_ox, grid_oy, grid_sx, grid_sy;
+    int32_t body_z[RW_MAX_ID + 1];
+} rw_params;
+
+typedef struct rw_frame {
+    rw_params p;
+    const rs_frame *terrain, *water, *refl;
+    int32_t refl_pass, water_pass;      /* indices of the passes in the pipe (-1: absent) */
+    int32_t w, h, fmt, depth;
+    int32_t wlo, whi;           /* rows where water may show (wlo > whi: none) */
+    uint32_t dfar, rdfar;       /* clear depths of terrain and reflection (buffer units) */
+    int64_t eye[3];             /* world units */
+    int32_t aq[RS_MAX_DIM];     /* per column: ray a = (x + 1/2 - cx) / f, Q12 */
+    int32_t bq[RS_MAX_DIM];     /* per row: ray b = (cy - y - 1/2) / f, Q12 */
+    int32_t rz[RS_MAX_DIM];     /* per row: world z of the ray (a = 0), Q12 */
+    uint32_t sky[RS_MAX_DIM];   /* per row: sky colour */
+    int64_t wbase[RS_MAX_DIM][2], wstep[RS_MAX_DIM][2]; /* per row: plane point = base + a step (Q12 a) */
+    int64_t kx[2], ky[2], kt[2];        /* wave phase per world unit (x, y) and per ms, 2^-24 turns */
+    int64_t amp_m;              /* displacement, Q8 pixels = (d * amp_m) >> 32 */
+    uint32_t wave_fade_d;       /* depth (30-bit) beyond which the waves fade */
+    int64_t tkr[RS_MAX_DIM];    /* per row: 32 zc / tint_len of the reflected plane's point,
+                                   Q16 (-1: the row does not meet the plane) */
+    int32_t bratio[RW_MAX_ID + 1];      /* (eye z - body z) / (eye z - plane_z), Q16 (0: none) */
+    uint64_t inv_sx, inv_sy;    /* 2^32 / grid step, rounded up */
+    int32_t fog_sh;             /* fog table index: depth >> fog_sh */
+    uint32_t dquiet;            /* buffer depth from which terrain gets no fog (> dfar) */
+    uint8_t fres[RW_TAB + 1];   /* F by cos^2 t, Q8 (256 = 1) */
+    uint8_t skyw[RW_TAB + 1];   /* zenith weight by sin^2 of elevation, Q8 */
+    uint8_t tint[256];          /* 1 - exp(-x / 32), Q8, by x = L / tint_len in 1/32 */
+    uint8_t fog[RW_TAB + 1];    /* fog weight by depth >> fog_sh, Q8 */
+    int8_t sine[256];           /* sin(2 pi i / 256), Q7 */
+} rw_frame;
+
+/* The view-projection of the mirror: the same camera looking at the world mirrored in
+ * z = plane_z, for a frame of (w >> res_shift) x (h >> res_shift) pixels (f scaled
+ * alike).  BR_E_ARG when 2 plane_z - z would leave CAM_COORD_MAX or res_shift > 2. */
+br_status rw_mirror_vp(const cam_vp *vp, int32_t plane_z, int32_t res_shift, int32_t w, int32_t h,
+                       cam_vp *out);
+
+/* Fills r for one frame: terrain (prepared), water and refl (prepared frames or NULL),
+ * camera c (the terrain's).  BR_E_ARG on inconsistent sizes or parameters. */
+br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame *terrain,
+                   const rs_frame *water, const rs_frame *refl);
+
+/* The passes (pass->user = r) and the post hook (post_user = r). */
+br_status rw_pass_reflection(rs_pass *pass, const rw_frame *r);
+br_status rw_pass_water(rs_pass *pass, const rw_frame *r);
+br_status rw_post(const void *user, rs_band *b, rs_band_stats *st);
+
+#endif

@@ -1,0 +1,225 @@
+/* tests/test_water.c — water and atmosphere: the detection rules on real tiles (Lake
+ * Constance's seam in N47E009, the Kattegat in N57E011), the clipper's water plane, and
+ * `bitrain render` with water, waves and fog giving the same frame in bands of 1, 7, 16
+ * and 240 rows, in RGB888 and RGB565; golden images of the lake (from the water), the
+ * sea (from high) and Monai Valley (its still-water level over its wet points as a
+ * --water layer) in RGB888 and RGB565 at a fixed --time. */
+#include "tests/test.h"
+#include "core/water.h"
+#include "platform/cmd.h"
+#include "platform/load.h"
+#include "platform/png_io.h"
+#include "raster/raster.h"
+
+#define RUN(a) run(a, (int)(sizeof a / sizeof a[0]))
+static int run(const char *const *args, int n)
+{
+    char *argv[40];
+    int i;
+    for (i = 0; i < n; i++) argv[i] = (char *)args[i];
+    return cmd_render(n, argv);
+}
+
+static void detect(const char *rel, wt_bodies *b)
+{
+    hf f;
+    br_err err;
+    wt_params p;
+    size_t ws;
+    void *work;
+    uint8_t *id;
+    memset(b, 0, sizeof *b);
+    if (dem_load(t_data(rel), NULL, &f, &err) != BR_OK) { CHECK(0); return; }
+    memset(&p, 0, sizeof p);
+    p.sea_on = 1;
+    p.min_area = 170;           /* 1 km^2 of 3" samples at 47 N (as platform/water_scene.c) */
+    p.join_dz = 5;
+    ws = wt_work_size(f.w, f.h);
+    work = malloc(ws);
+    id = malloc((size_t)f.w * (size_t)f.h);
+    CHECK(work && id);
+    if (work && id) CHECK_EQ(wt_detect(&f, &p, id, work, ws, b), BR_OK);
+    free(work); free(id);
+    dem_free(&f);
+}
+
+static void test_detect(void)
+{
+    wt_bodies b;
+    detect("hgt/N47E009.hgt", &b);
+    /* Lake Constance: 392 m (52,297 samples) and 396 m (30,650) joined along the seam
+     * between columns 599 and 600 (with a third flat region of 197 samples), at the
+     * larger region's level; the valley terraces of the Rhine fail the rim rule */
+    CHECK(b.n >= 2);
+    CHECK_EQ(b.kind[0], WT_LAKE);
+    CHECK_EQ(b.level[0], 392);
+    CHECK(b.area[0] >= 52297 + 30650);
+    CHECK(b.joined[0] >= 2);
+    CHECK(b.n <= 6);
+    detect("hgt/N57E011.hgt", &b);
+    CHECK(b.n >= 1);
+    CHECK_EQ(b.kind[0], WT_SEA);
+    CHECK_EQ(b.level[0], 0);
+    CHECK(b.area[0] > 1000000);
+}
+
+/* A wall x = -W .. W, z = -H .. H at y = D seen from the origin along +y: with the clip
+ * plane z >= 0 only its upper half is drawn, the clipper's sixth plane. */
+static void test_clip_plane(void)
+{
+    enum { W = 64, H = 48 };
+    static rs_vertex v[4];
+    static const uint32_t idx[4] = { 0, 1, 2, 3 };
+    rs_cvert cache[4];
+    rs_prim pr;
+    rs_frame f;
+    cam c;
+    int32_t eye[3] = { 0, 0, 0 }, tgt[3] = { 0, 1000, 0 };
+    static uint32_t col[W * H], dep[W * H];
+    int k, x, y, above = 0, below = 0;
+    rs_band_stats st;
+    int16_t *chunks;
+    /* strip: (-,-) (+,-) (-,+) (+,+), counter-clockwise seen from the origin */
+    for (k = 0; k < 4; k++) {
+        v[k].p[0] = (k & 1) ? -400 : 400;
+        v[k].p[1] = 1000;
+        v[k].p[2] = (k & 2) ? 300 : -300;
+        v[k].rgb = 0xff0000u;
+    }
+    CHECK_EQ(cam_look_at(&c, eye, tgt, 60000, W, H, 10, 100000), BR_OK);
+    memset(&f, 0, sizeof f);
+    f.w = W; f.h = H; f.no_cull = 1; f.clear_rgb = 0x0000ffu;
+    f.v = v; f.nv = 4; f.cache = cache;
+    pr.kind = RS_STRIP; pr.n = 4; pr.idx = idx;
+    f.prims = &pr; f.nprims = 1;
+    chunks = malloc(rs_chunk_mem_size(&pr, 1));
+    CHECK(chunks != NULL);
+    if (!chunks) return;
+    f.chunks = chunks;
+    f.clip_z_on = 1; f.clip_z = 0;
+    cam_viewproj(&c, &f.vp);
+    CHECK_EQ(rs_frame_prepare(&f), BR_OK);
+    memset(&st, 0, sizeof st);
+    CHECK_EQ(rs_draw_band(&f, 0, H, col, W * 4, dep, &st), BR_OK);
+    for (y = 0; y < H; y++)
+        for (x = 0; x < W; x++) {
+            if ((col[y * W + x] & 0xffffffu) != 0xff0000u) continue;
+            if (y < H / 2) above++; else below++;
+        }
+    /* the wall covers about 33 x 24 pixels; its upper half lies above z = 0 */
+    CHECK(above > 300);
+    CHECK_EQ(below, 0);         /* nothing under the plane */
+    CHECK(st.clipped >= 1);
+    f.clip_z_on = 0;            /* without the plane both halves show */
+    CHECK_EQ(rs_frame_prepare(&f), BR_OK);
+    CHECK_EQ(rs_render_band(&f, 0, H, col, W * 4, dep), BR_OK);
+    below = 0;
+    for (y = H / 2; y < H; y++)
+        for (x = 0; x < W; x++) below += (col[y * W + x] & 0xffffffu) == 0xff0000u;
+    CHECK(below > 300);
+    free(chunks);
+}
+
+/* The same frame in bands of 1, 7, 16 and 240 rows, water, waves and fog on. */
+static void test_bands(void)
+{
+    static const char *const fmts[2] = { "rgb888", "rgb565" };
+    static const char *const bands[4] = { "1", "7", "16", "240" };
+    const char *dem = t_data("hgt/N47E009.hgt");
+    int f, k;
+    for (f = 0; f < 2; f++) {
+        unsigned char *ref = NULL;
+        size_t nref = 0;
+        for (k = 0; k < 4; k++) {
+            char out[256];
+            unsigned char *b;
+            size_t n = 0;
+            const char *a[] = { dem, "-o", out, "--size", "96x240", "--format", fmts[f], "--bands", bands[k],
+                                "--camera", "30000,75000,450,45000,60000,600", "--time", "2.5",
+                                "--reflection", "half", "--fog" };
+            snprintf(out, sizeof out, "%s/water_bands_%s_%s.png", t_outdir(), fmts[f], bands[k]);
+            CHECK_EQ(RUN(a), 0);
+            b = t_read_file(out, &n);
+            CHECK(b && n > 0);
+            if (k == 0) { ref = b; nref = n; continue; }
+            CHECK_MSG(b && ref && n == nref && !memcmp(b, ref, n), "%s bands of %s rows differ", fmts[f], bands[k]);
+            free(b);
+        }
+        free(ref);
+    }
+}
+
+/* Monai's water surface: the still-water level (0 m) over the wet points of its
+ * bathymetry (depth > 0), nodata elsewhere, as an ESRI ASCII grid of the same size. */
+static int monai_water(const char *path)
+{
+    hf f;
+    br_err err;
+    dem_opts d;
+    FILE *o;
+    int32_t x, y;
+    memset(&d, 0, sizeof d);
+    d.xyz_depth = 1;
+    if (dem_load(t_data("xyz/monai_valley_bathymetry.txt"), &d, &f, &err) != BR_OK) return 0;
+    o = fopen(path, "w");
+    if (!o) { dem_free(&f); return 0; }
+    fprintf(o, "ncols %d\nnrows %d\nxllcorner 0\nyllcorner 0\ncellsize 0.014\nNODATA_value -9999\n", f.w, f.h);
+    for (y = 0; y < f.h; y++)
+        for (x = 0; x < f.w; x++) {
+            int32_t z = f.z[(size_t)y * (size_t)f.w + (size_t)x];
+            fprintf(o, "%s%c", z != HF_NODATA && z < 0 ? "0" : "-9999", x + 1 < f.w ? ' ' : '\n');
+        }
+    dem_free(&f);
+    return fclose(o) == 0;
+}
+
+static void golden(const char *name, const char *out)
+{
+    char gpath[256];
+    uint8_t *a = NULL, *g = NULL;
+    int aw = 0, ah = 0, gw = 0, gh = 0;
+    br_err err;
+    snprintf(gpath, sizeof gpath, "tests/golden/%s.png", name);
+    if (png_read_rgb(out, &aw, &ah, &a, &err) != BR_OK) { CHECK_MSG(0, "cannot read %s", out); return; }
+    if (getenv("BITRAIN_UPDATE_GOLDEN")) CHECK_EQ(png_write_rgb(gpath, aw, ah, a, (size_t)aw * 3, &err), BR_OK);
+    if (png_read_rgb(gpath, &gw, &gh, &g, &err) != BR_OK) CHECK_MSG(0, "cannot read %s (BITRAIN_UPDATE_GOLDEN=1 writes it)", gpath);
+    else CHECK_MSG(aw == gw && ah == gh && !memcmp(a, g, (size_t)aw * (size_t)ah * 3), "%s differs from %s", out, gpath);
+    free(a); free(g);
+}
+
+/* Golden images: lake, sea, Monai, RGB888 and RGB565, --time 1.5. */
+static void test_goldens(void)
+{
+    static const char *const fmts[2] = { "rgb888", "rgb565" };
+    char water[256], dem_lake[256], dem_sea[256], dem_monai[256];
+    int f, k;
+    snprintf(water, sizeof water, "%s/monai_water.asc", t_outdir());
+    CHECK(monai_water(water));
+    snprintf(dem_lake, sizeof dem_lake, "%s", t_data("hgt/N47E009.hgt"));
+    snprintf(dem_sea, sizeof dem_sea, "%s", t_data("hgt/N57E011.hgt"));
+    snprintf(dem_monai, sizeof dem_monai, "%s", t_data("xyz/monai_valley_bathymetry.txt"));
+    for (f = 0; f < 2; f++)
+        for (k = 0; k < 3; k++) {
+            static const char *const names[3] = { "lake", "sea", "monai" };
+            char out[256], name[64];
+            const char *lake[] = { dem_lake, "-o", out, "--size", "160x96", "--format", fmts[f], "--time", "1.5",
+                                   "--camera", "40000,66000,420,60000,50000,500" };
+            const char *sea[] = { dem_sea, "-o", out, "--size", "160x96", "--format", fmts[f], "--time", "1.5",
+                                  "--camera", "10000,20000,3000,40000,60000,0" };
+            const char *monai[] = { dem_monai, "--xyz-depth", "--water", water, "-o", out, "--size", "160x96",
+                                    "--format", fmts[f], "--time", "1.5" };
+            snprintf(name, sizeof name, "water_%s_%s", names[k], fmts[f]);
+            snprintf(out, sizeof out, "%s/%s.png", t_outdir(), name);
+            CHECK_EQ(k == 0 ? RUN(lake) : k == 1 ? RUN(sea) : RUN(monai), 0);
+            golden(name, out);
+        }
+}
+
+int main(void)
+{
+    T_RUN(test_detect);
+    T_RUN(test_clip_plane);
+    T_RUN(test_bands);
+    T_RUN(test_goldens);
+    return t_finish();
+}
