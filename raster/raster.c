@@ -227,8 +227,10 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 #ifndef RS_PREPASS
 #if defined(__GNUC__) && (defined(__SSE2__) || defined(__ARM_NEON)) \
     && !(defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__)
-/* (little-endian only: the 32-bit masks are built from 16-bit lanes, and raster_general.h's
- * spans widen 16-bit pixels through a uint64) */
+/* (big-endian targets get the same pixels with RS_PREPASS=1, where the byte order of
+ * the 16-bit lanes matters it is handled: the gather's words, the 32-bit masks from
+ * 16-bit halves, raster_general.h's 16-bit pixels; off by default there, as no
+ * big-endian target we build has these vectors; the cross probe runs it on s390x) */
 #define RS_PREPASS 1
 #else
 #define RS_PREPASS 0
