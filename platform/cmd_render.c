@@ -30,6 +30,7 @@
 #include "platform/load.h"
 #include "platform/scene.h"
 #include "platform/png_io.h"
+#include "platform/sink_spi.h"
 #include "raster/raster.h"
 #include "raster/ramp.h"
 #include "raster/terrain.h"
@@ -57,6 +58,61 @@ static br_status sink_png(void *user, int32_t y0, int32_t rows, const void *px, 
     return BR_OK;
 }
 
+/* ---------------------------------------------------------------- SPI panel sink */
+
+typedef struct spi_opts {
+    const char *dev, *capture, *dc, *rst;
+    int panel, mode, madctl;
+    long hz;
+} spi_opts;
+
+/* One SPI option at argv a (value n): 1 taken with its value, 0 not an SPI option,
+ * -1 a bad value (the message printed). */
+static int spi_arg(spi_opts *o, const char *a, const char *n)
+{
+    char *end = NULL;
+    if (!n) return 0;
+    if (!strcmp(a, "--spi")) o->dev = n;
+    else if (!strcmp(a, "--spi-capture")) o->capture = n;
+    else if (!strcmp(a, "--dc")) o->dc = n;
+    else if (!strcmp(a, "--reset")) o->rst = n;
+    else if (!strcmp(a, "--panel")) {
+        if (!(o->panel = spi_panel_parse(n))) { fprintf(stderr, "bitrain render: --panel '%s': st7789 or ili9341\n", n); return -1; }
+    } else if (!strcmp(a, "--spi-hz")) {
+        o->hz = strtol(n, &end, 10);
+        if (*end || o->hz < 1000 || o->hz > 100000000) { fprintf(stderr, "bitrain render: --spi-hz '%s': 1000 .. 100000000\n", n); return -1; }
+    } else if (!strcmp(a, "--spi-mode")) {
+        o->mode = (int)strtol(n, &end, 10);
+        if (*end || o->mode < 0 || o->mode > 3) { fprintf(stderr, "bitrain render: --spi-mode '%s': 0 .. 3\n", n); return -1; }
+    } else if (!strcmp(a, "--madctl")) {
+        o->madctl = (int)strtol(n, &end, 0);
+        if (*end || o->madctl < 0 || o->madctl > 255) { fprintf(stderr, "bitrain render: --madctl '%s': 0 .. 0xff\n", n); return -1; }
+    } else return 0;
+    return 1;
+}
+
+/* The panel's writer (spidev, or the capture file) and sink, started up */
+static br_status spi_open(const spi_opts *o, int w, int h, int fmt, spi_writer *wr, spi_sink *ss, br_err *err)
+{
+    br_status st = o->capture ? spi_capture_open(wr, o->capture, err)
+                              : spi_linux_open(wr, o->dev, (uint32_t)o->hz, o->mode, o->dc, o->rst, err);
+    if (st != BR_OK) return st;
+    st = spi_sink_open(ss, wr, o->panel, w, h, fmt, o->madctl, err);
+    if (st != BR_OK) {
+        if (o->capture) spi_capture_close(wr, NULL);
+        else spi_linux_close(wr);
+    }
+    return st;
+}
+
+static br_status spi_close(const spi_opts *o, spi_writer *wr, spi_sink *ss, br_err *err)
+{
+    spi_sink_close(ss);
+    if (o->capture) return spi_capture_close(wr, err);
+    spi_linux_close(wr);
+    return BR_OK;
+}
+
 /* ---------------------------------------------------------------- command */
 
 static double ms_now(void)
@@ -73,7 +129,12 @@ static int usage(void)
             "         [--max-error M | --pixel-error P | --full [STEP]] [--bands ROWS]\n"
             "         [--format rgb565|rgb888] [--depth 32|16] [--colors FILE] [--texture PNG] [--no-cull]\n"
             "         [--sun AZ,ALT] [--ambient A] [--zscale F]\n"
-            "  camera in metres: x east from the west edge, y north from the south edge, z height\n");
+            "         [--spi /dev/spidevB.C | --spi-capture FILE] [--panel st7789|ili9341] [--dc CHIP:LINE]\n"
+            "         [--reset CHIP:LINE] [--spi-hz HZ] [--spi-mode 0-3] [--madctl M]\n"
+            "  camera in metres: x east from the west edge, y north from the south edge, z height\n"
+            "  --spi: each band to an SPI panel (-o optional; RGB565 unless --format says otherwise,\n"
+            "         bands of 16 rows unless --bands says otherwise);\n"
+            "         D/C line --dc (default /dev/gpiochip0:25), 16 MHz, mode 0, panel st7789\n");
     return 2;
 }
 
@@ -94,6 +155,10 @@ int cmd_render(int argc, char **argv)
     rs_frame fr;
     void *bandmem = NULL;
     png_sink ps;
+    spi_opts so_spi;
+    spi_writer spw;
+    spi_sink ss;
+    int have_fmt = 0;
     double t0, t1, t2;
     int rc = 1;
 
@@ -101,6 +166,8 @@ int cmd_render(int argc, char **argv)
     memset(&s, 0, sizeof s);
     memset(&fr, 0, sizeof fr);
     memset(&ps, 0, sizeof ps);
+    memset(&so_spi, 0, sizeof so_spi);
+    so_spi.panel = SPI_PANEL_ST7789; so_spi.madctl = -1; so_spi.hz = 16000000; so_spi.dc = "/dev/gpiochip0:25";
     for (i = 0; i < argc; i++) {
         const char *a = argv[i], *n = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "-o") && n) { out = n; i++; }
@@ -120,8 +187,9 @@ int cmd_render(int argc, char **argv)
             if (!strcmp(n, "rgb565")) fmt = RS_FMT_RGB565;
             else if (!strcmp(n, "rgb888")) fmt = RS_FMT_XRGB8888;
             else return usage();
-            i++;
-        } else if (!strcmp(a, "--depth") && n) { depth = atoi(n) == 16 ? RS_DEPTH16 : RS_DEPTH32; i++; }
+            have_fmt = 1; i++;
+        } else if ((r = spi_arg(&so_spi, a, n)) != 0) { if (r < 0) return 2; i++; }
+        else if (!strcmp(a, "--depth") && n) { depth = atoi(n) == 16 ? RS_DEPTH16 : RS_DEPTH32; i++; }
         else if (!strcmp(a, "--colors") && n) { so.colors = n; i++; }
         else if (!strcmp(a, "--texture") && n) { so.texture = n; i++; }
         else if (!strcmp(a, "--no-cull")) no_cull = 1;
@@ -133,7 +201,11 @@ int cmd_render(int argc, char **argv)
         else if (a[0] == '-' && a[1]) { fprintf(stderr, "bitrain render: unknown option '%s'\n", a); return usage(); }
         else if (nin < 64) in[nin++] = a;
     }
-    if (!nin || !out || w < 1 || h < 1 || w > RS_MAX_DIM || h > RS_MAX_DIM || !(fov >= 1 && fov <= 170)
+    if (so_spi.dev || so_spi.capture) {         /* the panel's format, a small band in RAM */
+        if (!have_fmt) fmt = RS_FMT_RGB565;
+        if (!bands) bands = 16;
+    }
+    if (!nin || !(out || so_spi.dev || so_spi.capture) || w < 1 || h < 1 || w > RS_MAX_DIM || h > RS_MAX_DIM || !(fov >= 1 && fov <= 170)
         || full_step < 0 || bands < 0 || !(so.ambient >= 0 && so.ambient <= 1) || !(pix_err > 0) || max_err < 0
         || !(so.zscale >= 0 && so.zscale <= 1000))
         return usage();
@@ -208,18 +280,31 @@ int cmd_render(int argc, char **argv)
     if (!fr.cache || !bandmem || !ps.rgb) { fprintf(stderr, "bitrain: out of memory\n"); goto done; }
     cam_viewproj(&c, &fr.vp);
     if (rs_frame_prepare(&fr) != BR_OK) { fprintf(stderr, "bitrain: bad frame parameters\n"); goto done; }
-    if (png_out_open(&ps.po, out, w, h, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
-    ps.w = w; ps.fmt = fmt; ps.err = &err;
-    if (rs_render(&fr, bands, bandmem, sink_png, &ps) != BR_OK) {
-        png_out_abort(ps.po);
-        fprintf(stderr, "bitrain: %s\n", err.msg[0] ? err.msg : "render failed");
-        goto done;
+    err.msg[0] = 0;
+    if (so_spi.dev || so_spi.capture) {        /* the panel, band by band */
+        br_status st;
+        if (spi_open(&so_spi, w, h, fmt, &spw, &ss, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
+        st = rs_render(&fr, bands, bandmem, spi_sink_band, &ss);
+        if (spi_close(&so_spi, &spw, &ss, st == BR_OK ? &err : NULL) != BR_OK || st != BR_OK) {
+            fprintf(stderr, "bitrain: %s\n", err.msg[0] ? err.msg : "render failed");
+            goto done;
+        }
+        if (out) rs_frame_prepare(&fr);         /* the statistics again for the PNG below */
     }
-    if (png_out_close(ps.po, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
+    if (out) {
+        if (png_out_open(&ps.po, out, w, h, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
+        ps.w = w; ps.fmt = fmt; ps.err = &err;
+        if (rs_render(&fr, bands, bandmem, sink_png, &ps) != BR_OK) {
+            png_out_abort(ps.po);
+            fprintf(stderr, "bitrain: %s\n", err.msg[0] ? err.msg : "render failed");
+            goto done;
+        }
+        if (png_out_close(ps.po, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
+    }
     t2 = ms_now();
     printf("%s: %dx%d, %u vertices, %s, %u triangles drawn (%u clipped), load+mesh %.1f ms, "
            "render+write %.1f ms, world unit 2^%d m, band %d rows (%zu bytes + %zu bytes vertex cache)\n",
-           out, w, h, nv, full_step ? "full grid" : (mode == BT_FIDELITY ? "bitree fidelity" : "bitree view"),
+           out ? out : (so_spi.capture ? so_spi.capture : so_spi.dev), w, h, nv, full_step ? "full grid" : (mode == BT_FIDELITY ? "bitree fidelity" : "bitree view"),
            fr.stat_tris, fr.stat_clipped, t1 - t0, t2 - t1, -s.rt.shift, bands,
            rs_band_mem_size(w, bands, fmt, depth), rs_cache_mem_size(nv));
     rc = 0;

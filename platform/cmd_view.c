@@ -83,6 +83,8 @@ int cmd_view(int argc, char **argv)
     Uint64 t_prev;
     double mesh_ms = 0, raster_ms = 0, sum_mesh = 0, sum_raster = 0, sum_tri = 0;
 
+    for (i = 0; i < argc; i++)      /* an SPI panel (no window): `render` draws to it band by band */
+        if (!strcmp(argv[i], "--spi") || !strcmp(argv[i], "--spi-capture")) return cmd_render(argc, argv);
     memset(&so, 0, sizeof so);
     memset(&v, 0, sizeof v);
     v.fov = 60; v.pix_err = 1.5; v.hyst = 1; v.morph = 1;
