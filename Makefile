@@ -81,7 +81,7 @@ DIV32_TEST_BIN = $(B)/div32-tests/test_raster $(B)/div32-tests/test_raster_rende
                  $(B)/div32-tests/test_framecost
 
 .SECONDARY:
-.PHONY: all run test test-fast bench fuzz clean deps check-nofloat install FORCE
+.PHONY: all run test test-fast cross-test bench fuzz clean deps check-nofloat install FORCE
 all: deps bitrain $(B)/libbitrain.a
 
 deps:
@@ -149,13 +149,29 @@ run: all
 	./bitrain run $(RUN_DEM)
 
 # What the suite adds beyond the build: clang (second compiler), and the cross
-# compilers + qemu-user that run the determinism probe on 32-bit ARM, AArch64 and
-# big-endian PowerPC.  Optional: without them those checks are skipped.
-TEST_PKGS = clang qemu-user gcc-arm-linux-gnueabihf gcc-aarch64-linux-gnu gcc-powerpc-linux-gnu
+# compilers + qemu-user that run the determinism probe on 32-bit ARM, AArch64, s390x
+# and big-endian PowerPC, and the whole suite on TEST_CROSS (s390x: 64-bit big-endian,
+# armhf: 32-bit; tests/cross/suite.sh, with zlib and libpng built from Debian's source
+# packages: dpkg-dev unpacks them).  Optional: without them those checks are counted
+# as skipped.  TEST_CROSS= leaves the cross suites out.
+TEST_PKGS = clang qemu-user dpkg-dev gcc-arm-linux-gnueabihf gcc-aarch64-linux-gnu gcc-powerpc-linux-gnu \
+            gcc-s390x-linux-gnu
+TEST_CROSS ?= s390x armhf
 test: deps
 	@sh mk/deps.sh --optional $(TEST_PKGS)
 	@$(MAKE) --no-print-directory bitrain $(TEST_BIN) $(SAN_TEST_BIN) $(DIV32_TEST_BIN)
-	@sh tests/run.sh $(B)
+	@TEST_CROSS="$(TEST_CROSS)" sh tests/run.sh $(B)
+
+# The whole suite (every test program without a display) on five foreign targets
+# under qemu-user, and the determinism probe with every knob setting on each of them
+# (tests/cross/run.sh, tests/cross/suite.sh; build/cross/TARGET/).
+CROSS_TARGETS ?= aarch64 armhf riscv64 s390x i686
+CROSS_PKGS = clang qemu-user dpkg-dev gcc-aarch64-linux-gnu gcc-arm-linux-gnueabihf gcc-riscv64-linux-gnu \
+             gcc-s390x-linux-gnu gcc-i686-linux-gnu
+cross-test: deps
+	@sh mk/deps.sh --optional $(CROSS_PKGS)
+	@XDET_KNOB_TARGETS="native $(CROSS_TARGETS)" sh tests/cross/run.sh; p=$$?; \
+	 sh tests/cross/suite.sh $(CROSS_TARGETS) && exit $$p
 
 # make install [PREFIX=/usr/local] [DESTDIR=]: the program, libbitrain.a, the public
 # headers under include/bitrain/ (so that "core/hf.h" etc. resolve with the .pc's

@@ -29,6 +29,7 @@
 #include "core/cam.h"
 #include "platform/cmd.h"
 #include "platform/dem_args.h"
+#include "platform/render_spi.h"
 #include "platform/geocam.h"
 #include "platform/pipe_threads.h"
 #include "platform/opt.h"
@@ -111,7 +112,9 @@ int cmd_render(int argc, char **argv)
     double camv[6], fov = 50, max_err = 0, pix_err = 1;
     scene_opts so;
     scene_args sa;
-    opt_spec dem_t[DEM_ARGS_N], look_t[SCENE_ARGS_N], water_t[WS_ARGS_N];
+    opt_spec dem_t[DEM_ARGS_N], look_t[SCENE_ARGS_N], water_t[WS_ARGS_N], spi_t[RENDER_SPI_N];
+    render_spi spi;
+    int have_fmt = 0, have_bands = 0;
     ws_args wa;
     render_out ro;
     const opt_spec own[] = {
@@ -125,8 +128,8 @@ int cmd_render(int argc, char **argv)
         { "--pixel-error", OPT_NUM, &pix_err, 0.01, 1000, 0, NULL, "P",
           "view-dependent mesh: screen error at most P pixels (default 1)", &have_pix },
         { "--full", OPT_INT_OPT, &full_step, 1, 4096, 0, NULL, "[STEP]", "the full grid (every STEP-th sample)", NULL },
-        { "--bands", OPT_INT, &bands, 0, RS_MAX_DIM, 0, NULL, "ROWS", "render in bands of ROWS rows (0: whole frame)", NULL },
-        { "--format", OPT_CHOICE, &fmt, 0, 0, 0, "rgb888|rgb565", "F", "pixel format of the frame", NULL },
+        { "--bands", OPT_INT, &bands, 0, RS_MAX_DIM, 0, NULL, "ROWS", "render in bands of ROWS rows (0: whole frame)", &have_bands },
+        { "--format", OPT_CHOICE, &fmt, 0, 0, 0, "rgb888|rgb565", "F", "pixel format of the frame", &have_fmt },
         { "--depth", OPT_CHOICE, &depth_choice, 0, 0, 0, "32|16", "BITS", "depth buffer bits", NULL },
         { "--no-cull", OPT_FLAG, &no_cull, 0, 0, 0, NULL, NULL, "draw back faces too", NULL },
         { "--output-format", OPT_CHOICE, &ro.raw, 0, 0, 0, "png|rgb565", "F",
@@ -135,7 +138,7 @@ int cmd_render(int argc, char **argv)
           "drawing threads (default: online cores; bands of 64 rows unless --bands)", NULL },
         OPT_END
     };
-    const opt_spec *const tables[] = { own, look_t, water_t, geo_t, dem_t, NULL };
+    const opt_spec *const tables[] = { own, look_t, water_t, spi_t, geo_t, dem_t, NULL };
     scene s;
     br_err err;
     cam c;
@@ -163,13 +166,18 @@ int cmd_render(int argc, char **argv)
     scene_args_table(&sa, &so, look_t);
     geocam_args_table(&ga, geo_t);
     ws_args_table(&wa, &wo, water_t);
+    render_spi_table(&spi, spi_t);
     r = opt_parse("render", RENDER_SYNOPSIS, tables, argc, argv, in, 64, &nin);
     if (r != OPT_OK) return r == OPT_HELP ? 0 : 2;
     if (dem_args_finish(&da, "render") != OPT_OK) return 2;
     if (scene_args_finish(&sa, "render") != OPT_OK) return 2;
     if (ws_args_finish(&wa, "render") != OPT_OK) return 2;
     if (!nin) { fprintf(stderr, "bitrain render: no input file (`bitrain render --help`)\n"); return 2; }
-    if (!out) { fprintf(stderr, "bitrain render: no output file: -o OUT.png\n"); return 2; }
+    if (!out && !render_spi_on(&spi)) { fprintf(stderr, "bitrain render: no output: -o OUT.png or --spi DEV\n"); return 2; }
+    if (render_spi_on(&spi)) {        /* a panel: its format, and a small band in RAM */
+        if (!have_fmt) fmt = RS_FMT_RGB565;
+        if (!have_bands) bands = 16;
+    }
     if (have_max && have_pix) return opt_fail("render", "--max-error", "cannot be used with --pixel-error");
     if (full_step && (have_max || have_pix))
         return opt_fail("render", "--full", "cannot be used with --max-error or --pixel-error");
@@ -179,7 +187,7 @@ int cmd_render(int argc, char **argv)
     if (have_cam && (ga.from_seen || ga.at_seen)) return opt_fail("render", "--camera", "cannot be used with --look-from/--look-at");
     if (bands == 0) bands = threads > 1 ? 64 : h;
     if (bands > h) bands = h;
-    if (ro.raw && !strcmp(out, "-")) so.quiet = 1;   /* stdout carries the pixels only */
+    if (ro.raw && out && !strcmp(out, "-")) so.quiet = 1;   /* stdout carries the pixels only */
 
     t0 = ms_now();
     use_pipe = !(wo.no_water && wo.no_fog);
@@ -215,19 +223,30 @@ int cmd_render(int argc, char **argv)
     }
     memsize = rs_pipe_mem_size(run, bands);
     if (pt_open(&pool, threads) != BR_OK) { fprintf(stderr, "bitrain render: cannot start %d threads\n", threads); goto done; }
-    if (out_open(&ro, out, w, h, fmt, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
-    if (pt_run(pool, run, bands, ro.raw ? sink_rgb565_band : sink_png_band,
-               ro.raw ? (void *)&ro.rgb565 : (void *)&ro.png, &total) != BR_OK) {
-        out_abort(&ro);
-        fprintf(stderr, "bitrain: %s\n", err.msg[0] ? err.msg : "render failed");
-        goto done;
+    if (render_spi_on(&spi)) {        /* the panel, band by band */
+        br_status st;
+        if (render_spi_open(&spi, w, h, fmt, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
+        st = pt_run(pool, run, bands, spi_sink_band, &spi.ss, &total);
+        if (render_spi_close(&spi, st == BR_OK ? &err : NULL) != BR_OK || st != BR_OK) {
+            fprintf(stderr, "bitrain: %s\n", err.msg[0] ? err.msg : "render failed");
+            goto done;
+        }
     }
-    if (out_close(&ro, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
+    if (out) {
+        if (out_open(&ro, out, w, h, fmt, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
+        if (pt_run(pool, run, bands, ro.raw ? sink_rgb565_band : sink_png_band,
+                   ro.raw ? (void *)&ro.rgb565 : (void *)&ro.png, &total) != BR_OK) {
+            out_abort(&ro);
+            fprintf(stderr, "bitrain: %s\n", err.msg[0] ? err.msg : "render failed");
+            goto done;
+        }
+        if (out_close(&ro, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
+    }
     t2 = ms_now();
-    fprintf(ro.raw && !strcmp(out, "-") ? stderr : stdout,
+    fprintf(ro.raw && out && !strcmp(out, "-") ? stderr : stdout,
             "%s: %dx%d, %u vertices, %s, %u triangles drawn (%u clipped), load+mesh %.1f ms, "
             "render+write %.1f ms, world unit 2^%d m, band %d rows (%zu bytes + %zu bytes vertex cache), %d threads\n",
-            out, w, h, fr.nv, full_step ? "full grid" : (mode == BT_FIDELITY ? "bitree fidelity" : "bitree view"),
+            out ? out : (spi.capture ? spi.capture : spi.dev), w, h, fr.nv, full_step ? "full grid" : (mode == BT_FIDELITY ? "bitree fidelity" : "bitree view"),
             total.tris, total.clipped, t1 - t0, t2 - t1, -s.rt.shift, bands, memsize, rs_cache_mem_size(fr.nv), threads);
     rc = 0;
 done:

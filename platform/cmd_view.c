@@ -512,6 +512,9 @@ int cmd_view(int argc, char **argv)
     view_opts o;
     int rc = 1;
     double eye[3], tgt[3];
+    int i;
+    for (i = 0; i < argc; i++)      /* an SPI panel (no window): `render` draws to it band by band */
+        if (!strcmp(argv[i], "--spi") || !strcmp(argv[i], "--spi-capture")) return cmd_render(argc, argv);
     memset(&a, 0, sizeof a);
     memset(&o, 0, sizeof o);
     o.fov = 60; o.pix_err = 1; o.bands = 64; o.threads = pt_online_cores();

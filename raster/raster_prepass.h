@@ -115,8 +115,15 @@ typedef char pp_v16c __attribute__((vector_size(16)));
     } while (0)
 #endif
 
+/* The 16-bit words of each 32-bit field of W in little-endian order (low word first):
+ * swapped on big-endian targets, nothing to do on the others. */
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+#define PP_LEW(W) ((W) = RS_SHUFFLE((W), (W), pp_h8, 1, 0, 3, 2, 5, 4, 7, 6))
+#else
+#define PP_LEW(W) ((void)0)
+#endif
 /* Eight cache entries' first 16 bytes (P[0 .. 7]; x, y, d, c: as 16-bit words x, x >> 16,
- * y, y >> 16, d, d >> 16, c, c >> 16 on these little-endian targets) transposed into slots
+ * y, y >> 16, d, d >> 16, c, c >> 16 after PP_LEW) transposed into slots
  * K .. K + 7 of X, Y, C: the low words of x and y less PP_OFF (modulo 2^16: the top bit
  * flipped) and c >> 16 (the outcode byte above the colour's red), by interleaving words,
  * pairs of words and halves (17 shuffles; fl: PP_OFF's flip in every lane). */
@@ -127,6 +134,8 @@ typedef char pp_v16c __attribute__((vector_size(16)));
         memcpy(&w0, (P)[0], 16); memcpy(&w1, (P)[1], 16); memcpy(&w2, (P)[2], 16);    \
         memcpy(&w3, (P)[3], 16); memcpy(&w4, (P)[4], 16); memcpy(&w5, (P)[5], 16);    \
         memcpy(&w6, (P)[6], 16); memcpy(&w7, (P)[7], 16);                              \
+        PP_LEW(w0); PP_LEW(w1); PP_LEW(w2); PP_LEW(w3);                                \
+        PP_LEW(w4); PP_LEW(w5); PP_LEW(w6); PP_LEW(w7);                                \
         /* l01: x0 x1 x0' x1' y0 y1 y0' y1' (' the high words), h01: d0 d1 d0' d1' c0 c1 c0' c1' */ \
         const pp_h8 l01 = PP_ZIP(w0, w1, 0, 8, 1, 9, 2, 10, 3, 11), h01 = PP_ZIP(w0, w1, 4, 12, 5, 13, 6, 14, 7, 15); \
         const pp_h8 l23 = PP_ZIP(w2, w3, 0, 8, 1, 9, 2, 10, 3, 11), h23 = PP_ZIP(w2, w3, 4, 12, 5, 13, 6, 14, 7, 15); \
@@ -344,6 +353,12 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
             }
             /* as 32-bit masks: the halves interleaved */
             m1l &= ok1; m1h &= ok1; m2l &= ok2; m2h &= ok2;
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+            {   /* (big-endian: a 32-bit mask's high half comes first in memory) */
+                const pp_v8 t1 = m1l, t2 = m2l;
+                m1l = m1h; m1h = t1; m2l = m2h; m2h = t2;
+            }
+#endif
 #if PP_L == 16
 #define PP_LO16 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23
 #define PP_HI16 8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31

@@ -3,19 +3,27 @@
 # every test program, the raster
 # tests again with the 32-bit boards' divide-free quotients (BR_DIV64_NATIVE=0), and
 # every test program again under AddressSanitizer + UndefinedBehaviorSanitizer.
-# Each program ends with "N passed, N failed"; we add them up and end the same way.
+# Then the cross-architecture probe (tests/cross/run.sh) and the whole suite under
+# qemu-user on the targets of TEST_CROSS (default s390x armhf; tests/cross/suite.sh).
+# Each program ends with "N passed, N failed" (", N skipped" when some check could not
+# run here: a package that could not be installed); we add them up and end with
+# "N passed, N failed, N skipped".
 B=${1:-build}
-passed=0; failed=0
+passed=0; failed=0; skipped=0
 count() { # $1 = label, $2 = output file, $3 = exit code
   line=$(grep -aE '^[0-9]+ passed, [0-9]+ failed' "$2" | tail -n 1)
+  s=0
   if [ -n "$line" ]; then
     p=${line%% passed*}; f=${line#*passed, }; f=${f%% failed*}
+    case $line in *skipped*) s=${line#*failed, }; s=${s%% skipped*} ;; esac
   else p=0; f=0; fi
   if [ "$3" != 0 ] && [ "$f" = 0 ]; then f=1; fi   # crashed or exited non-zero without saying why
-  passed=$((passed + p)); failed=$((failed + f))
+  passed=$((passed + p)); failed=$((failed + f)); skipped=$((skipped + s))
   if [ "$f" != 0 ]; then
     echo "FAILED $1 (exit $3):"; tail -n 30 "$2" | sed 's/^/  /'
+  elif [ "$s" != 0 ]; then echo "ok     $1: $p passed, $s skipped"
   else echo "ok     $1: $p passed"; fi
+  if [ "$s" != 0 ]; then grep -a '^skip\|skipped (' "$2" | sed 's/^ */  /'; fi
 }
 mkdir -p tests/out
 log=tests/out/.log
@@ -44,5 +52,11 @@ for t in "$B"/san-tests/test_*; do
     BITRAIN_SANITIZED=1 "$t" >$log 2>&1; rc=$?; count "$(basename "$t") [asan+ubsan]" $log $rc
 done
 sh tests/cross/run.sh >$log 2>&1; rc=$?; count "cross-architecture determinism (tests/cross)" $log $rc
-echo "$passed passed, $failed failed"
+TEST_CROSS=${TEST_CROSS-s390x armhf}
+if [ -n "$TEST_CROSS" ]; then
+  sh tests/cross/suite.sh $TEST_CROSS >$log 2>&1; rc=$?
+  grep -aE '^[a-z0-9]+: [0-9]+ passed' $log | sed 's/^/  /'
+  count "whole suite under qemu-user ($TEST_CROSS)" $log $rc
+fi
+echo "$passed passed, $failed failed, $skipped skipped"
 [ "$failed" = 0 ]

@@ -12,7 +12,7 @@
 #include <string.h>
 #include <stdint.h>
 
-extern int t_passed, t_failed, t_cur_failed;
+extern int t_passed, t_failed, t_skipped, t_cur_failed;
 extern const char *t_cur_name;
 
 #define CHECK(cond) do { if (!(cond)) { t_cur_failed++; \
@@ -26,7 +26,13 @@ extern const char *t_cur_name;
 #define T_RUN(fn) t_run(#fn, fn)
 
 void t_run(const char *name, void (*fn)(void));
+/* A check that cannot run here (why: what it needs): counted and printed, never
+ * dropped silently; the summary then ends ", N skipped". */
+void t_skip(const char *name, const char *why);
 int t_finish(void);                 /* prints the summary; returns the exit code */
+/* 1 under qemu-user (tests/cross/suite.sh sets BITRAIN_EMULATED): the programs then
+ * run their sanitized-run sizes, where the emulator's 5-10x would not fit make test */
+int t_emulated(void);
 const char *t_data(const char *rel);/* "../shared/data/dem/" + rel (BITRAIN_DATA overrides) */
 const char *t_outdir(void);         /* tests/out, created on demand */
 unsigned char *t_read_file(const char *path, size_t *len); /* malloc'd, NULL on error */

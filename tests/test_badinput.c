@@ -280,6 +280,11 @@ static void test_bt(void)
     free(q);
 }
 
+/* The samples go in as their IEEE 754 bit patterns, little-endian (put_le32), whatever
+ * the host's byte order: a float is those 32 bits on every target we build (C99 static
+ * assertion: the array's size is -1 otherwise), in the byte order of its uint32. */
+typedef char float_is_32_bits[sizeof(float) == sizeof(uint32_t) ? 1 : -1];
+
 /* a minimal little-endian TIFF: one uncompressed float32 strip, optional nodata */
 static unsigned char *mk_tif_float(const float *v, int w, int h, const char *nodata, size_t *outn)
 {
@@ -293,7 +298,11 @@ static unsigned char *mk_tif_float(const float *v, int w, int h, const char *nod
     vals[6] = 1; vals[7] = (uint32_t)h; vals[8] = (uint32_t)data; vals[9] = 3;
     memcpy(p, "II*\0", 4);
     put_le32(p + 4, (uint32_t)ifd);
-    memcpy(p + 8, v, data);   /* host order: little-endian on every machine this suite runs */
+    for (k = 0; k < (size_t)w * h; k++) {
+        uint32_t b;
+        memcpy(&b, &v[k], 4);
+        put_le32(p + 8 + 4 * k, b);
+    }
     p[ifd] = (unsigned char)ntags;
     for (k = 0; k < ntags; k++) {
         e = p + ifd + 2 + 12 * k;

@@ -2,7 +2,7 @@
 #include "tests/test.h"
 #include <sys/stat.h>
 
-int t_passed, t_failed, t_cur_failed;
+int t_passed, t_failed, t_skipped, t_cur_failed;
 const char *t_cur_name = "";
 
 void t_run(const char *name, void (*fn)(void))
@@ -14,9 +14,21 @@ void t_run(const char *name, void (*fn)(void))
     else t_passed++;
 }
 
+void t_skip(const char *name, const char *why)
+{
+    t_skipped++;
+    fprintf(stderr, "  %s: skipped (%s)\n", name, why);
+}
+
+int t_emulated(void)
+{
+    return getenv("BITRAIN_EMULATED") != NULL;
+}
+
 int t_finish(void)
 {
-    printf("%d passed, %d failed\n", t_passed, t_failed);
+    if (t_skipped) printf("%d passed, %d failed, %d skipped\n", t_passed, t_failed, t_skipped);
+    else printf("%d passed, %d failed\n", t_passed, t_failed);
     return t_failed ? 1 : 0;
 }
 
