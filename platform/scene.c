@@ -224,7 +224,9 @@ br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err)
         return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for a mesh of %u triangles", max_tri);
     s->verts = malloc(sizeof *s->verts * (s->mesh.cap_v ? s->mesh.cap_v : 1));
     s->cache = malloc(rs_cache_mem_size(s->mesh.cap_v ? s->mesh.cap_v : 1));
-    if (!s->verts || !s->cache)
+    /* a strip of cap_s indices has at most cap_s triangles (ns - 2 of them) */
+    s->chunks = malloc(((size_t)s->mesh.cap_s / RS_CHUNK + 1) * 2 * sizeof(int16_t));
+    if (!s->verts || !s->cache || !s->chunks)
         return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for %u vertices", s->mesh.cap_v);
     if (rt_cache_mem_size(&s->f) > 0) s->lit_mem = malloc(rt_cache_mem_size(&s->f));
     if (s->lit_mem && rt_scene_cache(&s->rt, s->lit_mem, rt_cache_mem_size(&s->f)) != BR_OK) {
@@ -238,6 +240,7 @@ void scene_close(scene *s)
 {
     free(s->verts);
     free(s->cache);
+    free(s->chunks);
     free(s->tree_mem);
     free(s->mesh_mem);
     free(s->lit_mem);
@@ -309,6 +312,7 @@ br_status scene_frame(scene *s, const cam *c, bt_params *p, rs_frame *fr, rs_pri
     fr->v = s->verts;
     fr->nv = s->mesh.nv;
     fr->cache = s->cache;
+    fr->chunks = s->chunks;
     fr->prims = prim;
     fr->nprims = 1;
     fr->tex = s->rt.tex_w > 0 ? &s->tex : NULL;

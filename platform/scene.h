@@ -45,6 +45,7 @@ typedef struct scene {
     bt_mesh mesh;
     rs_vertex *verts;                /* mesh.cap_v of them */
     rs_cvert *cache;                 /* vertex cache for the rasteriser */
+    int16_t *chunks;                 /* the rasteriser's chunk table (rs_frame.chunks), for mesh.cap_s indices */
     void *tree_mem, *mesh_mem;
     void *lit_mem;                   /* the vertex colour cache (rt_scene_cache), 4 bytes a sample */
 } scene;
@@ -55,7 +56,8 @@ br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o
 /* Builds the bitree (exact metric) once. */
 br_status scene_tree(scene *s, br_err *err);
 /* Allocates the mesh (max_tri triangles; beyond it the bitree falls back to its
- * budget mode), its raster vertices, the vertex cache and the per-sample colour
+ * budget mode), its raster vertices, the vertex cache, the chunk table (so that
+ * rs_render_band skips the chunks of triangles that miss a band) and the per-sample colour
  * cache of rt_scene_cache (4 bytes a sample; none when that allocation fails). */
 br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err);
 void scene_close(scene *s);
@@ -75,7 +77,7 @@ br_status scene_camera(const scene *s, const double eye[3], const double target[
                        int32_t w, int32_t h, cam *out);
 /* The view-dependent mesh for c (pixel error, hysteresis, geomorph in p; the mode,
  * camera and frame are filled in here) and its raster vertices; sets up fr (w, h,
- * vertices, strip, cache, texture, view-projection) for rs_render/rs_render_band.
+ * vertices, strip, cache, chunk table, texture, view-projection) for rs_render/rs_render_band.
  * Needs scene_tree and scene_reserve. */
 br_status scene_frame(scene *s, const cam *c, bt_params *p, rs_frame *fr, rs_prim *prim);
 

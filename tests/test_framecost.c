@@ -13,6 +13,7 @@
 #include "core/cam.h"
 #include "platform/campath.h"
 #include "platform/load.h"
+#include "platform/scene.h"
 
 static uint64_t rnd_state = 0x9e3779b97f4a7c15ull;
 static uint64_t rnd(void)
@@ -162,10 +163,57 @@ static void test_view_pinned(void)
     dem_free(&f);
 }
 
+/* The viewer's frame (scene_frame) in 64-row bands: scene_frame hands the rasteriser
+ * the scene's chunk table (without it every band walks the whole strip), and the bands
+ * give the whole frame's pixels. */
+static void test_scene_bands(void)
+{
+    const char *in[1] = { "assets/N47E009.hgt.gz" };
+    enum { W = 640, H = 480, ROWS = 64 };
+    scene s;
+    scene_opts o;
+    br_err err;
+    cam c;
+    bt_params p;
+    rs_frame fr;
+    rs_prim prim;
+    double e[3], tg[3];
+    uint32_t whole, banded = 0;
+    int32_t y0;
+    uint8_t *full = malloc((size_t)W * H * 4), *img = malloc((size_t)W * H * 4);
+    void *z = malloc(rs_band_mem_size(W, H, RS_FMT_XRGB8888, RS_DEPTH32));
+    memset(&o, 0, sizeof o);
+    o.quiet = 1;
+    if (!full || !img || !z || scene_open(&s, in, 1, &o, &err) != BR_OK) { CHECK(0); free(full); free(img); free(z); return; }
+    CHECK_EQ(scene_tree(&s, &err), BR_OK);
+    CHECK_EQ(scene_reserve(&s, 200000, &err), BR_OK);
+    scene_default_view(&s, 60, e, tg);
+    CHECK_EQ(scene_camera(&s, e, tg, 60, W, H, &c), BR_OK);
+    memset(&p, 0, sizeof p);
+    memset(&fr, 0, sizeof fr);
+    p.pixel_err_q8 = 256; p.hyst_q8 = 64; p.morph_q8 = 128;
+    fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32; fr.clear_rgb = 0x99ccffu;
+    CHECK_EQ(scene_frame(&s, &c, &p, &fr, &prim), BR_OK);
+    CHECK(fr.chunks != NULL);
+    CHECK_EQ(rs_render_band(&fr, 0, H, full, (size_t)W * 4, z), BR_OK);
+    whole = fr.stat_tris;
+    fr.stat_tris = 0;
+    for (y0 = 0; y0 < H; y0 += ROWS) {
+        CHECK_EQ(rs_render_band(&fr, y0, H - y0 < ROWS ? H - y0 : ROWS, img + (size_t)y0 * W * 4, (size_t)W * 4, z), BR_OK);
+        banded += fr.stat_tris;
+        fr.stat_tris = 0;
+    }
+    CHECK(!memcmp(full, img, (size_t)W * H * 4));
+    CHECK(whole > 1000 && banded >= whole);
+    scene_close(&s);
+    free(full); free(img); free(z);
+}
+
 int main(void)
 {
     T_RUN(test_campath);
     T_RUN(test_nodiv);
     T_RUN(test_view_pinned);
+    T_RUN(test_scene_bands);
     return t_finish();
 }
