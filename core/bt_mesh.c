@@ -44,7 +44,8 @@
 #include "core/bt_int.h"
 #include "core/config.h"
 
-enum { ST_PREV = 1, ST_SPLIT = 2, ST_PUSHED = 4, ST_CUR = 8 };
+/* ST_FULL: split in this frame at full height (with ST_CUR, cleared with it) */
+enum { ST_PREV = 1, ST_SPLIT = 2, ST_PUSHED = 4, ST_CUR = 8, ST_FULL = 16 };
 
 /* A vertex on its way down the recursion; idx caches its output index (the
  * children of a split share their parent's pt instances, so most lookups are
@@ -379,7 +380,16 @@ static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned ma
     mm.idx = NO_IDX;
     mm.x = a->x + (dx >> 1);
     mm.y = a->y + (dy >> 1);
-    sp = decide(e, mm.x, mm.y, &mask, &mm.morph);
+    /* A diamond is reached twice, once from each half.  When the first visit split it
+     * at full height (ST_FULL), the second decides the same without the error: the
+     * rule reads only the diamond, the camera and ST_PREV; culled() gives the same
+     * answer under either half's plane mask, because a plane is dropped from a mask
+     * only when an enclosing volume lies inside it (volumes nest).  The mask stays
+     * the parent's: the children test planes they could skip, same answers. */
+    if (e->rec_splits && (e->t->st[(size_t)mm.y * e->n + mm.x] & ST_FULL)) {
+        sp = 1;
+        mm.morph = BT_MORPH_ONE;
+    } else sp = decide(e, mm.x, mm.y, &mask, &mm.morph);
     if (sp < 0) return;
     if (!sp) {
         /* a triangle over voids that a budget left unsplit is dropped, never
@@ -394,7 +404,7 @@ static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned ma
         size_t idx = (size_t)mm.y * e->n + mm.x;
         if (!(e->t->st[idx] & ST_CUR)) {
             if (e->m->nsplits < heap_cap(e->m)) {
-                e->t->st[idx] |= ST_CUR;
+                e->t->st[idx] |= mm.morph == BT_MORPH_ONE ? ST_CUR | ST_FULL : ST_CUR;
                 ids_of(e->m)[e->m->nsplits++] = (uint32_t)idx;
             } else e->lost = 1;
         }
@@ -693,11 +703,11 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
                 for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
                 if (e.lost) {
                     size_t nn = (size_t)t->n * t->n, k;
-                    for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_PREV);
+                    for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_FULL | ST_PREV);
                     m->nsplits = 0;
                 } else {
                     for (i = 0; i < m->nsplits; i++)
-                        t->st[ids[i]] = (uint8_t)((t->st[ids[i]] & ~ST_CUR) | ST_PREV);
+                        t->st[ids[i]] = (uint8_t)((t->st[ids[i]] & ~(ST_CUR | ST_FULL)) | ST_PREV);
                 }
             }
             btw_reorder(&e);
@@ -706,10 +716,10 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         /* defined downgrade: the selection needs more than m holds; spend the
          * capacity by priority (the budget rule) instead */
         for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
-        for (i = 0; i < m->nsplits; i++) t->st[ids[i]] &= (uint8_t)~(ST_CUR | ST_PREV);
+        for (i = 0; i < m->nsplits; i++) t->st[ids[i]] &= (uint8_t)~(ST_CUR | ST_FULL | ST_PREV);
         if (e.lost) {
             size_t nn = (size_t)t->n * t->n, k;
-            for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_PREV);
+            for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_FULL | ST_PREV);
         }
         m->nsplits = 0;
         e.hbase = reset_mesh(m);
