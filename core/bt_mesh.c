@@ -44,8 +44,7 @@
 #include "core/bt_int.h"
 #include "core/config.h"
 
-/* ST_FULL: split in this frame at full height (with ST_CUR, cleared with it) */
-enum { ST_PREV = 1, ST_SPLIT = 2, ST_PUSHED = 4, ST_CUR = 8, ST_FULL = 16 };
+enum { ST_PREV = 1, ST_SPLIT = 2, ST_PUSHED = 4, ST_CUR = 8 };
 
 /* A vertex on its way down the recursion; idx caches its output index (the
  * children of a split share their parent's pt instances, so most lookups are
@@ -63,6 +62,14 @@ static uint32_t hash_size(uint32_t cap_v)
     return s;
 }
 
+/* Slots of the decision memo: 2 per triangle, 64 .. 2^18 (2 MiB); a lossy cache */
+static uint32_t memo_size(uint32_t max_tri)
+{
+    uint32_t s = 64;
+    while (s < 2 * (uint64_t)max_tri && s < (1u << 18)) s <<= 1;
+    return s;
+}
+
 size_t bt_mesh_mem_size(uint32_t max_tri)
 {
     uint64_t cap_v, cap_s, hs, heap, sz;
@@ -71,7 +78,8 @@ size_t bt_mesh_mem_size(uint32_t max_tri)
     cap_s = 5ull * max_tri + 8;
     hs = hash_size(2 * max_tri + 16);
     heap = 4ull * max_tri + 8;
-    sz = cap_v * sizeof(bt_vert) + cap_s * 4 + hs * 4 + 4 + heap * sizeof(heap_ent) + heap * 4 + 64;
+    sz = cap_v * sizeof(bt_vert) + cap_s * 4 + hs * 4 + 4 + heap * sizeof(heap_ent) + heap * 4 + 8
+         + (uint64_t)memo_size(max_tri) * 8 + 64;
     if (sz > (uint64_t)SIZE_MAX) return 0;      /* 32-bit hosts */
     return (size_t)sz;
 }
@@ -97,6 +105,12 @@ br_status bt_mesh_init(bt_mesh *m, uint32_t max_tri, void *mem, size_t mem_bytes
     m->cap_s = cap_s;
     p += (8 - ((uintptr_t)p & 7)) & 7;
     m->splits = (uint32_t *)(void *)p;   /* heap entries + id list share this tail */
+    p = (uint8_t *)(void *)(ids_of(m) + heap_cap(m));
+    p += (8 - ((uintptr_t)p & 7)) & 7;
+    m->memo = (uint64_t *)(void *)p;
+    m->memo_mask = memo_size(max_tri) - 1;
+    memset(m->memo, 0, ((size_t)m->memo_mask + 1) * 8);
+    m->memo_gen = 0;
     return BR_OK;
 }
 
@@ -303,6 +317,31 @@ static int decide(em *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
     }
 }
 
+/* decide() for the view rule, memoised within the frame.  A diamond is reached
+ * twice, once from each half, and the rule gives both visits the same answer: it
+ * reads only the diamond, the camera and ST_PREV (unchanged until the frame ends),
+ * and culled() answers the same under either half's plane mask, because a plane
+ * leaves a mask only when an enclosing volume lies inside it (volumes nest).  A
+ * memo hit keeps the parent's mask: the children test planes they could skip, with
+ * the same answers.  The memo is a direct-mapped cache (a miss only recomputes);
+ * an entry is gen << 48 | (answer + 1) << 46 | morph << 30 | grid index (n <=
+ * BR_MAX_SIDE = 16385: n^2 < 2^28), valid in the extraction whose 16-bit generation
+ * (1 .. 0xFFFF, reset_mesh) it holds. */
+static int decide_memo(em *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
+{
+    const bt_mesh *m = e->m;
+    uint32_t idx = (uint32_t)y * (uint32_t)e->n + (uint32_t)x;
+    uint64_t *slot = &m->memo[(idx * 2654435761u >> 8) & m->memo_mask], v = *slot;
+    int sp;
+    if ((uint32_t)(v >> 48) == m->memo_gen && (uint32_t)(v & 0x3fffffffu) == idx) {
+        *morph = (uint16_t)(v >> 30);
+        return (int)((v >> 46) & 3) - 1;
+    }
+    sp = decide(e, x, y, mask, morph);
+    *slot = (uint64_t)m->memo_gen << 48 | (uint64_t)(sp + 1) << 46 | (uint64_t)*morph << 30 | idx;
+    return sp;
+}
+
 /* ------------------------------------------------------------ strip */
 /* Home slot of grid key y n + x in the dedup hash: the key itself when the table
  * has >= n^2 / 2 slots (<= 2 keys per slot; the walk's spatial coherence stays in
@@ -380,16 +419,8 @@ static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned ma
     mm.idx = NO_IDX;
     mm.x = a->x + (dx >> 1);
     mm.y = a->y + (dy >> 1);
-    /* A diamond is reached twice, once from each half.  When the first visit split it
-     * at full height (ST_FULL), the second decides the same without the error: the
-     * rule reads only the diamond, the camera and ST_PREV; culled() gives the same
-     * answer under either half's plane mask, because a plane is dropped from a mask
-     * only when an enclosing volume lies inside it (volumes nest).  The mask stays
-     * the parent's: the children test planes they could skip, same answers. */
-    if (e->rec_splits && (e->t->st[(size_t)mm.y * e->n + mm.x] & ST_FULL)) {
-        sp = 1;
-        mm.morph = BT_MORPH_ONE;
-    } else sp = decide(e, mm.x, mm.y, &mask, &mm.morph);
+    if (e->rec_splits) sp = decide_memo(e, mm.x, mm.y, &mask, &mm.morph);
+    else sp = decide(e, mm.x, mm.y, &mask, &mm.morph);
     if (sp < 0) return;
     if (!sp) {
         /* a triangle over voids that a budget left unsplit is dropped, never
@@ -404,7 +435,7 @@ static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned ma
         size_t idx = (size_t)mm.y * e->n + mm.x;
         if (!(e->t->st[idx] & ST_CUR)) {
             if (e->m->nsplits < heap_cap(e->m)) {
-                e->t->st[idx] |= mm.morph == BT_MORPH_ONE ? ST_CUR | ST_FULL : ST_CUR;
+                e->t->st[idx] |= ST_CUR;
                 ids_of(e->m)[e->m->nsplits++] = (uint32_t)idx;
             } else e->lost = 1;
         }
@@ -659,6 +690,10 @@ static uint32_t reset_mesh(bt_mesh *m)
         memset(m->hash, 0, ((size_t)m->hmask + 1) * 4);
         *base = 0;
     } else *base += m->nv;
+    if (++m->memo_gen > 0xFFFFu) {   /* entries of generation 0 were written 2^16 extractions ago */
+        memset(m->memo, 0, ((size_t)m->memo_mask + 1) * 8);
+        m->memo_gen = 1;
+    }
     m->nv = 0; m->ns = 0; m->ntri = 0; m->nline = 0; m->nfict = 0; m->overflow = 0;
     return *base;
 }
@@ -703,11 +738,11 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
                 for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
                 if (e.lost) {
                     size_t nn = (size_t)t->n * t->n, k;
-                    for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_FULL | ST_PREV);
+                    for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_PREV);
                     m->nsplits = 0;
                 } else {
                     for (i = 0; i < m->nsplits; i++)
-                        t->st[ids[i]] = (uint8_t)((t->st[ids[i]] & ~(ST_CUR | ST_FULL)) | ST_PREV);
+                        t->st[ids[i]] = (uint8_t)((t->st[ids[i]] & ~ST_CUR) | ST_PREV);
                 }
             }
             btw_reorder(&e);
@@ -716,10 +751,10 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         /* defined downgrade: the selection needs more than m holds; spend the
          * capacity by priority (the budget rule) instead */
         for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
-        for (i = 0; i < m->nsplits; i++) t->st[ids[i]] &= (uint8_t)~(ST_CUR | ST_FULL | ST_PREV);
+        for (i = 0; i < m->nsplits; i++) t->st[ids[i]] &= (uint8_t)~(ST_CUR | ST_PREV);
         if (e.lost) {
             size_t nn = (size_t)t->n * t->n, k;
-            for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_FULL | ST_PREV);
+            for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_PREV);
         }
         m->nsplits = 0;
         e.hbase = reset_mesh(m);

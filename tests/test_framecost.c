@@ -1,7 +1,8 @@
 /* tests/test_framecost.c — the per-frame path of the users' frame (issue 20): camera
  * path files (platform/campath.h), the selection's divide-free arithmetic
  * (core/bt_int.h bt_morph_nodiv, core/fx.h fx_udiv_bits) against C's `/`, and a
- * pinned view-dependent mesh sequence (moving camera, hysteresis and geomorph on) that
+ * pinned view-dependent mesh sequence (moving camera, hysteresis and geomorph on, the
+ * selection's decision memo across its generation wrap) that
  * the normal build and the divide-free build (build/div32-tests, BR_DIV64_NATIVE = 0)
  * must both reproduce byte for byte. */
 #include <stdint.h>
@@ -147,6 +148,7 @@ static void test_view_pinned(void)
         CHECK_EQ(cam_look_at(&c, eye, tgt, 60000, 320, 240, 1 << us, (int32_t)(60000 << us)), BR_OK);
         if (k == 0) CHECK_EQ(btc_extract(&t, &p, 200000, &m, &mem), 0);
         else CHECK_EQ(bt_extract(&t, &p, &m), BR_OK);
+        if (k == 1) m.memo_gen = 0xFFFEu;   /* frame 3's decision memo wraps its generation */
         for (i = 0; i < m.nv; i++) {
             h = fnv(h, &m.v[i].x, 4); h = fnv(h, &m.v[i].y, 4); h = fnv(h, &m.v[i].z, 4);
             h = fnv(h, &m.v[i].morph, 2);
