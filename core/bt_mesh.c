@@ -250,7 +250,16 @@ static int64_t rho_q8(const em *e, int32_t x, int32_t y)
     if (r < 0) return -1;
     if (r > 0) return INT64_MAX;
     if (d == 0) return 0;
-    return isat_mul(ew, e->fq8) / d;
+    {
+        int64_t lhs = isat_mul(ew, e->fq8);
+#if BR_DIV64_NATIVE
+        return lhs / d;
+#else
+        /* the budget's priority caps rho at 2^50 (prio): 50 restoring steps
+         * below that, all 63 only above it */
+        return (int64_t)fx_udiv_bits((uint64_t)lhs, (uint64_t)d, (lhs >> 50) >= d ? 63 : 50);
+#endif
+    }
 }
 
 static br_status setup(em *e, bt_tree *t, const bt_params *p);
@@ -282,6 +291,14 @@ static uint16_t morph_at(const em *e, int64_t lhs, int64_t d)
     return morph_of(e, lhs / d);
 #else
     (void)morph_of;
+    if (e->tau < 0) {
+        /* the budget rule's tau = -1 (bt_extract): morph_of's q = lhs / d + 1 =
+         * floor((lhs + d) / d), below 2^64; q < span < 2^39 needs bt_bits(span) steps */
+        uint64_t L = (uint64_t)lhs + (uint64_t)d, D = (uint64_t)d, S = (uint64_t)e->morph_span, q;
+        if (bt_mul_ge(L, S, D)) return BT_MORPH_ONE;
+        q = fx_udiv_bits(L, D, bt_bits(S));
+        return (uint16_t)fx_udiv_bits(q << 15, S, 15);
+    }
     return bt_morph_nodiv(lhs, d, e->tau, e->morph_span);
 #endif
 }
