@@ -134,6 +134,8 @@ typedef struct bt_mesh {
     uint32_t hmask;
     uint32_t *splits;      /* diamonds split this frame (internal: hysteresis) */
     uint32_t nsplits;
+    uint64_t *memo;        /* this frame's decisions (internal), memo_mask + 1 entries */
+    uint32_t memo_mask, memo_gen;
     int32_t overflow;      /* 1 if the last extraction had to fall back to the budget */
 } bt_mesh;
 

@@ -62,6 +62,14 @@ static uint32_t hash_size(uint32_t cap_v)
     return s;
 }
 
+/* Slots of the decision memo: 2 per triangle, 64 .. 2^18 (2 MiB); a lossy cache */
+static uint32_t memo_size(uint32_t max_tri)
+{
+    uint32_t s = 64;
+    while (s < 2 * (uint64_t)max_tri && s < (1u << 18)) s <<= 1;
+    return s;
+}
+
 size_t bt_mesh_mem_size(uint32_t max_tri)
 {
     uint64_t cap_v, cap_s, hs, heap, sz;
@@ -70,7 +78,8 @@ size_t bt_mesh_mem_size(uint32_t max_tri)
     cap_s = 5ull * max_tri + 8;
     hs = hash_size(2 * max_tri + 16);
     heap = 4ull * max_tri + 8;
-    sz = cap_v * sizeof(bt_vert) + cap_s * 4 + hs * 4 + 4 + heap * sizeof(heap_ent) + heap * 4 + 64;
+    sz = cap_v * sizeof(bt_vert) + cap_s * 4 + hs * 4 + 4 + heap * sizeof(heap_ent) + heap * 4 + 8
+         + (uint64_t)memo_size(max_tri) * 8 + 64;
     if (sz > (uint64_t)SIZE_MAX) return 0;      /* 32-bit hosts */
     return (size_t)sz;
 }
@@ -96,6 +105,12 @@ br_status bt_mesh_init(bt_mesh *m, uint32_t max_tri, void *mem, size_t mem_bytes
     m->cap_s = cap_s;
     p += (8 - ((uintptr_t)p & 7)) & 7;
     m->splits = (uint32_t *)(void *)p;   /* heap entries + id list share this tail */
+    p = (uint8_t *)(void *)(ids_of(m) + heap_cap(m));
+    p += (8 - ((uintptr_t)p & 7)) & 7;
+    m->memo = (uint64_t *)(void *)p;
+    m->memo_mask = memo_size(max_tri) - 1;
+    memset(m->memo, 0, ((size_t)m->memo_mask + 1) * 8);
+    m->memo_gen = 0;
     return BR_OK;
 }
 
@@ -235,7 +250,16 @@ static int64_t rho_q8(const em *e, int32_t x, int32_t y)
     if (r < 0) return -1;
     if (r > 0) return INT64_MAX;
     if (d == 0) return 0;
-    return isat_mul(ew, e->fq8) / d;
+    {
+        int64_t lhs = isat_mul(ew, e->fq8);
+#if BR_DIV64_NATIVE
+        return lhs / d;
+#else
+        /* the budget's priority caps rho at 2^50 (prio): 50 restoring steps
+         * below that, all 63 only above it */
+        return (int64_t)fx_udiv_bits((uint64_t)lhs, (uint64_t)d, (lhs >> 50) >= d ? 63 : 50);
+#endif
+    }
 }
 
 static br_status setup(em *e, bt_tree *t, const bt_params *p);
@@ -267,6 +291,14 @@ static uint16_t morph_at(const em *e, int64_t lhs, int64_t d)
     return morph_of(e, lhs / d);
 #else
     (void)morph_of;
+    if (e->tau < 0) {
+        /* the budget rule's tau = -1 (bt_extract): morph_of's q = lhs / d + 1 =
+         * floor((lhs + d) / d), below 2^64; q < span < 2^39 needs bt_bits(span) steps */
+        uint64_t L = (uint64_t)lhs + (uint64_t)d, D = (uint64_t)d, S = (uint64_t)e->morph_span, q;
+        if (bt_mul_ge(L, S, D)) return BT_MORPH_ONE;
+        q = fx_udiv_bits(L, D, bt_bits(S));
+        return (uint16_t)fx_udiv_bits(q << 15, S, 15);
+    }
     return bt_morph_nodiv(lhs, d, e->tau, e->morph_span);
 #endif
 }
@@ -300,6 +332,31 @@ static int decide(em *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
         if (sp && e->morph_span > 0) *morph = d > 0 ? morph_at(e, lhs, d) : BT_MORPH_ONE;
         return sp;
     }
+}
+
+/* decide() for the view rule, memoised within the frame.  A diamond is reached
+ * twice, once from each half, and the rule gives both visits the same answer: it
+ * reads only the diamond, the camera and ST_PREV (unchanged until the frame ends),
+ * and culled() answers the same under either half's plane mask, because a plane
+ * leaves a mask only when an enclosing volume lies inside it (volumes nest).  A
+ * memo hit keeps the parent's mask: the children test planes they could skip, with
+ * the same answers.  The memo is a direct-mapped cache (a miss only recomputes);
+ * an entry is gen << 48 | (answer + 1) << 46 | morph << 30 | grid index (n <=
+ * BR_MAX_SIDE = 16385: n^2 < 2^28), valid in the extraction whose 16-bit generation
+ * (1 .. 0xFFFF, reset_mesh) it holds. */
+static int decide_memo(em *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
+{
+    const bt_mesh *m = e->m;
+    uint32_t idx = (uint32_t)y * (uint32_t)e->n + (uint32_t)x;
+    uint64_t *slot = &m->memo[(idx * 2654435761u >> 8) & m->memo_mask], v = *slot;
+    int sp;
+    if ((uint32_t)(v >> 48) == m->memo_gen && (uint32_t)(v & 0x3fffffffu) == idx) {
+        *morph = (uint16_t)(v >> 30);
+        return (int)((v >> 46) & 3) - 1;
+    }
+    sp = decide(e, x, y, mask, morph);
+    *slot = (uint64_t)m->memo_gen << 48 | (uint64_t)(sp + 1) << 46 | (uint64_t)*morph << 30 | idx;
+    return sp;
 }
 
 /* ------------------------------------------------------------ strip */
@@ -379,7 +436,8 @@ static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned ma
     mm.idx = NO_IDX;
     mm.x = a->x + (dx >> 1);
     mm.y = a->y + (dy >> 1);
-    sp = decide(e, mm.x, mm.y, &mask, &mm.morph);
+    if (e->rec_splits) sp = decide_memo(e, mm.x, mm.y, &mask, &mm.morph);
+    else sp = decide(e, mm.x, mm.y, &mask, &mm.morph);
     if (sp < 0) return;
     if (!sp) {
         /* a triangle over voids that a budget left unsplit is dropped, never
@@ -649,6 +707,10 @@ static uint32_t reset_mesh(bt_mesh *m)
         memset(m->hash, 0, ((size_t)m->hmask + 1) * 4);
         *base = 0;
     } else *base += m->nv;
+    if (++m->memo_gen > 0xFFFFu) {   /* entries of generation 0 were written 2^16 extractions ago */
+        memset(m->memo, 0, ((size_t)m->memo_mask + 1) * 8);
+        m->memo_gen = 1;
+    }
     m->nv = 0; m->ns = 0; m->ntri = 0; m->nline = 0; m->nfict = 0; m->overflow = 0;
     return *base;
 }

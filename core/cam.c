@@ -34,9 +34,11 @@ br_status cam_look_at(cam *c, const int32_t eye[3], const int32_t target[3],
     }
     c->w = w; c->h = h; c->fovy_mdeg = fovy_mdeg; c->znear = znear; c->zfar = zfar;
     fx_sincos(fx_angle_from_mdeg(fovy_mdeg / 2), &s, &co);
-    c->tan_half = (fx_q16)fx_div_round((int64_t)s * FX_Q16_ONE, co);
+    /* half the field of view is 0.5 .. 85 degrees: tan < 11.5 (< 2^20 in Q16) and
+     * (h / 2) cot <= 8192 * 114.6 (< 2^36 in Q16), short quotients (fx_div_round_bits) */
+    c->tan_half = (fx_q16)fx_div_round_bits((int64_t)s * FX_Q16_ONE, co, 20);
     /* f = (h/2) cos/sin, Q16 */
-    c->f_q16 = fx_div_round((int64_t)h * co * (FX_Q16_ONE / 2), s);
+    c->f_q16 = fx_div_round_bits((int64_t)h * co * (FX_Q16_ONE / 2), s, 36);
     return BR_OK;
 }
 

@@ -75,7 +75,11 @@ fx_angle fx_angle_from_mdeg(int32_t mdeg)
     /* reduce to [0, 360000) first so the product fits: 360000 * 2^32 < 2^51 */
     int64_t m = (int64_t)mdeg % 360000;
     if (m < 0) m += 360000;
+#if BR_DIV64_NATIVE
     return (fx_angle)(uint64_t)((((uint64_t)m << 32) + 180000) / 360000);
+#else
+    return (fx_angle)fx_udiv_bits(((uint64_t)m << 32) + 180000, 360000, 32);   /* quotient < 2^32 */
+#endif
 }
 
 void fx_sincos(fx_angle a, fx_q30 *s, fx_q30 *c)
@@ -116,6 +120,7 @@ int fx_normalize3(const int64_t v[3], fx_q30 out[3])
     }
     ss = (uint64_t)(w[0] * w[0]) + (uint64_t)(w[1] * w[1]) + (uint64_t)(w[2] * w[2]);
     len = fx_isqrt64(ss);
-    for (i = 0; i < 3; i++) out[i] = (fx_q30)fx_div_round(w[i] * FX_Q30_ONE, (int64_t)len);
+    /* len >= m >= |w_i|: |quotient| <= 2^30, so |w_i| 2^30 + len / 2 < len 2^31 */
+    for (i = 0; i < 3; i++) out[i] = (fx_q30)fx_div_round_bits(w[i] * FX_Q30_ONE, (int64_t)len, 31);
     return 1;
 }

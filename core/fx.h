@@ -58,6 +58,21 @@ static inline uint64_t fx_udiv_bits(uint64_t n, uint64_t d, int b)
     return q;
 }
 
+/* fx_div_round(n, d) for d > 0 and |n| + d / 2 < d 2^b (a quotient known to be
+ * short): with BR_DIV64_NATIVE = 0 (core/config.h) by fx_udiv_bits, b steps and no
+ * divide; the same value either way (round half away from zero). */
+static inline int64_t fx_div_round_bits(int64_t n, int64_t d, int b)
+{
+#if BR_DIV64_NATIVE
+    (void)b;
+    return fx_div_round(n, d);
+#else
+    uint64_t a = n < 0 ? (uint64_t)0 - (uint64_t)n : (uint64_t)n;
+    uint64_t q = fx_udiv_bits(a + (uint64_t)(d >> 1), (uint64_t)d, b);
+    return n < 0 ? -(int64_t)q : (int64_t)q;
+#endif
+}
+
 /* floor(n / d) for d > 0, inline for inner loops (the rasteriser's span limits):
  * the truncated quotient, minus 1 when the remainder is negative. */
 static inline int64_t fx_div_floor_pos(int64_t n, int64_t d)

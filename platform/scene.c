@@ -263,9 +263,9 @@ static void grid_free(scene *s)
 void scene_close(scene *s)
 {
     grid_free(s);
-    free(s->chunks);
     free(s->verts);
     free(s->cache);
+    free(s->chunks);
     free(s->tree_mem);
     free(s->mesh_mem);
     free(s->lit_mem);

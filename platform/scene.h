@@ -70,7 +70,8 @@ br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o
 /* Builds the bitree (exact metric) once. */
 br_status scene_tree(scene *s, br_err *err);
 /* Allocates the mesh (max_tri triangles; beyond it the bitree falls back to its
- * budget mode), its raster vertices, the vertex cache and the per-sample colour
+ * budget mode), its raster vertices, the vertex cache, the chunk table (so that
+ * rs_render_band skips the chunks of triangles that miss a band) and the per-sample colour
  * cache of rt_scene_cache (4 bytes a sample; none when that allocation fails). */
 br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err);
 void scene_close(scene *s);

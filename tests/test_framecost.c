@@ -1,7 +1,8 @@
 /* tests/test_framecost.c — the per-frame path of the users' frame (issue 20): camera
  * path files (platform/campath.h), the selection's divide-free arithmetic
  * (core/bt_int.h bt_morph_nodiv, core/fx.h fx_udiv_bits) against C's `/`, and a
- * pinned view-dependent mesh sequence (moving camera, hysteresis and geomorph on) that
+ * pinned view-dependent mesh sequence (moving camera, hysteresis and geomorph on, the
+ * selection's decision memo across its generation wrap) that
  * the normal build and the divide-free build (build/div32-tests, BR_DIV64_NATIVE = 0)
  * must both reproduce byte for byte. */
 #include <stdint.h>
@@ -13,6 +14,7 @@
 #include "core/cam.h"
 #include "platform/campath.h"
 #include "platform/load.h"
+#include "platform/scene.h"
 
 static uint64_t rnd_state = 0x9e3779b97f4a7c15ull;
 static uint64_t rnd(void)
@@ -101,6 +103,27 @@ static void test_nodiv(void)
         if (bt_morph_nodiv(lhs, d, tau, span) != morph_ref(lhs, d, tau, span)) bad++;
     }
     CHECK_EQ(bad, 0);
+    /* fx_div_round_bits (the camera's and fx_normalize3's short quotients) against
+     * fx_div_round, at the bit widths they use, near the bound too */
+    for (i = 0; i < 400000; i++) {
+        static const int bits[4] = { 20, 31, 36, 50 };
+        int b = bits[i & 3];
+        int64_t d = (int64_t)(1 + (rnd() >> (1 + rnd() % 63))), n;
+        uint64_t qmax = ((uint64_t)1 << b) - 1, q = (i & 4) ? qmax - rnd() % 4 : rnd() % qmax;
+        if ((uint64_t)d > ((uint64_t)INT64_MAX >> 1) / (qmax + 1)) d = (int64_t)(((uint64_t)INT64_MAX >> 1) / (qmax + 1));
+        n = (int64_t)(q * (uint64_t)d + rnd() % (uint64_t)((d + 1) / 2));
+        if (i & 8) n = -n;
+        if (fx_div_round_bits(n, d, b) != fx_div_round(n, d)) bad++;
+    }
+    CHECK_EQ(bad, 0);
+    /* the camera's angle conversion (divide-free where BR_DIV64_NATIVE = 0) */
+    for (i = 0; i < 200000; i++) {
+        int32_t md = i < 1000 ? i * 360 - 180000 : (int32_t)(uint32_t)rnd();
+        int64_t r = (int64_t)md % 360000;
+        if (r < 0) r += 360000;
+        if (fx_angle_from_mdeg(md) != (fx_angle)(uint64_t)((((uint64_t)r << 32) + 180000) / 360000)) bad++;
+    }
+    CHECK_EQ(bad, 0);
 }
 
 static uint64_t fnv(uint64_t h, const void *p, size_t n)
@@ -146,6 +169,7 @@ static void test_view_pinned(void)
         CHECK_EQ(cam_look_at(&c, eye, tgt, 60000, 320, 240, 1 << us, (int32_t)(60000 << us)), BR_OK);
         if (k == 0) CHECK_EQ(btc_extract(&t, &p, 200000, &m, &mem), 0);
         else CHECK_EQ(bt_extract(&t, &p, &m), BR_OK);
+        if (k == 1) m.memo_gen = 0xFFFEu;   /* frame 3's decision memo wraps its generation */
         for (i = 0; i < m.nv; i++) {
             h = fnv(h, &m.v[i].x, 4); h = fnv(h, &m.v[i].y, 4); h = fnv(h, &m.v[i].z, 4);
             h = fnv(h, &m.v[i].morph, 2);
@@ -162,10 +186,112 @@ static void test_view_pinned(void)
     dem_free(&f);
 }
 
+/* Budget mode (3000 triangles) and the view mode's budget fallback (a mesh of 2000
+ * triangles) over the same crop: the hash of both meshes, which the divide-free
+ * build must reproduce (the priorities' rho by restoring division there). */
+static void test_budget_pinned(void)
+{
+    hf f, g;
+    bt_tree t;
+    bt_params p;
+    bt_mesh m, m2;
+    void *mem = NULL, *mem2, *tm, *scr;
+    cam c;
+    int32_t x, y, us, eye[3], tgt[3];
+    uint64_t h = 0xcbf29ce484222325ull;
+    if (btc_load("hgt/N47E009.hgt", &f)) { CHECK(0); return; }
+    g = f;
+    g.w = 400; g.h = 300;
+    g.z = malloc((size_t)g.w * g.h * 4);
+    for (y = 0; y < g.h; y++)
+        for (x = 0; x < g.w; x++) g.z[(size_t)y * g.w + x] = f.z[(size_t)(y + 100) * f.w + x + 300];
+    tm = malloc(bt_mem_size(g.w, g.h));
+    scr = malloc(bt_scratch_size(g.w, g.h));
+    CHECK_EQ(bt_build(&t, &g, BT_METRIC_EXACT, tm, bt_mem_size(g.w, g.h), scr, bt_scratch_size(g.w, g.h)), BR_OK);
+    free(scr);
+    memset(&p, 0, sizeof p);
+    CHECK_EQ(bt_frame_auto(&g, &p.fr, &us), BR_OK);
+    eye[0] = (int32_t)(2000 << us); eye[1] = (int32_t)(1000 << us); eye[2] = (int32_t)(2500 << us);
+    tgt[0] = (int32_t)(12000 << us); tgt[1] = (int32_t)(9000 << us); tgt[2] = (int32_t)(400 << us);
+    CHECK_EQ(cam_look_at(&c, eye, tgt, 60000, 320, 240, 1 << us, (int32_t)(60000 << us)), BR_OK);
+    p.c = &c; p.pixel_err_q8 = 64; p.morph_q8 = 128;
+    p.mode = BT_BUDGET; p.budget = 3000;
+    CHECK_EQ(btc_extract(&t, &p, 4000, &m, &mem), 0);
+    CHECK(m.ntri > 1000 && m.ntri <= 3000);
+    h = fnv(h, m.v, (size_t)m.nv * sizeof *m.v);
+    h = fnv(h, m.strip, (size_t)m.ns * 4);
+    p.mode = BT_VIEW;
+    mem2 = malloc(bt_mesh_mem_size(2000));
+    CHECK(mem2 && bt_mesh_init(&m2, 2000, mem2, bt_mesh_mem_size(2000)) == BR_OK);
+    if (mem2) {
+        CHECK_EQ(bt_extract(&t, &p, &m2), BR_OK);
+        CHECK_EQ(m2.overflow, 1);
+        h = fnv(h, m2.v, (size_t)m2.nv * sizeof *m2.v);
+        h = fnv(h, m2.strip, (size_t)m2.ns * 4);
+    }
+    printf("budget %u triangles, fallback %u triangles, hash %016llx\n", m.ntri, mem2 ? m2.ntri : 0,
+           (unsigned long long)h);
+    CHECK_EQ(h, 0x298648226bf07b34ull);
+    free(mem); free(mem2); free(tm); free(g.z);
+    dem_free(&f);
+}
+
+/* The viewer's frame (scene_frame) in 64-row bands: scene_frame hands the rasteriser
+ * the scene's chunk table (without it every band walks the whole strip), and the bands
+ * give the whole frame's pixels. */
+static void test_scene_bands(void)
+{
+    const char *in[1] = { "assets/N47E009.hgt.gz" };
+    enum { W = 640, H = 480, ROWS = 64 };
+    scene s;
+    scene_opts o;
+    br_err err;
+    cam c;
+    bt_params p;
+    rs_frame fr;
+    rs_prim prim;
+    double e[3], tg[3];
+    uint32_t whole, banded = 0;
+    int32_t y0;
+    uint8_t *full = malloc((size_t)W * H * 4), *img = malloc((size_t)W * H * 4);
+    void *z = malloc(rs_band_mem_size(W, H, RS_FMT_XRGB8888, RS_DEPTH32));
+    memset(&o, 0, sizeof o);
+    o.quiet = 1;
+    if (!full || !img || !z || scene_open(&s, in, 1, &o, &err) != BR_OK) { CHECK(0); free(full); free(img); free(z); return; }
+    CHECK_EQ(scene_tree(&s, &err), BR_OK);
+    CHECK_EQ(scene_reserve(&s, 200000, &err), BR_OK);
+    scene_default_view(&s, 60, e, tg);
+    CHECK_EQ(scene_camera(&s, e, tg, 60, W, H, &c), BR_OK);
+    memset(&p, 0, sizeof p);
+    memset(&fr, 0, sizeof fr);
+    p.pixel_err_q8 = 256; p.hyst_q8 = 64; p.morph_q8 = 128;
+    fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32; fr.clear_rgb = 0x99ccffu;
+    CHECK_EQ(scene_frame(&s, &c, &p, &fr, &prim), BR_OK);
+    CHECK(fr.chunks != NULL);
+    {
+        rs_band_stats st;
+        memset(&st, 0, sizeof st);
+        CHECK_EQ(rs_draw_band(&fr, 0, H, full, (size_t)W * 4, z, &st), BR_OK);
+        whole = st.tris;
+        for (y0 = 0; y0 < H; y0 += ROWS) {
+            memset(&st, 0, sizeof st);
+            CHECK_EQ(rs_draw_band(&fr, y0, H - y0 < ROWS ? H - y0 : ROWS, img + (size_t)y0 * W * 4, (size_t)W * 4, z, &st),
+                     BR_OK);
+            banded += st.tris;
+        }
+    }
+    CHECK(!memcmp(full, img, (size_t)W * H * 4));
+    CHECK(whole > 1000 && banded >= whole);
+    scene_close(&s);
+    free(full); free(img); free(z);
+}
+
 int main(void)
 {
     T_RUN(test_campath);
     T_RUN(test_nodiv);
     T_RUN(test_view_pinned);
+    T_RUN(test_budget_pinned);
+    T_RUN(test_scene_bands);
     return t_finish();
 }
