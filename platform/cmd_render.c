@@ -4,6 +4,7 @@
  *          [--max-error M | --pixel-error P | --full [STEP]] [--bands ROWS]
  *          [--format rgb565|rgb888] [--depth 32|16] [--colors FILE] [--texture PNG] [--no-cull]
  *          [--sun AZ,ALT] [--ambient A] [--zscale F] [--output-format png|rgb565]
+ *          [--path FILE -o frame%04d.png]
  * Camera in the heightfield's metres: x east from the west edge, y north from the
  * south edge, z height above 0 m (times --zscale).  Default camera: from the south-west, above the
  * terrain, looking at its centre.  Mesh: the bitree (core/bitree.h), by default
@@ -18,7 +19,11 @@
  * band by band to the PNG sink (platform/sink_png.c) or, with --output-format rgb565, to
  * the raw big-endian RGB565 sink of SPI displays (platform/sink_rgb565.c; -o - is
  * standard output).  --texture PNG stretches a colour map or
- * orthophoto over the whole grid (perspective-correct, nearest texel), lit by the sun. */
+ * orthophoto over the whole grid (perspective-correct, nearest texel), lit by the sun.
+ * --path FILE flies a camera path (platform/campath.h): frame k (1 for the path's first
+ * camera) goes to -o's pattern with k for its %d, each frame exactly `render --camera` with
+ * that line: the mesh is selected afresh for every camera (no hysteresis, no geomorph),
+ * reusing the tree, and the mesh memory holds the path's largest mesh. */
 #include <ctype.h>
 #include <math.h>
 #include <stdio.h>
@@ -27,6 +32,7 @@
 #include <time.h>
 #include "core/bitree.h"
 #include "core/cam.h"
+#include "platform/campath.h"
 #include "platform/cmd.h"
 #include "platform/dem_args.h"
 #include "platform/geocam.h"
@@ -77,32 +83,79 @@ static void out_abort(render_out *o)
     else sink_png_abort(&o->png);
 }
 
-/* The scene's terrain mesh: the bitree's (view-dependent or fidelity) or the full grid. */
+static void mesh_params(const scene *s, const cam *c, int mode, double max_err, double pix_err, bt_params *bp)
+{
+    memset(bp, 0, sizeof *bp);
+    bp->mode = mode;
+    bp->max_err = bt_mm_to_units(&s->f, (int64_t)llround(max_err * 1000));
+    bp->c = c;
+    bp->fr = s->rt.fr;
+    bp->pixel_err_q8 = (int32_t)lround(pix_err * 256);
+}
+
+/* The scene's terrain mesh: the bitree's (view-dependent or fidelity) or the full grid.
+ * The tree is built and the mesh memory reserved on the first call (at least min_tri
+ * triangles: a camera path's largest mesh); later calls reuse them. */
 static br_status make_mesh(scene *s, const cam *c, int full_step, int mode, double max_err, double pix_err,
-                           br_err *err)
+                           uint64_t min_tri, br_err *err)
 {
     bt_params bp;
     uint64_t ntri = 0;
     if (full_step > 0) return scene_grid(s, full_step, err);
-    memset(&bp, 0, sizeof bp);
-    bp.mode = mode;
-    bp.max_err = bt_mm_to_units(&s->f, (int64_t)llround(max_err * 1000));
-    bp.c = c;
-    bp.fr = s->rt.fr;
-    bp.pixel_err_q8 = (int32_t)lround(pix_err * 256);
-    if (scene_tree(s, err) != BR_OK) return err->code;
-    if (bt_count(&s->tree, &bp, &ntri) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "bad mesh parameters");
-    if (scene_reserve(s, (uint32_t)(ntri + 16 > 16000000 ? 16000000 : ntri + 16), err) != BR_OK) return err->code;
+    mesh_params(s, c, mode, max_err, pix_err, &bp);
+    if (!s->tree_mem && scene_tree(s, err) != BR_OK) return err->code;
+    if (!s->mesh_mem) {
+        if (bt_count(&s->tree, &bp, &ntri) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "bad mesh parameters");
+        if (ntri < min_tri) ntri = min_tri;
+        if (scene_reserve(s, (uint32_t)(ntri + 16 > 16000000 ? 16000000 : ntri + 16), err) != BR_OK) return err->code;
+    }
     if (scene_mesh(s, c, &bp) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "cannot extract the mesh");
     return BR_OK;
 }
 
+/* The largest mesh along a camera path (builds the tree). */
+static br_status path_max_tri(scene *s, const campath *cp, int w, int h, double fov, int mode, double max_err,
+                              double pix_err, uint64_t *max_tri, br_err *err)
+{
+    int k;
+    *max_tri = 0;
+    if (!s->tree_mem && scene_tree(s, err) != BR_OK) return err->code;
+    for (k = 0; k < cp->n; k++) {
+        cam c;
+        bt_params bp;
+        uint64_t n = 0;
+        if (scene_camera(s, cp->cam[k], cp->cam[k] + 3, fov, w, h, &c) != BR_OK) continue;   /* said when drawn */
+        mesh_params(s, &c, mode, max_err, pix_err, &bp);
+        if (bt_count(&s->tree, &bp, &n) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "bad mesh parameters");
+        if (n > *max_tri) *max_tri = n;
+    }
+    return BR_OK;
+}
+
+/* 1 when pattern holds exactly one conversion %d (flags 0, a width) and otherwise only %%. */
+static int frame_pattern_ok(const char *p)
+{
+    int n = 0;
+    for (; *p; p++) {
+        if (*p != '%') continue;
+        if (p[1] == '%') { p++; continue; }
+        p++;
+        if (*p == '0') p++;
+        while (isdigit((unsigned char)*p)) p++;
+        if (*p != 'd') return 0;
+        n++;
+    }
+    return n == 1;
+}
+
 int cmd_render(int argc, char **argv)
 {
-    const char *in[64], *out = NULL;
+    const char *in[64], *out = NULL, *path = NULL;
     int nin = 0, size[2] = { 800, 600 }, w, h, have_cam = 0, have_max = 0, have_pix = 0, mode = BT_VIEW;
     int full_step = 0, bands = 0, fmt = RS_FMT_XRGB8888, depth_choice = 0, no_cull = 0, r;
-    int threads = pt_online_cores();
+    int threads = pt_online_cores(), k, nframes = 1;
+    campath cp = { NULL, 0 };
+    uint64_t min_tri = 0;
     geocam_args ga;
     dem_args da;
     opt_spec geo_t[GEOCAM_ARGS_N];
@@ -129,6 +182,9 @@ int cmd_render(int argc, char **argv)
         { "--no-cull", OPT_FLAG, &no_cull, 0, 0, 0, NULL, NULL, "draw back faces too", NULL },
         { "--output-format", OPT_CHOICE, &ro.raw, 0, 0, 0, "png|rgb565", "F",
           "png, or rgb565: raw big-endian RGB565 rows as an SPI display takes them (-o -: stdout)", NULL },
+        { "--path", OPT_STR, &path, 0, 0, 0, NULL, "FILE",
+          "a camera path (one --camera line a frame, assets/*.cam): one image a line, -o a pattern such as frame%04d.png "
+          "(%d: 1 for the first line)", NULL },
         { "--threads", OPT_INT, &threads, 1, PT_MAX_THREADS, 0, NULL, "N",
           "drawing threads (default: online cores; bands of 64 rows unless --bands)", NULL },
         OPT_END
@@ -167,53 +223,79 @@ int cmd_render(int argc, char **argv)
     w = size[0];
     h = size[1];
     if (have_cam && (ga.from_seen || ga.at_seen)) return opt_fail("render", "--camera", "cannot be used with --look-from/--look-at");
+    if (path && (have_cam || ga.from_seen || ga.at_seen))
+        return opt_fail("render", "--path", "cannot be used with --camera or --look-from/--look-at");
+    if (path && !frame_pattern_ok(out))
+        return opt_fail("render", "-o", "with --path, the name needs one %%d for the frame number (frame%%04d.png)");
     if (bands == 0) bands = threads > 1 ? 64 : h;
     if (bands > h) bands = h;
     if (ro.raw && !strcmp(out, "-")) so.quiet = 1;   /* stdout carries the pixels only */
 
+    if (path && campath_read(path, &cp, &err) != BR_OK) { fprintf(stderr, "bitrain render: %s\n", err.msg); return 1; }
+    if (cp.n) nframes = cp.n;
     t0 = ms_now();
-    if (scene_open(&s, in, nin, &so, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); return 1; }
+    if (scene_open(&s, in, nin, &so, &err) != BR_OK) {
+        fprintf(stderr, "bitrain: %s\n", err.msg);
+        campath_free(&cp);
+        return 1;
+    }
     r = geocam_resolve(&ga, &s, "render", camv);
-    if (r < 0) { scene_close(&s); return 2; }
+    if (r < 0) { rc = 2; goto done; }
     if (r) have_cam = 1;
     if (!have_cam) scene_default_view(&s, fov, camv, camv + 3);
-    if (scene_camera(&s, camv, camv + 3, fov, w, h, &c) != BR_OK) {
-        fprintf(stderr, "bitrain render: unusable camera (eye equals target, or too far from the terrain: "
-                "world unit 2^%d m)\n", -s.rt.shift);
-        goto done;
-    }
-    if (make_mesh(&s, &c, full_step, mode, max_err, pix_err, &err) != BR_OK) {
+    if (cp.n && !full_step && path_max_tri(&s, &cp, w, h, fov, mode, max_err, pix_err, &min_tri, &err) != BR_OK) {
         fprintf(stderr, "bitrain: %s: %s\n", in[0], err.msg);
         goto done;
     }
-    t1 = ms_now();
+    for (k = 0; k < nframes; k++) {   /* one frame, or one a line of the path */
+        const double *cv = cp.n ? cp.cam[k] : camv;
+        char name[4096];
+        if (cp.n) snprintf(name, sizeof name, out, k + 1);
+        else snprintf(name, sizeof name, "%s", out);
+        if (k) t0 = ms_now();
+        if (scene_camera(&s, cv, cv + 3, fov, w, h, &c) != BR_OK) {
+            if (cp.n) fprintf(stderr, "bitrain render: %s: camera %d: unusable camera (eye equals target, or too far from "
+                              "the terrain: world unit 2^%d m)\n", path, k + 1, -s.rt.shift);
+            else fprintf(stderr, "bitrain render: unusable camera (eye equals target, or too far from the terrain: "
+                         "world unit 2^%d m)\n", -s.rt.shift);
+            goto done;
+        }
+        if (make_mesh(&s, &c, full_step, mode, max_err, pix_err, min_tri, &err) != BR_OK) {
+            fprintf(stderr, "bitrain: %s: %s\n", in[0], err.msg);
+            goto done;
+        }
+        t1 = ms_now();
 
-    /* one pass, the terrain, in bands through the frame driver to the sink */
-    fr.fmt = fmt; fr.depth = depth_choice ? RS_DEPTH16 : RS_DEPTH32; fr.no_cull = no_cull;
-    fr.clear_rgb = 0x99ccffu;
-    fr.one_band = bands == h;
-    if (scene_terrain(&s, &c, &fr, &terrain) != BR_OK) { fprintf(stderr, "bitrain: bad frame parameters\n"); goto done; }
-    pipe.w = w; pipe.h = h; pipe.fmt = fr.fmt; pipe.depth = fr.depth;
-    if (rs_pipe_add(&pipe, &terrain) != BR_OK) goto done;
-    memsize = rs_pipe_mem_size(&pipe, bands);
-    if (pt_open(&pool, threads) != BR_OK) { fprintf(stderr, "bitrain render: cannot start %d threads\n", threads); goto done; }
-    if (out_open(&ro, out, w, h, fmt, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
-    if (pt_run(pool, &pipe, bands, ro.raw ? sink_rgb565_band : sink_png_band,
-               ro.raw ? (void *)&ro.rgb565 : (void *)&ro.png, &total) != BR_OK) {
-        out_abort(&ro);
-        fprintf(stderr, "bitrain: %s\n", err.msg[0] ? err.msg : "render failed");
-        goto done;
+        /* one pass, the terrain, in bands through the frame driver to the sink */
+        memset(&fr, 0, sizeof fr);
+        memset(&pipe, 0, sizeof pipe);
+        fr.fmt = fmt; fr.depth = depth_choice ? RS_DEPTH16 : RS_DEPTH32; fr.no_cull = no_cull;
+        fr.clear_rgb = 0x99ccffu;
+        fr.one_band = bands == h;
+        if (scene_terrain(&s, &c, &fr, &terrain) != BR_OK) { fprintf(stderr, "bitrain: bad frame parameters\n"); goto done; }
+        pipe.w = w; pipe.h = h; pipe.fmt = fr.fmt; pipe.depth = fr.depth;
+        if (rs_pipe_add(&pipe, &terrain) != BR_OK) goto done;
+        memsize = rs_pipe_mem_size(&pipe, bands);
+        if (!pool && pt_open(&pool, threads) != BR_OK) { fprintf(stderr, "bitrain render: cannot start %d threads\n", threads); goto done; }
+        if (out_open(&ro, name, w, h, fmt, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
+        if (pt_run(pool, &pipe, bands, ro.raw ? sink_rgb565_band : sink_png_band,
+                   ro.raw ? (void *)&ro.rgb565 : (void *)&ro.png, &total) != BR_OK) {
+            out_abort(&ro);
+            fprintf(stderr, "bitrain: %s\n", err.msg[0] ? err.msg : "render failed");
+            goto done;
+        }
+        if (out_close(&ro, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
+        t2 = ms_now();
+        fprintf(ro.raw && !strcmp(out, "-") ? stderr : stdout,
+                "%s: %dx%d, %u vertices, %s, %u triangles drawn (%u clipped), load+mesh %.1f ms, "
+                "render+write %.1f ms, world unit 2^%d m, band %d rows (%zu bytes + %zu bytes vertex cache), %d threads\n",
+                name, w, h, fr.nv, full_step ? "full grid" : (mode == BT_FIDELITY ? "bitree fidelity" : "bitree view"),
+                total.tris, total.clipped, t1 - t0, t2 - t1, -s.rt.shift, bands, memsize, rs_cache_mem_size(fr.nv), threads);
     }
-    if (out_close(&ro, &err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err.msg); goto done; }
-    t2 = ms_now();
-    fprintf(ro.raw && !strcmp(out, "-") ? stderr : stdout,
-            "%s: %dx%d, %u vertices, %s, %u triangles drawn (%u clipped), load+mesh %.1f ms, "
-            "render+write %.1f ms, world unit 2^%d m, band %d rows (%zu bytes + %zu bytes vertex cache), %d threads\n",
-            out, w, h, fr.nv, full_step ? "full grid" : (mode == BT_FIDELITY ? "bitree fidelity" : "bitree view"),
-            total.tris, total.clipped, t1 - t0, t2 - t1, -s.rt.shift, bands, memsize, rs_cache_mem_size(fr.nv), threads);
     rc = 0;
 done:
     pt_close(pool);
     scene_close(&s);
+    campath_free(&cp);
     return rc;
 }
