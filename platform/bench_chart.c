@@ -31,13 +31,14 @@ static void vline(rs_band *b, int x, int y0, int y1, uint32_t rgb)
 /* Bresenham from (x0, y0) to (x1, y1), with the pixel below each one too. */
 static void line(rs_band *b, int x0, int y0, int x1, int y1, uint32_t rgb)
 {
-    int dx = abs(x1 - x0), sx = x0 < x1 ? 1 : -1, dy = -abs(y1 - y0), sy = y0 < y1 ? 1 : -1, e = dx + dy;
+    int dx = abs(x1 - x0), sx = x0 < x1 ? 1 : -1, dy = -abs(y1 - y0), sy = y0 < y1 ? 1 : -1, e = dx + dy, e2;
     for (;;) {
         font_pixel(b, x0, y0, rgb);
         font_pixel(b, x0, y0 + 1, rgb);
         if (x0 == x1 && y0 == y1) break;
-        if (2 * e >= dy) { e += dy; x0 += sx; }
-        if (2 * e <= dx) { e += dx; y0 += sy; }
+        e2 = 2 * e;
+        if (e2 >= dy) { e += dy; x0 += sx; }
+        if (e2 <= dx) { e += dx; y0 += sy; }
     }
 }
 
