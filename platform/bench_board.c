@@ -22,8 +22,9 @@
  *   valgrind --tool=callgrind --toggle-collect=bench_frame bitrain bench --scene peer ...
  *   valgrind --tool=callgrind --toggle-collect=bench_default_frame bitrain bench --scene default ...
  * (K frames each, the total Ir over K).  Peer frames: 3 untimed warm-up frames, then F
- * (default 30) of the same camera; default scene: no warm-up, F frames (default: every
- * line of the path) along the path.  --chart draws the default scene's frame times along
+ * (default 30) of the same camera; default scene: opened afresh for each row (so the
+ * selection's hysteresis starts from nothing, as in `bench --scene default`), no warm-up,
+ * F frames (default: every line of the path) along the path.  --chart draws the default scene's frame times along
  * the path (platform/bench_chart.h), --json writes the table with those frame times. */
 #include <math.h>
 #include <stdio.h>
@@ -343,11 +344,14 @@ int cmd_bench_board(int argc, char **argv)
     if (!ps || !v) { fprintf(stderr, "bitrain bench: out of memory\n"); goto done; }
     if (peer_scene_build(dem, ps) != 0) goto done;
     peer_scene_raster(ps, v, prims);
-    if (!quiet) fprintf(stderr, "bitrain bench: loading the default scene ...\n");
-    bd = bd_open(NULL, 1, &err);
-    if (!bd) { fprintf(stderr, "bitrain bench: %s\n", err.msg); goto done; }
     for (i = 0; i < nrows; i++) {
-        int bad = rows[i].view[0] == 'p' ? run_default(bd, &cp, path, &rows[i], &pg, i) : run_peer(v, prims, &rows[i], &pg, i);
+        int bad;
+        if (rows[i].view[0] == 'p') {   /* a fresh scene a row: the selection's hysteresis starts from nothing */
+            bd_close(bd);
+            bd = bd_open(NULL, 1, &err);
+            if (!bd) { fprintf(stderr, "bitrain bench: %s\n", err.msg); goto done; }
+        }
+        bad = rows[i].view[0] == 'p' ? run_default(bd, &cp, path, &rows[i], &pg, i) : run_peer(v, prims, &rows[i], &pg, i);
         if (bad) goto done;
     }
     if (!quiet && pg.tty) fprintf(stderr, "\r%70s\r", "");
