@@ -390,8 +390,7 @@ int cmd_bench_board(int argc, char **argv)
     }
     printf("%-7s %-4s %-7s %3s %6s %9s %7s %8s %8s %8s %7s %10s %9s\n", "scene", "view", "size", "thr", "frames",
            "ms/frame", "fps", "Mtri/s", "Mtri/s", "Mpix/s", "sel ms", "tris/frame", "Minstr/fr");
-    printf("%-7s %-4s %-7s %3s %6s %9s %7s %8s %8s %8s %7s %10s %9s\n", "", "", "", "", "", "(median)", "",
-           "(frame)", "(raster)", "", "", "", "");
+    printf("%-7s %-4s %-7s %3s %6s %9s %7s %8s %8s\n", "", "", "", "", "", "(median)", "", "(frame)", "(raster)");
     for (i = 0; i < nrows; i++) {
         const bb_row *w = &rows[i];
         char size[16], ir[16];
