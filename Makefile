@@ -36,7 +36,7 @@ CORE_SRC   = $(sort $(wildcard core/*.c))
 RASTER_SRC = $(sort $(wildcard raster/*.c))
 # the program's own sources (not in libbitrain.a): main, and `bitrain bench` with the
 # benchmark scene it draws (benchmarks/peer_scene.c, also linked into tests and benches)
-PROG_SRC   = platform/main.c platform/cmd_bench.c benchmarks/peer_scene.c
+PROG_SRC   = platform/main.c platform/cmd_bench.c platform/bench_board.c benchmarks/peer_scene.c
 PLAT_SRC   = $(sort $(filter-out $(PROG_SRC),$(wildcard platform/*.c)))
 LIB_SRC    = $(CORE_SRC) $(RASTER_SRC) $(PLAT_SRC)
 TEST_SRC   = $(sort $(wildcard tests/test_*.c))

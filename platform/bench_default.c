@@ -20,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "platform/bench_default.h"
 #include "platform/campath.h"
 #include "platform/opt.h"
 #include "platform/cmd.h"
@@ -29,7 +30,7 @@
 #define BD_FOV 60
 #define BD_MAX_TRI 2000000
 
-typedef struct bd_run {
+struct bd_run {
     scene s;
     int w, h, fmt, depth, bands;
     double pix_err;
@@ -39,7 +40,7 @@ typedef struct bd_run {
     rs_frame fr;
     uint64_t tris;
     double t_mid;            /* wall clock between selection and rasteriser, ms */
-} bd_run;
+};
 
 static double now_ms(void)
 {
@@ -49,7 +50,6 @@ static double now_ms(void)
 }
 
 /* Selection, strip and raster vertices (scene_frame), as the viewer's frame. */
-__attribute__((noinline)) br_status bd_select(bd_run *r, const cam *c);
 __attribute__((noinline)) br_status bd_select(bd_run *r, const cam *c)
 {
     bt_params bp;
@@ -87,6 +87,53 @@ __attribute__((noinline)) br_status bench_default_frame(bd_run *r, const cam *c)
     r->tris += r->s.mesh.ntri;
     r->t_mid = now_ms();
     return bd_raster(r);
+}
+
+/* ---------------------------------------------------------------- bench_default.h */
+
+bd_run *bd_open(const char *dem, double pix_err, br_err *err)
+{
+    scene_opts so;
+    bd_run *r = calloc(1, sizeof *r);
+    if (!dem) dem = "assets/N47E009.hgt.gz";
+    if (!r) { br_err_set(err, BR_E_NOMEM, NULL, "out of memory"); return NULL; }
+    r->fmt = RS_FMT_XRGB8888; r->depth = RS_DEPTH32; r->bands = 64; r->pix_err = pix_err;
+    memset(&so, 0, sizeof so);
+    so.quiet = 1;
+    if (scene_open(&r->s, &dem, 1, &so, err) != BR_OK) { free(r); return NULL; }
+    if (scene_tree(&r->s, err) != BR_OK || scene_reserve(&r->s, BD_MAX_TRI, err) != BR_OK) {
+        scene_close(&r->s);
+        free(r);
+        return NULL;
+    }
+    return r;
+}
+
+void bd_close(bd_run *r)
+{
+    if (!r) return;
+    scene_close(&r->s);
+    free(r);
+}
+
+void bd_default_view(const bd_run *r, double eye[3], double tgt[3])
+{
+    scene_default_view(&r->s, BD_FOV, eye, tgt);
+}
+
+br_status bd_camera(const bd_run *r, const double eye[3], const double tgt[3], int32_t w, int32_t h, cam *c)
+{
+    return scene_camera(&r->s, eye, tgt, BD_FOV, w, h, c);
+}
+
+const rs_frame *bd_frame(const bd_run *r)
+{
+    return &r->fr;
+}
+
+uint32_t bd_tris(const bd_run *r)
+{
+    return r->s.mesh.ntri;
 }
 
 static int cmp_d(const void *a, const void *b)

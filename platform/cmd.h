@@ -12,6 +12,7 @@ int cmd_mesh(int argc, char **argv);      /* bitrain mesh IN... --max-error M -o
 int cmd_render(int argc, char **argv);    /* bitrain render IN... -o out.png ... */
 int cmd_bench(int argc, char **argv);     /* bitrain bench --scene peer ... */
 int cmd_bench_default(int argc, char **argv); /* bitrain bench --scene default ... (bench_default.c) */
+int cmd_bench_board(int argc, char **argv);   /* bitrain bench [--scene all]: the board table (bench_board.c) */
 int cmd_view(int argc, char **argv);      /* bitrain view IN...: SDL2 window */
 
 #endif

@@ -87,7 +87,7 @@ int cmd_bench(int argc, char **argv)
     int size[2] = { 640, 480 }, w, h, frames = 10, warm = 3, cull = 0, fmt = RS_FMT_XRGB8888, depth_choice = 0;
     int depth, bands = 0, band_rows, scene_choice = -1, cam_choice = 0, isa_choice = 0, npos, r, i;
     const opt_spec own[] = {
-        { "--scene", OPT_CHOICE, &scene_choice, 0, 0, 0, "peer|default", "S", "the scene (peer: ../shared/bench/PEERS.md; default: `bitrain bench --scene default --help`)", NULL },
+        { "--scene", OPT_CHOICE, &scene_choice, 0, 0, 0, "peer|default|all", "S", "the scene (peer: ../shared/bench/PEERS.md; default: `bitrain bench --scene default --help`; all or none: the board table, `bitrain bench --help`)", NULL },
         { "--camera", OPT_CHOICE, &cam_choice, 0, 0, 0, "A|B|a|b", "C", "the peer camera", NULL },
         { "--size", OPT_SIZE, size, 1, RS_MAX_DIM, 0, NULL, "WxH", "frame size (default 640x480)", NULL },
         { "--frames", OPT_INT, &frames, 1, 1000000, 0, NULL, "N", "timed frames (default 10)", NULL },
@@ -114,11 +114,12 @@ int cmd_bench(int argc, char **argv)
     size_t bpp, memsize;
     void *mem;
     double *ms;
-    for (i = 0; i + 1 < argc; i++)   /* the users' scene: platform/bench_default.c */
-        if (!strcmp(argv[i], "--scene") && !strcmp(argv[i + 1], "default")) return cmd_bench_default(argc, argv);
+    for (i = 0; i < argc && strcmp(argv[i], "--scene"); i++) {}
+    if (i == argc || (i + 1 < argc && !strcmp(argv[i + 1], "all")))   /* the board table: bench_board.c */
+        return cmd_bench_board(argc, argv);
+    if (i + 1 < argc && !strcmp(argv[i + 1], "default")) return cmd_bench_default(argc, argv);   /* bench_default.c */
     r = opt_parse("bench", BENCH_SYNOPSIS, tables, argc, argv, pos, 0, &npos);
     if (r != OPT_OK) return r == OPT_HELP ? 0 : 2;
-    if (scene_choice < 0) { fprintf(stderr, "bitrain bench: which scene? --scene peer\n"); return 2; }
     camc = "ABab"[cam_choice];
     w = size[0];
     h = size[1];

@@ -194,7 +194,7 @@ static int draw_frame(view_app *a)
     a->ov.scale = a->w >= 1600 ? 2 : 1;
     a->ov.h = a->h;
     a->st.w = a->w; a->st.h = a->h;
-    view_hud_text(v, &a->st, a->hud, sizeof a->hud);
+    view_hud_frame_text(v, eye, tgt, &a->st, a->hud, sizeof a->hud);   /* the path's camera when flying one */
     a->ov.hud = v->on[VT_HUD] ? a->hud : NULL;
     a->ov.help = v->on[VT_HELP] ? view_controls_text() : NULL;
     if (run) {

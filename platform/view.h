@@ -70,6 +70,8 @@ void view_limit(view_state *v);
 /* Eye and target of the current camera, rounded as --camera prints them (so a printed
  * or recorded line reproduces the frame exactly). */
 void view_eye_target(const view_state *v, double eye[3], double tgt[3]);
+/* The camera at eye looking at tgt (yaw and pitch of the direction). */
+void view_cam_look(view_cam *c, const double eye[3], const double tgt[3]);
 /* Writes "EX,EY,EZ,TX,TY,TZ" (the --camera value) into buf. */
 void view_camera_arg(const view_state *v, char *buf, size_t n);
 void view_note(view_state *v, double seconds, const char *fmt, ...)
@@ -96,6 +98,10 @@ typedef struct view_overlay {
 br_status view_post(const void *user, rs_band *b, rs_band_stats *st);
 /* The HUD text for the state and the last frame's figures. */
 void view_hud_text(const view_state *v, const view_stats *st, char *buf, size_t n);
+/* The HUD text for the camera a frame was drawn from (eye, tgt: a --path line when
+ * flying a path, else the state's camera), the rest from the state. */
+void view_hud_frame_text(const view_state *v, const double eye[3], const double tgt[3], const view_stats *st,
+                         char *buf, size_t n);
 /* LOD colouring: the mesh's strip as a triangle list with three vertices of its own per
  * triangle, each triangle tinted by its size in the grid (its level in the bitree);
  * out and idx hold 3 * (m->ns - 2) entries.  Returns the vertices (= indices) written. */

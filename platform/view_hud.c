@@ -214,3 +214,11 @@ uint32_t view_lod_list(const bt_mesh *m, const rs_vertex *verts, rs_vertex *out,
     }
     return n;
 }
+
+void view_hud_frame_text(const view_state *v, const double eye[3], const double tgt[3], const view_stats *st,
+                         char *buf, size_t n)
+{
+    view_state hv = *v;
+    view_cam_look(&hv.cam, eye, tgt);
+    view_hud_text(&hv, st, buf, n);
+}

@@ -110,6 +110,11 @@ static void look(view_cam *c, const double eye[3], const double tgt[3])
     c->pitch = atan2(dz, sqrt(dx * dx + dy * dy));
 }
 
+void view_cam_look(view_cam *c, const double eye[3], const double tgt[3])
+{
+    look(c, eye, tgt);
+}
+
 /* The highest sample of the grid cell around (x, y): the mesh never lies above it by
  * more than its screen error, so an eye above it stays above the drawn surface.  NAN
  * outside the grid. */

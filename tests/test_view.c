@@ -272,6 +272,72 @@ static void test_view_water(void)
     CHECK(strstr(v.note, "--no-water --no-fog") != NULL);
 }
 
+/* The HUD describes the camera the frame was drawn from: a --path line's, not the
+ * state's (which stays at home while a path is flown). */
+static void test_view_hud_path_camera(void)
+{
+    scene s;
+    scene_opts o;
+    br_err err;
+    view_state v;
+    view_stats st;
+    char hud[1024];
+    const char *in[1] = { "assets/N47E009.hgt.gz" };
+    double home_e[3] = { 10000, 10000, 3000 }, home_t[3] = { 20000, 20000, 500 };
+    double e[3] = { 43210, 12345, 4321 }, t[3] = { 43210, 22345, 4321 };   /* due north, level */
+    memset(&o, 0, sizeof o);
+    memset(&v, 0, sizeof v);
+    memset(&st, 0, sizeof st);
+    o.quiet = 1;
+    CHECK_EQ(scene_open(&s, in, 1, &o, &err), BR_OK);
+    view_init(&v, &s, home_e, home_t);
+    view_hud_frame_text(&v, e, t, &st, hud, sizeof hud);
+    CHECK(strstr(hud, "x 43210  y 12345  z 4321 m") != NULL);
+    CHECK(strstr(hud, "heading 0 N  pitch 0") != NULL);
+    CHECK(v.cam.pos[0] == 10000);                     /* the state is untouched */
+    view_hud_frame_text(&v, home_e, home_t, &st, hud, sizeof hud);
+    CHECK(strstr(hud, "x 10000  y 10000  z 3000 m") != NULL);
+    scene_close(&s);
+}
+
+/* render --path: one image per camera of the path, each byte-identical to
+ * render --camera with that line. */
+static void test_render_path(void)
+{
+    char cam_file[256], pat[256], f1[256], f2[256], c1[256], c2[256];
+    static const char *const line[2] = { "-20671.4,-2752.9,59437.0,37683.4,55601.9,1651.0",
+                                         "14000,9000,2500,30000,40000,400" };
+    const char *a[] = { "render", "assets/N47E009.hgt.gz", "--size", "96x64", "--path", cam_file, "-o", pat, NULL };
+    const char *bad[] = { "render", "assets/N47E009.hgt.gz", "--path", cam_file, "-o", c1, NULL };
+    const char *b[] = { "render", "assets/N47E009.hgt.gz", "--size", "96x64", "--camera", line[0], "-o", c1, NULL };
+    const char *d[] = { "render", "assets/N47E009.hgt.gz", "--size", "96x64", "--camera", line[1], "-o", c2, NULL };
+    unsigned char *x, *y;
+    size_t nx = 0, ny = 0;
+    FILE *f;
+    snprintf(cam_file, sizeof cam_file, "%s/render_path.cam", t_outdir());
+    snprintf(pat, sizeof pat, "%s/render_path_%%03d.png", t_outdir());
+    snprintf(f1, sizeof f1, "%s/render_path_001.png", t_outdir());
+    snprintf(f2, sizeof f2, "%s/render_path_002.png", t_outdir());
+    snprintf(c1, sizeof c1, "%s/render_path_cam1.png", t_outdir());
+    snprintf(c2, sizeof c2, "%s/render_path_cam2.png", t_outdir());
+    f = fopen(cam_file, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fprintf(f, "# two cameras\n%s\n\n%s\n", line[0], line[1]);
+    fclose(f);
+    remove(f1); remove(f2);
+    CHECK_EQ(cmd_render(7, (char **)a + 1), 0);
+    CHECK_EQ(cmd_render(5, (char **)bad + 1), 2);      /* -o without a %d */
+    CHECK_EQ(cmd_render(7, (char **)b + 1), 0);
+    CHECK_EQ(cmd_render(7, (char **)d + 1), 0);
+    x = t_read_file(f1, &nx); y = t_read_file(c1, &ny);
+    CHECK(x && y && nx == ny && nx > 100 && !memcmp(x, y, nx));
+    free(x); free(y);
+    x = t_read_file(f2, &nx); y = t_read_file(c2, &ny);
+    CHECK(x && y && nx == ny && nx > 100 && !memcmp(x, y, nx));
+    free(x); free(y);
+}
+
 static void test_run_headless(void)
 {
     unsetenv("DISPLAY");
@@ -292,6 +358,8 @@ int main(void)
     T_RUN(test_view_controls);
     T_RUN(test_view_limits);
     T_RUN(test_view_water);
+    T_RUN(test_view_hud_path_camera);
+    T_RUN(test_render_path);
     T_RUN(test_run_headless);
     return t_finish();
 }
