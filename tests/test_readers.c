@@ -131,6 +131,7 @@ static void render_default(const char *path, uint32_t *tris, long *ground)
     cam c;
     bt_params p;
     rs_frame fr;
+    rs_band_stats st;
     rs_prim prim;
     double eye[3], tgt[3];
     uint32_t *px = NULL;
@@ -144,6 +145,7 @@ static void render_default(const char *path, uint32_t *tris, long *ground)
     scene_default_view(&s, 60, eye, tgt);
     memset(&p, 0, sizeof p);
     memset(&fr, 0, sizeof fr);
+    memset(&st, 0, sizeof st);
     p.pixel_err_q8 = 256;
     if (scene_camera(&s, eye, tgt, 60, 160, 120, &c) == BR_OK && scene_tree(&s, &e) == BR_OK &&
         scene_reserve(&s, 200000, &e) == BR_OK) {
@@ -153,8 +155,8 @@ static void render_default(const char *path, uint32_t *tris, long *ground)
         px = malloc((size_t)160 * 120 * 4);
         mem = malloc(rs_band_mem_size(160, 120, fr.fmt, fr.depth));
         if (px && mem && scene_frame(&s, &c, &p, &fr, &prim) == BR_OK &&
-            rs_render_band(&fr, 0, 120, px, 160 * 4, mem) == BR_OK) {
-            *tris = fr.stat_tris;
+            rs_draw_band(&fr, 0, 120, px, 160 * 4, mem, &st) == BR_OK) {
+            *tris = st.tris;
             for (i = 0; i < 160 * 120; i++) *ground += (px[i] & 0xffffffu) != 0x99ccffu;
         }
     }
