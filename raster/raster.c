@@ -62,7 +62,7 @@ size_t rs_band_mem_size(int32_t w, int32_t rows, int32_t fmt, int32_t depth)
  * is one instruction and a 64 x 64 one three (armhf peer scene A 640x480: -3.9 %);
  * int64 on 64-bit ones, where gcc's x86-64 code was 0.36 M instructions longer with the
  * narrow types.  The same products either way. */
-#if RS_REG64
+#if RSI_REG64
 typedef int64_t dz_t;
 #else
 typedef int32_t dz_t;
@@ -70,7 +70,7 @@ typedef int32_t dz_t;
 #define DZ_MUL(DZ, W) ((int64_t)(DZ) * (dz_t)(W))
 /* and the colour weight w >> 3 (<= 2^13) times a packed colour difference: a 64 x 32-bit
  * multiply on 32-bit targets (two instructions instead of three) */
-#if RS_REG64
+#if RSI_REG64
 #define CW_MUL(DC, W) ((DC) * (uint64_t)((W) >> 3))
 #else
 #define CW_MUL(DC, W) ((DC) * (uint32_t)((W) >> 3))
@@ -79,7 +79,7 @@ typedef int32_t dz_t;
 /* The 16-bit lane of P at bit SH (0, 16, 32 or 48: a lane found by ctz64 of a top-bit
  * mask, minus 15): on 32-bit targets from the word that holds it, without a 64-bit
  * shift by a variable amount (several instructions there). */
-#if RS_REG64
+#if RSI_REG64
 #define LANE16(P, SH) ((uint16_t)((P) >> (SH)))
 #else
 #define LANE16(P, SH) ((uint16_t)(((SH) & 32 ? (uint32_t)((P) >> 32) : (uint32_t)(P)) >> ((SH) & 16)))
@@ -88,7 +88,7 @@ typedef int32_t dz_t;
 /* Index of the lowest set bit of m (m != 0). */
 static uint32_t ctz64(uint64_t m)
 {
-#if defined(__GNUC__) && RS_REG64
+#if defined(__GNUC__) && RSI_REG64
     return (uint32_t)__builtin_ctzll(m);
 #elif defined(__GNUC__)
     /* 32-bit targets: two 32-bit counts (inline on ARM: rbit + clz) rather than
@@ -257,7 +257,7 @@ static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf)
 {
     const rs_frame *f = bd->f;
     const cam_vp *vp = &f->vp;
-    int64_t f8 = f_q8(vp), g8 = (int64_t)RS_GUARD_PX << 8;
+    int64_t f8 = rsi_f_q8(vp), g8 = (int64_t)RS_GUARD_PX << 8;
     clipv buf[2][RS_CLIP_MAX];
     int32_t n = 3, p, i, k, cur = 0;
     uint32_t idx[3];
@@ -265,7 +265,7 @@ static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf)
     idx[0] = ia; idx[1] = ib; idx[2] = ic;
     for (i = 0; i < 3; i++) {
         uint32_t rgb = f->v[idx[i]].rgb;
-        to_camera(vp, f->v[idx[i]].p, buf[0][i].c);
+        rsi_to_camera(vp, f->v[idx[i]].p, buf[0][i].c);
         for (k = 0; k < 3; k++) buf[0][i].col[k] = (int32_t)((rgb >> (16 - 8 * k)) & 255);
         buf[0][i].uv[0] = f->v[idx[i]].uv[0];
         buf[0][i].uv[1] = f->v[idx[i]].uv[1];
@@ -295,9 +295,9 @@ static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf)
     bd->clipped++;
     for (i = 0; i < n; i++) {
         const clipv *v = &buf[cur][i];
-        project(vp, f8, v->c, f->w, f->h, &sv[i]);
+        rsi_project(vp, f8, v->c, f->w, f->h, &sv[i]);
         sv[i].c = ((uint32_t)v->col[0] << 16) | ((uint32_t)v->col[1] << 8) | (uint32_t)v->col[2];
-        sv[i].cp = rs_pack_rgb(sv[i].c);
+        sv[i].cp = rsi_pack_rgb(sv[i].c);
         sv[i].u = v->uv[0]; sv[i].v = v->uv[1];
     }
     for (i = 1; i + 1 < n; i++) tri_raster(bd, &sv[0], &sv[i], &sv[i + 1], vf);

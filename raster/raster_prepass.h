@@ -3,7 +3,7 @@
  * vector lanes, which raster_tmpl.h's strip loop (pp_steps) then shades.  Part of
  * raster.c: included by it once, when RS_PREPASS (targets with GCC's vectors, see the
  * comment above RS_PREPASS there), before the template; it uses raster.c's macros
- * (RS_SHUFFLE, PP_SCHED, RS_VBYTES, TINY_W, TINY_H, SUB, HALF, REJECT, SLOW) and band.
+ * (RS_SHUFFLE, PP_SCHED, RS_VBYTES, TINY_W, TINY_H, RSI_SUB, RSI_HALF, REJECT, SLOW) and band.
  * raster.c's only. */
 #ifndef BR_RASTER_PREPASS_H
 #define BR_RASTER_PREPASS_H
@@ -18,7 +18,7 @@ enum { PK_NONE = 0, PK_QUAD, PK_WIDE, PK_SLOW };
 #define PP_STEPS (RS_CHUNK / 2)
 #define PP_IN (PP_STEPS + 16)   /* vertex slots 0 .. n rounded up to PP_L (n <= PP_STEPS steps); a multiple of 16 */
 #define PP_OFF 32768            /* coordinates are taken as x - PP_OFF: [-32760, 32760] on screen */
-#define PP_ROFF (PP_OFF >> SUB) /* the same in rows and columns */
+#define PP_ROFF (PP_OFF >> RSI_SUB) /* the same in rows and columns */
 /* PP_L steps per group: 8 in 128-bit vectors; 16 in the 256-bit ones of x86-64-v3
  * (AVX2; raster/isa.c's second copy), where one group's instructions serve twice the
  * steps: peer scene 640x480 in that copy, A 21.91 -> 19.86 M, B 19.58 -> 18.21 M
@@ -145,7 +145,7 @@ typedef char pp_v16c __attribute__((vector_size(16)));
  * slots past n repeat slot n (their lanes are ignored); eight slots at a time, their
  * pointers kept for the strip loop and their first 16 bytes transposed (PP_T8); slots
  * 0 .. nv - 1 (nv: n rounded up to PP_L). */
-RS_INLINE static void pp_gather(pp_soa *q, const rs_cvert *cache, const uint32_t *ip, int32_t n, int32_t nv)
+RSI_INLINE static void pp_gather(pp_soa *q, const rs_cvert *cache, const uint32_t *ip, int32_t n, int32_t nv)
 {
     /* x - PP_OFF modulo 2^16 is the low 16 bits with the top one flipped */
     const pp_h8 fl = { -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF };
@@ -222,8 +222,8 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
         const pp_v8 rej = ((c12 & c0) != 0) & ((c12 & c3) != 0);
         const pp_v8 ymin = PP_MIN(PP_MIN(y0, y1), PP_MIN(y2, y3)), ymax = PP_MAX(PP_MAX(y0, y1), PP_MAX(y2, y3));
         const pp_v8 xmin = PP_MIN(PP_MIN(x0, x1), PP_MIN(x2, x3)), xmax = PP_MAX(PP_MAX(x0, x1), PP_MAX(x2, x3));
-        const pp_v8 lo = VADD(ymin, zero + (HALF - 1)) >> SUB, hi = VSUB(ymax, zero + HALF) >> SUB;
-        const pp_v8 xl = VADD(xmin, zero + (HALF - 1)) >> SUB, xh = VSUB(xmax, zero + HALF) >> SUB;
+        const pp_v8 lo = VADD(ymin, zero + (RSI_HALF - 1)) >> RSI_SUB, hi = VSUB(ymax, zero + RSI_HALF) >> RSI_SUB;
+        const pp_v8 xl = VADD(xmin, zero + (RSI_HALF - 1)) >> RSI_SUB, xh = VSUB(xmax, zero + RSI_HALF) >> RSI_SUB;
         /* boxes of more than TINY_W x TINY_H centres: pair_wide */
         const pp_v8 empty = hi < lo, wide = ((hi - lo) > (TINY_H - 1)) | ((xh - xl) > (TINY_W - 1));
         const pp_v8 py0 = PP_MAX(lo, by0), py1 = PP_MIN(hi, by1);
@@ -243,7 +243,7 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
                 continue;
             }
         }
-        const pp_v8 ox = VI((VU(xl) << SUB) + HALF), oy = VI((VU(py0) << SUB) + HALF);
+        const pp_v8 ox = VI((VU(xl) << RSI_SUB) + RSI_HALF), oy = VI((VU(py0) << RSI_SUB) + RSI_HALF);
         const pp_v8 X0 = VSUB(x0, ox), X1 = VSUB(x1, ox), X2 = VSUB(x2, ox), X3 = VSUB(x3, ox);
         const pp_v8 Y0 = VSUB(y0, oy), Y1 = VSUB(y1, oy), Y2 = VSUB(y2, oy), Y3 = VSUB(y3, oy);
         /* modulo 2^16; exact for the pairs that use them (tiny boxes: |e| < 2^15) */
@@ -308,10 +308,10 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
                 /* S1, S2: the areas less the biases; the edges' steps per pixel across
                  * (16 A) and down (16 B) */
                 const pp_v8 S1 = VADD(VADD(VADD(SG1(ar1), b01), b12), b20), S2 = VADD(VADD(VADD(SG2(ar2), b13), bT), b32);
-                const pp_v8 c01 = VI(VU(SG1(VSUB(y0, y1))) << SUB), c20 = VI(VU(SG1(VSUB(y2, y0))) << SUB);
-                const pp_v8 c13 = VI(VU(SG2(VSUB(y1, y3))) << SUB);
-                const pp_v8 r01s = VI(VU(SG1(VSUB(x1, x0))) << SUB), r20s = VI(VU(SG1(VSUB(x0, x2))) << SUB);
-                const pp_v8 r13s = VI(VU(SG2(VSUB(x3, x1))) << SUB);
+                const pp_v8 c01 = VI(VU(SG1(VSUB(y0, y1))) << RSI_SUB), c20 = VI(VU(SG1(VSUB(y2, y0))) << RSI_SUB);
+                const pp_v8 c13 = VI(VU(SG2(VSUB(y1, y3))) << RSI_SUB);
+                const pp_v8 r01s = VI(VU(SG1(VSUB(x1, x0))) << RSI_SUB), r20s = VI(VU(SG1(VSUB(x0, x2))) << RSI_SUB);
+                const pp_v8 r13s = VI(VU(SG2(VSUB(x3, x1))) << RSI_SUB);
                 pp_v8 r01 = f01, r20 = f20, r13 = f13;
                 /* row J's bits (1 << i, then masked to the lane's box) into ML / MM at bit SH */
 #define PP_ROW(J, ML, MM, SH) do {                                                     \
