@@ -43,7 +43,7 @@ typedef struct band {
     void *depth;
     int32_t cull;
     uint32_t tris, clipped, pixels;
-    /* lane constants of the tiny path's coverage mask (raster_tmpl.h): 1, and 0, 1, 2, 3
+    /* lane constants of the tiny path's coverage mask (raster_tiny.h): 1, and 0, 1, 2, 3
      * in 16-bit lanes, and both times 16 (one pixel in sub-pixels); read from here so that
      * the compiler emits one multiply per broadcast instead of a shift-and-add chain */
     uint64_t ones, ones16, steps16;

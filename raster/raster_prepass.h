@@ -1,8 +1,8 @@
 /* raster/raster_prepass.h — the strip pre-pass of the per-triangle code (pp_prepass and
  * what it fills, pp_soa): the set-up and coverage of a chunk's strip pairs in 16-bit
- * vector lanes, which raster_tmpl.h's strip loop (pp_steps) then shades.  Part of
+ * vector lanes, which raster_draw.h's strip loop (pp_steps) then shades.  Part of
  * raster.c: included by it once, when RS_PREPASS (targets with GCC's vectors, see the
- * comment above RS_PREPASS there), before the template; it uses raster.c's macros
+ * comment above RS_PREPASS there), before the triangle code; it uses raster.c's macros
  * (RS_SHUFFLE, PP_SCHED, RS_VBYTES, TINY_W, TINY_H, RSI_SUB, RSI_HALF, REJECT, SLOW) and band.
  * raster.c's only. */
 #ifndef BR_RASTER_PREPASS_H
@@ -52,7 +52,7 @@ typedef struct pp_soa {
     int16_t e[TINY_W * TINY_H][4][PP_STEPS];
     uint32_t work;      /* the strip loop's work list (the end of pp_prepass) */
 } pp_soa;
-/* The strip loop reads a step's fields (raster_tmpl.h's pp_steps) as q.F[st] where one
+/* The strip loop reads a step's fields (raster_draw.h's pp_steps) as q.F[st] where one
  * operand adds a base, a scaled index and a displacement (x86); elsewhere (ARM: an
  * index register or an offset, not both) from a base per field size, st added once. */
 #if defined(__x86_64__) || defined(__i386__)
@@ -174,7 +174,7 @@ RSI_INLINE static void pp_gather(pp_soa *q, const rs_cvert *cache, const uint32_
 
 /* The set-up of strip steps 0 .. n-1 of a chunk, PP_L at a time in 16-bit lanes (see
  * pp_soa above; strip indices ip[0 .. 2 n + 1], gathered first): for each step what
- * tri_pair, pair_tiny and tri_quad (raster_tmpl.h) compute before the coverage masks,
+ * tri_pair, pair_tiny and tri_quad (raster_draw.h) compute before the coverage masks,
  * with the same values, so the pixels are theirs:
  * - kind: PK_SLOW (an outcode bit, and not both triangles rejected by the outcodes: the
  *   main pass does what the plain loop does), PK_NONE (no row of centres, an empty box in
