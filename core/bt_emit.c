@@ -133,14 +133,12 @@ void btw_flush(bti_extract *e)
  *     vertex of t with the fewest unwritten neighbours (a short bridge), else
  *     start anew at the leaf with the fewest unwritten neighbours among the
  *     next RO_WINDOW unwritten ones in walk order (first with <= 1).
- * It trades fan turns for bridges: fuji.png (unpadded) 21,275 swaps and 510
- * bridges (1,020 line triangles) in walk order, 12,362 swaps and 1,435 bridges
- * (5,186) in this order: 65,710 -> 60,967 references.  The result is kept only
- * if shorter than the walk's strip (else the walk's order is written again).
- * Cost: linear (3 neighbours per leaf), 3.5x the extraction's instructions
- * where it runs (fuji.png: 23.9 M -> 83.7 M, a third of it the bridges'
- * searches); it does not run on meshes without breaks (fuji 513 padded) nor in
- * view and budget modes (per-frame speed).
+ * It trades fan turns for bridges (figures: docs/perf-history.md, "Leaf
+ * reorder").  The result is kept only if shorter than the walk's strip (else the
+ * walk's order is written again).  Cost: linear (3 neighbours per leaf), a few
+ * times the extraction's own work where it runs, much of it the bridges'
+ * searches; so it does not run on meshes without breaks nor in view and budget
+ * modes (per-frame speed).
  * Scratch: the budget heap's area of the mesh (bt_mesh_mem_size: 64 bytes per
  * triangle of capacity), as 36 bytes per triangle (vertices, neighbours,
  * half-edge lists, then the written flags) + 4 per vertex. */

@@ -59,9 +59,8 @@ size_t rs_band_mem_size(int32_t w, int32_t rows, int32_t fmt, int32_t depth)
 
 /* The tiny paths' depth products dz * w (|dz| < 2^30: depths are below 2^30; weights
  * 0 <= w <= 2^16): int32 factors on 32-bit targets, where a 32 x 32 -> 64-bit multiply
- * is one instruction and a 64 x 64 one three (armhf peer scene A 640x480: -3.9 %);
- * int64 on 64-bit ones, where gcc's x86-64 code was 0.36 M instructions longer with the
- * narrow types.  The same products either way. */
+ * is one instruction and a 64 x 64 one three; int64 on 64-bit ones, where gcc's x86-64
+ * code is longer with the narrow types.  The same products either way. */
 #if RSI_REG64
 typedef int64_t dz_t;
 #else
@@ -169,10 +168,9 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 
 /* GCC on x86-64 does not schedule before register allocation at -O2; the pre-pass's many
  * live vectors spill less when it does, with the register pressure in mind (what GCC does
- * by default on ARM): x86-64 640x480 A -0.28 M, B -0.18 M.  (Scheduling without the
- * pressure model spills more: B +0.22 M.)  The strip loop (raster_tmpl.h's draw) too:
- * A -0.03 M, B -0.01 M.  Everywhere (-fschedule-insns -fsched-pressure): the general
- * path +0.07 M on B. */
+ * by default on ARM), and so does the strip loop (raster_draw.h's draw_strips).
+ * Scheduling without the pressure model spills more, and the general path is better
+ * without either, so only these functions ask for it. */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 #define PP_SCHED __attribute__((optimize("schedule-insns", "sched-pressure")))
 #else
@@ -329,13 +327,11 @@ int rs_variant_built(int32_t fmt, int32_t depth, int textured)
 /* n bytes at p (n a multiple of the pattern's period, 2 or 4 bytes) set to the 32-bit
  * pattern v (a 16-bit value repeated, or one 32-bit value): 32 bytes a store where GCC's
  * vectors exist (RS_PREPASS: one AVX store in the x86-64-v3 copy, two SSE2 or NEON ones),
- * 8 elsewhere (as vectors, GCC's lowering took armhf 640x480 0.88 M a frame, now 0.85 M),
+ * 8 elsewhere (plain 64-bit stores: GCC's lowering of vectors there is longer),
  * the last store overlapping the one before it (its offset n - 32 or n - 8 is a multiple
  * of the period, so it writes the same bytes there); shorter rows a word at a time.
- * The frame's clear: 640x480 XRGB8888 + 32-bit depth took 0.26 M instructions a frame
- * as a filled row copied with memcpy (a load and a store per 32 bytes); with eight
- * stores a pass it takes 0.18 M in the baseline copy (16-byte stores) and 0.11 M in the
- * v3 copy (32-byte ones). */
+ * Stores only, eight a pass: a filled row copied with memcpy costs a load and a store
+ * per 32 bytes. */
 #if RS_PREPASS
 typedef uint32_t fill_v8 __attribute__((vector_size(32), aligned(1)));
 #endif

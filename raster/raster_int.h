@@ -2,9 +2,9 @@
  * per-frame vertex transform, rs_frame_prepare) share.  Internal: not part of the
  * contract (that is raster.h), not installed, included by these two files only.
  *
- * The helpers are static inline rather than rs_-prefixed external functions: each file
- * keeps its own inlined copy, as when both halves were one file (the clipper's
- * rsi_project/rsi_to_camera calls stay direct, same instructions), and test_raster_variants.c,
+ * The helpers are static inline rather than external functions: each file
+ * keeps its own inlined copy (the clipper's rsi_project/rsi_to_camera calls stay
+ * direct), and test_raster_variants.c,
  * which compiles both files into its own translation unit beside the full library,
  * needs no extra renames to avoid duplicate symbols.
  *
@@ -90,11 +90,10 @@ static inline void rsi_project(const cam_vp *vp, int64_t f8, const int64_t c[3],
 }
 
 /* Camera space of world point p: the Q30 view matrix and translation, floored to
- * world units.  Only xform_slow and the clipper call it, once each; kept a call as it
- * was when both were in raster.c (inlined, peer camera B 640x480 draws with 4.7 k
- * fewer instructions per frame on x86-64: a change of its own, left for later).
- * Not inline (gcc warns on inline + noinline): both files use it, so no unused
- * warning. */
+ * world units: c = (R p + t) >> 30, each product below 2^60 (|R| <= 2^30 in Q30,
+ * |p| < 2^30 by the world convention).  Only xform_slow and the clipper
+ * call it, once each (off the fast paths), so it stays one out-of-line copy.  Not inline
+ * (gcc warns on inline + noinline): both files use it, so no unused warning. */
 static RSI_NOINLINE void rsi_to_camera(const cam_vp *vp, const int32_t p[3], int64_t c[3])
 {
     int i;

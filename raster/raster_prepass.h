@@ -21,13 +21,11 @@ enum { PK_NONE = 0, PK_QUAD, PK_WIDE, PK_SLOW };
 #define PP_ROFF (PP_OFF >> RSI_SUB) /* the same in rows and columns */
 /* PP_L steps per group: 8 in 128-bit vectors; 16 in the 256-bit ones of x86-64-v3
  * (AVX2; raster/isa.c's second copy), where one group's instructions serve twice the
- * steps: peer scene 640x480 in that copy, A 21.91 -> 19.86 M, B 19.58 -> 18.21 M
- * instructions per frame (the candidate loop runs over the largest quad box among
- * sixteen lanes instead of eight, which costs far less than the halved set-up saves).
- * Not at SSE2 or NEON: GCC splits 256-bit generic vectors into pairs of 128-bit ones
- * and runs out of registers (before the gather moved here: baseline x86-64 A 24.64 ->
- * 47.7 M, B 22.57 -> 40.5 M; AArch64 A 20.66 -> 46.4 M, B 19.11 -> 39.1 M).  The
- * gather's transposition stays in 128-bit vectors (pp_h8), eight slots at a time. */
+ * steps (the candidate loop runs over the largest quad box among sixteen lanes instead
+ * of eight, which costs far less than the halved set-up saves).  Not at SSE2 or NEON:
+ * GCC splits 256-bit generic vectors into pairs of 128-bit ones and runs out of
+ * registers, which about doubles the pre-pass's cost.  The gather's transposition
+ * stays in 128-bit vectors (pp_h8), eight slots at a time. */
 #define PP_L (RS_VBYTES / 2)
 typedef int16_t pp_v8 __attribute__((vector_size(2 * PP_L)));
 typedef uint16_t pp_v8u __attribute__((vector_size(2 * PP_L)));
@@ -96,7 +94,7 @@ typedef struct pp_soa {
 /* The strip loop's work list from the kinds (the end of pp_prepass).  Eight lanes:
  * PP_BITS2(M, V, W), bit i of M for each lane i of V, bit 8 + i for W (vectors of all-ones
  * or zero lanes; packsswb and pmovmskb, elsewhere lane i's bit, the lanes folded with or;
- * two groups per call: one per call cost A 640x480 +0.17 M).  Sixteen (AVX2): PP_BITS(M,
+ * two groups per call, which is cheaper than one).  Sixteen (AVX2): PP_BITS(M,
  * V), bit i for lane i, from the bytes' top bits (vpmovmskb), every other one (pext). */
 #if PP_L == 16
 typedef char pp_v32c __attribute__((vector_size(32)));
@@ -181,9 +179,8 @@ RSI_INLINE static void pp_gather(pp_soa *q, const rs_cvert *cache, const uint32_
  *   the band, neither triangle drawn (culled or of zero area), both rejected by the
  *   outcodes), PK_WIDE (more than TINY_H rows or TINY_W columns: pair_wide with lo, hi,
  *   xl, xh in py0, ny, px0, nx), PK_QUAD (any other box of up to TINY_W x TINY_H centres,
- *   either orientation for each triangle).  One-candidate boxes are quads too (kinds of
- *   their own, shaded by tiny_pixel, took B 640x480 0.53 M to classify, for 1.2 k
- *   steps per frame);
+ *   either orientation for each triangle).  One-candidate boxes are quads too (they
+ *   are rare, and kinds of their own would cost more to classify than they save);
  * - for the quads the box, the areas, the number of triangles drawn (nt) and the coverage
  *   and edge values of each candidate (see the candidate loop below).
  * Every value is computed modulo 2^16.  For the pairs that use them it is exact: all four

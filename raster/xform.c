@@ -164,10 +164,9 @@ static RSI_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cv
  *   (or borrows from) y's half and key = ek exactly when x = previous x + dx and y =
  *   previous y.  (A false match needs |previous x| > 2^30, and the vertex matched is
  *   then beyond it too.)  Any dx keeps the sums exact (s is r[i][0] times the same dx;
- *   the step is only a prediction), so a larger one is replaced by 0.  Peer scene: 258
- *   of 66,049 vertices per frame compute the sums (row starts and the first step),
- *   69 -> 59 instructions per vertex on x86-64; s lives in xform_k for the memory
- *   operands (gcc 12 spills a local copy and reloads it into a register);
+ *   the step is only a prediction), so a larger one is replaced by 0.  On a grid mesh
+ *   only the row starts and the first step compute the sums; s lives in xform_k for
+ *   the memory operands (gcc 12 spills a local copy and reloads it into a register);
  * - near and far in one unsigned compare: tzn = t2 - znear 2^30 makes the shifted sum
  *   zc - znear exactly (a multiple of 2^30 passes through the floor shift); the sum
  *   still fits int64, as |r p| < 3 2^60, |t2| < 3 2^60 and znear 2^30 < 2^61.  A
@@ -257,14 +256,14 @@ static RSI_INLINE int xform_div(const fx_divisor *dz, uint32_t f8, int64_t c, ui
 /* The stepping along rows (see above) on 64-bit targets only: on 32-bit ones the two
  * products and the add are multiply-accumulates, the 64-bit key compare and steps
  * cost more than they save, and three 64-bit sums held across the divides take six
- * registers (armhf peer scene A 640x480: xform_plain 17.33 M without, 17.80 M with). */
+ * registers. */
 #define XFORM_STEP RSI_REG64
 /* xform_k's fields in registers: a local copy of *k in xform_loop, whose address never
  * leaves it, so gcc keeps its fields in registers (k itself may alias the cache
  * entries' 64-bit cp stores, so every field was reloaded per vertex).  For 64-bit
  * targets without memory operands (AArch64: 31 registers hold the loop's state and
- * most of the constants; three go to the stack): peer scene A / B 640x480 AArch64
- * 20.66 / 19.11 -> 20.08 / 18.55 M.  x86-64 keeps the memory operands (see xform_k). */
+ * most of the constants; three go to the stack).  x86-64 keeps the memory operands
+ * (see xform_k). */
 #if RSI_REG64 && !defined(__x86_64__)
 #define XFORM_KREG 1
 #else
@@ -417,12 +416,9 @@ slow:
 
 /* The loop: on 64-bit targets unrolled by 4 after the nv mod 4 first vertices, so the
  * two pointer increments, the compare and the branch serve four vertices (the copies
- * address v + i, o + i with displacements): peer scene x86-64 60.1 -> 57.3
- * instructions per vertex, camera A 640x480 24.89 -> 24.71 M per frame, AArch64 21.12
- * -> 20.95 M (unrolled by 2: 58.1 on x86-64; by 8, about 0.25 fewer than by 4 for
- * twice the code).  32-bit targets keep one vertex per iteration: there
- * the unrolled loop spills (armhf A 640x480: 76.54 -> 77.62 M, armhf-a7 45.85 ->
- * 47.22 M). */
+ * address v + i, o + i with displacements; by 2 saves less, by 8 little more for twice
+ * the code).  32-bit targets keep one vertex per iteration: there the unrolled loop
+ * spills. */
 static RSI_INLINE void xform_loop(const rs_frame *f, xform_k *k, int tex)
 {
     const rs_vertex *v = f->v, *const end = f->v + f->nv, *const head = XFORM_STEP ? f->v + (f->nv & 3u) : end;
@@ -431,7 +427,7 @@ static RSI_INLINE void xform_loop(const rs_frame *f, xform_k *k, int tex)
 #if XFORM_KREG
     /* see XFORM_KREG; the multiplier and (when the byte order is known here) the key's
      * bias as constants, so neither takes a register: the multiply becomes a shifted
-     * add (AArch64 peer A / B 640x480 20.02 / 18.49 -> 19.95 / 18.43 M) */
+     * add */
     xform_k kl = *k;
     k = &kl;
     kl.pmul = 0x4000001u;
