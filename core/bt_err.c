@@ -1,6 +1,7 @@
 /* core/bt_err.c — the bitree's error hierarchy (see core/bitree.h).
  *
- * Geometry of the implicit tree (002 2.1, "4-8" layout).  For a sample (x, y)
+ * Geometry of the implicit tree (002 2.1, "4-8" layout; the RTIN of Evans,
+ * Franklin & Kirkpatrick 2001, ROAM's diamonds, Duchaineau et al. 1997).  For a sample (x, y)
  * of the padded n x n grid (n = 2^k + 1, not a corner) let h = 2^j with
  * j = min(ctz(x), ctz(y)).  Then (x, y) is the centre of exactly one diamond:
  *   type D (x/h and y/h odd): the square [x-h, x+h] x [y-h, y+h] cut along a

@@ -3,7 +3,8 @@
  *
  * Selection.  A diamond (sample) is SPLIT when its value exceeds the threshold:
  *   fidelity  err code > largest code whose value <= max_err (exact compare);
- *   view      rho > tau, rho = projected error (000): object error E (world
+ *   view      rho > tau, rho = projected error (000; Lindstrom et al. 1996's
+ *             screen-space error): object error E (world
  *             units) * f / d, d = a lower bound of the distance from the eye to
  *             the diamond's nested bounding volume (box of half-side 3h / 2h
  *             around the centre x quantised height range), so rho is an upper
@@ -11,9 +12,11 @@
  *             outside a frustum plane are culled: neither split nor emitted.
  *             Hysteresis (003): a diamond split in the previous frame stays
  *             split while rho > tau * (1 - hyst).
- *   budget    (003) diamonds are split in decreasing rho order (a heap; ties
+ *   budget    (003; ROAM's split queue, Duchaineau et al. 1997) diamonds are
+ *             split in decreasing rho order (a heap; ties
  *             coarser first) while the nominal triangle count stays <= budget.
- * E and the volume are monotone up the tree, so every rule splits a set closed
+ * E and the volume are monotone up the tree (saturated as in Pajarola 1998),
+ * so every rule splits a set closed
  * under "parent of": the mesh is conforming (002 2.2, no T-junctions).
  *
  * Geomorph (002 3.3): a split vertex's height moves from the fictitious height
