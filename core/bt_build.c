@@ -42,7 +42,8 @@ size_t bt_scratch_size(int32_t w, int32_t h)
 
 static int32_t kappa_at(const int32_t *z, int32_t w, int32_t h, int32_t x, int32_t y)
 {
-    /* doubled second differences over two steps (001, "Técnicas de simplificación de modelos topográficos", section 2.2, eq. 2-3 with dx = 1):
+    /* doubled second differences over two steps (001, "Técnicas de
+     * simplificación de modelos topográficos", section 2.2, eq. 2-3, dx = 1):
      * kxx = G_x(x+1) - G_x(x-1) with 2 G_x(x) = z(x+1) - z(x-1), etc. */
     int64_t kxx, kyy, kxy, kyx, s;
 #define Z(X, Y) ((int64_t)z[(size_t)(Y) * w + (X)])
