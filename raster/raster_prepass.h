@@ -116,58 +116,80 @@ typedef char pp_v16c __attribute__((vector_size(16)));
 /* Eight cache entries' first 16 bytes (P[0 .. 7]; x, y, d, c: as 16-bit words x, x >> 16,
  * y, y >> 16, d, d >> 16, c, c >> 16 on these little-endian targets) transposed into slots
  * K .. K + 7 of X, Y, C: the low words of x and y less PP_OFF (modulo 2^16: the top bit
- * flipped) and c >> 16 (the outcode byte above the colour's red), by interleaving words,
- * pairs of words and halves (17 shuffles; fl: PP_OFF's flip in every lane). */
+ * flipped, fl holds PP_OFF's flip in every lane) and c >> 16 (the outcode byte above the
+ * colour's red), by interleaving words, pairs of words and halves (17 shuffles). */
 #define PP_ZIP(A, B, I0, I1, I2, I3, I4, I5, I6, I7) RS_SHUFFLE((A), (B), pp_h8, I0, I1, I2, I3, I4, I5, I6, I7)
-#define PPS8(A, K, V) (*(pp_h8un *)(void *)&(A)[K] = (V))
-#define PP_T8(P, X, Y, C, K) do {                                                      \
-        pp_h8 w0, w1, w2, w3, w4, w5, w6, w7;                                          \
-        memcpy(&w0, (P)[0], 16); memcpy(&w1, (P)[1], 16); memcpy(&w2, (P)[2], 16);    \
-        memcpy(&w3, (P)[3], 16); memcpy(&w4, (P)[4], 16); memcpy(&w5, (P)[5], 16);    \
-        memcpy(&w6, (P)[6], 16); memcpy(&w7, (P)[7], 16);                              \
-        /* l01: x0 x1 x0' x1' y0 y1 y0' y1' (' the high words), h01: d0 d1 d0' d1' c0 c1 c0' c1' */ \
-        const pp_h8 l01 = PP_ZIP(w0, w1, 0, 8, 1, 9, 2, 10, 3, 11), h01 = PP_ZIP(w0, w1, 4, 12, 5, 13, 6, 14, 7, 15); \
-        const pp_h8 l23 = PP_ZIP(w2, w3, 0, 8, 1, 9, 2, 10, 3, 11), h23 = PP_ZIP(w2, w3, 4, 12, 5, 13, 6, 14, 7, 15); \
-        const pp_h8 l45 = PP_ZIP(w4, w5, 0, 8, 1, 9, 2, 10, 3, 11), h45 = PP_ZIP(w4, w5, 4, 12, 5, 13, 6, 14, 7, 15); \
-        const pp_h8 l67 = PP_ZIP(w6, w7, 0, 8, 1, 9, 2, 10, 3, 11), h67 = PP_ZIP(w6, w7, 4, 12, 5, 13, 6, 14, 7, 15); \
-        /* x03: x0 x1 x2 x3 x0' x1' x2' x3', y03 the same of y, c03 of c */          \
-        const pp_h8 x03 = PP_ZIP(l01, l23, 0, 1, 8, 9, 2, 3, 10, 11), x47 = PP_ZIP(l45, l67, 0, 1, 8, 9, 2, 3, 10, 11); \
-        const pp_h8 y03 = PP_ZIP(l01, l23, 4, 5, 12, 13, 6, 7, 14, 15), y47 = PP_ZIP(l45, l67, 4, 5, 12, 13, 6, 7, 14, 15); \
-        const pp_h8 c03 = PP_ZIP(h01, h23, 4, 5, 12, 13, 6, 7, 14, 15), c47 = PP_ZIP(h45, h67, 4, 5, 12, 13, 6, 7, 14, 15); \
-        PPS8(X, K, PP_ZIP(x03, x47, 0, 1, 2, 3, 8, 9, 10, 11) ^ fl);                  \
-        PPS8(Y, K, PP_ZIP(y03, y47, 0, 1, 2, 3, 8, 9, 10, 11) ^ fl);                  \
-        PPS8(C, K, PP_ZIP(c03, c47, 4, 5, 6, 7, 12, 13, 14, 15));                     \
-    } while (0)
+RSI_INLINE static void pp_store8(int16_t *a, int32_t k, pp_h8 v) { *(pp_h8un *)(void *)&a[k] = v; }
+RSI_INLINE static void pp_t8(const rs_cvert *const p[8], int16_t *x, int16_t *y, int16_t *c, int32_t k, pp_h8 fl)
+{
+    pp_h8 w0, w1, w2, w3, w4, w5, w6, w7;
+    memcpy(&w0, p[0], 16); memcpy(&w1, p[1], 16); memcpy(&w2, p[2], 16);
+    memcpy(&w3, p[3], 16); memcpy(&w4, p[4], 16); memcpy(&w5, p[5], 16);
+    memcpy(&w6, p[6], 16); memcpy(&w7, p[7], 16);
+    {
+        /* l01: x0 x1 x0' x1' y0 y1 y0' y1' (' the high words), h01: d0 d1 d0' d1' c0 c1 c0' c1' */
+        const pp_h8 l01 = PP_ZIP(w0, w1, 0, 8, 1, 9, 2, 10, 3, 11), h01 = PP_ZIP(w0, w1, 4, 12, 5, 13, 6, 14, 7, 15);
+        const pp_h8 l23 = PP_ZIP(w2, w3, 0, 8, 1, 9, 2, 10, 3, 11), h23 = PP_ZIP(w2, w3, 4, 12, 5, 13, 6, 14, 7, 15);
+        const pp_h8 l45 = PP_ZIP(w4, w5, 0, 8, 1, 9, 2, 10, 3, 11), h45 = PP_ZIP(w4, w5, 4, 12, 5, 13, 6, 14, 7, 15);
+        const pp_h8 l67 = PP_ZIP(w6, w7, 0, 8, 1, 9, 2, 10, 3, 11), h67 = PP_ZIP(w6, w7, 4, 12, 5, 13, 6, 14, 7, 15);
+        /* x03: x0 x1 x2 x3 x0' x1' x2' x3', y03 the same of y, c03 of c */
+        const pp_h8 x03 = PP_ZIP(l01, l23, 0, 1, 8, 9, 2, 3, 10, 11), x47 = PP_ZIP(l45, l67, 0, 1, 8, 9, 2, 3, 10, 11);
+        const pp_h8 y03 = PP_ZIP(l01, l23, 4, 5, 12, 13, 6, 7, 14, 15), y47 = PP_ZIP(l45, l67, 4, 5, 12, 13, 6, 7, 14, 15);
+        const pp_h8 c03 = PP_ZIP(h01, h23, 4, 5, 12, 13, 6, 7, 14, 15), c47 = PP_ZIP(h45, h67, 4, 5, 12, 13, 6, 7, 14, 15);
+        pp_store8(x, k, PP_ZIP(x03, x47, 0, 1, 2, 3, 8, 9, 10, 11) ^ fl);
+        pp_store8(y, k, PP_ZIP(y03, y47, 0, 1, 2, 3, 8, 9, 10, 11) ^ fl);
+        pp_store8(c, k, PP_ZIP(c03, c47, 4, 5, 6, 7, 12, 13, 14, 15));
+    }
+}
+
+/* Vertex slot k + j of one parity (odd: 0 even, 1 odd) of the gather below: the cache
+ * entry of strip index 2 s + odd, s = k + j, or n for slots past n when clamp; kept in
+ * *slot for the strip loop and returned for the transposition. */
+RSI_INLINE static const rs_cvert *pp_g1(const rs_cvert **slot, const rs_cvert *cache, const uint32_t *ip,
+                                        int32_t k, int32_t j, int32_t n, int clamp, int odd)
+{
+    const int32_t s = clamp && k + j > n ? n : k + j;
+    return *slot = &cache[ip[2 * s + odd]];
+}
+
+/* Slots k .. k + 7 of both parities: their pointers, then their first 16 bytes
+ * transposed (pp_t8).  clamp: some of the slots are past n. */
+RSI_INLINE static void pp_g8(pp_soa *q, const rs_cvert *cache, const uint32_t *ip, int32_t k, int32_t n,
+                             int clamp, pp_h8 fl)
+{
+    const rs_cvert *pe[8], *po[8];
+    pe[0] = pp_g1(&q->ve[k + 0], cache, ip, k, 0, n, clamp, 0);
+    pe[1] = pp_g1(&q->ve[k + 1], cache, ip, k, 1, n, clamp, 0);
+    pe[2] = pp_g1(&q->ve[k + 2], cache, ip, k, 2, n, clamp, 0);
+    pe[3] = pp_g1(&q->ve[k + 3], cache, ip, k, 3, n, clamp, 0);
+    pe[4] = pp_g1(&q->ve[k + 4], cache, ip, k, 4, n, clamp, 0);
+    pe[5] = pp_g1(&q->ve[k + 5], cache, ip, k, 5, n, clamp, 0);
+    pe[6] = pp_g1(&q->ve[k + 6], cache, ip, k, 6, n, clamp, 0);
+    pe[7] = pp_g1(&q->ve[k + 7], cache, ip, k, 7, n, clamp, 0);
+    pp_t8(pe, q->xe, q->ye, q->ce, k, fl);
+    po[0] = pp_g1(&q->vo[k + 0], cache, ip, k, 0, n, clamp, 1);
+    po[1] = pp_g1(&q->vo[k + 1], cache, ip, k, 1, n, clamp, 1);
+    po[2] = pp_g1(&q->vo[k + 2], cache, ip, k, 2, n, clamp, 1);
+    po[3] = pp_g1(&q->vo[k + 3], cache, ip, k, 3, n, clamp, 1);
+    po[4] = pp_g1(&q->vo[k + 4], cache, ip, k, 4, n, clamp, 1);
+    po[5] = pp_g1(&q->vo[k + 5], cache, ip, k, 5, n, clamp, 1);
+    po[6] = pp_g1(&q->vo[k + 6], cache, ip, k, 6, n, clamp, 1);
+    po[7] = pp_g1(&q->vo[k + 7], cache, ip, k, 7, n, clamp, 1);
+    pp_t8(po, q->xo, q->yo, q->co, k, fl);
+}
 
 /* The gather: vertex slot k holds ip[2 k] (even) and ip[2 k + 1] (odd) for k <= n, the
- * slots past n repeat slot n (their lanes are ignored); eight slots at a time, their
- * pointers kept for the strip loop and their first 16 bytes transposed (PP_T8); slots
- * 0 .. nv - 1 (nv: n rounded up to PP_L). */
+ * slots past n repeat slot n (their lanes are ignored); eight slots at a time (pp_g8);
+ * slots 0 .. nv - 1 (nv: n rounded up to PP_L). */
 RSI_INLINE static void pp_gather(pp_soa *q, const rs_cvert *cache, const uint32_t *ip, int32_t n, int32_t nv)
 {
     /* x - PP_OFF modulo 2^16 is the low 16 bits with the top one flipped */
     const pp_h8 fl = { -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF };
     int32_t k;
-#define PP_SLOT(J) (k + (J))
-#define PP_SLOTC(J) (k + (J) <= n ? k + (J) : n)
-#define PP_G(P, V, O, J, S) P[J] = q->V[k + (J)] = &cache[ip[2 * S(J) + (O)]];
-#define PP_G8(S) do {                                                                  \
-            const rs_cvert *pe[8], *po[8];                                             \
-            PP_G(pe, ve, 0, 0, S) PP_G(pe, ve, 0, 1, S) PP_G(pe, ve, 0, 2, S) PP_G(pe, ve, 0, 3, S) \
-            PP_G(pe, ve, 0, 4, S) PP_G(pe, ve, 0, 5, S) PP_G(pe, ve, 0, 6, S) PP_G(pe, ve, 0, 7, S) \
-            PP_T8(pe, q->xe, q->ye, q->ce, k);                                         \
-            PP_G(po, vo, 1, 0, S) PP_G(po, vo, 1, 1, S) PP_G(po, vo, 1, 2, S) PP_G(po, vo, 1, 3, S) \
-            PP_G(po, vo, 1, 4, S) PP_G(po, vo, 1, 5, S) PP_G(po, vo, 1, 6, S) PP_G(po, vo, 1, 7, S) \
-            PP_T8(po, q->xo, q->yo, q->co, k);                                         \
-        } while (0)
     for (k = 0; k < nv; k += 8) {
-        if (k + 7 <= n) PP_G8(PP_SLOT);
-        else PP_G8(PP_SLOTC);
+        if (k + 7 <= n) pp_g8(q, cache, ip, k, n, 0, fl);
+        else pp_g8(q, cache, ip, k, n, 1, fl);
     }
-#undef PP_SLOT
-#undef PP_SLOTC
-#undef PP_G
-#undef PP_G8
 }
 
 /* The set-up of strip steps 0 .. n-1 of a chunk, PP_L at a time in 16-bit lanes (see
