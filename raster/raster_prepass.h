@@ -192,6 +192,40 @@ RSI_INLINE static void pp_gather(pp_soa *q, const rs_cvert *cache, const uint32_
     }
 }
 
+/* The candidate loop's edge values for one step's pair, row by row: S1, S2 (the areas less
+ * the biases), same (all ones in the lanes whose two triangles' areas have the same sign),
+ * the steps per pixel across (c01, c20, c13) and down (r01s, r20s, r13s), and the values
+ * at the current row's first centre (r01, r20, r13), which pp_row advances. */
+typedef struct pp_row_edges {
+    pp_v8 S1, S2, same, c01, c20, c13, r01s, r20s, r13s;
+    pp_v8 r01, r20, r13;
+} pp_row_edges;
+
+/* Row j (0 .. 3) of the quads' candidates: the edge values of its nxm columns into
+ * q->e[8 j + i] (lanes k ..), and the covered centres' bits (1 << i, masked to the lanes
+ * whose box has row j: j < qny) into *ml / *mm at bit sh; then g's row values step down. */
+RSI_INLINE static void pp_row(pp_soa *q, int32_t k, pp_row_edges *g, int32_t j, int32_t nxm, pp_v8 qny,
+                              pp_v8 *ml, pp_v8 *mm, int sh)
+{
+    const pp_v8 zero = { 0 }, one = zero + 1, rm = qny > (int16_t)j;
+    pp_v8 g01 = g->r01, g20 = g->r20, g13 = g->r13, b1 = zero, b2 = zero, cb = one;
+    int32_t i;
+    for (i = 0; i < nxm; i++) {
+        const pp_v8 eD = VSUB(VSUB(g->S1, g01), g20), eT = eD ^ g->same;
+        const pp_v8 g32 = VSUB(VSUB(g->S2, eT), g13);
+        b1 |= cb & ~((g01 | g20 | eD) >> 15);
+        b2 |= cb & ~((g13 | g32 | eT) >> 15);
+        PPS(q->e[8 * j + i][0], k, g20);
+        PPS(q->e[8 * j + i][1], k, g01);
+        PPS(q->e[8 * j + i][2], k, g32);
+        PPS(q->e[8 * j + i][3], k, eT);
+        g01 = VADD(g01, g->c01); g20 = VADD(g20, g->c20); g13 = VADD(g13, g->c13);
+        cb = VADD(cb, cb);
+    }
+    *ml |= VI(VU(b1 & rm) << sh); *mm |= VI(VU(b2 & rm) << sh);
+    g->r01 = VADD(g->r01, g->r01s); g->r20 = VADD(g->r20, g->r20s); g->r13 = VADD(g->r13, g->r13s);
+}
+
 /* The set-up of strip steps 0 .. n-1 of a chunk, PP_L at a time in 16-bit lanes (see
  * pp_soa above; strip indices ip[0 .. 2 n + 1], gathered first): for each step what
  * tri_pair, pair_tiny and tri_quad (raster_draw.h) compute before the coverage masks,
@@ -321,7 +355,6 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
             const pp_v8 qnx = VSEL(isq, xh - xl + 1, zero), qny = VSEL(isq, py1 - py0 + 1, zero);
             pp_v8 bx = PP_HMAX(qnx), by = PP_HMAX(qny);
             const int32_t nxm = bx[0], nym = by[0];
-            int32_t i;
             pp_v8 m1l = zero, m2l = zero, m1h = zero, m2h = zero;
             if (nxm) {
                 /* S1, S2: the areas less the biases; the edges' steps per pixel across
@@ -331,35 +364,17 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
                 const pp_v8 c13 = VI(VU(SG2(VSUB(y1, y3))) << RSI_SUB);
                 const pp_v8 r01s = VI(VU(SG1(VSUB(x1, x0))) << RSI_SUB), r20s = VI(VU(SG1(VSUB(x0, x2))) << RSI_SUB);
                 const pp_v8 r13s = VI(VU(SG2(VSUB(x3, x1))) << RSI_SUB);
-                pp_v8 r01 = f01, r20 = f20, r13 = f13;
-                /* row J's bits (1 << i, then masked to the lane's box) into ML / MM at bit SH */
-#define PP_ROW(J, ML, MM, SH) do {                                                     \
-                    const pp_v8 rm = qny > (J);                                        \
-                    pp_v8 g01 = r01, g20 = r20, g13 = r13, b1 = zero, b2 = zero, cb = one; \
-                    for (i = 0; i < nxm; i++) {                                        \
-                        const pp_v8 eD = VSUB(VSUB(S1, g01), g20), eT = eD ^ same;     \
-                        const pp_v8 g32 = VSUB(VSUB(S2, eT), g13);                     \
-                        b1 |= cb & ~((g01 | g20 | eD) >> 15);                          \
-                        b2 |= cb & ~((g13 | g32 | eT) >> 15);                          \
-                        PPS(q->e[8 * (J) + i][0], k, g20);                             \
-                        PPS(q->e[8 * (J) + i][1], k, g01);                             \
-                        PPS(q->e[8 * (J) + i][2], k, g32);                             \
-                        PPS(q->e[8 * (J) + i][3], k, eT);                              \
-                        g01 = VADD(g01, c01); g20 = VADD(g20, c20); g13 = VADD(g13, c13); \
-                        cb = VADD(cb, cb);                                             \
-                    }                                                                  \
-                    ML |= VI(VU(b1 & rm) << (SH)); MM |= VI(VU(b2 & rm) << (SH));      \
-                    r01 = VADD(r01, r01s); r20 = VADD(r20, r20s); r13 = VADD(r13, r13s); \
-                } while (0)
-                PP_ROW(0, m1l, m2l, 0);
+                pp_row_edges g;
+                g.S1 = S1; g.S2 = S2; g.same = same; g.c01 = c01; g.c20 = c20; g.c13 = c13;
+                g.r01s = r01s; g.r20s = r20s; g.r13s = r13s; g.r01 = f01; g.r20 = f20; g.r13 = f13;
+                pp_row(q, k, &g, 0, nxm, qny, &m1l, &m2l, 0);
                 if (nym > 1) {
-                    PP_ROW(1, m1l, m2l, 8);
+                    pp_row(q, k, &g, 1, nxm, qny, &m1l, &m2l, 8);
                     if (nym > 2) {
-                        PP_ROW(2, m1h, m2h, 0);
-                        if (nym > 3) PP_ROW(3, m1h, m2h, 8);
+                        pp_row(q, k, &g, 2, nxm, qny, &m1h, &m2h, 0);
+                        if (nym > 3) pp_row(q, k, &g, 3, nxm, qny, &m1h, &m2h, 8);
                     }
                 }
-#undef PP_ROW
             }
             /* as 32-bit masks: the halves interleaved */
             m1l &= ok1; m1h &= ok1; m2l &= ok2; m2h &= ok2;
