@@ -1,9 +1,28 @@
 /* core/bitree.h — the fixed-point bitree (right-triangle binary tree, RTIN)
  * triangulator: heightfield in, crack-free adaptive mesh + one generalised
- * triangle strip out.  Papers (../shared/papers, Spanish): 002 (bitree,
- * fictitious points, strips), 004 (S/F vertex states, line triangles),
- * 001 (curvature indicator), 000 (screen-space error, nodata), 003 (budget,
- * hysteresis).  Integer only; all memory is the caller's.
+ * triangle strip out.  Integer only; all memory is the caller's.
+ *
+ * Sources.  The hierarchy is the right-triangulated irregular network (RTIN) of
+ * Evans, Franklin & Kirkpatrick, "Right-triangulated irregular networks",
+ * Algorithmica 30 (2001), the same right-triangle bintree as Lindstrom et al.,
+ * "Real-time, continuous level of detail rendering of height fields", SIGGRAPH
+ * 1996 (vertex dependencies, screen-space error), and ROAM (Duchaineau et al.,
+ * "ROAMing terrain: real-time optimally adapting meshes", IEEE Visualization
+ * 1997: diamonds, nested bounding volumes, a priority queue of splits);
+ * errors are saturated up the tree (monotone) as in Pajarola, "Large scale
+ * terrain visualization using the restricted quadtree triangulation", IEEE
+ * Visualization 1998.  Papers in ../shared/papers (Spanish), cited by number:
+ * 002 the bitree paper (section 2 "Triangulación jerárquica sin restricciones":
+ * hierarchy, 2.2 crack prevention; 3.3 "Actualización del modelo": geomorph;
+ * 4 "Implementación: estructura triangle strip": strips, figures 10-12);
+ * 004 "Remallado de terrenos multirresolución" (section 2: S/F vertex states,
+ * line triangles, merged tiles); 001 "Técnicas de simplificación de modelos
+ * topográficos" (2.2: the curvature indicator); 000 "Visualización en tres
+ * dimensiones de capas de información geográfica a partir de modelos digitales
+ * de elevación" (screen-space error, nodata, reflections of water layers);
+ * 003 "Arquitectura de software para control de nivel de detalle aplicado a
+ * superficies basadas en mallas de polígonos" (1.5 LOD, budget, hysteresis;
+ * 3.1.4 "Métrica").
  *
  * ===========================================================================
  * OUTPUT MESH CONTRACT (what the rasteriser and the exporters consume)

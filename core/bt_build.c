@@ -35,14 +35,15 @@ size_t bt_scratch_size(int32_t w, int32_t h)
      * curvature (int32 per sample), whichever is used, the empty-half bits (a byte
      * per padded sample), plus the row spans */
     size_t n = (size_t)(((int32_t)1 << padded_k(w, h)) + 1);
-    return (size_t)w * (size_t)h * 4 + n * n * 9 + (size_t)(w + 1) * (size_t)h * 2 + 64 + 16 * TAB_MAX * 12
+    return (size_t)w * (size_t)h * 4 + n * n * 9 + (size_t)(w + 1) * (size_t)h * 2 + 64 + 16 * BTI_TAB_MAX * 12
          + (size_t)(w / 16 + 1) * (size_t)(h / 16 + 1)
          + (size_t)(((int32_t)1 << padded_k(w, h)) + 1) * 12;
 }
 
 static int32_t kappa_at(const int32_t *z, int32_t w, int32_t h, int32_t x, int32_t y)
 {
-    /* doubled second differences over two steps (001 eq. 2-3 with dx = 1):
+    /* doubled second differences over two steps (001, "Técnicas de
+     * simplificación de modelos topográficos", section 2.2, eq. 2-3, dx = 1):
      * kxx = G_x(x+1) - G_x(x-1) with 2 G_x(x) = z(x+1) - z(x-1), etc. */
     int64_t kxx, kyy, kxy, kyx, s;
 #define Z(X, Y) ((int64_t)z[(size_t)(Y) * w + (X)])
@@ -65,7 +66,7 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
                    void *mem, size_t mem_bytes, void *scratch, size_t scratch_bytes)
 {
     bt_tree nt;
-    ctx c;
+    bti_build_ctx c;
     int32_t *zs;
     uint16_t *vp;
     int32_t x, y, j, w, h, S, n;
@@ -144,7 +145,7 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
         c.rx1 = c.rx0 + n;
         c.tab = c.rx1 + n;
         for (j = 0; j < 16; j++) c.tabn[j] = -1;
-        q = (uint8_t *)(c.tab + 16 * TAB_MAX * 3);
+        q = (uint8_t *)(c.tab + 16 * BTI_TAB_MAX * 3);
         c.ub = metric == BT_METRIC_EXACT ? (int32_t *)(void *)q : NULL;
         c.vblk = NULL;
         c.bw = w / 16 + 1;

@@ -7,9 +7,9 @@
 #include "core/bitree.h"
 #include "core/bt_int.h"
 
-typedef struct heap_ent { int64_t key; uint32_t id; uint32_t pad_; } heap_ent;
+typedef struct bti_heap_ent { int64_t key; uint32_t id; uint32_t pad_; } bti_heap_ent;
 
-typedef struct em {
+typedef struct bti_extract {
     bt_tree *t;
     const bt_params *p;
     bt_mesh *m;
@@ -28,7 +28,7 @@ typedef struct em {
     int lost;               /* the split list overflowed */
     int nonvoid;            /* the padded grid has no void sample: skip the checks */
     int64_t wz_lo[256], wz_hi[256]; /* world z of the quantised height codes (floor, ceil) */
-    struct pend_s { uint32_t ia, ic, ib, o0, o1, other; } pend; /* see pend */
+    struct bti_leaf { uint32_t ia, ic, ib, o0, o1, other; } pend; /* see bti_leaf */
     int has_pend;
     uint32_t plan[BTS_PLAN]; int nplan; /* a bridge's way on to the next leaf */
     uint32_t lim_nv, lim_ns;  /* room for two more leaves: vertices, strip indices */
@@ -37,24 +37,24 @@ typedef struct em {
     uint32_t hbase;         /* vertex hash generation (see reset_mesh) */
     uint32_t nbreak;        /* breaks of the walk bridged (the reorder pass runs if > 0) */
     int reorder;            /* p->strip_order asks for the reorder pass in this mode */
-} em;
+} bti_extract;
 
 /* A leaf waiting to be written: its vertex indices, exit edge {o0, o1} and the
  * third vertex */
-typedef struct pend_s pend;
+typedef struct bti_leaf bti_leaf;
 
 /* The mesh's tail area: the budget heap, then the split id list (bt_mesh_init);
  * the reorder pass borrows the heap's part as scratch. */
-static inline heap_ent *heap_of(const bt_mesh *m) { return (heap_ent *)(void *)m->splits; }
-static inline uint32_t heap_cap(const bt_mesh *m) { return 4 * m->max_tri + 8; }
-static inline uint32_t *ids_of(const bt_mesh *m) { return (uint32_t *)(void *)(heap_of(m) + heap_cap(m)); }
+static inline bti_heap_ent *bti_heap_of(const bt_mesh *m) { return (bti_heap_ent *)(void *)m->splits; }
+static inline uint32_t bti_heap_cap(const bt_mesh *m) { return 4 * m->max_tri + 8; }
+static inline uint32_t *bti_ids_of(const bt_mesh *m) { return (uint32_t *)(void *)(bti_heap_of(m) + bti_heap_cap(m)); }
 
 /* core/bt_emit.c: writes leaf L (N: the next leaf, or NULL), 1 when N was
  * written too; writes the pending leaf; after a complete extraction whose walk
  * broke, rewrites the strip in a greedy leaf order when the mode asks for it
  * (e->reorder) and that is shorter. */
-int btw_write_leaf(em *e, const pend *L, const pend *N);
-void btw_flush(em *e);
-void btw_reorder(em *e);
+int btw_write_leaf(bti_extract *e, const bti_leaf *L, const bti_leaf *N);
+void btw_flush(bti_extract *e);
+void btw_reorder(bti_extract *e);
 
 #endif

@@ -12,25 +12,25 @@ static void push(bt_mesh *m, uint32_t i) { m->strip[m->ns++] = i; }
 
 static int collinear(const bt_mesh *m, uint32_t a, uint32_t b, uint32_t c)
 {
-    return bt_cross(&m->v[a], &m->v[b], &m->v[c]) == 0;
+    return bti_cross(&m->v[a], &m->v[b], &m->v[c]) == 0;
 }
 
 /* The straight rim q-z-r2 of two leaves around one pivot (z between q and r2, both
  * leaves' edges on it) may serve as a line triangle when it draws nothing visible:
- * collinear in (x, y, z) too (bt_flat), or with z above the chord q-r2 where
+ * collinear in (x, y, z) too (bti_flat), or with z above the chord q-r2 where
  * the mesh covers both sides of the rim (no void in the grid, the rim not on its
  * edge).  Then the sliver (q, z, r2) lies in the vertical plane of the rim, below
  * the polyline q-z-r2 that is the surface there, so any ray from above the surface
  * to a point of it crosses the surface first: the depth test hides it.  Any other
  * grid-collinear triple is a vertical sliver standing out of the surface (or
  * hanging off an edge), drawn by the rasteriser. */
-static int rim_line(const em *e, uint32_t q, uint32_t z, uint32_t r2)
+static int rim_line(const bti_extract *e, uint32_t q, uint32_t z, uint32_t r2)
 {
     const bt_mesh *m = e->m;
     const bt_vert *a = &m->v[q], *c = &m->v[z], *b = &m->v[r2];
     int32_t w = e->t->f->w, h = e->t->f->h, tb, tc;
     if (!collinear(m, q, z, r2)) return 0;
-    if (bt_flat(a, c, b)) return 1;
+    if (bti_flat(a, c, b)) return 1;
     if (e->t->nvalid != (int64_t)w * h) return 0;
     if ((a->x == 0 && b->x == 0) || (a->x == w - 1 && b->x == w - 1) ||
         (a->y == 0 && b->y == 0) || (a->y == h - 1 && b->y == h - 1)) return 0;
@@ -48,7 +48,7 @@ static int rim_line(const em *e, uint32_t q, uint32_t z, uint32_t r2)
  * the fan that draws nothing visible: rim_line), the rim itself makes the line triangle (002 figure 10, 004's
  * collinearity): "z r2 P" writes both leaves with one line triangle instead of
  * two swaps, and leaves the pivot newest for N's successor. */
-int btw_write_leaf(em *e, const pend *L, const pend *N)
+int btw_write_leaf(bti_extract *e, const bti_leaf *L, const bti_leaf *N)
 {
     bt_mesh *m = e->m;
     uint32_t n3[3];
@@ -93,7 +93,7 @@ int btw_write_leaf(em *e, const pend *L, const pend *N)
         /* (re)start: (other, v2, v3) drawn at index i counter-clockwise from +z, i.e.
          * grid cross < 0 for even i, > 0 for odd i (odd triangles are swapped) */
         uint32_t i0, v2 = L->o0, v3 = L->o1;
-        const int ccw_first = bt_cross(&m->v[L->other], &m->v[L->o0], &m->v[L->o1]) < 0;
+        const int ccw_first = bti_cross(&m->v[L->other], &m->v[L->o0], &m->v[L->o1]) < 0;
         if (m->ns > 0) {    /* only if no bridge fits (bt_strip.c): 4 line triangles */
             push(m, m->strip[m->ns - 1]);
             push(m, L->other);
@@ -106,7 +106,7 @@ int btw_write_leaf(em *e, const pend *L, const pend *N)
     return 0;
 }
 
-void btw_flush(em *e)
+void btw_flush(bti_extract *e)
 {
     if (e->has_pend && !e->count_only && !e->full) btw_write_leaf(e, &e->pend, NULL);
     e->has_pend = 0;
@@ -133,14 +133,12 @@ void btw_flush(em *e)
  *     vertex of t with the fewest unwritten neighbours (a short bridge), else
  *     start anew at the leaf with the fewest unwritten neighbours among the
  *     next RO_WINDOW unwritten ones in walk order (first with <= 1).
- * It trades fan turns for bridges: fuji.png (unpadded) 21,275 swaps and 510
- * bridges (1,020 line triangles) in walk order, 12,362 swaps and 1,435 bridges
- * (5,186) in this order: 65,710 -> 60,967 references.  The result is kept only
- * if shorter than the walk's strip (else the walk's order is written again).
- * Cost: linear (3 neighbours per leaf), 3.5x the extraction's instructions
- * where it runs (fuji.png: 23.9 M -> 83.7 M, a third of it the bridges'
- * searches); it does not run on meshes without breaks (fuji 513 padded) nor in
- * view and budget modes (per-frame speed).
+ * It trades fan turns for bridges (figures: docs/perf-history.md, "Leaf
+ * reorder").  The result is kept only if shorter than the walk's strip (else the
+ * walk's order is written again).  Cost: linear (3 neighbours per leaf), a few
+ * times the extraction's own work where it runs, much of it the bridges'
+ * searches; so it does not run on meshes without breaks nor in view and budget
+ * modes (per-frame speed).
  * Scratch: the budget heap's area of the mesh (bt_mesh_mem_size: 64 bytes per
  * triangle of capacity), as 36 bytes per triangle (vertices, neighbours,
  * half-edge lists, then the written flags) + 4 per vertex. */
@@ -216,9 +214,9 @@ static void exit_edge(const ro *r, uint32_t t, uint32_t u, uint32_t i0, uint32_t
 }
 
 /* Appends leaf t with exit edge {o0, o1} through the regular writer. */
-static void re_emit(em *e, const ro *r, uint32_t t, uint32_t o0, uint32_t o1)
+static void re_emit(bti_extract *e, const ro *r, uint32_t t, uint32_t o0, uint32_t o1)
 {
-    pend L;
+    bti_leaf L;
     const uint32_t *v = r->tv + 3 * (size_t)t;
     L.ia = v[0]; L.ic = v[1]; L.ib = v[2];
     L.o0 = o0; L.o1 = o1;
@@ -230,7 +228,7 @@ static void re_emit(em *e, const ro *r, uint32_t t, uint32_t o0, uint32_t o1)
 
 /* Writes the strip in the greedy order (walk = 0) or the walk's (walk = 1).
  * Returns 0, or -1 if the strip would not fit (m->strip is then unusable). */
-static int ro_write(em *e, const ro *r, int walk)
+static int ro_write(bti_extract *e, const ro *r, int walk)
 {
     bt_mesh *m = e->m;
     uint32_t cur = 0, nextw = 1, i0 = RNONE, i1 = RNONE, ppiv = RNONE;
@@ -285,15 +283,15 @@ static int ro_write(em *e, const ro *r, int walk)
     return 0;
 }
 
-void btw_reorder(em *e)
+void btw_reorder(bti_extract *e)
 {
     bt_mesh *m = e->m;
     uint32_t nt = 0, k, *tv, *nb, *nx, *head, walk_ns = m->ns;
     ro r;
     /* only where the walk broke, the mode asks for it and the mesh is complete */
     if (e->nbreak == 0 || !e->reorder || e->full || m->ns < 3 || m->ntri < 2) return;
-    if ((size_t)m->ntri * 36 + (size_t)m->nv * 4 > (size_t)heap_cap(m) * sizeof(heap_ent)) return;
-    tv = (uint32_t *)(void *)heap_of(m);
+    if ((size_t)m->ntri * 36 + (size_t)m->nv * 4 > (size_t)bti_heap_cap(m) * sizeof(bti_heap_ent)) return;
+    tv = (uint32_t *)(void *)bti_heap_of(m);
     nb = tv + 3 * (size_t)m->ntri;
     nx = nb + 3 * (size_t)m->ntri;
     head = nx + 3 * (size_t)m->ntri;

@@ -1,6 +1,7 @@
 /* core/bt_err.c — the bitree's error hierarchy (see core/bitree.h).
  *
- * Geometry of the implicit tree (002 2.1, "4-8" layout).  For a sample (x, y)
+ * Geometry of the implicit tree (002 2.1, "4-8" layout; the RTIN of Evans,
+ * Franklin & Kirkpatrick 2001, ROAM's diamonds, Duchaineau et al. 1997).  For a sample (x, y)
  * of the padded n x n grid (n = 2^k + 1, not a corner) let h = 2^j with
  * j = min(ctz(x), ctz(y)).  Then (x, y) is the centre of exactly one diamond:
  *   type D (x/h and y/h odd): the square [x-h, x+h] x [y-h, y+h] cut along a
@@ -69,7 +70,7 @@ static int64_t min64(int64_t a, int64_t b) { return a < b ? a : b; }
 
 /* Row spans of the triangle (a, c, b), apex c, into c->ry/rx0/rx1 (no division:
  * the legs are axis-parallel (type D) or diagonal (type A)).  Returns the row count. */
-static int32_t spans(const ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2])
+static int32_t spans(const bti_build_ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2])
 {
     int32_t *ry = c->ry, *r0 = c->rx0, *r1 = c->rx1, nr = 0, t;
     if (a[0] != cc[0] && a[1] != cc[1]) {
@@ -126,7 +127,7 @@ static void row32(const int32_t *zr, int32_t n, int32_t p, int32_t A8, const int
 }
 
 /* height of sample (x, y) (biased) into *z; 0 if it is a void or outside w x h */
-static int samp(const ctx *c, int32_t x, int32_t y, int32_t *z)
+static int samp(const bti_build_ctx *c, int32_t x, int32_t y, int32_t *z)
 {
     if (x >= c->w || y >= c->h) return 0;
     if (c->vp) {
@@ -143,13 +144,13 @@ static int32_t sgn32(int32_t v) { return (v > 0) - (v < 0); }
 /* The two finest diamond levels in closed form (they are 3/4 of all triangles):
  * hypotenuse 2 on an axis (samples a, b, c and the midpoint m: only m is off
  * the plane) or on a diagonal (also the two leg midpoints). */
-static int tri_small(const ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2],
+static int tri_small(const bti_build_ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2],
                      tri_res *r)
 {
     int32_t dx = b[0] - a[0], dy = b[1] - a[1];
     int32_t px[6], py[6], z[6], np, i, nv = 0, e2;
-    if (!((iabs32(dx) == 2 && dy == 0) || (dx == 0 && iabs32(dy) == 2) ||
-          (iabs32(dx) == 2 && iabs32(dy) == 2))) return 0;
+    if (!((bti_iabs32(dx) == 2 && dy == 0) || (dx == 0 && bti_iabs32(dy) == 2) ||
+          (bti_iabs32(dx) == 2 && bti_iabs32(dy) == 2))) return 0;
     px[0] = a[0]; py[0] = a[1]; px[1] = b[0]; py[1] = b[1]; px[2] = cc[0]; py[2] = cc[1];
     px[3] = (a[0] + b[0]) >> 1; py[3] = (a[1] + b[1]) >> 1;
     np = 4;
@@ -162,9 +163,9 @@ static int tri_small(const ctx *c, const int32_t a[2], const int32_t cc[2], cons
     r->err = 0; r->zlo = 0; r->zhi = 0;
     if (nv != np) { r->cls = nv > 0 ? 1 : 2; return 1; }
     r->cls = 0;
-    e2 = iabs32(z[0] + z[1] - 2 * z[3]);
+    e2 = bti_iabs32(z[0] + z[1] - 2 * z[3]);
     if (np == 6) {
-        int32_t e4 = iabs32(z[2] + z[0] - 2 * z[4]), e5 = iabs32(z[2] + z[1] - 2 * z[5]);
+        int32_t e4 = bti_iabs32(z[2] + z[0] - 2 * z[4]), e5 = bti_iabs32(z[2] + z[1] - 2 * z[5]);
         if (e4 > e2) e2 = e4;
         if (e5 > e2) e2 = e5;
     }
@@ -184,7 +185,7 @@ static int tri_small(const ctx *c, const int32_t a[2], const int32_t cc[2], cons
 static int tab_index(const int32_t a[2], const int32_t cc[2], const int32_t b[2])
 {
     int32_t mx2 = a[0] + b[0] - 2 * cc[0], my2 = a[1] + b[1] - 2 * cc[1]; /* 2 (mid - apex) */
-    int32_t len = iabs32(a[0] - b[0]) + iabs32(a[1] - b[1]);           /* 2h*2 (D) or 2h (A) */
+    int32_t len = bti_iabs32(a[0] - b[0]) + bti_iabs32(a[1] - b[1]);           /* 2h*2 (D) or 2h (A) */
     int dir, lv;
     if (a[0] != cc[0] && a[1] != cc[1]) {            /* type A: diagonal legs, hyp 2h */
         if (len == 4) lv = 0; else if (len == 8) lv = 1; else return -1;
@@ -196,18 +197,18 @@ static int tab_index(const int32_t a[2], const int32_t cc[2], const int32_t b[2]
     return lv * 8 + dir;
 }
 
-static void tab_build(ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2])
+static void tab_build(bti_build_ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2])
 {
     int ti = tab_index(a, cc, b), nr, i, n = 0;
     int32_t x, *e;
     if (ti < 0 || c->tabn[ti] >= 0) return;
-    e = c->tab + (size_t)ti * TAB_MAX * 3;
+    e = c->tab + (size_t)ti * BTI_TAB_MAX * 3;
     nr = spans(c, a, cc, b);
     for (i = 0; i < nr; i++)
         for (x = c->rx0[i]; x <= c->rx1[i]; x++) {
             int32_t y = c->ry[i];
             if ((x == a[0] && y == a[1]) || (x == b[0] && y == b[1]) || (x == cc[0] && y == cc[1])) continue;
-            if (n >= TAB_MAX) return;
+            if (n >= BTI_TAB_MAX) return;
             e[3 * n] = (y - cc[1]) * c->w + (x - cc[0]);
             e[3 * n + 1] = x - cc[0];
             e[3 * n + 2] = y - cc[1];
@@ -217,14 +218,14 @@ static void tab_build(ctx *c, const int32_t a[2], const int32_t cc[2], const int
 }
 
 /* dclean: the caller knows every sample of the triangle is valid (1), or not (0) */
-static void tri_eval(const ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2],
+static void tri_eval(const bti_build_ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2],
                      int ti, int dclean, tri_res *r)
 {
     int32_t nr, i;
     int64_t valid = 0, voids = 0;
     if (c->metric == BT_METRIC_EXACT && c->narrow && ti >= 0 && c->tabn[ti] > 0) {
         if (dclean) {
-            const int32_t *e = c->tab + (size_t)ti * TAB_MAX * 3;
+            const int32_t *e = c->tab + (size_t)ti * BTI_TAB_MAX * 3;
             const int32_t *zc0 = c->z + (size_t)cc[1] * c->w + cc[0];
             int32_t za = c->z[(size_t)a[1] * c->w + a[0]], zb = c->z[(size_t)b[1] * c->w + b[0]], zc = *zc0;
             int32_t ux = a[0] - cc[0], uy = a[1] - cc[1], vx = b[0] - cc[0], vy = b[1] - cc[1];
@@ -262,7 +263,7 @@ static void tri_eval(const ctx *c, const int32_t a[2], const int32_t cc[2], cons
         if (cc[0] < lx) lx = cc[0];
         if (cc[1] < ly) ly = cc[1];
         if (lx >= c->w || ly >= c->h) { r->cls = 2; return; }   /* wholly outside: void */
-        if (clean(c, lx, ly, bx, by)) nr = -nr;                 /* wholly valid: full */
+        if (bti_box_clean(c, lx, ly, bx, by)) nr = -nr;                 /* wholly valid: full */
     }
     if (nr < 0) nr = -nr;
     else for (i = 0; i < nr; i++) {
@@ -355,7 +356,7 @@ static void tri_eval(const ctx *c, const int32_t a[2], const int32_t cc[2], cons
  * of this file): a void corner and no content.  Its children are the unit
  * triangles (a, m, p), (p, m, b) for an A diamond of h = 1, else the halves of the
  * diamonds at the legs' midpoints whose apex is m = (x, y), built before it. */
-static int half_empty(const ctx *c, int32_t x, int32_t y, int32_t h, int typeD,
+static int half_empty(const bti_build_ctx *c, int32_t x, int32_t y, int32_t h, int typeD,
                       const int32_t a[2], const int32_t p[2], const int32_t b[2])
 {
     int32_t z, m1x, m1y, m2x, m2y;
@@ -367,8 +368,8 @@ static int half_empty(const ctx *c, int32_t x, int32_t y, int32_t h, int typeD,
     }
     m1x = (a[0] + p[0]) >> 1; m1y = (a[1] + p[1]) >> 1;
     m2x = (b[0] + p[0]) >> 1; m2y = (b[1] + p[1]) >> 1;
-    return (c->emp[(size_t)m1y * c->n + m1x] >> half_of(m1x, m1y, x, y) & 1) &&
-           (c->emp[(size_t)m2y * c->n + m2x] >> half_of(m2x, m2y, x, y) & 1);
+    return (c->emp[(size_t)m1y * c->n + m1x] >> bti_half_of(m1x, m1y, x, y) & 1) &&
+           (c->emp[(size_t)m2y * c->n + m2x] >> bti_half_of(m2x, m2y, x, y) & 1);
 }
 
 /* Per-triangle upper bounds ub (exact when scanned) let most triangles skip the
@@ -377,7 +378,7 @@ static int half_empty(const ctx *c, int32_t x, int32_t y, int32_t h, int typeD,
  * e(T) <= sb = e_m + max(ub(C1), ub(C2)).  When sb is already <= the children's
  * maximum (which the diamond takes anyway), the diamond's value is the same as
  * with the exact e(T): no scan.  The result equals the exact hierarchy. */
-void bte_diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int typeD)
+void bte_diamond(bt_tree *t, const bti_build_ctx *c, int32_t x, int32_t y, int32_t h, int typeD)
 {
     int32_t n = t->n, S = n - 1;
     int32_t ap[2][2], a[2], b[2];
@@ -429,7 +430,7 @@ void bte_diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int 
         }
     }
     cmax = bt_code_value(code);
-    dclean = clean(c, x - h < 0 ? 0 : x - h, y - h < 0 ? 0 : y - h, x + h, y + h);
+    dclean = bti_box_clean(c, x - h < 0 ? 0 : x - h, y - h < 0 ? 0 : y - h, x + h, y + h);
     if (c->ub && h >= 2 && code != BT_CODE_SPLIT) {
         int ok;
         if (dclean) {
@@ -438,24 +439,24 @@ void bte_diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int 
             zm = c->z[(size_t)y * c->w + x];
             ok = 1;
         } else ok = samp(c, a[0], a[1], &za) && samp(c, b[0], b[1], &zb) && samp(c, x, y, &zm);
-        if (ok) em = (iabs32(za + zb - 2 * zm) + 1) >> 1;
+        if (ok) em = (bti_iabs32(za + zb - 2 * zm) + 1) >> 1;
     }
     for (i = 0; i < na; i++) {
         tri_res r;
-        size_t hv = 2 * idx + half_of(x, y, ap[i][0], ap[i][1]);
+        size_t hv = 2 * idx + bti_half_of(x, y, ap[i][0], ap[i][1]);
         if (em >= 0 && code != BT_CODE_SPLIT) {
             int32_t m1x = (a[0] + ap[i][0]) >> 1, m1y = (a[1] + ap[i][1]) >> 1;
             int32_t m2x = (b[0] + ap[i][0]) >> 1, m2y = (b[1] + ap[i][1]) >> 1;
-            int64_t u1 = c->ub[2 * ((size_t)m1y * n + m1x) + half_of(m1x, m1y, x, y)];
-            int64_t u2 = c->ub[2 * ((size_t)m2y * n + m2x) + half_of(m2x, m2y, x, y)];
+            int64_t u1 = c->ub[2 * ((size_t)m1y * n + m1x) + bti_half_of(m1x, m1y, x, y)];
+            int64_t u2 = c->ub[2 * ((size_t)m2y * n + m2x) + bti_half_of(m2x, m2y, x, y)];
             int64_t sb = em + (u1 > u2 ? u1 : u2);
-            if (u1 != UB_INF && u2 != UB_INF && sb <= cmax) {
+            if (u1 != BTI_UB_INF && u2 != BTI_UB_INF && sb <= cmax) {
                 int32_t zp = c->z[(size_t)ap[i][1] * c->w + ap[i][0]];
                 int32_t zl = za < zb ? za : zb, zh = za > zb ? za : zb;
                 uint8_t l, u;
                 if (zp < zl) zl = zp;
                 if (zp > zh) zh = zp;
-                l = q_lo(c, (int64_t)zl - sb); u = q_hi(c, (int64_t)zh + sb);
+                l = bti_q_lo(c, (int64_t)zl - sb); u = bti_q_hi(c, (int64_t)zh + sb);
                 if (l < lo) lo = l;
                 if (u > hi) hi = u;
                 c->ub[hv] = (int32_t)sb;
@@ -466,11 +467,11 @@ void bte_diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int 
             int ti = -1;
             if (h <= 4 && h >= 2) {
                 ti = tab_index(a, ap[i], b);
-                if (c->tabn[ti] < 0) tab_build((ctx *)c, a, ap[i], b);
+                if (c->tabn[ti] < 0) tab_build((bti_build_ctx *)c, a, ap[i], b);
             }
             tri_eval(c, a, ap[i], b, ti, dclean, &r);
         }
-        if (c->ub) c->ub[hv] = r.cls == 0 && r.err < UB_INF ? (int32_t)r.err : UB_INF;
+        if (c->ub) c->ub[hv] = r.cls == 0 && r.err < BTI_UB_INF ? (int32_t)r.err : BTI_UB_INF;
         /* a mixed triangle with no descendant unit triangle of three valid corners draws
          * nothing: empty, not split (the padding to (2^k+1)^2 keeps no edge samples) */
         if (r.cls == 1 && half_empty(c, x, y, h, typeD, a, ap[i], b)) r.cls = 2;
@@ -486,13 +487,13 @@ void bte_diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int 
             code = BT_CODE_SPLIT;
             for (k = 0; k < 4; k++)
                 if (samp(c, px[k], py[k], &zv)) {
-                    uint8_t l = q_lo(c, zv), u = q_hi(c, zv);
+                    uint8_t l = bti_q_lo(c, zv), u = bti_q_hi(c, zv);
                     if (l < lo) lo = l;
                     if (u > hi) hi = u;
                 }
         } else if (r.cls == 0) {
             uint16_t e = bt_code_encode(r.err);
-            uint8_t l = q_lo(c, r.zlo), u = q_hi(c, r.zhi);
+            uint8_t l = bti_q_lo(c, r.zlo), u = bti_q_hi(c, r.zhi);
             if (e > code) code = e;
             if (l < lo) lo = l;
             if (u > hi) hi = u;

@@ -8,11 +8,11 @@
 #include "core/bitree.h"
 #include "core/fx.h"
 
-#define TAB_MAX 48   /* samples per small-level table (D4: 45 - 3 vertices) */
+#define BTI_TAB_MAX 48   /* samples per small-level table (D4: 45 - 3 vertices) */
 
 /* The build context: the heightfield prepared for the scans (biased heights,
  * void bookkeeping), scratch rows and tables, and the per-half bounds. */
-typedef struct ctx {
+typedef struct bti_build_ctx {
     int32_t w, h, n;
     const int32_t *z;      /* sanitised heights, w*h (voids = 0) */
     const uint16_t *vp;    /* void prefix counts, (w+1)*h, or NULL if no voids */
@@ -24,33 +24,33 @@ typedef struct ctx {
     /* sample tables of the small levels (h = 2, 4): per shape (8 apex
      * directions x 2 sizes) the samples off the vertices as (offset, dx, dy)
      * from the apex; used for triangles inside the domain of void-free grids */
-    int32_t *tab;          /* 16 tables of TAB_MAX entries x 3 */
+    int32_t *tab;          /* 16 tables of BTI_TAB_MAX entries x 3 */
     int32_t *ub;           /* 2 per diamond: upper bound of each half's error (exact metric) */
     const uint8_t *vblk;   /* per 16 x 16 block of the domain: 1 if it holds a void (NULL: none) */
     int32_t bw;            /* blocks per row */
     uint8_t *emp;          /* per diamond, bit (1 << half): that half is EMPTY (see
                               bte_diamond); n*n, zero = has content */
     int32_t tabn[16];
-} ctx;
+} bti_build_ctx;
 
-#define UB_INF INT32_MAX
+#define BTI_UB_INF INT32_MAX
 
-static inline int32_t iabs32(int32_t v) { return v < 0 ? -v : v; }
+static inline int32_t bti_iabs32(int32_t v) { return v < 0 ? -v : v; }
 
 /* Doubled signed area of grid vertices (a, b, c) in grid coordinates: < 0 when they
  * run counter-clockwise seen from +z (grid rows run south, so the sign is flipped),
  * 0 when collinear. */
-static inline int64_t bt_cross(const bt_vert *a, const bt_vert *b, const bt_vert *c)
+static inline int64_t bti_cross(const bt_vert *a, const bt_vert *b, const bt_vert *c)
 {
     return (int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(b->y - a->y) * (c->x - a->x);
 }
 
-/* 1 when distinct grid-collinear vertices (bt_cross == 0) are collinear in (x, y, z)
+/* 1 when distinct grid-collinear vertices (bti_cross == 0) are collinear in (x, y, z)
  * too, so the triangle they make is empty in the world frame as well: a line
  * triangle whose heights are not on one line is a vertical sliver that the
  * rasteriser draws.  |dz| < 2^29 (BR_Z_LIMIT) and |dx|, |dy| < 2^15 keep the products
  * below 2^44. */
-static inline int bt_flat(const bt_vert *a, const bt_vert *b, const bt_vert *c)
+static inline int bti_flat(const bt_vert *a, const bt_vert *b, const bt_vert *c)
 {
     int64_t dz1 = (int64_t)b->z - a->z, dz2 = (int64_t)c->z - a->z;
     return dz1 * (c->x - a->x) == dz2 * (b->x - a->x) && dz1 * (c->y - a->y) == dz2 * (b->y - a->y);
@@ -58,7 +58,7 @@ static inline int bt_flat(const bt_vert *a, const bt_vert *b, const bt_vert *c)
 
 /* 1 when the box [x0, x1] x [y0, y1] (x0, y0 >= 0) lies inside w x h and touches
  * no 16 x 16 block that holds a void: every sample in it is valid */
-static inline int clean(const ctx *c, int32_t x0, int32_t y0, int32_t x1, int32_t y1)
+static inline int bti_box_clean(const bti_build_ctx *c, int32_t x0, int32_t y0, int32_t x1, int32_t y1)
 {
     int32_t bx, by;
     if (x1 >= c->w || y1 >= c->h) return 0;
@@ -70,7 +70,7 @@ static inline int clean(const ctx *c, int32_t x0, int32_t y0, int32_t x1, int32_
 }
 
 /* which half of diamond (cx, cy) has its apex at (px, py): 1 = below / right */
-static inline size_t half_of(int32_t cx, int32_t cy, int32_t px, int32_t py)
+static inline size_t bti_half_of(int32_t cx, int32_t cy, int32_t px, int32_t py)
 {
     return (py > cy) || (py == cy && px > cx);
 }
@@ -78,13 +78,13 @@ static inline size_t half_of(int32_t cx, int32_t cy, int32_t px, int32_t py)
 /* quantise a biased height (0 .. R = zmax - zmin) to 8 bits, rounding down (lo)
  * or up (hi), by a multiply: qm = floor(255 * 2^24 / R), so the estimate is at
  * most 1 below the exact floor (lo, conservative) and hi adds 1 (>= the ceiling). */
-static inline uint8_t q_lo(const ctx *c, int64_t z)
+static inline uint8_t bti_q_lo(const bti_build_ctx *c, int64_t z)
 {
     if (z <= 0 || c->qr <= 0) return 0;
     if (z >= c->qr) return 255;
     return (uint8_t)((z * c->qm) >> 24);
 }
-static inline uint8_t q_hi(const ctx *c, int64_t z)
+static inline uint8_t bti_q_hi(const bti_build_ctx *c, int64_t z)
 {
     int64_t q;
     if (c->qr <= 0) return 255;
@@ -94,9 +94,9 @@ static inline uint8_t q_hi(const ctx *c, int64_t z)
     return (uint8_t)(q > 255 ? 255 : q);
 }
 
-static inline uint16_t enc_small(int64_t e) { return e < 4096 ? (uint16_t)e : bt_code_encode(e); }
+static inline uint16_t bti_enc_small(int64_t e) { return e < 4096 ? (uint16_t)e : bt_code_encode(e); }
 
-static inline int bt_bits(uint64_t v) { int b = 0; while (v >> b) b++; return b; }
+static inline int bti_bits(uint64_t v) { int b = 0; while (v >> b) b++; return b; }
 
 /* The geomorph weight of a split vertex (core/bt_mesh.c morph_of) for rho =
  * floor(lhs / d), without a 64-bit divide: with q = rho - tau, 0 for q < 0, ONE for
@@ -104,7 +104,7 @@ static inline int bt_bits(uint64_t v) { int b = 0; while (v >> b) b++; return b;
  * span iff lhs >= (tau + span) d (products in 128 bits by halves, so exact); between
  * them q = floor((lhs - tau d) / d) < span and the two quotients have at most
  * bits(span) and 15 bits.  lhs >= 0, d > 0, tau >= 0, span > 0 (all < 2^63). */
-static inline int bt_mul_ge(uint64_t l, uint64_t a, uint64_t b)   /* l >= a b ? */
+static inline int bti_mul_ge(uint64_t l, uint64_t a, uint64_t b)   /* l >= a b ? */
 {
     uint64_t a0 = a & 0xffffffffu, a1 = a >> 32, b0 = b & 0xffffffffu, b1 = b >> 32;
     uint64_t m1 = a1 * b0, m2 = a0 * b1, lo = a0 * b0, hi = a1 * b1, mid, r;
@@ -113,18 +113,18 @@ static inline int bt_mul_ge(uint64_t l, uint64_t a, uint64_t b)   /* l >= a b ? 
     r = (mid << 32) | (lo & 0xffffffffu);
     return hi == 0 && l >= r;
 }
-static inline uint16_t bt_morph_nodiv(int64_t lhs, int64_t d, int64_t tau, int64_t span)
+static inline uint16_t bti_morph_nodiv(int64_t lhs, int64_t d, int64_t tau, int64_t span)
 {
     uint64_t L = (uint64_t)lhs, D = (uint64_t)d, q;
-    if (!bt_mul_ge(L, (uint64_t)tau, D)) return 0;
-    if (bt_mul_ge(L, (uint64_t)(tau + span), D)) return BT_MORPH_ONE;
-    q = fx_udiv_bits(L - (uint64_t)tau * D, D, bt_bits((uint64_t)span));
+    if (!bti_mul_ge(L, (uint64_t)tau, D)) return 0;
+    if (bti_mul_ge(L, (uint64_t)(tau + span), D)) return BT_MORPH_ONE;
+    q = fx_udiv_bits(L - (uint64_t)tau * D, D, bti_bits((uint64_t)span));
     return (uint16_t)fx_udiv_bits(q << 15, (uint64_t)span, 15);
 }
 
-void bte_diamond(bt_tree *t, const ctx *c, int32_t x, int32_t y, int32_t h, int typeD);
-void bte_level1(bt_tree *t, const ctx *c);
-void bte_level2(bt_tree *t, const ctx *c);
+void bte_diamond(bt_tree *t, const bti_build_ctx *c, int32_t x, int32_t y, int32_t h, int typeD);
+void bte_level1(bt_tree *t, const bti_build_ctx *c);
+void bte_level2(bt_tree *t, const bti_build_ctx *c);
 
 /* Appends to m's strip the shortest run of line triangles that reaches leaf L
  * (vertex indices) and draws it, chosen so that N (may be NULL: the last leaf)

@@ -3,7 +3,8 @@
  *
  * Selection.  A diamond (sample) is SPLIT when its value exceeds the threshold:
  *   fidelity  err code > largest code whose value <= max_err (exact compare);
- *   view      rho > tau, rho = projected error (000): object error E (world
+ *   view      rho > tau, rho = projected error (000; Lindstrom et al. 1996's
+ *             screen-space error): object error E (world
  *             units) * f / d, d = a lower bound of the distance from the eye to
  *             the diamond's nested bounding volume (box of half-side 3h / 2h
  *             around the centre x quantised height range), so rho is an upper
@@ -11,9 +12,11 @@
  *             outside a frustum plane are culled: neither split nor emitted.
  *             Hysteresis (003): a diamond split in the previous frame stays
  *             split while rho > tau * (1 - hyst).
- *   budget    (003) diamonds are split in decreasing rho order (a heap; ties
+ *   budget    (003; ROAM's split queue, Duchaineau et al. 1997) diamonds are
+ *             split in decreasing rho order (a heap; ties
  *             coarser first) while the nominal triangle count stays <= budget.
- * E and the volume are monotone up the tree, so every rule splits a set closed
+ * E and the volume are monotone up the tree (saturated as in Pajarola 1998),
+ * so every rule splits a set closed
  * under "parent of": the mesh is conforming (002 2.2, no T-junctions).
  *
  * Geomorph (002 3.3): a split vertex's height moves from the fictitious height
@@ -78,7 +81,7 @@ size_t bt_mesh_mem_size(uint32_t max_tri)
     cap_s = 5ull * max_tri + 8;
     hs = hash_size(2 * max_tri + 16);
     heap = 4ull * max_tri + 8;
-    sz = cap_v * sizeof(bt_vert) + cap_s * 4 + hs * 4 + 4 + heap * sizeof(heap_ent) + heap * 4 + 8
+    sz = cap_v * sizeof(bt_vert) + cap_s * 4 + hs * 4 + 4 + heap * sizeof(bti_heap_ent) + heap * 4 + 8
          + (uint64_t)memo_size(max_tri) * 8 + 64;
     if (sz > (uint64_t)SIZE_MAX) return 0;      /* 32-bit hosts */
     return (size_t)sz;
@@ -105,7 +108,7 @@ br_status bt_mesh_init(bt_mesh *m, uint32_t max_tri, void *mem, size_t mem_bytes
     m->cap_s = cap_s;
     p += (8 - ((uintptr_t)p & 7)) & 7;
     m->splits = (uint32_t *)(void *)p;   /* heap entries + id list share this tail */
-    p = (uint8_t *)(void *)(ids_of(m) + heap_cap(m));
+    p = (uint8_t *)(void *)(bti_ids_of(m) + bti_heap_cap(m));
     p += (8 - ((uintptr_t)p & 7)) & 7;
     m->memo = (uint64_t *)(void *)p;
     m->memo_mask = memo_size(max_tri) - 1;
@@ -178,7 +181,7 @@ static int64_t box_dist(const int32_t eye[3], const int64_t lo[3], const int64_t
     return l1 > mx ? l1 : mx;
 }
 
-static void dvolume(const em *e, int32_t x, int32_t y, int64_t lo[3], int64_t hi[3])
+static void dvolume(const bti_extract *e, int32_t x, int32_t y, int64_t lo[3], int64_t hi[3])
 {
     const bt_tree *t = e->t;
     const bt_frame *fr = &e->p->fr;
@@ -200,7 +203,7 @@ static void dvolume(const em *e, int32_t x, int32_t y, int64_t lo[3], int64_t hi
 /* Frustum test of a box against the planes in *mask: 1 when it lies wholly
  * outside one of them (culled); planes it lies wholly inside are removed from
  * *mask, so descendants (whose volumes nest inside) skip them. */
-static int culled(const em *e, const int64_t lo[3], const int64_t hi[3], unsigned *mask)
+static int culled(const bti_extract *e, const int64_t lo[3], const int64_t hi[3], unsigned *mask)
 {
     int i, k;
     if (e->p->no_cull) { *mask = 0; return 0; }
@@ -223,7 +226,7 @@ static int culled(const em *e, const int64_t lo[3], const int64_t hi[3], unsigne
  * (rounded up), *d = lower bound of the distance to its volume.  Returns -1 when
  * culled (all void or outside the frustum), 1 when the error is unbounded (mixed
  * voids, or the eye inside the volume with a nonzero error), 0 otherwise. */
-static int view_err(const em *e, int32_t x, int32_t y, unsigned *mask, int64_t *ew, int64_t *d)
+static int view_err(const bti_extract *e, int32_t x, int32_t y, unsigned *mask, int64_t *ew, int64_t *d)
 {
     const bt_tree *t = e->t;
     size_t idx = (size_t)y * e->n + x;
@@ -242,7 +245,7 @@ static int view_err(const em *e, int32_t x, int32_t y, unsigned *mask, int64_t *
 }
 
 /* rho in q8 pixels; -1 when culled */
-static int64_t rho_q8(const em *e, int32_t x, int32_t y)
+static int64_t rho_q8(const bti_extract *e, int32_t x, int32_t y)
 {
     unsigned mask = 0x3f;
     int64_t ew = 0, d = 0;
@@ -262,11 +265,11 @@ static int64_t rho_q8(const em *e, int32_t x, int32_t y)
     }
 }
 
-static br_status setup(em *e, bt_tree *t, const bt_params *p);
+static br_status setup(bti_extract *e, bt_tree *t, const bt_params *p);
 
 int64_t bt_screen_error_q8(const bt_tree *t, const bt_params *p, int32_t x, int32_t y)
 {
-    em e;
+    bti_extract e;
     int64_t r;
     if (!p || p->mode == BT_FIDELITY || setup(&e, (bt_tree *)t, p) != BR_OK) return 0;
     r = rho_q8(&e, x, y);
@@ -274,7 +277,7 @@ int64_t bt_screen_error_q8(const bt_tree *t, const bt_params *p, int32_t x, int3
 }
 
 /* ------------------------------------------------------------ split rule */
-static uint16_t morph_of(const em *e, int64_t rho)
+static uint16_t morph_of(const bti_extract *e, int64_t rho)
 {
     int64_t q = rho - e->tau;
     if (e->morph_span <= 0) return BT_MORPH_ONE;
@@ -284,8 +287,8 @@ static uint16_t morph_of(const em *e, int64_t rho)
 }
 
 /* morph_of(e, lhs / d) for lhs = ew f >= 0 and d > 0: with a 64-bit divide as
- * written, without one by bt_morph_nodiv (core/bt_int.h), the same weight. */
-static uint16_t morph_at(const em *e, int64_t lhs, int64_t d)
+ * written, without one by bti_morph_nodiv (core/bt_int.h), the same weight. */
+static uint16_t morph_at(const bti_extract *e, int64_t lhs, int64_t d)
 {
 #if BR_DIV64_NATIVE
     return morph_of(e, lhs / d);
@@ -293,19 +296,19 @@ static uint16_t morph_at(const em *e, int64_t lhs, int64_t d)
     (void)morph_of;
     if (e->tau < 0) {
         /* the budget rule's tau = -1 (bt_extract): morph_of's q = lhs / d + 1 =
-         * floor((lhs + d) / d), below 2^64; q < span < 2^39 needs bt_bits(span) steps */
+         * floor((lhs + d) / d), below 2^64; q < span < 2^39 needs bti_bits(span) steps */
         uint64_t L = (uint64_t)lhs + (uint64_t)d, D = (uint64_t)d, S = (uint64_t)e->morph_span, q;
-        if (bt_mul_ge(L, S, D)) return BT_MORPH_ONE;
-        q = fx_udiv_bits(L, D, bt_bits(S));
+        if (bti_mul_ge(L, S, D)) return BT_MORPH_ONE;
+        q = fx_udiv_bits(L, D, bti_bits(S));
         return (uint16_t)fx_udiv_bits(q << 15, S, 15);
     }
-    return bt_morph_nodiv(lhs, d, e->tau, e->morph_span);
+    return bti_morph_nodiv(lhs, d, e->tau, e->morph_span);
 #endif
 }
 
 /* returns 1 split, 0 leaf, -1 drop (culled); *morph set for split vertices;
  * *mask: frustum planes still to test (view and budget modes) */
-static int decide(em *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
+static int decide(bti_extract *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
 {
     bt_tree *t = e->t;
     size_t idx = (size_t)y * e->n + x;
@@ -344,7 +347,7 @@ static int decide(em *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
  * an entry is gen << 48 | (answer + 1) << 46 | morph << 30 | grid index (n <=
  * BR_MAX_SIDE = 16385: n^2 < 2^28), valid in the extraction whose 16-bit generation
  * (1 .. 0xFFFF, reset_mesh) it holds. */
-static int decide_memo(em *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
+static int decide_memo(bti_extract *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
 {
     const bt_mesh *m = e->m;
     uint32_t idx = (uint32_t)y * (uint32_t)e->n + (uint32_t)x;
@@ -371,7 +374,7 @@ static uint32_t home(uint32_t key, uint32_t mask, int direct)
     return (direct ? key : key * 2654435761u) & mask;
 }
 
-static uint32_t vid_find(em *e, pt *q)
+static uint32_t vid_find(bti_extract *e, pt *q)
 {
     bt_mesh *m = e->m;
     uint32_t key = (uint32_t)q->y * (uint32_t)e->n + (uint32_t)q->x;
@@ -396,13 +399,13 @@ static uint32_t vid_find(em *e, pt *q)
 }
 
 
-static uint32_t vid(em *e, pt *q) { return q->idx != NO_IDX ? q->idx : vid_find(e, q); }
+static uint32_t vid(bti_extract *e, pt *q) { return q->idx != NO_IDX ? q->idx : vid_find(e, q); }
 /* Leaf (a, c, b), apex c.  It is entered through edge {a, c} (or the hypotenuse
  * {a, b} when in_hyp) and left through {c, b} (or {a, b} when out_hyp). */
-static void leaf(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
+static void leaf(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
 {
     bt_mesh *m = e->m;
-    pend L;
+    bti_leaf L;
     e->count++;
     if (e->count_only) return;
     /* room for this leaf and the pending one */
@@ -422,7 +425,7 @@ static void leaf(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
     e->has_pend = 1;
 }
 
-static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned mask)
+static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned mask)
 {
     int32_t dx = b->x - a->x, dy = b->y - a->y;
     pt mm;
@@ -451,9 +454,9 @@ static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned ma
         /* record for the next frame's hysteresis (a diamond is reached twice) */
         size_t idx = (size_t)mm.y * e->n + mm.x;
         if (!(e->t->st[idx] & ST_CUR)) {
-            if (e->m->nsplits < heap_cap(e->m)) {
+            if (e->m->nsplits < bti_heap_cap(e->m)) {
                 e->t->st[idx] |= ST_CUR;
-                ids_of(e->m)[e->m->nsplits++] = (uint32_t)idx;
+                bti_ids_of(e->m)[e->m->nsplits++] = (uint32_t)idx;
             } else e->lost = 1;
         }
     }
@@ -473,7 +476,7 @@ static void rec(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned ma
 
 /* rec for the plain fidelity rule without voids: the same leaves in the same order
  * without the mode, mask, void and geomorph branches (morph 0 iff zs interpolates). */
-static void rec_fid(em *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
+static void rec_fid(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
 {
     pt mm;
     size_t idx;
@@ -497,7 +500,7 @@ static void corner(const bt_tree *t, int32_t x, int32_t y, pt *q)
     q->x = x; q->y = y; q->z = zreal(t, x, y); q->morph = BT_MORPH_ONE; q->idx = NO_IDX;
 }
 
-static void run(em *e)
+static void run(bti_extract *e)
 {
     pt A, B, C, D;
     int32_t S = e->S;
@@ -514,7 +517,7 @@ static void run(em *e)
 }
 
 /* ------------------------------------------------------------ budget */
-static int64_t prio(em *e, int32_t x, int32_t y)
+static int64_t prio(bti_extract *e, int32_t x, int32_t y)
 {
     int typeD;
     int32_t h = dscale(x, y, e->S, &typeD);
@@ -532,7 +535,7 @@ static int64_t prio(em *e, int32_t x, int32_t y)
     return (r << 8) | (int64_t)(2 * j + typeD);
 }
 
-static void hpush(heap_ent *hp, uint32_t *n, int64_t key, uint32_t id)
+static void hpush(bti_heap_ent *hp, uint32_t *n, int64_t key, uint32_t id)
 {
     uint32_t i = (*n)++;
     while (i > 0) {
@@ -544,13 +547,13 @@ static void hpush(heap_ent *hp, uint32_t *n, int64_t key, uint32_t id)
     hp[i].key = key; hp[i].id = id; hp[i].pad_ = 0;
 }
 
-static heap_ent hpop(heap_ent *hp, uint32_t *n)
+static bti_heap_ent hpop(bti_heap_ent *hp, uint32_t *n)
 {
-    heap_ent top = hp[0], last = hp[--(*n)];
+    bti_heap_ent top = hp[0], last = hp[--(*n)];
     uint32_t i = 0;
     for (;;) {
         uint32_t l = 2 * i + 1, r = l + 1, b = i;
-        const heap_ent *bb = &last;
+        const bti_heap_ent *bb = &last;
         if (l < *n && (hp[l].key > bb->key || (hp[l].key == bb->key && hp[l].id < bb->id))) { b = l; bb = &hp[l]; }
         if (r < *n && (hp[r].key > bb->key || (hp[r].key == bb->key && hp[r].id < bb->id))) { b = r; bb = &hp[r]; }
         if (b == i) break;
@@ -564,12 +567,12 @@ static heap_ent hpop(heap_ent *hp, uint32_t *n)
 /* Marks ST_SPLIT on the diamonds a budget of `budget` nominal triangles buys.
  * Returns the number of ids recorded (to clear afterwards) in ids. Sets e->tau
  * to the last split's rho (for geomorph). */
-static uint32_t budget_mark(em *e, uint32_t budget, uint32_t *nid)
+static uint32_t budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid)
 {
     bt_tree *t = e->t;
-    heap_ent *hp = heap_of(e->m);
-    uint32_t *ids = ids_of(e->m);
-    uint32_t nh = 0, ni = 0, cap = heap_cap(e->m);
+    bti_heap_ent *hp = bti_heap_of(e->m);
+    uint32_t *ids = bti_ids_of(e->m);
+    uint32_t nh = 0, ni = 0, cap = bti_heap_cap(e->m);
     uint64_t count = 2;
     int32_t S = e->S, n = e->n;
     int64_t last = 0;
@@ -579,7 +582,7 @@ static uint32_t budget_mark(em *e, uint32_t budget, uint32_t *nid)
         if (k >= 0) { hpush(hp, &nh, k, root); t->st[root] |= ST_PUSHED; ids[ni++] = root; }
     }
     while (nh > 0) {
-        heap_ent he = hpop(hp, &nh);
+        bti_heap_ent he = hpop(hp, &nh);
         int32_t x = (int32_t)(he.id % (uint32_t)n), y = (int32_t)(he.id / (uint32_t)n);
         int typeD, i, add = 0;
         int32_t h = dscale(x, y, S, &typeD);
@@ -621,7 +624,7 @@ static uint32_t budget_mark(em *e, uint32_t budget, uint32_t *nid)
 }
 
 /* ------------------------------------------------------------ public */
-static br_status setup(em *e, bt_tree *t, const bt_params *p)
+static br_status setup(bti_extract *e, bt_tree *t, const bt_params *p)
 {
     memset(e, 0, sizeof *e);
     if (!t || !p || !t->node) return BR_E_ARG;
@@ -685,7 +688,7 @@ static br_status setup(em *e, bt_tree *t, const bt_params *p)
 
 br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri)
 {
-    em e;
+    bti_extract e;
     br_status s = setup(&e, t, p);
     if (s != BR_OK) return s;
     if (p->mode == BT_BUDGET) { *ntri = p->budget; return BR_OK; }
@@ -717,7 +720,7 @@ static uint32_t reset_mesh(bt_mesh *m)
 
 br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
 {
-    em e;
+    bti_extract e;
     br_status s = setup(&e, t, p);
     uint32_t i, nid = 0, nprev, *ids;
     uint32_t *old;
@@ -730,8 +733,8 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         e.lim_nv = (hl < m->cap_v ? hl : m->cap_v) - 6;
         e.lim_ns = m->cap_s - 10;
     }
-    ids = ids_of(m);
-    old = (uint32_t *)(void *)heap_of(m);
+    ids = bti_ids_of(m);
+    old = (uint32_t *)(void *)bti_heap_of(m);
     /* hysteresis bookkeeping: ids[0..nsplits) are the previous frame's splits
      * (ST_PREV set).  Move them aside (the heap area) before anything reuses ids. */
     nprev = m->nsplits;

@@ -33,7 +33,7 @@ typedef struct bsearch {
     int32_t x[NCAND], y[NCAND];
     unsigned lm, nm;                 /* candidates of L, of N */
     int8_t sg[NCAND * NCAND * NCAND]; /* sign of cross(b - a, r - a), 3: collinear in (x, y)
-                                        only (a vertical sliver, bt_flat); 2: not yet known */
+                                        only (a vertical sliver, bti_flat); 2: not yet known */
     int8_t hc[NCAND * NCAND * 3];     /* hcost by state (without parity); -1: not yet known */
 } bsearch;
 
@@ -50,7 +50,7 @@ static int step(bsearch *q, int a, int b, int r, uint32_t len, unsigned tm)
         int64_t cr = (int64_t)(q->x[b] - q->x[a]) * (q->y[r] - q->y[a]) -
                      (int64_t)(q->y[b] - q->y[a]) * (q->x[r] - q->x[a]);
         *g = (int8_t)((cr > 0) - (cr < 0));
-        if (cr == 0 && !bt_flat(q->v[a], q->v[b], q->v[r])) *g = 3;
+        if (cr == 0 && !bti_flat(q->v[a], q->v[b], q->v[r])) *g = 3;
     }
     sgn = *g;
     if (sgn == 0) return 0;

@@ -78,7 +78,7 @@ uint32_t bt_strip_to_list(const bt_mesh *m, uint32_t *out)
     for (k = 0; k + 2 < m->ns; k++) {
         uint32_t i0 = m->strip[k], i1 = m->strip[k + 1], i2 = m->strip[k + 2];
         if (k & 1) { uint32_t tmp = i0; i0 = i1; i1 = tmp; }
-        if (bt_cross(&m->v[i0], &m->v[i1], &m->v[i2]) == 0) continue;   /* line triangle */
+        if (bti_cross(&m->v[i0], &m->v[i1], &m->v[i2]) == 0) continue;   /* line triangle */
         out[3 * n] = i0; out[3 * n + 1] = i1; out[3 * n + 2] = i2;
         n++;
     }
@@ -100,7 +100,7 @@ int64_t bt_true_error_q16(const bt_tree *t, const bt_mesh *m, int32_t *at_x, int
     int32_t bx = 0, by = 0;
     for (k = 0; k + 2 < m->ns; k++) {
         const bt_vert *p0 = &m->v[m->strip[k]], *p1 = &m->v[m->strip[k + 1]], *p2 = &m->v[m->strip[k + 2]];
-        int64_t D = bt_cross(p0, p1, p2), ad;
+        int64_t D = bti_cross(p0, p1, p2), ad;
         int32_t x0, x1, y0, y1, x, y;
         if (D == 0) continue;
         ad = D < 0 ? -D : D;

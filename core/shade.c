@@ -1,6 +1,7 @@
 /* core/shade.c — see shade.h.
  *
- * Derivation.  Horn: gx = (c+2f+i)-(a+2d+g) (east minus west), gy = (a+2b+c)-(g+2h+i)
+ * Derivation.  Horn, "Hill shading and the reflectance map", Proc. IEEE 69(1),
+ * 1981 (the 3x3 weighted gradient gdaldem also uses): gx = (c+2f+i)-(a+2d+g) (east minus west), gy = (a+2b+c)-(g+2h+i)
  * (north minus south), in height units, over a 3x3 window a b c / d e f / g h i
  * with row a b c to the north.  dz/dx = gx*zn*1e6 / (8*zd*dx_um) (unitless), same for y.
  * Multiplying (-dz/dx, -dz/dy, 1) by 8*zd*dx_um*dy_um gives integer components

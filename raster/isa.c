@@ -8,7 +8,7 @@
  * spans are written with 128-bit generic vectors, and at baseline x86-64 (SSE2, two
  * operands) a third of the pre-pass's per-group instructions are register copies; the
  * same source compiled for x86-64-v3 (three-operand AVX forms, BMI2 shifts) draws the
- * peer scene with about 5 % fewer instructions (docs/raster.md).  Every CPU sold since
+ * peer scene with fewer instructions (docs/perf-history.md).  Every CPU sold since
  * 2015 takes the v3 copy; the copies compute the same integers, so the bytes are the
  * same (make test draws the peer scene with both and compares).
  *

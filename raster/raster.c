@@ -43,7 +43,7 @@ typedef struct band {
     void *depth;
     int32_t cull;
     uint32_t tris, clipped, pixels;
-    /* lane constants of the tiny path's coverage mask (raster_tmpl.h): 1, and 0, 1, 2, 3
+    /* lane constants of the tiny path's coverage mask (raster_tiny.h): 1, and 0, 1, 2, 3
      * in 16-bit lanes, and both times 16 (one pixel in sub-pixels); read from here so that
      * the compiler emits one multiply per broadcast instead of a shift-and-add chain */
     uint64_t ones, ones16, steps16;
@@ -59,10 +59,9 @@ size_t rs_band_mem_size(int32_t w, int32_t rows, int32_t fmt, int32_t depth)
 
 /* The tiny paths' depth products dz * w (|dz| < 2^30: depths are below 2^30; weights
  * 0 <= w <= 2^16): int32 factors on 32-bit targets, where a 32 x 32 -> 64-bit multiply
- * is one instruction and a 64 x 64 one three (armhf peer scene A 640x480: -3.9 %);
- * int64 on 64-bit ones, where gcc's x86-64 code was 0.36 M instructions longer with the
- * narrow types.  The same products either way. */
-#if RS_REG64
+ * is one instruction and a 64 x 64 one three; int64 on 64-bit ones, where gcc's x86-64
+ * code is longer with the narrow types.  The same products either way. */
+#if RSI_REG64
 typedef int64_t dz_t;
 #else
 typedef int32_t dz_t;
@@ -70,7 +69,7 @@ typedef int32_t dz_t;
 #define DZ_MUL(DZ, W) ((int64_t)(DZ) * (dz_t)(W))
 /* and the colour weight w >> 3 (<= 2^13) times a packed colour difference: a 64 x 32-bit
  * multiply on 32-bit targets (two instructions instead of three) */
-#if RS_REG64
+#if RSI_REG64
 #define CW_MUL(DC, W) ((DC) * (uint64_t)((W) >> 3))
 #else
 #define CW_MUL(DC, W) ((DC) * (uint32_t)((W) >> 3))
@@ -79,7 +78,7 @@ typedef int32_t dz_t;
 /* The 16-bit lane of P at bit SH (0, 16, 32 or 48: a lane found by ctz64 of a top-bit
  * mask, minus 15): on 32-bit targets from the word that holds it, without a 64-bit
  * shift by a variable amount (several instructions there). */
-#if RS_REG64
+#if RSI_REG64
 #define LANE16(P, SH) ((uint16_t)((P) >> (SH)))
 #else
 #define LANE16(P, SH) ((uint16_t)(((SH) & 32 ? (uint32_t)((P) >> 32) : (uint32_t)(P)) >> ((SH) & 16)))
@@ -88,7 +87,7 @@ typedef int32_t dz_t;
 /* Index of the lowest set bit of m (m != 0). */
 static uint32_t ctz64(uint64_t m)
 {
-#if defined(__GNUC__) && RS_REG64
+#if defined(__GNUC__) && RSI_REG64
     return (uint32_t)__builtin_ctzll(m);
 #elif defined(__GNUC__)
     /* 32-bit targets: two 32-bit counts (inline on ARM: rbit + clz) rather than
@@ -170,10 +169,9 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 
 /* GCC on x86-64 does not schedule before register allocation at -O2; the pre-pass's many
  * live vectors spill less when it does, with the register pressure in mind (what GCC does
- * by default on ARM): x86-64 640x480 A -0.28 M, B -0.18 M.  (Scheduling without the
- * pressure model spills more: B +0.22 M.)  The strip loop (raster_tmpl.h's draw) too:
- * A -0.03 M, B -0.01 M.  Everywhere (-fschedule-insns -fsched-pressure): the general
- * path +0.07 M on B. */
+ * by default on ARM), and so does the strip loop (raster_draw.h's draw_strips).
+ * Scheduling without the pressure model spills more, and the general path is better
+ * without either, so only these functions ask for it. */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 #define PP_SCHED __attribute__((optimize("schedule-insns", "sched-pressure")))
 #else
@@ -264,7 +262,7 @@ static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf)
 {
     const rs_frame *f = bd->f;
     const cam_vp *vp = &f->vp;
-    int64_t f8 = f_q8(vp), g8 = (int64_t)RS_GUARD_PX << 8;
+    int64_t f8 = rsi_f_q8(vp), g8 = (int64_t)RS_GUARD_PX << 8;
     clipv buf[2][RS_CLIP_MAX];
     int32_t n = 3, p, i, k, cur = 0, nplanes = f->clip_z_on ? 6 : 5;
     uint32_t idx[3];
@@ -272,7 +270,7 @@ static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf)
     idx[0] = ia; idx[1] = ib; idx[2] = ic;
     for (i = 0; i < 3; i++) {
         uint32_t rgb = f->v[idx[i]].rgb;
-        to_camera(vp, f->v[idx[i]].p, buf[0][i].c);
+        rsi_to_camera(vp, f->v[idx[i]].p, buf[0][i].c);
         for (k = 0; k < 3; k++) buf[0][i].col[k] = (int32_t)((rgb >> (16 - 8 * k)) & 255);
         buf[0][i].uv[0] = f->v[idx[i]].uv[0];
         buf[0][i].uv[1] = f->v[idx[i]].uv[1];
@@ -303,9 +301,9 @@ static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf)
     bd->clipped++;
     for (i = 0; i < n; i++) {
         const clipv *v = &buf[cur][i];
-        project(vp, f8, v->c, f->w, f->h, &sv[i]);
+        rsi_project(vp, f8, v->c, f->w, f->h, &sv[i]);
         sv[i].c = ((uint32_t)v->col[0] << 16) | ((uint32_t)v->col[1] << 8) | (uint32_t)v->col[2];
-        sv[i].cp = rs_pack_rgb(sv[i].c);
+        sv[i].cp = rsi_pack_rgb(sv[i].c);
         sv[i].u = v->uv[0]; sv[i].v = v->uv[1];
     }
     for (i = 1; i + 1 < n; i++) tri_raster(bd, &sv[0], &sv[i], &sv[i + 1], vf);
@@ -337,13 +335,11 @@ int rs_variant_built(int32_t fmt, int32_t depth, int textured)
 /* n bytes at p (n a multiple of the pattern's period, 2 or 4 bytes) set to the 32-bit
  * pattern v (a 16-bit value repeated, or one 32-bit value): 32 bytes a store where GCC's
  * vectors exist (RS_PREPASS: one AVX store in the x86-64-v3 copy, two SSE2 or NEON ones),
- * 8 elsewhere (as vectors, GCC's lowering took armhf 640x480 0.88 M a frame, now 0.85 M),
+ * 8 elsewhere (plain 64-bit stores: GCC's lowering of vectors there is longer),
  * the last store overlapping the one before it (its offset n - 32 or n - 8 is a multiple
  * of the period, so it writes the same bytes there); shorter rows a word at a time.
- * The frame's clear: 640x480 XRGB8888 + 32-bit depth took 0.26 M instructions a frame
- * as a filled row copied with memcpy (a load and a store per 32 bytes); with eight
- * stores a pass it takes 0.18 M in the baseline copy (16-byte stores) and 0.11 M in the
- * v3 copy (32-byte ones). */
+ * Stores only, eight a pass: a filled row copied with memcpy costs a load and a store
+ * per 32 bytes. */
 #if RS_PREPASS
 typedef uint32_t fill_v8 __attribute__((vector_size(32), aligned(1)));
 #endif

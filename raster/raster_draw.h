@@ -18,9 +18,9 @@
  * then the general or the tiny path.  o is the vertex of the three not in the pair whose
  * coordinate extremes ymn, ymx, xmn, xmx the caller passes (pair_wide: v1 and v2, which
  * both of a strip pair's triangles have, once for both); the box is the same.
- * onscreen: all three vertices are on screen (no outcode bits: HALF <= x <= 16 w -
- * HALF), so the columns px0 >= 0 and px1 <= w - 1 need no clamping. */
-RS_INLINE static void tri_box(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+ * onscreen: all three vertices are on screen (no outcode bits: RSI_HALF <= x <= 16 w -
+ * RSI_HALF), so the columns px0 >= 0 and px1 <= w - 1 need no clamping. */
+RSI_INLINE static void tri_box(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                               const rs_cvert *o, int32_t ymn, int32_t ymx, int32_t xmn, int32_t xmx,
                               const int onscreen, const int vf)
 {
@@ -32,15 +32,15 @@ RS_INLINE static void tri_box(band *bd, const rs_cvert *a, const rs_cvert *b, co
         int32_t lo, hi;
         ymin = ymn < oy ? ymn : oy;
         ymax = ymx > oy ? ymx : oy;
-        lo = (ymin + HALF - 1) >> SUB;    /* first row whose centre is >= ymin */
-        hi = (ymax - HALF) >> SUB;        /* last row whose centre is <= ymax */
+        lo = (ymin + RSI_HALF - 1) >> RSI_SUB;    /* first row whose centre is >= ymin */
+        hi = (ymax - RSI_HALF) >> RSI_SUB;        /* last row whose centre is <= ymax */
         py0 = lo < bd->y0 ? bd->y0 : lo;
         py1 = hi >= bd->y1 ? bd->y1 - 1 : hi;
         if (py0 > py1) return;
         xmin = xmn < ox ? xmn : ox;
         xmax = xmx > ox ? xmx : ox;
-        px0 = (xmin + HALF - 1) >> SUB;
-        px1 = (xmax - HALF) >> SUB;
+        px0 = (xmin + RSI_HALF - 1) >> RSI_SUB;
+        px1 = (xmax - RSI_HALF) >> RSI_SUB;
         /* the path choice depends on the triangle only (not on the band or screen clip) */
         tiny = px1 - px0 < TINY_W && hi - lo < TINY_H;
         if (!onscreen) {
@@ -49,7 +49,7 @@ RS_INLINE static void tri_box(band *bd, const rs_cvert *a, const rs_cvert *b, co
         }
         if (px0 > px1) return;
     }
-    if (RS_UNLIKELY(!tiny)) {
+    if (RSI_UNLIKELY(!tiny)) {
         /* small: the reciprocal's bounds (raster_general.h); wide: the span by division */
         tri_general(bd, a, b, c, px0, px1, py0, py1, xmax - xmin < SMALL && ymax - ymin < SMALL,
                     px1 - px0 >= NARROW, vf);
@@ -60,7 +60,7 @@ RS_INLINE static void tri_box(band *bd, const rs_cvert *a, const rs_cvert *b, co
 
 /* One triangle (a, b, c as seen; either orientation): the out-of-line code for lists,
  * the clipper and strip triangles that are not drawn as a pair. */
-RS_NOINLINE static void tri_raster(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c, int vf)
+RSI_NOINLINE static void tri_raster(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c, int vf)
 {
     const int32_t ax = a->x, ay = a->y, bx = b->x, by = b->y;
 #define TRI_RASTER_CASE(V) case V: if (RS_BUILT(V)) tri_box(bd, a, b, c, c, ay < by ? ay : by, ay > by ? ay : by, \
@@ -82,7 +82,7 @@ RS_NOINLINE static void tri_raster(band *bd, const rs_cvert *a, const rs_cvert *
 
 /* Row j (1 .. 3) of quad_masks: the three outer edges stepped down one row, the
  * diagonal and the fourth edge from them, the rows' lanes at bit 15 - j. */
-RS_INLINE static void quad_row(uint64_t *P01, uint64_t *P20, uint64_t *P13, uint64_t K1, uint64_t K2,
+RSI_INLINE static void quad_row(uint64_t *P01, uint64_t *P20, uint64_t *P13, uint64_t K1, uint64_t K2,
                                uint64_t s01, uint64_t s20, uint64_t s13, uint64_t xm, int j,
                                uint64_t *M1, uint64_t *M2)
 {
@@ -98,7 +98,7 @@ RS_INLINE static void quad_row(uint64_t *P01, uint64_t *P20, uint64_t *P13, uint
  * tri_quad): P01, P20, P13 the packed biased values of row 0 of three outer edges, K1,
  * K2 the packed S + lane offsets from which the diagonal and the fourth edge follow,
  * s01, s20, s13 the row steps; rows 0 .. ny-1 (ny <= TINY_H = 4, unrolled) at bit 15 - j. */
-RS_INLINE static void quad_masks(uint64_t P01, uint64_t P20, uint64_t P13, uint64_t K1, uint64_t K2,
+RSI_INLINE static void quad_masks(uint64_t P01, uint64_t P20, uint64_t P13, uint64_t K1, uint64_t K2,
                                  uint64_t s01, uint64_t s20, uint64_t s13, uint64_t xm, int32_t ny,
                                  uint64_t *m1, uint64_t *m2)
 {
@@ -120,7 +120,7 @@ RS_INLINE static void quad_masks(uint64_t P01, uint64_t P20, uint64_t P13, uint6
  * biased values of three outer edges at the first candidate (px0, py0), A, B their steps
  * per sub-pixel across and down, S1, S2 the areas minus the biases; wide: the box may have
  * a second group of columns (nx up to TINY_W). */
-RS_INLINE static void quad_edges(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
+RSI_INLINE static void quad_edges(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                         const rs_cvert *v3, int32_t px0, int32_t nx, int32_t py0, int32_t ny,
                                         uint64_t xm, int32_t a1, int32_t a2, int32_t f01, int32_t f20, int32_t f13,
                                         int32_t A01, int32_t A20, int32_t A13, int32_t B01, int32_t B20, int32_t B13,
@@ -178,12 +178,12 @@ RS_INLINE static void quad_edges(band *bd, const rs_cvert *v0, const rs_cvert *v
  * inside is positive (reversed when neg).  Every value is the one tri_tiny computes
  * for the same triangle, so the pixels are those of two tri_tiny calls (the two
  * triangles cover disjoint centres: order does not matter). */
-RS_INLINE static void tri_quad(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
+RSI_INLINE static void tri_quad(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                       const rs_cvert *v3, int32_t px0, int32_t nx, int32_t py0, int32_t ny,
                                       uint64_t xm, int32_t ar1, int32_t ar2, const int neg, const int wide,
                               const int vf)
 {
-    const int32_t ox0 = px0 * SUBONE + HALF, oy0 = py0 * SUBONE + HALF;   /* the first candidate */
+    const int32_t ox0 = px0 * RSI_SUBONE + RSI_HALF, oy0 = py0 * RSI_SUBONE + RSI_HALF;   /* the first candidate */
     const int32_t X0 = v0->x - ox0, Y0 = v0->y - oy0, X1 = v1->x - ox0, Y1 = v1->y - oy0;
     const int32_t X2 = v2->x - ox0, Y2 = v2->y - oy0, X3 = v3->x - ox0, Y3 = v3->y - oy0;
     const int32_t e01 = X0 * Y1 - Y0 * X1, e12 = X1 * Y2 - Y1 * X2, e20 = X2 * Y0 - Y2 * X0;
@@ -228,11 +228,11 @@ RS_INLINE static void tri_quad(band *bd, const rs_cvert *v0, const rs_cvert *v1,
 
 /* The doubled signed areas of a strip pair's T1 = (v0, v1, v2) and T2 (from its vertex
  * v2, as tri_tiny); front faces: is_front. */
-RS_INLINE static int32_t pair_area1(const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2)
+RSI_INLINE static int32_t pair_area1(const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2)
 {
     return (v1->x - v0->x) * (v2->y - v0->y) - (v2->x - v0->x) * (v1->y - v0->y);
 }
-RS_INLINE static int32_t pair_area2(const rs_cvert *v1, const rs_cvert *v2, const rs_cvert *v3)
+RSI_INLINE static int32_t pair_area2(const rs_cvert *v1, const rs_cvert *v2, const rs_cvert *v3)
 {
     return (v1->x - v2->x) * (v3->y - v2->y) - (v3->x - v2->x) * (v1->y - v2->y);
 }
@@ -240,7 +240,7 @@ RS_INLINE static int32_t pair_area2(const rs_cvert *v1, const rs_cvert *v2, cons
 /* A strip pair (see tri_pair) over its tiny joint box px0, py0, nx x ny with nx <= 4 (one
  * group of columns: the inlined common case): orientations (cull, zero area), then
  * tri_quad, or tri_tiny one triangle at a time. */
-RS_INLINE static void pair_tiny(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
+RSI_INLINE static void pair_tiny(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                        const rs_cvert *v3, int32_t px0, int32_t nx, int32_t py0, int32_t ny, const int vf)
 {
     const uint64_t xm = TINY_XM4(nx);
@@ -252,7 +252,7 @@ RS_INLINE static void pair_tiny(band *bd, const rs_cvert *v0, const rs_cvert *v1
         tri_quad(bd, v0, v1, v2, v3, px0, nx, py0, ny, xm, ar1, ar2, 0, 0, vf);
     else {
         /* mixed orientations or a zero area (rare): one triangle at a time */
-        const int32_t ox0 = px0 * SUBONE + HALF, oy0 = py0 * SUBONE + HALF;   /* the first candidate */
+        const int32_t ox0 = px0 * RSI_SUBONE + RSI_HALF, oy0 = py0 * RSI_SUBONE + RSI_HALF;   /* the first candidate */
         if (bd->cull) {
             /* culled or zero area: area >= 0 draws nothing */
             if (is_front(ar1)) tri_tiny_any(bd, v0, v1, v2, px0, nx, py0, ny, xm, ox0, oy0, vf);
@@ -269,7 +269,7 @@ RS_INLINE static void pair_tiny(band *bd, const rs_cvert *v0, const rs_cvert *v1
  * TINY_W columns (each triangle through tri_raster), out of line so that the strip
  * loop's code has one group of columns only.  lo .. hi, xl .. xh: the joint box's rows
  * and columns of centres, unclipped; lo <= hi (tri_pair returns when there is no row). */
-RS_INLINE static void pair_wide_body(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
+RSI_INLINE static void pair_wide_body(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                       const rs_cvert *v3, int32_t lo, int32_t hi, int32_t xl, int32_t xh, const int vf)
 {
     /* no column of centres: neither triangle's own (sub-)box holds one */
@@ -300,7 +300,7 @@ RS_INLINE static void pair_wide_body(band *bd, const rs_cvert *v0, const rs_cver
 }
 
 /* pair_wide out of line, one case a variant. */
-RS_NOINLINE static void pair_wide(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
+RSI_NOINLINE static void pair_wide(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                   const rs_cvert *v3, int32_t lo, int32_t hi, int32_t xl, int32_t xh, int vf)
 {
 #define PAIR_WIDE_CASE(V) case V: if (RS_BUILT(V)) pair_wide_body(bd, v0, v1, v2, v3, lo, hi, xl, xh, V); return
@@ -330,7 +330,7 @@ RS_NOINLINE static void pair_wide(band *bd, const rs_cvert *v0, const rs_cvert *
  * T2.  Pairs whose triangles have the same orientation (the common case) go through
  * tri_quad (shared diagonal); others through tri_tiny one at a time.  A larger joint
  * box: each triangle through tri_raster. */
-RS_INLINE static void tri_pair_body(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
+RSI_INLINE static void tri_pair_body(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                      const rs_cvert *v3, const int vf)
 {
     int32_t lo, hi, xl, xh, py0, py1, px0, px1;
@@ -338,21 +338,21 @@ RS_INLINE static void tri_pair_body(band *bd, const rs_cvert *v0, const rs_cvert
         int32_t t, u, ymin, ymax, xmin, xmax;
         t = v0->y < v1->y ? v0->y : v1->y; u = v2->y < v3->y ? v2->y : v3->y; ymin = t < u ? t : u;
         t = v0->y > v1->y ? v0->y : v1->y; u = v2->y > v3->y ? v2->y : v3->y; ymax = t > u ? t : u;
-        lo = (ymin + HALF - 1) >> SUB; hi = (ymax - HALF) >> SUB;
+        lo = (ymin + RSI_HALF - 1) >> RSI_SUB; hi = (ymax - RSI_HALF) >> RSI_SUB;
         /* no row of centres (a quarter of camera B's pairs: slivers near the horizon):
-         * done before the columns are looked at; 1-2 % faster on both peer cameras */
+         * done before the columns are looked at */
         if (hi < lo) return;
         t = v0->x < v1->x ? v0->x : v1->x; u = v2->x < v3->x ? v2->x : v3->x; xmin = t < u ? t : u;
         t = v0->x > v1->x ? v0->x : v1->x; u = v2->x > v3->x ? v2->x : v3->x; xmax = t > u ? t : u;
-        xl = (xmin + HALF - 1) >> SUB; xh = (xmax - HALF) >> SUB;
+        xl = (xmin + RSI_HALF - 1) >> RSI_SUB; xh = (xmax - RSI_HALF) >> RSI_SUB;
     }
-    if (RS_UNLIKELY(hi - lo >= TINY_H || xh - xl >= 4)) {
+    if (RSI_UNLIKELY(hi - lo >= TINY_H || xh - xl >= 4)) {
         pair_wide(bd, v0, v1, v2, v3, lo, hi, xl, xh, vf);
         return;
     }
     py0 = lo < bd->y0 ? bd->y0 : lo;
     py1 = hi >= bd->y1 ? bd->y1 - 1 : hi;
-    /* all four vertices on screen (no outcode bits): HALF <= x <= 16 w - HALF, so
+    /* all four vertices on screen (no outcode bits): RSI_HALF <= x <= 16 w - RSI_HALF, so
      * 0 <= xl and xh <= w - 1 without clamping */
     px0 = xl;
     px1 = xh;
@@ -362,7 +362,7 @@ RS_INLINE static void tri_pair_body(band *bd, const rs_cvert *v0, const rs_cvert
 
 
 /* tri_pair for the textured and counting variants: out of line, one case a variant. */
-RS_NOINLINE static void tri_pair_slow(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
+RSI_NOINLINE static void tri_pair_slow(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                       const rs_cvert *v3, int vf)
 {
 #define TRI_PAIR_CASE(V) case V: if (RS_BUILT(V)) tri_pair_body(bd, v0, v1, v2, v3, V); return
@@ -377,7 +377,7 @@ RS_NOINLINE static void tri_pair_slow(band *bd, const rs_cvert *v0, const rs_cve
 #undef TRI_PAIR_CASE
 }
 
-RS_INLINE static void tri_pair(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
+RSI_INLINE static void tri_pair(band *bd, const rs_cvert *v0, const rs_cvert *v1, const rs_cvert *v2,
                                const rs_cvert *v3, const int vf)
 {
     if (VF_SLOW(vf)) tri_pair_slow(bd, v0, v1, v2, v3, vf);
@@ -391,7 +391,7 @@ RS_INLINE static void tri_pair(band *bd, const rs_cvert *v0, const rs_cvert *v1,
  * depth of candidate 0, coff / zoff the candidates' offsets from them in bytes; tight (a
  * constant): colour and depth entries of one size and rows w entries apart, where
  * coff[k] is also candidate k's depth offset (one table load per pixel). */
-RS_INLINE static void quad_shade_body(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RSI_INLINE static void quad_shade_body(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                       int32_t area2, uint32_t m, const int16_t *E, void *crow, void *zrow,
                                       const size_t *coff, const size_t *zoff, const int tight, const int vf)
 {
@@ -407,7 +407,7 @@ RS_INLINE static void quad_shade_body(band *bd, const rs_cvert *a, const rs_cver
 }
 
 /* quad_shade for the textured and counting variants: out of line, one case a variant. */
-RS_NOINLINE static void quad_shade_slow(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RSI_NOINLINE static void quad_shade_slow(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                         int32_t area2, uint32_t m, const int16_t *E, void *crow, void *zrow,
                                         const size_t *coff, const size_t *zoff, int tight, int vf)
 {
@@ -423,7 +423,7 @@ RS_NOINLINE static void quad_shade_slow(band *bd, const rs_cvert *a, const rs_cv
 #undef QUAD_SHADE_CASE
 }
 
-RS_INLINE static void quad_shade(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RSI_INLINE static void quad_shade(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                  int32_t area2, uint32_t m, const int16_t *E, void *crow, void *zrow,
                                  const size_t *coff, const size_t *zoff, const int tight, const int vf)
 {
@@ -436,11 +436,11 @@ RS_INLINE static void quad_shade(band *bd, const rs_cvert *a, const rs_cvert *b,
  * vertex; outcodes read where tested (fewer live registers); the clipper gets the same
  * order (indices ip, iq, iv).  Rejected by the outcodes: nothing; near the near plane or
  * outside the guard band: the clipper; else tri_raster. */
-RS_INLINE static void strip_tri(band *bd, const rs_cvert *p, const rs_cvert *q, const rs_cvert *v,
+RSI_INLINE static void strip_tri(band *bd, const rs_cvert *p, const rs_cvert *q, const rs_cvert *v,
                                 uint32_t ip, uint32_t iq, uint32_t iv, const int vf)
 {
     if (!(p->c & q->c & v->c & REJECT)) {
-        if (RS_UNLIKELY((p->c | q->c | v->c) & SLOW)) tri_clip(bd, ip, iq, iv, vf);
+        if (RSI_UNLIKELY((p->c | q->c | v->c) & SLOW)) tri_clip(bd, ip, iq, iv, vf);
         else tri_raster(bd, p, q, v, vf);
     }
 }
@@ -449,15 +449,15 @@ RS_INLINE static void strip_tri(band *bd, const rs_cvert *p, const rs_cvert *q, 
 /* A step's fields after pp_prepass: of int16_t and uint32_t arrays, and its vertices
  * (v0 = ve[st], v1 = vo[st], v2 = ve[st + 1], v3 = vo[st + 1]), read where used (none
  * are carried).  off: offsetof(pp_soa, field). */
-RS_INLINE static int32_t pp_i16(const pp_soa *q, size_t off, size_t st)
+RSI_INLINE static int32_t pp_i16(const pp_soa *q, size_t off, size_t st)
 {
     return *(const int16_t *)(const void *)((const char *)(const void *)q + off + 2 * st);
 }
-RS_INLINE static uint32_t pp_u32(const pp_soa *q, size_t off, size_t st)
+RSI_INLINE static uint32_t pp_u32(const pp_soa *q, size_t off, size_t st)
 {
     return *(const uint32_t *)(const void *)((const char *)(const void *)q + off + 4 * st);
 }
-RS_INLINE static const rs_cvert *pp_v(const pp_soa *q, size_t off, size_t st)
+RSI_INLINE static const rs_cvert *pp_v(const pp_soa *q, size_t off, size_t st)
 {
     return *(const rs_cvert *const *)(const void *)((const char *)(const void *)q + off + sizeof(void *) * st);
 }
@@ -466,7 +466,7 @@ RS_INLINE static const rs_cvert *pp_v(const pp_soa *q, size_t off, size_t st)
 /* The steps of a pre-pass chunk q after pp_prepass (sp: its first step's two new
  * indices): the work list's steps in order, by kind; ctight as in draw_strips, a
  * constant (draw_strips has a copy for each case: no test per step). */
-RS_INLINE static void pp_steps(band *bd, const pp_soa *q, const uint32_t *sp, const size_t *coff,
+RSI_INLINE static void pp_steps(band *bd, const pp_soa *q, const uint32_t *sp, const size_t *coff,
                                const size_t *zoff, const uintptr_t cdiff, const int ctight, const int vf)
 {
     /* the address of frame row 0's depth, were the band's buffer the whole frame's
@@ -476,7 +476,7 @@ RS_INLINE static void pp_steps(band *bd, const pp_soa *q, const uint32_t *sp, co
         /* the steps that are not PK_NONE (pp_prepass's work list), in order */
         const size_t st = ctz32(wk);
         const int32_t kind = pp_i16(q, PP_FIELD(kind), st);
-        if (RS_LIKELY(kind == PK_QUAD)) {
+        if (RSI_LIKELY(kind == PK_QUAD)) {
             const uint32_t m1 = pp_u32(q, PP_FIELD(m1), st), m2 = pp_u32(q, PP_FIELD(m2), st);    /* coverage */
             bd->tris += (uint32_t)pp_i16(q, PP_FIELD(nt), st);
             if (m1 | m2) {
@@ -518,7 +518,7 @@ RS_INLINE static void pp_steps(band *bd, const pp_soa *q, const uint32_t *sp, co
 /* The strip and list loop of one band: per primitive, per chunk of RS_CHUNK triangles
  * that touches the band (the chunk table), the strip pairs through the pre-pass or the
  * per-pair code, list triangles one at a time. */
-RS_INLINE static void draw_strips(band *bd, const int vf)
+RSI_INLINE static void draw_strips(band *bd, const int vf)
 {
     const rs_frame *f = bd->f;
     const rs_cvert *cache = f->cache;
@@ -542,7 +542,7 @@ RS_INLINE static void draw_strips(band *bd, const int vf)
     for (p = 0; p < f->nprims; p++) {
         const rs_prim *pr = &f->prims[p];
         const uint32_t *s = pr->idx;
-        uint32_t k, nt = rs_prim_tris(pr), t0;
+        uint32_t k, nt = rsi_prim_tris(pr), t0;
         if (nt == 0) continue;
         for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch = ch ? ch + 2 : ch) {
             uint32_t t1 = nt - t0 < RS_CHUNK ? nt : t0 + RS_CHUNK;
@@ -596,7 +596,7 @@ RS_INLINE static void draw_strips(band *bd, const int vf)
                         uint32_t c23;
                         v3 = &cache[sp[1]];
                         c23 = v2->c | v3->c;
-                        if (RS_LIKELY(!((c01 | c23) & (SLOW | REJECT)))) {
+                        if (RSI_LIKELY(!((c01 | c23) & (SLOW | REJECT)))) {
                             /* all four vertices on screen (the common case): no further outcode
                              * tests, no clamping to the screen's columns */
                             tri_pair(bd, v0, v1, v2, v3, vf);

@@ -79,7 +79,7 @@ typedef struct gs_lanes { gs_v4u zoff, roff, goff, boff, zstep, rstep, gstep, bs
  * pixels 0 and 3 both lie in [0, 2^21), so 3 |G_k| < 2^21 and |G_k| < 2^20, which the
  * 21-bit sign extensions recover exactly, field by field from the bottom.  rl: R's
  * shift (see GS_PX). */
-RS_NOINLINE static void gs_lanes_make(gs_lanes *L, uint32_t gzu, uint64_t gc, int rl)
+RSI_NOINLINE static void gs_lanes_make(gs_lanes *L, uint32_t gzu, uint64_t gc, int rl)
 {
     const uint32_t g_b = (uint32_t)((int64_t)(gc << 43) >> 43);
     const uint32_t g_g = (uint32_t)((int64_t)((gc - (uint64_t)(int32_t)g_b) << 22) >> 43);
@@ -109,7 +109,7 @@ typedef struct gen_grad_t {
  * colours: the difference plus 256 in each 21-bit field is in [1, 511], so the fields of
  * v->cp - a->cp + 256 (1 + 2^21 + 2^42) do not borrow, and the whole is below 2^51: R's
  * field, the top one, needs no mask. */
-RS_INLINE static int64_t gen_dch(const rs_cvert *v, const rs_cvert *a, const int k)
+RSI_INLINE static int64_t gen_dch(const rs_cvert *v, const rs_cvert *a, const int k)
 {
     return (int64_t)(((v->cp - a->cp + RS_C256) >> (42 - 21 * k)) & (k ? (uint64_t)0x1fffff : ~(uint64_t)0)) - 256;
 }
@@ -122,7 +122,7 @@ RS_INLINE static int64_t gen_dch(const rs_cvert *v, const rs_cvert *a, const int
  * where the step is never used, and the reciprocal's gz needs none (|gzn| < 2^22, inv <=
  * 2^40: |gz| < 2^26).  The row start's R and G in one pair of products (prg_b, prg_c:
  * see gen_tri's row start). */
-RS_INLINE static void gen_grad(gen_grad_t *g, fx_divisor *ad, const rs_cvert *a, const rs_cvert *b,
+RSI_INLINE static void gen_grad(gen_grad_t *g, fx_divisor *ad, const rs_cvert *a, const rs_cvert *b,
                                const rs_cvert *c, int64_t dy1, int64_t dy2, int64_t area2, const int small)
 {
     int64_t gzn;
@@ -140,7 +140,7 @@ RS_INLINE static void gen_grad(gen_grad_t *g, fx_divisor *ad, const rs_cvert *a,
               + (uint64_t)(((g->dcb2 * dy2 - g->dcc2 * dy1) * inv) >> 23);
         if (gzn < ((int64_t)1 << 22) && gzn > -((int64_t)1 << 22)) g->gz = (gzn * inv) >> 36;
         else {      /* rare: no divisor made for it */
-            g->gz = gzn * SUBONE / area2;
+            g->gz = gzn * RSI_SUBONE / area2;
             if (g->gz > INT32_MAX) g->gz = INT32_MAX;
             if (g->gz < -INT32_MAX) g->gz = -INT32_MAX;
         }
@@ -149,7 +149,7 @@ RS_INLINE static void gen_grad(gen_grad_t *g, fx_divisor *ad, const rs_cvert *a,
         g->gc = ((uint64_t)fx_divisor_trunc(ad, (dcb0 * dy2 - dcc0 * dy1) * ((int64_t)1 << 17)) << 42)
               + ((uint64_t)fx_divisor_trunc(ad, (dcb1 * dy2 - dcc1 * dy1) * ((int64_t)1 << 17)) << 21)
               + (uint64_t)fx_divisor_trunc(ad, (g->dcb2 * dy2 - g->dcc2 * dy1) * ((int64_t)1 << 17));
-        g->gz = fx_divisor_trunc(ad, gzn * SUBONE);
+        g->gz = fx_divisor_trunc(ad, gzn * RSI_SUBONE);
         if (g->gz > INT32_MAX) g->gz = INT32_MAX;
         if (g->gz < -INT32_MAX) g->gz = -INT32_MAX;
     }
@@ -160,7 +160,7 @@ RS_INLINE static void gen_grad(gen_grad_t *g, fx_divisor *ad, const rs_cvert *a,
 /* Narrow boxes: a row's span [*xl, *xr] found by scanning from px0, e1 stepped by its own
  * x step (the same values as S - e0 - e2, exact integers); *e0, *e2 the edge values at
  * *xl.  0 when the row has no centre inside. */
-RS_INLINE static int gen_scan(int32_t px0, int32_t px1, int64_t e0r, int64_t e2r, int64_t S, int64_t sx0,
+RSI_INLINE static int gen_scan(int32_t px0, int32_t px1, int64_t e0r, int64_t e2r, int64_t S, int64_t sx0,
                               int64_t sx2, int32_t *xl, int32_t *xr, int64_t *e0, int64_t *e2)
 {
     int64_t a0 = e0r, a2 = e2r, a1 = S - e0r - e2r;
@@ -190,7 +190,7 @@ RS_INLINE static int gen_scan(int32_t px0, int32_t px1, int64_t e0r, int64_t e2r
  * (~K of a copy of K that GEN_OPAQUE hides from the optimiser: GCC's induction
  * variables would otherwise step ~K of every edge on every row, a derived value it keeps
  * in memory.  K's sign is tested first, then s's: the same cases, fewer instructions.) */
-RS_INLINE static int gen_edge(int64_t s, int64_t K, const fx_divisor *q, int64_t *l, int64_t *r)
+RSI_INLINE static int gen_edge(int64_t s, int64_t K, const fx_divisor *q, int64_t *l, int64_t *r)
 {
     if (K < 0) {
         if (s > 0) {
@@ -257,7 +257,7 @@ typedef struct gs_lanes { int unused; } gs_lanes;      /* (no vector spans) */
  * the same bytes and so store the same ones (loading it after that store would give the
  * same bytes too, but a load partly overlapping a just-made store waits for it).
  * L / lanes: the triangle's lane constants, made at its first such span. */
-RS_INLINE static void gen_span_plain(void *const ze, void *const ce, int32_t n, uint32_t z, uint64_t col,
+RSI_INLINE static void gen_span_plain(void *const ze, void *const ce, int32_t n, uint32_t z, uint64_t col,
                                      uint32_t gzu, uint64_t gc, gs_lanes *L, int *lanes, const int vf)
 {
     ptrdiff_t j = -(ptrdiff_t)n;      /* n >= 1; one counter to 0 */
@@ -318,7 +318,7 @@ typedef struct gen_tex_t {
     int64_t qa, qb, qc, qua, qub, quc, qva, qvb, qvc;
 } gen_tex_t;
 
-RS_INLINE static void gen_span_other(void *zp, void *cp, int32_t n, uint32_t z, uint64_t col, uint32_t gzu,
+RSI_INLINE static void gen_span_other(void *zp, void *cp, int32_t n, uint32_t z, uint64_t col, uint32_t gzu,
                                      uint64_t gc, const gen_tex_t *tx, int64_t te0, int64_t te2, int64_t S,
                                      int64_t sx0, int64_t sx2, const int vf)
 {
@@ -354,7 +354,7 @@ RS_INLINE static void gen_span_other(void *zp, void *cp, int32_t n, uint32_t z, 
  * the values are the same whichever copy draws it.  Row starts are computed exactly from
  * the barycentric weights at the first inside centre of the row (no stepping across
  * rows), so a row's values do not depend on which band it is drawn in. */
-RS_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RSI_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                               int32_t px0, int32_t px1, int32_t py0, int32_t py1,
                               const int small, const int wide, const int one, const int vf)
 {
@@ -388,11 +388,11 @@ RS_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, co
     bias2 = tl_bias64(A2, B2);
     S = area2 - bias0 - bias1 - bias2;
     {
-        int64_t ox = (int64_t)px0 * SUBONE + HALF - a->x, oy = (int64_t)py0 * SUBONE + HALF - a->y;
+        int64_t ox = (int64_t)px0 * RSI_SUBONE + RSI_HALF - a->x, oy = (int64_t)py0 * RSI_SUBONE + RSI_HALF - a->y;
         e0r = A0 * ox + B0 * oy - bias0;
         e2r = A2 * ox + B2 * oy - bias2;
     }
-    sx0 = A0 * SUBONE; sx2 = A2 * SUBONE; sy0 = B0 * SUBONE; sy2 = B2 * SUBONE;
+    sx0 = A0 * RSI_SUBONE; sx2 = A2 * RSI_SUBONE; sy0 = B0 * RSI_SUBONE; sy2 = B2 * RSI_SUBONE;
 
     {
         gen_grad_t g = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
@@ -495,7 +495,7 @@ RS_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, co
  * copy, small and wide at run time. */
 #define GEN_CASE(V, SMALL, WIDE, ONE) \
     case V: if (RS_BUILT(V)) gen_tri(bd, a, b, c, px0, px1, py0, py1, SMALL, WIDE, ONE, V); return
-RS_NOINLINE static void tri_gen_any(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RSI_NOINLINE static void tri_gen_any(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                     int32_t px0, int32_t px1, int32_t py0, int32_t py1, int small, int wide, int vf)
 {
     switch (vf) {
@@ -515,7 +515,7 @@ RS_NOINLINE static void tri_gen_any(band *bd, const rs_cvert *a, const rs_cvert 
 }
 #if !defined(__OPTIMIZE_SIZE__)
 /* small and wide */
-RS_NOINLINE static void tri_gen_sw(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RSI_NOINLINE static void tri_gen_sw(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                    int32_t px0, int32_t px1, int32_t py0, int32_t py1, int vf)
 {
     switch (vf) {
@@ -527,7 +527,7 @@ RS_NOINLINE static void tri_gen_sw(band *bd, const rs_cvert *a, const rs_cvert *
     }
 }
 /* small and wide, one row (py1 = py0) */
-RS_NOINLINE static void tri_gen_sw1(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RSI_NOINLINE static void tri_gen_sw1(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                     int32_t px0, int32_t px1, int32_t py0, int vf)
 {
     const int32_t py1 = py0;
@@ -540,7 +540,7 @@ RS_NOINLINE static void tri_gen_sw1(band *bd, const rs_cvert *a, const rs_cvert 
     }
 }
 /* small and narrow */
-RS_NOINLINE static void tri_gen_sn(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RSI_NOINLINE static void tri_gen_sn(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                    int32_t px0, int32_t px1, int32_t py0, int32_t py1, int vf)
 {
     switch (vf) {
@@ -552,7 +552,7 @@ RS_NOINLINE static void tri_gen_sn(band *bd, const rs_cvert *a, const rs_cvert *
     }
 }
 /* large (wide at run time) */
-RS_NOINLINE static void tri_gen_l(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RSI_NOINLINE static void tri_gen_l(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                   int32_t px0, int32_t px1, int32_t py0, int32_t py1, int wide, int vf)
 {
     switch (vf) {
@@ -566,7 +566,7 @@ RS_NOINLINE static void tri_gen_l(band *bd, const rs_cvert *a, const rs_cvert *b
 #endif
 #undef GEN_CASE
 
-RS_INLINE static void tri_general(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RSI_INLINE static void tri_general(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                   int32_t px0, int32_t px1, int32_t py0, int32_t py1, int small, int wide,
                                   const int vf)
 {

@@ -2,13 +2,13 @@
  * per-frame vertex transform, rs_frame_prepare) share.  Internal: not part of the
  * contract (that is raster.h), not installed, included by these two files only.
  *
- * The helpers are static inline rather than rs_-prefixed external functions: each file
- * keeps its own inlined copy, as when both halves were one file (the clipper's
- * project/to_camera calls stay direct, same instructions), and test_raster_variants.c,
+ * The helpers are static inline rather than external functions: each file
+ * keeps its own inlined copy (the clipper's rsi_project/rsi_to_camera calls stay
+ * direct), and test_raster_variants.c,
  * which compiles both files into its own translation unit beside the full library,
  * needs no extra renames to avoid duplicate symbols.
  *
- * Units: screen positions in sub-pixels (SUB fraction bits, pixel centres at HALF),
+ * Units: screen positions in sub-pixels (RSI_SUB fraction bits, pixel centres at RSI_HALF),
  * camera space in world units, f in Q8 pixels (see raster.h). */
 #ifndef BR_RASTER_INT_H
 #define BR_RASTER_INT_H
@@ -37,65 +37,64 @@
 #include "raster/raster.h"
 #include "core/fx.h"
 
-#define SUB RS_SUBPIX_BITS
-#define SUBONE (1 << SUB)
-#define HALF (SUBONE / 2)
+#define RSI_SUB RS_SUBPIX_BITS
+#define RSI_SUBONE (1 << RSI_SUB)
+#define RSI_HALF (RSI_SUBONE / 2)
 
 /* 1 on targets with 64-bit registers (pointers of 64 bits).  A few choices of types and
  * helpers differ on 32-bit targets, with the same results; RS_TEST_32BIT (make test's
  * BR_DIV64_NATIVE=0 build) selects the 32-bit targets' code on a 64-bit machine. */
 #if UINTPTR_MAX > 0xffffffffu && !defined(RS_TEST_32BIT)
-#define RS_REG64 1
+#define RSI_REG64 1
 #else
-#define RS_REG64 0
+#define RSI_REG64 0
 #endif
 
 #if defined(__GNUC__)
-#define RS_NOINLINE __attribute__((noinline))
-#define RS_INLINE inline __attribute__((always_inline))
-#define RS_UNLIKELY(x) __builtin_expect(!!(x), 0)
-#define RS_LIKELY(x) __builtin_expect(!!(x), 1)
+#define RSI_NOINLINE __attribute__((noinline))
+#define RSI_INLINE inline __attribute__((always_inline))
+#define RSI_UNLIKELY(x) __builtin_expect(!!(x), 0)
+#define RSI_LIKELY(x) __builtin_expect(!!(x), 1)
 #else
-#define RS_LIKELY(x) (x)
-#define RS_UNLIKELY(x) (x)
-#define RS_NOINLINE
-#define RS_INLINE
+#define RSI_LIKELY(x) (x)
+#define RSI_UNLIKELY(x) (x)
+#define RSI_NOINLINE
+#define RSI_INLINE
 #endif
 
 /* The packed colour of rs_cvert.cp: R, G, B at bits 42, 21, 0 of three 21-bit fields
  * (8 integer + 13 fraction bits; see RS_CBIAS in raster.c). */
-static inline uint64_t rs_pack_rgb(uint32_t rgb)
+static inline uint64_t rsi_pack_rgb(uint32_t rgb)
 {
     return ((uint64_t)(rgb & 0xff0000u) << 26) | ((uint64_t)(rgb & 0xff00u) << 13) | (uint64_t)(rgb & 255u);
 }
 
 /* Triangles of a primitive. */
-static inline uint32_t rs_prim_tris(const rs_prim *pr)
+static inline uint32_t rsi_prim_tris(const rs_prim *pr)
 {
     if (pr->n < 3) return 0;
     return pr->kind == RS_STRIP ? pr->n - 2 : pr->n / 3;
 }
 
 /* f in Q8 pixels (f <= 2^20 px for fovy >= 1 deg and h <= 16384, so < 2^28). */
-static inline int64_t f_q8(const cam_vp *vp) { return (vp->f_q16 + 128) >> 8; }
+static inline int64_t rsi_f_q8(const cam_vp *vp) { return (vp->f_q16 + 128) >> 8; }
 
 /* Screen position of camera-space point c (c2 >= znear, inside the guard band). */
-static inline void project(const cam_vp *vp, int64_t f8, const int64_t c[3], int32_t w, int32_t h, rs_cvert *o)
+static inline void rsi_project(const cam_vp *vp, int64_t f8, const int64_t c[3], int32_t w, int32_t h, rs_cvert *o)
 {
     /* |f8 * c| < 2^28 * 2^32; the quotient is within the guard band: |q| <= 2^22 */
     int64_t qx = f8 * c[0] / c[2], qy = f8 * c[1] / c[2];
-    o->x = w * HALF + (int32_t)((qx + 8) >> 4);
-    o->y = h * HALF - (int32_t)((qy + 8) >> 4);
+    o->x = w * RSI_HALF + (int32_t)((qx + 8) >> 4);
+    o->y = h * RSI_HALF - (int32_t)((qy + 8) >> 4);
     o->d = (uint32_t)((int64_t)RS_DEPTH_ONE * vp->znear / c[2]);
 }
 
 /* Camera space of world point p: the Q30 view matrix and translation, floored to
- * world units.  Only xform_slow and the clipper call it, once each; kept a call as it
- * was when both were in raster.c (inlined, peer camera B 640x480 draws with 4.7 k
- * fewer instructions per frame on x86-64: a change of its own, left for later).
- * Not inline (gcc warns on inline + noinline): both files use it, so no unused
- * warning. */
-static RS_NOINLINE void to_camera(const cam_vp *vp, const int32_t p[3], int64_t c[3])
+ * world units: c = (R p + t) >> 30, each product below 2^60 (|R| <= 2^30 in Q30,
+ * |p| < 2^30 by the world convention).  Only xform_slow and the clipper
+ * call it, once each (off the fast paths), so it stays one out-of-line copy.  Not inline
+ * (gcc warns on inline + noinline): both files use it, so no unused warning. */
+static RSI_NOINLINE void rsi_to_camera(const cam_vp *vp, const int32_t p[3], int64_t c[3])
 {
     int i;
     for (i = 0; i < 3; i++)

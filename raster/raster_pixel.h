@@ -6,7 +6,7 @@
  * SPECIALISATION
  * A variant is a constant `vf`, an OR of the VF_ flags below.  Every function of the
  * triangle code that draws takes `const int vf` as its last argument and is
- * RS_INLINE (always_inline), so GCC and clang fold each flag test and each access
+ * RSI_INLINE (always_inline), so GCC and clang fold each flag test and each access
  * width: a caller with a constant vf gets the code of that state set only, with no
  * per-pixel branch on state.  The copies the compiler keeps are named where they are
  * made: draw_888_z32 .. draw_count in raster_draw.h (one line each, what draw_for
@@ -49,10 +49,10 @@ enum {
  * Doubled signed areas are computed from screen positions as seen, (b - a) x (c - a)
  * with y pointing down, so a triangle counter-clockwise seen from the camera (a front
  * face, OpenGL's default) has a NEGATIVE area: is_front. */
-RS_INLINE static int is_front(int64_t area2) { return area2 < 0; }
-RS_INLINE static int is_back(int64_t area2) { return area2 > 0; }
+RSI_INLINE static int is_front(int64_t area2) { return area2 < 0; }
+RSI_INLINE static int is_back(int64_t area2) { return area2 > 0; }
 /* x, negated when neg (edges of front faces are reversed so that the inside is positive) */
-RS_INLINE static int32_t sg(int32_t x, const int neg) { return neg ? -x : x; }
+RSI_INLINE static int32_t sg(int32_t x, const int neg) { return neg ? -x : x; }
 /* The top-left rule's bias of an edge with x step A and y step B (edge function E =
  * A (X - P.x) + B (Y - P.y), inside positive; Pineda 1988): bias = 1 exactly when
  * 2 A + (B > 0) <= 0, i.e. A < 0, or A == 0 and B <= 0; a centre with E == 0 on such an
@@ -62,11 +62,11 @@ RS_INLINE static int32_t sg(int32_t x, const int neg) { return neg ? -x : x; }
  * iff A 2^16 + B <= 0 (|B| < 2^15 cannot outweigh a unit of A), the sign bit of A 2^16 +
  * B - 1 (|A 2^16 + B| < 2^31: no overflow).  tl_bias64, for any vertex differences (far
  * below 2^62): the sign bit of 2 A + (B > 0) - 1. */
-RS_INLINE static int32_t tl_bias16(int32_t A, int32_t B)
+RSI_INLINE static int32_t tl_bias16(int32_t A, int32_t B)
 {
     return (int32_t)((uint32_t)(A * 65536 + B - 1) >> 31);
 }
-RS_INLINE static int64_t tl_bias64(int64_t A, int64_t B)
+RSI_INLINE static int64_t tl_bias64(int64_t A, int64_t B)
 {
     return (int64_t)((uint64_t)(2 * A + (B > 0) - 1) >> 63);
 }
@@ -76,35 +76,35 @@ RS_INLINE static int64_t tl_bias64(int64_t A, int64_t B)
  * their code size). */
 #define VF_SLOW(vf) (((vf) & (VF_TEX | VF_COUNT)) != 0)
 
-RS_INLINE static size_t px_bytes(const int vf) { return (vf & VF_565) ? 2u : 4u; }
-RS_INLINE static size_t z_bytes(const int vf) { return (vf & VF_Z16) ? 2u : 4u; }
+RSI_INLINE static size_t px_bytes(const int vf) { return (vf & VF_565) ? 2u : 4u; }
+RSI_INLINE static size_t z_bytes(const int vf) { return (vf & VF_Z16) ? 2u : 4u; }
 
 /* Entry i of a colour or depth row (i may be negative: rows walked from their end). */
-RS_INLINE static void *px_at(void *row, ptrdiff_t i, const int vf)
+RSI_INLINE static void *px_at(void *row, ptrdiff_t i, const int vf)
 {
     return (uint8_t *)row + i * (ptrdiff_t)px_bytes(vf);
 }
-RS_INLINE static void *z_at(void *row, ptrdiff_t i, const int vf)
+RSI_INLINE static void *z_at(void *row, ptrdiff_t i, const int vf)
 {
     return (uint8_t *)row + i * (ptrdiff_t)z_bytes(vf);
 }
 
 /* The depth a 32-bit d is stored as: d itself, or (16-bit buffers) d >> 14 truncated to
  * 16 bits (d < 2^30, so nothing is lost by the truncation). */
-RS_INLINE static uint32_t z_store(uint32_t d, const int vf)
+RSI_INLINE static uint32_t z_store(uint32_t d, const int vf)
 {
     return (vf & VF_Z16) ? (uint32_t)(uint16_t)(d >> 14) : d;
 }
-RS_INLINE static uint32_t z_get(const void *p, const int vf)
+RSI_INLINE static uint32_t z_get(const void *p, const int vf)
 {
     return (vf & VF_Z16) ? *(const uint16_t *)p : *(const uint32_t *)p;
 }
-RS_INLINE static void z_put(void *p, uint32_t z, const int vf)
+RSI_INLINE static void z_put(void *p, uint32_t z, const int vf)
 {
     if (vf & VF_Z16) *(uint16_t *)p = (uint16_t)z;
     else *(uint32_t *)p = z;
 }
-RS_INLINE static void px_put(void *p, uint32_t px, const int vf)
+RSI_INLINE static void px_put(void *p, uint32_t px, const int vf)
 {
     if (vf & VF_565) *(uint16_t *)p = (uint16_t)px;
     else *(uint32_t *)p = px;
@@ -112,21 +112,21 @@ RS_INLINE static void px_put(void *p, uint32_t px, const int vf)
 
 /* The pixel of a packed colour (three 21-bit fields, see RS_CBIAS in raster.c), and of
  * a 0xRRGGBB value (the clear colour, texels). */
-RS_INLINE static uint32_t px_pack(uint64_t col, const int vf)
+RSI_INLINE static uint32_t px_pack(uint64_t col, const int vf)
 {
     return (vf & VF_565) ? (uint32_t)PACK565(col) : PACK888(col);
 }
-RS_INLINE static uint32_t px_pack24(uint32_t rgb, const int vf)
+RSI_INLINE static uint32_t px_pack24(uint32_t rgb, const int vf)
 {
     return (vf & VF_565) ? (uint32_t)PACK24_565(rgb) : PACK24_888(rgb);
 }
 
 /* Where pixel (px, py) (py in the band) starts in the band's colour and depth. */
-RS_INLINE static void *band_crow(const band *bd, int32_t py, int32_t px, const int vf)
+RSI_INLINE static void *band_crow(const band *bd, int32_t py, int32_t px, const int vf)
 {
     return px_at(bd->color + (size_t)(py - bd->y0) * bd->stride, px, vf);
 }
-RS_INLINE static void *band_zrow(const band *bd, int32_t py, int32_t px, const int vf)
+RSI_INLINE static void *band_zrow(const band *bd, int32_t py, int32_t px, const int vf)
 {
     return z_at(z_at(bd->depth, (ptrdiff_t)((size_t)(py - bd->y0) * (size_t)bd->w), vf), px, vf);
 }

@@ -1,9 +1,9 @@
 /* raster/raster_prepass.h — the strip pre-pass of the per-triangle code (pp_prepass and
  * what it fills, pp_soa): the set-up and coverage of a chunk's strip pairs in 16-bit
- * vector lanes, which raster_tmpl.h's strip loop (pp_steps) then shades.  Part of
+ * vector lanes, which raster_draw.h's strip loop (pp_steps) then shades.  Part of
  * raster.c: included by it once, when RS_PREPASS (targets with GCC's vectors, see the
- * comment above RS_PREPASS there), before the template; it uses raster.c's macros
- * (RS_SHUFFLE, PP_SCHED, RS_VBYTES, TINY_W, TINY_H, SUB, HALF, REJECT, SLOW) and band.
+ * comment above RS_PREPASS there), before the triangle code; it uses raster.c's macros
+ * (RS_SHUFFLE, PP_SCHED, RS_VBYTES, TINY_W, TINY_H, RSI_SUB, RSI_HALF, REJECT, SLOW) and band.
  * raster.c's only. */
 #ifndef BR_RASTER_PREPASS_H
 #define BR_RASTER_PREPASS_H
@@ -18,16 +18,14 @@ enum { PK_NONE = 0, PK_QUAD, PK_WIDE, PK_SLOW };
 #define PP_STEPS (RS_CHUNK / 2)
 #define PP_IN (PP_STEPS + 16)   /* vertex slots 0 .. n rounded up to PP_L (n <= PP_STEPS steps); a multiple of 16 */
 #define PP_OFF 32768            /* coordinates are taken as x - PP_OFF: [-32760, 32760] on screen */
-#define PP_ROFF (PP_OFF >> SUB) /* the same in rows and columns */
+#define PP_ROFF (PP_OFF >> RSI_SUB) /* the same in rows and columns */
 /* PP_L steps per group: 8 in 128-bit vectors; 16 in the 256-bit ones of x86-64-v3
  * (AVX2; raster/isa.c's second copy), where one group's instructions serve twice the
- * steps: peer scene 640x480 in that copy, A 21.91 -> 19.86 M, B 19.58 -> 18.21 M
- * instructions per frame (the candidate loop runs over the largest quad box among
- * sixteen lanes instead of eight, which costs far less than the halved set-up saves).
- * Not at SSE2 or NEON: GCC splits 256-bit generic vectors into pairs of 128-bit ones
- * and runs out of registers (before the gather moved here: baseline x86-64 A 24.64 ->
- * 47.7 M, B 22.57 -> 40.5 M; AArch64 A 20.66 -> 46.4 M, B 19.11 -> 39.1 M).  The
- * gather's transposition stays in 128-bit vectors (pp_h8), eight slots at a time. */
+ * steps (the candidate loop runs over the largest quad box among sixteen lanes instead
+ * of eight, which costs far less than the halved set-up saves).  Not at SSE2 or NEON:
+ * GCC splits 256-bit generic vectors into pairs of 128-bit ones and runs out of
+ * registers, which about doubles the pre-pass's cost.  The gather's transposition
+ * stays in 128-bit vectors (pp_h8), eight slots at a time. */
 #define PP_L (RS_VBYTES / 2)
 typedef int16_t pp_v8 __attribute__((vector_size(2 * PP_L)));
 typedef uint16_t pp_v8u __attribute__((vector_size(2 * PP_L)));
@@ -52,7 +50,7 @@ typedef struct pp_soa {
     int16_t e[TINY_W * TINY_H][4][PP_STEPS];
     uint32_t work;      /* the strip loop's work list (the end of pp_prepass) */
 } pp_soa;
-/* The strip loop reads a step's fields (raster_tmpl.h's pp_steps) as q.F[st] where one
+/* The strip loop reads a step's fields (raster_draw.h's pp_steps) as q.F[st] where one
  * operand adds a base, a scaled index and a displacement (x86); elsewhere (ARM: an
  * index register or an offset, not both) from a base per field size, st added once. */
 #if defined(__x86_64__) || defined(__i386__)
@@ -96,7 +94,7 @@ typedef struct pp_soa {
 /* The strip loop's work list from the kinds (the end of pp_prepass).  Eight lanes:
  * PP_BITS2(M, V, W), bit i of M for each lane i of V, bit 8 + i for W (vectors of all-ones
  * or zero lanes; packsswb and pmovmskb, elsewhere lane i's bit, the lanes folded with or;
- * two groups per call: one per call cost A 640x480 +0.17 M).  Sixteen (AVX2): PP_BITS(M,
+ * two groups per call, which is cheaper than one).  Sixteen (AVX2): PP_BITS(M,
  * V), bit i for lane i, from the bytes' top bits (vpmovmskb), every other one (pext). */
 #if PP_L == 16
 typedef char pp_v32c __attribute__((vector_size(32)));
@@ -125,74 +123,129 @@ typedef char pp_v16c __attribute__((vector_size(16)));
 /* Eight cache entries' first 16 bytes (P[0 .. 7]; x, y, d, c: as 16-bit words x, x >> 16,
  * y, y >> 16, d, d >> 16, c, c >> 16 after PP_LEW) transposed into slots
  * K .. K + 7 of X, Y, C: the low words of x and y less PP_OFF (modulo 2^16: the top bit
- * flipped) and c >> 16 (the outcode byte above the colour's red), by interleaving words,
- * pairs of words and halves (17 shuffles; fl: PP_OFF's flip in every lane). */
+ * flipped, fl holds PP_OFF's flip in every lane) and c >> 16 (the outcode byte above the
+ * colour's red), by interleaving words, pairs of words and halves (17 shuffles). */
 #define PP_ZIP(A, B, I0, I1, I2, I3, I4, I5, I6, I7) RS_SHUFFLE((A), (B), pp_h8, I0, I1, I2, I3, I4, I5, I6, I7)
-#define PPS8(A, K, V) (*(pp_h8un *)(void *)&(A)[K] = (V))
-#define PP_T8(P, X, Y, C, K) do {                                                      \
-        pp_h8 w0, w1, w2, w3, w4, w5, w6, w7;                                          \
-        memcpy(&w0, (P)[0], 16); memcpy(&w1, (P)[1], 16); memcpy(&w2, (P)[2], 16);    \
-        memcpy(&w3, (P)[3], 16); memcpy(&w4, (P)[4], 16); memcpy(&w5, (P)[5], 16);    \
-        memcpy(&w6, (P)[6], 16); memcpy(&w7, (P)[7], 16);                              \
-        PP_LEW(w0); PP_LEW(w1); PP_LEW(w2); PP_LEW(w3);                                \
-        PP_LEW(w4); PP_LEW(w5); PP_LEW(w6); PP_LEW(w7);                                \
-        /* l01: x0 x1 x0' x1' y0 y1 y0' y1' (' the high words), h01: d0 d1 d0' d1' c0 c1 c0' c1' */ \
-        const pp_h8 l01 = PP_ZIP(w0, w1, 0, 8, 1, 9, 2, 10, 3, 11), h01 = PP_ZIP(w0, w1, 4, 12, 5, 13, 6, 14, 7, 15); \
-        const pp_h8 l23 = PP_ZIP(w2, w3, 0, 8, 1, 9, 2, 10, 3, 11), h23 = PP_ZIP(w2, w3, 4, 12, 5, 13, 6, 14, 7, 15); \
-        const pp_h8 l45 = PP_ZIP(w4, w5, 0, 8, 1, 9, 2, 10, 3, 11), h45 = PP_ZIP(w4, w5, 4, 12, 5, 13, 6, 14, 7, 15); \
-        const pp_h8 l67 = PP_ZIP(w6, w7, 0, 8, 1, 9, 2, 10, 3, 11), h67 = PP_ZIP(w6, w7, 4, 12, 5, 13, 6, 14, 7, 15); \
-        /* x03: x0 x1 x2 x3 x0' x1' x2' x3', y03 the same of y, c03 of c */          \
-        const pp_h8 x03 = PP_ZIP(l01, l23, 0, 1, 8, 9, 2, 3, 10, 11), x47 = PP_ZIP(l45, l67, 0, 1, 8, 9, 2, 3, 10, 11); \
-        const pp_h8 y03 = PP_ZIP(l01, l23, 4, 5, 12, 13, 6, 7, 14, 15), y47 = PP_ZIP(l45, l67, 4, 5, 12, 13, 6, 7, 14, 15); \
-        const pp_h8 c03 = PP_ZIP(h01, h23, 4, 5, 12, 13, 6, 7, 14, 15), c47 = PP_ZIP(h45, h67, 4, 5, 12, 13, 6, 7, 14, 15); \
-        PPS8(X, K, PP_ZIP(x03, x47, 0, 1, 2, 3, 8, 9, 10, 11) ^ fl);                  \
-        PPS8(Y, K, PP_ZIP(y03, y47, 0, 1, 2, 3, 8, 9, 10, 11) ^ fl);                  \
-        PPS8(C, K, PP_ZIP(c03, c47, 4, 5, 6, 7, 12, 13, 14, 15));                     \
-    } while (0)
+RSI_INLINE static void pp_store8(int16_t *a, int32_t k, pp_h8 v) { *(pp_h8un *)(void *)&a[k] = v; }
+RSI_INLINE static void pp_t8(const rs_cvert *const p[8], int16_t *x, int16_t *y, int16_t *c, int32_t k, pp_h8 fl)
+{
+    pp_h8 w0, w1, w2, w3, w4, w5, w6, w7;
+    memcpy(&w0, p[0], 16); memcpy(&w1, p[1], 16); memcpy(&w2, p[2], 16);
+    memcpy(&w3, p[3], 16); memcpy(&w4, p[4], 16); memcpy(&w5, p[5], 16);
+    memcpy(&w6, p[6], 16); memcpy(&w7, p[7], 16);
+    PP_LEW(w0); PP_LEW(w1); PP_LEW(w2); PP_LEW(w3);
+    PP_LEW(w4); PP_LEW(w5); PP_LEW(w6); PP_LEW(w7);
+    {
+        /* l01: x0 x1 x0' x1' y0 y1 y0' y1' (' the high words), h01: d0 d1 d0' d1' c0 c1 c0' c1' */
+        const pp_h8 l01 = PP_ZIP(w0, w1, 0, 8, 1, 9, 2, 10, 3, 11), h01 = PP_ZIP(w0, w1, 4, 12, 5, 13, 6, 14, 7, 15);
+        const pp_h8 l23 = PP_ZIP(w2, w3, 0, 8, 1, 9, 2, 10, 3, 11), h23 = PP_ZIP(w2, w3, 4, 12, 5, 13, 6, 14, 7, 15);
+        const pp_h8 l45 = PP_ZIP(w4, w5, 0, 8, 1, 9, 2, 10, 3, 11), h45 = PP_ZIP(w4, w5, 4, 12, 5, 13, 6, 14, 7, 15);
+        const pp_h8 l67 = PP_ZIP(w6, w7, 0, 8, 1, 9, 2, 10, 3, 11), h67 = PP_ZIP(w6, w7, 4, 12, 5, 13, 6, 14, 7, 15);
+        /* x03: x0 x1 x2 x3 x0' x1' x2' x3', y03 the same of y, c03 of c */
+        const pp_h8 x03 = PP_ZIP(l01, l23, 0, 1, 8, 9, 2, 3, 10, 11), x47 = PP_ZIP(l45, l67, 0, 1, 8, 9, 2, 3, 10, 11);
+        const pp_h8 y03 = PP_ZIP(l01, l23, 4, 5, 12, 13, 6, 7, 14, 15), y47 = PP_ZIP(l45, l67, 4, 5, 12, 13, 6, 7, 14, 15);
+        const pp_h8 c03 = PP_ZIP(h01, h23, 4, 5, 12, 13, 6, 7, 14, 15), c47 = PP_ZIP(h45, h67, 4, 5, 12, 13, 6, 7, 14, 15);
+        pp_store8(x, k, PP_ZIP(x03, x47, 0, 1, 2, 3, 8, 9, 10, 11) ^ fl);
+        pp_store8(y, k, PP_ZIP(y03, y47, 0, 1, 2, 3, 8, 9, 10, 11) ^ fl);
+        pp_store8(c, k, PP_ZIP(c03, c47, 4, 5, 6, 7, 12, 13, 14, 15));
+    }
+}
+
+/* Vertex slot k + j of one parity (odd: 0 even, 1 odd) of the gather below: the cache
+ * entry of strip index 2 s + odd, s = k + j, or n for slots past n when clamp; kept in
+ * *slot for the strip loop and returned for the transposition. */
+RSI_INLINE static const rs_cvert *pp_g1(const rs_cvert **slot, const rs_cvert *cache, const uint32_t *ip,
+                                        int32_t k, int32_t j, int32_t n, int clamp, int odd)
+{
+    const int32_t s = clamp && k + j > n ? n : k + j;
+    return *slot = &cache[ip[2 * s + odd]];
+}
+
+/* Slots k .. k + 7 of both parities: their pointers, then their first 16 bytes
+ * transposed (pp_t8).  clamp: some of the slots are past n. */
+RSI_INLINE static void pp_g8(pp_soa *q, const rs_cvert *cache, const uint32_t *ip, int32_t k, int32_t n,
+                             int clamp, pp_h8 fl)
+{
+    const rs_cvert *pe[8], *po[8];
+    pe[0] = pp_g1(&q->ve[k + 0], cache, ip, k, 0, n, clamp, 0);
+    pe[1] = pp_g1(&q->ve[k + 1], cache, ip, k, 1, n, clamp, 0);
+    pe[2] = pp_g1(&q->ve[k + 2], cache, ip, k, 2, n, clamp, 0);
+    pe[3] = pp_g1(&q->ve[k + 3], cache, ip, k, 3, n, clamp, 0);
+    pe[4] = pp_g1(&q->ve[k + 4], cache, ip, k, 4, n, clamp, 0);
+    pe[5] = pp_g1(&q->ve[k + 5], cache, ip, k, 5, n, clamp, 0);
+    pe[6] = pp_g1(&q->ve[k + 6], cache, ip, k, 6, n, clamp, 0);
+    pe[7] = pp_g1(&q->ve[k + 7], cache, ip, k, 7, n, clamp, 0);
+    pp_t8(pe, q->xe, q->ye, q->ce, k, fl);
+    po[0] = pp_g1(&q->vo[k + 0], cache, ip, k, 0, n, clamp, 1);
+    po[1] = pp_g1(&q->vo[k + 1], cache, ip, k, 1, n, clamp, 1);
+    po[2] = pp_g1(&q->vo[k + 2], cache, ip, k, 2, n, clamp, 1);
+    po[3] = pp_g1(&q->vo[k + 3], cache, ip, k, 3, n, clamp, 1);
+    po[4] = pp_g1(&q->vo[k + 4], cache, ip, k, 4, n, clamp, 1);
+    po[5] = pp_g1(&q->vo[k + 5], cache, ip, k, 5, n, clamp, 1);
+    po[6] = pp_g1(&q->vo[k + 6], cache, ip, k, 6, n, clamp, 1);
+    po[7] = pp_g1(&q->vo[k + 7], cache, ip, k, 7, n, clamp, 1);
+    pp_t8(po, q->xo, q->yo, q->co, k, fl);
+}
 
 /* The gather: vertex slot k holds ip[2 k] (even) and ip[2 k + 1] (odd) for k <= n, the
- * slots past n repeat slot n (their lanes are ignored); eight slots at a time, their
- * pointers kept for the strip loop and their first 16 bytes transposed (PP_T8); slots
- * 0 .. nv - 1 (nv: n rounded up to PP_L). */
-RS_INLINE static void pp_gather(pp_soa *q, const rs_cvert *cache, const uint32_t *ip, int32_t n, int32_t nv)
+ * slots past n repeat slot n (their lanes are ignored); eight slots at a time (pp_g8);
+ * slots 0 .. nv - 1 (nv: n rounded up to PP_L). */
+RSI_INLINE static void pp_gather(pp_soa *q, const rs_cvert *cache, const uint32_t *ip, int32_t n, int32_t nv)
 {
     /* x - PP_OFF modulo 2^16 is the low 16 bits with the top one flipped */
     const pp_h8 fl = { -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF };
     int32_t k;
-#define PP_SLOT(J) (k + (J))
-#define PP_SLOTC(J) (k + (J) <= n ? k + (J) : n)
-#define PP_G(P, V, O, J, S) P[J] = q->V[k + (J)] = &cache[ip[2 * S(J) + (O)]];
-#define PP_G8(S) do {                                                                  \
-            const rs_cvert *pe[8], *po[8];                                             \
-            PP_G(pe, ve, 0, 0, S) PP_G(pe, ve, 0, 1, S) PP_G(pe, ve, 0, 2, S) PP_G(pe, ve, 0, 3, S) \
-            PP_G(pe, ve, 0, 4, S) PP_G(pe, ve, 0, 5, S) PP_G(pe, ve, 0, 6, S) PP_G(pe, ve, 0, 7, S) \
-            PP_T8(pe, q->xe, q->ye, q->ce, k);                                         \
-            PP_G(po, vo, 1, 0, S) PP_G(po, vo, 1, 1, S) PP_G(po, vo, 1, 2, S) PP_G(po, vo, 1, 3, S) \
-            PP_G(po, vo, 1, 4, S) PP_G(po, vo, 1, 5, S) PP_G(po, vo, 1, 6, S) PP_G(po, vo, 1, 7, S) \
-            PP_T8(po, q->xo, q->yo, q->co, k);                                         \
-        } while (0)
     for (k = 0; k < nv; k += 8) {
-        if (k + 7 <= n) PP_G8(PP_SLOT);
-        else PP_G8(PP_SLOTC);
+        if (k + 7 <= n) pp_g8(q, cache, ip, k, n, 0, fl);
+        else pp_g8(q, cache, ip, k, n, 1, fl);
     }
-#undef PP_SLOT
-#undef PP_SLOTC
-#undef PP_G
-#undef PP_G8
+}
+
+/* The candidate loop's edge values for one step's pair, row by row: S1, S2 (the areas less
+ * the biases), same (all ones in the lanes whose two triangles' areas have the same sign),
+ * the steps per pixel across (c01, c20, c13) and down (r01s, r20s, r13s), and the values
+ * at the current row's first centre (r01, r20, r13), which pp_row advances. */
+typedef struct pp_row_edges {
+    pp_v8 S1, S2, same, c01, c20, c13, r01s, r20s, r13s;
+    pp_v8 r01, r20, r13;
+} pp_row_edges;
+
+/* Row j (0 .. 3) of the quads' candidates: the edge values of its nxm columns into
+ * q->e[8 j + i] (lanes k ..), and the covered centres' bits (1 << i, masked to the lanes
+ * whose box has row j: j < qny) into *ml / *mm at bit sh; then g's row values step down. */
+RSI_INLINE static void pp_row(pp_soa *q, int32_t k, pp_row_edges *g, int32_t j, int32_t nxm, pp_v8 qny,
+                              pp_v8 *ml, pp_v8 *mm, int sh)
+{
+    const pp_v8 zero = { 0 }, one = zero + 1, rm = qny > (int16_t)j;
+    pp_v8 g01 = g->r01, g20 = g->r20, g13 = g->r13, b1 = zero, b2 = zero, cb = one;
+    int32_t i;
+    for (i = 0; i < nxm; i++) {
+        const pp_v8 eD = VSUB(VSUB(g->S1, g01), g20), eT = eD ^ g->same;
+        const pp_v8 g32 = VSUB(VSUB(g->S2, eT), g13);
+        b1 |= cb & ~((g01 | g20 | eD) >> 15);
+        b2 |= cb & ~((g13 | g32 | eT) >> 15);
+        PPS(q->e[8 * j + i][0], k, g20);
+        PPS(q->e[8 * j + i][1], k, g01);
+        PPS(q->e[8 * j + i][2], k, g32);
+        PPS(q->e[8 * j + i][3], k, eT);
+        g01 = VADD(g01, g->c01); g20 = VADD(g20, g->c20); g13 = VADD(g13, g->c13);
+        cb = VADD(cb, cb);
+    }
+    *ml |= VI(VU(b1 & rm) << sh); *mm |= VI(VU(b2 & rm) << sh);
+    g->r01 = VADD(g->r01, g->r01s); g->r20 = VADD(g->r20, g->r20s); g->r13 = VADD(g->r13, g->r13s);
 }
 
 /* The set-up of strip steps 0 .. n-1 of a chunk, PP_L at a time in 16-bit lanes (see
  * pp_soa above; strip indices ip[0 .. 2 n + 1], gathered first): for each step what
- * tri_pair, pair_tiny and tri_quad (raster_tmpl.h) compute before the coverage masks,
+ * tri_pair, pair_tiny and tri_quad (raster_draw.h) compute before the coverage masks,
  * with the same values, so the pixels are theirs:
  * - kind: PK_SLOW (an outcode bit, and not both triangles rejected by the outcodes: the
  *   main pass does what the plain loop does), PK_NONE (no row of centres, an empty box in
  *   the band, neither triangle drawn (culled or of zero area), both rejected by the
  *   outcodes), PK_WIDE (more than TINY_H rows or TINY_W columns: pair_wide with lo, hi,
  *   xl, xh in py0, ny, px0, nx), PK_QUAD (any other box of up to TINY_W x TINY_H centres,
- *   either orientation for each triangle).  One-candidate boxes are quads too (kinds of
- *   their own, shaded by tiny_pixel, took B 640x480 0.53 M to classify, for 1.2 k
- *   steps per frame);
+ *   either orientation for each triangle).  One-candidate boxes are quads too (they
+ *   are rare, and kinds of their own would cost more to classify than they save);
  * - for the quads the box, the areas, the number of triangles drawn (nt) and the coverage
  *   and edge values of each candidate (see the candidate loop below).
  * Every value is computed modulo 2^16.  For the pairs that use them it is exact: all four
@@ -231,8 +284,8 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
         const pp_v8 rej = ((c12 & c0) != 0) & ((c12 & c3) != 0);
         const pp_v8 ymin = PP_MIN(PP_MIN(y0, y1), PP_MIN(y2, y3)), ymax = PP_MAX(PP_MAX(y0, y1), PP_MAX(y2, y3));
         const pp_v8 xmin = PP_MIN(PP_MIN(x0, x1), PP_MIN(x2, x3)), xmax = PP_MAX(PP_MAX(x0, x1), PP_MAX(x2, x3));
-        const pp_v8 lo = VADD(ymin, zero + (HALF - 1)) >> SUB, hi = VSUB(ymax, zero + HALF) >> SUB;
-        const pp_v8 xl = VADD(xmin, zero + (HALF - 1)) >> SUB, xh = VSUB(xmax, zero + HALF) >> SUB;
+        const pp_v8 lo = VADD(ymin, zero + (RSI_HALF - 1)) >> RSI_SUB, hi = VSUB(ymax, zero + RSI_HALF) >> RSI_SUB;
+        const pp_v8 xl = VADD(xmin, zero + (RSI_HALF - 1)) >> RSI_SUB, xh = VSUB(xmax, zero + RSI_HALF) >> RSI_SUB;
         /* boxes of more than TINY_W x TINY_H centres: pair_wide */
         const pp_v8 empty = hi < lo, wide = ((hi - lo) > (TINY_H - 1)) | ((xh - xl) > (TINY_W - 1));
         const pp_v8 py0 = PP_MAX(lo, by0), py1 = PP_MIN(hi, by1);
@@ -252,7 +305,7 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
                 continue;
             }
         }
-        const pp_v8 ox = VI((VU(xl) << SUB) + HALF), oy = VI((VU(py0) << SUB) + HALF);
+        const pp_v8 ox = VI((VU(xl) << RSI_SUB) + RSI_HALF), oy = VI((VU(py0) << RSI_SUB) + RSI_HALF);
         const pp_v8 X0 = VSUB(x0, ox), X1 = VSUB(x1, ox), X2 = VSUB(x2, ox), X3 = VSUB(x3, ox);
         const pp_v8 Y0 = VSUB(y0, oy), Y1 = VSUB(y1, oy), Y2 = VSUB(y2, oy), Y3 = VSUB(y3, oy);
         /* modulo 2^16; exact for the pairs that use them (tiny boxes: |e| < 2^15) */
@@ -311,45 +364,26 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
             const pp_v8 qnx = VSEL(isq, xh - xl + 1, zero), qny = VSEL(isq, py1 - py0 + 1, zero);
             pp_v8 bx = PP_HMAX(qnx), by = PP_HMAX(qny);
             const int32_t nxm = bx[0], nym = by[0];
-            int32_t i;
             pp_v8 m1l = zero, m2l = zero, m1h = zero, m2h = zero;
             if (nxm) {
                 /* S1, S2: the areas less the biases; the edges' steps per pixel across
                  * (16 A) and down (16 B) */
                 const pp_v8 S1 = VADD(VADD(VADD(SG1(ar1), b01), b12), b20), S2 = VADD(VADD(VADD(SG2(ar2), b13), bT), b32);
-                const pp_v8 c01 = VI(VU(SG1(VSUB(y0, y1))) << SUB), c20 = VI(VU(SG1(VSUB(y2, y0))) << SUB);
-                const pp_v8 c13 = VI(VU(SG2(VSUB(y1, y3))) << SUB);
-                const pp_v8 r01s = VI(VU(SG1(VSUB(x1, x0))) << SUB), r20s = VI(VU(SG1(VSUB(x0, x2))) << SUB);
-                const pp_v8 r13s = VI(VU(SG2(VSUB(x3, x1))) << SUB);
-                pp_v8 r01 = f01, r20 = f20, r13 = f13;
-                /* row J's bits (1 << i, then masked to the lane's box) into ML / MM at bit SH */
-#define PP_ROW(J, ML, MM, SH) do {                                                     \
-                    const pp_v8 rm = qny > (J);                                        \
-                    pp_v8 g01 = r01, g20 = r20, g13 = r13, b1 = zero, b2 = zero, cb = one; \
-                    for (i = 0; i < nxm; i++) {                                        \
-                        const pp_v8 eD = VSUB(VSUB(S1, g01), g20), eT = eD ^ same;     \
-                        const pp_v8 g32 = VSUB(VSUB(S2, eT), g13);                     \
-                        b1 |= cb & ~((g01 | g20 | eD) >> 15);                          \
-                        b2 |= cb & ~((g13 | g32 | eT) >> 15);                          \
-                        PPS(q->e[8 * (J) + i][0], k, g20);                             \
-                        PPS(q->e[8 * (J) + i][1], k, g01);                             \
-                        PPS(q->e[8 * (J) + i][2], k, g32);                             \
-                        PPS(q->e[8 * (J) + i][3], k, eT);                              \
-                        g01 = VADD(g01, c01); g20 = VADD(g20, c20); g13 = VADD(g13, c13); \
-                        cb = VADD(cb, cb);                                             \
-                    }                                                                  \
-                    ML |= VI(VU(b1 & rm) << (SH)); MM |= VI(VU(b2 & rm) << (SH));      \
-                    r01 = VADD(r01, r01s); r20 = VADD(r20, r20s); r13 = VADD(r13, r13s); \
-                } while (0)
-                PP_ROW(0, m1l, m2l, 0);
+                const pp_v8 c01 = VI(VU(SG1(VSUB(y0, y1))) << RSI_SUB), c20 = VI(VU(SG1(VSUB(y2, y0))) << RSI_SUB);
+                const pp_v8 c13 = VI(VU(SG2(VSUB(y1, y3))) << RSI_SUB);
+                const pp_v8 r01s = VI(VU(SG1(VSUB(x1, x0))) << RSI_SUB), r20s = VI(VU(SG1(VSUB(x0, x2))) << RSI_SUB);
+                const pp_v8 r13s = VI(VU(SG2(VSUB(x3, x1))) << RSI_SUB);
+                pp_row_edges g;
+                g.S1 = S1; g.S2 = S2; g.same = same; g.c01 = c01; g.c20 = c20; g.c13 = c13;
+                g.r01s = r01s; g.r20s = r20s; g.r13s = r13s; g.r01 = f01; g.r20 = f20; g.r13 = f13;
+                pp_row(q, k, &g, 0, nxm, qny, &m1l, &m2l, 0);
                 if (nym > 1) {
-                    PP_ROW(1, m1l, m2l, 8);
+                    pp_row(q, k, &g, 1, nxm, qny, &m1l, &m2l, 8);
                     if (nym > 2) {
-                        PP_ROW(2, m1h, m2h, 0);
-                        if (nym > 3) PP_ROW(3, m1h, m2h, 8);
+                        pp_row(q, k, &g, 2, nxm, qny, &m1h, &m2h, 0);
+                        if (nym > 3) pp_row(q, k, &g, 3, nxm, qny, &m1h, &m2h, 8);
                     }
                 }
-#undef PP_ROW
             }
             /* as 32-bit masks: the halves interleaved */
             m1l &= ok1; m1h &= ok1; m2l &= ok2; m2h &= ok2;

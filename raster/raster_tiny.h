@@ -36,7 +36,7 @@
  * packed biased edge values of row 0, s0 / s2 the row steps, rows 0 .. ny-1 (ny <=
  * TINY_H = 4, unrolled: most tiny boxes have one or two rows); row j's lanes at bit
  * 15 - j of each 16-bit lane. */
-RS_INLINE static uint64_t tiny_mask(uint64_t P0, uint64_t P2, uint64_t k1, uint64_t s0, uint64_t s2,
+RSI_INLINE static uint64_t tiny_mask(uint64_t P0, uint64_t P2, uint64_t k1, uint64_t s0, uint64_t s2,
                                     uint64_t xm, int32_t ny)
 {
     uint64_t M = P0 & P2 & (k1 - P0 - P2) & xm;
@@ -67,7 +67,7 @@ typedef struct tiny_tri {
     int64_t qa, qb, qc, ua, ub, uc, va, vb, vc;
 } tiny_tri;
 
-RS_INLINE static void tiny_setup(tiny_tri *t, const band *bd, const rs_cvert *a, const rs_cvert *b,
+RSI_INLINE static void tiny_setup(tiny_tri *t, const band *bd, const rs_cvert *a, const rs_cvert *b,
                                  const rs_cvert *c, int32_t area2, const int vf)
 {
     if (vf & VF_COUNT) return;          /* counting reads none of it */
@@ -90,7 +90,7 @@ RS_INLINE static void tiny_setup(tiny_tri *t, const band *bd, const rs_cvert *a,
 /* One covered centre: its edge values E2 (opposite b: the weight of b times area2) and
  * E0 (of c), its depth at zp and colour at cp.  Weights w1, w2 in Q16; the pixel is the
  * packed colour, or (textured) the texel at the perspective-correct (u, v) times it. */
-RS_INLINE static void tiny_px(band *bd, const tiny_tri *t, int64_t E2, int64_t E0, void *zp, void *cp,
+RSI_INLINE static void tiny_px(band *bd, const tiny_tri *t, int64_t E2, int64_t E0, void *zp, void *cp,
                               const int vf)
 {
     if (vf & VF_COUNT) {
@@ -119,19 +119,19 @@ RS_INLINE static void tiny_px(band *bd, const tiny_tri *t, int64_t E2, int64_t E
  * first (tiny_lanes_to), so that a lane is one indexed load instead of a shift by a
  * variable amount and a zero extension; 32-bit targets, where a 64-bit shift is several
  * instructions and LANE16 picks the word first, extract it (the arrays unused). */
-#if RS_REG64 && !(defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__)
+#if RSI_REG64 && !(defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__)
 #define TINY_LANE_ARRAYS 1
 #else
 #define TINY_LANE_ARRAYS 0
 #endif
-RS_INLINE static void tiny_lanes_to(int16_t L[4], uint64_t P)
+RSI_INLINE static void tiny_lanes_to(int16_t L[4], uint64_t P)
 {
     if (TINY_LANE_ARRAYS) {
         const uint64_t x = P ^ TINY_LANES;
         memcpy(L, &x, 8);
     }
 }
-RS_INLINE static int32_t tiny_e(const int16_t L[4], uint64_t P, uint32_t i)
+RSI_INLINE static int32_t tiny_e(const int16_t L[4], uint64_t P, uint32_t i)
 {
     return TINY_LANE_ARRAYS ? L[i] : (int32_t)LANE16(P, 16 * i) - 0x8000;
 }
@@ -144,7 +144,7 @@ RS_INLINE static int32_t tiny_e(const int16_t L[4], uint64_t P, uint32_t i)
  * for a second group four columns to the right.  tri_tiny and tri_quad shade here, the
  * pre-pass's quads in quad_shade, with the same per-centre code (tiny_px), so a
  * triangle's pixels do not depend on which of them drew it. */
-RS_INLINE static void tiny_shade_body(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RSI_INLINE static void tiny_shade_body(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                       int32_t area2, uint64_t M, uint64_t P0, uint64_t sy0,
                                       uint64_t P2, uint64_t sy2, void *const crow0, void *const zrow0,
                                       uint64_t Mw, uint64_t P0w, uint64_t P2w, const int vf)
@@ -180,7 +180,7 @@ RS_INLINE static void tiny_shade_body(band *bd, const rs_cvert *a, const rs_cver
 }
 
 /* tiny_shade for the textured and counting variants: out of line, one case a variant. */
-RS_NOINLINE static void tiny_shade_slow(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RSI_NOINLINE static void tiny_shade_slow(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                         int32_t area2, uint64_t M, uint64_t P0, uint64_t sy0,
                                         uint64_t P2, uint64_t sy2, void *const crow0, void *const zrow0,
                                         uint64_t Mw, uint64_t P0w, uint64_t P2w, int vf)
@@ -197,7 +197,7 @@ RS_NOINLINE static void tiny_shade_slow(band *bd, const rs_cvert *a, const rs_cv
 #undef TINY_SHADE_CASE
 }
 
-RS_INLINE static void tiny_shade(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RSI_INLINE static void tiny_shade(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                  int32_t area2, uint64_t M, uint64_t P0, uint64_t sy0,
                                  uint64_t P2, uint64_t sy2, void *const crow0, void *const zrow0,
                                  uint64_t Mw, uint64_t P0w, uint64_t P2w, const int vf)
@@ -208,7 +208,7 @@ RS_INLINE static void tiny_shade(band *bd, const rs_cvert *a, const rs_cvert *b,
 
 /* The one covered centre (px0, py0) of a tiny triangle whose box has one candidate:
  * E0 / E2 its biased edge values opposite c / b; the values of tiny_shade. */
-RS_INLINE static void tiny_pixel(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RSI_INLINE static void tiny_pixel(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                  int32_t area2, int64_t E0, int64_t E2, int32_t py0, int32_t px0, const int vf)
 {
     void *const crow = band_crow(bd, py0, px0, vf), *const zrow = band_zrow(bd, py0, px0, vf);
@@ -227,7 +227,7 @@ RS_INLINE static void tiny_pixel(band *bd, const rs_cvert *a, const rs_cvert *b,
  * nx - 1 x py0 .. py0 + ny - 1 (clipped to the band and the screen; nx <= TINY_W, ny <=
  * TINY_H), xm the lane mask of the first group's min(nx, 4) columns, (ox0, oy0) the
  * centre of candidate (px0, py0) in sub-pixels. */
-RS_INLINE static void tri_tiny(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RSI_INLINE static void tri_tiny(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                int32_t px0, int32_t nx, int32_t py0, int32_t ny, uint64_t xm,
                                int32_t ox0, int32_t oy0,
                                int32_t dx1, int32_t dy1, int32_t dx2, int32_t dy2, int32_t area2, const int vf)
@@ -282,7 +282,7 @@ RS_INLINE static void tri_tiny(band *bd, const rs_cvert *a, const rs_cvert *b, c
  * by its caller (pair_tiny: the pair's joint box; tri_raster has tri_tiny_own): orientation
  * (cull, zero area; front faces with b and c swapped, one inlined copy per
  * orientation, no moves), then tri_tiny. */
-RS_INLINE static void tri_tiny_any(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RSI_INLINE static void tri_tiny_any(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                    int32_t px0, int32_t nx, int32_t py0, int32_t ny, uint64_t xm,
                                    int32_t ox0, int32_t oy0, const int vf)
 {
@@ -301,11 +301,11 @@ RS_INLINE static void tri_tiny_any(band *bd, const rs_cvert *a, const rs_cvert *
  * screen): tri_tiny_any out of line, so that tri_raster's box and path choice, which
  * every call runs, keep few registers (inlined, its prologue saved six registers and
  * spilled a dozen values for every call). */
-RS_NOINLINE static void tri_tiny_own(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
+RSI_NOINLINE static void tri_tiny_own(band *bd, const rs_cvert *a, const rs_cvert *b, const rs_cvert *c,
                                      int32_t px0, int32_t nx, int32_t py0, int32_t ny, int vf)
 {
 #define TINY_OWN_CASE(V) case V: if (RS_BUILT(V)) tri_tiny_any(bd, a, b, c, px0, nx, py0, ny, TINY_XM(nx), \
-                                                                px0 * SUBONE + HALF, py0 * SUBONE + HALF, V); return
+                                                                px0 * RSI_SUBONE + RSI_HALF, py0 * RSI_SUBONE + RSI_HALF, V); return
     switch (vf) {
     TINY_OWN_CASE(V_888_Z32);
     TINY_OWN_CASE(V_888_Z16);

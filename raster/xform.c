@@ -15,7 +15,7 @@ size_t rs_chunk_mem_size(const rs_prim *prims, int32_t nprims)
 {
     size_t n = 0;
     int32_t p;
-    for (p = 0; p < nprims; p++) n += (rs_prim_tris(&prims[p]) + RS_CHUNK - 1) / RS_CHUNK;
+    for (p = 0; p < nprims; p++) n += (rsi_prim_tris(&prims[p]) + RS_CHUNK - 1) / RS_CHUNK;
     return (n ? n : 1) * 2 * sizeof(int16_t);    /* never 0: malloc(0) may give NULL */
 }
 
@@ -33,7 +33,7 @@ static void chunk_rows(rs_frame *f)
     int32_t p;
     for (p = 0; p < f->nprims; p++) {
         const rs_prim *pr = &f->prims[p];
-        uint32_t nt = rs_prim_tris(pr), t0;
+        uint32_t nt = rsi_prim_tris(pr), t0;
         for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch += 2) {
             uint32_t t1 = nt - t0 < RS_CHUNK ? nt : t0 + RS_CHUNK, i0, i1;
             /* two sets of bounds and outcodes (or, and), one for each vertex of a pair,
@@ -60,8 +60,8 @@ static void chunk_rows(rs_frame *f)
             any |= any2; common &= common2;
             if (lo2 < lo) lo = lo2;
             if (hi2 > hi) hi = hi2;
-            lo = (lo + HALF - 1) >> SUB;
-            hi = (hi - HALF) >> SUB;
+            lo = (lo + RSI_HALF - 1) >> RSI_SUB;
+            hi = (hi - RSI_HALF) >> RSI_SUB;
             if (any & slow) { lo = -1; hi = f->h; }
             if (lo < -1) lo = -1;
             if (hi > f->h) hi = f->h;
@@ -79,7 +79,7 @@ static void chunk_all_rows(rs_frame *f)
     int16_t *ch = f->chunks;
     int32_t p;
     for (p = 0; p < f->nprims; p++) {
-        uint32_t nt = rs_prim_tris(&f->prims[p]), t0;
+        uint32_t nt = rsi_prim_tris(&f->prims[p]), t0;
         for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch += 2) {
             ch[0] = 0;
             ch[1] = (int16_t)(f->h - 1);
@@ -92,10 +92,10 @@ static void chunk_all_rows(rs_frame *f)
 static uint32_t screen_oc(int32_t x, int32_t y, int32_t w, int32_t h)
 {
     uint32_t oc = 0;
-    if (x < HALF) oc |= RS_OUT_LEFT;
-    if (x > w * SUBONE - HALF) oc |= RS_OUT_RIGHT;
-    if (y < HALF) oc |= RS_OUT_TOP;
-    if (y > h * SUBONE - HALF) oc |= RS_OUT_BOTTOM;
+    if (x < RSI_HALF) oc |= RS_OUT_LEFT;
+    if (x > w * RSI_SUBONE - RSI_HALF) oc |= RS_OUT_RIGHT;
+    if (y < RSI_HALF) oc |= RS_OUT_TOP;
+    if (y > h * RSI_SUBONE - RSI_HALF) oc |= RS_OUT_BOTTOM;
     return oc;
 }
 
@@ -103,7 +103,7 @@ void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint3
 {
     o->x = x; o->y = y; o->d = d;
     o->c = (rgb & 0xffffffu) | (screen_oc(x, y, w, h) << 24);
-    o->cp = rs_pack_rgb(rgb);
+    o->cp = rsi_pack_rgb(rgb);
     o->u = o->v = 0;
 }
 
@@ -112,15 +112,15 @@ void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint3
  * far plane, or not provably inside the guard band.  Rare (peer camera B 640x480: 103
  * of 66,049 per frame; camera A: none), so it recomputes everything from the frame
  * instead of holding constants. */
-static RS_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cvert *o)
+static RSI_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cvert *o)
 {
     const cam_vp *vp = &f->vp;
-    const int64_t f8 = f_q8(vp), g8 = (int64_t)RS_GUARD_PX << 8;
+    const int64_t f8 = rsi_f_q8(vp), g8 = (int64_t)RS_GUARD_PX << 8;
     int64_t c[3], lim, ax, ay;
     uint32_t oc = 0;
-    o->cp = rs_pack_rgb(v->rgb);
+    o->cp = rsi_pack_rgb(v->rgb);
     o->u = v->uv[0]; o->v = v->uv[1];
-    to_camera(vp, v->p, c);
+    rsi_to_camera(vp, v->p, c);
     if (c[2] < vp->znear) {
         o->x = o->y = 0; o->d = 0;
         o->c = (v->rgb & 0xffffffu) | ((uint32_t)RS_OUT_NEAR << 24);
@@ -139,7 +139,7 @@ static RS_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cve
         if (-ay > lim) oc |= RS_OUT_BOTTOM;
         o->x = o->y = 0; o->d = 0;
     } else {
-        project(vp, f8, c, f->w, f->h, o);
+        rsi_project(vp, f8, c, f->w, f->h, o);
         oc |= screen_oc(o->x, o->y, f->w, f->h);
     }
     o->c = (v->rgb & 0xffffffu) | (oc << 24);
@@ -164,10 +164,9 @@ static RS_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cve
  *   (or borrows from) y's half and key = ek exactly when x = previous x + dx and y =
  *   previous y.  (A false match needs |previous x| > 2^30, and the vertex matched is
  *   then beyond it too.)  Any dx keeps the sums exact (s is r[i][0] times the same dx;
- *   the step is only a prediction), so a larger one is replaced by 0.  Peer scene: 258
- *   of 66,049 vertices per frame compute the sums (row starts and the first step),
- *   69 -> 59 instructions per vertex on x86-64; s lives in xform_k for the memory
- *   operands (gcc 12 spills a local copy and reloads it into a register);
+ *   the step is only a prediction), so a larger one is replaced by 0.  On a grid mesh
+ *   only the row starts and the first step compute the sums; s lives in xform_k for
+ *   the memory operands (gcc 12 spills a local copy and reloads it into a register);
  * - near and far in one unsigned compare: tzn = t2 - znear 2^30 makes the shifted sum
  *   zc - znear exactly (a multiple of 2^30 passes through the floor shift); the sum
  *   still fits int64, as |r p| < 3 2^60, |t2| < 3 2^60 and znear 2^30 < 2^61.  A
@@ -188,14 +187,14 @@ static RS_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cve
  *   guard band).  Anything else goes to xform_slow, which decides exactly.
  *   (GUARD_S = 2^18 would be wrong: test_raster's test_transform fails on it);
  * - the packed colour: rgb (< 2^24) times 1 + 2^26 is rgb + (rgb << 26) without
- *   overlap, which holds B at bit 0 and R at bit 42 where rs_pack_rgb puts them; G
+ *   overlap, which holds B at bit 0 and R at bit 42 where rsi_pack_rgb puts them; G
  *   moves by its own shift. */
-#define GUARD_S ((RS_GUARD_PX << SUB) - 1)
+#define GUARD_S ((RS_GUARD_PX << RSI_SUB) - 1)
 /* The view matrix's elements in xform_k: int64 on 64-bit targets, where the product
  * with a vertex coordinate takes the element as a memory operand; int32 on 32-bit
  * ones, where a 32 x 32 -> 64-bit multiply is one instruction and a 64 x 64 one three.
  * The same products either way. */
-#if RS_REG64
+#if RSI_REG64
 typedef int64_t xform_rq;
 #else
 typedef int32_t xform_rq;
@@ -216,7 +215,7 @@ typedef struct xform_k {
     int64_t f8, nf8, kd;        /* f (Q8 pixels), -f, RS_DEPTH_ONE znear */
     xform_sc kx, ky;            /* 16 cx + 8, 16 cy + 7 (cx, cy: centre, sub-pixels) */
     xform_sc gx0, gx1, gy0, gy1;    /* cx -+ GUARD_S, cy -+ GUARD_S */
-    xform_usc xspan, yspan;     /* on screen: sx - HALF <= xspan, sy - HALF <= yspan */
+    xform_usc xspan, yspan;     /* on screen: sx - RSI_HALF <= xspan, sy - RSI_HALF <= yspan */
     uint64_t pmul, pmask;       /* colour packing: 1 + 2^26, bits of B (0..7) and R (42..49) */
     int64_t s[3];               /* the loop's steps r[i][0] dx (written by the loop) */
     uint64_t dk;                /* the key's step (dx in x's half; written by the loop) */
@@ -227,8 +226,8 @@ typedef struct xform_k {
 #endif
 } xform_k;
 
-/* rs_pack_rgb(rgb) for rgb < 2^24, with one multiply (see above). */
-static RS_INLINE uint64_t xform_pack(const xform_k *k, uint32_t rgb)
+/* rsi_pack_rgb(rgb) for rgb < 2^24, with one multiply (see above). */
+static RSI_INLINE uint64_t xform_pack(const xform_k *k, uint32_t rgb)
 {
     return (((uint64_t)rgb * k->pmul) & k->pmask) | ((uint64_t)(rgb & 0xff00u) << 13);
 }
@@ -241,7 +240,7 @@ static RS_INLINE uint64_t xform_pack(const xform_k *k, uint32_t rgb)
  * as c2 < 2^31 makes 1 <= s <= 31.  It refuses (0) |q| >= 2^30 as well, far beyond the
  * guard band (|q| < 2^22 inside; xform_slow decides), so the screen position is int32
  * arithmetic: |q| + 16 cx + 8 < 2^30 + 2^20 (xform_sc). */
-static RS_INLINE int xform_div(const fx_divisor *dz, uint32_t f8, int64_t c, uint32_t sr, int32_t *q)
+static RSI_INLINE int xform_div(const fx_divisor *dz, uint32_t f8, int64_t c, uint32_t sr, int32_t *q)
 {
     const uint64_t m = (uint64_t)f8 * (c < 0 ? 0 - (uint64_t)c : (uint64_t)c);
     const uint32_t mh = (uint32_t)(m >> 32), ml = (uint32_t)m, s = (uint32_t)dz->r.s;
@@ -257,15 +256,15 @@ static RS_INLINE int xform_div(const fx_divisor *dz, uint32_t f8, int64_t c, uin
 /* The stepping along rows (see above) on 64-bit targets only: on 32-bit ones the two
  * products and the add are multiply-accumulates, the 64-bit key compare and steps
  * cost more than they save, and three 64-bit sums held across the divides take six
- * registers (armhf peer scene A 640x480: xform_plain 17.33 M without, 17.80 M with). */
-#define XFORM_STEP RS_REG64
+ * registers. */
+#define XFORM_STEP RSI_REG64
 /* xform_k's fields in registers: a local copy of *k in xform_loop, whose address never
  * leaves it, so gcc keeps its fields in registers (k itself may alias the cache
  * entries' 64-bit cp stores, so every field was reloaded per vertex).  For 64-bit
  * targets without memory operands (AArch64: 31 registers hold the loop's state and
- * most of the constants; three go to the stack): peer scene A / B 640x480 AArch64
- * 20.66 / 19.11 -> 20.08 / 18.55 M.  x86-64 keeps the memory operands (see xform_k). */
-#if RS_REG64 && !defined(__x86_64__)
+ * most of the constants; three go to the stack).  x86-64 keeps the memory operands
+ * (see xform_k). */
+#if RSI_REG64 && !defined(__x86_64__)
 #define XFORM_KREG 1
 #else
 #define XFORM_KREG 0
@@ -287,7 +286,7 @@ typedef struct xform_st {
  * Every exit to xform_slow goes through the one call at `slow`, so the compiler forms
  * the call's v and o there only (with several call sites gcc 12 kept v + i and o + i
  * of the unrolled copies in registers or on the stack, 3 instructions per vertex). */
-static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex *v, rs_cvert *o, int tex,
+static RSI_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex *v, rs_cvert *o, int tex,
                                  int first, xform_st *st)
 {
 #if XFORM_STEP
@@ -306,7 +305,7 @@ static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex 
     uint64_t key;           /* p[0], p[1] as one word, x's sign bit flipped */
     memcpy(&key, v->p, sizeof key);
     key ^= k->kbias;
-    if (RS_LIKELY(key == st->ek)) {     /* x = previous x + dx, same y */
+    if (RSI_LIKELY(key == st->ek)) {     /* x = previous x + dx, same y */
         st->a0 += k->s[0]; st->a1 += k->s[1]; st->a2 += k->s[2];
     } else {
         const int64_t x = v->p[0], y = v->p[1];
@@ -332,7 +331,7 @@ static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex 
     (void)first; (void)st;
 #endif
     c2 = XF_C(2);
-    if (RS_UNLIKELY((uint64_t)c2 > (uint64_t)k->zspan)) {
+    if (RSI_UNLIKELY((uint64_t)c2 > (uint64_t)k->zspan)) {
         if (c2 < 0) {       /* behind the near plane: only the colour is valid */
             o->x = o->y = 0; o->d = 0;
             o->c = rgb + ((uint32_t)RS_OUT_NEAR << 24);      /* = rgb | bit (rgb < 2^24), one lea */
@@ -368,8 +367,8 @@ static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex 
     if (!xform_div(&dz, (uint32_t)k->f8, c0, sr, &q)) goto slow;
 #endif
     sx = (q + k->kx) >> 4;
-    if (RS_UNLIKELY((xform_usc)(sx - HALF) > k->xspan)) {
-        if (sx < HALF) {
+    if (RSI_UNLIKELY((xform_usc)(sx - RSI_HALF) > k->xspan)) {
+        if (sx < RSI_HALF) {
             if (sx < k->gx0) goto slow;
             o->c = rgb + ((uint32_t)RS_OUT_LEFT << 24);
         } else {
@@ -389,8 +388,8 @@ static RS_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex 
     if (!fx_divisor_trunc32(&dz, k->nf8 * c1, &q)) goto slow;
     sy = (q + k->ky) >> 4;
 #endif
-    if (RS_UNLIKELY((xform_usc)(sy - HALF) > k->yspan)) {
-        if (sy < HALF) {
+    if (RSI_UNLIKELY((xform_usc)(sy - RSI_HALF) > k->yspan)) {
+        if (sy < RSI_HALF) {
             if (sy < k->gy0) goto slow;
             o->c += (uint32_t)RS_OUT_TOP << 24;
         } else {
@@ -417,13 +416,10 @@ slow:
 
 /* The loop: on 64-bit targets unrolled by 4 after the nv mod 4 first vertices, so the
  * two pointer increments, the compare and the branch serve four vertices (the copies
- * address v + i, o + i with displacements): peer scene x86-64 60.1 -> 57.3
- * instructions per vertex, camera A 640x480 24.89 -> 24.71 M per frame, AArch64 21.12
- * -> 20.95 M (unrolled by 2: 58.1 on x86-64; by 8, about 0.25 fewer than by 4 for
- * twice the code).  32-bit targets keep one vertex per iteration: there
- * the unrolled loop spills (armhf A 640x480: 76.54 -> 77.62 M, armhf-a7 45.85 ->
- * 47.22 M). */
-static RS_INLINE void xform_loop(const rs_frame *f, xform_k *k, int tex)
+ * address v + i, o + i with displacements; by 2 saves less, by 8 little more for twice
+ * the code).  32-bit targets keep one vertex per iteration: there the unrolled loop
+ * spills. */
+static RSI_INLINE void xform_loop(const rs_frame *f, xform_k *k, int tex)
 {
     const rs_vertex *v = f->v, *const end = f->v + f->nv, *const head = XFORM_STEP ? f->v + (f->nv & 3u) : end;
     rs_cvert *o = f->cache;
@@ -431,7 +427,7 @@ static RS_INLINE void xform_loop(const rs_frame *f, xform_k *k, int tex)
 #if XFORM_KREG
     /* see XFORM_KREG; the multiplier and (when the byte order is known here) the key's
      * bias as constants, so neither takes a register: the multiply becomes a shifted
-     * add (AArch64 peer A / B 640x480 20.02 / 18.49 -> 19.95 / 18.43 M) */
+     * add */
     xform_k kl = *k;
     k = &kl;
     kl.pmul = 0x4000001u;
@@ -464,13 +460,13 @@ static RS_INLINE void xform_loop(const rs_frame *f, xform_k *k, int tex)
  * xform_k's values into the loop: it would then expand the multiply by pmul into a
  * copy, shift and add and rebuild the 64-bit pmask every vertex, where a memory
  * operand costs nothing (2 instructions per vertex). */
-static RS_NOINLINE void xform_plain(const rs_frame *f, xform_k *k) { xform_loop(f, k, 0); }
-static RS_NOINLINE void xform_tex(const rs_frame *f, xform_k *k) { xform_loop(f, k, 1); }
+static RSI_NOINLINE void xform_plain(const rs_frame *f, xform_k *k) { xform_loop(f, k, 0); }
+static RSI_NOINLINE void xform_tex(const rs_frame *f, xform_k *k) { xform_loop(f, k, 1); }
 
 br_status rs_frame_prepare(rs_frame *f)
 {
     const cam_vp *vp = &f->vp;
-    int64_t f8 = f_q8(vp);
+    int64_t f8 = rsi_f_q8(vp);
     int32_t w = f->w, h = f->h;
     if (w < 1 || h < 1 || w > RS_MAX_DIM || h > RS_MAX_DIM || !f->cache || !f->chunks || (f->nv && !f->v)
         || (f->fmt != RS_FMT_XRGB8888 && f->fmt != RS_FMT_RGB565)
@@ -491,10 +487,10 @@ br_status rs_frame_prepare(rs_frame *f)
         k.zn = vp->znear; k.zspan = (int64_t)vp->zfar - vp->znear;
         k.f8 = f8; k.nf8 = -f8; k.kd = (int64_t)RS_DEPTH_ONE * vp->znear;
         /* all below 2^20 in magnitude (w, h <= RS_MAX_DIM) */
-        k.kx = (xform_sc)w * SUBONE * HALF + HALF; k.ky = (xform_sc)h * SUBONE * HALF + HALF - 1;
-        k.xspan = (xform_usc)w * SUBONE - 2 * HALF; k.yspan = (xform_usc)h * SUBONE - 2 * HALF;
-        k.gx0 = (xform_sc)w * HALF - GUARD_S; k.gx1 = (xform_sc)w * HALF + GUARD_S;
-        k.gy0 = (xform_sc)h * HALF - GUARD_S; k.gy1 = (xform_sc)h * HALF + GUARD_S;
+        k.kx = (xform_sc)w * RSI_SUBONE * RSI_HALF + RSI_HALF; k.ky = (xform_sc)h * RSI_SUBONE * RSI_HALF + RSI_HALF - 1;
+        k.xspan = (xform_usc)w * RSI_SUBONE - 2 * RSI_HALF; k.yspan = (xform_usc)h * RSI_SUBONE - 2 * RSI_HALF;
+        k.gx0 = (xform_sc)w * RSI_HALF - GUARD_S; k.gx1 = (xform_sc)w * RSI_HALF + GUARD_S;
+        k.gy0 = (xform_sc)h * RSI_HALF - GUARD_S; k.gy1 = (xform_sc)h * RSI_HALF + GUARD_S;
         k.pmul = 0x4000001u; k.pmask = 0x3fc00000000ffu;
 #if !BR_DIV64_NATIVE
         for (i = 0; i < 32; i++) k.kds[i] = (uint64_t)k.kd << i;   /* (wraps only for s unused) */

@@ -1,6 +1,6 @@
 /* tests/test_framecost.c — the per-frame path of the users' frame (issue 20): camera
  * path files (platform/campath.h), the selection's divide-free arithmetic
- * (core/bt_int.h bt_morph_nodiv, core/fx.h fx_udiv_bits) against C's `/`, and a
+ * (core/bt_int.h bti_morph_nodiv, core/fx.h fx_udiv_bits) against C's `/`, and a
  * pinned view-dependent mesh sequence (moving camera, hysteresis and geomorph on, the
  * selection's decision memo across its generation wrap) that
  * the normal build and the divide-free build (build/div32-tests, BR_DIV64_NATIVE = 0)
@@ -100,7 +100,7 @@ static void test_nodiv(void)
             if (lhs < 0) lhs = 0;
         }
         }
-        if (bt_morph_nodiv(lhs, d, tau, span) != morph_ref(lhs, d, tau, span)) bad++;
+        if (bti_morph_nodiv(lhs, d, tau, span) != morph_ref(lhs, d, tau, span)) bad++;
     }
     CHECK_EQ(bad, 0);
     /* fx_div_round_bits (the camera's and fx_normalize3's short quotients) against

@@ -131,8 +131,8 @@ static void render_default(const char *path, uint32_t *tris, long *ground)
     cam c;
     bt_params p;
     rs_frame fr;
-    rs_prim prim;
     rs_band_stats st;
+    rs_prim prim;
     double eye[3], tgt[3];
     uint32_t *px = NULL;
     void *mem = NULL;
@@ -145,6 +145,7 @@ static void render_default(const char *path, uint32_t *tris, long *ground)
     scene_default_view(&s, 60, eye, tgt);
     memset(&p, 0, sizeof p);
     memset(&fr, 0, sizeof fr);
+    memset(&st, 0, sizeof st);
     p.pixel_err_q8 = 256;
     if (scene_camera(&s, eye, tgt, 60, 160, 120, &c) == BR_OK && scene_tree(&s, &e) == BR_OK &&
         scene_reserve(&s, 200000, &e) == BR_OK) {
