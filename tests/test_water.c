@@ -215,11 +215,66 @@ static void test_goldens(void)
         }
 }
 
+/* The reflection shows the terrain: a grazing view across Lake Constance with a colour
+ * file that paints the land above the water (398 m and up) one pure colour and the lake
+ * (392/396 m) black.  The water pixels are those the same view draws black with
+ * --no-water; in the rows under the far shore they take the land's colour (red, then
+ * green with the green file: 421 of 7529 each), not without the reflection (20, the
+ * shore's edge pixels).  Fog off, --time fixed. */
+static void test_reflection_colour(void)
+{
+    static const char *const ramps[2] = { "0 0 0 0\n397 0 0 0\n398 255 0 0\n9000 255 0 0\n",
+                                          "0 0 0 0\n397 0 0 0\n398 0 255 0\n9000 0 255 0\n" };
+    char col[2][256], out[4][256], dem[256];
+    uint8_t *px[4] = { NULL, NULL, NULL, NULL };
+    int k, i, w = 0, h = 0, wet = 0, tint[3] = { 0, 0, 0 };
+    snprintf(dem, sizeof dem, "%s", t_data("hgt/N47E009.hgt"));
+    for (k = 0; k < 2; k++) {
+        FILE *f;
+        snprintf(col[k], sizeof col[k], "%s/water_ramp%d.txt", t_outdir(), k);
+        f = fopen(col[k], "w");
+        CHECK(f != NULL);
+        if (!f) return;
+        fputs(ramps[k], f);
+        CHECK_EQ(fclose(f), 0);
+    }
+    for (k = 0; k < 4; k++) {
+        /* 0: red, 1: green, 2: red without reflection, 3: red without water */
+        const char *args[] = { dem, "-o", out[k], "--size", "160x96", "--time", "1.5", "--no-fog", "--camera",
+                               "40000,66000,420,60000,50000,500", "--colors", col[k == 1],
+                               k == 3 ? "--no-water" : "--reflection", k == 2 ? "none" : "full" };
+        br_err err;
+        int aw, ah;
+        snprintf(out[k], sizeof out[k], "%s/water_refl_colour%d.png", t_outdir(), k);
+        CHECK_EQ(run(args, k == 3 ? 13 : 14), 0);     /* k == 3: no --reflection value */
+        CHECK_EQ(png_read_rgb(out[k], &aw, &ah, &px[k], &err), BR_OK);
+        if (!px[k]) goto done;
+        w = aw; h = ah;
+    }
+    for (i = 0; i < w * h; i++) {
+        const uint8_t *d = px[3] + 3 * i;
+        if (d[0] >= 16 || d[1] >= 16 || d[2] >= 16) continue;     /* not water */
+        wet++;
+        for (k = 0; k < 3; k++) {
+            const uint8_t *p = px[k] + 3 * i;
+            int c = k == 1 ? 1 : 0;     /* the painted channel */
+            tint[k] += p[c] > p[1 - c] + 32 && p[c] > p[2] + 32;
+        }
+    }
+    CHECK_MSG(wet > w * h / 3, "%d water pixels", wet);
+    CHECK_MSG(tint[0] > 200, "%d water pixels red", tint[0]);
+    CHECK_MSG(tint[1] > 200, "%d water pixels green", tint[1]);
+    CHECK_MSG(tint[2] * 8 < tint[0], "%d water pixels red without the reflection, %d with", tint[2], tint[0]);
+done:
+    for (k = 0; k < 4; k++) free(px[k]);
+}
+
 int main(void)
 {
     T_RUN(test_detect);
     T_RUN(test_clip_plane);
     T_RUN(test_bands);
     T_RUN(test_goldens);
+    T_RUN(test_reflection_colour);
     return t_finish();
 }
