@@ -376,7 +376,8 @@ static void test_void_is_hole(void)
     br_err err;
     char asc[256], png[256], sz[] = "--size", wh[] = "64x64", o[] = "-o", camo[] = "--camera";
     char cv[] = "80,80,2400,80,80.5,1600", fov[] = "--fov", fv[] = "10", full[] = "--full";
-    char *argv[10];
+    char nw[] = "--no-water", nf[] = "--no-fog";       /* the flat sky colour */
+    char *argv[12];
     int pass;
     if (dem_load(t_data("asc/hugo_site.asc"), NULL, &f, &err) != BR_OK) { CHECK_MSG(0, "%s", err.msg); return; }
     snprintf(asc, sizeof asc, "%s/hole.asc", t_outdir());
@@ -402,8 +403,8 @@ static void test_void_is_hole(void)
         uint8_t *rgb;
         int w, h;
         argv[0] = asc; argv[1] = sz; argv[2] = wh; argv[3] = o; argv[4] = png; argv[5] = camo; argv[6] = cv;
-        argv[7] = fov; argv[8] = fv; argv[9] = full;
-        CHECK_EQ(cmd_render(pass ? 10 : 9, argv), 0);
+        argv[7] = fov; argv[8] = fv; argv[9] = nw; argv[10] = nf; argv[11] = full;
+        CHECK_EQ(cmd_render(pass ? 12 : 11, argv), 0);
         if (png_read_rgb(png, &w, &h, &rgb, &err) != BR_OK) { CHECK(0); continue; }
         CHECK_MSG(rgb[3 * (32 * w + 32)] == 0x99 && rgb[3 * (32 * w + 32) + 1] == 0xcc && rgb[3 * (32 * w + 32) + 2] == 0xff,
                   "%s: the hole shows #%02x%02x%02x", pass ? "--full" : "bitree", rgb[3 * (32 * w + 32)],
