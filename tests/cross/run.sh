@@ -67,7 +67,7 @@ skipped=$(grep -c '^skip' $out/plan.log); grep '^skip' $out/plan.log
 # builds, JOBS at a time (each line: name cc flags...)
 xargs -P "$JOBS" -L 1 sh -c 'n=$0; c=$1; shift; "$c" -std=c99 -I. "$@" -o '"$out"'/xdet-$n '"$src"' >'"$out"'/build-$n.log 2>&1' <$jobs
 run() { # name [qemu]
-  $2 $out/xdet-$1 "$dem" >$out/$1.txt 2>$out/$1.err
+  ${2:-} $out/xdet-$1 "$dem" >$out/$1.txt 2>$out/$1.err
 }
 if ! [ -x $out/xdet-ref ] || ! run ref; then
   echo "cross: cannot build/run the native reference"; cat $out/build-ref.log; echo "0 passed, 1 failed"; exit 1
