@@ -1,3 +1,4 @@
+#define _POSIX_C_SOURCE 200809L   /* clock_gettime under -std=c99 (builds without SDL flags: the cross suite) */
 /* platform/cmd_render.c — bitrain render: one frame of a DEM, headless, to PNG.
  *
  *   bitrain render IN... -o out.png [--size WxH] [--camera EX,EY,EZ,TX,TY,TZ] [--fov DEG]
