@@ -80,8 +80,10 @@
  * Default: 1 with GCC or clang on little-endian SSE2 / NEON targets.
  * RS_SPANV: the general path's plain spans GS_N pixels at a time in 32-bit vector lanes
  * (raster/raster_general.h); default RS_PREPASS.  Same pixels.  Both need GCC's vector
- * extensions and little-endian lane order (16-bit pixels widened through a uint64):
- * elsewhere they would not compile or would change pixels, so they are refused. */
+ * extensions (refused elsewhere).  On big-endian targets they give the same pixels too (the
+ * pre-pass gather, the coverage masks' 16-bit halves and the 16-bit pixel widening swap
+ * their lanes there; the cross probe runs them on s390x) but are off by default: no
+ * big-endian target we build has such vectors. */
 #ifndef RS_PREPASS
 #if defined(__GNUC__) && (defined(__SSE2__) || defined(__ARM_NEON)) \
     && !(defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__)
@@ -93,9 +95,8 @@
 #ifndef RS_SPANV
 #define RS_SPANV RS_PREPASS
 #endif
-#if (RS_PREPASS || RS_SPANV) && (!defined(__GNUC__) \
-    || (defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__))
-#error "core/config.h: RS_PREPASS and RS_SPANV need GCC vectors on a little-endian target"
+#if (RS_PREPASS || RS_SPANV) && !defined(__GNUC__)
+#error "core/config.h: RS_PREPASS and RS_SPANV need GCC's vector extensions"
 #endif
 
 /* RS_NARROW: triangles of the general path whose box has at most this many columns

@@ -49,12 +49,12 @@ typedef uint16_t gs_v8hn __attribute__((vector_size(16), aligned(2)));
 #elif defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
 /* (big-endian: a 32-bit lane's low half is its second 16-bit word; the elements go in
  * there and come back from there with one 16-bit shuffle each way) */
-#define GS_LD(V, P) do { \
-        if (sizeof *(P) == 4) V = *(const gs_v4un *)(const void *)(P); \
+#define GS_LD(V, P, SZ) do { \
+        if ((SZ) == 4) V = *(const gs_v4un *)(const void *)(P); \
         else { uint64_t u_; gs_v2q q_; memcpy(&u_, (const void *)(P), 8); q_ = (gs_v2q){ u_, 0 }; \
                V = (gs_v4u)RS_SHUFFLE((gs_v8h)q_, (gs_v8h)(q_ - q_), gs_v8h, 8, 0, 8, 1, 8, 2, 8, 3); } } while (0)
-#define GS_ST(P, V) do { \
-        if (sizeof *(P) == 4) *(gs_v4un *)(void *)(P) = (V); \
+#define GS_ST(P, V, SZ) do { \
+        if ((SZ) == 4) *(gs_v4un *)(void *)(P) = (V); \
         else { const gs_v8h h_ = RS_SHUFFLE((gs_v8h)(V), (gs_v8h)(V), gs_v8h, 1, 3, 5, 7, 1, 3, 5, 7); \
                memcpy((void *)(P), &h_, 8); } } while (0)
 #else
