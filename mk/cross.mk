@@ -19,7 +19,7 @@ XCFLAGS = -std=c99 $(WARN) $(XOPT) $(XFLAGS) -I. -I$(XDEPS)/include -MMD -MP
 SDL_SRC  := $(shell grep -l '<SDL\|"platform/view.h"\|"platform/sink_sdl.h"' platform/*.c)
 LIB_SRC  := $(sort $(wildcard core/*.c raster/*.c) $(filter-out platform/main.c $(SDL_SRC),$(wildcard platform/*.c)))
 SUP_SRC  := $(sort $(wildcard tests/support/*.c)) benchmarks/peer_scene.c
-DISP_TESTS := $(shell grep -l 'cmd_view\|cmd_run\|cmd_bench\|SDL' tests/test_*.c)
+DISP_TESTS := $(shell grep -l 'cmd_view\|cmd_run\|cmd_bench\|SDL\|platform/view.h\|platform/sink_sdl.h' tests/test_*.c)
 TESTS    := $(sort $(filter-out $(DISP_TESTS),$(wildcard tests/test_*.c)))
 LIB_OBJ  := $(LIB_SRC:%.c=$(XB)/obj/%.o)
 SUP_OBJ  := $(SUP_SRC:%.c=$(XB)/obj/%.o)
