@@ -126,10 +126,30 @@ static void test_nodiv(void)
     CHECK_EQ(bad, 0);
 }
 
-static uint64_t fnv(uint64_t h, const void *p, size_t n)
+/* FNV-1a over values as little-endian bytes (the same bytes as memory on little-endian
+ * targets), so that the pinned hashes hold on big-endian ones too. */
+static uint64_t fnv_le(uint64_t h, uint64_t v, int bytes)
 {
-    const uint8_t *b = (const uint8_t *)p;
-    while (n--) { h ^= *b++; h *= 0x100000001b3ull; }
+    int i;
+    for (i = 0; i < bytes; i++) { h ^= (uint8_t)(v >> (8 * i)); h *= 0x100000001b3ull; }
+    return h;
+}
+
+static uint64_t fnv_u32s(uint64_t h, const uint32_t *p, uint32_t n)
+{
+    uint32_t i;
+    for (i = 0; i < n; i++) h = fnv_le(h, p[i], 4);
+    return h;
+}
+
+/* bt_vert's fields in its layout's order (4 + 4 + 4 + 2 + 1 + 1 bytes, no padding) */
+static uint64_t fnv_verts(uint64_t h, const bt_vert *v, uint32_t n)
+{
+    uint32_t i;
+    for (i = 0; i < n; i++) {
+        h = fnv_le(h, (uint32_t)v[i].x, 4); h = fnv_le(h, (uint32_t)v[i].y, 4); h = fnv_le(h, (uint32_t)v[i].z, 4);
+        h = fnv_le(h, v[i].morph, 2); h = fnv_le(h, v[i].state, 1); h = fnv_le(h, v[i].pad_, 1);
+    }
     return h;
 }
 
@@ -171,11 +191,11 @@ static void test_view_pinned(void)
         else CHECK_EQ(bt_extract(&t, &p, &m), BR_OK);
         if (k == 1) m.memo_gen = 0xFFFEu;   /* frame 3's decision memo wraps its generation */
         for (i = 0; i < m.nv; i++) {
-            h = fnv(h, &m.v[i].x, 4); h = fnv(h, &m.v[i].y, 4); h = fnv(h, &m.v[i].z, 4);
-            h = fnv(h, &m.v[i].morph, 2);
+            h = fnv_le(h, (uint32_t)m.v[i].x, 4); h = fnv_le(h, (uint32_t)m.v[i].y, 4); h = fnv_le(h, (uint32_t)m.v[i].z, 4);
+            h = fnv_le(h, m.v[i].morph, 2);
             nmorph += m.v[i].morph > 0 && m.v[i].morph < BT_MORPH_ONE;
         }
-        h = fnv(h, m.strip, (size_t)m.ns * 4);
+        h = fnv_u32s(h, m.strip, m.ns);
         ntri += m.ntri;
     }
     printf("view sequence: %u triangles, %u vertices part-way morphed in 5 frames, hash %016llx\n", ntri,
@@ -218,16 +238,16 @@ static void test_budget_pinned(void)
     p.mode = BT_BUDGET; p.budget = 3000;
     CHECK_EQ(btc_extract(&t, &p, 4000, &m, &mem), 0);
     CHECK(m.ntri > 1000 && m.ntri <= 3000);
-    h = fnv(h, m.v, (size_t)m.nv * sizeof *m.v);
-    h = fnv(h, m.strip, (size_t)m.ns * 4);
+    h = fnv_verts(h, m.v, m.nv);
+    h = fnv_u32s(h, m.strip, m.ns);
     p.mode = BT_VIEW;
     mem2 = malloc(bt_mesh_mem_size(2000));
     CHECK(mem2 && bt_mesh_init(&m2, 2000, mem2, bt_mesh_mem_size(2000)) == BR_OK);
     if (mem2) {
         CHECK_EQ(bt_extract(&t, &p, &m2), BR_OK);
         CHECK_EQ(m2.overflow, 1);
-        h = fnv(h, m2.v, (size_t)m2.nv * sizeof *m2.v);
-        h = fnv(h, m2.strip, (size_t)m2.ns * 4);
+        h = fnv_verts(h, m2.v, m2.nv);
+        h = fnv_u32s(h, m2.strip, m2.ns);
     }
     printf("budget %u triangles, fallback %u triangles, hash %016llx\n", m.ntri, mem2 ? m2.ntri : 0,
            (unsigned long long)h);
