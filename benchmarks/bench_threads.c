@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "platform/clock.h"
 #include "platform/pipe_threads.h"
 #include "platform/scene.h"
 
@@ -23,19 +24,6 @@
 #define H 480
 #define BAND 64
 #define NCAM 24
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
 
 static uint32_t *frame_px;
 
@@ -91,9 +79,9 @@ int main(int argc, char **argv)
         memset(&pp, 0, sizeof pp);
         if (scene_camera(&s, eye, tgt, 60, W, H, &c) != BR_OK) return 1;
         fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32; fr.clear_rgb = 0x99ccffu; fr.chunks = chunks;
-        t0 = now_ms();
+        t0 = br_now_ms();
         if (scene_frame(&s, &c, &bp, &fr, &prim) != BR_OK) return 1;
-        sum_serial += now_ms() - t0;
+        sum_serial += br_now_ms() - t0;
         rs_pass_terrain(&terrain, &fr);
         pp.w = W; pp.h = H; pp.fmt = RS_FMT_XRGB8888; pp.depth = RS_DEPTH32;
         rs_pipe_add(&pp, &terrain);
@@ -107,13 +95,13 @@ int main(int argc, char **argv)
         if (reps > 16) reps = 16;
         for (r = 0; r < reps; r++) {       /* interleaved: 1, N, 1, N, ... */
             const pt_thread_time *tt;
-            t0 = now_ms(); pt_run(p1, &pp, BAND, sink, NULL, NULL); t1[r] = now_ms() - t0;
-            t0 = now_ms(); pt_run(pn, &pp, BAND, sink, NULL, NULL); tn[r] = now_ms() - t0;
+            t0 = br_now_ms(); pt_run(p1, &pp, BAND, sink, NULL, NULL); t1[r] = br_now_ms() - t0;
+            t0 = br_now_ms(); pt_run(pn, &pp, BAND, sink, NULL, NULL); tn[r] = br_now_ms() - t0;
             tt = pt_last_times(pn);
             for (t = 0; t < n; t++) { wait += tt[t].wait_ms / reps; draw += tt[t].draw_ms / reps; }
         }
-        qsort(t1, (size_t)reps, sizeof t1[0], cmp_d);
-        qsort(tn, (size_t)reps, sizeof tn[0], cmp_d);
+        qsort(t1, (size_t)reps, sizeof t1[0], br_cmp_double);
+        qsort(tn, (size_t)reps, sizeof tn[0], br_cmp_double);
         sum1 += t1[reps / 2];
         sumn += tn[reps / 2];
     }

@@ -33,6 +33,7 @@
 #include <time.h>
 #include <unistd.h>
 #include <sys/utsname.h>
+#include "platform/clock.h"
 #include "benchmarks/peer_scene.h"
 #include "platform/bench_chart.h"
 #include "platform/bench_default.h"
@@ -59,23 +60,10 @@ typedef struct bb_prog {
     int quiet, tty, nrows;
 } bb_prog;
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
 /* Median of v[0..n) (v is sorted in place). */
 static double median(double *v, int n)
 {
-    qsort(v, (size_t)n, sizeof *v, cmp_d);
+    qsort(v, (size_t)n, sizeof *v, br_cmp_double);
     return n & 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
@@ -132,11 +120,11 @@ static int run_peer(const rs_vertex *v, const rs_prim *prims, bb_row *row, const
     if (rs_pass_terrain(&terrain, &f) != BR_OK || rs_pipe_add(&p, &terrain) != BR_OK) goto done;
     if (pt_open(&pool, row->threads) != BR_OK) { fprintf(stderr, "bitrain bench: cannot start %d threads\n", row->threads); goto done; }
     for (i = -3; i < row->frames; i++) {   /* i < 0: untimed warm-up */
-        double t0 = now_ms(), t1, t2;
+        double t0 = br_now_ms(), t1, t2;
         if (rs_frame_prepare(&f) != BR_OK) goto fail;
-        t1 = now_ms();
+        t1 = br_now_ms();
         if (pt_run(pool, &p, band_rows, null_sink, NULL, NULL) != BR_OK) goto fail;
-        t2 = now_ms();
+        t2 = br_now_ms();
         if (i < 0) continue;
         row->frame_ms[i] = t2 - t0; sel[i] = t1 - t0; ras[i] = t2 - t1;
         if (i % 8 == 0) progress(pg, r, row, i);
@@ -171,14 +159,14 @@ static int run_default(bd_run *bd, const campath *cp, const char *path, bb_row *
             fprintf(stderr, "bitrain bench: %s: line %d: unusable camera\n", path, i % cp->n + 1);
             goto done;
         }
-        t0 = now_ms();
+        t0 = br_now_ms();
         if (bd_select(bd, &c) != BR_OK) goto fail;
         memset(&p, 0, sizeof p);
         p.w = row->w; p.h = row->h; p.fmt = bd_frame(bd)->fmt; p.depth = bd_frame(bd)->depth;
         if (rs_pass_terrain(&terrain, bd_frame(bd)) != BR_OK || rs_pipe_add(&p, &terrain) != BR_OK) goto fail;
-        t1 = now_ms();
+        t1 = br_now_ms();
         if (pt_run(pool, &p, BB_BAND, null_sink, NULL, NULL) != BR_OK) goto fail;
-        t2 = now_ms();
+        t2 = br_now_ms();
         row->frame_ms[i] = t2 - t0; sel[i] = t1 - t0; ras[i] = t2 - t1;
         tris += bd_tris(bd);
         if (i % 8 == 0) progress(pg, r, row, i);

@@ -20,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "platform/clock.h"
 #include "platform/bench_default.h"
 #include "platform/campath.h"
 #include "platform/opt.h"
@@ -41,13 +42,6 @@ struct bd_run {
     uint64_t tris;
     double t_mid;            /* wall clock between selection and rasteriser, ms */
 };
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
-}
 
 /* Selection, strip and raster vertices (scene_frame), as the viewer's frame. */
 __attribute__((noinline)) br_status bd_select(bd_run *r, const cam *c)
@@ -85,7 +79,7 @@ __attribute__((noinline)) br_status bench_default_frame(bd_run *r, const cam *c)
     br_status st = bd_select(r, c);
     if (st != BR_OK) return st;
     r->tris += r->s.mesh.ntri;
-    r->t_mid = now_ms();
+    r->t_mid = br_now_ms();
     return bd_raster(r);
 }
 
@@ -134,12 +128,6 @@ const rs_frame *bd_frame(const bd_run *r)
 uint32_t bd_tris(const bd_run *r)
 {
     return r->s.mesh.ntri;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
 }
 
 int cmd_bench_default(int argc, char **argv)
@@ -207,11 +195,11 @@ int cmd_bench_default(int argc, char **argv)
             fprintf(stderr, "bitrain bench: %s: frame %d: unusable camera\n", path ? path : "default view", k + 1);
             goto done;
         }
-        t0 = now_ms();
+        t0 = br_now_ms();
         if (i < 0) { st = bd_select(r, &c); if (st == BR_OK) st = bd_raster(r); }
         else {
             st = bench_default_frame(r, &c);
-            t1 = now_ms();
+            t1 = br_now_ms();
             ms[i] = t1 - t0;
             sel_ms[i] = r->t_mid - t0;
         }
@@ -219,8 +207,8 @@ int cmd_bench_default(int argc, char **argv)
     }
     {
         double med, smed, tri = (double)r->tris / frames;
-        qsort(ms, (size_t)frames, sizeof *ms, cmp_d);
-        qsort(sel_ms, (size_t)frames, sizeof *sel_ms, cmp_d);
+        qsort(ms, (size_t)frames, sizeof *ms, br_cmp_double);
+        qsort(sel_ms, (size_t)frames, sizeof *sel_ms, br_cmp_double);
         med = frames & 1 ? ms[frames / 2] : 0.5 * (ms[frames / 2 - 1] + ms[frames / 2]);
         smed = frames & 1 ? sel_ms[frames / 2] : 0.5 * (sel_ms[frames / 2 - 1] + sel_ms[frames / 2]);
         printf("bitrain scene=default path=%s size=%dx%d pixel_error=%g format=%s depth=%d bands=%d frames=%d "

@@ -19,25 +19,13 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "platform/clock.h"
 #include "platform/cmd.h"
 #include "platform/opt.h"
 #include "platform/png_io.h"
 #include "raster/frame.h"
 #include "raster/raster.h"
 #include "benchmarks/peer_scene.h"
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
-}
-
-static int cmp_d(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
 
 /* One frame: transform, clear, draw, as one whole-frame band of the frame driver.  Not
  * static and not inlined: callgrind toggles on it. */
@@ -154,7 +142,7 @@ int cmd_bench(int argc, char **argv)
     if (!f.cache || !f.chunks || !mem || !fc.px) { fprintf(stderr, "bitrain bench: out of memory\n"); return 1; }
     memset(&st, 0, sizeof st);
     for (i = -warm; i < frames; i++) {   /* i < 0: untimed warm-up, outside bench_frame */
-        double t0 = now_ms();
+        double t0 = br_now_ms();
         br_status s;
         if (bands > 0) {   /* band mode: the driver's band loop into fc */
             s = rs_frame_prepare(&f);
@@ -162,9 +150,9 @@ int cmd_bench(int argc, char **argv)
         } else s = i < 0 ? warm_frame(&f, &pipe, mem, memsize, &band, &st)
                          : bench_frame(&f, &pipe, mem, memsize, &band, &st);
         if (s != BR_OK) { fprintf(stderr, "bitrain bench: render failed (%d)\n", (int)s); return 1; }
-        if (i >= 0) ms[i] = now_ms() - t0;
+        if (i >= 0) ms[i] = br_now_ms() - t0;
     }
-    qsort(ms, (size_t)frames, sizeof *ms, cmp_d);
+    qsort(ms, (size_t)frames, sizeof *ms, br_cmp_double);
     {
         double med = frames & 1 ? ms[frames / 2] : 0.5 * (ms[frames / 2 - 1] + ms[frames / 2]);
         printf("bitrain camera=%c size=%dx%d cull=%d format=%s depth=%d bands=%d frames=%d ms/frame=%.3f "

@@ -31,6 +31,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "platform/clock.h"
 #include "core/bitree.h"
 #include "core/cam.h"
 #include "platform/campath.h"
@@ -52,13 +53,6 @@
 #include "platform/water_scene.h"
 
 /* ---------------------------------------------------------------- command */
-
-static double ms_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
-}
 
 #define RENDER_SYNOPSIS "IN... -o OUT.png [options]\n" \
     "  camera in metres: x east from the west edge, y north from the south edge, z height (times --zscale)"
@@ -183,7 +177,7 @@ static int render_frame(render_job *j, const double *cv, const char *name, const
         fprintf(stderr, "bitrain: %s\n", err->msg);
         return 0;
     }
-    t1 = ms_now();
+    t1 = br_now_ms();
     /* the terrain pass, and water and atmosphere's passes and post hook (platform/water_scene.h),
      * in bands through the frame driver to the sinks */
     memset(&fr, 0, sizeof fr);
@@ -223,7 +217,7 @@ static int render_frame(render_job *j, const double *cv, const char *name, const
         }
         if (out_close(ro, err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err->msg); return 0; }
     }
-    t2 = ms_now();
+    t2 = br_now_ms();
     fprintf(j->ro.raw && name && !strcmp(name, "-") ? stderr : stdout,
             "%s: %dx%d, %u vertices, %s, %u triangles drawn (%u clipped), load+mesh %.1f ms, "
             "render+write %.1f ms, world unit 2^%d m, band %d rows (%zu bytes + %zu bytes vertex cache), %d threads\n",
@@ -316,7 +310,7 @@ int cmd_render(int argc, char **argv)
 
     if (path && campath_read(path, &cp, &err) != BR_OK) { fprintf(stderr, "bitrain render: %s\n", err.msg); return 1; }
     if (cp.n) nframes = cp.n;
-    t0 = ms_now();
+    t0 = br_now_ms();
     j->use_pipe = !(wo.no_water && wo.no_fog);
     so.ramp_abs = j->use_pipe;
     if (scene_open(&j->s, in, nin, &so, &err) != BR_OK) {
@@ -344,7 +338,7 @@ int cmd_render(int argc, char **argv)
             snprintf(name, sizeof name, out, k + 1);
             snprintf(what, sizeof what, "camera %d of the path: ", k + 1);
         } else if (out) snprintf(name, sizeof name, "%s", out);
-        if (k) t0 = ms_now();
+        if (k) t0 = br_now_ms();
         if (!render_frame(j, cp.n ? cp.cam[k] : camv, out ? name : NULL, what, t0, &err)) goto done;
     }
     rc = 0;

@@ -15,13 +15,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "platform/clock.h"
 #include "platform/load_internal.h"
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
 
 /* Sorts v (n values) and finds the lattice min + k*step they lie on. */
 static br_status lattice(double *v, size_t n, const char *axis, double *vmin, double *step,
@@ -29,7 +24,7 @@ static br_status lattice(double *v, size_t n, const char *axis, double *vmin, do
 {
     double span, gap = 0;
     size_t i;
-    qsort(v, n, sizeof *v, cmp_double);
+    qsort(v, n, sizeof *v, br_cmp_double);
     span = v[n - 1] - v[0];
     *vmin = v[0];
     /* Neighbouring values closer than text rounding allows are one grid line:

@@ -1,5 +1,6 @@
 #define _POSIX_C_SOURCE 200809L   /* pthreads, clock_gettime, posix_memalign, sysconf */
 /* platform/pipe_threads.c — see pipe_threads.h. */
+#include "platform/clock.h"
 #include "platform/pipe_threads.h"
 #include <pthread.h>
 #include <stdlib.h>
@@ -36,13 +37,6 @@ struct pt_pool {
     rs_band_stats total;            /* under lock */
 };
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
-}
-
 int pt_online_cores(void)
 {
     long n = sysconf(_SC_NPROCESSORS_ONLN);
@@ -76,9 +70,9 @@ static void draw_bands(pt_pool *pool, pt_worker *wk)
         if (i >= pool->nbands) break;
         y0 = i * pool->band_rows;
         rows = pool->p->h - y0 < pool->band_rows ? pool->p->h - y0 : pool->band_rows;
-        t0 = now_ms();
+        t0 = br_now_ms();
         s = rs_pipe_band(pool->p, y0, rows, wk->mem, wk->mem_size, &b, &st);
-        t1 = now_ms();
+        t1 = br_now_ms();
         pthread_mutex_lock(&pool->lock);
         while (pool->sink_next != i && pool->err == BR_OK) pthread_cond_wait(&pool->turn, &pool->lock);
         if (pool->err == BR_OK && s != BR_OK) pool->err = s;
@@ -88,13 +82,13 @@ static void draw_bands(pt_pool *pool, pt_worker *wk)
             break;
         }
         pthread_mutex_unlock(&pool->lock);
-        t2 = now_ms();
+        t2 = br_now_ms();
         /* only the thread holding band sink_next gets here: the sink runs alone */
         s = pool->sink(pool->sink_user, y0, rows, b.color, b.stride);
         add_stats(&mine, &st);
         wk->time.draw_ms += t1 - t0;
         wk->time.wait_ms += t2 - t1;
-        wk->time.sink_ms += now_ms() - t2;
+        wk->time.sink_ms += br_now_ms() - t2;
         wk->time.bands++;
         pthread_mutex_lock(&pool->lock);
         if (s != BR_OK && pool->err == BR_OK) pool->err = s;

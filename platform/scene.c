@@ -1,4 +1,5 @@
 /* platform/scene.c — see scene.h. */
+#include "platform/clock.h"
 #include "platform/scene.h"
 #include <ctype.h>
 #include <math.h>
@@ -94,12 +95,6 @@ static br_status load_texture(scene *s, const char *path, br_err *err)
     return BR_OK;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* The 99th percentile of |dz| / spacing between valid east and south neighbours
  * (metres per metre) over a regular subsample of at most 2^19 samples; 0 when the
  * grid has no such pair or no memory. */
@@ -119,7 +114,7 @@ static double slope_p99(const hf *f)
             if (y + 1 < f->h && p[f->w] != HF_NODATA) g[n++] = fabs((double)p[f->w] - *p) * zu / dy;
         }
     if (n == 0) { free(g); return 0; }
-    qsort(g, n, sizeof *g, cmp_double);
+    qsort(g, n, sizeof *g, br_cmp_double);
     r = g[n * 99 / 100];
     free(g);
     return r;
