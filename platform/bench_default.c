@@ -27,6 +27,7 @@
 #include "platform/cmd.h"
 #include "platform/png_io.h"
 #include "platform/scene.h"
+#include "platform/water_scene.h"
 
 #define BD_FOV 60
 #define BD_MAX_TRI 2000000
@@ -36,9 +37,13 @@ struct bd_run {
     int w, h, fmt, depth, bands;
     double pix_err;
     uint8_t *color;
-    void *zbuf;
     rs_prim prim;
     rs_frame fr;
+    int water;               /* --with-water: water, sky and fog as render and view draw them */
+    water_scene ws;
+    rs_pipe pipe;            /* the terrain pass alone (no water) */
+    void *band_mem;
+    size_t band_mem_size;
     uint64_t tris;
     double t_mid;            /* wall clock between selection and rasteriser, ms */
 };
@@ -58,18 +63,41 @@ __attribute__((noinline)) br_status bd_select(bd_run *r, const cam *c)
     return scene_frame(&r->s, c, &bp, &r->fr, &r->prim);
 }
 
-/* The rasteriser over the frame, band by band. */
-__attribute__((noinline)) br_status bd_raster(bd_run *r);
-__attribute__((noinline)) br_status bd_raster(bd_run *r)
+/* A sink that keeps the band in the frame's colour buffer (for -o). */
+static br_status keep_band(void *user, int32_t y0, int32_t rows, const void *px, size_t stride)
 {
-    size_t bpp = r->fmt == RS_FMT_RGB565 ? 2u : 4u, stride = (size_t)r->w * bpp;
-    int32_t y0;
-    for (y0 = 0; y0 < r->h; y0 += r->bands) {
-        int32_t rows = r->h - y0 < r->bands ? r->h - y0 : r->bands;
-        br_status st = rs_render_band(&r->fr, y0, rows, r->color + (size_t)y0 * stride, stride, r->zbuf);
-        if (st != BR_OK) return st;
-    }
+    bd_run *r = (bd_run *)user;
+    size_t bpp = r->fmt == RS_FMT_RGB565 ? 2u : 4u, row = (size_t)r->w * bpp;
+    int32_t y;
+    for (y = 0; y < rows; y++) memcpy(r->color + (size_t)(y0 + y) * row, (const uint8_t *)px + (size_t)y * stride, row);
     return BR_OK;
+}
+
+/* The frame driver over the prepared frame, band by band: the terrain pass, or with
+ * --with-water the water scene's passes and post hook (ws_frame, then its pipe). */
+__attribute__((noinline)) br_status bd_raster(bd_run *r, const cam *c);
+__attribute__((noinline)) br_status bd_raster(bd_run *r, const cam *c)
+{
+    const rs_pipe *p = &r->pipe;
+    size_t need;
+    if (r->water) {
+        br_err err;
+        if (ws_frame(&r->ws, &r->s, c, &r->fr, &err) != BR_OK) return err.code;
+        p = &r->ws.pipe;
+    } else {
+        rs_pass terrain;
+        memset(&r->pipe, 0, sizeof r->pipe);
+        r->pipe.w = r->w; r->pipe.h = r->h; r->pipe.fmt = r->fmt; r->pipe.depth = r->depth;
+        if (rs_pass_terrain(&terrain, &r->fr) != BR_OK || rs_pipe_add(&r->pipe, &terrain) != BR_OK) return BR_E_ARG;
+    }
+    need = rs_pipe_mem_size(p, r->bands);
+    if (need > r->band_mem_size) {     /* the first frame (the pipe's passes do not change size) */
+        free(r->band_mem);
+        r->band_mem = malloc(need);
+        r->band_mem_size = r->band_mem ? need : 0;
+        if (!r->band_mem) return BR_E_NOMEM;
+    }
+    return rs_pipe_run(p, r->bands, r->band_mem, r->band_mem_size, keep_band, r, NULL);
 }
 
 /* One terrain frame.  Not static and not inlined: callgrind toggles on it. */
@@ -80,7 +108,7 @@ __attribute__((noinline)) br_status bench_default_frame(bd_run *r, const cam *c)
     if (st != BR_OK) return st;
     r->tris += r->s.mesh.ntri;
     r->t_mid = br_now_ms();
-    return bd_raster(r);
+    return bd_raster(r, c);
 }
 
 /* ---------------------------------------------------------------- bench_default.h */
@@ -137,10 +165,16 @@ int cmd_bench_default(int argc, char **argv)
     bd_run *r = calloc(1, sizeof *r);
     campath cp = {NULL, 0};
     scene_opts so;
+    ws_opts wo;
+    ws_args wa;
+    opt_spec water_t[WS_ARGS_N];
     br_err err;
     double *ms = NULL, *sel_ms = NULL, eye[3], tgt[3];
     if (!r) return 1;
     r->w = 320; r->h = 240; r->fmt = RS_FMT_XRGB8888; r->depth = RS_DEPTH32; r->bands = 64; r->pix_err = 1;
+    memset(&wo, 0, sizeof wo);
+    wo.quiet = 1;
+    ws_args_table(&wa, &wo, water_t);
     {
         int size[2] = { 320, 240 }, fmt = 0, depth = 0, scene_choice = 0, npos = 0, pr;
         const char *dem = NULL, *pos[1];
@@ -156,12 +190,19 @@ int cmd_bench_default(int argc, char **argv)
             { "--bands", OPT_INT, &r->bands, 1, RS_MAX_DIM, 0, NULL, "ROWS", "band height (default 64, the viewer's)", NULL },
             { "--dem", OPT_STR, &dem, 0, 0, 0, NULL, "FILE", "another terrain instead of the default", NULL },
             { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT.png", "write the last frame", NULL },
+            { "--with-water", OPT_FLAG, &r->water, 0, 0, 0, NULL, NULL,
+              "draw water, sky and fog as render and view do (default: the terrain frame alone); "
+              "the water options below apply", NULL },
             OPT_END
         };
-        const opt_spec *const tables[] = { own, NULL };
+        const opt_spec *const tables[] = { own, water_t, NULL };
         pr = opt_parse("bench", "--scene default [options]\n"
                        "  the default scene's terrain frame: selection + strip + vertices + transform + raster",
                        tables, argc, argv, pos, 0, &npos);
+        if (pr == OPT_OK) pr = ws_args_finish(&wa, "bench");
+        if (pr == OPT_OK && !r->water && (wo.no_water || wo.have_level || wo.water_file || wo.no_fog || wa.fog
+                                          || wa.time_seen || wa.refl_seen))
+            pr = opt_fail("bench", "--no-water", "water options need --with-water");
         if (pr != OPT_OK) { free(r); return pr == OPT_HELP ? 0 : 2; }
         r->w = size[0];
         r->h = size[1];
@@ -173,16 +214,23 @@ int cmd_bench_default(int argc, char **argv)
     if (path && campath_read(path, &cp, &err) != BR_OK) { fprintf(stderr, "bitrain bench: %s\n", err.msg); goto done; }
     memset(&so, 0, sizeof so);
     so.quiet = 1;
+    so.ramp_abs = r->water;     /* render and view colour by absolute elevation with water */
     if (scene_open(&r->s, dems, ndem, &so, &err) != BR_OK) { fprintf(stderr, "bitrain bench: %s\n", err.msg); goto done; }
+    wo.shore_bound = 1;
+    wo.shore_px = r->pix_err;
+    if (r->water && ws_open(&r->ws, &r->s, &wo, &err) != BR_OK) {
+        r->water = 0;
+        fprintf(stderr, "bitrain bench: %s\n", err.msg);
+        goto done;
+    }
     if (scene_tree(&r->s, &err) != BR_OK || scene_reserve(&r->s, BD_MAX_TRI, &err) != BR_OK) {
         fprintf(stderr, "bitrain bench: %s: %s\n", dems[0], err.msg);
         goto done;
     }
     r->color = malloc((size_t)r->w * (size_t)r->h * 4);
-    r->zbuf = malloc(rs_band_mem_size(r->w, r->bands, r->fmt, r->depth));
     ms = malloc(sizeof *ms * (size_t)frames);
     sel_ms = malloc(sizeof *sel_ms * (size_t)frames);
-    if (!r->color || !r->zbuf || !ms || !sel_ms) { fprintf(stderr, "bitrain bench: out of memory\n"); goto done; }
+    if (!r->color || !ms || !sel_ms) { fprintf(stderr, "bitrain bench: out of memory\n"); goto done; }
     scene_default_view(&r->s, BD_FOV, eye, tgt);
     for (i = -warm; i < frames; i++) {
         cam c;
@@ -196,7 +244,7 @@ int cmd_bench_default(int argc, char **argv)
             goto done;
         }
         t0 = br_now_ms();
-        if (i < 0) { st = bd_select(r, &c); if (st == BR_OK) st = bd_raster(r); }
+        if (i < 0) { st = bd_select(r, &c); if (st == BR_OK) st = bd_raster(r, &c); }
         else {
             st = bench_default_frame(r, &c);
             t1 = br_now_ms();
@@ -233,7 +281,8 @@ int cmd_bench_default(int argc, char **argv)
 done:
     free(ms); free(sel_ms);
     if (r->color) free(r->color);
-    free(r->zbuf);
+    free(r->band_mem);
+    if (r->water) ws_close(&r->ws);
     scene_close(&r->s);
     campath_free(&cp);
     free(r);

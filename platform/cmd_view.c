@@ -86,6 +86,8 @@ static rs_pipe *water_pipe(view_app *a, const cam *c, rs_frame *fr)
     a->ws.o.no_fog = !v->on[VT_FOG];
     a->ws.nbodies = v->on[VT_WATER] ? a->nbodies : 0;
     if (a->clock_waves) a->ws.o.time_s = v->now - a->t_start;
+    a->ws.o.shore_bound = 1;              /* the selection's screen error (+/-, --fps) */
+    a->ws.o.shore_px = v->pix_err;
     st = ws_frame(&a->ws, &a->s, c, fr, &err);
     a->ws.nbodies = a->nbodies;
     if (st != BR_OK) { view_note(v, 3, "water: %s", err.msg); return NULL; }

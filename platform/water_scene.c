@@ -102,13 +102,12 @@ br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err)
 {
     hf *f = &s->f;
     const size_t n = (size_t)f->w * (size_t)f->h;
-    int64_t relief_mm = hf_z_to_mm(f, s->st.zmax) - hf_z_to_mm(f, s->st.zmin);
     int32_t depth;
     int32_t *wz;
     size_t i;
     memset(w, 0, sizeof *w);
     if (o) w->o = *o;
-    w->rw = malloc(sizeof *w->rw);
+    w->rw = calloc(1, sizeof *w->rw);     /* zeroed: rw_setup fills its tables once */
     if (!w->rw) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
     if (w->o.no_water) return BR_OK;
     w->id = malloc(n);
@@ -123,10 +122,11 @@ br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err)
                    (double)hf_z_to_mm(f, w->bodies.level[i]) / 1000, (long long)w->bodies.area[i],
                    w->bodies.joined[i] > 1 ? " (flat regions joined along a seam)" : "");
     if (!w->nbodies) { free(wz); return BR_OK; }
-    /* flattened water (terrain at or above its surface) lies on a bottom 1/8 of the
-     * relief below it (at least WS_DEPTH_MM): deep enough that the terrain's LOD refines
-     * along the shore instead of cutting through the surface */
-    depth = mm_to_units(f, relief_mm / 8 > WS_DEPTH_MM ? relief_mm / 8 : WS_DEPTH_MM);
+    /* flattened water (terrain at or above its surface) lies on a bottom WS_DEPTH_MM
+     * below it, a small step for the LOD (a deep one made the selection refine every
+     * shore to the finest level); where the coarse LOD draws the bottom above the
+     * surface, the post hook's shore test still shows water (raster/water.h) */
+    depth = mm_to_units(f, WS_DEPTH_MM);
     if (depth < 1) depth = 1;
     if (!w->o.water_file && !w->o.have_level)     /* the user's water keeps its bathymetry */
         for (i = 0; i < n; i++)
@@ -215,22 +215,26 @@ static br_status refl_frame(water_scene *w, const rs_frame *tf, int32_t plane_z,
     w->rfr.prims = &w->rprim; w->rfr.nprims = 1;
     w->rfr.chunks = w->rchunks;
     w->rfr.clip_z_on = 1; w->rfr.clip_z = plane_z;
+    w->rfr.clear_rows = NULL;           /* the reflection's sky comes from the hook */
     if (rw_mirror_vp(&tf->vp, plane_z, res, tf->w, tf->h, &w->rfr.vp) != BR_OK) return BR_E_ARG;
     return rs_frame_prepare(&w->rfr);
 }
 
-/* Fog from 55 % to 100 % of the farthest grid corner's distance along the view axis. */
+/* Fog from 55 % to 100 % of the farthest grid corner's distance from the eye (the
+ * depth along the view axis of any point of the grid is at most that, so a camera
+ * looking straight down from high sees no fog on the ground under it). */
 static void fog_range(const scene *s, const cam *c, rw_params *p)
 {
     int64_t far = 0;
     int k;
     for (k = 0; k < 4; k++) {
-        int64_t q[3], zc;
-        q[0] = (k & 1) ? (int64_t)(s->f.w - 1) * s->rt.fr.sx : 0;
-        q[1] = (k & 2) ? (int64_t)(s->f.h - 1) * s->rt.fr.sy : 0;
+        double q[3], d;
+        q[0] = (k & 1) ? (double)(s->f.w - 1) * (double)s->rt.fr.sx : 0;
+        q[1] = (k & 2) ? (double)(s->f.h - 1) * (double)s->rt.fr.sy : 0;
         q[2] = world_z(s, (s->st.zmin + s->st.zmax) / 2);
-        zc = ((q[0] - c->eye[0]) * c->fwd[0] + (q[1] - c->eye[1]) * c->fwd[1] + (q[2] - c->eye[2]) * c->fwd[2]) >> 30;
-        if (zc > far) far = zc;
+        d = sqrt((q[0] - c->eye[0]) * (q[0] - c->eye[0]) + (q[1] - c->eye[1]) * (q[1] - c->eye[1])
+                 + (q[2] - c->eye[2]) * (q[2] - c->eye[2]));
+        if (d > (double)far) far = (int64_t)d;
     }
     p->fog_on = far > 16;
     p->fog_end = far;
@@ -270,12 +274,24 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err 
         p.wave_len = hgt / 4 > 1 ? hgt / 4 : 1;
         p.wave_amp = hgt / 60;
         p.fresnel_one = w->o.fresnel_one;
+        /* SRTM's lakes and sea are flat surfaces with no bathymetry: the stated default
+         * tint instead of one from the lowered bottom's depth */
+        p.tint_fixed = w->o.water_file || w->o.have_level ? 0 : WS_TINT_FIXED;
         p.res_shift = res < 0 ? 0 : res;
         p.wet = w->id;
         p.wet_w = s->f.w; p.wet_h = s->f.h;
         p.grid_ox = s->rt.fr.ox; p.grid_oy = s->rt.fr.oy;
         p.grid_sx = s->rt.fr.sx; p.grid_sy = s->rt.fr.sy;
         for (k = 0; k < w->nbodies && k < RW_MAX_ID; k++) p.body_z[k + 1] = world_z(s, w->bodies.level[k]);
+        if (w->o.shore_bound) {
+            /* twice the screen error plus a pixel: the selection bounds the error by its
+             * distance to the diamond's box, not by the depth along the view axis */
+            double sc = (2 * w->o.shore_px + 1) * (double)RS_DEPTH_ONE * tf->vp.znear * 65536.0 / (double)tf->vp.f_q16;
+            double ww = (double)mm_to_units(&s->f, llround(w->o.shore_m * 1000)) * (double)s->rt.fr.sz_q16 / 65536.0;
+            p.shore_bound = 1;
+            p.shore_c = sc < 4e18 ? (int64_t)sc : (int64_t)4e18;
+            p.shore_w = ww < 2e9 ? (int64_t)ww : (int64_t)2e9;
+        }
         if (body && res >= 0 && c->eye[2] > p.plane_z && tf->nprims == 1 && tf->prims[0].kind == RS_STRIP) {
             if (refl_frame(w, tf, p.plane_z, res) != BR_OK)
                 return br_err_set(err, BR_E_NOMEM, NULL, "cannot set up the reflection");
@@ -283,6 +299,7 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err 
         }
     }
     if (rw_setup(r, &p, c, tf, wfr, rfr) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "bad water parameters");
+    rw_fog_vertices(r, tf);
     memset(&w->pipe, 0, sizeof w->pipe);
     w->pipe.w = tf->w; w->pipe.h = tf->h; w->pipe.fmt = tf->fmt; w->pipe.depth = tf->depth;
     if (rfr) {

@@ -15,8 +15,9 @@
 #include "raster/water.h"
 #include "platform/opt.h"
 
-#define WS_DEPTH_MM 3000        /* least depth under flattened water (SRTM lakes and sea) */
+#define WS_DEPTH_MM 3000        /* depth of the bottom under flattened water (SRTM lakes and sea) */
 #define WS_TINT_MM 4000         /* absorption length of the depth tint */
+#define WS_TINT_FIXED 232       /* the default tint of water without bathymetry, Q8 (0.91) */
 #define WS_MIN_AREA_M2 1000000  /* a flat region of at least 1 km^2 is a lake */
 #define WS_JOIN_DZ_MM 5000      /* the seam rule joins flat regions within 5 m */
 
@@ -47,6 +48,11 @@ typedef struct ws_opts {        /* zero = defaults: water found automatically, f
     int reflection;             /* 0 half (default), 1 full, 2 half, 3 quarter, 4 none */
     double time_s;              /* --time T */
     int no_waves, fresnel_one;  /* tests */
+    int shore_bound;            /* 1: the terrain mesh's error is bounded by shore_px pixels
+                                   on screen (view-dependent) or shore_m metres (fidelity;
+                                   both 0: the full grid), which spares the shore test on land
+                                   (raster/water.h rw_params.shore_bound); 0: test it everywhere */
+    double shore_px, shore_m;
     int quiet;
 } ws_opts;
 

@@ -375,6 +375,25 @@ static void fill32(uint8_t *p, size_t n, uint32_t v)
     if (n) memcpy(p, &v, 2);
 }
 
+/* One row of rs_frame.clear_rows: pixel x gets pat[x & 3] in the frame's format (four
+ * pixels a store: the pattern's bytes copied, so the same bytes on either byte order). */
+static void clear_row_pattern(uint8_t *row, int32_t w, int32_t fmt, const uint32_t pat[4])
+{
+    int32_t x = 0;
+    if (fmt == RS_FMT_RGB565) {
+        const uint16_t q[4] = { (uint16_t)PACK24_565(pat[0]), (uint16_t)PACK24_565(pat[1]),
+                                (uint16_t)PACK24_565(pat[2]), (uint16_t)PACK24_565(pat[3]) };
+        for (; x + 4 <= w; x += 4) memcpy(row + 2 * (size_t)x, q, 8);
+        for (; x < w; x++) memcpy(row + 2 * (size_t)x, &q[x & 3], 2);
+    } else if (pat[0] == pat[1] && pat[1] == pat[2] && pat[2] == pat[3]) {
+        fill32(row, (size_t)w * 4, pat[0] & 0xffffffu);
+    } else {
+        const uint32_t q[4] = { pat[0] & 0xffffffu, pat[1] & 0xffffffu, pat[2] & 0xffffffu, pat[3] & 0xffffffu };
+        for (; x + 4 <= w; x += 4) memcpy(row + 4 * (size_t)x, q, 16);
+        for (; x < w; x++) memcpy(row + 4 * (size_t)x, &q[x & 3], 4);
+    }
+}
+
 br_status rs_draw_band(const rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth,
                        rs_band_stats *st)
 {
@@ -403,7 +422,10 @@ br_status rs_draw_band(const rs_frame *f, int32_t y0, int32_t rows, void *color,
         else cv = f->clear_rgb & 0xffffffu;
         zv = f->depth == RS_DEPTH16 ? (dfar >> 14) * 0x10001u : dfar;
         fill32((uint8_t *)depth, w * (size_t)rows * (f->depth == RS_DEPTH16 ? 2u : 4u), zv);
-        if (stride == crow) fill32(bd.color, crow * (size_t)rows, cv);
+        if (f->clear_rows && !f->debug_count) {
+            for (y = 0; y < rows; y++) clear_row_pattern(bd.color + (size_t)y * stride, f->w, f->fmt,
+                                                         f->clear_rows + 4 * (size_t)(y0 + y));
+        } else if (stride == crow) fill32(bd.color, crow * (size_t)rows, cv);
         else for (y = 0; y < rows; y++) fill32(bd.color + (size_t)y * stride, crow, cv);
     }
     draw(&bd);

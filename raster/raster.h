@@ -156,6 +156,11 @@ typedef struct rs_frame {
                                    own z, before vp): a clip plane in the clipper (planar
                                    reflections: nothing under the water plane leaks in) */
     int32_t clip_z;
+    const uint32_t *clear_rows; /* NULL: the background is clear_rgb.  Else 4 colours 0xRRGGBB
+                                   per frame row: pixel (x, y) is cleared to
+                                   clear_rows[4 y + (x & 3)] in the frame's format (a sky
+                                   gradient by row with a 4x4 ordered dither for RGB565,
+                                   raster/water.h) */
     int32_t debug_count;        /* tests: colour must be XRGB8888; each covered pixel's
                                    32-bit value counts the writes (no depth test, no sky).
                                    Only builds with RS_WITH_COUNT = 1 draw it (the tests'

@@ -38,6 +38,27 @@ static uint32_t mix_rgb(uint32_t a, uint32_t b, uint32_t t)    /* t Q8: a (0) ..
     return (rb & 0xff00ffu) | (g & 0xff00u);
 }
 
+/* 4x4 ordered dither (Bayer), 0 .. 15, by screen position. */
+static const uint8_t bayer4[4][4] = { { 0, 8, 2, 10 }, { 12, 4, 14, 6 }, { 3, 11, 1, 9 }, { 15, 7, 13, 5 } };
+
+static uint16_t pack565_dither(uint32_t rgb, int32_t x, int32_t y)
+{
+    const uint32_t d = bayer4[y & 3][x & 3];
+    uint32_t rr = (((rgb >> 16) & 255u) + (d >> 1)) >> 3, g = (((rgb >> 8) & 255u) + (d >> 2)) >> 2,
+             bb = ((rgb & 255u) + (d >> 1)) >> 3;
+    if (rr > 31u) rr = 31u;
+    if (g > 63u) g = 63u;
+    if (bb > 31u) bb = 31u;
+    return (uint16_t)((rr << 11) | (g << 5) | bb);
+}
+
+/* The 888 colour whose 5/6/5 truncation is rgb's dithered value at (x, y). */
+static uint32_t dither888(uint32_t rgb, int32_t x, int32_t y)
+{
+    const uint32_t v = pack565_dither(rgb, x, y), rr = v >> 11, g = (v >> 5) & 63u, bb = v & 31u;
+    return ((rr << 3 | rr >> 2) << 16) | ((g << 2 | g >> 4) << 8) | (bb << 3 | bb >> 2);
+}
+
 static void tables(rw_frame *r)
 {
     /* R0 = ((1.33 - 1) / (1.33 + 1))^2 = 33^2 / 233^2, Q16 */
@@ -128,7 +149,10 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
     r->rdfar = r->dfar;
     if (r->depth == RS_DEPTH16) { r->dfar >>= 14; r->rdfar >>= 14; }
     for (k = 0; k < 3; k++) r->eye[k] = c->eye[k];
-    tables(r);
+    if (!r->tables_ready) {     /* they depend on no frame: once per rw_frame */
+        tables(r);
+        r->tables_ready = 1;
+    }
     f16 = vp->f_q16;
     for (x = 0; x < r->w; x++) r->aq[x] = (int32_t)(((int64_t)(2 * x + 1 - r->w) * ((int64_t)1 << 27)) / f16);
     for (y = 0; y < r->h; y++) {
@@ -142,6 +166,8 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         s2 = rz > 0 ? (uint32_t)((fx_isqrt64((uint64_t)(((rz * rz) << 24) / len2)) * 3u + 16u) >> 5) : 0;
         r->sky[y] = p->sky_on ? mix_rgb(r->p.sky_horizon, r->p.sky_zenith, s2 > 256u ? 256u : s2)
                               : terrain->clear_rgb;
+        for (k = 0; k < 4; k++)
+            r->clear4[4 * y + k] = terrain->fmt == RS_FMT_RGB565 && p->sky_on ? dither888(r->sky[y], k, y) : r->sky[y];
         /* the plane point of the row's rays: E + lam ray, lam = (H - ez) / ray_z */
         r->wbase[y][0] = r->wbase[y][1] = r->wstep[y][0] = r->wstep[y][1] = 0;
         r->tkr[y] = -1;
@@ -172,11 +198,20 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         /* waves fade beyond 8 wave lengths */
         r->wave_fade_d = (uint32_t)(K / (8 * (p->wave_len > 0 ? p->wave_len : 1)) > 0xffffffffLL ? 0xffffffffu
                                     : K / (8 * (p->wave_len > 0 ? p->wave_len : 1)));
+        r->inv_fade = ((uint64_t)1 << 32) / ((r->wave_fade_d >> 14) | 1u);
     }
     for (k = 0; k <= RW_MAX_ID; k++) {     /* the bodies' plane points from the reflected plane's */
         const int64_t e0 = r->eye[2] - p->plane_z, eb = r->eye[2] - p->body_z[k];
         int64_t q = e0 > 0 && eb > 0 ? (eb << 16) / e0 : 0;
         r->bratio[k] = (int32_t)(q > ((int64_t)1 << 20) ? 0 : q);
+        r->ebody[k] = eb;
+        /* the shore bound without a world term: dt - dw <= shore_c / E (30-bit depths);
+         * 0xffffffff: no bound (every nearer terrain pixel is tested) */
+        r->shore_dd[k] = 0xffffffffu;
+        if (p->shore_bound && p->shore_w == 0 && eb > 0) {
+            int64_t qd = fx_div_floor(p->shore_c, eb);
+            r->shore_dd[k] = qd >= 0xffffffffLL ? 0xffffffffu : (uint32_t)qd;
+        }
     }
     r->inv_sx = p->grid_sx > 0 ? ((((uint64_t)1 << 32) + (uint64_t)p->grid_sx - 1) / (uint64_t)p->grid_sx) : 0;
     r->inv_sy = p->grid_sy > 0 ? ((((uint64_t)1 << 32) + (uint64_t)p->grid_sy - 1) / (uint64_t)p->grid_sy) : 0;
@@ -190,8 +225,29 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         if (r->depth == RS_DEPTH16) d30 = (d30 + (1u << 14) - 1) >> 14;
         r->dquiet = d30 > r->dfar ? (d30 > 0xffffffffu ? 0xffffffffu : (uint32_t)d30) : r->dfar + 1;
     }
+    r->pixel_fog = terrain->tex != NULL;
     water_rows(r);
     return BR_OK;
+}
+
+void rw_fog_vertices(rw_frame *r, rs_frame *f)
+{
+    uint32_t i;
+    if (!r || !f || !f->cache) return;
+    f->clear_rows = r->clear4;
+    if (!r->p.fog_on || r->pixel_fog) return;
+    for (i = 0; i < f->nv; i++) {
+        rs_cvert *o = &f->cache[i];
+        const uint32_t oc = o->c >> 24, q = o->d >> r->fog_sh;
+        uint32_t fw, rgb;
+        int32_t y;
+        if ((oc & (RS_OUT_NEAR | RS_OUT_GUARD)) || q > RW_TAB || (fw = r->fog[q]) == 0) continue;
+        y = o->y >> RS_SUBPIX_BITS;
+        y = y < 0 ? 0 : y >= r->h ? r->h - 1 : y;
+        rgb = mix_rgb(o->c & 0xffffffu, r->sky[y], fw);
+        o->c = (o->c & 0xff000000u) | rgb;
+        o->cp = ((uint64_t)(rgb & 0xff0000u) << 26) | ((uint64_t)(rgb & 0xff00u) << 13) | (rgb & 255u);   /* rs_cvert.cp */
+    }
 }
 
 /* ---------------------------------------------------------------- passes */
@@ -268,20 +324,6 @@ br_status rw_pass_water(rs_pass *pass, const rw_frame *r)
 
 /* ---------------------------------------------------------------- the post hook */
 
-/* 4x4 ordered dither (Bayer), 0 .. 15, by screen position. */
-static const uint8_t bayer4[4][4] = { { 0, 8, 2, 10 }, { 12, 4, 14, 6 }, { 3, 11, 1, 9 }, { 15, 7, 13, 5 } };
-
-static uint16_t pack565_dither(uint32_t rgb, int32_t x, int32_t y)
-{
-    const uint32_t d = bayer4[y & 3][x & 3];
-    uint32_t rr = (((rgb >> 16) & 255u) + (d >> 1)) >> 3, g = (((rgb >> 8) & 255u) + (d >> 2)) >> 2,
-             bb = ((rgb & 255u) + (d >> 1)) >> 3;
-    if (rr > 31u) rr = 31u;
-    if (g > 63u) g = 63u;
-    if (bb > 31u) bb = 31u;
-    return (uint16_t)((rr << 11) | (g << 5) | bb);
-}
-
 static uint32_t get_rgb(int32_t fmt, const void *row, int32_t x)
 {
     if (fmt == RS_FMT_RGB565) {
@@ -332,7 +374,7 @@ static uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int3
         if (q8 > RW_WAVE_PX * 128) q8 = RW_WAVE_PX * 128;
         /* beyond wave_fade_d (far away) the waves fade as 1/zc^2: shorter than a pixel
          * there, they would only alias */
-        if (dw < r->wave_fade_d) q8 = q8 * (int64_t)(dw >> 14) / (int64_t)((r->wave_fade_d >> 14) | 1);
+        if (dw < r->wave_fade_d) q8 = (int64_t)(((uint64_t)q8 * (dw >> 14) * r->inv_fade) >> 32);
         dx = (int32_t)((q8 * (c0 + c1)) >> 15);
         dy = (int32_t)((q8 * (c0 - c1)) >> 15);
         ti = (int32_t)ci + (int32_t)(((c0 + c1) * q8) >> 10);    /* the slope tilts cos t */
@@ -358,6 +400,7 @@ static uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int3
      * body's plane point's zc = the reflected plane's times bratio: tkr[y] bratio q >> 48
      * with q = (dw - dt) / dt, Q16, from both depths brought to 16 bits */
     x32 = 255;
+    if (r->p.tint_fixed) return mix_rgb(mix_rgb(ct, r->p.water_rgb, (uint32_t)r->p.tint_fixed), refl, fr);
     if (r->tkr[y] >= 0 && r->bratio[id] && dt < dw) {
         int32_t sh = 0;
         uint32_t w16, t16;
@@ -407,8 +450,59 @@ static int shore_wet(const rw_frame *r, int32_t x, int32_t y, uint32_t id, uint3
     return r->p.wet[iy * (size_t)r->p.wet_w + ix] == id;
 }
 
-/* The hook's pixels for one band, specialised by the compiler for each format and depth
- * (fmt, depth are constants at every call). */
+/* The first pixel at or after x of a water-pass row whose id is set (w if none): four
+ * pixels a test. */
+static inline int32_t next_water(const uint8_t *wc, int32_t x, int32_t w, const int32_t fmt)
+{
+    if (fmt == RS_FMT_RGB565) {
+        const uint16_t *p = (const uint16_t *)(const void *)wc;
+        while (x + 4 <= w && !((p[x] | p[x + 1] | p[x + 2] | p[x + 3]) & 0xf800u)) x += 4;
+        while (x < w && !(p[x] & 0xf800u)) x++;
+    } else {
+        const uint32_t *p = (const uint32_t *)(const void *)wc;
+        while (x + 4 <= w && !((p[x] | p[x + 1] | p[x + 2] | p[x + 3]) & (31u << 19))) x += 4;
+        while (x < w && !(p[x] & (31u << 19))) x++;
+    }
+    return x;
+}
+
+/* The hook when the terrain frame carries its own fog and sky (rw_fog_vertices): only
+ * water pixels change, fogged by the water's depth.  Same specialisation as post_rows. */
+static inline void water_rows_only(const rw_frame *r, rs_band *b, const refl_view *rv, const uint8_t *wcol,
+                                   const uint8_t *wdep, int32_t wy0, int32_t wrows, const int32_t fmt,
+                                   const int32_t depth)
+{
+    const size_t dbp = depth == RS_DEPTH16 ? 2u : 4u;
+    const int32_t dsh = depth == RS_DEPTH16 ? 14 : 0;
+    int32_t row, x;
+    for (row = 0; row < b->rows; row++) {
+        const int32_t y = b->y0 + row;
+        uint8_t *crow = (uint8_t *)b->color + (size_t)row * b->stride;
+        const uint8_t *drow = (const uint8_t *)b->depth + (size_t)row * (size_t)b->w * dbp, *wc, *wd;
+        if (!wcol || y < wy0 || y >= wy0 + wrows) continue;
+        wc = wcol + (size_t)(y - wy0) * b->stride;
+        wd = wdep + (size_t)(y - wy0) * (size_t)b->w * dbp;
+        for (x = next_water(wc, 0, b->w, fmt); x < b->w; x = next_water(wc, x + 1, b->w, fmt)) {
+            const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
+            uint32_t rgb, d, fw;
+            if (dw <= dt) {       /* nearer terrain: land, unless it is the LOD over water */
+                if (((dt - dw) << dsh) > r->shore_dd[id]) continue;
+                if (r->p.shore_bound && r->p.shore_w && r->ebody[id] * (int64_t)((dt - dw) << dsh)
+                                        > r->p.shore_w * (int64_t)(dt << dsh) + r->p.shore_c) continue;
+                if (!shore_wet(r, x, y, id, dt << dsh, dw << dsh)) continue;
+            }
+            rgb = water_px(r, rv, x, y, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id);
+            d = dw << dsh;
+            if (r->p.fog_on && (d >> r->fog_sh) <= RW_TAB && (fw = r->fog[d >> r->fog_sh]) != 0)
+                rgb = mix_rgb(rgb, r->sky[y], fw);
+            if (fmt == RS_FMT_RGB565) ((uint16_t *)(void *)crow)[x] = pack565_dither(rgb, x, y);
+            else ((uint32_t *)(void *)crow)[x] = rgb;
+        }
+    }
+}
+
+/* The hook's pixels for one band (textured terrain: fog per pixel), specialised by the
+ * compiler for each format and depth (fmt, depth are constants at every call). */
 static inline void post_rows(const rw_frame *r, rs_band *b, const refl_view *rv, const uint8_t *wcol,
                              const uint8_t *wdep, int32_t wy0, int32_t wrows, const int32_t fmt, const int32_t depth)
 {
@@ -480,6 +574,14 @@ br_status rw_post(const void *user, rs_band *b, rs_band_stats *st)
         wdep = (const uint8_t *)b->scratch_depth[i];
         wy0 = b->scratch_y0[i];
         wrows = b->scratch_rows[i];
+    }
+    if (!r->pixel_fog) {
+        if (r->fmt == RS_FMT_RGB565) {
+            if (r->depth == RS_DEPTH16) water_rows_only(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_RGB565, RS_DEPTH16);
+            else water_rows_only(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_RGB565, RS_DEPTH32);
+        } else if (r->depth == RS_DEPTH16) water_rows_only(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_XRGB8888, RS_DEPTH16);
+        else water_rows_only(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_XRGB8888, RS_DEPTH32);
+        return BR_OK;
     }
     if (r->fmt == RS_FMT_RGB565) {
         if (r->depth == RS_DEPTH16) post_rows(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_RGB565, RS_DEPTH16);

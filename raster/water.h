@@ -30,12 +30,17 @@
  *       1 - exp(-L / tint_len), L the path through the water along the ray
  *       (zc_terrain - zc_water = zc_water (dw / dt - 1): zc_water of the row's plane point,
  *       dw / dt from the two depths brought to 16 bits, a 32-bit division);
+ *     fogged by the water's own depth;
  *   sky pixels (the terrain pass's far depth): the sky gradient by row, horizon to zenith
- *     by the sine of the row's elevation (the camera's pitch included);
- *   fog: every non-sky pixel mixed towards its row's sky colour by a weight rising from
- *     0 at fog_start to 1 at fog_end (squared), distances along the view axis;
- *   RGB565: the pixels this hook writes get a 4x4 ordered dither before the 5/6/5
- *     truncation (fixed by screen position, so bands stay exact).
+ *     by the sine of the row's elevation (the camera's pitch included), the terrain
+ *     frame's clear_rows (rw_fog_vertices);
+ *   fog: a weight rising from 0 at fog_start to 1 at fog_end (squared), distances along
+ *     the view axis, mixing towards the row's sky colour: per vertex for the terrain
+ *     (rw_fog_vertices), per pixel for water (and for textured terrain, whose texels
+ *     the vertex colour would only modulate);
+ *   RGB565: the sky and the pixels this hook writes get a 4x4 ordered dither before the
+ *     5/6/5 truncation (fixed by screen position, so bands stay exact); the fogged
+ *     terrain is truncated as all terrain shading is.
  * Waves: two travelling sines of world position on the water plane and time (003's
  * parametric wave of per-vertex time and flow direction, per pixel here); their slopes
  * move the reflection lookup (at most RW_WAVE_PX pixels, scaled by 1/distance) and tilt
@@ -45,8 +50,10 @@
  * look-at cameras have none); the reflection at half or quarter resolution is sampled
  * nearest; one plane per frame gets a mirror.
  *
- * MEMORY: rw_frame is caller-owned (about 200 KB: per-row and per-column tables for up to
- * RS_MAX_DIM), filled once per frame by rw_setup; nothing is allocated. */
+ * MEMORY: rw_frame is caller-owned (about 270 KB: per-row and per-column tables for up to
+ * RS_MAX_DIM), zero-initialised by the caller before its first rw_setup, then filled by
+ * rw_setup each frame (the frame-independent tables only the first time); nothing is
+ * allocated. */
 #ifndef BR_RWATER_H
 #define BR_RWATER_H
 #include <stdint.h>
@@ -68,6 +75,10 @@ typedef struct rw_params {      /* zero = off / defaults as stated */
     uint32_t sky_horizon, sky_zenith;   /* (0: 0xc8dcf0, 0x5a8cd2) */
     int64_t fog_start, fog_end; /* world units along the view axis, 0 < start < end */
     int64_t tint_len;           /* world units: light falls to 1/e over this path (> 0) */
+    int32_t tint_fixed;         /* 1 .. 256: the refraction's tint weight (Q8) for every
+                                   water pixel, the stated default for water without
+                                   bathymetry (SRTM's flattened lakes and sea); 0: from
+                                   the path through the water, as above */
     int32_t waves_on;
     int32_t time_ms;            /* the instant drawn */
     int64_t wave_len;           /* world units, the longer of the two waves (> 0) */
@@ -81,6 +92,14 @@ typedef struct rw_params {      /* zero = off / defaults as stated */
     int32_t wet_w, wet_h;
     int64_t grid_ox, grid_oy, grid_sx, grid_sy;
     int32_t body_z[RW_MAX_ID + 1];
+    /* What bounds the shore test (0: every water pixel with nearer terrain is tested).
+     * The terrain drawn over a wet sample lies at most shore_w + shore_px zc / f world units
+     * above the true bottom (below the surface): shore_w the LOD's error in world units
+     * (fidelity meshes), shore_px its screen error in pixels (view-dependent meshes), with a
+     * margin; a terrain point higher above a body's plane is land.  In depths: E (dt - dw)
+     * <= shore_w dt + shore_c, E = eye z - body z, shore_c = shore_px K / f, K = D znear. */
+    int32_t shore_bound;
+    int64_t shore_w, shore_c;
 } rw_params;
 
 typedef struct rw_frame {
@@ -102,14 +121,22 @@ typedef struct rw_frame {
     int64_t tkr[RS_MAX_DIM];    /* per row: 32 zc / tint_len of the reflected plane's point,
                                    Q16 (-1: the row does not meet the plane) */
     int32_t bratio[RW_MAX_ID + 1];      /* (eye z - body z) / (eye z - plane_z), Q16 (0: none) */
+    int64_t ebody[RW_MAX_ID + 1];       /* eye z - body z, world units (the shore bound) */
+    uint32_t shore_dd[RW_MAX_ID + 1];   /* shore_c / ebody: the largest dt - dw (30-bit) worth a shore
+                                           test when shore_w is 0 (0xffffffff: any) */
     uint64_t inv_sx, inv_sy;    /* 2^32 / grid step, rounded up */
     int32_t fog_sh;             /* fog table index: depth >> fog_sh */
     uint32_t dquiet;            /* buffer depth from which terrain gets no fog (> dfar) */
+    int32_t pixel_fog;          /* 1: the hook fogs terrain pixels (textured frames); 0: the
+                                   terrain's vertices were fogged (rw_fog_vertices) */
+    uint64_t inv_fade;          /* 2^32 / (wave_fade_d >> 14 | 1), rounded down */
+    uint32_t clear4[4 * RS_MAX_DIM];    /* the sky rows for rs_frame.clear_rows (dithered for RGB565) */
     uint8_t fres[RW_TAB + 1];   /* F by cos^2 t, Q8 (256 = 1) */
     uint8_t skyw[RW_TAB + 1];   /* zenith weight by sin^2 of elevation, Q8 */
     uint8_t tint[256];          /* 1 - exp(-x / 32), Q8, by x = L / tint_len in 1/32 */
     uint8_t fog[RW_TAB + 1];    /* fog weight by depth >> fog_sh, Q8 */
     int8_t sine[256];           /* sin(2 pi i / 256), Q7 */
+    int32_t tables_ready;       /* 1: fres, skyw, tint and sine are filled */
 } rw_frame;
 
 /* The view-projection of the mirror: the same camera looking at the world mirrored in
@@ -122,6 +149,15 @@ br_status rw_mirror_vp(const cam_vp *vp, int32_t plane_z, int32_t res_shift, int
  * camera c (the terrain's).  BR_E_ARG on inconsistent sizes or parameters. */
 br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame *terrain,
                    const rs_frame *water, const rs_frame *refl);
+
+/* Per-vertex fog (as OpenGL's fixed-function fog, evaluated at the vertices and
+ * interpolated with the colour): mixes each vertex colour of the prepared terrain frame
+ * f (rs_frame_prepare done, not textured) towards the sky colour of the vertex's row by
+ * the fog weight of its depth, and sets f->clear_rows to the sky gradient, so the post
+ * hook touches only rows with water.  Vertices behind the near plane or outside the
+ * guard band keep their colour.  Call after rw_setup with the same terrain frame;
+ * a no-op for the colour when fog is off. */
+void rw_fog_vertices(rw_frame *r, rs_frame *f);
 
 /* The passes (pass->user = r) and the post hook (post_user = r). */
 br_status rw_pass_reflection(rs_pass *pass, const rw_frame *r);
