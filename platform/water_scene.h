@@ -17,7 +17,7 @@
 
 #define WS_DEPTH_MM 3000        /* depth of the bottom under flattened water (SRTM lakes and sea) */
 #define WS_TINT_MM 4000         /* absorption length of the depth tint */
-#define WS_TINT_FIXED 232       /* the default tint of water without bathymetry, Q8 (0.91) */
+#define WS_TINT_FIXED 248       /* the default tint of water without bathymetry, Q8 (0.97) */
 #define WS_MIN_AREA_M2 1000000  /* a flat region of at least 1 km^2 is a lake */
 #define WS_JOIN_DZ_MM 5000      /* the seam rule joins flat regions within 5 m */
 
