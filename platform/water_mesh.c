@@ -8,7 +8,10 @@
  *   - every wet sample in it lies at b's level (flat), and
  *   - every other sample in it lies inside the grid, is valid and is dry land at or above
  *     b's level (the terrain pass draws that land above the plane, so it hides the part
- *     of the block under it by the depth test; terrain under the water was lowered);
+ *     of the block under it by the depth test; terrain under the water was lowered), or
+ *     dry land below the level enclosed by such land (a pocket, reach_low: where the
+ *     terrain's LOD keeps it, the plane shows as shallow water over it; where the LOD
+ *     sinks the island around it, the plane covers it as it covers the island);
  * a clean block is one quad at b's level, and a block that holds water of b but is not
  * clean is split into its four children.  A single cell that is not clean keeps those of
  * its two triangles (split along the south-west / north-east diagonal) whose three
@@ -16,8 +19,8 @@
  * dry: the level).  A cell with corners of two bodies belongs to ONE of them, the lower
  * (the larger, lower id, at equal levels; under()): its corners on the higher body's
  * samples pass at that body's surface height, so the cell slopes from one surface to the
- * other and shares the higher body's edge, and the higher body skips the cell.  Blocks meet along their edges with T-junctions where a block meets
- * smaller ones; to keep the mesh watertight (no pixel gaps along a T-junction after
+ * other and shares the higher body's edge, and the higher body skips the cell.  Blocks
+ * meet along their edges with T-junctions where a block meets smaller ones; to keep the mesh watertight (no pixel gaps along a T-junction after
  * snapping), a block whose edges carry corners of smaller blocks of the same body is drawn
  * as a fan around its centre through every such corner.  So a lake whose shore rises is a
  * few dozen quads; the mesh only refines where water meets land below its level (an
@@ -34,6 +37,8 @@ typedef struct wm_ctx {
     const uint8_t *id;
     const int32_t *wz;
     const int32_t *levels;      /* level of body b at levels[b - 1] */
+    uint8_t *low;               /* per sample: 1 for dry land below the level that the body's
+                                   water or the grid's edge reaches (reach_low) */
     uint8_t body;
     int32_t level;
     int32_t (*leaf)[3];         /* x0, y0, s; s negated: a cell that is not clean */
@@ -67,8 +72,47 @@ static int sample_bits(const wm_ctx *c, int32_t x, int32_t y)
     i = (size_t)y * (size_t)c->f->w + (size_t)x;
     if (c->id[i] == c->body) return c->wz[i] == c->level ? WM_WET : WM_WET | WM_FAIL;
     if (c->id[i]) return under(c, c->body, c->id[i]) ? WM_ABOVE : WM_FAIL | WM_BELOW;
-    if (c->f->z[i] == HF_NODATA || c->f->z[i] < c->level) return WM_FAIL;
+    if (c->f->z[i] == HF_NODATA || c->low[i]) return WM_FAIL;
     return 0;
+}
+
+static int dry_below(const wm_ctx *c, size_t i)
+{
+    return !c->id[i] && c->f->z[i] != HF_NODATA && c->f->z[i] < c->level;
+}
+
+/* c->low: dry land below the level 4-connected through such land to the body's water or
+ * to the grid's edge (an outlet, a valley beyond the shore): the plane may not go over
+ * it.  Dry land below the level enclosed by land at or above it (a pocket: SRTM's -1 and
+ * -2 m in Laesoe's marshes, N57E011) may lie under the plane like the land around it;
+ * left out, it was a hole in the water where the terrain's LOD, which sinks a low island
+ * into the lowered sea bottom, showed the bottom.  q: a queue of w * h entries. */
+static void reach_low(wm_ctx *c, uint32_t *q)
+{
+    const int32_t w = c->f->w, h = c->f->h;
+    size_t i, n = (size_t)w * (size_t)h, head = 0, tail = 0;
+    for (i = 0; i < n; i++) {
+        const int32_t x = (int32_t)(i % (size_t)w), y = (int32_t)(i / (size_t)w);
+        int seed;
+        c->low[i] = 0;
+        if (!dry_below(c, i)) continue;
+        seed = x == 0 || y == 0 || x == w - 1 || y == h - 1
+               || c->id[i - 1] == c->body || c->id[i + 1] == c->body
+               || c->id[i - (size_t)w] == c->body || c->id[i + (size_t)w] == c->body;
+        if (seed) { c->low[i] = 1; q[tail++] = (uint32_t)i; }
+    }
+    while (head < tail) {
+        const size_t j = q[head++];
+        const int32_t x = (int32_t)(j % (size_t)w), y = (int32_t)(j / (size_t)w);
+        size_t nb[4];
+        int k, nn = 0;
+        if (x > 0) nb[nn++] = j - 1;
+        if (x + 1 < w) nb[nn++] = j + 1;
+        if (y > 0) nb[nn++] = j - (size_t)w;
+        if (y + 1 < h) nb[nn++] = j + (size_t)w;
+        for (k = 0; k < nn; k++)
+            if (!c->low[nb[k]] && dry_below(c, nb[k])) { c->low[nb[k]] = 1; q[tail++] = (uint32_t)nb[k]; }
+    }
 }
 
 static void push_leaf(wm_ctx *c, int32_t x0, int32_t y0, int32_t s)
@@ -227,15 +271,17 @@ br_status wm_build(const hf *f, const uint8_t *id, const int32_t *wz, const int3
     memset(&o, 0, sizeof o);
     o.m = m;
     o.vmap = malloc(n * sizeof *o.vmap);
+    c.low = malloc(n);
     while (S < f->w - 1 || S < f->h - 1) S *= 2;
     loop = malloc(((size_t)4 * (size_t)S + 4) * sizeof *loop);
-    if (!o.vmap || !loop) { free(o.vmap); free(loop); return BR_E_NOMEM; }
+    if (!o.vmap || !loop || !c.low) { free(o.vmap); free(loop); free(c.low); return BR_E_NOMEM; }
     c.f = f; c.id = id; c.wz = wz; c.levels = level;
     for (b = 1; b <= nbodies; b++) {
         c.body = (uint8_t)b;
         c.level = level[b - 1];
         c.nleaf = 0;
         if (f->w < 2 || f->h < 2) break;
+        reach_low(&c, (uint32_t *)(void *)o.vmap);     /* the queue: vmap is set below */
         classify(&c, 0, 0, S);
         if (c.oom) break;
         for (i = 0; i < n; i++) o.vmap[i] = -1;
@@ -253,7 +299,7 @@ br_status wm_build(const hf *f, const uint8_t *id, const int32_t *wz, const int3
             if (c.leaf[l][2] > 0) emit_block(&o, &c, c.leaf[l][0], c.leaf[l][1], c.leaf[l][2], loop);
         if (o.oom) break;
     }
-    free(c.leaf); free(o.vmap); free(loop);
+    free(c.leaf); free(o.vmap); free(loop); free(c.low);
     if (c.oom || o.oom) { wm_free(m); return BR_E_NOMEM; }
     return BR_OK;
 }

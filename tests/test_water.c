@@ -467,10 +467,79 @@ done:
     scene_close(&s);
 }
 
+/* Dry land below the sea level inside an island: Laesoe (N57E011, columns 0 to 240, rows
+ * 806 to 934, 1 to 22 m) holds 24 samples at -1 and -2 m in its southern marshes, enclosed
+ * by land at or above 0 m.  The water mesh covers the cells around them as it covers the
+ * island (docs/water.md's table), and the default view from high (docs/img/
+ * water_sea_high.png: the terrain's LOD sinks the island into the lowered sea bottom)
+ * shows no light patch at pixel (160, 190): before, those cells were a hole in the water
+ * through which the bottom (the ramp at -21 m, 0x437199 after fog) showed, 41 pixels. */
+static void test_pocket(void)
+{
+    const char *in[1];
+    scene s;
+    scene_opts so;
+    ws_opts wo;
+    water_scene ws;
+    br_err err;
+    uint32_t *cov = NULL;
+    uint8_t *px = NULL;
+    char out[256];
+    int32_t x, y, w, h, pockets = 0, open = 0, light = 0, pw = 0, ph = 0;
+    memset(&s, 0, sizeof s); memset(&so, 0, sizeof so); memset(&wo, 0, sizeof wo); memset(&ws, 0, sizeof ws);
+    in[0] = t_data("hgt/N57E011.hgt");
+    so.quiet = 1;
+    wo.quiet = 1;
+    CHECK_EQ(scene_open(&s, in, 1, &so, &err), BR_OK);
+    CHECK_EQ(ws_open(&ws, &s, &wo, &err), BR_OK);
+    CHECK_EQ(ws.nbodies, 1);
+    w = s.f.w; h = s.f.h;
+    cov = malloc(sizeof *cov * (size_t)w * (size_t)h);
+    CHECK(cov != NULL);
+    if (!cov || ws.nbodies != 1) goto done;
+    cover_cells(&ws.mesh, w, h, cov);
+    for (y = 806; y <= 934; y++)
+        for (x = 0; x <= 240; x++) {
+            const size_t i = (size_t)y * (size_t)w + (size_t)x;
+            int k;
+            if (ws.id[i] || s.f.z[i] >= 0) continue;
+            pockets++;
+            for (k = 0; k < 4; k++) {   /* the four cells around the sample */
+                const int32_t cx = x - (k & 1), cy = y - (k >> 1);
+                if (cx < 0 || cy < 0 || cx + 1 >= w || cy + 1 >= h) continue;
+                open += cov[(size_t)cy * (size_t)w + (size_t)cx] != 1u << 1;
+            }
+        }
+    CHECK_EQ(pockets, 24);
+    CHECK_MSG(open == 0, "%d cells around Laesoe's pockets not covered by the sea", open);
+    {
+        const char *a[] = { in[0], "-o", out, "--size", "320x240" };
+        snprintf(out, sizeof out, "%s/water_sea_high.png", t_outdir());
+        CHECK_EQ(RUN(a), 0);
+        CHECK_EQ(png_read_rgb(out, &pw, &ph, &px, &err), BR_OK);
+    }
+    if (!px || pw != 320 || ph != 240) goto done;
+    /* lighter than the sea (0x1d4762 there), not the sky (blue >= 200) and not next to it
+     * (the bottom's edge shows in a pixel along the tile's near edges) */
+    for (y = 170; y < 210; y++)
+        for (x = 130; x < 190; x++) {
+            const uint8_t *p = px + 3 * ((size_t)y * 320 + (size_t)x);
+            const int edge = p[3 + 2] >= 200 || p[-3 + 2] >= 200 || p[3 * 320 + 2] >= 200 || p[-3 * 320 + 2] >= 200;
+            light += p[0] >= 50 && p[2] >= 130 && p[2] < 200 && !edge;
+        }
+    printf("pocket: %d pocket samples, %d open cells, %d light pixels around (160, 190)\n", pockets, open, light);
+    CHECK_MSG(light == 0, "%d light pixels in the sea around (160, 190)", light);
+done:
+    free(cov); free(px);
+    ws_close(&ws);
+    scene_close(&s);
+}
+
 int main(void)
 {
     T_RUN(test_detect);
     T_RUN(test_step);
+    T_RUN(test_pocket);
     T_RUN(test_clip_plane);
     T_RUN(test_bands);
     T_RUN(test_goldens);
