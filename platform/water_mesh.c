@@ -81,9 +81,9 @@ static int dry_below(const wm_ctx *c, size_t i)
     return !c->id[i] && c->f->z[i] != HF_NODATA && c->f->z[i] < c->level;
 }
 
-/* c->low: dry land below the level 4-connected through such land to the body's water or
- * to the grid's edge (an outlet, a valley beyond the shore): the plane may not go over
- * it.  Dry land below the level enclosed by land at or above it (a pocket: SRTM's -1 and
+/* c->low: dry land below the level 4-connected through such land to water (of any body)
+ * or to the grid's edge (an outlet, a valley beyond the shore, a coast): the plane may
+ * not go over it.  Dry land below the level enclosed by land at or above it (a pocket: SRTM's -1 and
  * -2 m in Laesoe's marshes, N57E011) may lie under the plane like the land around it;
  * left out, it was a hole in the water where the terrain's LOD, which sinks a low island
  * into the lowered sea bottom, showed the bottom.  q: a queue of w * h entries. */
@@ -97,8 +97,7 @@ static void reach_low(wm_ctx *c, uint32_t *q)
         c->low[i] = 0;
         if (!dry_below(c, i)) continue;
         seed = x == 0 || y == 0 || x == w - 1 || y == h - 1
-               || c->id[i - 1] == c->body || c->id[i + 1] == c->body
-               || c->id[i - (size_t)w] == c->body || c->id[i + (size_t)w] == c->body;
+               || c->id[i - 1] || c->id[i + 1] || c->id[i - (size_t)w] || c->id[i + (size_t)w];
         if (seed) { c->low[i] = 1; q[tail++] = (uint32_t)i; }
     }
     while (head < tail) {
