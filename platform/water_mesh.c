@@ -90,25 +90,28 @@ static int dry_below(const wm_ctx *c, size_t i)
 static void reach_low(wm_ctx *c, uint32_t *q)
 {
     const int32_t w = c->f->w, h = c->f->h;
-    size_t i, n = (size_t)w * (size_t)h, head = 0, tail = 0;
-    for (i = 0; i < n; i++) {
-        const int32_t x = (int32_t)(i % (size_t)w), y = (int32_t)(i / (size_t)w);
-        int seed;
-        c->low[i] = 0;
-        if (!dry_below(c, i)) continue;
-        seed = x == 0 || y == 0 || x == w - 1 || y == h - 1
-               || c->id[i - 1] || c->id[i + 1] || c->id[i - (size_t)w] || c->id[i + (size_t)w];
-        if (seed) { c->low[i] = 1; q[tail++] = (uint32_t)i; }
-    }
+    size_t head = 0, tail = 0;
+    int32_t x, y;
+    memset(c->low, 0, (size_t)w * (size_t)h);
+    for (y = 0; y < h; y++)
+        for (x = 0; x < w; x++) {
+            const size_t i = (size_t)y * (size_t)w + (size_t)x;
+            if (!dry_below(c, i)) continue;
+            if (x == 0 || y == 0 || x == w - 1 || y == h - 1
+                || c->id[i - 1] || c->id[i + 1] || c->id[i - (size_t)w] || c->id[i + (size_t)w]) {
+                c->low[i] = 1;
+                q[tail++] = (uint32_t)i;
+            }
+        }
     while (head < tail) {
         const size_t j = q[head++];
-        const int32_t x = (int32_t)(j % (size_t)w), y = (int32_t)(j / (size_t)w);
+        const int32_t jx = (int32_t)(j % (size_t)w), jy = (int32_t)(j / (size_t)w);
         size_t nb[4];
         int k, nn = 0;
-        if (x > 0) nb[nn++] = j - 1;
-        if (x + 1 < w) nb[nn++] = j + 1;
-        if (y > 0) nb[nn++] = j - (size_t)w;
-        if (y + 1 < h) nb[nn++] = j + (size_t)w;
+        if (jx > 0) nb[nn++] = j - 1;
+        if (jx + 1 < w) nb[nn++] = j + 1;
+        if (jy > 0) nb[nn++] = j - (size_t)w;
+        if (jy + 1 < h) nb[nn++] = j + (size_t)w;
         for (k = 0; k < nn; k++)
             if (!c->low[nb[k]] && dry_below(c, nb[k])) { c->low[nb[k]] = 1; q[tail++] = (uint32_t)nb[k]; }
     }
@@ -238,20 +241,22 @@ static void emit_block(wm_out *o, const wm_ctx *c, int32_t x0, int32_t y0, int32
 /* The body's samples that are corners of cells a body under it takes (under()): vertices
  * made before the fans, so the body's blocks pass through them and the sloping cells
  * meet them without T-junctions. */
-static void step_corners(wm_out *o, const wm_ctx *c)
+static void step_corners(wm_out *o, const wm_ctx *c, int32_t nbodies)
 {
     const int32_t w = c->f->w, h = c->f->h;
-    int32_t x, y, dx, dy;
+    int32_t x, y, dx, dy, b, any = 0;
+    for (b = 1; b <= nbodies; b++) any |= b != c->body && under(c, (uint8_t)b, c->body);
+    if (!any) return;
     for (y = 0; y < h; y++)
         for (x = 0; x < w; x++) {
             int found = 0;
             if (c->id[(size_t)y * (size_t)w + (size_t)x] != c->body) continue;
             for (dy = -1; dy <= 1 && !found; dy++)
                 for (dx = -1; dx <= 1 && !found; dx++) {
-                    uint8_t b;
+                    uint8_t nid;
                     if (x + dx < 0 || y + dy < 0 || x + dx >= w || y + dy >= h) continue;
-                    b = c->id[(size_t)(y + dy) * (size_t)w + (size_t)(x + dx)];
-                    found = b && b != c->body && under(c, b, c->body);
+                    nid = c->id[(size_t)(y + dy) * (size_t)w + (size_t)(x + dx)];
+                    found = nid && nid != c->body && under(c, nid, c->body);
                 }
             if (found) corner(o, c, x, y);
         }
@@ -291,7 +296,7 @@ br_status wm_build(const hf *f, const uint8_t *id, const int32_t *wz, const int3
             corner(&o, &c, x0, y0); corner(&o, &c, x0 + s, y0);
             corner(&o, &c, x0, y0 + s); corner(&o, &c, x0 + s, y0 + s);
         }
-        step_corners(&o, &c);
+        step_corners(&o, &c, nbodies);
         for (l = 0; l < c.nleaf; l++)
             if (c.leaf[l][2] < 0) emit_cell(&o, &c, c.leaf[l][0], c.leaf[l][1]);
         for (l = 0; l < c.nleaf; l++)
