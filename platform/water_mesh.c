@@ -8,13 +8,19 @@
  *   - every wet sample in it lies at b's level (flat), and
  *   - every other sample in it lies inside the grid, is valid and is dry land at or above
  *     b's level (the terrain pass draws that land above the plane, so it hides the part
- *     of the block under it by the depth test; terrain under the water was lowered);
+ *     of the block under it by the depth test; terrain under the water was lowered), or
+ *     dry land below the level enclosed by such land (a pocket, reach_low: where the
+ *     terrain's LOD keeps it, the plane shows as shallow water over it; where the LOD
+ *     sinks the island around it, the plane covers it as it covers the island);
  * a clean block is one quad at b's level, and a block that holds water of b but is not
  * clean is split into its four children.  A single cell that is not clean keeps those of
  * its two triangles (split along the south-west / north-east diagonal) whose three
  * corners pass the rule above, at the corners' own heights (wet: the surface height,
- * dry: the level).  Blocks meet along their edges with T-junctions where a block meets
- * smaller ones; to keep the mesh watertight (no pixel gaps along a T-junction after
+ * dry: the level).  A cell with corners of two bodies belongs to ONE of them, the lower
+ * (the larger, lower id, at equal levels; under()): its corners on the higher body's
+ * samples pass at that body's surface height, so the cell slopes from one surface to the
+ * other and shares the higher body's edge, and the higher body skips the cell.  Blocks
+ * meet along their edges with T-junctions where a block meets smaller ones; to keep the mesh watertight (no pixel gaps along a T-junction after
  * snapping), a block whose edges carry corners of smaller blocks of the same body is drawn
  * as a fan around its centre through every such corner.  So a lake whose shore rises is a
  * few dozen quads; the mesh only refines where water meets land below its level (an
@@ -30,6 +36,9 @@ typedef struct wm_ctx {
     const hf *f;
     const uint8_t *id;
     const int32_t *wz;
+    const int32_t *levels;      /* level of body b at levels[b - 1] */
+    uint8_t *low;               /* per sample: 1 for dry land below the level that the body's
+                                   water or the grid's edge reaches (reach_low) */
     uint8_t body;
     int32_t level;
     int32_t (*leaf)[3];         /* x0, y0, s; s negated: a cell that is not clean */
@@ -37,19 +46,75 @@ typedef struct wm_ctx {
     int oom;
 } wm_ctx;
 
-enum { WM_WET = 1, WM_FAIL = 2 };
+enum { WM_WET = 1, WM_FAIL = 2, WM_ABOVE = 4, WM_BELOW = 8 };
+
+/* Whether body a's plane goes on under body b's samples in a cell they share: the lower
+ * body takes the cell (its plane lies under the higher body's surface there, so it hides
+ * no water of the other; the higher body's plane over the lower body's samples would
+ * stand above their surface), the larger body (lower id) at equal levels.  A total order,
+ * so every cell between two bodies has exactly one owner. */
+static int under(const wm_ctx *c, uint8_t a, uint8_t b)
+{
+    const int32_t la = c->levels[a - 1], lb = c->levels[b - 1];
+    return la < lb || (la == lb && a < b);
+}
 
 /* WM_WET when (x, y) is wet with the body at its level, WM_WET | WM_FAIL when wet but not
- * at the level (a --water layer that is not flat), WM_FAIL when it may not lie under the
- * body's plane, 0 for dry land at or above the level. */
+ * at the level (a --water layer that is not flat), WM_ABOVE when wet with a body above
+ * this one (under(): the cells between them are this body's, larger blocks are not),
+ * WM_FAIL | WM_BELOW when wet with a body under this one (the cells between them are
+ * that body's), WM_FAIL when it may not lie under the body's plane, 0 for dry land at or
+ * above the level. */
 static int sample_bits(const wm_ctx *c, int32_t x, int32_t y)
 {
     size_t i;
     if (x >= c->f->w || y >= c->f->h) return WM_FAIL;
     i = (size_t)y * (size_t)c->f->w + (size_t)x;
     if (c->id[i] == c->body) return c->wz[i] == c->level ? WM_WET : WM_WET | WM_FAIL;
-    if (c->id[i] || c->f->z[i] == HF_NODATA || c->f->z[i] < c->level) return WM_FAIL;
+    if (c->id[i]) return under(c, c->body, c->id[i]) ? WM_ABOVE : WM_FAIL | WM_BELOW;
+    if (c->f->z[i] == HF_NODATA || c->low[i]) return WM_FAIL;
     return 0;
+}
+
+static int dry_below(const wm_ctx *c, size_t i)
+{
+    return !c->id[i] && c->f->z[i] != HF_NODATA && c->f->z[i] < c->level;
+}
+
+/* c->low: dry land below the level 4-connected through such land to water (of any body)
+ * or to the grid's edge (an outlet, a valley beyond the shore, a coast): the plane may
+ * not go over it.  Dry land below the level enclosed by land at or above it (a pocket: SRTM's -1 and
+ * -2 m in Laesoe's marshes, N57E011) may lie under the plane like the land around it;
+ * left out, it was a hole in the water where the terrain's LOD, which sinks a low island
+ * into the lowered sea bottom, showed the bottom.  q: a queue of w * h entries. */
+static void reach_low(wm_ctx *c, uint32_t *q)
+{
+    const int32_t w = c->f->w, h = c->f->h;
+    size_t head = 0, tail = 0;
+    int32_t x, y;
+    memset(c->low, 0, (size_t)w * (size_t)h);
+    for (y = 0; y < h; y++)
+        for (x = 0; x < w; x++) {
+            const size_t i = (size_t)y * (size_t)w + (size_t)x;
+            if (!dry_below(c, i)) continue;
+            if (x == 0 || y == 0 || x == w - 1 || y == h - 1
+                || c->id[i - 1] || c->id[i + 1] || c->id[i - (size_t)w] || c->id[i + (size_t)w]) {
+                c->low[i] = 1;
+                q[tail++] = (uint32_t)i;
+            }
+        }
+    while (head < tail) {
+        const size_t j = q[head++];
+        const int32_t jx = (int32_t)(j % (size_t)w), jy = (int32_t)(j / (size_t)w);
+        size_t nb[4];
+        int k, nn = 0;
+        if (jx > 0) nb[nn++] = j - 1;
+        if (jx + 1 < w) nb[nn++] = j + 1;
+        if (jy > 0) nb[nn++] = j - (size_t)w;
+        if (jy + 1 < h) nb[nn++] = j + (size_t)w;
+        for (k = 0; k < nn; k++)
+            if (!c->low[nb[k]] && dry_below(c, nb[k])) { c->low[nb[k]] = 1; q[tail++] = (uint32_t)nb[k]; }
+    }
 }
 
 static void push_leaf(wm_ctx *c, int32_t x0, int32_t y0, int32_t s)
@@ -121,11 +186,14 @@ static void add_tri(wm_out *o, int32_t a, int32_t b, int32_t c)
     m->idx[m->nidx++] = (uint32_t)a; m->idx[m->nidx++] = (uint32_t)b; m->idx[m->nidx++] = (uint32_t)c;
 }
 
-/* The vertex of sample (x, y) for the body (made on first use). */
+/* The vertex of sample (x, y) for the body (made on first use): a wet sample at its own
+ * surface height (of this body, or of a body above it in a cell between the two: the cell
+ * slopes from one surface to the other, and its edge on the higher body's samples is that
+ * body's edge, so no gap opens along the step), dry land at the body's level. */
 static int32_t corner(wm_out *o, const wm_ctx *c, int32_t x, int32_t y)
 {
     const size_t i = (size_t)y * (size_t)c->f->w + (size_t)x;
-    if (o->vmap[i] < 0) o->vmap[i] = add_vert(o, x, y, c->id[i] == c->body ? c->wz[i] : c->level, c->body);
+    if (o->vmap[i] < 0) o->vmap[i] = add_vert(o, x, y, c->id[i] ? c->wz[i] : c->level, c->body);
     return o->vmap[i];
 }
 
@@ -135,8 +203,11 @@ static void emit_cell(wm_out *o, const wm_ctx *c, int32_t x0, int32_t y0)
     /* sw, se, ne, nw in grid rows (row y0 + 1 is south of y0) */
     const int32_t cx[4] = { x0, x0 + 1, x0 + 1, x0 }, cy[4] = { y0 + 1, y0 + 1, y0, y0 };
     int ok[4], k;
-    for (k = 0; k < 4; k++) ok[k] = !(sample_bits(c, cx[k], cy[k]) & WM_FAIL)
-                                    || (sample_bits(c, cx[k], cy[k]) & WM_WET);
+    for (k = 0; k < 4; k++) {
+        const int bits = sample_bits(c, cx[k], cy[k]);
+        if (bits & WM_BELOW) return;        /* the cell of a body under this one */
+        ok[k] = !(bits & WM_FAIL) || (bits & WM_WET);
+    }
     /* counter-clockwise seen from +z (x east, y north): sw se ne, sw ne nw */
     if (ok[0] && ok[1] && ok[2])
         add_tri(o, corner(o, c, cx[0], cy[0]), corner(o, c, cx[1], cy[1]), corner(o, c, cx[2], cy[2]));
@@ -167,6 +238,30 @@ static void emit_block(wm_out *o, const wm_ctx *c, int32_t x0, int32_t y0, int32
     for (k = 0; k < n; k++) add_tri(o, ctr, loop[k], loop[(k + 1) % n]);
 }
 
+/* The body's samples that are corners of cells a body under it takes (under()): vertices
+ * made before the fans, so the body's blocks pass through them and the sloping cells
+ * meet them without T-junctions. */
+static void step_corners(wm_out *o, const wm_ctx *c, int32_t nbodies)
+{
+    const int32_t w = c->f->w, h = c->f->h;
+    int32_t x, y, dx, dy, b, any = 0;
+    for (b = 1; b <= nbodies; b++) any |= b != c->body && under(c, (uint8_t)b, c->body);
+    if (!any) return;
+    for (y = 0; y < h; y++)
+        for (x = 0; x < w; x++) {
+            int found = 0;
+            if (c->id[(size_t)y * (size_t)w + (size_t)x] != c->body) continue;
+            for (dy = -1; dy <= 1 && !found; dy++)
+                for (dx = -1; dx <= 1 && !found; dx++) {
+                    uint8_t nid;
+                    if (x + dx < 0 || y + dy < 0 || x + dx >= w || y + dy >= h) continue;
+                    nid = c->id[(size_t)(y + dy) * (size_t)w + (size_t)(x + dx)];
+                    found = nid && nid != c->body && under(c, nid, c->body);
+                }
+            if (found) corner(o, c, x, y);
+        }
+}
+
 br_status wm_build(const hf *f, const uint8_t *id, const int32_t *wz, const int32_t *level, int32_t nbodies,
                    wm_mesh *m)
 {
@@ -180,15 +275,17 @@ br_status wm_build(const hf *f, const uint8_t *id, const int32_t *wz, const int3
     memset(&o, 0, sizeof o);
     o.m = m;
     o.vmap = malloc(n * sizeof *o.vmap);
+    c.low = malloc(n);
     while (S < f->w - 1 || S < f->h - 1) S *= 2;
     loop = malloc(((size_t)4 * (size_t)S + 4) * sizeof *loop);
-    if (!o.vmap || !loop) { free(o.vmap); free(loop); return BR_E_NOMEM; }
-    c.f = f; c.id = id; c.wz = wz;
+    if (!o.vmap || !loop || !c.low) { free(o.vmap); free(loop); free(c.low); return BR_E_NOMEM; }
+    c.f = f; c.id = id; c.wz = wz; c.levels = level;
     for (b = 1; b <= nbodies; b++) {
         c.body = (uint8_t)b;
         c.level = level[b - 1];
         c.nleaf = 0;
         if (f->w < 2 || f->h < 2) break;
+        reach_low(&c, (uint32_t *)(void *)o.vmap);     /* the queue: vmap is set below */
         classify(&c, 0, 0, S);
         if (c.oom) break;
         for (i = 0; i < n; i++) o.vmap[i] = -1;
@@ -199,13 +296,14 @@ br_status wm_build(const hf *f, const uint8_t *id, const int32_t *wz, const int3
             corner(&o, &c, x0, y0); corner(&o, &c, x0 + s, y0);
             corner(&o, &c, x0, y0 + s); corner(&o, &c, x0 + s, y0 + s);
         }
+        step_corners(&o, &c, nbodies);
         for (l = 0; l < c.nleaf; l++)
             if (c.leaf[l][2] < 0) emit_cell(&o, &c, c.leaf[l][0], c.leaf[l][1]);
         for (l = 0; l < c.nleaf; l++)
             if (c.leaf[l][2] > 0) emit_block(&o, &c, c.leaf[l][0], c.leaf[l][1], c.leaf[l][2], loop);
         if (o.oom) break;
     }
-    free(c.leaf); free(o.vmap); free(loop);
+    free(c.leaf); free(o.vmap); free(loop); free(c.low);
     if (c.oom || o.oom) { wm_free(m); return BR_E_NOMEM; }
     return BR_OK;
 }

@@ -383,9 +383,163 @@ done:
     scene_close(&s);
 }
 
+/* Which bodies' triangles of the water mesh cover point (cx + 0.3, cy + 0.6) of each cell
+ * (a bit per body id), inclusive of edges: the point is inside a cell, never on a cell's
+ * border, where triangles of different bodies meet. */
+static void cover_cells(const wm_mesh *m, int32_t w, int32_t h, uint32_t *cov)
+{
+    uint32_t k;
+    memset(cov, 0, sizeof *cov * (size_t)w * (size_t)h);
+    for (k = 0; k + 2 < m->nidx; k += 3) {
+        const wm_vert *t[3] = { &m->v[m->idx[k]], &m->v[m->idx[k + 1]], &m->v[m->idx[k + 2]] };
+        int32_t x0 = t[0]->x, x1 = t[0]->x, y0 = t[0]->y, y1 = t[0]->y, x, y, j;
+        for (j = 1; j < 3; j++) {
+            x0 = t[j]->x < x0 ? t[j]->x : x0; x1 = t[j]->x > x1 ? t[j]->x : x1;
+            y0 = t[j]->y < y0 ? t[j]->y : y0; y1 = t[j]->y > y1 ? t[j]->y : y1;
+        }
+        for (y = y0; y < y1 && y < h; y++)
+            for (x = x0; x < x1 && x < w; x++) {
+                const int64_t px = 10 * (int64_t)x + 3, py = 10 * (int64_t)y + 6;
+                int pos = 0, neg = 0;
+                for (j = 0; j < 3; j++) {
+                    const wm_vert *a = t[j], *b = t[(j + 1) % 3];
+                    const int64_t e = (int64_t)(b->x - a->x) * (py - 10 * a->y) - (int64_t)(b->y - a->y) * (px - 10 * a->x);
+                    pos += e >= 0; neg += e <= 0;
+                }
+                if (pos == 3 || neg == 3) cov[(size_t)y * (size_t)w + (size_t)x] |= 1u << t[0]->id;
+            }
+    }
+}
+
+/* Two bodies at different levels that meet: the Rhine in N50E008 (the Rheingau, at the
+ * tile's south edge), which SRTM flattened at 80 m (468 samples) and 79 m (364) on either
+ * side of a step between columns 101 and 104, rows 1189 to 1192.  Every cell whose four
+ * corners are wet is covered by the water mesh, and a cell with corners of both bodies by
+ * the lower body (79 m) alone, sloping to the 80 m samples (docs/water.md's table);
+ * before, such cells were nobody's and the lowered bottom showed through a hole in the
+ * river. */
+static void test_step(void)
+{
+    const char *in[1];
+    scene s;
+    scene_opts so;
+    ws_opts wo;
+    water_scene ws;
+    br_err err;
+    uint32_t *cov = NULL;
+    int32_t x, y, w, h, lo = 0, k, wet = 0, mixed = 0, bad = 0, miss = 0;
+    memset(&s, 0, sizeof s); memset(&so, 0, sizeof so); memset(&wo, 0, sizeof wo); memset(&ws, 0, sizeof ws);
+    in[0] = t_data("hgt/N50E008.hgt");
+    so.quiet = 1;
+    wo.quiet = 1;
+    CHECK_EQ(scene_open(&s, in, 1, &so, &err), BR_OK);
+    CHECK_EQ(ws_open(&ws, &s, &wo, &err), BR_OK);
+    CHECK_EQ(ws.nbodies, 2);
+    if (ws.nbodies != 2) goto done;
+    CHECK_EQ(ws.bodies.level[0], 80);
+    CHECK_EQ(ws.bodies.level[1], 79);
+    for (k = 0; k < 2; k++) if (ws.bodies.level[k] < ws.bodies.level[lo]) lo = k;
+    w = s.f.w; h = s.f.h;
+    cov = malloc(sizeof *cov * (size_t)w * (size_t)h);
+    CHECK(cov != NULL);
+    if (!cov) goto done;
+    cover_cells(&ws.mesh, w, h, cov);
+    for (y = 0; y + 1 < h; y++)
+        for (x = 0; x + 1 < w; x++) {
+            const uint8_t *i0 = ws.id + (size_t)y * (size_t)w + (size_t)x, *i1 = i0 + w;
+            const uint32_t c = cov[(size_t)y * (size_t)w + (size_t)x];
+            const uint32_t set = (1u << i0[0]) | (1u << i0[1]) | (1u << i1[0]) | (1u << i1[1]);
+            if (!i0[0] || !i0[1] || !i1[0] || !i1[1]) continue;
+            wet++;
+            miss += c == 0;
+            if ((set & (set - 1)) == 0) continue;       /* one body */
+            mixed++;
+            bad += c != 1u << (lo + 1);
+        }
+    printf("step: %d all-wet cells, %d of them uncovered; %d with both bodies, %d not the lower body's alone\n",
+           wet, miss, mixed, bad);
+    CHECK_MSG(mixed >= 1, "%d cells with both bodies", mixed);
+    CHECK_EQ(bad, 0);
+    CHECK_EQ(miss, 0);
+done:
+    free(cov);
+    ws_close(&ws);
+    scene_close(&s);
+}
+
+/* Dry land below the sea level inside an island: Laesoe (N57E011, columns 0 to 240, rows
+ * 806 to 934, 1 to 22 m) holds 24 samples at -1 and -2 m in its southern marshes, enclosed
+ * by land at or above 0 m.  The water mesh covers the cells around them as it covers the
+ * island (docs/water.md's table), and the default view from high (docs/img/
+ * water_sea_high.png: the terrain's LOD sinks the island into the lowered sea bottom)
+ * shows no light patch at pixel (160, 190): before, those cells were a hole in the water
+ * through which the bottom (the ramp at -21 m, 0x437199 after fog) showed, 41 pixels. */
+static void test_pocket(void)
+{
+    const char *in[1];
+    scene s;
+    scene_opts so;
+    ws_opts wo;
+    water_scene ws;
+    br_err err;
+    uint32_t *cov = NULL;
+    uint8_t *px = NULL;
+    char out[256];
+    int32_t x, y, w, h, pockets = 0, open = 0, light = 0, pw = 0, ph = 0;
+    memset(&s, 0, sizeof s); memset(&so, 0, sizeof so); memset(&wo, 0, sizeof wo); memset(&ws, 0, sizeof ws);
+    in[0] = t_data("hgt/N57E011.hgt");
+    so.quiet = 1;
+    wo.quiet = 1;
+    CHECK_EQ(scene_open(&s, in, 1, &so, &err), BR_OK);
+    CHECK_EQ(ws_open(&ws, &s, &wo, &err), BR_OK);
+    CHECK_EQ(ws.nbodies, 1);
+    w = s.f.w; h = s.f.h;
+    cov = malloc(sizeof *cov * (size_t)w * (size_t)h);
+    CHECK(cov != NULL);
+    if (!cov || ws.nbodies != 1) goto done;
+    cover_cells(&ws.mesh, w, h, cov);
+    for (y = 806; y <= 934; y++)
+        for (x = 0; x <= 240; x++) {
+            const size_t i = (size_t)y * (size_t)w + (size_t)x;
+            int k;
+            if (ws.id[i] || s.f.z[i] >= 0) continue;
+            pockets++;
+            for (k = 0; k < 4; k++) {   /* the four cells around the sample */
+                const int32_t cx = x - (k & 1), cy = y - (k >> 1);
+                if (cx < 0 || cy < 0 || cx + 1 >= w || cy + 1 >= h) continue;
+                open += cov[(size_t)cy * (size_t)w + (size_t)cx] != 1u << 1;
+            }
+        }
+    CHECK_EQ(pockets, 24);
+    CHECK_MSG(open == 0, "%d cells around Laesoe's pockets not covered by the sea", open);
+    {
+        const char *a[] = { in[0], "-o", out, "--size", "320x240" };
+        snprintf(out, sizeof out, "%s/water_sea_high.png", t_outdir());
+        CHECK_EQ(RUN(a), 0);
+        CHECK_EQ(png_read_rgb(out, &pw, &ph, &px, &err), BR_OK);
+    }
+    if (!px || pw != 320 || ph != 240) goto done;
+    /* lighter than the sea (0x1d4762 there), not the sky (blue >= 200) and not next to it
+     * (the bottom's edge shows in a pixel along the tile's near edges) */
+    for (y = 170; y < 210; y++)
+        for (x = 130; x < 190; x++) {
+            const uint8_t *p = px + 3 * ((size_t)y * 320 + (size_t)x);
+            const int edge = p[3 + 2] >= 200 || p[-3 + 2] >= 200 || p[3 * 320 + 2] >= 200 || p[-3 * 320 + 2] >= 200;
+            light += p[0] >= 50 && p[2] >= 130 && p[2] < 200 && !edge;
+        }
+    printf("pocket: %d pocket samples, %d open cells, %d light pixels around (160, 190)\n", pockets, open, light);
+    CHECK_MSG(light == 0, "%d light pixels in the sea around (160, 190)", light);
+done:
+    free(cov); free(px);
+    ws_close(&ws);
+    scene_close(&s);
+}
+
 int main(void)
 {
     T_RUN(test_detect);
+    T_RUN(test_step);
+    T_RUN(test_pocket);
     T_RUN(test_clip_plane);
     T_RUN(test_bands);
     T_RUN(test_goldens);
