@@ -535,6 +535,65 @@ done:
     scene_close(&s);
 }
 
+/* Mean absolute difference per channel of two PNGs of one size (-1: unreadable). */
+static int mean_diff(const char *pa, const char *pb)
+{
+    int aw, ah, bw, bh;
+    uint8_t *a = NULL, *b = NULL;
+    br_err err;
+    long sum = 0, i, n;
+    if (png_read_rgb(pa, &aw, &ah, &a, &err) != BR_OK || png_read_rgb(pb, &bw, &bh, &b, &err) != BR_OK
+        || aw != bw || ah != bh) { free(a); free(b); return -1; }
+    n = 3L * aw * ah;
+    for (i = 0; i < n; i++) sum += a[i] > b[i] ? a[i] - b[i] : b[i] - a[i];
+    free(a); free(b);
+    return (int)(sum / n);
+}
+
+/* Looking straight down on Lake Constance from 3 km, the fog (which hides the tile's far
+ * edge) must leave the ground under the camera alone: it runs from 55 % of the farthest
+ * grid corner's distance from the eye, not of its depth along the view axis (tens of
+ * kilometres, not the 3 km under the camera). */
+static void test_fog_from_high(void)
+{
+    char a[256], b[256];
+    const char *dem = "assets/N47E009.hgt.gz";
+    const char *fog[] = { dem, "--camera", "22500,75900,3000,22501,75901,164", "--size", "64x64",
+                          "--time", "1", "-o", a };
+    const char *nofog[] = { dem, "--camera", "22500,75900,3000,22501,75901,164", "--size", "64x64",
+                            "--time", "1", "--no-fog", "-o", b };
+    snprintf(a, sizeof a, "%s/water_high_fog.png", t_outdir());
+    snprintf(b, sizeof b, "%s/water_high_nofog.png", t_outdir());
+    CHECK_EQ(RUN(fog), 0);
+    CHECK_EQ(RUN(nofog), 0);
+    CHECK_MSG(mean_diff(a, b) >= 0 && mean_diff(a, b) <= 2, "fog changed the ground under the camera by %d a channel",
+              mean_diff(a, b));
+}
+
+/* bitrain bench --scene default --with-water draws the water frame users see (and the
+ * water options need it). */
+static void test_bench_water(void)
+{
+    char out[256];
+    const char *wet[] = { "--scene", "default", "--with-water", "--frames", "2", "--size", "96x64",
+                          "--path", "assets/lake-path.cam", "-o", out };
+    const char *bad[] = { "--scene", "default", "--no-water", "--frames", "1" };
+    int w, h, x, y, n = 0;
+    uint8_t *rgb;
+    br_err err;
+    snprintf(out, sizeof out, "%s/bench_water.png", t_outdir());
+    CHECK_EQ(cmd_bench_default((int)(sizeof wet / sizeof wet[0]), (char **)(void *)wet), 0);
+    CHECK_EQ(cmd_bench_default((int)(sizeof bad / sizeof bad[0]), (char **)(void *)bad), 2);
+    if (png_read_rgb(out, &w, &h, &rgb, &err) != BR_OK) { CHECK_MSG(0, "cannot read %s", out); return; }
+    for (y = h / 2; y < h; y++)
+        for (x = 0; x < w; x++) {
+            const uint8_t *p = rgb + 3 * ((size_t)y * (size_t)w + (size_t)x);
+            n += p[2] > p[0] + 16 && p[2] > p[1];
+        }
+    free(rgb);
+    CHECK_MSG(n > 100, "%d water pixels in the lower half of the lake path's second frame", n);
+}
+
 int main(void)
 {
     T_RUN(test_detect);
@@ -545,5 +604,7 @@ int main(void)
     T_RUN(test_goldens);
     T_RUN(test_reflection_colour);
     T_RUN(test_still_mirror);
+    T_RUN(test_fog_from_high);
+    T_RUN(test_bench_water);
     return t_finish();
 }
