@@ -153,13 +153,14 @@ static br_status water_frame(water_scene *w, const rs_frame *tf)
     w->wfr.v = w->wverts; w->wfr.nv = w->mesh.nv; w->wfr.cache = w->wcache;
     w->wfr.prims = &w->wprim; w->wfr.nprims = 1;
     w->wfr.chunks = w->wchunks;
+    w->wfr.no_clear = 1;                /* rw_pass_water seeds it from the terrain's depth */
     w->wfr.vp = tf->vp;
     return rs_frame_prepare(&w->wfr);
 }
 
 /* The body with the largest screen area (triangles that need the clipper: near the
  * camera, counted as the whole screen). */
-static int32_t biggest_body(const water_scene *w)
+static int32_t biggest_body(const water_scene *w, uint32_t *seen)
 {
     int64_t area[RW_MAX_ID + 1];
     uint32_t k;
@@ -175,7 +176,11 @@ static int32_t biggest_body(const water_scene *w)
         else ar = ((int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(c->x - a->x) * (b->y - a->y));
         area[id] += ar < 0 ? -ar : ar;
     }
-    for (i = 1; i <= RW_MAX_ID; i++) if (area[i] > area[best]) best = i;
+    *seen = 0;
+    for (i = 1; i <= RW_MAX_ID; i++) {
+        if (area[i] > area[best]) best = i;
+        if (area[i] > 0) *seen |= 1u << i;
+    }
     return best;
 }
 
@@ -258,7 +263,7 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err 
     if (w->nbodies) {
         if (water_frame(w, tf) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "cannot set up the water frame");
         wfr = &w->wfr;
-        body = biggest_body(w);
+        body = biggest_body(w, &p.seen_mask);
     }
     if (wfr && w->wfr.nv) {
         int64_t hgt;

@@ -413,7 +413,7 @@ br_status rs_draw_band(const rs_frame *f, int32_t y0, int32_t rows, void *color,
     /* clear: colour to the sky, depth to the far plane's depth (per-pixel far cut-off);
      * the depth rows are contiguous, the colour rows too when stride is the row's size */
     dfar = f->vp.zfar > 0 ? (uint32_t)((int64_t)RS_DEPTH_ONE * f->vp.znear / f->vp.zfar) : 0;
-    {
+    if (!f->no_clear) {
         const size_t w = (size_t)f->w;
         const size_t crow = w * (f->fmt == RS_FMT_RGB565 ? 2u : 4u);
         uint32_t cv, zv;

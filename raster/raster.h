@@ -156,6 +156,8 @@ typedef struct rs_frame {
                                    own z, before vp): a clip plane in the clipper (planar
                                    reflections: nothing under the water plane leaks in) */
     int32_t clip_z;
+    int32_t no_clear;           /* 1: rs_draw_band draws over the colour and depth the caller
+                                   put in the band (a pass seeding the depth test) */
     const uint32_t *clear_rows; /* NULL: the background is clear_rgb.  Else 4 colours 0xRRGGBB
                                    per frame row: pixel (x, y) is cleared to
                                    clear_rows[4 y + (x & 3)] in the frame's format (a sky
@@ -202,7 +204,8 @@ typedef struct rs_band_stats {
 } rs_band_stats;
 
 /* Renders rows [y0, y0+rows) into caller buffers: colour (stride bytes per row) and a
- * depth buffer of w*rows entries (uint32 or uint16).  Clears both first.  Reads f only
+ * depth buffer of w*rows entries (uint32 or uint16).  Clears both first (unless
+ * f->no_clear).  Reads f only
  * (several threads may draw bands of one prepared frame at once) and ADDS the band's
  * cost to *st (st may be NULL).
  * BR_E_UNSUPPORTED: this build left the frame's variant out (rs_variant_built). */

@@ -226,6 +226,15 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         r->dquiet = d30 > r->dfar ? (d30 > 0xffffffffu ? 0xffffffffu : (uint32_t)d30) : r->dfar + 1;
     }
     r->pixel_fog = terrain->tex != NULL;
+    {   /* the largest shore bound of the bodies on screen, in the depth buffer's units
+         * (rounded up); no bound: every water pixel behind the terrain is drawn */
+        uint64_t m = 0;
+        for (k = 1; k <= RW_MAX_ID; k++)
+            if (((p->seen_mask >> k) & 1u) && r->shore_dd[k] > m) m = r->shore_dd[k];
+        if (!p->shore_bound || p->shore_w || !p->seen_mask) m = 0xffffffffu;
+        if (r->depth == RS_DEPTH16) m = (m + (1u << 14) - 1) >> 14;
+        r->water_bias = m > 0x3fffffffu ? 0x3fffffffu : (uint32_t)m;
+    }
     water_rows(r);
     return BR_OK;
 }
@@ -303,9 +312,59 @@ static int water_touched(const void *user, int32_t y0, int32_t rows)
     return r->water && r->wlo <= r->whi && y0 <= r->whi && y0 + rows > r->wlo;
 }
 
+/* o = max(t - bias, dfar), a row of depths (buffers that do not overlap); with GCC's
+ * vector extension (gcc, clang) four at a time, the same values. */
+#if defined(__GNUC__)
+typedef int32_t seed_v4 __attribute__((vector_size(16)));
+#endif
+static void seed32(int32_t *restrict o, const int32_t *restrict t, int32_t n, int32_t bias, int32_t dfar)
+{
+    int32_t i = 0;
+#if defined(__GNUC__)
+    const seed_v4 vb = { bias, bias, bias, bias }, vf = { dfar, dfar, dfar, dfar };
+    for (; i + 4 <= n; i += 4) {
+        seed_v4 v, m;
+        memcpy(&v, t + i, sizeof v);
+        v -= vb;
+        m = v > vf;
+        v = (v & m) | (vf & ~m);
+        memcpy(o + i, &v, sizeof v);
+    }
+#endif
+    for (; i < n; i++) { const int32_t v = t[i] - bias; o[i] = v > dfar ? v : dfar; }
+}
+
+static void seed16(uint16_t *restrict o, const uint16_t *restrict t, int32_t n, int32_t bias, int32_t dfar)
+{
+    int32_t i;
+    for (i = 0; i < n; i++) { const int32_t v = (int32_t)t[i] - bias; o[i] = (uint16_t)(v > dfar ? v : dfar); }
+}
+
+/* The water pass's scratch, seeded from the terrain pass's depth of the same rows (the
+ * pass has no margin): depth max(dfar, terrain - water_bias), so a water pixel is drawn
+ * only where it is nearer than the terrain, or farther by no more than the shore bound of
+ * the bodies on screen allows (rw_post tests each body's own); colour 0 (no id).  The
+ * water frame is drawn with no_clear. */
 static br_status water_run(const void *user, rs_band *b, int32_t self, rs_band_stats *st)
 {
     const rw_frame *r = (const rw_frame *)user;
+    const int32_t bias = (int32_t)r->water_bias, dfar = (int32_t)r->dfar, w = b->w;
+    const int32_t lo = r->wlo > b->y0 ? r->wlo : b->y0;
+    const int32_t hi = r->whi < b->y0 + b->rows - 1 ? r->whi : b->y0 + b->rows - 1;
+    int32_t y;
+    if (b->scratch_y0[self] != b->y0 || b->scratch_rows[self] != b->rows) return BR_E_ARG;
+    /* only the water rows wlo .. whi: no water triangle reaches the others, and rw_post
+     * reads no other row of this scratch (depths are below 2^30: signed compares) */
+    for (y = lo; y <= hi; y++) {
+        const size_t row = (size_t)(y - b->y0);
+        memset((uint8_t *)b->scratch[self] + row * b->scratch_stride[self], 0, b->scratch_stride[self]);
+        if (r->depth == RS_DEPTH16)
+            seed16((uint16_t *)b->scratch_depth[self] + row * (size_t)w, (const uint16_t *)b->depth + row * (size_t)w,
+                   w, bias, dfar);
+        else
+            seed32((int32_t *)b->scratch_depth[self] + row * (size_t)w, (const int32_t *)b->depth + row * (size_t)w,
+                   w, bias, dfar);
+    }
     return rs_draw_band(r->water, b->scratch_y0[self], b->scratch_rows[self], b->scratch[self],
                         b->scratch_stride[self], b->scratch_depth[self], st);
 }
@@ -479,7 +538,7 @@ static inline void water_rows_only(const rw_frame *r, rs_band *b, const refl_vie
         const int32_t y = b->y0 + row;
         uint8_t *crow = (uint8_t *)b->color + (size_t)row * b->stride;
         const uint8_t *drow = (const uint8_t *)b->depth + (size_t)row * (size_t)b->w * dbp, *wc, *wd;
-        if (!wcol || y < wy0 || y >= wy0 + wrows) continue;
+        if (!wcol || y < wy0 || y >= wy0 + wrows || y < r->wlo || y > r->whi) continue;
         wc = wcol + (size_t)(y - wy0) * b->stride;
         wd = wdep + (size_t)(y - wy0) * (size_t)b->w * dbp;
         for (x = next_water(wc, 0, b->w, fmt); x < b->w; x = next_water(wc, x + 1, b->w, fmt)) {
@@ -515,7 +574,7 @@ static inline void post_rows(const rw_frame *r, rs_band *b, const refl_view *rv,
         const uint8_t *drow = (const uint8_t *)b->depth + (size_t)row * (size_t)b->w * dbp;
         const uint8_t *wc = NULL, *wd = NULL;
         const uint32_t sky = r->sky[y];
-        if (wcol && y >= wy0 && y < wy0 + wrows) {
+        if (wcol && y >= wy0 && y < wy0 + wrows && y >= r->wlo && y <= r->whi) {   /* water_run seeds only these */
             wc = wcol + (size_t)(y - wy0) * b->stride;
             wd = wdep + (size_t)(y - wy0) * (size_t)b->w * dbp;
         }

@@ -100,6 +100,7 @@ typedef struct rw_params {      /* zero = off / defaults as stated */
      * <= shore_w dt + shore_c, E = eye z - body z, shore_c = shore_px K / f, K = D znear. */
     int32_t shore_bound;
     int64_t shore_w, shore_c;
+    uint32_t seen_mask;         /* bit id: body id may show in this frame (0: unknown, any) */
 } rw_params;
 
 typedef struct rw_frame {
@@ -122,6 +123,8 @@ typedef struct rw_frame {
                                    Q16 (-1: the row does not meet the plane) */
     int32_t bratio[RW_MAX_ID + 1];      /* (eye z - body z) / (eye z - plane_z), Q16 (0: none) */
     int64_t ebody[RW_MAX_ID + 1];       /* eye z - body z, world units (the shore bound) */
+    uint32_t water_bias;        /* the water pass's depth seed: terrain depth minus this (buffer
+                                   units), the largest shore_dd of the bodies on screen */
     uint32_t shore_dd[RW_MAX_ID + 1];   /* shore_c / ebody: the largest dt - dw (30-bit) worth a shore
                                            test when shore_w is 0 (0xffffffff: any) */
     uint64_t inv_sx, inv_sy;    /* 2^32 / grid step, rounded up */
