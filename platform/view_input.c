@@ -335,12 +335,21 @@ static double mm(double x) { return (double)llround(x * 1000) / 1000; }
 
 void view_eye_target(const view_state *v, double eye[3], double tgt[3])
 {
-    double d[3];
+    double d[3], ahead = 1000;
     int i;
     dir_of(v->cam.yaw, v->cam.pitch, d);
+    if (v->s) {
+        /* the fly camera's target 20 heights above ground ahead (1 to 200 km): the camera
+         * takes its near plane from that distance (scene_camera), and a near plane of
+         * 0.5 m seen from 60 km leaves the depth buffer metres a unit far away, where
+         * the water's shore and the terrain tie */
+        double g = ground_max(v->s, v->cam.pos[0], v->cam.pos[1]);
+        double agl = v->cam.pos[2] - (isnan(g) ? v->s->zmin_m : g);
+        ahead = agl * 20 < 1000 ? 1000 : agl * 20 > 200000 ? 200000 : agl * 20;
+    }
     for (i = 0; i < 3; i++) {
         eye[i] = mm(v->cam.pos[i]);
-        tgt[i] = mm(v->orbit ? v->pivot[i] : v->cam.pos[i] + d[i] * 1000);
+        tgt[i] = mm(v->orbit ? v->pivot[i] : v->cam.pos[i] + d[i] * ahead);
     }
     if (eye[0] == tgt[0] && eye[1] == tgt[1] && eye[2] == tgt[2]) tgt[1] += 1;
 }

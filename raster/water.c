@@ -478,6 +478,12 @@ static uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int3
     return mix_rgb(refr, refl, fr);
 }
 
+/* Depths (buffer units) this close are a tie: the terrain lies at the water's surface
+ * within the depth buffer's resolution (a near plane far below the distance, as in the
+ * viewer's fly camera, leaves metres a unit far away), and which is nearer is decided by
+ * whether the water plane's point on the pixel's ray is wet, not by the rounding. */
+#define RW_DEPTH_TIE 2u
+
 /* The shore test for water pixel (x, y) of body id whose terrain is nearer (dt > dw): 1
  * when the terrain's point on the pixel's ray lies on a sample wet with that body (the
  * terrain LOD over flattened water), 0 otherwise (land, or no plane point for the row).
@@ -544,12 +550,12 @@ static inline void water_rows_only(const rw_frame *r, rs_band *b, const refl_vie
         for (x = next_water(wc, 0, b->w, fmt); x < b->w; x = next_water(wc, x + 1, b->w, fmt)) {
             const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
             uint32_t rgb, d, fw;
-            if (dw <= dt) {       /* nearer terrain: land, unless it is the LOD over water */
+            if (dw + RW_DEPTH_TIE <= dt) {      /* nearer terrain: land, unless the LOD over water */
                 if (((dt - dw) << dsh) > r->shore_dd[id]) continue;
                 if (r->p.shore_bound && r->p.shore_w && r->ebody[id] * (int64_t)((dt - dw) << dsh)
                                         > r->p.shore_w * (int64_t)(dt << dsh) + r->p.shore_c) continue;
                 if (!shore_wet(r, x, y, id, dt << dsh, dw << dsh)) continue;
-            }
+            } else if (dw <= dt && !shore_wet(r, x, y, id, dw << dsh, dw << dsh)) continue;   /* a tie: the map decides */
             rgb = water_px(r, rv, x, y, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id);
             d = dw << dsh;
             if (r->p.fog_on && (d >> r->fog_sh) <= RW_TAB && (fw = r->fog[d >> r->fog_sh]) != 0)
@@ -593,7 +599,7 @@ static inline void post_rows(const rw_frame *r, rs_band *b, const refl_view *rv,
                 d = dt << dsh;
                 if (wc) {
                     const uint32_t id = get_id(fmt, wc, x), dw = get_depth(depth, wd, x);
-                    if (id && (dw > dt || shore_wet(r, x, y, id, dt << dsh, dw << dsh))) {
+                    if (id && (dw > dt || shore_wet(r, x, y, id, dw + RW_DEPTH_TIE > dt ? dw << dsh : dt << dsh, dw << dsh))) {
                         rgb = water_px(r, rv, x, y, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id);
                         d = dw << dsh;
                         changed = 1;

@@ -192,6 +192,30 @@ static void test_view_controls(void)
 
 /* The camera never ends under the terrain, past the world's edge or above the ceiling,
  * and says so when it stops. */
+/* The fly camera's near plane follows its height above ground: from the default view,
+ * 60 km over the tile, a near plane of 0.5 m (a target 1 km ahead) left the depth
+ * buffer metres a unit at the lakes, and the water's shore test drew water over land. */
+static void test_view_near_plane(void)
+{
+    scene s;
+    scene_opts o;
+    br_err err;
+    view_state v;
+    cam c;
+    const char *in[1] = { "assets/N47E009.hgt.gz" };
+    double e[3], t[3], eye[3], tgt[3];
+    memset(&o, 0, sizeof o);
+    memset(&v, 0, sizeof v);
+    CHECK_EQ(scene_open(&s, in, 1, &o, &err), BR_OK);
+    scene_default_view(&s, 60, e, t);
+    view_init(&v, &s, e, t);
+    view_eye_target(&v, eye, tgt);
+    CHECK_EQ(scene_camera(&s, eye, tgt, 60, 320, 200, &c), BR_OK);
+    CHECK_MSG((double)c.znear >= 10.0 * (double)(1 << s.rt.shift), "near plane %d units (2^%d m) from 60 km", c.znear,
+              -s.rt.shift);
+    scene_close(&s);
+}
+
 static void test_view_limits(void)
 {
     scene s;
@@ -356,6 +380,7 @@ int main(void)
     T_RUN(test_view_threads_same);
     T_RUN(test_view_look_from);
     T_RUN(test_view_controls);
+    T_RUN(test_view_near_plane);
     T_RUN(test_view_limits);
     T_RUN(test_view_water);
     T_RUN(test_view_hud_path_camera);
