@@ -7,6 +7,11 @@
 #include "core/bitree.h"
 #include "core/bt_int.h"
 
+/* per-sample frame state bits (bt_tree.st): ST_PREV split in the previous view
+ * frame (hysteresis), ST_SPLIT / ST_PUSHED the budget rule's marks, ST_CUR the
+ * serial walk's "already recorded this frame" */
+enum { ST_PREV = 1, ST_SPLIT = 2, ST_PUSHED = 4, ST_CUR = 8 };
+
 typedef struct bti_heap_ent { int64_t key; uint32_t id; uint32_t pad_; } bti_heap_ent;
 
 typedef struct bti_extract {
@@ -56,5 +61,14 @@ static inline uint32_t *bti_ids_of(const bt_mesh *m) { return (uint32_t *)(void 
 int btw_write_leaf(bti_extract *e, const bti_leaf *L, const bti_leaf *N);
 void btw_flush(bti_extract *e);
 void btw_reorder(bti_extract *e);
+
+/* core/bt_mesh.c: diamond scale h and type (1 = D) of sample (x, y); projected
+ * error of diamond (x, y) in 1/256 pixel, -1 when culled.
+ * core/bt_budget.c: marks ST_SPLIT (and ST_PUSHED) on the diamonds a budget of
+ * `budget` nominal triangles buys; the ids it marked go to the mesh's id list
+ * (*nid of them, to clear afterwards); sets e->tau to the last split's rho. */
+int32_t bti_dscale(int32_t x, int32_t y, int32_t S, int *typeD);
+int64_t bti_rho_q8(const bti_extract *e, int32_t x, int32_t y);
+uint32_t bti_budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid);
 
 #endif

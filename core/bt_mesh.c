@@ -47,7 +47,6 @@
 #include "core/bt_int.h"
 #include "core/config.h"
 
-enum { ST_PREV = 1, ST_SPLIT = 2, ST_PUSHED = 4, ST_CUR = 8 };
 
 /* A vertex on its way down the recursion; idx caches its output index (the
  * children of a split share their parent's pt instances, so most lookups are
@@ -137,7 +136,7 @@ static int32_t zreal(const bt_tree *t, int32_t x, int32_t y)
 }
 
 /* diamond geometry: scale h and type (1 = D) of sample (x, y), not a corner */
-static int32_t dscale(int32_t x, int32_t y, int32_t S, int *typeD)
+int32_t bti_dscale(int32_t x, int32_t y, int32_t S, int *typeD)
 {
     uint32_t u = (uint32_t)(x | y);
     int32_t h;
@@ -186,7 +185,7 @@ static void dvolume(const bti_extract *e, int32_t x, int32_t y, int64_t lo[3], i
     const bt_tree *t = e->t;
     const bt_frame *fr = &e->p->fr;
     int typeD;
-    int32_t h = dscale(x, y, e->S, &typeD);
+    int32_t h = bti_dscale(x, y, e->S, &typeD);
     int32_t r = typeD ? 3 * h : 2 * h;
     int32_t x0 = x - r < 0 ? 0 : x - r, x1 = x + r > e->S ? e->S : x + r;
     int32_t y0 = y - r < 0 ? 0 : y - r, y1 = y + r > e->S ? e->S : y + r;
@@ -245,7 +244,7 @@ static int view_err(const bti_extract *e, int32_t x, int32_t y, unsigned *mask, 
 }
 
 /* rho in q8 pixels; -1 when culled */
-static int64_t rho_q8(const bti_extract *e, int32_t x, int32_t y)
+int64_t bti_rho_q8(const bti_extract *e, int32_t x, int32_t y)
 {
     unsigned mask = 0x3f;
     int64_t ew = 0, d = 0;
@@ -272,7 +271,7 @@ int64_t bt_screen_error_q8(const bt_tree *t, const bt_params *p, int32_t x, int3
     bti_extract e;
     int64_t r;
     if (!p || p->mode == BT_FIDELITY || setup(&e, (bt_tree *)t, p) != BR_OK) return 0;
-    r = rho_q8(&e, x, y);
+    r = bti_rho_q8(&e, x, y);
     return r < 0 ? 0 : r;
 }
 
@@ -516,113 +515,6 @@ static void run(bti_extract *e)
     btw_flush(e);
 }
 
-/* ------------------------------------------------------------ budget */
-static int64_t prio(bti_extract *e, int32_t x, int32_t y)
-{
-    int typeD;
-    int32_t h = dscale(x, y, e->S, &typeD);
-    int32_t j = 0;
-    int64_t r;
-    while (((int32_t)1 << j) < h) j++;
-    if (e->p->mode == BT_FIDELITY) {
-        uint16_t c = BT_NODE_ERR(e->t->node[(size_t)y * e->n + x]);
-        r = c == BT_CODE_SPLIT ? ((int64_t)1 << 50) : (int64_t)c;
-    } else {
-        r = rho_q8(e, x, y);
-        if (r < 0) return -1;
-        if (r > ((int64_t)1 << 50)) r = (int64_t)1 << 50;
-    }
-    return (r << 8) | (int64_t)(2 * j + typeD);
-}
-
-static void hpush(bti_heap_ent *hp, uint32_t *n, int64_t key, uint32_t id)
-{
-    uint32_t i = (*n)++;
-    while (i > 0) {
-        uint32_t par = (i - 1) >> 1;
-        if (hp[par].key > key || (hp[par].key == key && hp[par].id < id)) break;
-        hp[i] = hp[par];
-        i = par;
-    }
-    hp[i].key = key; hp[i].id = id; hp[i].pad_ = 0;
-}
-
-static bti_heap_ent hpop(bti_heap_ent *hp, uint32_t *n)
-{
-    bti_heap_ent top = hp[0], last = hp[--(*n)];
-    uint32_t i = 0;
-    for (;;) {
-        uint32_t l = 2 * i + 1, r = l + 1, b = i;
-        const bti_heap_ent *bb = &last;
-        if (l < *n && (hp[l].key > bb->key || (hp[l].key == bb->key && hp[l].id < bb->id))) { b = l; bb = &hp[l]; }
-        if (r < *n && (hp[r].key > bb->key || (hp[r].key == bb->key && hp[r].id < bb->id))) { b = r; bb = &hp[r]; }
-        if (b == i) break;
-        hp[i] = hp[b];
-        i = b;
-    }
-    if (*n > 0) hp[i] = last;
-    return top;
-}
-
-/* Marks ST_SPLIT on the diamonds a budget of `budget` nominal triangles buys.
- * Returns the number of ids recorded (to clear afterwards) in ids. Sets e->tau
- * to the last split's rho (for geomorph). */
-static uint32_t budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid)
-{
-    bt_tree *t = e->t;
-    bti_heap_ent *hp = bti_heap_of(e->m);
-    uint32_t *ids = bti_ids_of(e->m);
-    uint32_t nh = 0, ni = 0, cap = bti_heap_cap(e->m);
-    uint64_t count = 2;
-    int32_t S = e->S, n = e->n;
-    int64_t last = 0;
-    {
-        uint32_t root = (uint32_t)((S / 2) * n + S / 2);
-        int64_t k = prio(e, S / 2, S / 2);
-        if (k >= 0) { hpush(hp, &nh, k, root); t->st[root] |= ST_PUSHED; ids[ni++] = root; }
-    }
-    while (nh > 0) {
-        bti_heap_ent he = hpop(hp, &nh);
-        int32_t x = (int32_t)(he.id % (uint32_t)n), y = (int32_t)(he.id / (uint32_t)n);
-        int typeD, i, add = 0;
-        int32_t h = dscale(x, y, S, &typeD);
-        int32_t cx[4], cy[4];
-        if ((he.key >> 8) <= 0 && e->p->mode != BT_FIDELITY) break;  /* nothing to gain */
-        if (e->p->mode == BT_FIDELITY && (he.key >> 8) <= (int64_t)e->cthr) break;
-        /* triangles of the diamond */
-        if (typeD) add = 2;
-        else if (x & h) add = (y - h >= 0) + (y + h <= S);
-        else add = (x - h >= 0) + (x + h <= S);
-        if (count + (uint64_t)add > budget) break;
-        if (ni + 4 > cap) break;
-        count += (uint64_t)add;
-        t->st[he.id] |= ST_SPLIT;
-        last = he.key >> 8;
-        if (typeD) {
-            cx[0] = x - h; cy[0] = y; cx[1] = x + h; cy[1] = y;
-            cx[2] = x; cy[2] = y - h; cx[3] = x; cy[3] = y + h;
-        } else if (h >= 2) {
-            int32_t g = h >> 1;
-            cx[0] = x - g; cy[0] = y - g; cx[1] = x + g; cy[1] = y - g;
-            cx[2] = x - g; cy[2] = y + g; cx[3] = x + g; cy[3] = y + g;
-        } else continue;
-        for (i = 0; i < 4; i++) {
-            uint32_t cid;
-            int64_t k;
-            if (cx[i] < 0 || cy[i] < 0 || cx[i] > S || cy[i] > S) continue;
-            cid = (uint32_t)(cy[i] * n + cx[i]);
-            if (t->st[cid] & ST_PUSHED) continue;
-            k = prio(e, cx[i], cy[i]);
-            t->st[cid] |= ST_PUSHED;
-            ids[ni++] = cid;
-            if (k >= 0) hpush(hp, &nh, k, cid);
-        }
-    }
-    if (e->p->mode != BT_FIDELITY) e->tau = last;
-    *nid = ni;
-    return ni;
-}
-
 /* ------------------------------------------------------------ public */
 static br_status setup(bti_extract *e, bt_tree *t, const bt_params *p)
 {
@@ -746,7 +638,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
     }
     e.hbase = reset_mesh(m);
     if (p->mode == BT_BUDGET) {
-        budget_mark(&e, p->budget < m->max_tri ? p->budget : m->max_tri, &nid);
+        bti_budget_mark(&e, p->budget < m->max_tri ? p->budget : m->max_tri, &nid);
         e.tau = -1;
         e.fid = 0;
     } else {
@@ -779,7 +671,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         m->nsplits = 0;
         e.hbase = reset_mesh(m);
         e.full = 0; e.rec_splits = 0; e.lost = 0;
-        budget_mark(&e, m->max_tri, &nid);
+        bti_budget_mark(&e, m->max_tri, &nid);
         e.tau = -1;
         e.fid = 0;
         m->overflow = 1;
