@@ -51,10 +51,9 @@
 /* A vertex on its way down the recursion; idx caches its output index (the
  * children of a split share their parent's pt instances, so most lookups are
  * answered here and only the first use per instance goes to the hash). */
-typedef struct pt { int32_t x, y, z; uint32_t idx; uint16_t morph; } pt;
-#define NO_IDX 0xFFFFFFFFu
-
 #include "core/bt_em.h"
+typedef bti_pt pt;
+#define NO_IDX BTI_NO_IDX
 
 /* ------------------------------------------------------------ mesh memory */
 static uint32_t hash_size(uint32_t cap_v)
@@ -264,13 +263,12 @@ int64_t bti_rho_q8(const bti_extract *e, int32_t x, int32_t y)
     }
 }
 
-static br_status setup(bti_extract *e, bt_tree *t, const bt_params *p);
 
 int64_t bt_screen_error_q8(const bt_tree *t, const bt_params *p, int32_t x, int32_t y)
 {
     bti_extract e;
     int64_t r;
-    if (!p || p->mode == BT_FIDELITY || setup(&e, (bt_tree *)t, p) != BR_OK) return 0;
+    if (!p || p->mode == BT_FIDELITY || bti_setup(&e, (bt_tree *)t, p) != BR_OK) return 0;
     r = bti_rho_q8(&e, x, y);
     return r < 0 ? 0 : r;
 }
@@ -417,11 +415,24 @@ static void leaf(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
     if (out_hyp) { L.o0 = L.ia; L.o1 = L.ib; L.other = L.ic; }
     else { L.o0 = L.ic; L.o1 = L.ib; L.other = L.ia; }
     (void)in_hyp;
-    if (e->has_pend) {
-        if (btw_write_leaf(e, &e->pend, &L)) { e->has_pend = 0; return; }
-    }
-    e->pend = L;
-    e->has_pend = 1;
+    if (e->has_pend && btw_write_leaf(e, &e->pend, &L)) e->has_pend = 0;
+    else { e->pend = L; e->has_pend = 1; }
+    if (e->snap && e->nsnap < BTI_SNAPS) bti_snap_take(e, &L);
+}
+
+/* Height of split vertex mm (x, y, morph set) on hypotenuse a-b: geomorphed
+ * between the interpolation of a and b and the real height.  Both triangles of a
+ * diamond share a and b, so it is a function of the diamond (given the ends'). */
+static void mid_height(const bti_extract *e, const pt *a, const pt *b, pt *mm)
+{
+    int32_t zs = e->nonvoid ? e->t->f->z[(size_t)mm->y * (size_t)e->n + (size_t)mm->x] : zreal(e->t, mm->x, mm->y);
+    int64_t zf = ((int64_t)a->z + b->z) >> 1;
+    /* a vertex whose real height IS the interpolation of its hypotenuse ends
+     * (in every mode) carries topology but no information: fictitious (002:
+     * deducible, never transmitted); its height is the same either way */
+    if (2 * (int64_t)zs == (int64_t)a->z + b->z) mm->morph = 0;
+    mm->z = mm->morph == BT_MORPH_ONE ? zs
+          : (int32_t)(zf + ((((int64_t)zs - zf) * mm->morph + (1 << 14)) >> 15));
 }
 
 static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned mask)
@@ -450,25 +461,19 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
         return;
     }
     if (e->rec_splits) {
-        /* record for the next frame's hysteresis (a diamond is reached twice) */
+        /* record for the next frame's hysteresis (a diamond is reached twice):
+         * the serial walk marks ST_CUR so each is listed once; a part's walk
+         * (rec_splits 2) reads t->st only and lists it from both halves, the
+         * serial end (bt_part.c) sets ST_PREV, which is idempotent */
         size_t idx = (size_t)mm.y * e->n + mm.x;
-        if (!(e->t->st[idx] & ST_CUR)) {
+        if (e->rec_splits == 2 || !(e->t->st[idx] & ST_CUR)) {
             if (e->m->nsplits < bti_heap_cap(e->m)) {
-                e->t->st[idx] |= ST_CUR;
+                if (e->rec_splits == 1) e->t->st[idx] |= ST_CUR;
                 bti_ids_of(e->m)[e->m->nsplits++] = (uint32_t)idx;
             } else e->lost = 1;
         }
     }
-    {
-        int32_t zs = e->nonvoid ? e->t->f->z[(size_t)mm.y * (size_t)e->n + (size_t)mm.x] : zreal(e->t, mm.x, mm.y);
-        int64_t zf = ((int64_t)a->z + b->z) >> 1;
-        /* a vertex whose real height IS the interpolation of its hypotenuse ends
-         * (in every mode) carries topology but no information: fictitious (002:
-         * deducible, never transmitted); its height is the same either way */
-        if (2 * (int64_t)zs == (int64_t)a->z + b->z) mm.morph = 0;
-        mm.z = mm.morph == BT_MORPH_ONE ? zs
-             : (int32_t)(zf + ((((int64_t)zs - zf) * mm.morph + (1 << 14)) >> 15));
-    }
+    mid_height(e, a, b, &mm);
     rec(e, a, &mm, c, !in_hyp, 0, mask);
     rec(e, c, &mm, b, 0, !out_hyp, mask);
 }
@@ -515,8 +520,60 @@ static void run(bti_extract *e)
     btw_flush(e);
 }
 
+/* ------------------------------------------------------------ parts */
+/* The walk down to depth BTI_PART_DEPTH below the two roots, in rec's order with
+ * rec's decisions: each triangle where it stops (at that depth, or earlier as a
+ * leaf of the selection) becomes a part root, with the plane mask rec would hand
+ * it; the part's rec decides its diamond again (the same answer: decide reads
+ * only the diamond, the camera and ST_PREV) and emits its subtree.  Diamonds
+ * split here are listed in ps->top_ids.  Culled triangles give no part. */
+static void top(bti_extract *e, bt_parts *ps, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned mask,
+                int depth)
+{
+    pt mm;
+    unsigned m0 = mask;
+    int sp = 0;
+    if (depth < BTI_PART_DEPTH && !((a->x + b->x) & 1)) {
+        mm.idx = NO_IDX;
+        mm.x = a->x + ((b->x - a->x) >> 1);
+        mm.y = a->y + ((b->y - a->y) >> 1);
+        sp = decide(e, mm.x, mm.y, &mask, &mm.morph);
+        if (sp < 0) return;
+    }
+    if (!sp) {
+        bti_root *r = &ps->root[ps->nroot++];
+        r->a = *a; r->c = *c; r->b = *b;
+        r->in_hyp = in_hyp; r->out_hyp = out_hyp; r->mask = m0;
+        return;
+    }
+    ps->top_ids[ps->ntop++] = (uint32_t)mm.y * (uint32_t)e->n + (uint32_t)mm.x;
+    mid_height(e, a, b, &mm);
+    top(e, ps, a, &mm, c, !in_hyp, 0, mask, depth + 1);
+    top(e, ps, c, &mm, b, 0, !out_hyp, mask, depth + 1);
+}
+
+void bti_part_roots(bti_extract *e, bt_parts *ps)
+{
+    pt A, B, C, D;
+    int32_t S = e->S;
+    corner(e->t, 0, 0, &A); corner(e->t, S, 0, &B);
+    corner(e->t, S, S, &C); corner(e->t, 0, S, &D);
+    ps->nroot = 0;
+    ps->ntop = 0;
+    top(e, ps, &A, &B, &C, 0, 1, 0x3f, 0);
+    top(e, ps, &C, &D, &A, 1, 0, 0x3f, 0);
+}
+
+void bti_part_walk(bti_extract *e, const bti_root *r)
+{
+    pt a = r->a, c = r->c, b = r->b;
+    e->has_pend = 0;
+    e->nplan = 0;
+    rec(e, &a, &c, &b, r->in_hyp, r->out_hyp, r->mask);
+}
+
 /* ------------------------------------------------------------ public */
-static br_status setup(bti_extract *e, bt_tree *t, const bt_params *p)
+br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p)
 {
     memset(e, 0, sizeof *e);
     if (!t || !p || !t->node) return BR_E_ARG;
@@ -581,7 +638,7 @@ static br_status setup(bti_extract *e, bt_tree *t, const bt_params *p)
 br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri)
 {
     bti_extract e;
-    br_status s = setup(&e, t, p);
+    br_status s = bti_setup(&e, t, p);
     if (s != BR_OK) return s;
     if (p->mode == BT_BUDGET) { *ntri = p->budget; return BR_OK; }
     e.count_only = 1;
@@ -595,7 +652,7 @@ br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri)
  * index, and the base (the word after the table) moves past every value of the
  * previous extraction, so old slots read as empty; cleared only when the base
  * would wrap. */
-static uint32_t reset_mesh(bt_mesh *m)
+uint32_t bti_reset_mesh(bt_mesh *m)
 {
     uint32_t *base = &m->hash[m->hmask + 1];
     if (*base > 0xFFFFFFFFu - m->nv - m->cap_v - 1) {
@@ -613,7 +670,7 @@ static uint32_t reset_mesh(bt_mesh *m)
 br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
 {
     bti_extract e;
-    br_status s = setup(&e, t, p);
+    br_status s = bti_setup(&e, t, p);
     uint32_t i, nid = 0, nprev, *ids;
     uint32_t *old;
     if (s != BR_OK) return s;
@@ -636,13 +693,13 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
         nprev = 0;
     }
-    e.hbase = reset_mesh(m);
+    e.hbase = bti_reset_mesh(m);
     if (p->mode == BT_BUDGET) {
         bti_budget_mark(&e, p->budget < m->max_tri ? p->budget : m->max_tri, &nid);
         e.tau = -1;
         e.fid = 0;
     } else {
-        e.rec_splits = p->mode == BT_VIEW;
+        e.rec_splits = p->mode == BT_VIEW ? 1 : 0;
         run(&e);
         if (!e.full) {
             if (e.rec_splits) {
@@ -669,7 +726,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
             for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_PREV);
         }
         m->nsplits = 0;
-        e.hbase = reset_mesh(m);
+        e.hbase = bti_reset_mesh(m);
         e.full = 0; e.rec_splits = 0; e.lost = 0;
         bti_budget_mark(&e, m->max_tri, &nid);
         e.tau = -1;

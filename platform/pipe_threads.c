@@ -35,6 +35,9 @@ struct pt_pool {
     int32_t sink_next;              /* under lock: the band whose turn at the sink it is */
     br_status err;                  /* under lock: the first error */
     rs_band_stats total;            /* under lock */
+    pt_job job;                     /* pt_jobs in progress (NULL: bands) */
+    void *job_user;
+    uint32_t njobs, next_job;       /* next_job under lock */
 };
 
 int pt_online_cores(void)
@@ -101,6 +104,19 @@ static void draw_bands(pt_pool *pool, pt_worker *wk)
     pthread_mutex_unlock(&pool->lock);
 }
 
+/* One thread's share of pt_jobs: take the next k until none is left. */
+static void run_jobs(pt_pool *pool)
+{
+    for (;;) {
+        uint32_t k;
+        pthread_mutex_lock(&pool->lock);
+        k = pool->next_job < pool->njobs ? pool->next_job++ : pool->njobs;
+        pthread_mutex_unlock(&pool->lock);
+        if (k >= pool->njobs) break;
+        pool->job(pool->job_user, k);
+    }
+}
+
 static void *worker_main(void *arg)
 {
     pt_worker *wk = (pt_worker *)arg;
@@ -112,7 +128,8 @@ static void *worker_main(void *arg)
         if (pool->quit) { pthread_mutex_unlock(&pool->lock); return NULL; }
         seen = pool->gen;
         pthread_mutex_unlock(&pool->lock);
-        draw_bands(pool, wk);
+        if (pool->job) run_jobs(pool);
+        else draw_bands(pool, wk);
         pthread_mutex_lock(&pool->lock);
         pool->finished++;
         pthread_cond_signal(&pool->done);
@@ -190,6 +207,41 @@ static br_status reserve(pt_pool *pool, int n, size_t bytes)
     return BR_OK;
 }
 
+/* Wakes the workers for the frame or job set just described, takes part, waits. */
+static void all_hands(pt_pool *pool, pt_worker *self)
+{
+    if (pool->n > 1) {
+        pthread_mutex_lock(&pool->lock);
+        pool->finished = 0;
+        pool->gen++;
+        pthread_cond_broadcast(&pool->go);
+        pthread_mutex_unlock(&pool->lock);
+    }
+    if (pool->job) run_jobs(pool);
+    else draw_bands(pool, self);
+    if (pool->n > 1) {
+        /* every worker takes part (some may find nothing left) */
+        pthread_mutex_lock(&pool->lock);
+        while (pool->finished < pool->started) pthread_cond_wait(&pool->done, &pool->lock);
+        pthread_mutex_unlock(&pool->lock);
+    }
+}
+
+void pt_jobs(pt_pool *pool, uint32_t n, pt_job fn, void *user)
+{
+    uint32_t k;
+    if (!pool || pool->n == 1 || n < 2) {
+        for (k = 0; k < n; k++) fn(user, k);
+        return;
+    }
+    pool->job = fn;
+    pool->job_user = user;
+    pool->njobs = n;
+    pool->next_job = 0;
+    all_hands(pool, &pool->w[0]);
+    pool->job = NULL;
+}
+
 br_status pt_run(pt_pool *pool, const rs_pipe *p, int32_t band_rows, rs_sink sink, void *sink_user,
                  rs_band_stats *total)
 {
@@ -210,20 +262,8 @@ br_status pt_run(pt_pool *pool, const rs_pipe *p, int32_t band_rows, rs_sink sin
     pool->sink_next = 0;
     pool->err = BR_OK;
     memset(&pool->total, 0, sizeof pool->total);
-    if (pool->n > 1) {
-        pthread_mutex_lock(&pool->lock);
-        pool->finished = 0;
-        pool->gen++;
-        pthread_cond_broadcast(&pool->go);
-        pthread_mutex_unlock(&pool->lock);
-    }
-    draw_bands(pool, &pool->w[0]);
-    if (pool->n > 1) {
-        /* every worker takes part in the frame (some may find no band left) */
-        pthread_mutex_lock(&pool->lock);
-        while (pool->finished < pool->started) pthread_cond_wait(&pool->done, &pool->lock);
-        pthread_mutex_unlock(&pool->lock);
-    }
+    pool->job = NULL;
+    all_hands(pool, &pool->w[0]);
     if (total) *total = pool->total;
     return pool->err;
 }
