@@ -224,7 +224,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m);
 
 /* Partitioned view extraction, for several threads (the caller schedules; core/
  * has none).  The walk is cut into at most BT_PARTS subtrees fixed by the tree
- * (those at depth 3 below the two root triangles), each extracted into its own
+ * (those at depth 4 below the two root triangles), each extracted into its own
  * part mesh, then joined in walk order into m as one strip: part k's strip is
  * appended after line triangles that repeat the previous part's last index and
  * its first (parity kept).  The real triangles are the serial walk's, in its
@@ -242,7 +242,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m);
  * fallback to the budget rule is today's.  The walk of the parts reads t->st
  * only; bt_extract_end updates it, as bt_extract does.  ps, t, p and m must
  * stay unchanged from begin to the last join. */
-#define BT_PARTS 16
+#define BT_PARTS 32
 typedef struct bt_parts bt_parts;
 /* Bytes for parts of part_tri triangles each (>= 2); 0 if too large. */
 size_t bt_parts_mem_size(uint32_t part_tri);
@@ -253,6 +253,8 @@ void bt_extract_part(bt_parts *ps, uint32_t k);
 br_status bt_extract_end(bt_parts *ps, uint32_t *njoin);
 /* Writes part k into m; m->v[*v0 .. *v0 + *nv) are its vertices. */
 void bt_extract_join(bt_parts *ps, uint32_t k, uint32_t *v0, uint32_t *nv);
+/* Triangles of part k in the last extraction (0 if none): a scheduling hint. */
+uint32_t bt_part_tris(const bt_parts *ps, uint32_t k);
 
 /* Budget mode scratch: bt_extract with BT_BUDGET (or a fallback) needs a heap;
  * it is carved from m (bt_mesh_mem_size includes it).  When the recursive walk

@@ -75,7 +75,7 @@ void btw_reorder(bti_extract *e);
 /* ------------------------------------------------------------ parts (core/bt_part.c)
  * The view walk cut into at most BT_PARTS subtrees: the triangles at depth
  * BTI_PART_DEPTH below the two roots (2 << depth of them), or shallower leaves. */
-#define BTI_PART_DEPTH 3
+#define BTI_PART_DEPTH 4
 typedef struct bti_root { bti_pt a, c, b; int32_t in_hyp, out_hyp; uint32_t mask; } bti_root;
 
 /* The writer's state after a part's leaf L was handed to it: strip length, its

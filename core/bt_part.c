@@ -303,3 +303,8 @@ void bt_extract_join(bt_parts *ps, uint32_t k, uint32_t *v0, uint32_t *nv)
     *v0 = off;
     *nv = pm->nv;
 }
+
+uint32_t bt_part_tris(const bt_parts *ps, uint32_t k)
+{
+    return ps && !ps->serial && k < ps->nroot ? ps->part[k].ntri : 0;
+}

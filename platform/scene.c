@@ -326,9 +326,25 @@ br_status scene_camera(const scene *s, const double eye[3], const double target[
     return cam_look_at(out, e, t, (int32_t)lround(fovy_deg * 1000), w, h, znear, zfar);
 }
 
+/* Parts are taken largest first (by the previous frame's sizes: the longest
+ * processing time rule), so no thread is left with a large part at the end;
+ * only the schedule depends on it, never the mesh. */
 static void job_part(void *user, uint32_t k)
 {
-    bt_extract_part(((scene *)user)->parts, k);
+    scene *s = (scene *)user;
+    bt_extract_part(s->parts, s->part_order[k]);
+}
+
+static void order_parts(scene *s, uint32_t n)
+{
+    uint32_t i, j;
+    for (i = 0; i < n; i++) s->part_order[i] = i;
+    for (i = 1; i < n; i++)           /* insertion sort, stable: n <= BT_PARTS */
+        for (j = i; j > 0 && s->part_cost[s->part_order[j - 1]] < s->part_cost[s->part_order[j]]; j--) {
+            uint32_t tmp = s->part_order[j];
+            s->part_order[j] = s->part_order[j - 1];
+            s->part_order[j - 1] = tmp;
+        }
 }
 
 static void job_join(void *user, uint32_t k)
@@ -346,9 +362,12 @@ br_status scene_mesh(scene *s, const cam *c, bt_params *p)
     p->c = c;
     p->fr = s->rt.fr;
     if (s->parts) {
+        uint32_t k;
         st = bt_extract_begin(s->parts, &s->tree, p, &s->mesh, &n);
         if (st != BR_OK) return st;
+        order_parts(s, n);
         pt_jobs(s->pool, n, job_part, s);
+        for (k = 0; k < BT_PARTS; k++) s->part_cost[k] = bt_part_tris(s->parts, k);
         st = bt_extract_end(s->parts, &n);
     } else st = bt_extract(&s->tree, p, &s->mesh);
     if (st != BR_OK) return st;

@@ -55,6 +55,7 @@ typedef struct scene {
     bt_parts *parts;
     void *parts_mem;
     pt_pool *pool;
+    uint32_t part_order[BT_PARTS], part_cost[BT_PARTS];   /* the parts' schedule (scene_mesh) */
     void *lit_mem;                   /* the vertex colour cache (rt_scene_cache), 4 bytes a sample */
     /* full-grid path (scene_grid): row strips of every step-th sample */
     rs_vertex *grid_v;
