@@ -104,6 +104,9 @@ struct bt_parts {
     bt_mesh part[BT_PARTS];
     bti_extract ex[BT_PARTS];
     bti_snap snap[BT_PARTS][BTI_SNAPS];
+    uint32_t hbase[BT_PARTS];      /* vertex hash generation of each part (part_reset) */
+    uint32_t hint_nv[BT_PARTS];    /* part k's vertices last frame: the hash and memo in use */
+    uint32_t hfull, mfull;         /* slots allocated for each part's hash, memo */
     bti_extract fx;                /* the seams' writer (bt_extract_end) */
     uint32_t recent[96], nrecent;  /* its vertex identification by (x, y) */
 };

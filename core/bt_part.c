@@ -44,6 +44,8 @@ br_status bt_parts_init(bt_parts **out, uint32_t part_tri, void *mem, size_t mem
     q += round8(sizeof(bt_parts));
     for (k = 0; k < BT_PARTS; k++, q += round8(mb))
         if (bt_mesh_init(&ps->part[k], part_tri, q, mb) != BR_OK) return BR_E_ARG;
+    ps->hfull = ps->part[0].hmask + 1;
+    ps->mfull = ps->part[0].memo_mask + 1;
     *out = ps;
     return BR_OK;
 }
@@ -66,24 +68,57 @@ br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh
     return BR_OK;
 }
 
-void bt_extract_part(bt_parts *ps, uint32_t k)
+/* Empties part k for a walk with a vertex hash of hs slots and a decision memo of
+ * ms slots, the first ones of the allocated tables.  Only speed depends on the
+ * sizes: vertices are numbered in first-use order, and the memo is a cache.  A
+ * hash slot holds base + 1 + index (core/bt_mesh.c reset_mesh) with the base of
+ * ps->hbase[k], which only grows, so slots of any earlier walk read as empty
+ * whatever the size then; both tables are cleared whole when a counter wraps. */
+static void part_reset(bt_parts *ps, uint32_t k, uint32_t hs, uint32_t ms, bti_extract *e)
 {
-    bti_extract *e;
-    bt_mesh *pm;
+    bt_mesh *pm = &ps->part[k];
     uint32_t hl;
-    if (!ps || ps->serial || k >= ps->nroot) return;
-    e = &ps->ex[k];
-    pm = &ps->part[k];
+    if (ps->hbase[k] > 0xFFFFFFFFu - pm->nv - pm->cap_v - 1) {
+        memset(pm->hash, 0, (size_t)ps->hfull * 4);
+        ps->hbase[k] = 0;
+    } else ps->hbase[k] += pm->nv;
+    if (++pm->memo_gen > 0xFFFFu) {
+        memset(pm->memo, 0, (size_t)ps->mfull * 8);
+        pm->memo_gen = 1;
+    }
+    pm->hmask = hs - 1;
+    pm->memo_mask = ms - 1;
+    pm->nv = 0; pm->ns = 0; pm->ntri = 0; pm->nline = 0; pm->nfict = 0; pm->overflow = 0;
+    pm->nsplits = 0;
     *e = ps->e0;
     e->m = pm;
     e->snap = ps->snap[k];
-    e->direct = (uint64_t)e->n * (uint64_t)e->n <= 2 * ((uint64_t)pm->hmask + 1);
+    e->hbase = ps->hbase[k];
+    e->direct = (uint64_t)e->n * (uint64_t)e->n <= 2 * (uint64_t)hs;
     hl = pm->hmask - (pm->hmask >> 2);
     e->lim_nv = (hl < pm->cap_v ? hl : pm->cap_v) - 6;
     e->lim_ns = pm->cap_s - 10;
-    pm->nsplits = 0;
-    e->hbase = bti_reset_mesh(pm);
+}
+
+void bt_extract_part(bt_parts *ps, uint32_t k)
+{
+    bti_extract *e;
+    uint32_t hs = 1024, ms;
+    if (!ps || ps->serial || k >= ps->nroot) return;
+    e = &ps->ex[k];
+    /* tables for twice last frame's vertices (load <= 1/4 of the hash): a part's
+     * hash and memo stay in cache where the allocated ones (sized for part_tri)
+     * would spread its few thousand vertices over megabytes */
+    while (hs < 8 * (uint64_t)ps->hint_nv[k] && hs < ps->hfull) hs <<= 1;
+    if (hs > ps->hfull) hs = ps->hfull;
+    ms = hs < ps->mfull ? hs : ps->mfull;
+    part_reset(ps, k, hs, ms, e);
     bti_part_walk(e, &ps->root[k]);
+    if (e->full && hs < ps->hfull) {     /* the small hash filled up: again with all of it */
+        part_reset(ps, k, ps->hfull, ps->mfull, e);
+        bti_part_walk(e, &ps->root[k]);
+    }
+    ps->hint_nv[k] = ps->part[k].nv;
 }
 
 void bti_snap_take(bti_extract *e, const bti_leaf *L)
