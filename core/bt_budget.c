@@ -19,7 +19,7 @@ static int64_t prio(bti_extract *e, int32_t x, int32_t y)
         uint16_t c = BT_NODE_ERR(e->t->node[(size_t)y * e->n + x]);
         r = c == BT_CODE_SPLIT ? ((int64_t)1 << 50) : (int64_t)c;
     } else {
-        r = bti_rho_q8(e, x, y);
+        r = e->rho(e, x, y);
         if (r < 0) return -1;
         if (r > ((int64_t)1 << 50)) r = (int64_t)1 << 50;
     }

@@ -49,6 +49,10 @@ typedef struct bti_extract {
     uint32_t hbase;         /* vertex hash generation (see reset_mesh) */
     uint32_t nbreak;        /* breaks of the walk bridged (the reorder pass runs if > 0) */
     int reorder;            /* p->strip_order asks for the reorder pass in this mode */
+    int64_t (*rho)(const struct bti_extract *e, int32_t x, int32_t y);
+                            /* view and budget modes: the projected error of diamond (x, y)
+                               in 1/256 pixel, -1 when culled (core/bt_mesh.c; the budget's
+                               priority, core/bt_budget.c, calls it through here) */
     struct bti_snap *snap;  /* a part's walk: the writer's state after each of its first
                                BTI_SNAPS leaves (core/bt_part.c), else NULL */
     uint32_t nsnap;
@@ -86,7 +90,6 @@ typedef struct bti_snap {
     uint32_t ns, t0, t1;
     int32_t has_pend, nplan;
 } bti_snap;
-void bti_snap_take(bti_extract *e, const bti_leaf *L);
 
 struct bt_parts {
     uint32_t part_tri;             /* triangles each part mesh holds */
@@ -116,13 +119,23 @@ uint32_t bti_reset_mesh(bt_mesh *m);
 void bti_part_roots(bti_extract *e, bt_parts *ps);
 void bti_part_walk(bti_extract *e, const bti_root *r);
 
-/* core/bt_mesh.c: diamond scale h and type (1 = D) of sample (x, y); projected
- * error of diamond (x, y) in 1/256 pixel, -1 when culled.
- * core/bt_budget.c: marks ST_SPLIT (and ST_PUSHED) on the diamonds a budget of
+/* Diamond geometry: scale h and type (1 = D) of sample (x, y), not a corner. */
+static inline int32_t bti_dscale(int32_t x, int32_t y, int32_t S, int *typeD)
+{
+    uint32_t u = (uint32_t)(x | y);
+    int32_t h;
+    if (u == 0) u = (uint32_t)S;
+    h = (int32_t)(u & (~u + 1u));
+    if (x == 0) h = (int32_t)((uint32_t)y & (~(uint32_t)y + 1u));
+    if (y == 0) h = (int32_t)((uint32_t)x & (~(uint32_t)x + 1u));
+    if (x == 0 && y == 0) h = S;
+    *typeD = (x & h) && (y & h);      /* h is a power of two */
+    return h;
+}
+
+/* core/bt_budget.c: marks ST_SPLIT (and ST_PUSHED) on the diamonds a budget of
  * `budget` nominal triangles buys; the ids it marked go to the mesh's id list
  * (*nid of them, to clear afterwards); sets e->tau to the last split's rho. */
-int32_t bti_dscale(int32_t x, int32_t y, int32_t S, int *typeD);
-int64_t bti_rho_q8(const bti_extract *e, int32_t x, int32_t y);
 uint32_t bti_budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid);
 
 #endif

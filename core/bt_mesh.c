@@ -134,19 +134,6 @@ static int32_t zreal(const bt_tree *t, int32_t x, int32_t y)
     }
 }
 
-/* diamond geometry: scale h and type (1 = D) of sample (x, y), not a corner */
-int32_t bti_dscale(int32_t x, int32_t y, int32_t S, int *typeD)
-{
-    uint32_t u = (uint32_t)(x | y);
-    int32_t h;
-    if (u == 0) u = (uint32_t)S;
-    h = (int32_t)(u & (~u + 1u));
-    if (x == 0) h = (int32_t)((uint32_t)y & (~(uint32_t)y + 1u));
-    if (y == 0) h = (int32_t)((uint32_t)x & (~(uint32_t)x + 1u));
-    if (x == 0 && y == 0) h = S;
-    *typeD = (x & h) && (y & h);      /* h is a power of two */
-    return h;
-}
 
 /* ------------------------------------------------------------ view */
 /* a * b for a, b >= 0, INT64_MAX when it is larger (no divide: the high half of
@@ -243,7 +230,7 @@ static int view_err(const bti_extract *e, int32_t x, int32_t y, unsigned *mask, 
 }
 
 /* rho in q8 pixels; -1 when culled */
-int64_t bti_rho_q8(const bti_extract *e, int32_t x, int32_t y)
+static int64_t rho_q8(const bti_extract *e, int32_t x, int32_t y)
 {
     unsigned mask = 0x3f;
     int64_t ew = 0, d = 0;
@@ -269,7 +256,7 @@ int64_t bt_screen_error_q8(const bt_tree *t, const bt_params *p, int32_t x, int3
     bti_extract e;
     int64_t r;
     if (!p || p->mode == BT_FIDELITY || bti_setup(&e, (bt_tree *)t, p) != BR_OK) return 0;
-    r = bti_rho_q8(&e, x, y);
+    r = rho_q8(&e, x, y);
     return r < 0 ? 0 : r;
 }
 
@@ -360,6 +347,20 @@ static int decide_memo(bti_extract *e, int32_t x, int32_t y, unsigned *mask, uin
 }
 
 /* ------------------------------------------------------------ strip */
+/* A part's walk (core/bt_part.c): the writer's state after leaf L was handed to it */
+static void snap_take(bti_extract *e, const bti_leaf *L)
+{
+    bti_snap *sn = &e->snap[e->nsnap++];
+    const bt_mesh *m = e->m;
+    sn->L = *L;
+    sn->ns = m->ns;
+    sn->t0 = m->ns >= 2 ? m->strip[m->ns - 2] : 0;
+    sn->t1 = m->ns >= 2 ? m->strip[m->ns - 1] : 0;
+    sn->has_pend = e->has_pend;
+    sn->pend = e->pend;
+    sn->nplan = e->nplan;
+}
+
 /* Home slot of grid key y n + x in the dedup hash: the key itself when the table
  * has >= n^2 / 2 slots (<= 2 keys per slot; the walk's spatial coherence stays in
  * the table's cache lines), else a multiplicative hash.  Collisions of direct
@@ -417,7 +418,7 @@ static void leaf(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
     (void)in_hyp;
     if (e->has_pend && btw_write_leaf(e, &e->pend, &L)) e->has_pend = 0;
     else { e->pend = L; e->has_pend = 1; }
-    if (e->snap && e->nsnap < BTI_SNAPS) bti_snap_take(e, &L);
+    if (e->snap && e->nsnap < BTI_SNAPS) snap_take(e, &L);
 }
 
 /* Height of split vertex mm (x, y, morph set) on hypotenuse a-b: geomorphed
@@ -625,6 +626,7 @@ br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p)
             e->wz_lo[0] < -CAM_COORD_MAX || e->wz_hi[255] > CAM_COORD_MAX) return BR_E_ARG;
     }
     cam_frustum(p->c, e->pl);
+    e->rho = rho_q8;
     e->fq8 = p->c->f_q16 >> 8;
     e->tau = p->pixel_err_q8 > 0 ? p->pixel_err_q8 : 256;
     e->tau_lo = p->hyst_q8 > 0 ? (e->tau * (256 - (p->hyst_q8 > 256 ? 256 : p->hyst_q8))) >> 8 : e->tau;

@@ -121,19 +121,6 @@ void bt_extract_part(bt_parts *ps, uint32_t k)
     ps->hint_nv[k] = ps->part[k].nv;
 }
 
-void bti_snap_take(bti_extract *e, const bti_leaf *L)
-{
-    bti_snap *sn = &e->snap[e->nsnap++];
-    const bt_mesh *m = e->m;
-    sn->L = *L;
-    sn->ns = m->ns;
-    sn->t0 = m->ns >= 2 ? m->strip[m->ns - 2] : 0;
-    sn->t1 = m->ns >= 2 ? m->strip[m->ns - 1] : 0;
-    sn->has_pend = e->has_pend;
-    sn->pend = e->pend;
-    sn->nplan = e->nplan;
-}
-
 /* Old marks go, the listed splits become ST_PREV and m's id list (bt_extract
  * reads it next frame); a list that does not fit clears every mark, as
  * bt_extract does when its list overflows. */
