@@ -369,7 +369,10 @@ static void snap_take(bti_extract *e, const bti_leaf *L)
  * Only speed depends on it. */
 static uint32_t home(uint32_t key, uint32_t mask, int direct)
 {
-    return (direct ? key : key * 2654435761u) & mask;
+    uint32_t h = key * 2654435761u;
+    /* the product's low bits depend only on the key's low bits (y n + x: x + y
+     * for n = 2^k + 1), so the high half is folded in */
+    return (direct ? key : h ^ (h >> 16)) & mask;
 }
 
 static uint32_t vid_find(bti_extract *e, pt *q)
@@ -424,7 +427,7 @@ static void leaf(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
 /* Height of split vertex mm (x, y, morph set) on hypotenuse a-b: geomorphed
  * between the interpolation of a and b and the real height.  Both triangles of a
  * diamond share a and b, so it is a function of the diamond (given the ends'). */
-static void mid_height(const bti_extract *e, const pt *a, const pt *b, pt *mm)
+static inline void mid_height(const bti_extract *e, const pt *a, const pt *b, pt *mm)
 {
     int32_t zs = e->nonvoid ? e->t->f->z[(size_t)mm->y * (size_t)e->n + (size_t)mm->x] : zreal(e->t, mm->x, mm->y);
     int64_t zf = ((int64_t)a->z + b->z) >> 1;
