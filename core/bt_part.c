@@ -255,7 +255,7 @@ static int join_strips(bt_parts *ps)
     for (k = 0; k < ps->nroot; k++) {
         const bt_mesh *pm = &ps->part[k];
         if (ps->ex[k].count == 0) { ps->soff[k] = m->ns; ps->skip[k] = pm->ns; continue; }
-        if ((uint64_t)m->ns + pm->ns + 16 * BTI_SNAPS + 64 > m->cap_s) return -1;
+        if ((uint64_t)m->ns + pm->ns + 32 * BTI_SNAPS + 64 > m->cap_s) return -1;
         if (!any) {
             ps->soff[k] = 0;
             ps->skip[k] = 0;
@@ -265,7 +265,7 @@ static int join_strips(bt_parts *ps)
             any = 1;
         } else if (seam(ps, k) != 0) return -1;
     }
-    if (m->ns + 16 > m->cap_s) return -1;
+    if ((uint64_t)m->ns + 64 > m->cap_s) return -1;
     btw_flush(fx);
     return 0;
 }
