@@ -104,8 +104,9 @@ struct bt_parts {
     uint32_t ntop;
     uint32_t voff[BT_PARTS];       /* part k's vertices go to m->v + voff[k] */
     uint32_t soff[BT_PARTS], skip[BT_PARTS]; /* its strip from index skip[k] to m->strip + soff[k] */
-    bt_mesh part[BT_PARTS];
-    bti_extract ex[BT_PARTS];
+    /* part k's mesh and extraction, written by its thread at every leaf (counts,
+     * pending leaf); the padding keeps them off the next part's cache lines */
+    struct bti_slot { bt_mesh m; bti_extract e; uint8_t pad_[64]; } slot[BT_PARTS];
     bti_snap snap[BT_PARTS][BTI_SNAPS];
     uint32_t hbase[BT_PARTS];      /* vertex hash generation of each part (part_reset) */
     uint32_t hint_nv[BT_PARTS];    /* part k's vertices last frame: the hash and memo in use */

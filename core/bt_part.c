@@ -43,9 +43,9 @@ br_status bt_parts_init(bt_parts **out, uint32_t part_tri, void *mem, size_t mem
     ps->part_tri = part_tri;
     q += round8(sizeof(bt_parts));
     for (k = 0; k < BT_PARTS; k++, q += round8(mb))
-        if (bt_mesh_init(&ps->part[k], part_tri, q, mb) != BR_OK) return BR_E_ARG;
-    ps->hfull = ps->part[0].hmask + 1;
-    ps->mfull = ps->part[0].memo_mask + 1;
+        if (bt_mesh_init(&ps->slot[k].m, part_tri, q, mb) != BR_OK) return BR_E_ARG;
+    ps->hfull = ps->slot[0].m.hmask + 1;
+    ps->mfull = ps->slot[0].m.memo_mask + 1;
     *out = ps;
     return BR_OK;
 }
@@ -76,7 +76,7 @@ br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh
  * whatever the size then; both tables are cleared whole when a counter wraps. */
 static void part_reset(bt_parts *ps, uint32_t k, uint32_t hs, uint32_t ms, bti_extract *e)
 {
-    bt_mesh *pm = &ps->part[k];
+    bt_mesh *pm = &ps->slot[k].m;
     uint32_t hl;
     if (ps->hbase[k] > 0xFFFFFFFFu - pm->nv - pm->cap_v - 1) {
         memset(pm->hash, 0, (size_t)ps->hfull * 4);
@@ -105,7 +105,7 @@ void bt_extract_part(bt_parts *ps, uint32_t k)
     bti_extract *e;
     uint32_t hs = 1024, ms;
     if (!ps || ps->serial || k >= ps->nroot) return;
-    e = &ps->ex[k];
+    e = &ps->slot[k].e;
     /* tables for twice last frame's vertices (load <= 1/4 of the hash): a part's
      * hash and memo stay in cache where the allocated ones (sized for part_tri)
      * would spread its few thousand vertices over megabytes */
@@ -118,7 +118,7 @@ void bt_extract_part(bt_parts *ps, uint32_t k)
         part_reset(ps, k, ps->hfull, ps->mfull, e);
         bti_part_walk(e, &ps->root[k]);
     }
-    ps->hint_nv[k] = ps->part[k].nv;
+    ps->hint_nv[k] = ps->slot[k].m.nv;
 }
 
 /* Old marks go, the listed splits become ST_PREV and m's id list (bt_extract
@@ -138,7 +138,7 @@ static void hysteresis(bt_parts *ps, uint64_t nsp)
     }
     for (i = 0; i < ps->ntop; i++) ids[n++] = ps->top_ids[i];
     for (k = 0; k < ps->nroot; k++) {
-        const bt_mesh *pm = &ps->part[k];
+        const bt_mesh *pm = &ps->slot[k].m;
         memcpy(ids + n, bti_ids_of(pm), (size_t)pm->nsplits * 4);
         n += pm->nsplits;
     }
@@ -187,7 +187,7 @@ static int same_leaf(const bt_mesh *m, const bti_leaf *a, const bti_leaf *b, uin
 /* Sets the seam writer fx to part k's state at its end (indices + voff[k]). */
 static void take_end(bt_parts *ps, uint32_t k)
 {
-    const bti_extract *pe = &ps->ex[k];
+    const bti_extract *pe = &ps->slot[k].e;
     bti_extract *fx = &ps->fx;
     uint32_t off = ps->voff[k];
     int i;
@@ -205,14 +205,14 @@ static int seam(bt_parts *ps, uint32_t k)
 {
     bti_extract *fx = &ps->fx;
     bt_mesh *m = ps->m;
-    const bt_mesh *pm = &ps->part[k];
+    const bt_mesh *pm = &ps->slot[k].m;
     uint32_t off = ps->voff[k], i;
     int j;
     ps->nrecent = 0;
     if (m->ns >= 2) { (void)seam_v(ps, m->strip[m->ns - 2]); (void)seam_v(ps, m->strip[m->ns - 1]); }
     if (fx->has_pend) { (void)seam_v(ps, fx->pend.ia); (void)seam_v(ps, fx->pend.ic); (void)seam_v(ps, fx->pend.ib); }
     for (j = 0; j < fx->nplan; j++) (void)seam_v(ps, fx->plan[j]);
-    for (i = 0; i < ps->ex[k].nsnap; i++) {
+    for (i = 0; i < ps->slot[k].e.nsnap; i++) {
         const bti_snap *sn = &ps->snap[k][i];
         bti_leaf L;
         seam_leaf(ps, &sn->L, off, &L);
@@ -231,7 +231,7 @@ static int seam(bt_parts *ps, uint32_t k)
             return 0;
         }
     }
-    if (ps->ex[k].count > BTI_SNAPS) return -1;
+    if (ps->slot[k].e.count > BTI_SNAPS) return -1;
     ps->soff[k] = m->ns;       /* every leaf of the part went through the seam writer */
     ps->skip[k] = pm->ns;
     return 0;
@@ -253,8 +253,8 @@ static int join_strips(bt_parts *ps)
     m->ns = 0;
     m->nline = 0;
     for (k = 0; k < ps->nroot; k++) {
-        const bt_mesh *pm = &ps->part[k];
-        if (ps->ex[k].count == 0) { ps->soff[k] = m->ns; ps->skip[k] = pm->ns; continue; }
+        const bt_mesh *pm = &ps->slot[k].m;
+        if (ps->slot[k].e.count == 0) { ps->soff[k] = m->ns; ps->skip[k] = pm->ns; continue; }
         if ((uint64_t)m->ns + pm->ns + 32 * BTI_SNAPS + 64 > m->cap_s) return -1;
         if (!any) {
             ps->soff[k] = 0;
@@ -280,8 +280,8 @@ br_status bt_extract_end(bt_parts *ps, uint32_t *njoin)
     m = ps->m;
     nsp = ps->ntop;
     for (k = 0; k < ps->nroot; k++) {
-        const bt_mesh *pm = &ps->part[k];
-        if (ps->ex[k].full || ps->ex[k].lost) break;
+        const bt_mesh *pm = &ps->slot[k].m;
+        if (ps->slot[k].e.full || ps->slot[k].e.lost) break;
         nsp += pm->nsplits;
         ps->voff[k] = (uint32_t)nv;
         nv += pm->nv;
@@ -291,7 +291,7 @@ br_status bt_extract_end(bt_parts *ps, uint32_t *njoin)
     if (k == ps->nroot && nv <= m->cap_v && ntri <= m->max_tri) {
         (void)bti_reset_mesh(m);
         for (k = 0; k < ps->nroot; k++)
-            memcpy(m->v + ps->voff[k], ps->part[k].v, (size_t)ps->part[k].nv * sizeof *m->v);
+            memcpy(m->v + ps->voff[k], ps->slot[k].m.v, (size_t)ps->slot[k].m.nv * sizeof *m->v);
         m->nv = (uint32_t)nv;
         if (join_strips(ps) != 0) k = 0;
     } else k = 0;
@@ -318,7 +318,7 @@ void bt_extract_join(bt_parts *ps, uint32_t k, uint32_t *v0, uint32_t *nv)
     *v0 = 0;
     *nv = 0;
     if (!ps || ps->serial || k >= ps->nroot) return;
-    pm = &ps->part[k];
+    pm = &ps->slot[k].m;
     off = ps->voff[k];
     out = ps->m->strip + ps->soff[k];
     for (i = ps->skip[k]; i < pm->ns; i++) out[i - ps->skip[k]] = pm->strip[i] + off;
@@ -328,5 +328,5 @@ void bt_extract_join(bt_parts *ps, uint32_t k, uint32_t *v0, uint32_t *nv)
 
 uint32_t bt_part_tris(const bt_parts *ps, uint32_t k)
 {
-    return ps && !ps->serial && k < ps->nroot ? ps->part[k].ntri : 0;
+    return ps && !ps->serial && k < ps->nroot ? ps->slot[k].m.ntri : 0;
 }
