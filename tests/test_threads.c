@@ -4,7 +4,8 @@
  * The view selection in parts (core/bitree.h bt_extract_begin) on N threads gives the
  * same mesh, and the serial extraction's strip, pixels and hysteresis state.
  * Scene: the default terrain (assets/N47E009.hgt.gz) at 640x480, from the default view
- * and from a low camera over the lake, and along the default camera path. */
+ * and from a low camera over the lake, and along the default camera path; fuji.png and
+ * mt_rainier_90m.tif (../shared/data/dem) for voids. */
 #include "tests/test.h"
 #include "platform/campath.h"
 #include "platform/pipe_threads.h"
@@ -235,6 +236,20 @@ static uint64_t fnv(uint64_t h, const void *p, size_t n)
     return h;
 }
 
+/* The strip as (x, y, z, morph) per index: what is drawn, not how vertices are numbered */
+static uint64_t walk_hash(const bt_mesh *m)
+{
+    uint64_t h = 0xcbf29ce484222325ull;
+    uint32_t j;
+    for (j = 0; j < m->ns; j++) {
+        const bt_vert *v = &m->v[m->strip[j]];
+        int32_t q[4];
+        q[0] = v->x; q[1] = v->y; q[2] = v->z; q[3] = v->morph;
+        h = fnv(h, q, sizeof q);
+    }
+    return h;
+}
+
 typedef struct sel_frame {
     uint64_t mesh;      /* vertices and strip, bytes */
     uint64_t walk;      /* the strip as (x, y, z, morph) per index: no vertex numbering */
@@ -273,7 +288,6 @@ static int fly(pt_pool *pool, int serial, sel_frame *out)
         rs_pipe p;
         rs_pass terrain;
         frame_sink fs;
-        uint32_t j;
         uint64_t h = 0xcbf29ce484222325ull;
         memset(&bp, 0, sizeof bp);
         memset(&fr, 0, sizeof fr);
@@ -290,13 +304,7 @@ static int fly(pt_pool *pool, int serial, sel_frame *out)
         fs.px = px;
         ok = ok && mem && rs_pipe_run(&p, 64, mem, rs_pipe_mem_size(&p, 64), sink_copy, &fs, NULL) == BR_OK;
         out[i].mesh = fnv(fnv(h, sc.mesh.v, (size_t)sc.mesh.nv * sizeof *sc.mesh.v), sc.mesh.strip, (size_t)sc.mesh.ns * 4);
-        for (j = 0; j < sc.mesh.ns; j++) {
-            const bt_vert *v = &sc.mesh.v[sc.mesh.strip[j]];
-            int32_t q[4];
-            q[0] = v->x; q[1] = v->y; q[2] = v->z; q[3] = v->morph;
-            h = fnv(h, q, sizeof q);
-        }
-        out[i].walk = h;
+        out[i].walk = walk_hash(&sc.mesh);
         out[i].st = fnv(0xcbf29ce484222325ull, sc.tree.st, nn);
         out[i].px = fnv(0xcbf29ce484222325ull, px, (size_t)W * H * 4);
         out[i].ntri = sc.mesh.ntri; out[i].nline = sc.mesh.nline; out[i].ns = sc.mesh.ns;
@@ -339,6 +347,64 @@ static void test_threads_selection(void)
             CHECK_MSG(got[i].px == one[i].px && got[i].st == one[i].st, "%d threads, frame %d", threads[ti], i);
         }
         pt_close(pool);
+    }
+}
+
+/* Seams where voids and culling break the walk (bridges): fuji.png (a void border around
+ * the cone) and mt_rainier_90m.tif (SRTM voids), 8 frames closing in on the default
+ * view's target with hysteresis: on 3 threads, the parts' strip (as positions) and the
+ * hysteresis state are the serial extraction's. */
+static void test_threads_voids(void)
+{
+    static const char *const dems[2] = { "png/fuji.png", "tif/mt_rainier_90m.tif" };
+    int d, pass, i;
+    for (d = 0; d < 2; d++) {
+        scene s;
+        scene_opts o;
+        br_err err;
+        const char *in[1];
+        pt_pool *pool = NULL;
+        bt_parts *keep;
+        double eye[3], tgt[3];
+        uint64_t w[2][8], st[2][8];
+        uint32_t nt[2][8];
+        in[0] = t_data(dems[d]);
+        memset(&o, 0, sizeof o);
+        o.quiet = 1;
+        if (scene_open(&s, in, 1, &o, &err) != BR_OK) { CHECK_MSG(0, "%s", err.msg); continue; }
+        CHECK_EQ(scene_tree(&s, &err), BR_OK);
+        CHECK_EQ(scene_reserve(&s, 400000, &err), BR_OK);
+        CHECK_EQ(pt_open(&pool, 3), BR_OK);
+        scene_default_view(&s, 60, eye, tgt);
+        keep = s.parts;
+        for (pass = 0; pass < 2; pass++) {
+            memset(s.tree.st, 0, (size_t)s.tree.n * (size_t)s.tree.n);
+            s.mesh.nsplits = 0;
+            s.parts = pass ? keep : NULL;
+            s.pool = pass ? pool : NULL;
+            for (i = 0; i < 8; i++) {
+                double e[3];
+                cam c;
+                bt_params bp;
+                int k;
+                for (k = 0; k < 3; k++) e[k] = eye[k] + (tgt[k] - eye[k]) * i / 12;
+                memset(&bp, 0, sizeof bp);
+                bp.mode = BT_VIEW; bp.pixel_err_q8 = 256; bp.hyst_q8 = 64; bp.morph_q8 = 128;
+                CHECK_EQ(scene_camera(&s, e, tgt, 60, W, H, &c), BR_OK);
+                CHECK_EQ(scene_mesh(&s, &c, &bp), BR_OK);
+                w[pass][i] = walk_hash(&s.mesh);
+                st[pass][i] = fnv(0xcbf29ce484222325ull, s.tree.st, (size_t)s.tree.n * (size_t)s.tree.n);
+                nt[pass][i] = s.mesh.ntri;
+            }
+        }
+        s.parts = keep;
+        s.pool = NULL;
+        for (i = 0; i < 8; i++) {
+            CHECK_MSG(w[1][i] == w[0][i] && st[1][i] == st[0][i], "%s frame %d", dems[d], i);
+            CHECK(nt[1][i] == nt[0][i] && nt[0][i] > 1000);
+        }
+        pt_close(pool);
+        scene_close(&s);
     }
 }
 
@@ -432,6 +498,7 @@ int main(void)
     T_RUN(test_threads_view_overlay);
     T_RUN(test_threads_sink_error);
     T_RUN(test_threads_selection);
+    T_RUN(test_threads_voids);
     T_RUN(test_threads_parts_core);
     T_RUN(test_threads_bad_args);
     scene_close(&sc);
