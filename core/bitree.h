@@ -222,6 +222,40 @@ br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri);
  * used by hysteresis (call it once per frame).  Returns BR_E_ARG on bad params. */
 br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m);
 
+/* Partitioned view extraction, for several threads (the caller schedules; core/
+ * has none).  The walk is cut into at most BT_PARTS subtrees fixed by the tree
+ * (those at depth 4 below the two root triangles), each extracted into its own
+ * part mesh, then joined in walk order into m as one strip: part k's strip is
+ * appended after line triangles that repeat the previous part's last index and
+ * its first (parity kept).  The real triangles are the serial walk's, in its
+ * order, with the same winding; a vertex on the edge between two parts may be
+ * listed once per part (same x, y, z, morph), the one exception to "no two
+ * vertices share (x, y)".  The result never depends on how the parts were
+ * scheduled.  Protocol, for one frame:
+ *   bt_extract_begin(ps, t, p, m, &n)     serial; n parts to extract
+ *   bt_extract_part(ps, k), k < n         any order, concurrently for distinct k
+ *   bt_extract_end(ps, &j)                serial; hysteresis state, offsets
+ *   bt_extract_join(ps, k, ..), k < j     any order, concurrently for distinct k
+ * Only BT_VIEW without the reorder pass is partitioned; other modes, and a
+ * frame where a part mesh is full or the joined mesh would not fit m, are
+ * extracted by bt_extract (begin or end call it; n or j is then 0), so the
+ * fallback to the budget rule is today's.  The walk of the parts reads t->st
+ * only; bt_extract_end updates it, as bt_extract does.  ps, t, p and m must
+ * stay unchanged from begin to the last join. */
+#define BT_PARTS 32
+typedef struct bt_parts bt_parts;
+/* Bytes for parts of part_tri triangles each (>= 2); 0 if too large. */
+size_t bt_parts_mem_size(uint32_t part_tri);
+/* *out in mem (8-byte aligned, bt_parts_mem_size bytes). */
+br_status bt_parts_init(bt_parts **out, uint32_t part_tri, void *mem, size_t mem_bytes);
+br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh *m, uint32_t *nparts);
+void bt_extract_part(bt_parts *ps, uint32_t k);
+br_status bt_extract_end(bt_parts *ps, uint32_t *njoin);
+/* Writes part k into m; m->v[*v0 .. *v0 + *nv) are its vertices. */
+void bt_extract_join(bt_parts *ps, uint32_t k, uint32_t *v0, uint32_t *nv);
+/* Triangles of part k in the last extraction (0 if none): a scheduling hint. */
+uint32_t bt_part_tris(const bt_parts *ps, uint32_t k);
+
 /* Budget mode scratch: bt_extract with BT_BUDGET (or a fallback) needs a heap;
  * it is carved from m (bt_mesh_mem_size includes it).  When the recursive walk
  * broke and p->strip_order asks for it, the strip is written again in a greedy

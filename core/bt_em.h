@@ -7,6 +7,17 @@
 #include "core/bitree.h"
 #include "core/bt_int.h"
 
+/* per-sample frame state bits (bt_tree.st): ST_PREV split in the previous view
+ * frame (hysteresis), ST_SPLIT / ST_PUSHED the budget rule's marks, ST_CUR the
+ * serial walk's "already recorded this frame" */
+enum { ST_PREV = 1, ST_SPLIT = 2, ST_PUSHED = 4, ST_CUR = 8 };
+
+/* A vertex on its way down the recursion; idx caches its output index (the
+ * children of a split share their parent's pt instances, so most lookups are
+ * answered here and only the first use per instance goes to the hash). */
+typedef struct bti_pt { int32_t x, y, z; uint32_t idx; uint16_t morph; } bti_pt;
+#define BTI_NO_IDX 0xFFFFFFFFu
+
 typedef struct bti_heap_ent { int64_t key; uint32_t id; uint32_t pad_; } bti_heap_ent;
 
 typedef struct bti_extract {
@@ -24,7 +35,8 @@ typedef struct bti_extract {
     int64_t tau_lo;         /* with hysteresis */
     int64_t morph_span;     /* q8 pixels: tau * morph/256 */
     int full;               /* mesh full: stop emitting */
-    int rec_splits;         /* record this frame's splits (view mode, hysteresis) */
+    int rec_splits;         /* record this frame's splits (view mode, hysteresis): 1 marking
+                               ST_CUR (serial), 2 without writing t->st (a part) */
     int lost;               /* the split list overflowed */
     int nonvoid;            /* the padded grid has no void sample: skip the checks */
     int64_t wz_lo[256], wz_hi[256]; /* world z of the quantised height codes (floor, ceil) */
@@ -37,6 +49,13 @@ typedef struct bti_extract {
     uint32_t hbase;         /* vertex hash generation (see reset_mesh) */
     uint32_t nbreak;        /* breaks of the walk bridged (the reorder pass runs if > 0) */
     int reorder;            /* p->strip_order asks for the reorder pass in this mode */
+    int64_t (*rho)(const struct bti_extract *e, int32_t x, int32_t y);
+                            /* view and budget modes: the projected error of diamond (x, y)
+                               in 1/256 pixel, -1 when culled (core/bt_mesh.c; the budget's
+                               priority, core/bt_budget.c, calls it through here) */
+    struct bti_snap *snap;  /* a part's walk: the writer's state after each of its first
+                               BTI_SNAPS leaves (core/bt_part.c), else NULL */
+    uint32_t nsnap;
 } bti_extract;
 
 /* A leaf waiting to be written: its vertex indices, exit edge {o0, o1} and the
@@ -56,5 +75,68 @@ static inline uint32_t *bti_ids_of(const bt_mesh *m) { return (uint32_t *)(void 
 int btw_write_leaf(bti_extract *e, const bti_leaf *L, const bti_leaf *N);
 void btw_flush(bti_extract *e);
 void btw_reorder(bti_extract *e);
+
+/* ------------------------------------------------------------ parts (core/bt_part.c)
+ * The view walk cut into at most BT_PARTS subtrees: the triangles at depth
+ * BTI_PART_DEPTH below the two roots (2 << depth of them), or shallower leaves. */
+#define BTI_PART_DEPTH 4
+typedef struct bti_root { bti_pt a, c, b; int32_t in_hyp, out_hyp; uint32_t mask; } bti_root;
+
+/* The writer's state after a part's leaf L was handed to it: strip length, its
+ * last two indices, the pending leaf, whether a bridge's plan is open */
+#define BTI_SNAPS 16
+typedef struct bti_snap {
+    bti_leaf L, pend;
+    uint32_t ns, t0, t1;
+    int32_t has_pend, nplan;
+} bti_snap;
+
+struct bt_parts {
+    uint32_t part_tri;             /* triangles each part mesh holds */
+    bt_tree *t;                    /* the extraction in progress (begin .. end) */
+    const bt_params *p;
+    bt_mesh *m;
+    int32_t serial;                /* 1: begin extracted serially, nothing to join */
+    bti_extract e0;                /* set up once; each part starts from a copy */
+    bti_root root[BT_PARTS];       /* part roots in walk order */
+    uint32_t nroot;
+    uint32_t top_ids[BT_PARTS];    /* diamonds split above the roots (< BT_PARTS of them) */
+    uint32_t ntop;
+    uint32_t voff[BT_PARTS];       /* part k's vertices go to m->v + voff[k] */
+    uint32_t soff[BT_PARTS], skip[BT_PARTS]; /* its strip from index skip[k] to m->strip + soff[k] */
+    /* part k's mesh and extraction, written by its thread at every leaf (counts,
+     * pending leaf); the padding keeps them off the next part's cache lines */
+    struct bti_slot { bt_mesh m; bti_extract e; uint8_t pad_[64]; } slot[BT_PARTS];
+    bti_snap snap[BT_PARTS][BTI_SNAPS];
+    uint32_t hbase[BT_PARTS];      /* vertex hash generation of each part (part_reset) */
+    uint32_t hint_nv[BT_PARTS];    /* part k's vertices last frame: the hash and memo in use */
+    uint32_t hfull, mfull;         /* slots allocated for each part's hash, memo */
+    bti_extract fx;                /* the seams' writer (bt_extract_end) */
+    uint32_t recent[96], nrecent;  /* its vertex identification by (x, y) */
+};
+
+br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p);
+uint32_t bti_reset_mesh(bt_mesh *m);
+void bti_part_roots(bti_extract *e, bt_parts *ps);
+void bti_part_walk(bti_extract *e, const bti_root *r);
+
+/* Diamond geometry: scale h and type (1 = D) of sample (x, y), not a corner. */
+static inline int32_t bti_dscale(int32_t x, int32_t y, int32_t S, int *typeD)
+{
+    uint32_t u = (uint32_t)(x | y);
+    int32_t h;
+    if (u == 0) u = (uint32_t)S;
+    h = (int32_t)(u & (~u + 1u));
+    if (x == 0) h = (int32_t)((uint32_t)y & (~(uint32_t)y + 1u));
+    if (y == 0) h = (int32_t)((uint32_t)x & (~(uint32_t)x + 1u));
+    if (x == 0 && y == 0) h = S;
+    *typeD = (x & h) && (y & h);      /* h is a power of two */
+    return h;
+}
+
+/* core/bt_budget.c: marks ST_SPLIT (and ST_PUSHED) on the diamonds a budget of
+ * `budget` nominal triangles buys; the ids it marked go to the mesh's id list
+ * (*nid of them, to clear afterwards); sets e->tau to the last split's rho. */
+uint32_t bti_budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid);
 
 #endif

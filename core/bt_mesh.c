@@ -47,15 +47,13 @@
 #include "core/bt_int.h"
 #include "core/config.h"
 
-enum { ST_PREV = 1, ST_SPLIT = 2, ST_PUSHED = 4, ST_CUR = 8 };
 
 /* A vertex on its way down the recursion; idx caches its output index (the
  * children of a split share their parent's pt instances, so most lookups are
  * answered here and only the first use per instance goes to the hash). */
-typedef struct pt { int32_t x, y, z; uint32_t idx; uint16_t morph; } pt;
-#define NO_IDX 0xFFFFFFFFu
-
 #include "core/bt_em.h"
+typedef bti_pt pt;
+#define NO_IDX BTI_NO_IDX
 
 /* ------------------------------------------------------------ mesh memory */
 static uint32_t hash_size(uint32_t cap_v)
@@ -136,19 +134,6 @@ static int32_t zreal(const bt_tree *t, int32_t x, int32_t y)
     }
 }
 
-/* diamond geometry: scale h and type (1 = D) of sample (x, y), not a corner */
-static int32_t dscale(int32_t x, int32_t y, int32_t S, int *typeD)
-{
-    uint32_t u = (uint32_t)(x | y);
-    int32_t h;
-    if (u == 0) u = (uint32_t)S;
-    h = (int32_t)(u & (~u + 1u));
-    if (x == 0) h = (int32_t)((uint32_t)y & (~(uint32_t)y + 1u));
-    if (y == 0) h = (int32_t)((uint32_t)x & (~(uint32_t)x + 1u));
-    if (x == 0 && y == 0) h = S;
-    *typeD = (x & h) && (y & h);      /* h is a power of two */
-    return h;
-}
 
 /* ------------------------------------------------------------ view */
 /* a * b for a, b >= 0, INT64_MAX when it is larger (no divide: the high half of
@@ -186,7 +171,7 @@ static void dvolume(const bti_extract *e, int32_t x, int32_t y, int64_t lo[3], i
     const bt_tree *t = e->t;
     const bt_frame *fr = &e->p->fr;
     int typeD;
-    int32_t h = dscale(x, y, e->S, &typeD);
+    int32_t h = bti_dscale(x, y, e->S, &typeD);
     int32_t r = typeD ? 3 * h : 2 * h;
     int32_t x0 = x - r < 0 ? 0 : x - r, x1 = x + r > e->S ? e->S : x + r;
     int32_t y0 = y - r < 0 ? 0 : y - r, y1 = y + r > e->S ? e->S : y + r;
@@ -265,13 +250,12 @@ static int64_t rho_q8(const bti_extract *e, int32_t x, int32_t y)
     }
 }
 
-static br_status setup(bti_extract *e, bt_tree *t, const bt_params *p);
 
 int64_t bt_screen_error_q8(const bt_tree *t, const bt_params *p, int32_t x, int32_t y)
 {
     bti_extract e;
     int64_t r;
-    if (!p || p->mode == BT_FIDELITY || setup(&e, (bt_tree *)t, p) != BR_OK) return 0;
+    if (!p || p->mode == BT_FIDELITY || bti_setup(&e, (bt_tree *)t, p) != BR_OK) return 0;
     r = rho_q8(&e, x, y);
     return r < 0 ? 0 : r;
 }
@@ -363,6 +347,20 @@ static int decide_memo(bti_extract *e, int32_t x, int32_t y, unsigned *mask, uin
 }
 
 /* ------------------------------------------------------------ strip */
+/* A part's walk (core/bt_part.c): the writer's state after leaf L was handed to it */
+static void snap_take(bti_extract *e, const bti_leaf *L)
+{
+    bti_snap *sn = &e->snap[e->nsnap++];
+    const bt_mesh *m = e->m;
+    sn->L = *L;
+    sn->ns = m->ns;
+    sn->t0 = m->ns >= 2 ? m->strip[m->ns - 2] : 0;
+    sn->t1 = m->ns >= 2 ? m->strip[m->ns - 1] : 0;
+    sn->has_pend = e->has_pend;
+    sn->pend = e->pend;
+    sn->nplan = e->nplan;
+}
+
 /* Home slot of grid key y n + x in the dedup hash: the key itself when the table
  * has >= n^2 / 2 slots (<= 2 keys per slot; the walk's spatial coherence stays in
  * the table's cache lines), else a multiplicative hash.  Collisions of direct
@@ -371,7 +369,10 @@ static int decide_memo(bti_extract *e, int32_t x, int32_t y, unsigned *mask, uin
  * Only speed depends on it. */
 static uint32_t home(uint32_t key, uint32_t mask, int direct)
 {
-    return (direct ? key : key * 2654435761u) & mask;
+    uint32_t h = key * 2654435761u;
+    /* the product's low bits depend only on the key's low bits (y n + x: x + y
+     * for n = 2^k + 1), so the high half is folded in */
+    return (direct ? key : h ^ (h >> 16)) & mask;
 }
 
 static uint32_t vid_find(bti_extract *e, pt *q)
@@ -418,11 +419,24 @@ static void leaf(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
     if (out_hyp) { L.o0 = L.ia; L.o1 = L.ib; L.other = L.ic; }
     else { L.o0 = L.ic; L.o1 = L.ib; L.other = L.ia; }
     (void)in_hyp;
-    if (e->has_pend) {
-        if (btw_write_leaf(e, &e->pend, &L)) { e->has_pend = 0; return; }
-    }
-    e->pend = L;
-    e->has_pend = 1;
+    if (e->has_pend && btw_write_leaf(e, &e->pend, &L)) e->has_pend = 0;
+    else { e->pend = L; e->has_pend = 1; }
+    if (e->snap && e->nsnap < BTI_SNAPS) snap_take(e, &L);
+}
+
+/* Height of split vertex mm (x, y, morph set) on hypotenuse a-b: geomorphed
+ * between the interpolation of a and b and the real height.  Both triangles of a
+ * diamond share a and b, so it is a function of the diamond (given the ends'). */
+static inline void mid_height(const bti_extract *e, const pt *a, const pt *b, pt *mm)
+{
+    int32_t zs = e->nonvoid ? e->t->f->z[(size_t)mm->y * (size_t)e->n + (size_t)mm->x] : zreal(e->t, mm->x, mm->y);
+    int64_t zf = ((int64_t)a->z + b->z) >> 1;
+    /* a vertex whose real height IS the interpolation of its hypotenuse ends
+     * (in every mode) carries topology but no information: fictitious (002:
+     * deducible, never transmitted); its height is the same either way */
+    if (2 * (int64_t)zs == (int64_t)a->z + b->z) mm->morph = 0;
+    mm->z = mm->morph == BT_MORPH_ONE ? zs
+          : (int32_t)(zf + ((((int64_t)zs - zf) * mm->morph + (1 << 14)) >> 15));
 }
 
 static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned mask)
@@ -451,25 +465,19 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
         return;
     }
     if (e->rec_splits) {
-        /* record for the next frame's hysteresis (a diamond is reached twice) */
+        /* record for the next frame's hysteresis (a diamond is reached twice):
+         * the serial walk marks ST_CUR so each is listed once; a part's walk
+         * (rec_splits 2) reads t->st only and lists it from both halves, the
+         * serial end (bt_part.c) sets ST_PREV, which is idempotent */
         size_t idx = (size_t)mm.y * e->n + mm.x;
-        if (!(e->t->st[idx] & ST_CUR)) {
+        if (e->rec_splits == 2 || !(e->t->st[idx] & ST_CUR)) {
             if (e->m->nsplits < bti_heap_cap(e->m)) {
-                e->t->st[idx] |= ST_CUR;
+                if (e->rec_splits == 1) e->t->st[idx] |= ST_CUR;
                 bti_ids_of(e->m)[e->m->nsplits++] = (uint32_t)idx;
             } else e->lost = 1;
         }
     }
-    {
-        int32_t zs = e->nonvoid ? e->t->f->z[(size_t)mm.y * (size_t)e->n + (size_t)mm.x] : zreal(e->t, mm.x, mm.y);
-        int64_t zf = ((int64_t)a->z + b->z) >> 1;
-        /* a vertex whose real height IS the interpolation of its hypotenuse ends
-         * (in every mode) carries topology but no information: fictitious (002:
-         * deducible, never transmitted); its height is the same either way */
-        if (2 * (int64_t)zs == (int64_t)a->z + b->z) mm.morph = 0;
-        mm.z = mm.morph == BT_MORPH_ONE ? zs
-             : (int32_t)(zf + ((((int64_t)zs - zf) * mm.morph + (1 << 14)) >> 15));
-    }
+    mid_height(e, a, b, &mm);
     rec(e, a, &mm, c, !in_hyp, 0, mask);
     rec(e, c, &mm, b, 0, !out_hyp, mask);
 }
@@ -516,115 +524,60 @@ static void run(bti_extract *e)
     btw_flush(e);
 }
 
-/* ------------------------------------------------------------ budget */
-static int64_t prio(bti_extract *e, int32_t x, int32_t y)
+/* ------------------------------------------------------------ parts */
+/* The walk down to depth BTI_PART_DEPTH below the two roots, in rec's order with
+ * rec's decisions: each triangle where it stops (at that depth, or earlier as a
+ * leaf of the selection) becomes a part root, with the plane mask rec would hand
+ * it; the part's rec decides its diamond again (the same answer: decide reads
+ * only the diamond, the camera and ST_PREV) and emits its subtree.  Diamonds
+ * split here are listed in ps->top_ids.  Culled triangles give no part. */
+static void top(bti_extract *e, bt_parts *ps, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned mask,
+                int depth)
 {
-    int typeD;
-    int32_t h = dscale(x, y, e->S, &typeD);
-    int32_t j = 0;
-    int64_t r;
-    while (((int32_t)1 << j) < h) j++;
-    if (e->p->mode == BT_FIDELITY) {
-        uint16_t c = BT_NODE_ERR(e->t->node[(size_t)y * e->n + x]);
-        r = c == BT_CODE_SPLIT ? ((int64_t)1 << 50) : (int64_t)c;
-    } else {
-        r = rho_q8(e, x, y);
-        if (r < 0) return -1;
-        if (r > ((int64_t)1 << 50)) r = (int64_t)1 << 50;
+    pt mm;
+    unsigned m0 = mask;
+    int sp = 0;
+    if (depth < BTI_PART_DEPTH && !((a->x + b->x) & 1)) {
+        mm.idx = NO_IDX;
+        mm.x = a->x + ((b->x - a->x) >> 1);
+        mm.y = a->y + ((b->y - a->y) >> 1);
+        sp = decide(e, mm.x, mm.y, &mask, &mm.morph);
+        if (sp < 0) return;
     }
-    return (r << 8) | (int64_t)(2 * j + typeD);
+    if (!sp) {
+        bti_root *r = &ps->root[ps->nroot++];
+        r->a = *a; r->c = *c; r->b = *b;
+        r->in_hyp = in_hyp; r->out_hyp = out_hyp; r->mask = m0;
+        return;
+    }
+    ps->top_ids[ps->ntop++] = (uint32_t)mm.y * (uint32_t)e->n + (uint32_t)mm.x;
+    mid_height(e, a, b, &mm);
+    top(e, ps, a, &mm, c, !in_hyp, 0, mask, depth + 1);
+    top(e, ps, c, &mm, b, 0, !out_hyp, mask, depth + 1);
 }
 
-static void hpush(bti_heap_ent *hp, uint32_t *n, int64_t key, uint32_t id)
+void bti_part_roots(bti_extract *e, bt_parts *ps)
 {
-    uint32_t i = (*n)++;
-    while (i > 0) {
-        uint32_t par = (i - 1) >> 1;
-        if (hp[par].key > key || (hp[par].key == key && hp[par].id < id)) break;
-        hp[i] = hp[par];
-        i = par;
-    }
-    hp[i].key = key; hp[i].id = id; hp[i].pad_ = 0;
+    pt A, B, C, D;
+    int32_t S = e->S;
+    corner(e->t, 0, 0, &A); corner(e->t, S, 0, &B);
+    corner(e->t, S, S, &C); corner(e->t, 0, S, &D);
+    ps->nroot = 0;
+    ps->ntop = 0;
+    top(e, ps, &A, &B, &C, 0, 1, 0x3f, 0);
+    top(e, ps, &C, &D, &A, 1, 0, 0x3f, 0);
 }
 
-static bti_heap_ent hpop(bti_heap_ent *hp, uint32_t *n)
+void bti_part_walk(bti_extract *e, const bti_root *r)
 {
-    bti_heap_ent top = hp[0], last = hp[--(*n)];
-    uint32_t i = 0;
-    for (;;) {
-        uint32_t l = 2 * i + 1, r = l + 1, b = i;
-        const bti_heap_ent *bb = &last;
-        if (l < *n && (hp[l].key > bb->key || (hp[l].key == bb->key && hp[l].id < bb->id))) { b = l; bb = &hp[l]; }
-        if (r < *n && (hp[r].key > bb->key || (hp[r].key == bb->key && hp[r].id < bb->id))) { b = r; bb = &hp[r]; }
-        if (b == i) break;
-        hp[i] = hp[b];
-        i = b;
-    }
-    if (*n > 0) hp[i] = last;
-    return top;
-}
-
-/* Marks ST_SPLIT on the diamonds a budget of `budget` nominal triangles buys.
- * Returns the number of ids recorded (to clear afterwards) in ids. Sets e->tau
- * to the last split's rho (for geomorph). */
-static uint32_t budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid)
-{
-    bt_tree *t = e->t;
-    bti_heap_ent *hp = bti_heap_of(e->m);
-    uint32_t *ids = bti_ids_of(e->m);
-    uint32_t nh = 0, ni = 0, cap = bti_heap_cap(e->m);
-    uint64_t count = 2;
-    int32_t S = e->S, n = e->n;
-    int64_t last = 0;
-    {
-        uint32_t root = (uint32_t)((S / 2) * n + S / 2);
-        int64_t k = prio(e, S / 2, S / 2);
-        if (k >= 0) { hpush(hp, &nh, k, root); t->st[root] |= ST_PUSHED; ids[ni++] = root; }
-    }
-    while (nh > 0) {
-        bti_heap_ent he = hpop(hp, &nh);
-        int32_t x = (int32_t)(he.id % (uint32_t)n), y = (int32_t)(he.id / (uint32_t)n);
-        int typeD, i, add = 0;
-        int32_t h = dscale(x, y, S, &typeD);
-        int32_t cx[4], cy[4];
-        if ((he.key >> 8) <= 0 && e->p->mode != BT_FIDELITY) break;  /* nothing to gain */
-        if (e->p->mode == BT_FIDELITY && (he.key >> 8) <= (int64_t)e->cthr) break;
-        /* triangles of the diamond */
-        if (typeD) add = 2;
-        else if (x & h) add = (y - h >= 0) + (y + h <= S);
-        else add = (x - h >= 0) + (x + h <= S);
-        if (count + (uint64_t)add > budget) break;
-        if (ni + 4 > cap) break;
-        count += (uint64_t)add;
-        t->st[he.id] |= ST_SPLIT;
-        last = he.key >> 8;
-        if (typeD) {
-            cx[0] = x - h; cy[0] = y; cx[1] = x + h; cy[1] = y;
-            cx[2] = x; cy[2] = y - h; cx[3] = x; cy[3] = y + h;
-        } else if (h >= 2) {
-            int32_t g = h >> 1;
-            cx[0] = x - g; cy[0] = y - g; cx[1] = x + g; cy[1] = y - g;
-            cx[2] = x - g; cy[2] = y + g; cx[3] = x + g; cy[3] = y + g;
-        } else continue;
-        for (i = 0; i < 4; i++) {
-            uint32_t cid;
-            int64_t k;
-            if (cx[i] < 0 || cy[i] < 0 || cx[i] > S || cy[i] > S) continue;
-            cid = (uint32_t)(cy[i] * n + cx[i]);
-            if (t->st[cid] & ST_PUSHED) continue;
-            k = prio(e, cx[i], cy[i]);
-            t->st[cid] |= ST_PUSHED;
-            ids[ni++] = cid;
-            if (k >= 0) hpush(hp, &nh, k, cid);
-        }
-    }
-    if (e->p->mode != BT_FIDELITY) e->tau = last;
-    *nid = ni;
-    return ni;
+    pt a = r->a, c = r->c, b = r->b;
+    e->has_pend = 0;
+    e->nplan = 0;
+    rec(e, &a, &c, &b, r->in_hyp, r->out_hyp, r->mask);
 }
 
 /* ------------------------------------------------------------ public */
-static br_status setup(bti_extract *e, bt_tree *t, const bt_params *p)
+br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p)
 {
     memset(e, 0, sizeof *e);
     if (!t || !p || !t->node) return BR_E_ARG;
@@ -676,6 +629,7 @@ static br_status setup(bti_extract *e, bt_tree *t, const bt_params *p)
             e->wz_lo[0] < -CAM_COORD_MAX || e->wz_hi[255] > CAM_COORD_MAX) return BR_E_ARG;
     }
     cam_frustum(p->c, e->pl);
+    e->rho = rho_q8;
     e->fq8 = p->c->f_q16 >> 8;
     e->tau = p->pixel_err_q8 > 0 ? p->pixel_err_q8 : 256;
     e->tau_lo = p->hyst_q8 > 0 ? (e->tau * (256 - (p->hyst_q8 > 256 ? 256 : p->hyst_q8))) >> 8 : e->tau;
@@ -689,7 +643,7 @@ static br_status setup(bti_extract *e, bt_tree *t, const bt_params *p)
 br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri)
 {
     bti_extract e;
-    br_status s = setup(&e, t, p);
+    br_status s = bti_setup(&e, t, p);
     if (s != BR_OK) return s;
     if (p->mode == BT_BUDGET) { *ntri = p->budget; return BR_OK; }
     e.count_only = 1;
@@ -703,7 +657,7 @@ br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri)
  * index, and the base (the word after the table) moves past every value of the
  * previous extraction, so old slots read as empty; cleared only when the base
  * would wrap. */
-static uint32_t reset_mesh(bt_mesh *m)
+uint32_t bti_reset_mesh(bt_mesh *m)
 {
     uint32_t *base = &m->hash[m->hmask + 1];
     if (*base > 0xFFFFFFFFu - m->nv - m->cap_v - 1) {
@@ -721,7 +675,7 @@ static uint32_t reset_mesh(bt_mesh *m)
 br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
 {
     bti_extract e;
-    br_status s = setup(&e, t, p);
+    br_status s = bti_setup(&e, t, p);
     uint32_t i, nid = 0, nprev, *ids;
     uint32_t *old;
     if (s != BR_OK) return s;
@@ -744,13 +698,13 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
         nprev = 0;
     }
-    e.hbase = reset_mesh(m);
+    e.hbase = bti_reset_mesh(m);
     if (p->mode == BT_BUDGET) {
-        budget_mark(&e, p->budget < m->max_tri ? p->budget : m->max_tri, &nid);
+        bti_budget_mark(&e, p->budget < m->max_tri ? p->budget : m->max_tri, &nid);
         e.tau = -1;
         e.fid = 0;
     } else {
-        e.rec_splits = p->mode == BT_VIEW;
+        e.rec_splits = p->mode == BT_VIEW ? 1 : 0;
         run(&e);
         if (!e.full) {
             if (e.rec_splits) {
@@ -777,9 +731,9 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
             for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_PREV);
         }
         m->nsplits = 0;
-        e.hbase = reset_mesh(m);
+        e.hbase = bti_reset_mesh(m);
         e.full = 0; e.rec_splits = 0; e.lost = 0;
-        budget_mark(&e, m->max_tri, &nid);
+        bti_budget_mark(&e, m->max_tri, &nid);
         e.tau = -1;
         e.fid = 0;
         m->overflow = 1;

@@ -151,6 +151,7 @@ static int run_default(bd_run *bd, const campath *cp, const char *path, bb_row *
     row->frame_ms = malloc(sizeof *row->frame_ms * (size_t)row->frames);
     if (!sel || !ras || !row->frame_ms) { fprintf(stderr, "bitrain bench: out of memory\n"); goto done; }
     if (pt_open(&pool, row->threads) != BR_OK) { fprintf(stderr, "bitrain bench: cannot start %d threads\n", row->threads); goto done; }
+    bd_set_pool(bd, pool);       /* the selection's parts on the row's threads too */
     for (i = 0; i < row->frames; i++) {
         const double *k = cp->cam[i % cp->n];
         double t0, t1, t2;
@@ -177,6 +178,7 @@ static int run_default(bd_run *bd, const campath *cp, const char *path, bb_row *
 fail:
     fprintf(stderr, "bitrain bench: default scene frame %d: drawing failed\n", i + 1);
 done:
+    bd_set_pool(bd, NULL);
     pt_close(pool);
     free(sel); free(ras);
     return rc;

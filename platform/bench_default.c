@@ -158,6 +158,11 @@ uint32_t bd_tris(const bd_run *r)
     return r->s.mesh.ntri;
 }
 
+void bd_set_pool(bd_run *r, pt_pool *pool)
+{
+    r->s.pool = pool;
+}
+
 int cmd_bench_default(int argc, char **argv)
 {
     const char *dems[16], *path = NULL, *out = NULL;

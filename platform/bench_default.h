@@ -8,6 +8,7 @@
 #include <stdint.h>
 #include "core/cam.h"
 #include "platform/err.h"
+#include "platform/pipe_threads.h"
 #include "raster/raster.h"
 
 typedef struct bd_run bd_run;
@@ -26,5 +27,7 @@ br_status bd_select(bd_run *r, const cam *c);
 const rs_frame *bd_frame(const bd_run *r);
 /* Triangles of the last bd_select's mesh. */
 uint32_t bd_tris(const bd_run *r);
+/* The selection's parts run on pool's threads (NULL: the caller's). */
+void bd_set_pool(bd_run *r, pt_pool *pool);
 
 #endif

@@ -173,6 +173,11 @@ static int render_frame(render_job *j, const double *cv, const char *name, const
                 "world unit 2^%d m)\n", what, -j->s.rt.shift);
         return 0;
     }
+    if (!j->pool && pt_open(&j->pool, j->threads) != BR_OK) {
+        fprintf(stderr, "bitrain render: cannot start %d threads\n", j->threads);
+        return 0;
+    }
+    j->s.pool = j->pool;     /* the view extraction's parts too */
     if (make_mesh(&j->s, &c, j->full_step, j->mode, j->max_err, j->pix_err, j->min_tri, err) != BR_OK) {
         fprintf(stderr, "bitrain: %s\n", err->msg);
         return 0;
@@ -193,10 +198,6 @@ static int render_frame(render_job *j, const double *cv, const char *name, const
         run = &j->ws.pipe;
     }
     memsize = rs_pipe_mem_size(run, j->bands);
-    if (!j->pool && pt_open(&j->pool, j->threads) != BR_OK) {
-        fprintf(stderr, "bitrain render: cannot start %d threads\n", j->threads);
-        return 0;
-    }
     if (render_spi_on(&j->spi)) {        /* the panel, band by band */
         br_status st;
         if (render_spi_open(&j->spi, j->w, j->h, j->fmt, err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err->msg); return 0; }
@@ -346,6 +347,7 @@ int cmd_render(int argc, char **argv)
     }
     rc = 0;
 done:
+    j->s.pool = NULL;
     pt_close(j->pool);
     if (j->use_pipe) ws_close(&j->ws);
     scene_close(&j->s);

@@ -163,15 +163,13 @@ static int draw_frame(view_app *a)
     memset(&fr, 0, sizeof fr);
     memset(&p, 0, sizeof p);
     bp.mode = BT_VIEW;
-    bp.c = &c;
-    bp.fr = a->s.rt.fr;
     bp.pixel_err_q8 = (int32_t)lround(v->pix_err * 256);
     bp.hyst_q8 = v->on[VT_HYST] ? 64 : 0;
     bp.morph_q8 = v->on[VT_MORPH] ? 128 : 0;
     t0 = now_s();
-    if (bt_extract(&a->s.tree, &bp, &a->s.mesh) != BR_OK) { fprintf(stderr, "bitrain view: mesh selection failed\n"); return 0; }
+    /* selection, strip and raster vertices, on the pool's threads */
+    if (scene_mesh(&a->s, &c, &bp) != BR_OK) { fprintf(stderr, "bitrain view: mesh selection failed\n"); return 0; }
     t1 = now_s();
-    rt_from_mesh(&a->s.rt, &a->s.mesh, a->s.verts);
     prim.kind = RS_STRIP; prim.n = a->s.mesh.ns; prim.idx = a->s.mesh.strip;
     fr.w = a->w; fr.h = a->h; fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32;
     fr.no_cull = v->on[VT_NOCULL];
@@ -525,6 +523,7 @@ int cmd_view(int argc, char **argv)
     if (rc >= 0) goto done;
     rc = 1;
     if (pt_open(&a.pool, o.threads) != BR_OK) { fprintf(stderr, "bitrain view: cannot start %d threads\n", o.threads); goto done; }
+    a.s.pool = a.pool;
     a.band_rows = o.bands;
     a.fixed = o.size_seen;
     a.w = o.size_seen ? o.size[0] : o.win[0];

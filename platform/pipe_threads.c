@@ -23,7 +23,7 @@ struct pt_pool {
     pthread_mutex_t lock;
     pthread_cond_t go;              /* a new frame (or quit) for the workers */
     pthread_cond_t turn;            /* sink_next moved on, or an error */
-    pthread_cond_t done;            /* a worker finished the frame */
+    pthread_cond_t done;            /* a worker finished the frame, or the last job ended */
     unsigned long gen;              /* frames started */
     int quit, finished;
     /* the frame in progress: read-only while it runs except where noted */
@@ -35,6 +35,9 @@ struct pt_pool {
     int32_t sink_next;              /* under lock: the band whose turn at the sink it is */
     br_status err;                  /* under lock: the first error */
     rs_band_stats total;            /* under lock */
+    pt_job job;                     /* pt_jobs in progress (NULL: bands) */
+    void *job_user;
+    uint32_t njobs, next_job, jobs_done;  /* under lock */
 };
 
 int pt_online_cores(void)
@@ -101,23 +104,45 @@ static void draw_bands(pt_pool *pool, pt_worker *wk)
     pthread_mutex_unlock(&pool->lock);
 }
 
+/* One thread's share of pt_jobs, called and returning with the lock held: take the next
+ * k of generation gen until none is left or a later generation began. */
+static void run_jobs(pt_pool *pool, unsigned long gen)
+{
+    while (pool->gen == gen && pool->next_job < pool->njobs) {
+        uint32_t k = pool->next_job++;
+        pt_job fn = pool->job;
+        void *user = pool->job_user;
+        pthread_mutex_unlock(&pool->lock);
+        fn(user, k);
+        pthread_mutex_lock(&pool->lock);
+        if (++pool->jobs_done == pool->njobs) pthread_cond_broadcast(&pool->done);
+    }
+}
+
+/* A worker: each generation is a frame of bands (pool->job NULL, every worker takes
+ * part and counts itself in `finished`) or a set of jobs (pool->job set; the caller
+ * waits for the jobs, not for the workers, so a worker that wakes after every job was
+ * taken just waits for the next generation).  pool->job and the generation change
+ * together under the lock. */
 static void *worker_main(void *arg)
 {
     pt_worker *wk = (pt_worker *)arg;
     pt_pool *pool = wk->pool;
     unsigned long seen = 0;
+    pthread_mutex_lock(&pool->lock);
     for (;;) {
-        pthread_mutex_lock(&pool->lock);
         while (pool->gen == seen && !pool->quit) pthread_cond_wait(&pool->go, &pool->lock);
-        if (pool->quit) { pthread_mutex_unlock(&pool->lock); return NULL; }
+        if (pool->quit) break;
         seen = pool->gen;
+        if (pool->job) { run_jobs(pool, seen); continue; }
         pthread_mutex_unlock(&pool->lock);
         draw_bands(pool, wk);
         pthread_mutex_lock(&pool->lock);
         pool->finished++;
         pthread_cond_signal(&pool->done);
-        pthread_mutex_unlock(&pool->lock);
     }
+    pthread_mutex_unlock(&pool->lock);
+    return NULL;
 }
 
 br_status pt_open(pt_pool **out, int n)
@@ -190,6 +215,47 @@ static br_status reserve(pt_pool *pool, int n, size_t bytes)
     return BR_OK;
 }
 
+/* Wakes the workers for the frame of bands just described, takes part, waits for all. */
+static void all_hands(pt_pool *pool, pt_worker *self)
+{
+    if (pool->n > 1) {
+        pthread_mutex_lock(&pool->lock);
+        pool->job = NULL;
+        pool->finished = 0;
+        pool->gen++;
+        pthread_cond_broadcast(&pool->go);
+        pthread_mutex_unlock(&pool->lock);
+    }
+    draw_bands(pool, self);
+    if (pool->n > 1) {
+        /* every worker takes part (some may find nothing left) */
+        pthread_mutex_lock(&pool->lock);
+        while (pool->finished < pool->started) pthread_cond_wait(&pool->done, &pool->lock);
+        pthread_mutex_unlock(&pool->lock);
+    }
+}
+
+void pt_jobs(pt_pool *pool, uint32_t n, pt_job fn, void *user)
+{
+    uint32_t k;
+    unsigned long gen;
+    if (!pool || pool->n == 1 || n < 2) {
+        for (k = 0; k < n; k++) fn(user, k);
+        return;
+    }
+    pthread_mutex_lock(&pool->lock);
+    pool->job = fn;
+    pool->job_user = user;
+    pool->njobs = n;
+    pool->next_job = 0;
+    pool->jobs_done = 0;
+    gen = ++pool->gen;
+    pthread_cond_broadcast(&pool->go);
+    run_jobs(pool, gen);
+    while (pool->jobs_done < n) pthread_cond_wait(&pool->done, &pool->lock);
+    pthread_mutex_unlock(&pool->lock);
+}
+
 br_status pt_run(pt_pool *pool, const rs_pipe *p, int32_t band_rows, rs_sink sink, void *sink_user,
                  rs_band_stats *total)
 {
@@ -210,20 +276,7 @@ br_status pt_run(pt_pool *pool, const rs_pipe *p, int32_t band_rows, rs_sink sin
     pool->sink_next = 0;
     pool->err = BR_OK;
     memset(&pool->total, 0, sizeof pool->total);
-    if (pool->n > 1) {
-        pthread_mutex_lock(&pool->lock);
-        pool->finished = 0;
-        pool->gen++;
-        pthread_cond_broadcast(&pool->go);
-        pthread_mutex_unlock(&pool->lock);
-    }
-    draw_bands(pool, &pool->w[0]);
-    if (pool->n > 1) {
-        /* every worker takes part in the frame (some may find no band left) */
-        pthread_mutex_lock(&pool->lock);
-        while (pool->finished < pool->started) pthread_cond_wait(&pool->done, &pool->lock);
-        pthread_mutex_unlock(&pool->lock);
-    }
+    all_hands(pool, &pool->w[0]);
     if (total) *total = pool->total;
     return pool->err;
 }

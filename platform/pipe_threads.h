@@ -49,6 +49,11 @@ int pt_threads(const pt_pool *pool);
 br_status pt_run(pt_pool *pool, const rs_pipe *p, int32_t band_rows, rs_sink sink, void *sink_user,
                  rs_band_stats *total);
 
+/* Runs fn(user, k) for k = 0 .. n - 1 on the pool's threads (each k once, any thread,
+ * taken in increasing order) and returns when all are done.  For work whose result
+ * does not depend on which thread ran which k (the bitree's parts). */
+typedef void (*pt_job)(void *user, uint32_t k);
+void pt_jobs(pt_pool *pool, uint32_t n, pt_job fn, void *user);
 /* Per-thread cost of the last pt_run: times[0 .. pt_threads) (thread 0 is the caller). */
 const pt_thread_time *pt_last_times(const pt_pool *pool);
 

@@ -224,12 +224,22 @@ static br_status chunks_reserve(scene *s, size_t n)
     return BR_OK;
 }
 
+#define SCENE_PART_TRI 65536
+
 br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err)
 {
     size_t mb = bt_mesh_mem_size(max_tri);
     s->mesh_mem = malloc(mb);
     if (!s->mesh_mem || bt_mesh_init(&s->mesh, max_tri, s->mesh_mem, mb) != BR_OK)
         return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for a mesh of %u triangles", max_tri);
+    {
+        uint32_t pt_tri = max_tri < SCENE_PART_TRI ? max_tri : SCENE_PART_TRI;
+        size_t pb = bt_parts_mem_size(pt_tri);
+        s->parts_mem = pb ? malloc(pb) : NULL;
+        if (!s->parts_mem || bt_parts_init(&s->parts, pt_tri, s->parts_mem, pb) != BR_OK)
+            return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for %d part meshes of %u triangles",
+                              BT_PARTS, pt_tri);
+    }
     s->verts = malloc(sizeof *s->verts * (s->mesh.cap_v ? s->mesh.cap_v : 1));
     s->cache = malloc(rs_cache_mem_size(s->mesh.cap_v ? s->mesh.cap_v : 1));
     if (!s->verts || !s->cache)
@@ -263,6 +273,7 @@ void scene_close(scene *s)
     free(s->chunks);
     free(s->tree_mem);
     free(s->mesh_mem);
+    free(s->parts_mem);
     free(s->lit_mem);
     free(s->texpx);
     dem_free(&s->f);
@@ -315,14 +326,53 @@ br_status scene_camera(const scene *s, const double eye[3], const double target[
     return cam_look_at(out, e, t, (int32_t)lround(fovy_deg * 1000), w, h, znear, zfar);
 }
 
+/* Parts are taken largest first (by the previous frame's sizes: the longest
+ * processing time rule), so no thread is left with a large part at the end;
+ * only the schedule depends on it, never the mesh. */
+static void job_part(void *user, uint32_t k)
+{
+    scene *s = (scene *)user;
+    bt_extract_part(s->parts, s->part_order[k]);
+}
+
+static void order_parts(scene *s, uint32_t n)
+{
+    uint32_t i, j;
+    for (i = 0; i < n; i++) s->part_order[i] = i;
+    for (i = 1; i < n; i++)           /* insertion sort, stable: n <= BT_PARTS */
+        for (j = i; j > 0 && s->part_cost[s->part_order[j - 1]] < s->part_cost[s->part_order[j]]; j--) {
+            uint32_t tmp = s->part_order[j];
+            s->part_order[j] = s->part_order[j - 1];
+            s->part_order[j - 1] = tmp;
+        }
+}
+
+static void job_join(void *user, uint32_t k)
+{
+    scene *s = (scene *)user;
+    uint32_t v0, nv;
+    bt_extract_join(s->parts, k, &v0, &nv);
+    rt_from_mesh_range(&s->rt, &s->mesh, v0, nv, s->verts);
+}
+
 br_status scene_mesh(scene *s, const cam *c, bt_params *p)
 {
     br_status st;
+    uint32_t n = 0;
     p->c = c;
     p->fr = s->rt.fr;
-    st = bt_extract(&s->tree, p, &s->mesh);
+    if (s->parts) {
+        uint32_t k;
+        st = bt_extract_begin(s->parts, &s->tree, p, &s->mesh, &n);
+        if (st != BR_OK) return st;
+        order_parts(s, n);
+        pt_jobs(s->pool, n, job_part, s);
+        for (k = 0; k < BT_PARTS; k++) s->part_cost[k] = bt_part_tris(s->parts, k);
+        st = bt_extract_end(s->parts, &n);
+    } else st = bt_extract(&s->tree, p, &s->mesh);
     if (st != BR_OK) return st;
-    rt_from_mesh(&s->rt, &s->mesh, s->verts);
+    if (n) pt_jobs(s->pool, n, job_join, s);
+    else rt_from_mesh(&s->rt, &s->mesh, s->verts);
     s->prim.kind = RS_STRIP;
     s->prim.n = s->mesh.ns;
     s->prim.idx = s->mesh.strip;

@@ -14,6 +14,7 @@
 #include "core/hf.h"
 #include "platform/err.h"
 #include "platform/load.h"
+#include "platform/pipe_threads.h"
 #include "raster/frame.h"
 #include "raster/raster.h"
 #include "raster/terrain.h"
@@ -49,6 +50,12 @@ typedef struct scene {
     rs_vertex *verts;                /* mesh.cap_v of them */
     rs_cvert *cache;                 /* vertex cache for the rasteriser */
     void *tree_mem, *mesh_mem;
+    /* the view extraction in parts (core/bitree.h bt_extract_begin), on pool's threads
+     * (NULL: the caller's only); the same mesh for every pool */
+    bt_parts *parts;
+    void *parts_mem;
+    pt_pool *pool;
+    uint32_t part_order[BT_PARTS], part_cost[BT_PARTS];   /* the parts' schedule (scene_mesh) */
     void *lit_mem;                   /* the vertex colour cache (rt_scene_cache), 4 bytes a sample */
     /* full-grid path (scene_grid): row strips of every step-th sample */
     rs_vertex *grid_v;
@@ -70,7 +77,8 @@ br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o
 /* Builds the bitree (exact metric) once. */
 br_status scene_tree(scene *s, br_err *err);
 /* Allocates the mesh (max_tri triangles; beyond it the bitree falls back to its
- * budget mode), its raster vertices, the vertex cache, the chunk table (so that
+ * budget mode), the part meshes of the view extraction (min(max_tri, 65536) triangles
+ * each; a frame with a larger part is extracted serially), its raster vertices, the vertex cache, the chunk table (so that
  * rs_render_band skips the chunks of triangles that miss a band) and the per-sample colour
  * cache of rt_scene_cache (4 bytes a sample; none when that allocation fails). */
 br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err);
@@ -91,7 +99,8 @@ br_status scene_camera(const scene *s, const double eye[3], const double target[
                        int32_t w, int32_t h, cam *out);
 /* The bitree mesh for c (p->mode BT_VIEW: pixel error, hysteresis, geomorph in p;
  * BT_FIDELITY: p->max_err; the camera and frame are filled in here) and its raster
- * vertices become the scene's terrain.  Needs scene_tree and scene_reserve. */
+ * vertices become the scene's terrain.  Needs scene_tree and scene_reserve.  In
+ * BT_VIEW mode the extraction runs in parts, and with the vertices, on s->pool. */
 br_status scene_mesh(scene *s, const cam *c, bt_params *p);
 /* The full grid, every step-th sample (step >= 1) as row strips, becomes the scene's
  * terrain (allocated here, once per step; scene_close frees it). */

@@ -42,7 +42,9 @@ typedef struct view_state {
 /* Frame figures for the HUD (the last frame, smoothed where said). */
 typedef struct view_stats {
     double fps;                 /* smoothed */
-    double select_ms, vert_ms, raster_ms, frame_ms;     /* smoothed */
+    double select_ms, vert_ms, raster_ms, frame_ms;     /* smoothed; select: selection, strip and
+                                                           raster vertices (scene_mesh, threaded),
+                                                           vertices: their transform */
     uint32_t tris;
     double tris_per_s;          /* tris / frame_ms, smoothed */
     int w, h, band_rows, threads, cores;

@@ -161,6 +161,11 @@ void rt_vertex(const rt_scene *s, int32_t x, int32_t y, int32_t z, rs_vertex *ou
 
 void rt_from_mesh(const rt_scene *s, const bt_mesh *m, rs_vertex *out)
 {
+    rt_from_mesh_range(s, m, 0, m->nv, out);
+}
+
+void rt_from_mesh_range(const rt_scene *s, const bt_mesh *m, uint32_t first, uint32_t n, rs_vertex *out)
+{
     uint32_t i;
-    for (i = 0; i < m->nv; i++) rt_vertex(s, m->v[i].x, m->v[i].y, m->v[i].z, &out[i]);
+    for (i = first; i < first + n; i++) rt_vertex(s, m->v[i].x, m->v[i].y, m->v[i].z, &out[i]);
 }

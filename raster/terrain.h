@@ -75,5 +75,8 @@ void rt_vertex(const rt_scene *s, int32_t x, int32_t y, int32_t z, rs_vertex *ou
 /* The bitree mesh's vertices (m->nv of them) into out; with the cache, a vertex at
  * its real height (BT_S) takes its colour from it. */
 void rt_from_mesh(const rt_scene *s, const bt_mesh *m, rs_vertex *out);
+/* The same for m->v[first .. first + n) into out[first .. first + n) (threads may
+ * fill disjoint ranges at once). */
+void rt_from_mesh_range(const rt_scene *s, const bt_mesh *m, uint32_t first, uint32_t n, rs_vertex *out);
 
 #endif

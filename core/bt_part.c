@@ -1,0 +1,332 @@
+/* core/bt_part.c — the view-dependent extraction cut into a fixed set of parts
+ * that threads may extract concurrently (contract: core/bitree.h, "Partitioned
+ * view extraction").
+ *
+ * Same selection as bt_extract.  A part is the subtree of one triangle at depth
+ * BTI_PART_DEPTH below the two roots (core/bt_mesh.c bti_part_roots); its rec
+ * makes the serial walk's decisions in the serial walk's order, because every
+ * decision is a function of the diamond, the camera and ST_PREV alone (core/
+ * bt_mesh.c decide_memo) and ST_PREV changes only in bt_extract_end.  So the
+ * real triangles of the joined strip are the serial walk's leaves in order.
+ *
+ * Data races: between begin and end the parts write only their own part mesh and
+ * extraction context and read t, p and ps->root; a diamond on the edge of two
+ * parts is listed by both (its split is decided identically in both), and
+ * bt_extract_end, alone, sets ST_PREV on every listed id (idempotent).  Joins
+ * write disjoint ranges of m->v and m->strip (the offsets of bt_extract_end). */
+#include <string.h>
+#include "core/bitree.h"
+#include "core/bt_int.h"
+#include "core/bt_em.h"
+
+static uint64_t round8(uint64_t v) { return (v + 7) & ~(uint64_t)7; }
+
+size_t bt_parts_mem_size(uint32_t part_tri)
+{
+    size_t mb = bt_mesh_mem_size(part_tri);
+    uint64_t sz;
+    if (!mb) return 0;
+    sz = round8(sizeof(bt_parts)) + (uint64_t)BT_PARTS * round8(mb);
+    if (sz > (uint64_t)SIZE_MAX) return 0;
+    return (size_t)sz;
+}
+
+br_status bt_parts_init(bt_parts **out, uint32_t part_tri, void *mem, size_t mem_bytes)
+{
+    uint8_t *q = (uint8_t *)mem;
+    size_t mb = bt_mesh_mem_size(part_tri), need = bt_parts_mem_size(part_tri);
+    bt_parts *ps;
+    int k;
+    if (!out || !mem || !need || mem_bytes < need || ((uintptr_t)mem & 7) != 0) return BR_E_ARG;
+    ps = (bt_parts *)mem;
+    memset(ps, 0, sizeof *ps);
+    ps->part_tri = part_tri;
+    q += round8(sizeof(bt_parts));
+    for (k = 0; k < BT_PARTS; k++, q += round8(mb))
+        if (bt_mesh_init(&ps->slot[k].m, part_tri, q, mb) != BR_OK) return BR_E_ARG;
+    ps->hfull = ps->slot[0].m.hmask + 1;
+    ps->mfull = ps->slot[0].m.memo_mask + 1;
+    *out = ps;
+    return BR_OK;
+}
+
+br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh *m, uint32_t *nparts)
+{
+    br_status s;
+    *nparts = 0;
+    if (!ps || !m || !m->v) return BR_E_ARG;
+    ps->t = t; ps->p = p; ps->m = m;
+    ps->serial = 1;
+    ps->nroot = 0;
+    s = bti_setup(&ps->e0, t, p);
+    if (s != BR_OK) return s;
+    if (p->mode != BT_VIEW || ps->e0.reorder) return bt_extract(t, p, m);
+    ps->serial = 0;
+    ps->e0.rec_splits = 2;
+    bti_part_roots(&ps->e0, ps);
+    *nparts = ps->nroot;
+    return BR_OK;
+}
+
+/* Empties part k for a walk with a vertex hash of hs slots and a decision memo of
+ * ms slots, the first ones of the allocated tables.  Only speed depends on the
+ * sizes: vertices are numbered in first-use order, and the memo is a cache.  A
+ * hash slot holds base + 1 + index (core/bt_mesh.c reset_mesh) with the base of
+ * ps->hbase[k], which only grows, so slots of any earlier walk read as empty
+ * whatever the size then; both tables are cleared whole when a counter wraps. */
+static void part_reset(bt_parts *ps, uint32_t k, uint32_t hs, uint32_t ms, bti_extract *e)
+{
+    bt_mesh *pm = &ps->slot[k].m;
+    uint32_t hl;
+    if (ps->hbase[k] > 0xFFFFFFFFu - pm->nv - pm->cap_v - 1) {
+        memset(pm->hash, 0, (size_t)ps->hfull * 4);
+        ps->hbase[k] = 0;
+    } else ps->hbase[k] += pm->nv;
+    if (++pm->memo_gen > 0xFFFFu) {
+        memset(pm->memo, 0, (size_t)ps->mfull * 8);
+        pm->memo_gen = 1;
+    }
+    pm->hmask = hs - 1;
+    pm->memo_mask = ms - 1;
+    pm->nv = 0; pm->ns = 0; pm->ntri = 0; pm->nline = 0; pm->nfict = 0; pm->overflow = 0;
+    pm->nsplits = 0;
+    *e = ps->e0;
+    e->m = pm;
+    e->snap = ps->snap[k];
+    e->hbase = ps->hbase[k];
+    e->direct = (uint64_t)e->n * (uint64_t)e->n <= 2 * (uint64_t)hs;
+    hl = pm->hmask - (pm->hmask >> 2);
+    e->lim_nv = (hl < pm->cap_v ? hl : pm->cap_v) - 6;
+    e->lim_ns = pm->cap_s - 10;
+}
+
+void bt_extract_part(bt_parts *ps, uint32_t k)
+{
+    bti_extract *e;
+    uint32_t hs = 1024, ms;
+    if (!ps || ps->serial || k >= ps->nroot) return;
+    e = &ps->slot[k].e;
+    /* tables for twice last frame's vertices (load <= 1/4 of the hash): a part's
+     * hash and memo stay in cache where the allocated ones (sized for part_tri)
+     * would spread its few thousand vertices over megabytes */
+    while (hs < 8 * (uint64_t)ps->hint_nv[k] && hs < ps->hfull) hs <<= 1;
+    if (hs > ps->hfull) hs = ps->hfull;
+    ms = hs < ps->mfull ? hs : ps->mfull;
+    part_reset(ps, k, hs, ms, e);
+    bti_part_walk(e, &ps->root[k]);
+    if (e->full && hs < ps->hfull) {     /* the small hash filled up: again with all of it */
+        part_reset(ps, k, ps->hfull, ps->mfull, e);
+        bti_part_walk(e, &ps->root[k]);
+    }
+    ps->hint_nv[k] = ps->slot[k].m.nv;
+}
+
+/* Old marks go, the listed splits become ST_PREV and m's id list (bt_extract
+ * reads it next frame); a list that does not fit clears every mark, as
+ * bt_extract does when its list overflows. */
+static void hysteresis(bt_parts *ps, uint64_t nsp)
+{
+    bt_mesh *m = ps->m;
+    bt_tree *t = ps->t;
+    uint32_t *ids = bti_ids_of(m), i, k, n = 0;
+    for (i = 0; i < m->nsplits; i++) t->st[ids[i]] &= (uint8_t)~ST_PREV;
+    m->nsplits = 0;
+    if (nsp > bti_heap_cap(m)) {
+        size_t nn = (size_t)t->n * t->n, j;
+        for (j = 0; j < nn; j++) t->st[j] &= (uint8_t)~(ST_CUR | ST_PREV);
+        return;
+    }
+    for (i = 0; i < ps->ntop; i++) ids[n++] = ps->top_ids[i];
+    for (k = 0; k < ps->nroot; k++) {
+        const bt_mesh *pm = &ps->slot[k].m;
+        memcpy(ids + n, bti_ids_of(pm), (size_t)pm->nsplits * 4);
+        n += pm->nsplits;
+    }
+    for (i = 0; i < n; i++) t->st[ids[i]] |= ST_PREV;
+    m->nsplits = n;
+}
+
+/* ------------------------------------------------------------ seams
+ * Each part's writer started afresh, where the serial writer would have gone on
+ * from the previous part's last leaf (pending, written with this part's first as
+ * its lookahead).  At each seam the serial writer's own code (btw_write_leaf) is
+ * run on, from the state the strip so far ends in, over the part's first leaves
+ * (the snapshots), until its state equals the part's own writer's state after
+ * the same leaf: the same last two strip vertices in the same order at the same
+ * parity, the same pending leaf, no open bridge plan.  From there both writers
+ * make the same decisions on the same input, so the rest of the part's strip is
+ * the serial strip.  The writer tells vertices apart by index; a vertex on the
+ * seam is in both parts' lists, so the seam writer identifies vertices by (x, y)
+ * among those it has seen at this seam (recent[]), as the serial dedup would. */
+static int same_xy(const bt_mesh *m, uint32_t a, uint32_t b)
+{
+    return m->v[a].x == m->v[b].x && m->v[a].y == m->v[b].y;
+}
+
+static uint32_t seam_v(bt_parts *ps, uint32_t g)
+{
+    uint32_t i;
+    for (i = 0; i < ps->nrecent; i++)
+        if (same_xy(ps->m, ps->recent[i], g)) return ps->recent[i];
+    if (ps->nrecent < sizeof ps->recent / sizeof ps->recent[0]) ps->recent[ps->nrecent++] = g;
+    return g;
+}
+
+static void seam_leaf(bt_parts *ps, const bti_leaf *L, uint32_t off, bti_leaf *out)
+{
+    out->ia = seam_v(ps, L->ia + off); out->ic = seam_v(ps, L->ic + off); out->ib = seam_v(ps, L->ib + off);
+    out->o0 = seam_v(ps, L->o0 + off); out->o1 = seam_v(ps, L->o1 + off); out->other = seam_v(ps, L->other + off);
+}
+
+static int same_leaf(const bt_mesh *m, const bti_leaf *a, const bti_leaf *b, uint32_t off)
+{
+    return same_xy(m, a->ia, b->ia + off) && same_xy(m, a->ic, b->ic + off) && same_xy(m, a->ib, b->ib + off)
+        && same_xy(m, a->o0, b->o0 + off) && same_xy(m, a->o1, b->o1 + off) && same_xy(m, a->other, b->other + off);
+}
+
+/* Sets the seam writer fx to part k's state at its end (indices + voff[k]). */
+static void take_end(bt_parts *ps, uint32_t k)
+{
+    const bti_extract *pe = &ps->slot[k].e;
+    bti_extract *fx = &ps->fx;
+    uint32_t off = ps->voff[k];
+    int i;
+    fx->has_pend = pe->has_pend;
+    fx->pend = pe->pend;
+    fx->pend.ia += off; fx->pend.ic += off; fx->pend.ib += off;
+    fx->pend.o0 += off; fx->pend.o1 += off; fx->pend.other += off;
+    fx->nplan = pe->nplan;
+    for (i = 0; i < pe->nplan; i++) fx->plan[i] = pe->plan[i] + off;
+}
+
+/* The seam before part k; the strip so far is m->strip[0 .. m->ns) (its last two
+ * entries written).  0, or -1 when the part's snapshots ran out first. */
+static int seam(bt_parts *ps, uint32_t k)
+{
+    bti_extract *fx = &ps->fx;
+    bt_mesh *m = ps->m;
+    const bt_mesh *pm = &ps->slot[k].m;
+    uint32_t off = ps->voff[k], i;
+    int j;
+    ps->nrecent = 0;
+    if (m->ns >= 2) { (void)seam_v(ps, m->strip[m->ns - 2]); (void)seam_v(ps, m->strip[m->ns - 1]); }
+    if (fx->has_pend) { (void)seam_v(ps, fx->pend.ia); (void)seam_v(ps, fx->pend.ic); (void)seam_v(ps, fx->pend.ib); }
+    for (j = 0; j < fx->nplan; j++) (void)seam_v(ps, fx->plan[j]);
+    for (i = 0; i < ps->slot[k].e.nsnap; i++) {
+        const bti_snap *sn = &ps->snap[k][i];
+        bti_leaf L;
+        seam_leaf(ps, &sn->L, off, &L);
+        if (fx->has_pend && btw_write_leaf(fx, &fx->pend, &L)) fx->has_pend = 0;
+        else { fx->pend = L; fx->has_pend = 1; }
+        if (sn->ns >= 2 && m->ns >= 2 && ((m->ns - sn->ns) & 1) == 0 && fx->nplan == 0 && sn->nplan == 0
+            && fx->has_pend == sn->has_pend && (!sn->has_pend || same_leaf(m, &fx->pend, &sn->pend, off))
+            && same_xy(m, m->strip[m->ns - 2], sn->t0 + off) && same_xy(m, m->strip[m->ns - 1], sn->t1 + off)) {
+            ps->soff[k] = m->ns;
+            ps->skip[k] = sn->ns;
+            m->strip[m->ns - 2] = sn->t0 + off;    /* the part's own indices from here on */
+            m->strip[m->ns - 1] = sn->t1 + off;
+            m->ns += pm->ns - sn->ns;
+            if (pm->ns >= 2) { m->strip[m->ns - 2] = pm->strip[pm->ns - 2] + off; m->strip[m->ns - 1] = pm->strip[pm->ns - 1] + off; }
+            take_end(ps, k);
+            return 0;
+        }
+    }
+    if (ps->slot[k].e.count > BTI_SNAPS) return -1;
+    ps->soff[k] = m->ns;       /* every leaf of the part went through the seam writer */
+    ps->skip[k] = pm->ns;
+    return 0;
+}
+
+/* Joins the parts' strips (seams), or returns -1 (nothing usable: a seam did not
+ * settle within the snapshots, or the strip would not fit). */
+static int join_strips(bt_parts *ps)
+{
+    bt_mesh *m = ps->m;
+    bti_extract *fx = &ps->fx;
+    uint32_t k;
+    int any = 0;
+    *fx = ps->e0;
+    fx->m = m;
+    fx->lim_ns = m->cap_s - 10;
+    fx->has_pend = 0;
+    fx->nplan = 0;
+    m->ns = 0;
+    m->nline = 0;
+    for (k = 0; k < ps->nroot; k++) {
+        const bt_mesh *pm = &ps->slot[k].m;
+        if (ps->slot[k].e.count == 0) { ps->soff[k] = m->ns; ps->skip[k] = pm->ns; continue; }
+        if ((uint64_t)m->ns + pm->ns + 32 * BTI_SNAPS + 64 > m->cap_s) return -1;
+        if (!any) {
+            ps->soff[k] = 0;
+            ps->skip[k] = 0;
+            m->ns = pm->ns;
+            if (pm->ns >= 2) { m->strip[m->ns - 2] = pm->strip[pm->ns - 2]; m->strip[m->ns - 1] = pm->strip[pm->ns - 1]; }
+            take_end(ps, k);
+            any = 1;
+        } else if (seam(ps, k) != 0) return -1;
+    }
+    if ((uint64_t)m->ns + 64 > m->cap_s) return -1;
+    btw_flush(fx);
+    return 0;
+}
+
+br_status bt_extract_end(bt_parts *ps, uint32_t *njoin)
+{
+    bt_mesh *m;
+    uint64_t nv = 0, ntri = 0, nsp;
+    uint32_t k, nfict = 0;
+    *njoin = 0;
+    if (!ps || ps->serial) return BR_OK;
+    m = ps->m;
+    nsp = ps->ntop;
+    for (k = 0; k < ps->nroot; k++) {
+        const bt_mesh *pm = &ps->slot[k].m;
+        if (ps->slot[k].e.full || ps->slot[k].e.lost) break;
+        nsp += pm->nsplits;
+        ps->voff[k] = (uint32_t)nv;
+        nv += pm->nv;
+        ntri += pm->ntri;
+        nfict += pm->nfict;
+    }
+    if (k == ps->nroot && nv <= m->cap_v && ntri <= m->max_tri) {
+        (void)bti_reset_mesh(m);
+        for (k = 0; k < ps->nroot; k++)
+            memcpy(m->v + ps->voff[k], ps->slot[k].m.v, (size_t)ps->slot[k].m.nv * sizeof *m->v);
+        m->nv = (uint32_t)nv;
+        if (join_strips(ps) != 0) k = 0;
+    } else k = 0;
+    if (k != ps->nroot) {
+        /* a part is full, a seam did not settle, or the joined mesh would not fit:
+         * the serial extraction decides, with its fallback to the budget (t->st
+         * is as the previous frame left it) */
+        ps->serial = 1;
+        return bt_extract(ps->t, ps->p, m);
+    }
+    hysteresis(ps, nsp);
+    m->ntri = (uint32_t)ntri;
+    m->nline = m->ns >= 3 ? m->ns - 2 - m->ntri : 0;
+    m->nfict = nfict;
+    m->overflow = 0;
+    *njoin = ps->nroot;
+    return BR_OK;
+}
+
+void bt_extract_join(bt_parts *ps, uint32_t k, uint32_t *v0, uint32_t *nv)
+{
+    const bt_mesh *pm;
+    uint32_t *out, off, i;
+    *v0 = 0;
+    *nv = 0;
+    if (!ps || ps->serial || k >= ps->nroot) return;
+    pm = &ps->slot[k].m;
+    off = ps->voff[k];
+    out = ps->m->strip + ps->soff[k];
+    for (i = ps->skip[k]; i < pm->ns; i++) out[i - ps->skip[k]] = pm->strip[i] + off;
+    *v0 = off;
+    *nv = pm->nv;
+}
+
+uint32_t bt_part_tris(const bt_parts *ps, uint32_t k)
+{
+    return ps && !ps->serial && k < ps->nroot ? ps->slot[k].m.ntri : 0;
+}
