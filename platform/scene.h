@@ -77,9 +77,11 @@ br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o
 /* Builds the bitree (exact metric) once. */
 br_status scene_tree(scene *s, br_err *err);
 /* Allocates the mesh (max_tri triangles; beyond it the bitree falls back to its
- * budget mode), the part meshes of the view extraction (min(max_tri, 65536) triangles
- * each; a frame with a larger part is extracted serially), its raster vertices, the vertex cache, the chunk table (so that
- * rs_render_band skips the chunks of triangles that miss a band) and the per-sample colour
+ * budget mode), the part meshes of the view extraction (min(max_tri, 32768) triangles
+ * each, about 5.6 MB apiece of which 1 MB is written at once: 32 parts; a frame with a
+ * larger part is extracted serially, the same mesh), its raster vertices, the vertex
+ * cache, the chunk table (so that bands skip the chunks of triangles that miss them) and
+ * the per-sample colour
  * cache of rt_scene_cache (4 bytes a sample; none when that allocation fails). */
 br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err);
 void scene_close(scene *s);
