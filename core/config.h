@@ -46,7 +46,7 @@
  * format XRGB8888 / RGB565, depth size 32 / 16 bits, textured frames, and the tests'
  * write-counting variant.  Each left-out variant saves its copy of the triangle code
  * (about 10-20 KB of flash each at -O2; the counting one is left out of the shipped
- * library and compiled by tests/support/raster_count.c); rs_render_band refuses a frame
+ * library and compiled by tests/support/raster_count.c); rs_draw_band refuses a frame
  * of a left-out variant with BR_E_UNSUPPORTED.  A board drawing RGB565 with 16-bit
  * depth: -DRS_WITH_888=0 -DRS_WITH_Z32=0 -DRS_WITH_TEX=0.  Pixels: unchanged (a variant
  * is drawn by its own copy or refused). */

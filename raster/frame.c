@@ -128,10 +128,3 @@ br_status rs_pass_terrain(rs_pass *pass, const rs_frame *f)
     pass->user = f;
     return BR_OK;
 }
-
-/* ---------------------------------------------------------------- compatibility */
-
-br_status rs_render_band(const rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth)
-{
-    return rs_draw_band(f, y0, rows, color, stride, depth, NULL);
-}

@@ -212,10 +212,6 @@ typedef struct rs_band_stats {
 br_status rs_draw_band(const rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth,
                        rs_band_stats *st);
 
-/* rs_draw_band without statistics, for callers not yet on the frame driver
- * (raster/frame.h); new code draws frames with rs_pipe_run or rs_pipe_band. */
-br_status rs_render_band(const rs_frame *f, int32_t y0, int32_t rows, void *color, size_t stride, void *depth);
-
 /* 1 when this build draws frames of this pixel format, depth size and texturing.
  * Every combination is compiled by default; boards with little flash leave variants out
  * with core/config.h's RS_WITH_* knobs (each is about 20 KB of code on x86-64). */

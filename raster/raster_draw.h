@@ -2,11 +2,11 @@
  * one-triangle entry (tri_box, tri_raster), the strip pairs (tri_quad, pair_tiny,
  * pair_wide, tri_pair, quad_shade), the pre-pass's steps (pp_steps) and the strip and
  * list loop (draw_strips), with its one named copy per variant (draw_888_z32 ..
- * draw_count), which raster.c's draw_for hands to rs_render_band.  raster.c's own,
+ * draw_count), which raster.c's draw_for hands to rs_draw_band.  raster.c's own,
  * included once, after raster_tiny.h and raster_general.h; every function takes the
  * variant as its constant last argument (raster_pixel.h).
  *
- * From the band loop to a pixel: rs_render_band -> draw_for(...) = draw_<variant> ->
+ * From the band loop to a pixel: rs_draw_band -> draw_for(...) = draw_<variant> ->
  * draw_strips -> (pre-pass chunk) pp_steps -> quad_shade -> tiny_px, or (per pair)
  * tri_pair -> pair_tiny -> tri_quad -> quad_edges -> tiny_shade -> tiny_px, or (one
  * triangle) tri_raster -> tri_box -> tri_tiny_own / tri_general -> gen_tri ->

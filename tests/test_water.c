@@ -113,7 +113,7 @@ static void test_clip_plane(void)
     CHECK(st.clipped >= 1);
     f.clip_z_on = 0;            /* without the plane both halves show */
     CHECK_EQ(rs_frame_prepare(&f), BR_OK);
-    CHECK_EQ(rs_render_band(&f, 0, H, col, W * 4, dep), BR_OK);
+    CHECK_EQ(rs_draw_band(&f, 0, H, col, W * 4, dep, NULL), BR_OK);
     below = 0;
     for (y = H / 2; y < H; y++)
         for (x = 0; x < W; x++) below += (col[y * W + x] & 0xffffffu) == 0xff0000u;

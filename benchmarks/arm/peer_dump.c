@@ -1,7 +1,7 @@
 /* benchmarks/arm/peer_dump.c — writes the peer scene (benchmarks/peer_scene.c, built from
  * fuji.png with libpng) as the raw file of peer_file.h, for peer_run on a foreign
  * architecture.  With CAM and WxH it also renders that frame the way `bitrain bench`
- * does (peer_frame + rs_frame_prepare + rs_render_band) and prints its checksum
+ * does (peer_frame + rs_frame_prepare + rs_draw_band) and prints its checksum
  * line, the reference peer_run's output must equal on every target.
  *
  *   peer_dump FUJI.png OUT.bin [A|B WxH]
