@@ -531,6 +531,37 @@ static inline int32_t next_water(const uint8_t *wc, int32_t x, int32_t w, const 
     return x;
 }
 
+/* Row y's water-pass scratch in the band: colour (returned) and depth (*wd); NULL where
+ * the pass drew nothing there (water_run seeds only the water rows wlo .. whi). */
+static inline const uint8_t *water_row(const rw_frame *r, const rs_band *b, const uint8_t *wcol, const uint8_t *wdep,
+                                       int32_t wy0, int32_t wrows, int32_t y, size_t dbp, const uint8_t **wd)
+{
+    if (!wcol || y < wy0 || y >= wy0 + wrows || y < r->wlo || y > r->whi) return NULL;
+    *wd = wdep + (size_t)(y - wy0) * (size_t)b->w * dbp;
+    return wcol + (size_t)(y - wy0) * b->stride;
+}
+
+/* 1 when the water of body id at pixel (x, y) shows over the terrain, depths dt (terrain)
+ * and dw (water) in buffer units (<< dsh: 30-bit): the water is nearer; or the two tie
+ * (RW_DEPTH_TIE) and the plane's point is wet; or the terrain is nearer within the shore
+ * bound and its point on the ray is wet (the LOD over water). */
+static inline int water_shows(const rw_frame *r, int32_t x, int32_t y, uint32_t id, uint32_t dt, uint32_t dw,
+                              int32_t dsh)
+{
+    if (dw + RW_DEPTH_TIE > dt) return dw > dt || shore_wet(r, x, y, id, dw << dsh, dw << dsh);
+    if (((dt - dw) << dsh) > r->shore_dd[id]) return 0;
+    if (r->p.shore_bound && r->p.shore_w
+        && r->ebody[id] * (int64_t)((dt - dw) << dsh) > r->p.shore_w * (int64_t)(dt << dsh) + r->p.shore_c) return 0;
+    return shore_wet(r, x, y, id, dt << dsh, dw << dsh);
+}
+
+/* Writes a pixel the hook computed (RGB565: dithered). */
+static inline void put_px(uint8_t *crow, int32_t x, int32_t y, uint32_t rgb, const int32_t fmt)
+{
+    if (fmt == RS_FMT_RGB565) ((uint16_t *)(void *)crow)[x] = pack565_dither(rgb, x, y);
+    else ((uint32_t *)(void *)crow)[x] = rgb;
+}
+
 /* The hook when the terrain frame carries its own fog and sky (rw_fog_vertices): only
  * water pixels change, fogged by the water's depth.  Same specialisation as post_rows. */
 static inline void water_rows_only(const rw_frame *r, rs_band *b, const refl_view *rv, const uint8_t *wcol,
@@ -543,25 +574,18 @@ static inline void water_rows_only(const rw_frame *r, rs_band *b, const refl_vie
     for (row = 0; row < b->rows; row++) {
         const int32_t y = b->y0 + row;
         uint8_t *crow = (uint8_t *)b->color + (size_t)row * b->stride;
-        const uint8_t *drow = (const uint8_t *)b->depth + (size_t)row * (size_t)b->w * dbp, *wc, *wd;
-        if (!wcol || y < wy0 || y >= wy0 + wrows || y < r->wlo || y > r->whi) continue;
-        wc = wcol + (size_t)(y - wy0) * b->stride;
-        wd = wdep + (size_t)(y - wy0) * (size_t)b->w * dbp;
+        const uint8_t *drow = (const uint8_t *)b->depth + (size_t)row * (size_t)b->w * dbp, *wd = NULL;
+        const uint8_t *wc = water_row(r, b, wcol, wdep, wy0, wrows, y, dbp, &wd);
+        if (!wc) continue;
         for (x = next_water(wc, 0, b->w, fmt); x < b->w; x = next_water(wc, x + 1, b->w, fmt)) {
             const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
             uint32_t rgb, d, fw;
-            if (dw + RW_DEPTH_TIE <= dt) {      /* nearer terrain: land, unless the LOD over water */
-                if (((dt - dw) << dsh) > r->shore_dd[id]) continue;
-                if (r->p.shore_bound && r->p.shore_w && r->ebody[id] * (int64_t)((dt - dw) << dsh)
-                                        > r->p.shore_w * (int64_t)(dt << dsh) + r->p.shore_c) continue;
-                if (!shore_wet(r, x, y, id, dt << dsh, dw << dsh)) continue;
-            } else if (dw <= dt && !shore_wet(r, x, y, id, dw << dsh, dw << dsh)) continue;   /* a tie: the map decides */
+            if (!water_shows(r, x, y, id, dt, dw, dsh)) continue;
             rgb = water_px(r, rv, x, y, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id);
             d = dw << dsh;
             if (r->p.fog_on && (d >> r->fog_sh) <= RW_TAB && (fw = r->fog[d >> r->fog_sh]) != 0)
                 rgb = mix_rgb(rgb, r->sky[y], fw);
-            if (fmt == RS_FMT_RGB565) ((uint16_t *)(void *)crow)[x] = pack565_dither(rgb, x, y);
-            else ((uint32_t *)(void *)crow)[x] = rgb;
+            put_px(crow, x, y, rgb, fmt);
         }
     }
 }
@@ -578,12 +602,8 @@ static inline void post_rows(const rw_frame *r, rs_band *b, const refl_view *rv,
         const int32_t y = b->y0 + row;
         uint8_t *crow = (uint8_t *)b->color + (size_t)row * b->stride;
         const uint8_t *drow = (const uint8_t *)b->depth + (size_t)row * (size_t)b->w * dbp;
-        const uint8_t *wc = NULL, *wd = NULL;
+        const uint8_t *wd = NULL, *wc = water_row(r, b, wcol, wdep, wy0, wrows, y, dbp, &wd);
         const uint32_t sky = r->sky[y];
-        if (wcol && y >= wy0 && y < wy0 + wrows && y >= r->wlo && y <= r->whi) {   /* water_run seeds only these */
-            wc = wcol + (size_t)(y - wy0) * b->stride;
-            wd = wdep + (size_t)(y - wy0) * (size_t)b->w * dbp;
-        }
         for (x = 0; x < b->w; x++) {
             const uint32_t dt = get_depth(depth, drow, x);
             uint32_t rgb, d, fw;
@@ -599,7 +619,7 @@ static inline void post_rows(const rw_frame *r, rs_band *b, const refl_view *rv,
                 d = dt << dsh;
                 if (wc) {
                     const uint32_t id = get_id(fmt, wc, x), dw = get_depth(depth, wd, x);
-                    if (id && (dw > dt || shore_wet(r, x, y, id, dw + RW_DEPTH_TIE > dt ? dw << dsh : dt << dsh, dw << dsh))) {
+                    if (id && water_shows(r, x, y, id, dt, dw, dsh)) {
                         rgb = water_px(r, rv, x, y, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id);
                         d = dw << dsh;
                         changed = 1;
@@ -611,9 +631,7 @@ static inline void post_rows(const rw_frame *r, rs_band *b, const refl_view *rv,
                     changed = 1;
                 }
             }
-            if (!changed) continue;
-            if (fmt == RS_FMT_RGB565) ((uint16_t *)(void *)crow)[x] = pack565_dither(rgb, x, y);
-            else ((uint32_t *)(void *)crow)[x] = rgb;
+            if (changed) put_px(crow, x, y, rgb, fmt);
         }
     }
 }
