@@ -508,18 +508,24 @@ static void corner(const bt_tree *t, int32_t x, int32_t y, pt *q)
     q->x = x; q->y = y; q->z = zreal(t, x, y); q->morph = BT_MORPH_ONE; q->idx = NO_IDX;
 }
 
+/* The grid's corners A (0, 0), B (S, 0), C (S, S), D (0, S): the two roots are (A, B, C)
+ * entered through a leg and left through the hypotenuse, then (C, D, A) the reverse. */
+static void corners(const bti_extract *e, pt q[4])
+{
+    corner(e->t, 0, 0, &q[0]); corner(e->t, e->S, 0, &q[1]);
+    corner(e->t, e->S, e->S, &q[2]); corner(e->t, 0, e->S, &q[3]);
+}
+
 static void run(bti_extract *e)
 {
-    pt A, B, C, D;
-    int32_t S = e->S;
-    corner(e->t, 0, 0, &A); corner(e->t, S, 0, &B);
-    corner(e->t, S, S, &C); corner(e->t, 0, S, &D);
+    pt q[4];
+    corners(e, q);
     e->has_pend = 0;
     e->nplan = 0;
-    if (e->fid && e->nonvoid) { rec_fid(e, &A, &B, &C, 0, 1); rec_fid(e, &C, &D, &A, 1, 0); }
+    if (e->fid && e->nonvoid) { rec_fid(e, &q[0], &q[1], &q[2], 0, 1); rec_fid(e, &q[2], &q[3], &q[0], 1, 0); }
     else {
-        rec(e, &A, &B, &C, 0, 1, 0x3f);
-        rec(e, &C, &D, &A, 1, 0, 0x3f);
+        rec(e, &q[0], &q[1], &q[2], 0, 1, 0x3f);
+        rec(e, &q[2], &q[3], &q[0], 1, 0, 0x3f);
     }
     btw_flush(e);
 }
@@ -558,14 +564,12 @@ static void top(bti_extract *e, bt_parts *ps, pt *a, pt *c, pt *b, int in_hyp, i
 
 void bti_part_roots(bti_extract *e, bt_parts *ps)
 {
-    pt A, B, C, D;
-    int32_t S = e->S;
-    corner(e->t, 0, 0, &A); corner(e->t, S, 0, &B);
-    corner(e->t, S, S, &C); corner(e->t, 0, S, &D);
+    pt q[4];
+    corners(e, q);
     ps->nroot = 0;
     ps->ntop = 0;
-    top(e, ps, &A, &B, &C, 0, 1, 0x3f, 0);
-    top(e, ps, &C, &D, &A, 1, 0, 0x3f, 0);
+    top(e, ps, &q[0], &q[1], &q[2], 0, 1, 0x3f, 0);
+    top(e, ps, &q[2], &q[3], &q[0], 1, 0, 0x3f, 0);
 }
 
 void bti_part_walk(bti_extract *e, const bti_root *r)
