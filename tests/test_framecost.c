@@ -153,6 +153,25 @@ static uint64_t fnv_verts(uint64_t h, const bt_vert *v, uint32_t n)
     return h;
 }
 
+/* The 400 x 300 crop of N47E009 at column 300, row 100 that the pinned hashes below read,
+ * and its tree (tree memory in *tm).  Nonzero when the tile cannot be read. */
+static int crop_tree(hf *f, hf *g, bt_tree *t, void **tm)
+{
+    void *scr;
+    int32_t x, y;
+    if (btc_load("hgt/N47E009.hgt", f)) return 1;
+    *g = *f;
+    g->w = 400; g->h = 300;
+    g->z = malloc((size_t)g->w * g->h * 4);
+    for (y = 0; y < g->h; y++)
+        for (x = 0; x < g->w; x++) g->z[(size_t)y * g->w + x] = f->z[(size_t)(y + 100) * f->w + x + 300];
+    *tm = malloc(bt_mem_size(g->w, g->h));
+    scr = malloc(bt_scratch_size(g->w, g->h));
+    CHECK_EQ(bt_build(t, g, BT_METRIC_EXACT, *tm, bt_mem_size(g->w, g->h), scr, bt_scratch_size(g->w, g->h)), BR_OK);
+    free(scr);
+    return 0;
+}
+
 /* Five frames of a camera flying 20 m a frame over a 400 x 300 crop of N47E009
  * (Lake Constance's south shore), 1 px, hysteresis 64, geomorph 128: the hash of
  * every frame's vertices (x, y, z, morph) and strip. */
@@ -162,22 +181,13 @@ static void test_view_pinned(void)
     bt_tree t;
     bt_params p;
     bt_mesh m;
-    void *mem = NULL, *tm, *scr;
+    void *mem = NULL, *tm;
     cam c;
     bt_frame fr;
-    int32_t x, y, k, us;
+    int32_t k, us;
     uint64_t h = 0xcbf29ce484222325ull;
     uint32_t i, ntri = 0, nmorph = 0;
-    if (btc_load("hgt/N47E009.hgt", &f)) { CHECK(0); return; }
-    g = f;
-    g.w = 400; g.h = 300;
-    g.z = malloc((size_t)g.w * g.h * 4);
-    for (y = 0; y < g.h; y++)
-        for (x = 0; x < g.w; x++) g.z[(size_t)y * g.w + x] = f.z[(size_t)(y + 100) * f.w + x + 300];
-    tm = malloc(bt_mem_size(g.w, g.h));
-    scr = malloc(bt_scratch_size(g.w, g.h));
-    CHECK_EQ(bt_build(&t, &g, BT_METRIC_EXACT, tm, bt_mem_size(g.w, g.h), scr, bt_scratch_size(g.w, g.h)), BR_OK);
-    free(scr);
+    if (crop_tree(&f, &g, &t, &tm)) { CHECK(0); return; }
     CHECK_EQ(bt_frame_auto(&g, &fr, &us), BR_OK);
     memset(&p, 0, sizeof p);
     p.mode = BT_VIEW; p.fr = fr; p.c = &c; p.hyst_q8 = 64; p.morph_q8 = 128; p.pixel_err_q8 = 256;
@@ -215,20 +225,11 @@ static void test_budget_pinned(void)
     bt_tree t;
     bt_params p;
     bt_mesh m, m2;
-    void *mem = NULL, *mem2, *tm, *scr;
+    void *mem = NULL, *mem2, *tm;
     cam c;
-    int32_t x, y, us, eye[3], tgt[3];
+    int32_t us, eye[3], tgt[3];
     uint64_t h = 0xcbf29ce484222325ull;
-    if (btc_load("hgt/N47E009.hgt", &f)) { CHECK(0); return; }
-    g = f;
-    g.w = 400; g.h = 300;
-    g.z = malloc((size_t)g.w * g.h * 4);
-    for (y = 0; y < g.h; y++)
-        for (x = 0; x < g.w; x++) g.z[(size_t)y * g.w + x] = f.z[(size_t)(y + 100) * f.w + x + 300];
-    tm = malloc(bt_mem_size(g.w, g.h));
-    scr = malloc(bt_scratch_size(g.w, g.h));
-    CHECK_EQ(bt_build(&t, &g, BT_METRIC_EXACT, tm, bt_mem_size(g.w, g.h), scr, bt_scratch_size(g.w, g.h)), BR_OK);
-    free(scr);
+    if (crop_tree(&f, &g, &t, &tm)) { CHECK(0); return; }
     memset(&p, 0, sizeof p);
     CHECK_EQ(bt_frame_auto(&g, &p.fr, &us), BR_OK);
     eye[0] = (int32_t)(2000 << us); eye[1] = (int32_t)(1000 << us); eye[2] = (int32_t)(2500 << us);
