@@ -188,6 +188,10 @@ size_t rs_band_mem_size(int32_t w, int32_t rows, int32_t fmt, int32_t depth);
  * (< RS_GUARD_PX * 16 from the screen centre); the clipper is never needed. */
 void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint32_t d, uint32_t rgb);
 
+/* Gives a prepared cache entry the colour 0xRRGGBB (outcode, position and depth kept):
+ * per-vertex effects after rs_frame_prepare (raster/water.h's fog). */
+void rs_cvert_recolour(rs_cvert *o, uint32_t rgb);
+
 /* Checks the frame (BR_E_ARG when chunks or cache is NULL, or a field is out of range),
  * transforms every vertex once into the cache and fills the chunk table (per frame).
  * A frame set up with rs_cvert_set instead may leave chunks NULL: rs_draw_band then walks

@@ -254,8 +254,7 @@ void rw_fog_vertices(rw_frame *r, rs_frame *f)
         y = o->y >> RS_SUBPIX_BITS;
         y = y < 0 ? 0 : y >= r->h ? r->h - 1 : y;
         rgb = mix_rgb(o->c & 0xffffffu, r->sky[y], fw);
-        o->c = (o->c & 0xff000000u) | rgb;
-        o->cp = ((uint64_t)(rgb & 0xff0000u) << 26) | ((uint64_t)(rgb & 0xff00u) << 13) | (rgb & 255u);   /* rs_cvert.cp */
+        rs_cvert_recolour(o, rgb);
     }
 }
 

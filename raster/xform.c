@@ -107,6 +107,12 @@ void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint3
     o->u = o->v = 0;
 }
 
+void rs_cvert_recolour(rs_cvert *o, uint32_t rgb)
+{
+    o->c = (o->c & 0xff000000u) | (rgb & 0xffffffu);
+    o->cp = rsi_pack_rgb(rgb & 0xffffffu);
+}
+
 /* The reference transform of one vertex (camera space, near/far, guard band, divide,
  * screen outcodes), for the vertices the fast loop below does not finish: beyond the
  * far plane, or not provably inside the guard band.  Rare (peer camera B 640x480: 103

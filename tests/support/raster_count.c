@@ -6,6 +6,7 @@
 #define rs_band_mem_size cnt_band_mem_size
 #define rs_chunk_mem_size cnt_chunk_mem_size
 #define rs_cvert_set cnt_cvert_set
+#define rs_cvert_recolour cnt_cvert_recolour
 #define rs_frame_prepare cnt_frame_prepare
 #define rs_draw_band cnt_draw_band
 #define rs_variant_built cnt_variant_built
