@@ -56,12 +56,12 @@
  * ===========================================================================
  * TREE AND ERRORS
  * ===========================================================================
- * The heightfield is padded VIRTUALLY to n x n, n = 2^k + 1 >= max(w, h): the
- * samples outside w x h are voids.  Two root triangles split the square along
- * (0,0)-(n-1,n-1); a triangle splits at the midpoint of its hypotenuse (002 2.1).
- * Every sample except the 4 corners is the midpoint of exactly one DIAMOND (the
- * one or two triangles sharing that hypotenuse), so per-diamond data is stored
- * per sample:
+ * The hierarchy is that of the heightfield padded VIRTUALLY to n x n, n = 2^k + 1
+ * >= max(w, h), the samples outside w x h being voids.  Two root triangles split
+ * the square along (0,0)-(n-1,n-1); a triangle splits at the midpoint of its
+ * hypotenuse (002 2.1).  Every sample except the 4 corners is the midpoint of
+ * exactly one DIAMOND (the one or two triangles sharing that hypotenuse), so
+ * per-diamond data is per sample:
  *   node  uint32: error code (low 16 bits), BT_METRIC_EXACT: a TRUE upper bound, in
  *         heightfield units, of |plane - z| over every grid sample of each
  *         triangle of the diamond AND of every descendant diamond (max, so the
@@ -73,10 +73,34 @@
  *         mantissa, rounded UP so the bound stays a bound).
  *         and (high 16 bits) the uint8 quantised height range zlo, zhi of the
  *         diamond's nested bounding volume (its triangles' vertex range +- error,
- *         union with its children): one load per diamond.
+ *         union with its children): one load per diamond.  zlo > zhi: VOID, no
+ *         valid sample below it (BT_NODE_VOID: code 0, culled, never split).
  *   st    uint8 per-vertex frame state (hysteresis / budget marks).
- * Memory: 5 bytes per padded sample (bt_mem_size); build scratch (only during
- * bt_build) about 6 bytes per heightfield sample + 8 per padded sample.
+ *
+ * LAYOUT (core/bt_util.c bti_slot_pad; docs/bitree.md "Layout").  The padding is
+ * not stored: a diamond (x, y) has a SLOT, its index in node[] and st[]:
+ *   interior  x < w, y < h: slot y*w + x (one compare pair and a multiply-add in
+ *             the walk, the only case for almost every diamond it visits);
+ *   bands     a diamond in the padding whose descendants reach the data.  Its value
+ *             depends on the diamonds within its reach (children, recursively: 3h - 1
+ *             samples for a type D diamond of scale h, 2h - 1 for type A), and it is
+ *             VOID unless that reach holds a unit triangle of three valid samples,
+ *             i.e. unless x - w <= 3h - 3 (or y - h <= 3h - 3).  So an east column x
+ *             >= w is stored, at the rows that are multiples of p, for p the least
+ *             power of two with 3p - 3 >= x - w, and only when x is a multiple of p:
+ *             one column for p = 1, at most two for each larger p; likewise rows
+ *             below the data (x < w).  Slots w*h onwards, level by level (bt_layout).
+ *   void      every other padding diamond: VOID by the reach argument; all share
+ *             the last slot, which holds BT_NODE_VOID and whose st is never written.
+ * So a tree holds nslot = w*h + O((n + w) * 3) slots: 5 bytes per slot (4 node + 1
+ * st), 5.0-5.7 bytes per sample of the grid as read on the DEMs in the project
+ * (bitrain info prints the figure), against 5 per PADDED sample before (14.6 on a
+ * 1201^2 SRTM tile, 3.4 GB for a 2 x 16385 grid).  The values are bit for bit the
+ * padded hierarchy's (bt_node_at reads any (x, y); tests/test_bitree.c compares a
+ * padded build's hash).  Tiles of this layout are what a store of terrain larger
+ * than memory would page: a tile of 2^j + 1 samples has no bands at all.
+ * Memory: bt_mem_size; build scratch (only during bt_build) about 6 bytes per
+ * heightfield sample + 9 per slot, plus 12 per row of the padded side.
  * Monotone + shared per diamond => splitting every diamond whose value exceeds a
  * threshold gives a conforming mesh (no T-junctions, no cracks).
  *
@@ -96,23 +120,44 @@ enum { BT_S = 0, BT_F = 1 };
 #define BT_CODE_SPLIT 0xFFFFu
 #define BT_MORPH_ONE 32768
 
+/* The bands of the layout (see LAYOUT above): for each level l (p = 2^l) the east
+ * columns x = (em0[l] + i) << l, i < enc[l], each of (S >> l) + 1 slots (rows y =
+ * r << l), from slot east[l]; the south rows y = (sm0[l] + i) << l, i < snc[l], each
+ * of ((w - 1) >> l) + 1 slots (x = c << l < w), from slot south[l]. */
+#define BT_LAY_LEVELS 32
+typedef struct bt_layout {
+    uint32_t east[BT_LAY_LEVELS], south[BT_LAY_LEVELS];
+    int32_t em0[BT_LAY_LEVELS], enc[BT_LAY_LEVELS], sm0[BT_LAY_LEVELS], snc[BT_LAY_LEVELS];
+} bt_layout;
+
 typedef struct bt_tree {
     const hf *f;           /* the heightfield (caller keeps it alive and unchanged) */
     int32_t n, k;          /* padded side n = 2^k + 1 */
     int32_t metric;        /* BT_METRIC_* */
     int32_t zmin, zmax;    /* over valid samples (0, 0 if none) */
     int64_t nvalid;        /* valid samples */
-    uint32_t *node;        /* n*n per diamond centre: error code (bits 0-15), quantised
-                              height range of its volume: low (16-23), high (24-31) */
-    uint8_t *st;           /* n*n frame state bits */
+    int32_t w, h;          /* the grid as read (f->w, f->h) */
+    uint32_t nslot;        /* slots: w*h interior, the bands, the void slot (last) */
+    const uint32_t *node;  /* per slot: error code (bits 0-15), quantised height range of
+                              the diamond's volume: low (16-23), high (24-31); never
+                              written after bt_build (may be read-only memory) */
+    uint8_t *st;           /* per slot frame state bits */
+    bt_layout lay;
 } bt_tree;
 
 #define BT_NODE_ERR(v) ((uint16_t)((v) & 0xFFFFu))
 #define BT_NODE_ZLO(v) ((uint8_t)(((v) >> 16) & 0xFFu))
 #define BT_NODE_ZHI(v) ((uint8_t)((v) >> 24))
 #define BT_NODE(e, lo, hi) ((uint32_t)(e) | ((uint32_t)(lo) << 16) | ((uint32_t)(hi) << 24))
+#define BT_NODE_VOID BT_NODE(0, 255, 0)
 
-/* Bytes of mem for bt_build (5 per padded sample); 0 if w, h are invalid. */
+/* Slots of the layout for a w x h grid (see LAYOUT); 0 if w, h are invalid. */
+uint32_t bt_slot_count(int32_t w, int32_t h);
+/* The node of diamond (x, y) of the padded grid (0 <= x, y < n, not a corner):
+ * the stored value, or BT_NODE_VOID for a padding diamond with no slot. */
+uint32_t bt_node_at(const bt_tree *t, int32_t x, int32_t y);
+
+/* Bytes of mem for bt_build (5 per slot); 0 if w, h are invalid. */
 size_t bt_mem_size(int32_t w, int32_t h);
 /* Bytes of build scratch (freed by the caller after bt_build). */
 size_t bt_scratch_size(int32_t w, int32_t h);

@@ -16,7 +16,7 @@ static int64_t prio(bti_extract *e, int32_t x, int32_t y)
     int64_t r;
     while (((int32_t)1 << j) < h) j++;
     if (e->p->mode == BT_FIDELITY) {
-        uint16_t c = BT_NODE_ERR(e->t->node[(size_t)y * e->n + x]);
+        uint16_t c = BT_NODE_ERR(e->t->node[bti_slot(e->t, x, y)]);
         r = c == BT_CODE_SPLIT ? ((int64_t)1 << 50) : (int64_t)c;
     } else {
         r = e->rho(e, x, y);
@@ -56,8 +56,11 @@ static bti_heap_ent hpop(bti_heap_ent *hp, uint32_t *n)
 }
 
 /* Marks ST_SPLIT on the diamonds a budget of `budget` nominal triangles buys.
- * Returns the number of ids recorded (to clear afterwards) in ids. Sets e->tau
- * to the last split's rho (for geomorph). */
+ * Returns the number of slots recorded (to clear afterwards) in ids. Sets e->tau
+ * to the last split's rho (for geomorph).  The heap orders ties by the padded
+ * grid index y*n + x.  Padding diamonds without a slot are VOID: never pushed (in
+ * the view rules their priority is -1, in the fidelity rule their code 0 is never
+ * split, and the loop stops at the first such key). */
 uint32_t bti_budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid)
 {
     bt_tree *t = e->t;
@@ -68,9 +71,9 @@ uint32_t bti_budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid)
     int32_t S = e->S, n = e->n;
     int64_t last = 0;
     {
-        uint32_t root = (uint32_t)((S / 2) * n + S / 2);
+        uint32_t root = (uint32_t)((S / 2) * n + S / 2), rs = bti_slot(t, S / 2, S / 2);
         int64_t k = prio(e, S / 2, S / 2);
-        if (k >= 0) { hpush(hp, &nh, k, root); t->st[root] |= ST_PUSHED; ids[ni++] = root; }
+        if (k >= 0 && rs != t->nslot - 1) { hpush(hp, &nh, k, root); t->st[rs] |= ST_PUSHED; ids[ni++] = rs; }
     }
     while (nh > 0) {
         bti_heap_ent he = hpop(hp, &nh);
@@ -87,7 +90,7 @@ uint32_t bti_budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid)
         if (count + (uint64_t)add > budget) break;
         if (ni + 4 > cap) break;
         count += (uint64_t)add;
-        t->st[he.id] |= ST_SPLIT;
+        t->st[bti_slot(t, x, y)] |= ST_SPLIT;
         last = he.key >> 8;
         if (typeD) {
             cx[0] = x - h; cy[0] = y; cx[1] = x + h; cy[1] = y;
@@ -98,14 +101,15 @@ uint32_t bti_budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid)
             cx[2] = x - g; cy[2] = y + g; cx[3] = x + g; cy[3] = y + g;
         } else continue;
         for (i = 0; i < 4; i++) {
-            uint32_t cid;
+            uint32_t cid, cs;
             int64_t k;
             if (cx[i] < 0 || cy[i] < 0 || cx[i] > S || cy[i] > S) continue;
             cid = (uint32_t)(cy[i] * n + cx[i]);
-            if (t->st[cid] & ST_PUSHED) continue;
+            cs = bti_slot(t, cx[i], cy[i]);
+            if (cs == t->nslot - 1 || (t->st[cs] & ST_PUSHED)) continue;
             k = prio(e, cx[i], cy[i]);
-            t->st[cid] |= ST_PUSHED;
-            ids[ni++] = cid;
+            t->st[cs] |= ST_PUSHED;
+            ids[ni++] = cs;
             if (k >= 0) hpush(hp, &nh, k, cid);
         }
     }

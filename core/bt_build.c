@@ -19,25 +19,38 @@ static int32_t padded_k(int32_t w, int32_t h)
     return k;
 }
 
+uint32_t bt_slot_count(int32_t w, int32_t h)
+{
+    bt_layout ly;
+    uint32_t ns;
+    if (hf_check_dims(w, h) != BR_OK || w < 2 || h < 2) return 0;
+    bti_layout(&ly, w, h, ((int32_t)1 << padded_k(w, h)) + 1, &ns);
+    return ns;
+}
+
 size_t bt_mem_size(int32_t w, int32_t h)
 {
-    int32_t n;
-    if (hf_check_dims(w, h) != BR_OK || w < 2 || h < 2) return 0;
-    n = ((int32_t)1 << padded_k(w, h)) + 1;
-    return (size_t)n * (size_t)n * 5;
+    return (size_t)bt_slot_count(w, h) * 5;
+}
+
+/* the region shared by the exact metric's half bounds (2 x int32 per slot) and the
+ * curvature (int32 per sample), whichever is used */
+static size_t ub_bytes(int32_t w, int32_t h, uint32_t ns)
+{
+    size_t a = (size_t)ns * 8, b = (size_t)w * (size_t)h * 4;
+    return a > b ? a : b;
 }
 
 size_t bt_scratch_size(int32_t w, int32_t h)
 {
-    if (hf_check_dims(w, h) != BR_OK || w < 2 || h < 2) return 0;
+    uint32_t ns = bt_slot_count(w, h);
+    if (!ns) return 0;
     /* sanitised heights (int32), per-row void prefix counts (uint16, w+1 per row),
-     * then per-diamond half bounds (exact metric: 2 x int32 per padded sample) or
-     * curvature (int32 per sample), whichever is used, the empty-half bits (a byte
-     * per padded sample), plus the row spans */
-    size_t n = (size_t)(((int32_t)1 << padded_k(w, h)) + 1);
-    return (size_t)w * (size_t)h * 4 + n * n * 9 + (size_t)(w + 1) * (size_t)h * 2 + 64 + 16 * BTI_TAB_MAX * 12
-         + (size_t)(w / 16 + 1) * (size_t)(h / 16 + 1)
-         + (size_t)(((int32_t)1 << padded_k(w, h)) + 1) * 12;
+     * the row spans (3 x int32 per padded row) and sample tables, the half bounds or
+     * curvature, the empty-half bits (a byte per slot), the void block map */
+    return (size_t)w * (size_t)h * 4 + 32 + (size_t)(w + 1) * (size_t)h * 2 + 4
+         + (size_t)(((int32_t)1 << padded_k(w, h)) + 1) * 12 + 16 * BTI_TAB_MAX * 12
+         + ub_bytes(w, h, ns) + ns + (size_t)(w / 16 + 1) * (size_t)(h / 16 + 1);
 }
 
 static int32_t kappa_at(const int32_t *z, int32_t w, int32_t h, int32_t x, int32_t y)
@@ -71,7 +84,7 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
     uint16_t *vp;
     int32_t x, y, j, w, h, S, n;
     int64_t voids = 0;
-    size_t nn;
+    uint32_t ns, *node;
     if (!t || !f || !mem || !scratch) return BR_E_ARG;
     if (hf_validate(f) != BR_OK || f->w < 2 || f->h < 2) return BR_E_ARG;
     if (metric != BT_METRIC_EXACT && metric != BT_METRIC_CURVATURE) return BR_E_ARG;
@@ -84,14 +97,18 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
     nt.n = n = ((int32_t)1 << nt.k) + 1;
     S = n - 1;
     nt.metric = metric;
-    nn = (size_t)n * n;
+    nt.w = w; nt.h = h;
+    bti_layout(&nt.lay, w, h, n, &nt.nslot);
+    ns = nt.nslot;
     if (((uintptr_t)mem & 3) != 0) return BR_E_ARG;
-    nt.node = (uint32_t *)mem;
-    nt.st = (uint8_t *)mem + nn * 4;
-    memset(nt.st, 0, nn);
-    /* every other node is written below; the 4 corners are never read, but are
-     * zeroed so that the tree's bytes are a function of the input alone */
-    nt.node[0] = nt.node[S] = nt.node[(size_t)S * n] = nt.node[(size_t)S * n + S] = 0;
+    node = (uint32_t *)mem;
+    nt.node = node;
+    nt.st = (uint8_t *)mem + (size_t)ns * 4;
+    memset(nt.st, 0, ns);
+    /* every diamond's slot is written below; the corners (never read) are 0 so that
+     * the tree's bytes are a function of the input alone; the void slot is VOID */
+    memset(node, 0, (size_t)ns * 4);
+    node[ns - 1] = BT_NODE_VOID;
     /* stats and void prefix counts, then heights biased by zmin (>= 0: shifts of
      * non-negative values only), voids = 0 */
     zs = (int32_t *)scratch;
@@ -132,6 +149,7 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
     }
     nt.nvalid = (int64_t)w * h - voids;
     c.w = w; c.h = h; c.n = n; c.z = zs; c.vp = voids ? vp : NULL; c.metric = metric;
+    c.node = node;
     c.kap = NULL;
     /* int32 is enough when |N| <= 2 D R + 16 |A| < 2^31 with D <= S, |A| <= 2R */
     c.qr = (int64_t)nt.zmax - nt.zmin;
@@ -139,6 +157,7 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
     c.narrow = (int64_t)(2 * (int64_t)S + 64) * ((int64_t)nt.zmax - nt.zmin) < ((int64_t)1 << 31);
     {
         uint8_t *q = (uint8_t *)vp + (size_t)(w + 1) * h * 2;
+        size_t ubb = (size_t)ns * 8 > (size_t)w * h * 4 ? (size_t)ns * 8 : (size_t)w * h * 4;
         q += (4 - ((uintptr_t)q & 3)) & 3;
         c.ry = (int32_t *)(void *)q;
         c.rx0 = c.ry + n;
@@ -147,12 +166,14 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
         for (j = 0; j < 16; j++) c.tabn[j] = -1;
         q = (uint8_t *)(c.tab + 16 * BTI_TAB_MAX * 3);
         c.ub = metric == BT_METRIC_EXACT ? (int32_t *)(void *)q : NULL;
+        if (c.ub) c.ub[2 * (size_t)(ns - 1)] = c.ub[2 * (size_t)(ns - 1) + 1] = BTI_UB_INF;   /* the void slot */
         c.vblk = NULL;
         c.bw = w / 16 + 1;
-        c.emp = q + (size_t)n * n * 8;
-        memset(c.emp, 0, nn);
+        c.emp = q + ubb;
+        memset(c.emp, 0, ns);
+        c.emp[ns - 1] = 3;       /* the void slot: both halves empty */
         if (voids) {   /* void block map after the bounds / curvature and empty-half regions */
-            uint8_t *vb = q + (size_t)n * n * 9;
+            uint8_t *vb = c.emp + ns;
             memset(vb, 0, (size_t)c.bw * (size_t)(h / 16 + 1));
             for (y = 0; y < h; y++)
                 for (x = 0; x < w; x++)
@@ -169,18 +190,20 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
     }
     *t = nt;
     for (j = 0; j < nt.k; j++) {
-        int32_t hh = (int32_t)1 << j;
+        int32_t hh = (int32_t)1 << j, xe = w - 1 < S ? w - 1 : S, ye = h - 1 < S ? h - 1 : S;
         if (j == 0 && metric == BT_METRIC_EXACT && c.narrow) { bte_level1(t, &c); continue; }
         if (j == 1 && metric == BT_METRIC_EXACT && c.narrow) { bte_level2(t, &c); continue; }
-        /* type A at h: horizontal edges (x odd multiple of h, y multiple of 2h) */
-        for (y = 0; y <= S; y += 2 * hh)
-            for (x = hh; x < S; x += 2 * hh) bte_diamond(t, &c, x, y, hh, 0);
-        /* vertical edges */
-        for (y = hh; y < S; y += 2 * hh)
-            for (x = 0; x <= S; x += 2 * hh) bte_diamond(t, &c, x, y, hh, 0);
-        /* type D at h */
-        for (y = hh; y < S; y += 2 * hh)
-            for (x = hh; x < S; x += 2 * hh) bte_diamond(t, &c, x, y, hh, 1);
+        /* the interior's diamonds of scale hh, then the bands' (bte_pad): type A
+         * (horizontal edges: x odd multiple of hh, y multiple of 2hh; vertical
+         * edges), then type D, whose children are the type A diamonds */
+        for (y = 0; y <= ye; y += 2 * hh)
+            for (x = hh; x < S && x <= xe; x += 2 * hh) bte_diamond(t, &c, x, y, hh, 0);
+        for (y = hh; y < S && y <= ye; y += 2 * hh)
+            for (x = 0; x <= xe; x += 2 * hh) bte_diamond(t, &c, x, y, hh, 0);
+        bte_pad(t, &c, hh, 0);
+        for (y = hh; y < S && y <= ye; y += 2 * hh)
+            for (x = hh; x < S && x <= xe; x += 2 * hh) bte_diamond(t, &c, x, y, hh, 1);
+        bte_pad(t, &c, hh, 1);
     }
     return BR_OK;
 }

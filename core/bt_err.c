@@ -356,7 +356,7 @@ static void tri_eval(const bti_build_ctx *c, const int32_t a[2], const int32_t c
  * of this file): a void corner and no content.  Its children are the unit
  * triangles (a, m, p), (p, m, b) for an A diamond of h = 1, else the halves of the
  * diamonds at the legs' midpoints whose apex is m = (x, y), built before it. */
-static int half_empty(const bti_build_ctx *c, int32_t x, int32_t y, int32_t h, int typeD,
+static int half_empty(const bt_tree *t, const bti_build_ctx *c, int32_t x, int32_t y, int32_t h, int typeD,
                       const int32_t a[2], const int32_t p[2], const int32_t b[2])
 {
     int32_t z, m1x, m1y, m2x, m2y;
@@ -368,8 +368,8 @@ static int half_empty(const bti_build_ctx *c, int32_t x, int32_t y, int32_t h, i
     }
     m1x = (a[0] + p[0]) >> 1; m1y = (a[1] + p[1]) >> 1;
     m2x = (b[0] + p[0]) >> 1; m2y = (b[1] + p[1]) >> 1;
-    return (c->emp[(size_t)m1y * c->n + m1x] >> bti_half_of(m1x, m1y, x, y) & 1) &&
-           (c->emp[(size_t)m2y * c->n + m2x] >> bti_half_of(m2x, m2y, x, y) & 1);
+    return (c->emp[bti_slot(t, m1x, m1y)] >> bti_half_of(m1x, m1y, x, y) & 1) &&
+           (c->emp[bti_slot(t, m2x, m2y)] >> bti_half_of(m2x, m2y, x, y) & 1);
 }
 
 /* Per-triangle upper bounds ub (exact when scanned) let most triangles skip the
@@ -385,7 +385,7 @@ void bte_diamond(bt_tree *t, const bti_build_ctx *c, int32_t x, int32_t y, int32
     int na = 0, i;
     uint16_t code = 0;
     int lo = 255, hi = 0;
-    size_t idx = (size_t)y * n + x;
+    size_t idx = bti_slot(t, x, y);
     int64_t em = -1, cmax;
     int32_t za = 0, zb = 0, zm = 0;
     int dclean;
@@ -420,9 +420,9 @@ void bte_diamond(bt_tree *t, const bti_build_ctx *c, int32_t x, int32_t y, int32
         for (i = 0; i < nc; i++) {
             size_t ci;
             if (cx[i] < 0 || cy[i] < 0 || cx[i] > S || cy[i] > S) continue;
-            ci = (size_t)cy[i] * n + cx[i];
+            ci = bti_slot(t, cx[i], cy[i]);
             {
-                uint32_t v = t->node[ci];
+                uint32_t v = c->node[ci];
                 if (BT_NODE_ERR(v) > code) code = BT_NODE_ERR(v);
                 if (BT_NODE_ZLO(v) < lo) lo = BT_NODE_ZLO(v);
                 if (BT_NODE_ZHI(v) > hi) hi = BT_NODE_ZHI(v);
@@ -447,8 +447,8 @@ void bte_diamond(bt_tree *t, const bti_build_ctx *c, int32_t x, int32_t y, int32
         if (em >= 0 && code != BT_CODE_SPLIT) {
             int32_t m1x = (a[0] + ap[i][0]) >> 1, m1y = (a[1] + ap[i][1]) >> 1;
             int32_t m2x = (b[0] + ap[i][0]) >> 1, m2y = (b[1] + ap[i][1]) >> 1;
-            int64_t u1 = c->ub[2 * ((size_t)m1y * n + m1x) + bti_half_of(m1x, m1y, x, y)];
-            int64_t u2 = c->ub[2 * ((size_t)m2y * n + m2x) + bti_half_of(m2x, m2y, x, y)];
+            int64_t u1 = c->ub[2 * (size_t)bti_slot(t, m1x, m1y) + bti_half_of(m1x, m1y, x, y)];
+            int64_t u2 = c->ub[2 * (size_t)bti_slot(t, m2x, m2y) + bti_half_of(m2x, m2y, x, y)];
             int64_t sb = em + (u1 > u2 ? u1 : u2);
             if (u1 != BTI_UB_INF && u2 != BTI_UB_INF && sb <= cmax) {
                 int32_t zp = c->z[(size_t)ap[i][1] * c->w + ap[i][0]];
@@ -474,7 +474,7 @@ void bte_diamond(bt_tree *t, const bti_build_ctx *c, int32_t x, int32_t y, int32
         if (c->ub) c->ub[hv] = r.cls == 0 && r.err < BTI_UB_INF ? (int32_t)r.err : BTI_UB_INF;
         /* a mixed triangle with no descendant unit triangle of three valid corners draws
          * nothing: empty, not split (the padding to (2^k+1)^2 keeps no edge samples) */
-        if (r.cls == 1 && half_empty(c, x, y, h, typeD, a, ap[i], b)) r.cls = 2;
+        if (r.cls == 1 && half_empty(t, c, x, y, h, typeD, a, ap[i], b)) r.cls = 2;
         if (r.cls == 2) c->emp[idx] |= (uint8_t)(1u << (hv & 1));
         if (r.cls == 1) {
             /* mixed: always split, and its volume holds its valid corners and
@@ -499,5 +499,35 @@ void bte_diamond(bt_tree *t, const bti_build_ctx *c, int32_t x, int32_t y, int32
             if (u > hi) hi = u;
         }
     }
-    t->node[idx] = BT_NODE(code, lo, hi);
+    c->node[idx] = BT_NODE(code, lo, hi);
+}
+
+/* The diamonds of scale h and type typeD (bte_diamond) that have a slot in the
+ * layout's bands (core/bitree.h LAYOUT): in the east columns of levels l with
+ * 2^l <= h (their rows are multiples of 2^l, so every diamond of scale h on them
+ * is one), then in the south rows; each once, as the padded loop would. */
+void bte_pad(bt_tree *t, const bti_build_ctx *c, int32_t h, int typeD)
+{
+    const bt_layout *ly = &t->lay;
+    int32_t S = t->n - 1, l, i, x, y, h2 = 2 * h;
+    for (l = 0; l < BT_LAY_LEVELS && ((int32_t)1 << l) <= h; l++) {
+        for (i = 0; i < ly->enc[l]; i++) {
+            x = (ly->em0[l] + i) << l;
+            if (x & (h - 1)) continue;   /* no diamond of scale h in this column */
+            if (x & h) {           /* type A horizontal (rows 0 mod 2h) or type D (rows h mod 2h) */
+                for (y = typeD ? h : 0; y <= S; y += h2)
+                    if (!typeD || y < S) bte_diamond(t, c, x, y, h, typeD);
+            } else if (!typeD && (x & (h2 - 1)) == 0)   /* type A vertical: rows h mod 2h */
+                for (y = h; y < S; y += h2) bte_diamond(t, c, x, y, h, 0);
+        }
+        for (i = 0; i < ly->snc[l]; i++) {
+            y = (ly->sm0[l] + i) << l;
+            if (y & (h - 1)) continue;
+            if (y & h) {           /* type A vertical (x 0 mod 2h) or type D (x h mod 2h) */
+                for (x = typeD ? h : 0; x < t->w; x += h2)
+                    if (!typeD || x < S) bte_diamond(t, c, x, y, h, typeD);
+            } else if (!typeD && (y & (h2 - 1)) == 0)   /* type A horizontal: x h mod 2h */
+                for (x = h; x < t->w && x < S; x += h2) bte_diamond(t, c, x, y, h, 0);
+        }
+    }
 }

@@ -14,6 +14,7 @@
  * void bookkeeping), scratch rows and tables, and the per-half bounds. */
 typedef struct bti_build_ctx {
     int32_t w, h, n;
+    uint32_t *node;        /* the tree's node array, written by the build only */
     const int32_t *z;      /* sanitised heights, w*h (voids = 0) */
     const uint16_t *vp;    /* void prefix counts, (w+1)*h, or NULL if no voids */
     const int32_t *kap;    /* curvature per sample (curvature metric), else NULL */
@@ -25,15 +26,28 @@ typedef struct bti_build_ctx {
      * directions x 2 sizes) the samples off the vertices as (offset, dx, dy)
      * from the apex; used for triangles inside the domain of void-free grids */
     int32_t *tab;          /* 16 tables of BTI_TAB_MAX entries x 3 */
-    int32_t *ub;           /* 2 per diamond: upper bound of each half's error (exact metric) */
+    int32_t *ub;           /* 2 per slot: upper bound of each half's error (exact metric) */
     const uint8_t *vblk;   /* per 16 x 16 block of the domain: 1 if it holds a void (NULL: none) */
     int32_t bw;            /* blocks per row */
-    uint8_t *emp;          /* per diamond, bit (1 << half): that half is EMPTY (see
-                              bte_diamond); n*n, zero = has content */
+    uint8_t *emp;          /* per slot, bit (1 << half): that half is EMPTY (see
+                              bte_diamond); zero = has content */
     int32_t tabn[16];
 } bti_build_ctx;
 
 #define BTI_UB_INF INT32_MAX
+
+/* Slot of a padding diamond (x >= w or y >= h; core/bt_util.c), the void slot
+ * (t->nslot - 1) when it has none; and the layout's bands for a w x h grid in a
+ * padded side n (*nslot: all slots). */
+uint32_t bti_slot_pad(const bt_tree *t, int32_t x, int32_t y);
+void bti_layout(bt_layout *l, int32_t w, int32_t h, int32_t n, uint32_t *nslot);
+
+/* Slot of diamond (x, y), 0 <= x, y < n (see bitree.h LAYOUT) */
+static inline uint32_t bti_slot(const bt_tree *t, int32_t x, int32_t y)
+{
+    if (x < t->w && y < t->h) return (uint32_t)y * (uint32_t)t->w + (uint32_t)x;
+    return bti_slot_pad(t, x, y);
+}
 
 static inline int32_t bti_iabs32(int32_t v) { return v < 0 ? -v : v; }
 
@@ -123,6 +137,7 @@ static inline uint16_t bti_morph_nodiv(int64_t lhs, int64_t d, int64_t tau, int6
 }
 
 void bte_diamond(bt_tree *t, const bti_build_ctx *c, int32_t x, int32_t y, int32_t h, int typeD);
+void bte_pad(bt_tree *t, const bti_build_ctx *c, int32_t h, int typeD);
 void bte_level1(bt_tree *t, const bti_build_ctx *c);
 void bte_level2(bt_tree *t, const bti_build_ctx *c);
 

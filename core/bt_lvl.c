@@ -45,24 +45,27 @@ static inline void a1_fast(bt_tree *t, const bti_build_ctx *c, size_t idx, int32
     if (zp > hi) hi = zp;
     if (zq < lo) lo = zq;
     if (zq > hi) hi = zq;
-    t->node[idx] = BT_NODE(bti_enc_small(e), bti_q_lo(c, (int64_t)lo - e), bti_q_hi(c, (int64_t)hi + e));
+    c->node[idx] = BT_NODE(bti_enc_small(e), bti_q_lo(c, (int64_t)lo - e), bti_q_hi(c, (int64_t)hi + e));
+    (void)t;
     if (c->ub) c->ub[2 * idx] = c->ub[2 * idx + 1] = e;
 }
 
 /* exact error of the D1 half with apex (px, py) (both hypotenuse-end legs
  * hold one A1 child whose half towards (x, y) has its exact error in ub) */
-static int32_t d1_half(const bti_build_ctx *c, int32_t n, int32_t x, int32_t y, int32_t px, int32_t py, int32_t ec)
+static int32_t d1_half(const bti_build_ctx *c, int32_t w, int32_t x, int32_t y, int32_t px, int32_t py, int32_t ec)
 {
     int32_t m1x = px, m1y = y, m2x = x, m2y = py, u1, u2;   /* legs are axis-parallel */
-    u1 = c->ub[2 * ((size_t)m1y * n + m1x) + bti_half_of(m1x, m1y, x, y)];
-    u2 = c->ub[2 * ((size_t)m2y * n + m2x) + bti_half_of(m2x, m2y, x, y)];
+    u1 = c->ub[2 * ((size_t)m1y * w + m1x) + bti_half_of(m1x, m1y, x, y)];
+    u2 = c->ub[2 * ((size_t)m2y * w + m2x) + bti_half_of(m2x, m2y, x, y)];
     if (u1 > ec) ec = u1;
     if (u2 > ec) ec = u2;
     return ec;
 }
 
 /* The finest level (h = 1) for grids without voids, as stencils: A1 diamonds
- * (one odd coordinate) and D1 diamonds (both odd).  A D1 triangle's samples
+ * (one odd coordinate) and D1 diamonds (both odd), in the interior (slot y*w + x;
+ * a diamond whose 3 x 3 box is valid has its children there too), then the
+ * layout's bands through bte_pad.  A D1 triangle's samples
  * off its plane are the centre and its two leg midpoints, which are the D1
  * diamond's children (A1 centres, whose exact errors are those leg terms), so
  * E(D1) = max(ceil(|za + zb - 2 zm| / 2), children) is exact.  Diamonds on the
@@ -70,47 +73,49 @@ static int32_t d1_half(const bti_build_ctx *c, int32_t n, int32_t x, int32_t y, 
 void bte_level1(bt_tree *t, const bti_build_ctx *c)
 {
     int32_t n = t->n, S = n - 1, w = c->w, x, y;
+    int32_t xe = w - 1 < S ? w - 1 : S, ye = c->h - 1 < S ? c->h - 1 : S;
     const int32_t *z = c->z;
 #define ZZ(X, Y) z[(size_t)(Y) * w + (X)]
     /* A1, horizontal hypotenuse: y even, x odd */
-    for (y = 0; y <= S; y += 2)
-        for (x = 1; x < S; x += 2) {
+    for (y = 0; y <= ye; y += 2)
+        for (x = 1; x < S && x <= xe; x += 2) {
             if (y >= 1 && y + 1 <= S && bti_box_clean(c, x - 1, y - 1, x + 1, y + 1))
-                a1_fast(t, c, (size_t)y * n + x, ZZ(x - 1, y), ZZ(x + 1, y), ZZ(x, y), ZZ(x, y - 1), ZZ(x, y + 1));
+                a1_fast(t, c, (size_t)y * w + x, ZZ(x - 1, y), ZZ(x + 1, y), ZZ(x, y), ZZ(x, y - 1), ZZ(x, y + 1));
             else bte_diamond(t, c, x, y, 1, 0);
         }
     /* A1, vertical hypotenuse: y odd, x even */
-    for (y = 1; y < S; y += 2)
-        for (x = 0; x <= S; x += 2) {
+    for (y = 1; y < S && y <= ye; y += 2)
+        for (x = 0; x <= xe; x += 2) {
             if (x >= 1 && x + 1 <= S && bti_box_clean(c, x - 1, y - 1, x + 1, y + 1))
-                a1_fast(t, c, (size_t)y * n + x, ZZ(x, y - 1), ZZ(x, y + 1), ZZ(x, y), ZZ(x - 1, y), ZZ(x + 1, y));
+                a1_fast(t, c, (size_t)y * w + x, ZZ(x, y - 1), ZZ(x, y + 1), ZZ(x, y), ZZ(x - 1, y), ZZ(x + 1, y));
             else bte_diamond(t, c, x, y, 1, 0);
         }
+    bte_pad(t, c, 1, 0);
     /* D1: x, y odd; diagonal (1,1) when (x>>1) + (y>>1) is even.  The bti_box_clean
      * test reduces to x + 1 < w on rows inside h of grids without voids. */
-    for (y = 1; y < S; y += 2) {
+    for (y = 1; y < S && y <= ye; y += 2) {
         int rowok = !c->vblk && y + 1 < c->h;
-        for (x = 1; x < S; x += 2) {
-            size_t idx = (size_t)y * n + x;
+        for (x = 1; x < S && x <= xe; x += 2) {
+            size_t idx = (size_t)y * w + x;
             if (rowok ? x + 1 < w : bti_box_clean(c, x - 1, y - 1, x + 1, y + 1)) {
                 const int32_t *zc = z + (size_t)y * w + x;
                 int32_t z00 = zc[-w - 1], z20 = zc[-w + 1], z02 = zc[w - 1], z22 = zc[w + 1];
                 int32_t zm = zc[0], e, lo, hi;
-                uint32_t c0 = t->node[idx - 1], c1 = t->node[idx + 1];
-                uint32_t c2 = t->node[idx - (size_t)n], c3 = t->node[idx + (size_t)n];
+                uint32_t c0 = c->node[idx - 1], c1 = c->node[idx + 1];
+                uint32_t c2 = c->node[idx - (size_t)w], c3 = c->node[idx + (size_t)w];
                 uint16_t code;
                 int lq, hq;
                 if ((((x >> 1) + (y >> 1)) & 1) == 0) {
                     e = (bti_iabs32(z00 + z22 - 2 * zm) + 1) >> 1;
                     if (c->ub) {   /* apexes (x+1, y-1): half 0, (x-1, y+1): half 1 */
-                        c->ub[2 * idx] = d1_half(c, n, x, y, x + 1, y - 1, e);
-                        c->ub[2 * idx + 1] = d1_half(c, n, x, y, x - 1, y + 1, e);
+                        c->ub[2 * idx] = d1_half(c, w, x, y, x + 1, y - 1, e);
+                        c->ub[2 * idx + 1] = d1_half(c, w, x, y, x - 1, y + 1, e);
                     }
                 } else {
                     e = (bti_iabs32(z20 + z02 - 2 * zm) + 1) >> 1;
                     if (c->ub) {   /* apexes (x-1, y-1): half 0, (x+1, y+1): half 1 */
-                        c->ub[2 * idx] = d1_half(c, n, x, y, x - 1, y - 1, e);
-                        c->ub[2 * idx + 1] = d1_half(c, n, x, y, x + 1, y + 1, e);
+                        c->ub[2 * idx] = d1_half(c, w, x, y, x - 1, y - 1, e);
+                        c->ub[2 * idx + 1] = d1_half(c, w, x, y, x + 1, y + 1, e);
                     }
                 }
                 code = err_with_children(bti_enc_small(e), c0, c1, c2, c3);
@@ -120,10 +125,11 @@ void bte_level1(bt_tree *t, const bti_build_ctx *c)
                 e = code < 4096 ? (int32_t)code : (int32_t)bt_code_value(code);
                 lq = bti_q_lo(c, (int64_t)lo - e);
                 hq = bti_q_hi(c, (int64_t)hi + e);
-                t->node[idx] = node_with_children(code, lq, hq, c0, c1, c2, c3);
+                c->node[idx] = node_with_children(code, lq, hq, c0, c1, c2, c3);
             } else bte_diamond(t, c, x, y, 1, 1);
         }
     }
+    bte_pad(t, c, 1, 1);
 #undef ZZ
 }
 
@@ -131,17 +137,17 @@ void bte_level1(bt_tree *t, const bti_build_ctx *c)
  * exact error of each half from its samples off the vertices, with plane x 4
  * written out (A2: hypotenuse of length 4 and apex at distance 2; D2: axis legs
  * of length 4), then the usual maximum with the children.  Others: diamond(). */
-static inline void level2_node(bt_tree *t, const bti_build_ctx *c, size_t idx, int32_t e0, int32_t e1, int32_t zl0,
+static inline void level2_node(const bti_build_ctx *c, size_t idx, int32_t e0, int32_t e1, int32_t zl0,
                                int32_t zh0, int32_t zl1, int32_t zh1, size_t da, size_t db)
 {
     /* children at idx -+ da, idx -+ db; bti_q_lo and bti_q_hi are monotone, so the
      * halves' volumes are merged before quantising (the same bytes) */
-    uint32_t c0 = t->node[idx - da], c1 = t->node[idx + da], c2 = t->node[idx - db], c3 = t->node[idx + db];
+    uint32_t c0 = c->node[idx - da], c1 = c->node[idx + da], c2 = c->node[idx - db], c3 = c->node[idx + db];
     uint16_t code = bti_enc_small(e0), ce = bti_enc_small(e1);
     int64_t vl0 = (int64_t)zl0 - e0, vl1 = (int64_t)zl1 - e1, vh0 = (int64_t)zh0 + e0, vh1 = (int64_t)zh1 + e1;
     int lo = bti_q_lo(c, vl0 < vl1 ? vl0 : vl1), hi = bti_q_hi(c, vh0 > vh1 ? vh0 : vh1);
     if (ce > code) code = ce;
-    t->node[idx] = node_with_children(err_with_children(code, c0, c1, c2, c3), lo, hi, c0, c1, c2, c3);
+    c->node[idx] = node_with_children(err_with_children(code, c0, c1, c2, c3), lo, hi, c0, c1, c2, c3);
 }
 
 static int32_t max3i(int32_t a, int32_t b, int32_t c) { return a > b ? (a > c ? a : c) : (b > c ? b : c); }
@@ -163,16 +169,17 @@ static inline int32_t a2_half(int32_t za, int32_t zb, int32_t zc, int32_t hm, co
 void bte_level2(bt_tree *t, const bti_build_ctx *c)
 {
     int32_t n = t->n, S = n - 1, w = c->w, x, y, j;
+    int32_t xe = w - 1 < S ? w - 1 : S, ye = c->h - 1 < S ? c->h - 1 : S;
     const int32_t *z = c->z;
 #define ZZ(X, Y) z[(size_t)(Y) * w + (X)]
     /* A2, horizontal (x = 2 mod 4, y = 0 mod 4) and vertical (transposed); the
      * bti_box_clean test reduces to x + 2 < w on rows inside h of grids without voids */
     for (j = 0; j < 2; j++)
-        for (y = j ? 2 : 0; y <= S; y += 4) {
+        for (y = j ? 2 : 0; y <= ye; y += 4) {
             int rowok = !c->vblk && y + 2 < c->h;
             ptrdiff_t along = j ? (ptrdiff_t)w : 1, across = j ? 1 : (ptrdiff_t)w;
-            for (x = j ? 0 : 2; x <= S; x += 4) {
-                size_t idx = (size_t)y * n + x;
+            for (x = j ? 0 : 2; x <= xe; x += 4) {
+                size_t idx = (size_t)y * w + x;
                 int32_t za, zb, zc0, zc1, hm = 0, e0, e1, k;
                 const int32_t *zm;
                 if ((j == 0 && (x >= S || y - 2 < 0 || y + 2 > S)) || (j == 1 && (y >= S || x - 2 < 0 || x + 2 > S)) ||
@@ -192,14 +199,15 @@ void bte_level2(bt_tree *t, const bti_build_ctx *c)
                 e0 = a2_half(za, zb, zc0, hm, zm - across, along);
                 e1 = a2_half(za, zb, zc1, hm, zm + across, along);
                 if (c->ub) { c->ub[2 * idx] = e0; c->ub[2 * idx + 1] = e1; }
-                level2_node(t, c, idx, e0, e1, min3i(za, zb, zc0), max3i(za, zb, zc0), min3i(za, zb, zc1),
-                            max3i(za, zb, zc1), (size_t)n + 1, (size_t)n - 1);
+                level2_node(c, idx, e0, e1, min3i(za, zb, zc0), max3i(za, zb, zc0), min3i(za, zb, zc1),
+                            max3i(za, zb, zc1), (size_t)w + 1, (size_t)w - 1);
             }
         }
+    bte_pad(t, c, 2, 0);
     /* D2: x, y = 2 mod 4; diagonal (1,1) when ((x ^ y) & 4) == 0 */
-    for (y = 2; y < S; y += 4)
-        for (x = 2; x < S; x += 4) {
-            size_t idx = (size_t)y * n + x;
+    for (y = 2; y < S && y <= ye; y += 4)
+        for (x = 2; x < S && x <= xe; x += 4) {
+            size_t idx = (size_t)y * w + x;
             int32_t e[2], zl[2], zh[2], hh;
             if (!(!c->vblk && y + 2 < c->h ? x + 2 < w : bti_box_clean(c, x - 2, y - 2, x + 2, y + 2))) {
                 bte_diamond(t, c, x, y, 2, 1);
@@ -229,8 +237,9 @@ void bte_level2(bt_tree *t, const bti_build_ctx *c)
                 zl[hh] = min3i(zc, zr, zcol); zh[hh] = max3i(zc, zr, zcol);
                 if (c->ub) c->ub[2 * idx + (size_t)hh] = e[hh];
             }
-            level2_node(t, c, idx, e[0], e[1], zl[0], zh[0], zl[1], zh[1], 2, 2 * (size_t)n);
+            level2_node(c, idx, e[0], e[1], zl[0], zh[0], zl[1], zh[1], 2, 2 * (size_t)w);
         }
+    bte_pad(t, c, 2, 1);
 #undef ZZ
 }
 

@@ -166,7 +166,7 @@ static int64_t box_dist(const int32_t eye[3], const int64_t lo[3], const int64_t
     return l1 > mx ? l1 : mx;
 }
 
-static void dvolume(const bti_extract *e, int32_t x, int32_t y, int64_t lo[3], int64_t hi[3])
+static void dvolume(const bti_extract *e, int32_t x, int32_t y, uint32_t id, int64_t lo[3], int64_t hi[3])
 {
     const bt_tree *t = e->t;
     const bt_frame *fr = &e->p->fr;
@@ -175,14 +175,13 @@ static void dvolume(const bti_extract *e, int32_t x, int32_t y, int64_t lo[3], i
     int32_t r = typeD ? 3 * h : 2 * h;
     int32_t x0 = x - r < 0 ? 0 : x - r, x1 = x + r > e->S ? e->S : x + r;
     int32_t y0 = y - r < 0 ? 0 : y - r, y1 = y + r > e->S ? e->S : y + r;
-    size_t idx = (size_t)y * e->n + x;
+    uint32_t nv = t->node[id];
     lo[0] = fr->ox + (int64_t)x0 * fr->sx;
     hi[0] = fr->ox + (int64_t)x1 * fr->sx;
     lo[1] = fr->oy - (int64_t)y1 * fr->sy;
     hi[1] = fr->oy - (int64_t)y0 * fr->sy;
-    lo[2] = e->wz_lo[BT_NODE_ZLO(t->node[idx])];
-    hi[2] = e->wz_hi[BT_NODE_ZHI(t->node[idx])];
-    (void)t;
+    lo[2] = e->wz_lo[BT_NODE_ZLO(nv)];
+    hi[2] = e->wz_hi[BT_NODE_ZHI(nv)];
 }
 
 /* Frustum test of a box against the planes in *mask: 1 when it lies wholly
@@ -207,19 +206,19 @@ static int culled(const bti_extract *e, const int64_t lo[3], const int64_t hi[3]
     return 0;
 }
 
-/* Screen-space error of diamond (x, y): *ew = object error in world units
+/* Screen-space error of diamond (x, y) in slot id: *ew = object error in world units
  * (rounded up), *d = lower bound of the distance to its volume.  Returns -1 when
  * culled (all void or outside the frustum), 1 when the error is unbounded (mixed
  * voids, or the eye inside the volume with a nonzero error), 0 otherwise. */
-static int view_err(const bti_extract *e, int32_t x, int32_t y, unsigned *mask, int64_t *ew, int64_t *d)
+static int view_err(const bti_extract *e, int32_t x, int32_t y, uint32_t id, unsigned *mask, int64_t *ew,
+                    int64_t *d)
 {
     const bt_tree *t = e->t;
-    size_t idx = (size_t)y * e->n + x;
     int64_t lo[3], hi[3];
-    uint32_t nv = t->node[idx];
+    uint32_t nv = t->node[id];
     uint16_t code = BT_NODE_ERR(nv);
     if (BT_NODE_ZLO(nv) > BT_NODE_ZHI(nv)) return -1; /* all void */
-    dvolume(e, x, y, lo, hi);
+    dvolume(e, x, y, id, lo, hi);
     if (*mask && culled(e, lo, hi, mask)) return -1;
     if (code == BT_CODE_SPLIT) return 1;
     *ew = isat_mul(bt_code_value(code), e->p->fr.sz_q16);
@@ -234,7 +233,7 @@ static int64_t rho_q8(const bti_extract *e, int32_t x, int32_t y)
 {
     unsigned mask = 0x3f;
     int64_t ew = 0, d = 0;
-    int r = view_err(e, x, y, &mask, &ew, &d);
+    int r = view_err(e, x, y, bti_slot(e->t, x, y), &mask, &ew, &d);
     if (r < 0) return -1;
     if (r > 0) return INT64_MAX;
     if (d == 0) return 0;
@@ -290,25 +289,25 @@ static uint16_t morph_at(const bti_extract *e, int64_t lhs, int64_t d)
 #endif
 }
 
-/* returns 1 split, 0 leaf, -1 drop (culled); *morph set for split vertices;
- * *mask: frustum planes still to test (view and budget modes) */
-static int decide(bti_extract *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
+/* Diamond (x, y) in slot idx: returns 1 split, 0 leaf, -1 drop (culled); *morph
+ * set for split vertices; *mask: frustum planes still to test (view and budget
+ * modes) */
+static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph)
 {
     bt_tree *t = e->t;
-    size_t idx = (size_t)y * e->n + x;
     int64_t ew = 0, d = 0;
     int r;
     *morph = BT_MORPH_ONE;
     if (e->fid) return BT_NODE_ERR(e->t->node[idx]) > e->cthr;
     if (e->p->mode == BT_BUDGET || e->tau < 0) {
         if (e->p->mode == BT_FIDELITY) return (t->st[idx] & ST_SPLIT) != 0;
-        r = view_err(e, x, y, mask, &ew, &d);
+        r = view_err(e, x, y, idx, mask, &ew, &d);
         if (r < 0) return -1;
         if (!(t->st[idx] & ST_SPLIT)) return 0;
         if (e->morph_span > 0 && r == 0 && d > 0) *morph = morph_at(e, isat_mul(ew, e->fq8), d);
         return 1;
     }
-    r = view_err(e, x, y, mask, &ew, &d);
+    r = view_err(e, x, y, idx, mask, &ew, &d);
     if (r < 0) return -1;
     if (r > 0) return 1;
     {
@@ -328,20 +327,21 @@ static int decide(bti_extract *e, int32_t x, int32_t y, unsigned *mask, uint16_t
  * leaves a mask only when an enclosing volume lies inside it (volumes nest).  A
  * memo hit keeps the parent's mask: the children test planes they could skip, with
  * the same answers.  The memo is a direct-mapped cache (a miss only recomputes);
- * an entry is gen << 48 | (answer + 1) << 46 | morph << 30 | grid index (n <=
- * BR_MAX_SIDE = 16385: n^2 < 2^28), valid in the extraction whose 16-bit generation
- * (1 .. 0xFFFF, reset_mesh) it holds. */
-static int decide_memo(bti_extract *e, int32_t x, int32_t y, unsigned *mask, uint16_t *morph)
+ * an entry is gen << 48 | (answer + 1) << 46 | morph << 30 | slot (< 2^30: w, h <=
+ * BR_MAX_SIDE = 16385, so w*h < 2^28, plus the bands), valid in the extraction
+ * whose 16-bit generation (1 .. 0xFFFF, reset_mesh) it holds.  Padding diamonds
+ * without a slot share the void slot and its answer: VOID is culled (-1) in the
+ * view rule whatever the diamond. */
+static int decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph)
 {
     const bt_mesh *m = e->m;
-    uint32_t idx = (uint32_t)y * (uint32_t)e->n + (uint32_t)x;
     uint64_t *slot = &m->memo[(idx * 2654435761u >> 8) & m->memo_mask], v = *slot;
     int sp;
     if ((uint32_t)(v >> 48) == m->memo_gen && (uint32_t)(v & 0x3fffffffu) == idx) {
         *morph = (uint16_t)(v >> 30);
         return (int)((v >> 46) & 3) - 1;
     }
-    sp = decide(e, x, y, mask, morph);
+    sp = decide(e, x, y, idx, mask, morph);
     *slot = (uint64_t)m->memo_gen << 48 | (uint64_t)(sp + 1) << 46 | (uint64_t)*morph << 30 | idx;
     return sp;
 }
@@ -444,6 +444,7 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
     int32_t dx = b->x - a->x, dy = b->y - a->y;
     pt mm;
     int sp;
+    uint32_t id;
     if (e->full) return;
     if ((a->x + b->x) & 1) {     /* unit legs: the hypotenuse midpoint is no sample */
         if (e->nonvoid || (valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y)))
@@ -453,13 +454,14 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
     mm.idx = NO_IDX;
     mm.x = a->x + (dx >> 1);
     mm.y = a->y + (dy >> 1);
-    if (e->rec_splits) sp = decide_memo(e, mm.x, mm.y, &mask, &mm.morph);
-    else sp = decide(e, mm.x, mm.y, &mask, &mm.morph);
+    id = bti_slot(e->t, mm.x, mm.y);
+    if (e->rec_splits) sp = decide_memo(e, mm.x, mm.y, id, &mask, &mm.morph);
+    else sp = decide(e, mm.x, mm.y, id, &mask, &mm.morph);
     if (sp < 0) return;
     if (!sp) {
         /* a triangle over voids that a budget left unsplit is dropped, never
          * drawn over the void (its corners may all be valid) */
-        if (!e->nonvoid && BT_NODE_ERR(e->t->node[(size_t)mm.y * e->n + mm.x]) == BT_CODE_SPLIT) return;
+        if (!e->nonvoid && BT_NODE_ERR(e->t->node[id]) == BT_CODE_SPLIT) return;
         if (e->nonvoid || (valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y)))
             leaf(e, a, c, b, in_hyp, out_hyp);
         return;
@@ -469,11 +471,10 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
          * the serial walk marks ST_CUR so each is listed once; a part's walk
          * (rec_splits 2) reads t->st only and lists it from both halves, the
          * serial end (bt_part.c) sets ST_PREV, which is idempotent */
-        size_t idx = (size_t)mm.y * e->n + mm.x;
-        if (e->rec_splits == 2 || !(e->t->st[idx] & ST_CUR)) {
+        if (e->rec_splits == 2 || !(e->t->st[id] & ST_CUR)) {
             if (e->m->nsplits < bti_heap_cap(e->m)) {
-                if (e->rec_splits == 1) e->t->st[idx] |= ST_CUR;
-                bti_ids_of(e->m)[e->m->nsplits++] = (uint32_t)idx;
+                if (e->rec_splits == 1) e->t->st[id] |= ST_CUR;
+                bti_ids_of(e->m)[e->m->nsplits++] = id;
             } else e->lost = 1;
         }
     }
@@ -483,7 +484,9 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
 }
 
 /* rec for the plain fidelity rule without voids: the same leaves in the same order
- * without the mode, mask, void and geomorph branches (morph 0 iff zs interpolates). */
+ * without the mode, mask, void and geomorph branches (morph 0 iff zs interpolates).
+ * No void means w = h = n: every diamond is in the interior, slot y*n + x, the
+ * sample's index too. */
 static void rec_fid(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
 {
     pt mm;
@@ -547,7 +550,7 @@ static void top(bti_extract *e, bt_parts *ps, pt *a, pt *c, pt *b, int in_hyp, i
         mm.idx = NO_IDX;
         mm.x = a->x + ((b->x - a->x) >> 1);
         mm.y = a->y + ((b->y - a->y) >> 1);
-        sp = decide(e, mm.x, mm.y, &mask, &mm.morph);
+        sp = decide(e, mm.x, mm.y, bti_slot(e->t, mm.x, mm.y), &mask, &mm.morph);
         if (sp < 0) return;
     }
     if (!sp) {
@@ -556,7 +559,7 @@ static void top(bti_extract *e, bt_parts *ps, pt *a, pt *c, pt *b, int in_hyp, i
         r->in_hyp = in_hyp; r->out_hyp = out_hyp; r->mask = m0;
         return;
     }
-    ps->top_ids[ps->ntop++] = (uint32_t)mm.y * (uint32_t)e->n + (uint32_t)mm.x;
+    ps->top_ids[ps->ntop++] = bti_slot(e->t, mm.x, mm.y);
     mid_height(e, a, b, &mm);
     top(e, ps, a, &mm, c, !in_hyp, 0, mask, depth + 1);
     top(e, ps, c, &mm, b, 0, !out_hyp, mask, depth + 1);
@@ -715,7 +718,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
                 /* previous frame's marks go; this frame's ST_CUR become ST_PREV */
                 for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
                 if (e.lost) {
-                    size_t nn = (size_t)t->n * t->n, k;
+                    size_t nn = t->nslot, k;
                     for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_PREV);
                     m->nsplits = 0;
                 } else {
@@ -731,7 +734,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
         for (i = 0; i < m->nsplits; i++) t->st[ids[i]] &= (uint8_t)~(ST_CUR | ST_PREV);
         if (e.lost) {
-            size_t nn = (size_t)t->n * t->n, k;
+            size_t nn = t->nslot, k;
             for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_PREV);
         }
         m->nsplits = 0;

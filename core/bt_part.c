@@ -132,7 +132,7 @@ static void hysteresis(bt_parts *ps, uint64_t nsp)
     for (i = 0; i < m->nsplits; i++) t->st[ids[i]] &= (uint8_t)~ST_PREV;
     m->nsplits = 0;
     if (nsp > bti_heap_cap(m)) {
-        size_t nn = (size_t)t->n * t->n, j;
+        size_t nn = t->nslot, j;
         for (j = 0; j < nn; j++) t->st[j] &= (uint8_t)~(ST_CUR | ST_PREV);
         return;
     }

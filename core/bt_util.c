@@ -5,6 +5,79 @@
 #include "core/bitree.h"
 #include "core/bt_int.h"
 
+/* ------------------------------------------------------------ layout
+ * (core/bitree.h LAYOUT).  A padding diamond at distance need = x - w >= 0 east
+ * of the data (or y - h south of it) has a slot iff its scale h >= p(need), the
+ * least power of two with 3p - 3 >= need: its value is VOID below that (the reach
+ * of a diamond of scale h and its descendants is 3h - 1 samples, and a unit
+ * triangle of valid samples needs two columns inside w).  With h = the lowest set
+ * bit of x | y, h >= p iff p divides x and y.  The columns of level l are those
+ * with need in [3p/2 - 2, 3p - 3] (need 0 for l = 0): at most 2 per level. */
+static int32_t need_level(int32_t need)
+{
+    uint32_t q = (uint32_t)(need + 5) / 3u - 1u;   /* ceil((need + 3) / 3) - 1: l = its bit length */
+    int32_t l = 0;
+    if (q >> 16) { q >>= 16; l = 16; }
+    if (q >> 8) { q >>= 8; l += 8; }
+    if (q >> 4) { q >>= 4; l += 4; }
+    if (q >> 2) { q >>= 2; l += 2; }
+    if (q >> 1) { q >>= 1; l += 1; }
+    return l + (int32_t)q;
+}
+
+static void band(int32_t edge, int32_t S, int32_t l, int32_t *m0, int32_t *nc)
+{
+    int32_t p = (int32_t)1 << l, lo = l ? 3 * (p >> 1) - 2 : 0, hi = 3 * p - 3;
+    int64_t a = (int64_t)edge + lo, b = (int64_t)edge + hi;
+    if (b > S) b = S;
+    a = (a + p - 1) >> l;
+    b = b >> l;
+    *m0 = (int32_t)a;
+    *nc = b >= a ? (int32_t)(b - a + 1) : 0;
+}
+
+void bti_layout(bt_layout *ly, int32_t w, int32_t h, int32_t n, uint32_t *nslot)
+{
+    int32_t S = n - 1, l;
+    uint64_t s = (uint64_t)w * (uint64_t)h;
+    memset(ly, 0, sizeof *ly);
+    for (l = 0; l < BT_LAY_LEVELS && ((int32_t)1 << l) <= S; l++) {
+        ly->east[l] = (uint32_t)s;
+        band(w, S, l, &ly->em0[l], &ly->enc[l]);
+        s += (uint64_t)ly->enc[l] * (uint64_t)((S >> l) + 1);
+    }
+    for (l = 0; l < BT_LAY_LEVELS && ((int32_t)1 << l) <= S; l++) {
+        ly->south[l] = (uint32_t)s;
+        band(h, S, l, &ly->sm0[l], &ly->snc[l]);
+        s += (uint64_t)ly->snc[l] * (uint64_t)(((w - 1) >> l) + 1);
+    }
+    *nslot = (uint32_t)(s + 1);
+}
+
+uint32_t bti_slot_pad(const bt_tree *t, int32_t x, int32_t y)
+{
+    const bt_layout *ly = &t->lay;
+    int32_t l, i;
+    if (x >= t->w) {
+        l = need_level(x - t->w);
+        if (((x | y) & (((int32_t)1 << l) - 1)) != 0) return t->nslot - 1;
+        i = (x >> l) - ly->em0[l];
+        if (i < 0 || i >= ly->enc[l]) return t->nslot - 1;
+        return ly->east[l] + (uint32_t)i * (uint32_t)(((t->n - 1) >> l) + 1) + (uint32_t)(y >> l);
+    }
+    l = need_level(y - t->h);
+    if (((x | y) & (((int32_t)1 << l) - 1)) != 0) return t->nslot - 1;
+    i = (y >> l) - ly->sm0[l];
+    if (i < 0 || i >= ly->snc[l]) return t->nslot - 1;
+    return ly->south[l] + (uint32_t)i * (uint32_t)(((t->w - 1) >> l) + 1) + (uint32_t)(x >> l);
+}
+
+uint32_t bt_node_at(const bt_tree *t, int32_t x, int32_t y)
+{
+    if (!t || !t->node || x < 0 || y < 0 || x >= t->n || y >= t->n) return BT_NODE_VOID;
+    return t->node[bti_slot(t, x, y)];
+}
+
 /* Error codes: exact below 4096, then a 12-bit mantissa and an exponent,
  * always rounded up so that a bound stays a bound. */
 int64_t bt_code_value(uint16_t code)

@@ -143,19 +143,19 @@ static int build(built *b, const hf *f, double *ms_out)
     return rc;
 }
 
-/* FNV-1a of the tree's node words, little-endian bytes (determinism); the 4
- * corners are no diamond centres: bt_build zeroes them, and they are hashed as 0
- * whatever they hold, so the pinned hashes do not depend on that */
+/* FNV-1a of the tree's node words over the padded n x n grid (bt_node_at: a
+ * diamond without a slot reads as VOID), little-endian bytes (determinism); the
+ * 4 corners are no diamond centres and are hashed as 0 */
 static uint64_t tree_hash(const bt_tree *t)
 {
     uint64_t h = BTC_FNV_INIT;
-    size_t i, nn = (size_t)t->n * (size_t)t->n, S = (size_t)t->n - 1;
-    for (i = 0; i < nn; i++) {
-        uint32_t v = t->node[i];
-        if (i == 0 || i == S || i == nn - 1 - S || i == nn - 1) v = 0;
-        uint8_t le[4] = { (uint8_t)v, (uint8_t)(v >> 8), (uint8_t)(v >> 16), (uint8_t)(v >> 24) };
-        h = btc_fnv(h, le, 4);
-    }
+    int32_t x, y, S = t->n - 1;
+    for (y = 0; y <= S; y++)
+        for (x = 0; x <= S; x++) {
+            uint32_t v = ((x == 0 || x == S) && (y == 0 || y == S)) ? 0 : bt_node_at(t, x, y);
+            uint8_t le[4] = { (uint8_t)v, (uint8_t)(v >> 8), (uint8_t)(v >> 16), (uint8_t)(v >> 24) };
+            h = btc_fnv(h, le, 4);
+        }
     return h;
 }
 

@@ -178,7 +178,7 @@ static void test_odd_edges_whole(void)
     CHECK_EQ(scene_tree(&s, &err), BR_OK);
     /* every finest diamond on the last row holds a height range (ZLO <= ZHI) */
     for (x = 1; x < s.f.w - 1; x++) {
-        uint32_t nv = s.tree.node[(size_t)(s.f.h - 1) * s.tree.n + x];
+        uint32_t nv = bt_node_at(&s.tree, x, s.f.h - 1);
         CHECK_MSG(BT_NODE_ZLO(nv) <= BT_NODE_ZHI(nv), "x %d", x);
     }
     memset(&p, 0, sizeof p);
