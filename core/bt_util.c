@@ -54,18 +54,27 @@ void bti_layout(bt_layout *ly, int32_t w, int32_t h, int32_t n, uint32_t *nslot)
     *nslot = (uint32_t)(s + 1);
 }
 
+/* need_level for need < 46 (levels 0 .. 4): the walk's padding diamonds are
+ * mostly next to the data */
+static const uint8_t near_level[46] = {
+    0, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3,
+    4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4
+};
+
 uint32_t bti_slot_pad(const bt_tree *t, int32_t x, int32_t y)
 {
     const bt_layout *ly = &t->lay;
-    int32_t l, i;
+    int32_t l, i, need;
     if (x >= t->w) {
-        l = need_level(x - t->w);
+        need = x - t->w;
+        l = need < 46 ? near_level[need] : need_level(need);
         if (((x | y) & (((int32_t)1 << l) - 1)) != 0) return t->nslot - 1;
         i = (x >> l) - ly->em0[l];
         if (i < 0 || i >= ly->enc[l]) return t->nslot - 1;
         return ly->east[l] + (uint32_t)i * (uint32_t)(((t->n - 1) >> l) + 1) + (uint32_t)(y >> l);
     }
-    l = need_level(y - t->h);
+    need = y - t->h;
+    l = need < 46 ? near_level[need] : need_level(need);
     if (((x | y) & (((int32_t)1 << l) - 1)) != 0) return t->nslot - 1;
     i = (y >> l) - ly->sm0[l];
     if (i < 0 || i >= ly->snc[l]) return t->nslot - 1;
