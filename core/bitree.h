@@ -167,6 +167,26 @@ size_t bt_scratch_size(int32_t w, int32_t h);
 br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
                    void *mem, size_t mem_bytes, void *scratch, size_t scratch_bytes);
 
+/* ---------------------------------------------------------------- saved trees (bt_blob.c)
+ * Build once, save, attach later without building: the blob is a versioned
+ * header of little-endian words (format in core/bt_blob.c; docs/bitree.md) and
+ * the node array, used in place, so it may be a file read into memory or a const
+ * array in flash.  bt_attach refuses (BR_E_ARG, before reading past `bytes`) a
+ * blob that is truncated, corrupt (checksums of header and nodes), of another
+ * version, or not built from f (dimensions, a fingerprint of f's heights and
+ * units); BR_E_UNSUPPORTED on a big-endian host.  The blob must be 4-byte aligned
+ * and outlive t; attach reads f once (fingerprint), nothing is written to the blob.
+ * st: the caller's memory for the frame state, st_bytes >= t->nslot
+ * (bt_slot_count), zeroed by attach; or NULL: no frame state, so view mode
+ * without hysteresis (hyst_q8 must be 0) and no budget rule: BT_BUDGET gives
+ * BR_E_ARG, and a selection larger than the mesh gives BR_E_NOMEM (mesh empty)
+ * instead of the budget fallback.  Attaching gives the tree bt_build gave: the
+ * same meshes, byte for byte. */
+#define BT_BLOB_VERSION 1u
+size_t bt_tree_blob_size(const bt_tree *t);
+br_status bt_tree_save(const bt_tree *t, void *buf, size_t bytes);
+br_status bt_attach(bt_tree *t, const hf *f, const void *blob, size_t bytes, uint8_t *st, size_t st_bytes);
+
 /* Value (heightfield units for the exact metric) of an error code; BT_CODE_SPLIT
  * gives INT64_MAX. */
 int64_t bt_code_value(uint16_t code);

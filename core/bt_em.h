@@ -33,6 +33,7 @@ typedef struct bti_extract {
     int64_t fq8;            /* f in Q8 pixels (f_q16 >> 8) */
     int64_t tau;            /* q8 pixels */
     int64_t tau_lo;         /* with hysteresis */
+    const uint8_t *prev;    /* where decide reads ST_PREV: t->st (see bti_setup) */
     int64_t morph_span;     /* q8 pixels: tau * morph/256 */
     int full;               /* mesh full: stop emitting */
     int rec_splits;         /* record this frame's splits (view mode, hysteresis): 1 marking

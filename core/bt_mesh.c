@@ -314,7 +314,7 @@ static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *
         /* rho = ew * f / d > tau  <=>  ew * f > tau * d (no division) */
         int64_t lhs = isat_mul(ew, e->fq8);
         int sp = lhs > isat_mul(e->tau, d) ||
-                 ((t->st[idx] & ST_PREV) && lhs > isat_mul(e->tau_lo, d));
+                 ((e->prev[idx] & ST_PREV) && lhs > isat_mul(e->tau_lo, d));
         if (sp && e->morph_span > 0) *morph = d > 0 ? morph_at(e, lhs, d) : BT_MORPH_ONE;
         return sp;
     }
@@ -640,6 +640,12 @@ br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p)
     e->fq8 = p->c->f_q16 >> 8;
     e->tau = p->pixel_err_q8 > 0 ? p->pixel_err_q8 : 256;
     e->tau_lo = p->hyst_q8 > 0 ? (e->tau * (256 - (p->hyst_q8 > 256 ? 256 : p->hyst_q8))) >> 8 : e->tau;
+    /* no frame state (bt_attach with st NULL): no hysteresis, no budget rule */
+    if (!t->st && (p->hyst_q8 > 0 || p->mode == BT_BUDGET)) return BR_E_ARG;
+    /* decide reads ST_PREV through e->prev; without frame state tau_lo = tau, and
+     * then the bit never changes an answer (lhs > tau_lo d is false where it is
+     * read), so any nslot readable bytes do: the node array's */
+    e->prev = t->st ? t->st : (const uint8_t *)(const void *)t->node;
     /* morph_of multiplies (rho - tau) < morph_span by 2^15: morph_span < 2^31 * 2^16 / 2^8
      * = 2^39 keeps it below 2^54 (a range of 256 thresholds is already absurd) */
     if (p->morph_q8 < 0 || p->morph_q8 > 65536) return BR_E_ARG;
@@ -698,7 +704,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
     old = (uint32_t *)(void *)bti_heap_of(m);
     /* hysteresis bookkeeping: ids[0..nsplits) are the previous frame's splits
      * (ST_PREV set).  Move them aside (the heap area) before anything reuses ids. */
-    nprev = m->nsplits;
+    nprev = t->st ? m->nsplits : 0;
     memmove(old, ids, (size_t)nprev * 4);
     m->nsplits = 0;
     if (p->mode != BT_VIEW) {
@@ -706,6 +712,13 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         nprev = 0;
     }
     e.hbase = bti_reset_mesh(m);
+    if (!t->st) {
+        /* no frame state: the selection alone, no fallback to the budget rule */
+        run(&e);
+        if (e.full) { bti_reset_mesh(m); return BR_E_NOMEM; }
+        btw_reorder(&e);
+        return e.full ? BR_E_NOMEM : BR_OK;
+    }
     if (p->mode == BT_BUDGET) {
         bti_budget_mark(&e, p->budget < m->max_tri ? p->budget : m->max_tri, &nid);
         e.tau = -1;

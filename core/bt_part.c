@@ -60,7 +60,7 @@ br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh
     ps->nroot = 0;
     s = bti_setup(&ps->e0, t, p);
     if (s != BR_OK) return s;
-    if (p->mode != BT_VIEW || ps->e0.reorder) return bt_extract(t, p, m);
+    if (p->mode != BT_VIEW || ps->e0.reorder || !t->st) return bt_extract(t, p, m);
     ps->serial = 0;
     ps->e0.rec_splits = 2;
     bti_part_roots(&ps->e0, ps);
