@@ -6,7 +6,8 @@
  *   0 magic "BTRE"   1 version (BT_BLOB_VERSION)   2 header bytes (64)
  *   3 w   4 h   5 k (padded side 2^k + 1)   6 metric   7 zmin   8 zmax
  *   9 nvalid (< 2^31: w*h <= BR_MAX_SAMPLES)   10 nslot
- *   11 FNV-1a (32-bit) of the heightfield: w, h, units, spacing, every height
+ *   11 FNV-1a (32-bit) of the heightfield: w, h, every height (the tree does not
+ *      depend on the units or the spacing)
  *   12 FNV-1a (32-bit) of the node array's bytes
  *   13 FNV-1a (32-bit) of words 0 .. 12   14, 15 zero
  * Attach checks every word against the heightfield it is given (the layout and
@@ -61,8 +62,6 @@ static uint32_t hf_print(const hf *f, int32_t *zmin, int32_t *zmax, int64_t *nva
     int64_t nv = 0;
     size_t i, nn = (size_t)f->w * (size_t)f->h;
     h = fnv32_word(h, (uint32_t)f->w); h = fnv32_word(h, (uint32_t)f->h);
-    h = fnv32_word(h, (uint32_t)f->z_num); h = fnv32_word(h, (uint32_t)f->z_den);
-    h = fnv32_word(h, (uint32_t)f->dx_um); h = fnv32_word(h, (uint32_t)f->dy_um);
     for (i = 0; i < nn; i++) {
         int32_t v = f->z[i];
         h = fnv32_word(h, (uint32_t)v);

@@ -20,6 +20,7 @@
 #include "platform/opt.h"
 #include "core/bitree.h"
 #include "core/cam.h"
+#include "platform/tree_file.h"
 
 #define MESH_SYNOPSIS "IN... [-o OUT.obj|.ply|.stl] [options]"
 
@@ -96,7 +97,7 @@ static int write_mesh(FILE *fp, const char *out, int kind, const hf *f, const bt
 
 int cmd_mesh(int argc, char **argv)
 {
-    const char *files[64], *out = NULL;
+    const char *files[64], *out = NULL, *save_tree = NULL, *tree_in = NULL;
     int nf = 0, json = 0, nolines = 0, have_cam = 0, rc = 1, kind, r, metric_choice = 0, vsize[2] = { 640, 480 };
     int32_t metric;
     double maxerr = 1.0, fov = 60, pixerr = 1.0, camv[6];
@@ -118,6 +119,8 @@ int cmd_mesh(int argc, char **argv)
         { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT", ".obj, .ply or .stl (binary); omit to only print the figures", NULL },
         { "--max-error", OPT_NUM, &maxerr, 0, 100000, 0, NULL, "M", "fidelity mesh: true vertical error <= M metres (default 1)", NULL },
         { "--json", OPT_FLAG, &json, 0, 0, 0, NULL, NULL, "print the figures as one JSON object", NULL },
+        { "--save-tree", OPT_STR, &save_tree, 0, 0, 0, NULL, "FILE", "save the bitree (attach it later with --tree)", NULL },
+        { "--tree", OPT_STR, &tree_in, 0, 0, 0, NULL, "FILE", "attach the bitree saved by --save-tree instead of building it", NULL },
         { "--metric", OPT_CHOICE, &metric_choice, 0, 0, 0, "exact|curvature", "K",
           "exact (a true bound, default) or curvature (001's indicator)", NULL },
         { "--no-line-triangles", OPT_FLAG, &nolines, 0, 0, 0, NULL, NULL, "count the strip as a list without line triangles (004)", NULL },
@@ -150,14 +153,23 @@ int cmd_mesh(int argc, char **argv)
         return 1;
     }
     if (dem_load_many(files, nf, &o, &f, &e) != BR_OK) { fprintf(stderr, "bitrain mesh: %s\n", e.msg); goto done; }
-    mem = malloc(bt_mem_size(f.w, f.h));
-    scr = malloc(bt_scratch_size(f.w, f.h));
-    if (!mem || !scr) { fprintf(stderr, "bitrain mesh: %s: out of memory\n", files[0]); goto done; }
-    if (bt_build(&t, &f, metric, mem, bt_mem_size(f.w, f.h), scr, bt_scratch_size(f.w, f.h)) != BR_OK) {
-        fprintf(stderr, "bitrain mesh: %s: cannot build the bitree\n", files[0]);
-        goto done;
+    if (tree_in) {
+        if (tree_file_attach(&t, &f, tree_in, &mem, &e) != BR_OK) { fprintf(stderr, "bitrain mesh: %s\n", e.msg); goto done; }
+        if (t.metric != metric) {
+            fprintf(stderr, "bitrain mesh: %s: saved with the other --metric\n", tree_in);
+            goto done;
+        }
+    } else {
+        mem = malloc(bt_mem_size(f.w, f.h));
+        scr = malloc(bt_scratch_size(f.w, f.h));
+        if (!mem || !scr) { fprintf(stderr, "bitrain mesh: %s: out of memory\n", files[0]); goto done; }
+        if (bt_build(&t, &f, metric, mem, bt_mem_size(f.w, f.h), scr, bt_scratch_size(f.w, f.h)) != BR_OK) {
+            fprintf(stderr, "bitrain mesh: %s: cannot build the bitree\n", files[0]);
+            goto done;
+        }
+        free(scr); scr = NULL;
     }
-    free(scr); scr = NULL;
+    if (save_tree && tree_file_save(&t, save_tree, &e) != BR_OK) { fprintf(stderr, "bitrain mesh: %s\n", e.msg); goto done; }
     memset(&p, 0, sizeof p);
     p.mode = BT_FIDELITY;
     p.strip_order = BT_ORDER_BEST;   /* an export: the shortest strip in every mode */

@@ -1,6 +1,7 @@
 /* platform/scene.c — see scene.h. */
 #include "platform/clock.h"
 #include "platform/scene.h"
+#include "platform/tree_file.h"
 #include <ctype.h>
 #include <math.h>
 #include <stdio.h>
@@ -162,6 +163,7 @@ br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o
         return br_err_set(err, BR_E_ARG, in[0], "vertical scale or ambient out of range");
     dd = o->dem;
     dd.filled_out = &s->filled;
+    s->tree_file = o->tree;
     if (dem_load_many(in, n, &dd, &s->f, err) != BR_OK) return err ? err->code : BR_E_IO;
     if (dd.fill_voids && !o->quiet)
         printf("%s: %lld void samples filled from their borders (--fill-voids)\n", in[0], (long long)s->filled);
@@ -200,6 +202,7 @@ br_status scene_tree(scene *s, br_err *err)
     size_t tb = bt_mem_size(s->f.w, s->f.h), sb = bt_scratch_size(s->f.w, s->f.h);
     void *scratch;
     br_status st;
+    if (s->tree_file) return tree_file_attach(&s->tree, &s->f, s->tree_file, &s->tree_mem, err);
     s->tree_mem = malloc(tb);
     scratch = malloc(sb);
     if (!s->tree_mem || !scratch) {

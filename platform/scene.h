@@ -23,6 +23,7 @@ typedef struct scene_opts {          /* zero = defaults */
     dem_opts dem;
     const char *colors;              /* gdaldem color-relief file, or NULL for the built-in ramp */
     const char *texture;             /* colour map / orthophoto PNG over the whole grid, or NULL */
+    const char *tree;                /* a saved bitree to attach instead of building (--tree) */
     double sun_az, sun_alt;          /* degrees (both 0: 315, 45) */
     double ambient;                  /* 0..1, used when ambient_set (else 0.3) */
     int ambient_set;
@@ -50,6 +51,7 @@ typedef struct scene {
     rs_vertex *verts;                /* mesh.cap_v of them */
     rs_cvert *cache;                 /* vertex cache for the rasteriser */
     void *tree_mem, *mesh_mem;
+    const char *tree_file;           /* scene_opts.tree: attach it instead of building */
     /* the view extraction in parts (core/bitree.h bt_extract_begin), on pool's threads
      * (NULL: the caller's only); the same mesh for every pool */
     bt_parts *parts;

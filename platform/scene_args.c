@@ -7,6 +7,7 @@ void scene_args_table(scene_args *a, scene_opts *o, opt_spec t[SCENE_ARGS_N])
     const opt_spec src[SCENE_ARGS_N] = {
         { "--colors", OPT_STR, &o->colors, 0, 0, 0, NULL, "FILE", "gdaldem color-relief file (default: built-in ramp)", NULL },
         { "--texture", OPT_STR, &o->texture, 0, 0, 0, NULL, "PNG", "colour map / orthophoto over the whole grid", NULL },
+        { "--tree", OPT_STR, &o->tree, 0, 0, 0, NULL, "FILE", "attach the bitree saved by `bitrain mesh --save-tree` instead of building it", NULL },
         { "--sun", OPT_NUMS, a->sun, 0, 360, 2, NULL, "AZ,ALT", "sun azimuth and altitude, degrees (default 315,45)",
           &a->sun_seen },
         { "--ambient", OPT_NUM, &o->ambient, 0, 1, 0, NULL, "A", "ambient light (default 0.3)", &a->ambient_seen },

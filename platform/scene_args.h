@@ -10,7 +10,7 @@
 #include "platform/opt.h"
 #include "platform/scene.h"
 
-#define SCENE_ARGS_N 6  /* entries of the table, OPT_END included */
+#define SCENE_ARGS_N 7  /* entries of the table, OPT_END included */
 
 typedef struct scene_args {
     scene_opts *o;
