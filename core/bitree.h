@@ -93,12 +93,14 @@
  *   void      every other padding diamond: VOID by the reach argument; all share
  *             the last slot, which holds BT_NODE_VOID and whose st is never written.
  * So a tree holds nslot = w*h + O((n + w) * 3) slots: 5 bytes per slot (4 node + 1
- * st), 5.0-5.7 bytes per sample of the grid as read on the DEMs in the project
- * (bitrain info prints the figure), against 5 per PADDED sample before (14.6 on a
- * 1201^2 SRTM tile, 3.4 GB for a 2 x 16385 grid).  The values are bit for bit the
- * padded hierarchy's (bt_node_at reads any (x, y); tests/test_bitree.c compares a
- * padded build's hash).  Tiles of this layout are what a store of terrain larger
+ * st), 5.00-5.62 bytes per sample of the grid as read on the DEMs in the project
+ * (tests/test_bitree_layout.c prints them), against 5 per PADDED sample before
+ * (14.6 on a 1201^2 SRTM tile).  The values are bit for bit the padded
+ * hierarchy's (bt_node_at reads any (x, y); tests/test_bitree_big.c hashes the
+ * padded grid through it).  Tiles of this layout are what a store of terrain larger
  * than memory would page: a tile of 2^j + 1 samples has no bands at all.
+ * Why slots and not a forest of (2^j + 1) tiles (BDAM, paper 000): the single tree
+ * keeps every mesh byte-identical; docs/bitree.md "Layout".
  * Memory: bt_mem_size; build scratch (only during bt_build) about 6 bytes per
  * heightfield sample + 9 per slot, plus 12 per row of the padded side.
  * Monotone + shared per diamond => splitting every diamond whose value exceeds a
