@@ -165,7 +165,7 @@ void bd_set_pool(bd_run *r, pt_pool *pool)
 
 int cmd_bench_default(int argc, char **argv)
 {
-    const char *dems[16], *path = NULL, *out = NULL;
+    const char *dems[16], *path = NULL, *out = NULL, *tree = NULL;
     int ndem = 0, frames = 10, warm = 0, i, rc = 1;
     bd_run *r = calloc(1, sizeof *r);
     campath cp = {NULL, 0};
@@ -194,6 +194,7 @@ int cmd_bench_default(int argc, char **argv)
             { "--depth", OPT_CHOICE, &depth, 0, 0, 0, "32|16", "BITS", "depth buffer bits", NULL },
             { "--bands", OPT_INT, &r->bands, 1, RS_MAX_DIM, 0, NULL, "ROWS", "band height (default 64, the viewer's)", NULL },
             { "--dem", OPT_STR, &dem, 0, 0, 0, NULL, "FILE", "another terrain instead of the default", NULL },
+            { "--tree", OPT_STR, &tree, 0, 0, 0, NULL, "FILE", "attach the bitree saved by `bitrain mesh --save-tree` instead of building it", NULL },
             { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT.png", "write the last frame", NULL },
             { "--with-water", OPT_FLAG, &r->water, 0, 0, 0, NULL, NULL,
               "draw water, sky and fog as render and view do (default: the terrain frame alone); "
@@ -220,6 +221,7 @@ int cmd_bench_default(int argc, char **argv)
     memset(&so, 0, sizeof so);
     so.quiet = 1;
     so.ramp_abs = r->water;     /* render and view colour by absolute elevation with water */
+    so.tree = tree;
     if (scene_open(&r->s, dems, ndem, &so, &err) != BR_OK) { fprintf(stderr, "bitrain bench: %s\n", err.msg); goto done; }
     wo.shore_bound = 1;
     wo.shore_px = r->pix_err;

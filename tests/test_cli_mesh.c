@@ -200,9 +200,65 @@ static void test_bad_usage(void)
     CHECK_EQ(cmd_mesh(3, a), 2);                 /* unknown output format */
 }
 
+/* Reads a whole file; NULL if it cannot. */
+static uint8_t *slurp(const char *path, size_t *n)
+{
+    FILE *fp = fopen(path, "rb");
+    uint8_t *b;
+    long len;
+    if (!fp) return NULL;
+    fseek(fp, 0, SEEK_END);
+    len = ftell(fp);
+    fseek(fp, 0, SEEK_SET);
+    b = malloc(len > 0 ? (size_t)len : 1);
+    *n = b ? fread(b, 1, (size_t)len, fp) : 0;
+    fclose(fp);
+    return b;
+}
+
+/* --save-tree then --tree: the attached tree gives the same OBJ bytes as the built
+ * one (a view mesh of mt_rainier_90m.tif, with voids); a tree for another tile, a
+ * truncated one and a missing one are refused (exit 1), naming the file. */
+static void test_saved_tree(void)
+{
+    char dem[512], dem2[512], o[] = "-o", st[] = "--save-tree", tr[] = "--tree", cm[] = "--camera",
+         cv[] = "40000,-20000,8000,60000,60000,1500", me[] = "--max-error", mv[] = "30";
+    char tree[256], trunc[256], none[256], a1[256], a2[256], out[256], *argv[9];
+    uint8_t *b1, *b2;
+    size_t n1 = 0, n2 = 0;
+    FILE *fp;
+    snprintf(dem, sizeof dem, "%s", t_data("tif/mt_rainier_90m.tif"));
+    snprintf(dem2, sizeof dem2, "%s", t_data("hgt/N50E008.hgt"));
+    snprintf(tree, sizeof tree, "%s/cli_tree.bt", t_outdir());
+    snprintf(trunc, sizeof trunc, "%s/cli_tree_trunc.bt", t_outdir());
+    snprintf(none, sizeof none, "%s/no_such_tree.bt", t_outdir());
+    snprintf(a1, sizeof a1, "%s/cli_tree_built.obj", t_outdir());
+    snprintf(a2, sizeof a2, "%s/cli_tree_attached.obj", t_outdir());
+    snprintf(out, sizeof out, "%s/cli_tree.txt", t_outdir());
+    argv[0] = dem; argv[1] = cm; argv[2] = cv; argv[3] = me; argv[4] = mv; argv[5] = o; argv[6] = a1;
+    argv[7] = st; argv[8] = tree;
+    CHECK_EQ(run_mesh(9, argv, out), 0);
+    argv[6] = a2; argv[7] = tr;
+    CHECK_EQ(run_mesh(9, argv, out), 0);
+    b1 = slurp(a1, &n1); b2 = slurp(a2, &n2);
+    CHECK(b1 && b2 && n1 > 100000 && n1 == n2 && !memcmp(b1, b2, n1));
+    free(b1); free(b2);
+    b1 = slurp(tree, &n1);
+    CHECK(b1 && n1 > 64 + (size_t)1201 * 1201 * 4 && n1 < (size_t)1201 * 1201 * 5);   /* 4 bytes a slot */
+    if (b1 && (fp = fopen(trunc, "wb"))) { fwrite(b1, 1, n1 - 4, fp); fclose(fp); }
+    free(b1);
+    argv[8] = trunc;
+    CHECK_EQ(run_mesh(9, argv, out), 1);
+    argv[8] = none;
+    CHECK_EQ(run_mesh(9, argv, out), 1);
+    argv[0] = dem2; argv[8] = tree;
+    CHECK_EQ(run_mesh(9, argv, out), 1);
+}
+
 int main(void)
 {
     T_RUN(test_fidelity_obj);
+    T_RUN(test_saved_tree);
     T_RUN(test_voids_view_ply_stl);
     T_RUN(test_bad_usage);
     return t_finish();
