@@ -3,6 +3,10 @@
  * every DEM of ../shared/data/dem, a 2 x 16385 grid costing in proportion to its
  * samples, an attached tree giving the built tree's mesh bytes, corrupt blobs
  * refused without reading past them, and a tree without frame state. */
+#if defined(__linux__)
+#define _DEFAULT_SOURCE
+#include <sys/mman.h>
+#endif
 #include <stdint.h>
 #include "tests/test.h"
 #include "tests/support/meshcheck.h"
@@ -107,6 +111,33 @@ static void test_thin_grid(void)
     dem_free(&f);
 }
 
+/* A read-only copy of the blob (as in flash): a page-protected mapping on Linux,
+ * so a write from any extraction would fault; elsewhere a plain copy. */
+static const void *ro_copy(const void *blob, size_t n)
+{
+#if defined(__linux__)
+    void *p = mmap(NULL, n, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED) return NULL;
+    memcpy(p, blob, n);
+    if (mprotect(p, n, PROT_READ) != 0) return NULL;
+    return p;
+#else
+    void *p = malloc(n);
+    if (p) memcpy(p, blob, n);
+    return p;
+#endif
+}
+
+static void ro_free(const void *p, size_t n)
+{
+#if defined(__linux__)
+    if (p) munmap((void *)(uintptr_t)p, n);
+#else
+    (void)n;
+    free((void *)(uintptr_t)p);
+#endif
+}
+
 static void view_params(const hf *f, bt_params *p, cam *c, int hyst)
 {
     int32_t us, eye[3], tgt[3];
@@ -127,13 +158,15 @@ static void view_params(const hf *f, bt_params *p, cam *c, int hyst)
 
 /* Saved, attached (from a copy, as from a file or flash) and used: the same mesh
  * bytes as the built tree in fidelity and view modes (a tile with voids), frame
- * after frame with hysteresis; without frame state, the same view mesh when there
- * is no hysteresis, and BR_E_ARG for the budget rule. */
+ * after frame with hysteresis, and in budget mode; without frame state, the same
+ * view mesh when there is no hysteresis, and BR_E_ARG for the budget rule.  The
+ * attached blob is read-only memory: no extraction writes the node array. */
 static void test_attach_same(void)
 {
     hf f;
     bt_tree t, a, z;
     void *mem = NULL, *blob, *mm1 = NULL, *mm2 = NULL;
+    const void *ro;
     uint8_t *st;
     size_t n;
     bt_params p;
@@ -149,7 +182,9 @@ static void test_attach_same(void)
     st = malloc(t.nslot);
     CHECK_EQ(bt_tree_save(&t, blob, n), BR_OK);
     CHECK_EQ(bt_tree_save(&t, blob, n - 1), BR_E_ARG);
-    CHECK_EQ(bt_attach(&a, &f, blob, n, st, t.nslot), BR_OK);
+    ro = ro_copy(blob, n);
+    CHECK(ro != NULL);
+    CHECK_EQ(bt_attach(&a, &f, ro, n, st, t.nslot), BR_OK);
     CHECK(!memcmp(a.node, t.node, (size_t)t.nslot * 4));
     memset(&p, 0, sizeof p);
     p.mode = BT_FIDELITY;
@@ -183,6 +218,14 @@ static void test_attach_same(void)
     p.budget = 1000;
     CHECK_EQ(bt_extract(&z, &p, &m2), BR_E_ARG);
     free(mm1); free(mm2);
+    /* budget rule and its fallback on the read-only tree (frame state in st) */
+    p.mode = BT_BUDGET;
+    p.budget = 5000;
+    CHECK_EQ(btc_extract(&t, &p, 6000, &m1, &mm1), 0);
+    CHECK_EQ(btc_extract(&a, &p, 6000, &m2, &mm2), 0);
+    CHECK(btc_mesh_hash(&m1) == btc_mesh_hash(&m2));
+    free(mm1); free(mm2);
+    ro_free(ro, n);
     free(blob); free(st); free(mem);
     dem_free(&f);
 }
