@@ -127,9 +127,14 @@ enum { BT_S = 0, BT_F = 1 };
  * r << l), from slot east[l]; the south rows y = (sm0[l] + i) << l, i < snc[l], each
  * of ((w - 1) >> l) + 1 slots (x = c << l < w), from slot south[l]. */
 #define BT_LAY_LEVELS 32
+#define BT_LAY_NEAR 190    /* columns / rows next to the data with a direct entry (levels 0..6) */
 typedef struct bt_layout {
     uint32_t east[BT_LAY_LEVELS], south[BT_LAY_LEVELS];
     int32_t em0[BT_LAY_LEVELS], enc[BT_LAY_LEVELS], sm0[BT_LAY_LEVELS], snc[BT_LAY_LEVELS];
+    /* column w + d (row h + d), d < BT_LAY_NEAR: the slot of its row 0 (column 0), or -1
+     * when it has none */
+    int32_t enear[BT_LAY_NEAR], snear[BT_LAY_NEAR];
+    uint8_t lnear[BT_LAY_NEAR];   /* the level of column w + d, row h + d */
 } bt_layout;
 
 typedef struct bt_tree {

@@ -52,29 +52,44 @@ void bti_layout(bt_layout *ly, int32_t w, int32_t h, int32_t n, uint32_t *nslot)
         s += (uint64_t)ly->snc[l] * (uint64_t)(((w - 1) >> l) + 1);
     }
     *nslot = (uint32_t)(s + 1);
+    for (l = 0; l < BT_LAY_NEAR; l++) {
+        int32_t lv = need_level(l), i;
+        ly->lnear[l] = (uint8_t)lv;
+        ly->enear[l] = ly->snear[l] = -1;
+        if ((w + l) % ((int32_t)1 << lv) == 0 && (i = ((w + l) >> lv) - ly->em0[lv]) >= 0 && i < ly->enc[lv])
+            ly->enear[l] = (int32_t)(ly->east[lv] + (uint32_t)i * (uint32_t)((S >> lv) + 1));
+        if ((h + l) % ((int32_t)1 << lv) == 0 && (i = ((h + l) >> lv) - ly->sm0[lv]) >= 0 && i < ly->snc[lv])
+            ly->snear[l] = (int32_t)(ly->south[lv] + (uint32_t)i * (uint32_t)(((w - 1) >> lv) + 1));
+    }
 }
 
-/* need_level for need < 46 (levels 0 .. 4): the walk's padding diamonds are
- * mostly next to the data */
-static const uint8_t near_level[46] = {
-    0, 1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3,
-    4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4
-};
-
+/* The walk's padding diamonds are mostly within BT_LAY_NEAR of the data: those
+ * columns and rows have their level and first slot in the layout (bti_layout);
+ * farther ones compute them. */
 uint32_t bti_slot_pad(const bt_tree *t, int32_t x, int32_t y)
 {
     const bt_layout *ly = &t->lay;
     int32_t l, i, need;
     if (x >= t->w) {
         need = x - t->w;
-        l = need < 46 ? near_level[need] : need_level(need);
+        if (need < BT_LAY_NEAR) {
+            l = ly->lnear[need];
+            if (ly->enear[need] < 0 || (y & (((int32_t)1 << l) - 1)) != 0) return t->nslot - 1;
+            return (uint32_t)ly->enear[need] + (uint32_t)(y >> l);
+        }
+        l = need_level(need);
         if (((x | y) & (((int32_t)1 << l) - 1)) != 0) return t->nslot - 1;
         i = (x >> l) - ly->em0[l];
         if (i < 0 || i >= ly->enc[l]) return t->nslot - 1;
         return ly->east[l] + (uint32_t)i * (uint32_t)(((t->n - 1) >> l) + 1) + (uint32_t)(y >> l);
     }
     need = y - t->h;
-    l = need < 46 ? near_level[need] : need_level(need);
+    if (need < BT_LAY_NEAR) {
+        l = ly->lnear[need];
+        if (ly->snear[need] < 0 || (x & (((int32_t)1 << l) - 1)) != 0) return t->nslot - 1;
+        return (uint32_t)ly->snear[need] + (uint32_t)(x >> l);
+    }
+    l = need_level(need);
     if (((x | y) & (((int32_t)1 << l) - 1)) != 0) return t->nslot - 1;
     i = (y >> l) - ly->sm0[l];
     if (i < 0 || i >= ly->snc[l]) return t->nslot - 1;
