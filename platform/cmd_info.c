@@ -8,6 +8,7 @@
 #include "platform/dem_args.h"
 #include "platform/opt.h"
 #include "platform/load.h"
+#include "core/bitree.h"
 
 #define INFO_SYNOPSIS "[options] FILE..."
 
@@ -80,6 +81,11 @@ static void report(const char *label, const hf *f, int json, int64_t filled)
         printf("  origin:  sample (0,0) centre at x %.6f, y %.6f m; step %.6f x %.6f m\n",
                (double)f->geo.x0 * gs, (double)f->geo.y0 * gs, (double)f->geo.sx * gs, (double)f->geo.sy * gs);
     else printf("  origin:  none (no georeference in the file)\n");
+    if (f->w >= 2 && f->h >= 2) {
+        double tb = (double)bt_mem_size(f->w, f->h), sb = (double)bt_scratch_size(f->w, f->h);
+        printf("  bitree:  %.2f MB, %.2f bytes a sample (build scratch %.2f MB)\n", tb / 1e6,
+               tb / ((double)f->w * f->h), sb / 1e6);
+    }
 }
 
 int cmd_info(int argc, char **argv)
