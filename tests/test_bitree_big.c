@@ -391,24 +391,24 @@ static void test_zlimit_refused(void)
     int32_t z[25], i;
     hf f;
     bt_tree t, t0;
-    uint8_t mem[25 * 5 + 8];
-    size_t ss = bt_scratch_size(5, 5);
+    uint8_t mem[26 * 5 + 8];      /* bt_mem_size(5, 5): 25 slots and the void slot */
+    size_t ss = bt_scratch_size(5, 5), ms = bt_mem_size(5, 5);
     uint8_t *scr = malloc(ss);
     memset(&f, 0, sizeof f);
     f.w = 5; f.h = 5; f.z = z; f.z_num = 1; f.z_den = 1; f.dx_um = 1000000; f.dy_um = 1000000;
-    if (!scr) { CHECK(0); return; }
+    if (!scr || ms > 26 * 5) { CHECK(0); free(scr); return; }
     memset(&t, 0x5a, sizeof t);
     t0 = t;
     for (i = 0; i < 25; i++) z[i] = (i & 1) ? INT32_MAX : -INT32_MAX;
-    CHECK_EQ(bt_build(&t, &f, BT_METRIC_EXACT, mem + 8 - ((uintptr_t)mem & 3), 25 * 5, scr, ss), BR_E_ARG);
+    CHECK_EQ(bt_build(&t, &f, BT_METRIC_EXACT, mem + 8 - ((uintptr_t)mem & 3), ms, scr, ss), BR_E_ARG);
     CHECK(memcmp(&t, &t0, sizeof t) == 0);
     for (i = 0; i < 25; i++) z[i] = 0;
     z[7] = (int32_t)BR_Z_LIMIT + 1;
-    CHECK_EQ(bt_build(&t, &f, BT_METRIC_CURVATURE, mem + 8 - ((uintptr_t)mem & 3), 25 * 5, scr, ss), BR_E_ARG);
+    CHECK_EQ(bt_build(&t, &f, BT_METRIC_CURVATURE, mem + 8 - ((uintptr_t)mem & 3), ms, scr, ss), BR_E_ARG);
     z[7] = -(int32_t)BR_Z_LIMIT - 1;
-    CHECK_EQ(bt_build(&t, &f, BT_METRIC_EXACT, mem + 8 - ((uintptr_t)mem & 3), 25 * 5, scr, ss), BR_E_ARG);
+    CHECK_EQ(bt_build(&t, &f, BT_METRIC_EXACT, mem + 8 - ((uintptr_t)mem & 3), ms, scr, ss), BR_E_ARG);
     z[7] = -(int32_t)BR_Z_LIMIT; z[8] = (int32_t)BR_Z_LIMIT;
-    CHECK_EQ(bt_build(&t, &f, BT_METRIC_EXACT, mem + 8 - ((uintptr_t)mem & 3), 25 * 5, scr, ss), BR_OK);
+    CHECK_EQ(bt_build(&t, &f, BT_METRIC_EXACT, mem + 8 - ((uintptr_t)mem & 3), ms, scr, ss), BR_OK);
     free(scr);
 }
 

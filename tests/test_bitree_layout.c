@@ -143,11 +143,11 @@ static void view_params(const hf *f, bt_params *p, cam *c, int hyst)
     int32_t us, eye[3], tgt[3];
     memset(p, 0, sizeof *p);
     CHECK_EQ(bt_frame_auto(f, &p->fr, &us), BR_OK);
-    eye[0] = (int32_t)(((int64_t)f->w * f->dx_um / 1000000 / 3) << us);
-    eye[1] = (int32_t)(((int64_t)-(int64_t)f->h * f->dy_um / 1000000 / 4) << us);
+    eye[0] = (int32_t)((int64_t)f->w * f->dx_um / 1000000 / 3 * ((int64_t)1 << us));
+    eye[1] = (int32_t)(-(int64_t)f->h * f->dy_um / 1000000 / 4 * ((int64_t)1 << us));
     eye[2] = (int32_t)((int64_t)5000 << us);
-    tgt[0] = (int32_t)(((int64_t)f->w * f->dx_um / 1000000 / 2) << us);
-    tgt[1] = (int32_t)(((int64_t)f->h * f->dy_um / 1000000 / 2) << us);
+    tgt[0] = (int32_t)((int64_t)f->w * f->dx_um / 1000000 / 2 * ((int64_t)1 << us));
+    tgt[1] = (int32_t)((int64_t)f->h * f->dy_um / 1000000 / 2 * ((int64_t)1 << us));
     tgt[2] = 0;
     CHECK_EQ(cam_look_at(c, eye, tgt, 60000, 320, 240, 1 << us, (int32_t)(60000 << us)), BR_OK);
     p->mode = BT_VIEW;
