@@ -130,7 +130,7 @@ br_status bt_attach(bt_tree *t, const hf *f, const void *blob, size_t bytes, uin
     nt.n = ((int32_t)1 << k) + 1;
     bti_layout(&nt.lay, nt.w, nt.h, nt.n, &nt.nslot);
     if (rd32(p + 20) != (uint32_t)k || rd32(p + 40) != nt.nslot) return BR_E_ARG;
-    if (bytes - HDR_BYTES < (size_t)nt.nslot * 4 || (uint64_t)nt.nslot * 4 > (uint64_t)(SIZE_MAX - HDR_BYTES))
+    if ((uint64_t)nt.nslot * 4 > (uint64_t)(SIZE_MAX - HDR_BYTES) || bytes - HDR_BYTES < (size_t)nt.nslot * 4)
         return BR_E_ARG;
     nt.metric = (int32_t)rd32(p + 24);
     if (nt.metric != BT_METRIC_EXACT && nt.metric != BT_METRIC_CURVATURE) return BR_E_ARG;
