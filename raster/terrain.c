@@ -163,11 +163,22 @@ static inline uint32_t ramp_at(const rt_scene *s, int32_t z)
     return rs_ramp_rgb(s->ramp, hf_z_to_mm(s->f, z));
 }
 
+/* uv = (x tex_w 256 / (w - 1), y tex_h 256 / (h - 1)), truncated: quotients of at most
+ * tex 2^8, through fx_divisor (no 64-bit divide on 32-bit targets for textures below
+ * 2^24 texels a side; the same quotients as `/`). */
 static void vertex_uv(const rt_scene *s, int32_t x, int32_t y, rs_vertex *out)
 {
     const hf *f = s->f;
-    out->uv[0] = f->w > 1 ? (int32_t)((int64_t)x * s->tex_w * 256 / (f->w - 1)) : 0;
-    out->uv[1] = f->h > 1 ? (int32_t)((int64_t)y * s->tex_h * 256 / (f->h - 1)) : 0;
+    fx_divisor d;
+    out->uv[0] = out->uv[1] = 0;
+    if (f->w > 1) {
+        fx_divisor_make(&d, f->w - 1);
+        out->uv[0] = (int32_t)fx_divisor_trunc(&d, (int64_t)x * s->tex_w * 256);
+    }
+    if (f->h > 1) {
+        fx_divisor_make(&d, f->h - 1);
+        out->uv[1] = (int32_t)fx_divisor_trunc(&d, (int64_t)y * s->tex_h * 256);
+    }
 }
 
 /* Position, texture coordinates and, for a void, the colour; 1 when the sample is

@@ -146,6 +146,11 @@ static void test_cache_edges(void)
                     rt_vertex(&ref, x, y, zz, &a);
                     rt_vertex(&sc, x, y, zz, &b);
                     if (!same_vertex(&a, &b)) { CHECK_MSG(0, "pass %d sample %d,%d height %d", t, x, y, zz); return; }
+                    if (t == 1 && (b.uv[0] != (int64_t)x * 640 * 256 / (crop.w - 1) ||
+                                   b.uv[1] != (int64_t)y * 480 * 256 / (crop.h - 1))) {
+                        CHECK_MSG(0, "uv of sample %d,%d", x, y);
+                        return;
+                    }
                 }
             }
     }
