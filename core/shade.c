@@ -82,10 +82,10 @@ int shade_normal(const shade_ctx *c, int32_t x, int32_t y, fx_q14 n[3])
     len = fx_isqrt64((uint64_t)(v[0] * v[0]) + (uint64_t)(v[1] * v[1]) + (uint64_t)(v[2] * v[2]));
     if (len == 0) return 0;
     for (k = 0; k < 3; k++) {
-        int64_t q = v[k] * FX_Q14_ONE;
-        /* round to nearest, symmetric for negative values */
-        q = q >= 0 ? (q + (int64_t)(len / 2)) / (int64_t)len : -((-q + (int64_t)(len / 2)) / (int64_t)len);
-        n[k] = (fx_q14)q;
+        /* rounded to nearest, halves away from zero; |v[k]| <= len, so the quotient
+         * is at most 2^14 and |q| + len / 2 < len 2^15: 15 quotient bits (no 64-bit
+         * divide on 32-bit targets, where a vertex's first frame computes this) */
+        n[k] = (fx_q14)fx_div_round_bits(v[k] * FX_Q14_ONE, (int64_t)len, 15);
     }
     return 1;
 }

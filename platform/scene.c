@@ -247,8 +247,8 @@ br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err)
     s->cache = malloc(rs_cache_mem_size(s->mesh.cap_v ? s->mesh.cap_v : 1));
     if (!s->verts || !s->cache)
         return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for %u vertices", s->mesh.cap_v);
-    if (rt_cache_mem_size(&s->f) > 0) s->lit_mem = malloc(rt_cache_mem_size(&s->f));
-    if (s->lit_mem && rt_scene_cache(&s->rt, s->lit_mem, rt_cache_mem_size(&s->f)) != BR_OK) {
+    if (rt_cache_mem_size(&s->rt) > 0) s->lit_mem = malloc(rt_cache_mem_size(&s->rt));
+    if (s->lit_mem && rt_scene_cache(&s->rt, s->lit_mem, rt_cache_mem_size(&s->rt)) != BR_OK) {
         free(s->lit_mem);
         s->lit_mem = NULL;
     }
@@ -374,8 +374,10 @@ br_status scene_mesh(scene *s, const cam *c, bt_params *p)
         st = bt_extract_end(s->parts, &n);
     } else st = bt_extract(&s->tree, p, &s->mesh);
     if (st != BR_OK) return st;
-    if (n) pt_jobs(s->pool, n, job_join, s);
-    else rt_from_mesh(&s->rt, &s->mesh, s->verts);
+    if (n) {
+        pt_jobs(s->pool, n, job_join, s);
+        rt_from_mesh_pending(&s->rt, &s->mesh, s->verts);   /* the samples new to the cache */
+    } else rt_from_mesh(&s->rt, &s->mesh, s->verts);
     s->prim.kind = RS_STRIP;
     s->prim.n = s->mesh.ns;
     s->prim.idx = s->mesh.strip;

@@ -58,7 +58,7 @@ typedef struct scene {
     void *parts_mem;
     pt_pool *pool;
     uint32_t part_order[BT_PARTS], part_cost[BT_PARTS];   /* the parts' schedule (scene_mesh) */
-    void *lit_mem;                   /* the vertex colour cache (rt_scene_cache), 4 bytes a sample */
+    void *lit_mem;                   /* the shading cache (rt_scene_cache): 2 bytes a sample + 4 a height unit */
     /* full-grid path (scene_grid): row strips of every step-th sample */
     rs_vertex *grid_v;
     uint32_t grid_nv, *grid_idx;
@@ -83,8 +83,8 @@ br_status scene_tree(scene *s, br_err *err);
  * each, about 5.6 MB apiece of which 1 MB is written at once: 32 parts; a frame with a
  * larger part is extracted serially, the same mesh), its raster vertices, the vertex
  * cache, the chunk table (so that bands skip the chunks of triangles that miss them) and
- * the per-sample colour
- * cache of rt_scene_cache (4 bytes a sample; none when that allocation fails). */
+ * the per-sample shading cache of rt_scene_cache (2 bytes a sample plus a height
+ * table; none when that allocation fails). */
 br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err);
 void scene_close(scene *s);
 

@@ -74,19 +74,15 @@ void rs_sun_dir(int32_t az_mdeg, int32_t alt_mdeg, fx_q14 out[3])
     out[2] = (fx_q14)((se + (1 << 15)) >> 16);
 }
 
-uint32_t rs_light_rgb(uint32_t rgb, const fx_q14 n[3], const fx_q14 l[3], int32_t ambient_q14)
+int32_t rs_light_level(const fx_q14 n[3], const fx_q14 l[3], int32_t ambient_q14)
 {
     int64_t d = (int64_t)n[0] * l[0] + (int64_t)n[1] * l[1] + (int64_t)n[2] * l[2]; /* Q28 */
-    int64_t s;
-    uint32_t out = 0;
-    int k;
     if (d < 0) d = 0;
-    /* s = ambient + (1 - ambient) * d, Q14 */
-    s = ambient_q14 + ((((int64_t)FX_Q14_ONE - ambient_q14) * (d >> 14) + (1 << 13)) >> 14);
-    for (k = 16; k >= 0; k -= 8) {
-        int64_t c = ((((int64_t)(rgb >> k) & 255) * s) + (1 << 13)) >> 14;
-        if (c > 255) c = 255;
-        out |= (uint32_t)c << k;
-    }
-    return out;
+    /* ambient + (1 - ambient) * d, Q14 (ramp.h: at most FX_Q14_ONE + 1) */
+    return (int32_t)(ambient_q14 + ((((int64_t)FX_Q14_ONE - ambient_q14) * (d >> 14) + (1 << 13)) >> 14));
+}
+
+uint32_t rs_light_rgb(uint32_t rgb, const fx_q14 n[3], const fx_q14 l[3], int32_t ambient_q14)
+{
+    return rs_light_apply(rgb, rs_light_level(n, l, ambient_q14));
 }

@@ -41,7 +41,22 @@ uint32_t rs_ramp_rgb(const rs_ramp *r, int64_t z_mm);
  * millidegrees, as a Q14 unit vector (x east, y north, z up). */
 void rs_sun_dir(int32_t az_mdeg, int32_t alt_mdeg, fx_q14 out[3]);
 
-/* rgb lit by normal n under sun l with ambient (Q14, 0 .. FX_Q14_ONE). */
+/* rgb lit by normal n under sun l with ambient (Q14, 0 .. FX_Q14_ONE):
+ * rs_light_apply(rgb, rs_light_level(n, l, ambient_q14)). */
 uint32_t rs_light_rgb(uint32_t rgb, const fx_q14 n[3], const fx_q14 l[3], int32_t ambient_q14);
+/* The light level ambient + (1 - ambient) max(0, n.L), Q14: 0 .. FX_Q14_ONE + 1 (the
+ * components of n and L are rounded to Q14, so n.L may exceed 2^28 by 2^15 at most,
+ * and d >> 14 then exceeds 2^14 by 1 at most). */
+int32_t rs_light_level(const fx_q14 n[3], const fx_q14 l[3], int32_t ambient_q14);
+/* rgb times a light level (Q14, 0 .. FX_Q14_ONE + 1 as rs_light_level gives), each
+ * channel rounded: 255 L + 2^13 < 256 * 2^14 for L <= 2^14 + 32, so a channel stays
+ * at most 255 without a clamp. */
+static inline uint32_t rs_light_apply(uint32_t rgb, int32_t level_q14)
+{
+    uint32_t l = (uint32_t)level_q14;
+    return ((((rgb >> 16) & 255u) * l + (1u << 13)) >> 14) << 16 |
+           ((((rgb >> 8) & 255u) * l + (1u << 13)) >> 14) << 8 |
+           (((rgb & 255u) * l + (1u << 13)) >> 14);
+}
 
 #endif

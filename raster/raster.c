@@ -243,7 +243,12 @@ static void intersect(const clipv *P, const clipv *Q, int64_t dp, int64_t dq, in
     int64_t num = dp, den = dp - dq, t;
     int k;
     while (den >= ((int64_t)1 << 31)) { num >>= 1; den >>= 1; }
-    t = den ? (num << 24) / den : 0;                 /* Q24, 0..1 */
+    /* Q24, 0..1: 0 <= num <= den (dp >= 0 > dq), so 25 quotient bits */
+#if BR_DIV64_NATIVE
+    t = den ? (num << 24) / den : 0;
+#else
+    t = den ? (int64_t)fx_udiv_bits((uint64_t)num << 24, (uint64_t)den, 25) : 0;
+#endif
     for (k = 0; k < 3; k++) o->c[k] = P->c[k] + (((Q->c[k] - P->c[k]) * t) >> 24);
     for (k = 0; k < 3; k++)
         o->col[k] = P->col[k] + (int32_t)((((int64_t)Q->col[k] - P->col[k]) * t) >> 24);
@@ -412,7 +417,13 @@ br_status rs_draw_band(const rs_frame *f, int32_t y0, int32_t rows, void *color,
     bd.steps16 = 0x0030002000100000u;
     /* clear: colour to the sky, depth to the far plane's depth (per-pixel far cut-off);
      * the depth rows are contiguous, the colour rows too when stride is the row's size */
+#if BR_DIV64_NATIVE
     dfar = f->vp.zfar > 0 ? (uint32_t)((int64_t)RS_DEPTH_ONE * f->vp.znear / f->vp.zfar) : 0;
+#else   /* 0 <= znear < zfar (every camera's): a quotient below RS_DEPTH_ONE < 2^30 */
+    if (f->vp.zfar > 0 && f->vp.znear >= 0 && f->vp.znear < f->vp.zfar)
+        dfar = (uint32_t)fx_udiv_bits((uint64_t)RS_DEPTH_ONE * (uint64_t)f->vp.znear, (uint64_t)f->vp.zfar, 30);
+    else dfar = f->vp.zfar > 0 ? (uint32_t)((int64_t)RS_DEPTH_ONE * f->vp.znear / f->vp.zfar) : 0;
+#endif
     if (!f->no_clear) {
         const size_t w = (size_t)f->w;
         const size_t crow = w * (f->fmt == RS_FMT_RGB565 ? 2u : 4u);

@@ -139,8 +139,11 @@ RSI_INLINE static void gen_grad(gen_grad_t *g, fx_divisor *ad, const rs_cvert *a
               + ((uint64_t)(((dcb1 * dy2 - dcc1 * dy1) * inv) >> 23) << 21)
               + (uint64_t)(((g->dcb2 * dy2 - g->dcc2 * dy1) * inv) >> 23);
         if (gzn < ((int64_t)1 << 22) && gzn > -((int64_t)1 << 22)) g->gz = (gzn * inv) >> 36;
-        else {      /* rare: no divisor made for it */
-            g->gz = gzn * RSI_SUBONE / area2;
+        else {      /* rare: a divisor made for it alone; a quotient of 2^32 or more
+                       (which fx_divisor_trunc32 may refuse) clamps as any beyond INT32_MAX */
+            fx_divisor za;
+            fx_divisor_make(&za, area2);
+            if (!fx_divisor_trunc32(&za, gzn * RSI_SUBONE, &g->gz)) g->gz = gzn < 0 ? -INT32_MAX : INT32_MAX;
             if (g->gz > INT32_MAX) g->gz = INT32_MAX;
             if (g->gz < -INT32_MAX) g->gz = -INT32_MAX;
         }

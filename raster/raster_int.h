@@ -83,11 +83,17 @@ static inline int64_t rsi_f_q8(const cam_vp *vp) { return (vp->f_q16 + 128) >> 8
 /* Screen position of camera-space point c (c2 >= znear, inside the guard band). */
 static inline void rsi_project(const cam_vp *vp, int64_t f8, const int64_t c[3], int32_t w, int32_t h, rs_cvert *o)
 {
-    /* |f8 * c| < 2^28 * 2^32; the quotient is within the guard band: |q| <= 2^22 */
-    int64_t qx = f8 * c[0] / c[2], qy = f8 * c[1] / c[2];
+    /* |f8 * c| < 2^28 * 2^32; the quotient is within the guard band: |q| <= 2^22; the
+     * depth quotient is below RS_DEPTH_ONE (c2 >= znear): 32-bit quotients, which
+     * fx_divisor gives without a 64-bit divide on 32-bit targets */
+    fx_divisor dz;
+    int64_t qx, qy;
+    fx_divisor_make(&dz, c[2]);
+    qx = fx_divisor_trunc(&dz, f8 * c[0]);
+    qy = fx_divisor_trunc(&dz, f8 * c[1]);
     o->x = w * RSI_HALF + (int32_t)((qx + 8) >> 4);
     o->y = h * RSI_HALF - (int32_t)((qy + 8) >> 4);
-    o->d = (uint32_t)((int64_t)RS_DEPTH_ONE * vp->znear / c[2]);
+    o->d = (uint32_t)fx_divisor_trunc(&dz, (int64_t)RS_DEPTH_ONE * vp->znear);
 }
 
 /* Camera space of world point p: the Q30 view matrix and translation, floored to

@@ -19,16 +19,14 @@ static int64_t zscale_q16(const hf *f, int32_t shift, int32_t num, int32_t den)
 /* Largest shift in [-8, hi] for which the extent (width, depth, and |height| times
  * num/den, in mm) times 2^shift / 1000 stays <= 2^27 and the vertical scale fits an
  * int32 (zscale_q16); -8 when none does. */
-static int32_t frame_shift(const hf *f, int32_t hi, int32_t num, int32_t den)
+static int32_t frame_shift(const hf *f, int32_t zmin, int32_t zmax, int32_t hi, int32_t num, int32_t den)
 {
-    hf_stats st;
     int64_t ext_mm, ex, ey, ez;
     int32_t shift;
-    hf_stats_get(f, &st);
     ex = (int64_t)f->w * f->dx_um / 1000;
     ey = (int64_t)f->h * f->dy_um / 1000;
-    ez = hf_z_to_mm(f, st.zmax);
-    if (-hf_z_to_mm(f, st.zmin) > ez) ez = -hf_z_to_mm(f, st.zmin);
+    ez = hf_z_to_mm(f, zmax);
+    if (-hf_z_to_mm(f, zmin) > ez) ez = -hf_z_to_mm(f, zmin);
     if (num != den) {   /* ez * num / den without overflow: quotient and remainder apart */
         int64_t q = ez / den, r = ez % den;
         ez = q > INT32_MAX ? (int64_t)1 << 62 : q * num + r * num / den;
@@ -67,14 +65,21 @@ static void set_frame(rt_scene *s, int32_t shift, int32_t num, int32_t den)
 br_status rt_scene_init(rt_scene *s, const hf *f, const rs_ramp *ramp, const fx_q14 sun[3],
                         int32_t ambient_q14)
 {
-    if (hf_validate(f) != BR_OK || shade_init(&s->sc, f) != BR_OK) return BR_E_ARG;
+    hf_stats st;
+    if (hf_validate(f) != BR_OK || shade_init(&s->sc, f) != BR_OK || ambient_q14 < 0 || ambient_q14 > FX_Q14_ONE)
+        return BR_E_ARG;
+    hf_stats_get(f, &st);
     s->f = f;
+    s->zlo = st.zmin;
+    s->zhi = st.zmax;
     s->ramp = ramp;
     s->sun[0] = sun[0]; s->sun[1] = sun[1]; s->sun[2] = sun[2];
     s->ambient_q14 = ambient_q14;
     s->tex_w = s->tex_h = 0;
-    s->lit = NULL;
-    set_frame(s, frame_shift(f, 16, 1, 1), 1, 1);
+    s->lvl = NULL;
+    s->ztab = NULL;
+    s->nz = 0;
+    set_frame(s, frame_shift(f, s->zlo, s->zhi, 16, 1, 1), 1, 1);
     return BR_OK;
 }
 
@@ -89,7 +94,7 @@ br_status rt_scene_zscale(rt_scene *s, int32_t num, int32_t den)
     if (num <= 0 || den <= 0) return BR_E_ARG;
     if (num == den) return BR_OK;
     /* the frame keeps its unit unless the exaggerated heights no longer fit it */
-    set_frame(s, frame_shift(s->f, s->shift, num, den), num, den);
+    set_frame(s, frame_shift(s->f, s->zlo, s->zhi, s->shift, num, den), num, den);
     if (num < den) {
         s->sc.kx = scale_at_least_1(s->sc.kx, num, den, INT64_MAX);
         s->sc.ky = scale_at_least_1(s->sc.ky, num, den, INT64_MAX);
@@ -104,68 +109,136 @@ int64_t rt_mm_to_world(const rt_scene *s, int64_t mm)
     return fx_div_round(mm, (int64_t)1000 << -s->shift);
 }
 
-size_t rt_cache_mem_size(const hf *f)
+/* Heights in the colour table: zhi - zlo + 1, or 0 beyond RT_ZTAB_MAX. */
+static int32_t table_heights(const rt_scene *s)
 {
-    uint64_t n = (uint64_t)f->w * (uint64_t)f->h * 4u;
-    return f->w > 0 && f->h > 0 && n <= (uint64_t)SIZE_MAX ? (size_t)n : 0;
+    int64_t n = (int64_t)s->zhi - s->zlo + 1;
+    return n >= 1 && n <= RT_ZTAB_MAX ? (int32_t)n : 0;
+}
+
+/* Bytes of the levels, rounded up to 4 so the table after them is aligned. */
+static uint64_t level_bytes(const hf *f)
+{
+    return ((uint64_t)f->w * (uint64_t)f->h * 2u + 3u) & ~(uint64_t)3;
+}
+
+size_t rt_cache_mem_size(const rt_scene *s)
+{
+    uint64_t n = level_bytes(s->f) + (uint64_t)table_heights(s) * 4u;
+    return n <= (uint64_t)SIZE_MAX ? (size_t)n : 0;
 }
 
 br_status rt_scene_cache(rt_scene *s, void *mem, size_t mem_bytes)
 {
-    if (mem && (mem_bytes < rt_cache_mem_size(s->f) || rt_cache_mem_size(s->f) == 0 ||
-                ((uintptr_t)mem & 3) != 0))
-        return BR_E_ARG;
-    s->lit = (uint32_t *)mem;
+    size_t need = rt_cache_mem_size(s);
+    if (mem && (need == 0 || mem_bytes < need || ((uintptr_t)mem & 3) != 0)) return BR_E_ARG;
+    s->lvl = (uint16_t *)mem;
+    s->nz = mem ? table_heights(s) : 0;
+    s->ztab = mem && s->nz ? (uint32_t *)(void *)((uint8_t *)mem + level_bytes(s->f)) : NULL;
     rt_cache_clear(s);
     return BR_OK;
 }
 
 void rt_cache_clear(rt_scene *s)
 {
-    if (s->lit) memset(s->lit, 0, (size_t)s->f->w * (size_t)s->f->h * 4u);
+    int32_t i;
+    if (!s->lvl) return;
+    memset(s->lvl, 0, (size_t)s->f->w * (size_t)s->f->h * 2u);
+    for (i = 0; i < s->nz; i++) s->ztab[i] = rs_ramp_rgb(s->ramp, hf_z_to_mm(s->f, s->zlo + i));
 }
 
-/* the shaded colour of sample (x, y) at height z (not a void) */
-static uint32_t lit_rgb(const rt_scene *s, int32_t x, int32_t y, int32_t z)
+/* The light level of sample (x, y) (not a void): its normal's (core/shade.h). */
+static int32_t level_at(const rt_scene *s, int32_t x, int32_t y)
 {
     fx_q14 n[3];
-    uint32_t rgb = s->tex_w > 0 ? 0xffffffu : rs_ramp_rgb(s->ramp, hf_z_to_mm(s->f, z));
     shade_normal(&s->sc, x, y, n);
-    return rs_light_rgb(rgb, n, s->sun, s->ambient_q14);
+    return rs_light_level(n, s->sun, s->ambient_q14);
 }
 
-void rt_vertex(const rt_scene *s, int32_t x, int32_t y, int32_t z, rs_vertex *out)
+/* The unlit colour at height z: white under a texture, else the ramp's. */
+static inline uint32_t ramp_at(const rt_scene *s, int32_t z)
+{
+    if (s->tex_w > 0) return 0xffffffu;
+    if ((uint32_t)(z - s->zlo) < (uint32_t)s->nz) return s->ztab[z - s->zlo];
+    return rs_ramp_rgb(s->ramp, hf_z_to_mm(s->f, z));
+}
+
+/* uv = (x tex_w 256 / (w - 1), y tex_h 256 / (h - 1)), truncated: quotients of at most
+ * tex 2^8, through fx_divisor (no 64-bit divide on 32-bit targets for textures below
+ * 2^24 texels a side; the same quotients as `/`). */
+static void vertex_uv(const rt_scene *s, int32_t x, int32_t y, rs_vertex *out)
 {
     const hf *f = s->f;
-    int32_t zs = f->z[(size_t)y * (size_t)f->w + (size_t)x];
+    fx_divisor d;
+    out->uv[0] = out->uv[1] = 0;
+    if (f->w > 1) {
+        fx_divisor_make(&d, f->w - 1);
+        out->uv[0] = (int32_t)fx_divisor_trunc(&d, (int64_t)x * s->tex_w * 256);
+    }
+    if (f->h > 1) {
+        fx_divisor_make(&d, f->h - 1);
+        out->uv[1] = (int32_t)fx_divisor_trunc(&d, (int64_t)y * s->tex_h * 256);
+    }
+}
+
+/* Position, texture coordinates and, for a void, the colour; 1 when the sample is
+ * a void (out is then complete). */
+static inline int vertex_base(const rt_scene *s, int32_t x, int32_t y, int32_t z, rs_vertex *out)
+{
+    const hf *f = s->f;
     out->p[0] = s->fr.ox + x * s->fr.sx;
     out->p[1] = s->fr.oy - y * s->fr.sy;
     out->p[2] = s->fr.oz + (int32_t)(((int64_t)z * s->fr.sz_q16) >> 16);
     out->uv[0] = out->uv[1] = 0;
-    if (s->tex_w > 0 && s->tex_h > 0) {
-        out->uv[0] = f->w > 1 ? (int32_t)((int64_t)x * s->tex_w * 256 / (f->w - 1)) : 0;
-        out->uv[1] = f->h > 1 ? (int32_t)((int64_t)y * s->tex_h * 256 / (f->h - 1)) : 0;
-    }
-    if (zs == HF_NODATA) {
-        out->rgb = s->ramp->has_nv ? s->ramp->nv_rgb : 0;
-        return;
-    }
-    if (s->lit && z == zs) {
-        uint32_t *c = &s->lit[(size_t)y * (size_t)f->w + (size_t)x];
-        if (!*c) *c = RT_LIT | lit_rgb(s, x, y, z);
-        out->rgb = *c & 0xffffffu;
-        return;
-    }
-    out->rgb = lit_rgb(s, x, y, z);
+    if (s->tex_w > 0 && s->tex_h > 0) vertex_uv(s, x, y, out);
+    if (f->z[(size_t)y * (size_t)f->w + (size_t)x] != HF_NODATA) return 0;
+    out->rgb = s->ramp->has_nv ? s->ramp->nv_rgb : 0;
+    return 1;
+}
+
+/* The level of sample (x, y) (not a void), from the cache when there is one,
+ * computed and stored there on a miss. */
+static int32_t level_get(const rt_scene *s, int32_t x, int32_t y)
+{
+    uint16_t *c;
+    if (!s->lvl) return level_at(s, x, y);
+    c = &s->lvl[(size_t)y * (size_t)s->f->w + (size_t)x];
+    if (!*c) *c = (uint16_t)(RT_LVL | (uint32_t)level_at(s, x, y));
+    return *c & ~RT_LVL;
+}
+
+void rt_vertex(const rt_scene *s, int32_t x, int32_t y, int32_t z, rs_vertex *out)
+{
+    if (vertex_base(s, x, y, z, out)) return;
+    out->rgb = rs_light_apply(ramp_at(s, z), level_get(s, x, y));
 }
 
 void rt_from_mesh(const rt_scene *s, const bt_mesh *m, rs_vertex *out)
 {
-    rt_from_mesh_range(s, m, 0, m->nv, out);
+    uint32_t i;
+    for (i = 0; i < m->nv; i++) rt_vertex(s, m->v[i].x, m->v[i].y, m->v[i].z, &out[i]);
 }
 
 void rt_from_mesh_range(const rt_scene *s, const bt_mesh *m, uint32_t first, uint32_t n, rs_vertex *out)
 {
     uint32_t i;
-    for (i = first; i < first + n; i++) rt_vertex(s, m->v[i].x, m->v[i].y, m->v[i].z, &out[i]);
+    if (!s->lvl) {
+        for (i = first; i < first + n; i++) rt_vertex(s, m->v[i].x, m->v[i].y, m->v[i].z, &out[i]);
+        return;
+    }
+    for (i = first; i < first + n; i++) {
+        const bt_vert *v = &m->v[i];
+        uint32_t c;
+        if (vertex_base(s, v->x, v->y, v->z, &out[i])) continue;
+        c = s->lvl[(size_t)v->y * (size_t)s->f->w + (size_t)v->x];
+        out[i].rgb = c ? rs_light_apply(ramp_at(s, v->z), (int32_t)(c & ~RT_LVL)) : RT_PENDING;
+    }
+}
+
+void rt_from_mesh_pending(const rt_scene *s, const bt_mesh *m, rs_vertex *out)
+{
+    uint32_t i;
+    for (i = 0; i < m->nv; i++)
+        if (out[i].rgb == RT_PENDING)
+            out[i].rgb = rs_light_apply(ramp_at(s, m->v[i].z), level_get(s, m->v[i].x, m->v[i].y));
 }

@@ -34,14 +34,23 @@ typedef struct rt_scene {
                                 grid (sample (0,0) at texel (0,0), sample (w-1,h-1) at
                                 texel (tex_w, tex_h)) and the vertex colour is the
                                 lighting alone (lit white) */
-    uint32_t *lit;           /* NULL, or the per-sample cache (rt_scene_cache): w*h
-                                entries, 0 = not yet computed, else RT_LIT | rgb, the
-                                shaded colour at the sample's real height */
+    int32_t zlo, zhi;        /* the heightfield's non-void height range (hf_stats) */
+    /* the per-sample shading cache (rt_scene_cache), NULL when none is attached: */
+    uint16_t *lvl;           /* w*h entries, 0 = not yet computed, else RT_LVL | the
+                                sample's light level (rs_light_level of its normal:
+                                at most FX_Q14_ONE + 1 < RT_LVL) */
+    uint32_t *ztab;          /* nz entries: the ramp colour of height zlo + i */
+    int32_t nz;              /* 0: no height table (range wider than RT_ZTAB_MAX) */
 } rt_scene;
 
-#define RT_LIT 0x01000000u
+#define RT_LVL 0x8000u
+/* A vertex colour that rt_from_mesh_range left for rt_from_mesh_pending. */
+#define RT_PENDING 0x01000000u
+/* Largest height range (heightfield units) given a colour table: 256 KiB. */
+#define RT_ZTAB_MAX 65536
 
-/* Chooses the world frame for f and prepares shading; BR_E_ARG on a bad hf. */
+/* Chooses the world frame for f and prepares shading; BR_E_ARG on a bad hf or an
+ * ambient term outside 0 .. FX_Q14_ONE.  No cache is attached. */
 br_status rt_scene_init(rt_scene *s, const hf *f, const rs_ramp *ramp, const fx_q14 sun[3],
                         int32_t ambient_q14);
 
@@ -56,15 +65,23 @@ br_status rt_scene_zscale(rt_scene *s, int32_t num, int32_t den);
 /* Millimetres to world units (rounded to nearest). */
 int64_t rt_mm_to_world(const rt_scene *s, int64_t mm);
 
-/* Bytes of the per-sample colour cache for f (4 per sample; 0 if too big). */
-size_t rt_cache_mem_size(const hf *f);
-/* Attaches (mem != NULL) or detaches (mem == NULL) the cache, cleared.  What depends
- * only on the heightfield, the ramp, the sun, the ambient term, the texture size and
- * the vertical scale (the normal and the lit colour of a sample at its real height)
- * is then computed once per sample, on first use, instead of once per vertex per
- * frame: the same bytes as without the cache.  Call rt_cache_clear after changing
- * any of those (rt_scene_zscale does).  BR_E_ARG when mem_bytes is too small or mem
- * not 4-byte aligned (s unchanged). */
+/* The per-sample shading cache.  A vertex's colour is its ramp colour at its height
+ * z (which geomorphing and fictitious points move between real heights) lit by the
+ * normal of its grid sample (which does not depend on z): rs_light_apply(ramp(z),
+ * level(x, y)).  The level depends only on the heightfield, the sun, the ambient
+ * term and the vertical scale; the ramp colour only on the height.  With the cache
+ * the level is computed once per sample, on first use, and kept in 2 bytes; the
+ * ramp colour is a table of 4 bytes per height unit over [zlo, zhi] (when that
+ * range has at most RT_ZTAB_MAX heights; others, and heights outside it such as a
+ * water level, go through rs_ramp_rgb).  Bytes: 2 w h rounded up to 4, plus 4 nz;
+ * 2.9 MB + 10 KB for N47E009 (1201^2 samples, heights 388 .. 2937 m).  The same
+ * bytes as without the cache.  rt_cache_mem_size: 0 if too big.  rt_scene_cache
+ * attaches (mem != NULL) or detaches (mem == NULL) it, cleared; BR_E_ARG when
+ * mem_bytes is too small or mem not 4-byte aligned (s unchanged).  Call
+ * rt_cache_clear after changing the ramp, sun or ambient term (rt_scene_zscale does
+ * it for the scale; a texture only makes the colour white, checked per vertex); it
+ * fills the height table (nz rs_ramp_rgb calls) and forgets the levels. */
+size_t rt_cache_mem_size(const rt_scene *s);
 br_status rt_scene_cache(rt_scene *s, void *mem, size_t mem_bytes);
 void rt_cache_clear(rt_scene *s);
 
@@ -72,11 +89,15 @@ void rt_cache_clear(rt_scene *s);
  * texture, uv = (x * tex_w / (w - 1), y * tex_h / (h - 1)) texels in Q8. */
 void rt_vertex(const rt_scene *s, int32_t x, int32_t y, int32_t z, rs_vertex *out);
 
-/* The bitree mesh's vertices (m->nv of them) into out; with the cache, a vertex at
- * its real height (BT_S) takes its colour from it. */
+/* The bitree mesh's vertices (m->nv of them) into out (serial; fills the cache). */
 void rt_from_mesh(const rt_scene *s, const bt_mesh *m, rs_vertex *out);
-/* The same for m->v[first .. first + n) into out[first .. first + n) (threads may
- * fill disjoint ranges at once). */
+/* The same for m->v[first .. first + n) into out[first .. first + n), for threads
+ * filling disjoint ranges at once: it only reads the cache, so a vertex whose sample
+ * has no level yet gets RT_PENDING in its rgb (a sample on a seam between two ranges
+ * may be in both), and rt_from_mesh_pending, serial, after the ranges, computes
+ * those levels, stores them and finishes those vertices.  The result is
+ * rt_from_mesh's. */
 void rt_from_mesh_range(const rt_scene *s, const bt_mesh *m, uint32_t first, uint32_t n, rs_vertex *out);
+void rt_from_mesh_pending(const rt_scene *s, const bt_mesh *m, rs_vertex *out);
 
 #endif

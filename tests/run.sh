@@ -3,7 +3,8 @@
 # every test program, the raster
 # tests again with the 32-bit boards' divide-free quotients (BR_DIV64_NATIVE=0), and
 # every test program again under AddressSanitizer + UndefinedBehaviorSanitizer.
-# Then the cross-architecture probe (tests/cross/run.sh) and the whole suite under
+# Then the cross-architecture probe (tests/cross/run.sh), the armhf check that a frame
+# calls no 64-bit division helper (tests/cross/div64.sh), and the whole suite under
 # qemu-user on the targets of TEST_CROSS (default s390x armhf; tests/cross/suite.sh).
 # Each program ends with "N passed, N failed" (", N skipped" when some check could not
 # run here: a package that could not be installed); we add them up and end with
@@ -52,6 +53,9 @@ for t in "$B"/san-tests/test_*; do
     BITRAIN_SANITIZED=1 "$t" >$log 2>&1; rc=$?; count "$(basename "$t") [asan+ubsan]" $log $rc
 done
 sh tests/cross/run.sh >$log 2>&1; rc=$?; count "cross-architecture determinism (tests/cross)" $log $rc
+sh tests/cross/div64.sh >$log 2>&1; rc=$?
+grep -a ' path, ' $log | sed 's/^/  /'
+count "no 64-bit division in a frame on armhf (tests/cross/div64.sh)" $log $rc
 TEST_CROSS=${TEST_CROSS-s390x armhf}
 if [ -n "$TEST_CROSS" ]; then
   sh tests/cross/suite.sh $TEST_CROSS >$log 2>&1; rc=$?

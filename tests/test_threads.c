@@ -277,6 +277,7 @@ static int fly(pt_pool *pool, int serial, sel_frame *out)
     cp_ok = 1;
     memset(sc.tree.st, 0, nn);
     sc.mesh.nsplits = 0;
+    rt_cache_clear(&sc.rt);   /* every run fills the shading cache from empty */
     sc.pool = pool;
     if (serial) sc.parts = NULL;
     for (i = 0; ok && i < SEL_FRAMES; i++) {

@@ -1,0 +1,70 @@
+#!/bin/sh
+# No 64-bit division in a frame on 32-bit ARM (issue 20): tests/cross/frame_div.c (the
+# default scene's terrain frame from core/ and raster/, board configuration, 320x240)
+# built for armhf (Debian's default armv7-a Thumb-2: no divide instruction, so a 64-bit
+# `/` or `%` is a call of libgcc's __aeabi_ldivmod / __aeabi_uldivmod, which call
+# __udivmoddi4) and run under qemu-arm with the instruction-count plugin
+# (benchmarks/qemu_insn.c: executions per translation block).  A call enters a helper
+# at its first instruction, so the executions of the blocks that start there count
+# its calls.  Each path runs twice, with 0 frames (load, bitree, caches: the set-up)
+# and with FRAMES frames; the difference is what the frames called, and it must be 0
+# for every helper.  The set-up's own calls (nonzero: the height table's hf_z_to_mm)
+# show the count works.  Prints the calls per frame; ends with "N passed, N failed"
+# (", 1 skipped" with the reason when the cross compiler, qemu-arm, plugin support or
+# the DEM is missing).
+#   PATHS="default lake" FRAMES=3 SIZE=320x240 OUT=tests/out/div64
+set -u
+cd "$(dirname "$0")/../.." || exit 1
+PATHS=${PATHS:-default lake}
+FRAMES=${FRAMES:-3}
+SIZE=${SIZE:-320x240}
+OUT=${OUT:-tests/out/div64}
+dem=${BITRAIN_DATA:-../shared/data/dem}/hgt/N47E009.hgt
+HELPERS="__aeabi_ldivmod __aeabi_uldivmod __udivmoddi4 __divdi3 __udivdi3 __moddi3 __umoddi3 __divmoddi4"
+skip() { echo "skip   div64: $1"; echo "0 passed, 0 failed, 1 skipped"; exit 0; }
+have() { command -v "$1" >/dev/null 2>&1; }
+have arm-linux-gnueabihf-gcc || skip "arm-linux-gnueabihf-gcc not installed (gcc-arm-linux-gnueabihf)"
+have arm-linux-gnueabihf-nm || skip "arm-linux-gnueabihf-nm not installed (binutils-arm-linux-gnueabihf)"
+have qemu-arm || skip "qemu-arm not installed (qemu-user)"
+have "${CC:-cc}" || skip "no host compiler for the qemu plugin"
+[ -f "$dem" ] || skip "$dem not found (BITRAIN_DATA)"
+mkdir -p "$OUT" && rm -f "$OUT"/*.txt || exit 1
+WARN="-Wall -Wextra -Wshadow -Wundef -Wwrite-strings -Wdouble-promotion -Wmissing-prototypes -Wstrict-prototypes -Wconversion -Wno-sign-conversion"
+${CC:-cc} -std=c99 -O2 $WARN -shared -fPIC -fvisibility=hidden -o "$OUT/qemu_insn.so" benchmarks/qemu_insn.c \
+  || { echo "div64: cannot build the qemu plugin"; echo "0 passed, 1 failed"; exit 1; }
+arm-linux-gnueabihf-gcc -std=c99 -O2 $WARN -static -I. -o "$OUT/frame_div" tests/cross/frame_div.c core/*.c raster/*.c -lm \
+  || { echo "div64: cannot build tests/cross/frame_div.c for armhf"; echo "0 passed, 1 failed"; exit 1; }
+probe=$(qemu-arm -plugin "$OUT/qemu_insn.so,out=$OUT/probe.txt" "$OUT/frame_div" 2>&1 </dev/null)
+[ -f "$OUT/probe.txt" ] || skip "this qemu-arm cannot load the TCG plugin: $probe"
+# helper name -> entry address as the plugin prints it (hex, no 0x, Thumb bit cleared)
+arm-linux-gnueabihf-nm "$OUT/frame_div" >"$OUT/nm.txt"
+addrs=""
+for h in $HELPERS; do
+  a=$(awk -v n="$h" '$3 == n && ($2 == "T" || $2 == "t") { print $1; exit }' "$OUT/nm.txt")
+  [ -n "$a" ] && addrs="$addrs $h:$(printf '%x' $((0x$a & ~1)))"
+done
+[ -n "$addrs" ] || { echo "div64: no libgcc division helper in the armhf binary (nothing to count)"; echo "0 passed, 1 failed"; exit 1; }
+calls() { # plugin output, address -> executions of the blocks that start there
+  awk -v A="$2" '$1 == A { s += $3 } END { print s + 0 }' "$1"
+}
+run() { # path frames -> plugin output file; 1 on failure
+  qemu-arm -cpu cortex-a7 -plugin "$OUT/qemu_insn.so,out=$OUT/$1-$2.txt" "$OUT/frame_div" "$dem" \
+    "assets/$1-path.cam" "$2" "$SIZE" >"$OUT/$1-$2.log" 2>&1 || { cat "$OUT/$1-$2.log"; return 1; }
+}
+passed=0; failed=0
+for p in $PATHS; do
+  if ! run "$p" 0 || ! run "$p" "$FRAMES"; then echo "FAIL $p path: frame_div did not run"; failed=$((failed + 1)); continue; fi
+  bad=0; setup=0; line=""
+  for ha in $addrs; do
+    h=${ha%%:*}; a=${ha#*:}
+    c0=$(calls "$OUT/$p-0.txt" "$a"); c1=$(calls "$OUT/$p-$FRAMES.txt" "$a")
+    setup=$((setup + c0))
+    line="$line $h $(( (c1 - c0) / FRAMES ))/frame (set-up $c0);"
+    [ "$c1" != "$c0" ] && bad=1
+  done
+  echo "$p path, $FRAMES frames at $SIZE:$line"
+  if [ "$setup" = 0 ]; then echo "FAIL $p path: the set-up's calls were not seen either: the count does not work"; bad=1; fi
+  if [ $bad = 0 ]; then passed=$((passed + 1)); else echo "FAIL $p path: 64-bit division in a frame"; failed=$((failed + 1)); fi
+done
+echo "$passed passed, $failed failed"
+[ "$failed" = 0 ]

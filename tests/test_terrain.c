@@ -1,0 +1,178 @@
+/* tests/test_terrain.c — the per-sample shading cache of raster/terrain.h on real
+ * terrain (a 400 x 300 crop of N47E009, Lake Constance's south shore): the view
+ * meshes of a moving camera with geomorphing on (vertices between fictitious and
+ * real heights) get the same vertex bytes with the cache as without it, whether set
+ * up serially (rt_from_mesh) or in ranges plus the serial pending pass (the threads'
+ * form, with ranges cut anywhere); once a sample's level is cached no vertex on it is
+ * left pending, whatever its height; heights outside the table and void samples; and
+ * the cache's stated size. */
+#include <stdint.h>
+#include <string.h>
+#include "tests/test.h"
+#include "tests/support/btcheck.h"
+#include "core/cam.h"
+#include "platform/load.h"
+#include "raster/terrain.h"
+
+static hf full, crop;
+static bt_tree tree;
+static void *tree_mem;
+static int have;
+
+static int load(void)
+{
+    int32_t x, y;
+    void *scr;
+    if (have) return have > 0;
+    have = -1;
+    if (btc_load("hgt/N47E009.hgt", &full)) return 0;
+    crop = full;
+    crop.w = 400; crop.h = 300;
+    crop.z = malloc((size_t)crop.w * crop.h * 4);
+    for (y = 0; y < crop.h; y++)
+        for (x = 0; x < crop.w; x++) crop.z[(size_t)y * crop.w + x] = full.z[(size_t)(y + 100) * full.w + x + 300];
+    tree_mem = malloc(bt_mem_size(crop.w, crop.h));
+    scr = malloc(bt_scratch_size(crop.w, crop.h));
+    if (bt_build(&tree, &crop, BT_METRIC_EXACT, tree_mem, bt_mem_size(crop.w, crop.h), scr,
+                 bt_scratch_size(crop.w, crop.h)) != BR_OK) { free(scr); return 0; }
+    free(scr);
+    have = 1;
+    return 1;
+}
+
+static void scene_pair(rt_scene *a, rt_scene *b, rs_ramp *ramp)
+{
+    fx_q14 sun[3];
+    rs_ramp_default(ramp, hf_z_to_mm(&crop, 395), hf_z_to_mm(&crop, 2500));
+    rs_sun_dir(315000, 45000, sun);
+    CHECK_EQ(rt_scene_init(a, &crop, ramp, sun, 4915), BR_OK);
+    CHECK_EQ(rt_scene_init(b, &crop, ramp, sun, 4915), BR_OK);
+}
+
+static int same_vertex(const rs_vertex *p, const rs_vertex *q)
+{
+    return p->p[0] == q->p[0] && p->p[1] == q->p[1] && p->p[2] == q->p[2] && p->rgb == q->rgb &&
+           p->uv[0] == q->uv[0] && p->uv[1] == q->uv[1];
+}
+
+static void test_cache_same_bytes(void)
+{
+    rt_scene ref, sc;
+    rs_ramp ramp;
+    bt_params p;
+    bt_mesh m;
+    cam c;
+    void *mesh_mem = NULL, *cache;
+    rs_vertex *want, *got;
+    uint32_t i, k, nmorph = 0, nfict = 0;
+    if (!load()) { CHECK(0); return; }
+    scene_pair(&ref, &sc, &ramp);
+    cache = malloc(rt_cache_mem_size(&sc));
+    CHECK_EQ(rt_scene_cache(&sc, cache, rt_cache_mem_size(&sc)), BR_OK);
+    memset(&p, 0, sizeof p);
+    p.mode = BT_VIEW; p.fr = ref.fr; p.c = &c; p.hyst_q8 = 64; p.morph_q8 = 128; p.pixel_err_q8 = 256;
+    want = malloc(sizeof *want * 200000);
+    got = malloc(sizeof *got * 200000);
+    for (k = 0; k < 5; k++) {
+        /* metres -> world units: eye 2 km up at the south-west, moving 20 m east a frame */
+        int32_t eye[3], tgt[3], us = ref.shift;
+        uint32_t cut[4];
+        eye[0] = (2000 + 20 * (int32_t)k) << us; eye[1] = 1000 << us; eye[2] = 2500 << us;
+        tgt[0] = (12000 + 20 * (int32_t)k) << us; tgt[1] = 9000 << us; tgt[2] = 400 << us;
+        CHECK_EQ(cam_look_at(&c, eye, tgt, 60000, 320, 240, 1 << us, 60000 << us), BR_OK);
+        if (k == 0) CHECK_EQ(btc_extract(&tree, &p, 200000, &m, &mesh_mem), 0);
+        else CHECK_EQ(bt_extract(&tree, &p, &m), BR_OK);
+        if (m.nv > 200000) { CHECK(0); break; }
+        rt_from_mesh(&ref, &m, want);
+        for (i = 0; i < m.nv; i++) {
+            int32_t zs = crop.z[(size_t)m.v[i].y * crop.w + m.v[i].x];
+            nmorph += m.v[i].z != zs;
+            nfict += m.v[i].state == BT_F;
+        }
+        /* odd frames: the serial form; even frames: ranges cut at uneven points */
+        if (k & 1) rt_from_mesh(&sc, &m, got);
+        else {
+            cut[0] = 0; cut[1] = m.nv / 3; cut[2] = m.nv / 3 + 7 > m.nv ? m.nv : m.nv / 3 + 7; cut[3] = m.nv;
+            for (i = 0; i < 3; i++) rt_from_mesh_range(&sc, &m, cut[i], cut[i + 1] - cut[i], got);
+            rt_from_mesh_pending(&sc, &m, got);
+        }
+        for (i = 0; i < m.nv && same_vertex(&want[i], &got[i]); i++) {}
+        CHECK_MSG(i == m.nv, "frame %u vertex %u of %u differs", k, i, m.nv);
+        /* every sample of this mesh is cached now: no vertex is left pending */
+        rt_from_mesh_range(&sc, &m, 0, m.nv, got);
+        for (i = 0; i < m.nv && got[i].rgb != RT_PENDING && same_vertex(&want[i], &got[i]); i++) {}
+        CHECK_MSG(i == m.nv, "frame %u vertex %u pending or different after the fill", k, i);
+    }
+    printf("5 frames: %u vertices off their real height (%u fictitious)\n", nmorph, nfict);
+    CHECK(nmorph > 100);   /* the frames exercise heights between real ones */
+    free(mesh_mem); free(want); free(got); free(cache);
+}
+
+/* Heights outside the table (a water level below the lowest sample, one above the
+ * highest), a texture (white lit), a void sample, a changed sun after rt_cache_clear,
+ * and the stated size. */
+static void test_cache_edges(void)
+{
+    rt_scene ref, sc;
+    rs_ramp ramp;
+    rs_vertex a, b;
+    void *cache;
+    int32_t x, y, t, z[4];
+    size_t need;
+    if (!load()) { CHECK(0); return; }
+    scene_pair(&ref, &sc, &ramp);
+    need = rt_cache_mem_size(&sc);
+    CHECK_EQ(need, (((size_t)crop.w * crop.h * 2 + 3) & ~(size_t)3) + 4 * (size_t)(sc.zhi - sc.zlo + 1));
+    cache = malloc(need + 4);
+    CHECK_EQ(rt_scene_cache(&sc, cache, need - 1), BR_E_ARG);
+    CHECK(sc.lvl == NULL);
+    CHECK_EQ(rt_scene_cache(&sc, (uint8_t *)cache + 2, need), BR_E_ARG);
+    CHECK_EQ(rt_scene_cache(&sc, cache, need), BR_OK);
+    CHECK(sc.nz == sc.zhi - sc.zlo + 1 && sc.ztab != NULL);
+    z[0] = sc.zlo - 40; z[1] = sc.zlo; z[2] = sc.zhi; z[3] = sc.zhi + 300;
+    for (t = 0; t < 3; t++) {
+        if (t == 1) { ref.tex_w = sc.tex_w = 640; ref.tex_h = sc.tex_h = 480; }
+        if (t == 2) {   /* a new sun: the levels are stale until rt_cache_clear */
+            ref.tex_w = sc.tex_w = ref.tex_h = sc.tex_h = 0;
+            rs_sun_dir(100000, 20000, ref.sun);
+            rs_sun_dir(100000, 20000, sc.sun);
+            rt_cache_clear(&sc);
+        }
+        for (y = 0; y < crop.h; y += 7)
+            for (x = 0; x < crop.w; x += 5) {
+                int i;
+                for (i = 0; i < 5; i++) {
+                    int32_t zz = i < 4 ? z[i] : crop.z[(size_t)y * crop.w + x];
+                    rt_vertex(&ref, x, y, zz, &a);
+                    rt_vertex(&sc, x, y, zz, &b);
+                    if (!same_vertex(&a, &b)) { CHECK_MSG(0, "pass %d sample %d,%d height %d", t, x, y, zz); return; }
+                    if (t == 1 && (b.uv[0] != (int64_t)x * 640 * 256 / (crop.w - 1) ||
+                                   b.uv[1] != (int64_t)y * 480 * 256 / (crop.h - 1))) {
+                        CHECK_MSG(0, "uv of sample %d,%d", x, y);
+                        return;
+                    }
+                }
+            }
+    }
+    {   /* a void sample: the ramp's nodata colour, and no level */
+        int32_t keep = crop.z[5 * crop.w + 9];
+        crop.z[5 * crop.w + 9] = HF_NODATA;
+        rt_vertex(&sc, 9, 5, 0, &b);
+        CHECK_EQ(b.rgb, ramp.nv_rgb);
+        CHECK_EQ(sc.lvl[5 * crop.w + 9], 0);
+        crop.z[5 * crop.w + 9] = keep;
+    }
+    CHECK_EQ(rt_scene_cache(&sc, NULL, 0), BR_OK);
+    CHECK(sc.lvl == NULL && sc.ztab == NULL && sc.nz == 0);
+    free(cache);
+}
+
+int main(void)
+{
+    T_RUN(test_cache_same_bytes);
+    T_RUN(test_cache_edges);
+    if (have > 0) dem_free(&full);
+    free(crop.z);
+    free(tree_mem);
+    return t_finish();
+}
