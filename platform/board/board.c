@@ -54,21 +54,10 @@ int32_t board_frames(void)
     return bake.nframes;
 }
 
-uint32_t board_sum(uint32_t h, int *dc_last, int dc, const uint8_t *p, size_t n)
-{
-    size_t i;
-    if (dc != *dc_last) {
-        h = (h ^ (uint32_t)(0x100 + dc)) * 16777619u;
-        *dc_last = dc;
-    }
-    for (i = 0; i < n; i++) h = (h ^ p[i]) * 16777619u;
-    return h;
-}
-
 static void put(void *user, int dc, const uint8_t *p, size_t n)
 {
     stream *s = (stream *)user;
-    s->sum = board_sum(s->sum, &s->dc, dc, p, n);
+    s->sum = spib_sum(s->sum, &s->dc, dc, p, n);
 }
 
 static br_status band_sink(void *user, int32_t y0, int32_t rows, const void *px, size_t stride)
@@ -168,7 +157,7 @@ br_status board_frame(int32_t i, rs_sink tap, void *tap_user, board_frame_info *
     memset(&pipe, 0, sizeof pipe);
     pipe.w = fr.w; pipe.h = fr.h; pipe.fmt = fr.fmt; pipe.depth = fr.depth;
     if ((st = rs_pass_terrain(&terrain, &fr)) != BR_OK || (st = rs_pipe_add(&pipe, &terrain)) != BR_OK) return st;
-    s.sum = BOARD_SUM_INIT; s.dc = -1; s.tap = tap; s.tap_user = tap_user;
+    s.sum = SPIB_SUM_INIT; s.dc = -1; s.tap = tap; s.tap_user = tap_user;
     st = rs_pipe_run(&pipe, BOARD_BAND_ROWS, B.band, B.band_bytes, band_sink, &s, &total);
     if (st != BR_OK) return st;
     out->sum = s.sum;

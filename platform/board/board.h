@@ -12,9 +12,7 @@
  * rule, a coarser conforming mesh), BOARD_MAX_V raster vertices (a frame whose mesh has
  * more fails with BR_E_NOMEM, never writes past them).
  *
- * Checksum: FNV-1a (32 bits) over the stream's bytes, and over 0x100 + dc wherever the
- * D/C level changes (before the first byte too), so it does not depend on how the
- * stream is cut into writes. */
+ * Checksum: spib_sum (platform/board/spi_band.h) over each frame's stream. */
 #ifndef BR_BOARD_H
 #define BR_BOARD_H
 #include <stddef.h>
@@ -52,8 +50,5 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N]);
 int32_t board_frames(void);
 /* Draws frame i; each finished band also goes to tap (NULL: none) after the stream. */
 br_status board_frame(int32_t i, rs_sink tap, void *tap_user, board_frame_info *out);
-/* The checksum step, for writers that check the same stream (desktop_main.c). */
-uint32_t board_sum(uint32_t h, int *dc_last, int dc, const uint8_t *p, size_t n);
-#define BOARD_SUM_INIT 2166136261u
 
 #endif

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "platform/board/board.h"
+#include "platform/board/spi_band.h"
 #include "platform/png_io.h"
 #include "platform/sink_spi.h"
 
@@ -28,7 +29,7 @@ static br_status sum_write(void *user, int dc, const uint8_t *p, size_t n, br_er
 {
     tap *t = (tap *)user;
     (void)err;
-    t->sum = board_sum(t->sum, &t->dc, dc, p, n);
+    t->sum = spib_sum(t->sum, &t->dc, dc, p, n);
     return BR_OK;
 }
 
@@ -78,7 +79,7 @@ int main(int argc, char **argv)
     for (i = 0; i < board_frames(); i++) {
         board_frame_info fi;
         br_status st;
-        t.sum = BOARD_SUM_INIT; t.dc = -1;
+        t.sum = SPIB_SUM_INIT; t.dc = -1;
         st = board_frame(i, tap_band, &t, &fi);
         if (st != BR_OK) { fprintf(stderr, "board: frame %d failed: %s\n", i, br_status_name(st)); rc = 1; break; }
         printf("desktop frame %d checksum: %08lx\n", i, (unsigned long)fi.sum);

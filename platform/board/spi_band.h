@@ -16,4 +16,11 @@ typedef void spib_put_fn(void *user, int dc, const uint8_t *p, size_t n);
 void spib_band(spib_put_fn *put, void *user, int32_t w, int32_t y0, int32_t rows, const void *px, size_t stride,
                uint8_t *row);
 
+/* The stream's checksum: FNV-1a (32 bits) over its bytes, and over 0x100 + dc wherever
+ * the D/C level changes (*dc_last: the level of the previous byte, -1 before the
+ * first), so it does not depend on how the stream is cut into writes.  Start from
+ * SPIB_SUM_INIT with *dc_last = -1. */
+#define SPIB_SUM_INIT 2166136261u
+uint32_t spib_sum(uint32_t h, int *dc_last, int dc, const uint8_t *p, size_t n);
+
 #endif
