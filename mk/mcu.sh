@@ -17,7 +17,8 @@
 # Without arm-none-eabi-gcc the whole check is reported as skipped; without
 # qemu-system-arm the runs are (exit 0 both times, the line says so).
 # Environment: MCU_RAM MCU_FLASH MCU_STACK MCU_TIMEOUT MCU_DEM MCU_CROP MCU_PIXEL_ERROR_Q8
-#              MCU_MAX_TRI MCU_MAX_V B (build dir) CC
+#              MCU_MAX_TRI MCU_MAX_V B (build dir) CC; MCU_TOP=N also prints the N functions
+#              that take the most instructions a frame on each core
 set -u
 B=${B:-build}
 O=$B/mcu
@@ -72,6 +73,17 @@ qrun() {  # elf out [arg]: qemu with semihosting, the plugin when there is one
   timeout "$MCU_TIMEOUT" qemu-system-arm -M mps2-an385 -nographic -monitor none -serial none \
     -semihosting-config "$cfg" -kernel "$1" ${plugin:+-plugin "$plugin,out=$2.insn"} > "$2" 2>&1
 }
+top() {  # elf dir frames: instructions a frame by function (full run - set-up run), MCU_TOP lines
+  arm-none-eabi-nm -n --radix=d "$1" | awk '$2 ~ /^[tTwW]$/ { print "S", $1 + 0, $3 }' > "$2/syms"
+  awk -v n="$3" '
+    function hex(s,  v, i) { v = 0; for (i = 1; i <= length(s); i++) v = v * 16 + index("0123456789abcdef", substr(tolower(s), i, 1)) - 1; return v }
+    $1 == "S" { a[++ns] = $2 + 0; nm[ns] = $3; next }
+    $1 == "total" { f++; next }
+    { x = hex($1); lo = 1; hi = ns; while (lo < hi) { m = int((lo + hi + 1) / 2); if (a[m] <= x) lo = m; else hi = m - 1 }
+      c[nm[lo]] += (f == 1 ? 1 : -1) * $2 * $3 }
+    END { for (k in c) if (c[k] != 0) printf "%12d %s\n", c[k] / n, k }' "$2/syms" "$2/run.txt.insn" "$2/init.txt.insn" |
+    sort -rn | head -n "$MCU_TOP" | sed "s/^/mcu:   /"
+}
 for core in m0plus m3; do
   case $core in m0plus) cpu=cortex-m0plus ;; m3) cpu=cortex-m3 ;; esac
   d=$O/$core
@@ -104,8 +116,10 @@ for core in m0plus m3; do
   fi
   fl=$(arm-none-eabi-nm "$elf" | awk '{ print $NF }' | grep -E '^__aeabi_[fd]|^__(add|sub|mul|div|neg|cmp|eq|ne|lt|le|gt|ge|unord|fix|fixuns|float|floatun|extend|trunc)[sdtx]f|^__aeabi_[il]2[fd]|^__aeabi_ui2[fd]|^__aeabi_ul2[fd]' | tr '\n' ' ')
   if [ -n "$fl" ]; then echo "mcu: $core: floating-point helpers linked: $fl"; fail=$((fail + 1)); continue; fi
-  eval "$(arm-none-eabi-size -A "$elf" | awk '$1 == ".text" { t = $2 } $1 == ".data" { d = $2 } $1 == ".bss" { b = $2 } $1 == ".ARM.exidx" { x = $2 } END { printf "text=%d data=%d bss=%d\n", t + x, d, b }')"
-  line="$core: text $text, data $data, bss $bss"
+  eval "$(arm-none-eabi-size -A "$elf" | awk '$1 == ".text" { t = $2 } $1 == ".data" { d = $2 } $1 == ".bss" { b = $2 } $1 == ".stack" { s = $2 } $1 == ".ARM.exidx" { x = $2 } END { printf "text=%d data=%d bss=%d stk=%d\n", t + x, d, b, s }')"
+  ram=$((data + bss + stk))
+  baked=$(arm-none-eabi-nm -S --radix=d "$elf" | awk '$NF ~ /^bake(_z|_node|_lit)?$/ { s += $2 } END { print s + 0 }')
+  line="$core: text $text (code $((text - baked)), baked terrain $baked), data $data, bss $bss"
   if [ $have_qemu = 0 ]; then
     echo "mcu: $line; run skipped: no qemu-system-arm"; skip=$((skip + 1)); summary="$summary
 $line"; continue
@@ -129,10 +143,10 @@ $line"; continue
   fi
   line="$line, stack $stack (of $MCU_STACK), $ipf instructions/frame"
   echo "mcu: $line; $(wc -l < "$d/sums") checksums match the desktop's"
+  [ "${MCU_TOP:-0}" -gt 0 ] && [ "$ipf" != "-" ] && top "$elf" "$d" "$n"
   summary="$summary
 $line"; pass=$((pass + 1))
 done
-need=$(awk '/board state/ { s = $(NF - 1) } END { print s }' "$O/desktop.txt")
-echo "mcu: RAM: arena $arena bytes + board state $need (in bss), stack $MCU_STACK; link RAM $MCU_RAM (goal 64K: $( [ "$arena" -le 65536 ] && echo met || echo "not met"))"
+[ -n "${ram:-}" ] && echo "mcu: RAM: data + bss + stack = $ram bytes (arena $arena); linked for $MCU_RAM; the 64 KB goal: $( [ "$ram" -le 65536 ] && echo met || echo "not met")"
 echo "mcu: $pass passed, $fail failed, $skip skipped"
 [ $fail = 0 ]
