@@ -71,13 +71,31 @@ static uint32_t memo_size(uint32_t max_tri)
     return s;
 }
 
+/* The vertex capacity for max_v (0: 3 max_tri + 3, each triangle's own vertices) and the
+ * count the hash is sized for: 2 max_tri + 16, or an explicit max_v when that is smaller
+ * (the hash then still has at least twice the slots of the vertices it can hold). */
+static uint32_t cap_v_of(uint32_t max_tri, uint32_t max_v)
+{
+    return max_v == 0 || max_v > 3 * max_tri + 3 ? 3 * max_tri + 3 : max_v;
+}
+
+static uint32_t hash_for(uint32_t max_tri, uint32_t max_v)
+{
+    return max_v != 0 && max_v < 2 * max_tri + 16 ? max_v : 2 * max_tri + 16;
+}
+
 size_t bt_mesh_mem_size(uint32_t max_tri)
 {
+    return bt_mesh_mem_size_v(max_tri, 0);
+}
+
+size_t bt_mesh_mem_size_v(uint32_t max_tri, uint32_t max_v)
+{
     uint64_t cap_v, cap_s, hs, heap, sz;
-    if (max_tri < 2 || max_tri > 0x10000000u) return 0;
-    cap_v = 3ull * max_tri + 3;
+    if (max_tri < 2 || max_tri > 0x10000000u || (max_v != 0 && max_v < 16)) return 0;
+    cap_v = cap_v_of(max_tri, max_v);
     cap_s = 5ull * max_tri + 8;
-    hs = hash_size(2 * max_tri + 16);
+    hs = hash_size(hash_for(max_tri, max_v));
     heap = 4ull * max_tri + 8;
     sz = cap_v * sizeof(bt_vert) + cap_s * 4 + hs * 4 + 4 + heap * sizeof(bti_heap_ent) + heap * 4 + 8
          + (uint64_t)memo_size(max_tri) * 8 + 64;
@@ -87,15 +105,20 @@ size_t bt_mesh_mem_size(uint32_t max_tri)
 
 br_status bt_mesh_init(bt_mesh *m, uint32_t max_tri, void *mem, size_t mem_bytes)
 {
+    return bt_mesh_init_v(m, max_tri, 0, mem, mem_bytes);
+}
+
+br_status bt_mesh_init_v(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem, size_t mem_bytes)
+{
     uint8_t *p = (uint8_t *)mem;
     uint32_t cap_v, cap_s, hs;
-    if (!m || !mem || max_tri < 2 || max_tri > 0x10000000u) return BR_E_ARG;
-    if (mem_bytes < bt_mesh_mem_size(max_tri)) return BR_E_ARG;
+    if (!m || !mem || max_tri < 2 || max_tri > 0x10000000u || (max_v != 0 && max_v < 16)) return BR_E_ARG;
+    if (mem_bytes < bt_mesh_mem_size_v(max_tri, max_v)) return BR_E_ARG;
     if (((uintptr_t)mem & 7) != 0) return BR_E_ARG;
     memset(m, 0, sizeof *m);
-    cap_v = 3 * max_tri + 3;
+    cap_v = cap_v_of(max_tri, max_v);
     cap_s = 5 * max_tri + 8;
-    hs = hash_size(2 * max_tri + 16);
+    hs = hash_size(hash_for(max_tri, max_v));
     m->max_tri = max_tri;
     m->v = (bt_vert *)(void *)p; p += (size_t)cap_v * sizeof(bt_vert);
     m->cap_v = cap_v;

@@ -97,7 +97,7 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
     pipe.w = bake.fb_w; pipe.h = bake.fb_h; pipe.fmt = RS_FMT_RGB565; pipe.depth = RS_DEPTH16;
     longest.kind = RS_STRIP; longest.n = 5u * BOARD_MAX_TRI + 8u; longest.idx = NULL;
     sz[BP_STATE] = up8(board_tree_ram_size(&bake));
-    sz[BP_MESH] = up8(bt_mesh_mem_size(BOARD_MAX_TRI));
+    sz[BP_MESH] = up8(bt_mesh_mem_size_v(BOARD_MAX_TRI, BOARD_MAX_V));
     sz[BP_VERTS] = up8(sizeof(rs_vertex) * B.vcap);
     sz[BP_CACHE] = up8(rs_cache_mem_size(B.vcap));
     sz[BP_CHUNKS] = up8(rs_chunk_mem_size(&longest, 1));
@@ -110,7 +110,7 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
     if (!arena || ((uintptr_t)arena & 7) != 0 || total > arena_bytes) return BR_E_NOMEM;
     if (board_tree_attach(&B.tree, &B.f, &bake, bake_node, p, sz[BP_STATE]) != BR_OK) return BR_E_ARG;
     p += sz[BP_STATE];
-    if (bt_mesh_init(&B.mesh, BOARD_MAX_TRI, p, sz[BP_MESH]) != BR_OK) return BR_E_ARG;
+    if (bt_mesh_init_v(&B.mesh, BOARD_MAX_TRI, BOARD_MAX_V, p, sz[BP_MESH]) != BR_OK) return BR_E_ARG;
     p += sz[BP_MESH];
     B.verts = (rs_vertex *)(void *)p; p += sz[BP_VERTS];
     B.cache = (rs_cvert *)(void *)p; p += sz[BP_CACHE];
