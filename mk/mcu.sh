@@ -6,7 +6,8 @@
 #   2. builds and runs the desktop board main (build/mcu/bitrain-board-desktop), which
 #      also checks each band's SPI stream against platform/sink_spi.c's sink;
 #   3. builds core/ and raster/ (an archive: only what the board main calls is linked)
-#      with the board main for each core, soft float, -ffreestanding, no C library, into
+#      with the board main for each core, soft float, -ffreestanding, no C library (nor
+#      its headers: platform/board/include/string.h), into
 #      build/mcu/bitrain-CORE.elf with platform/board/mps2.ld (RAM MCU_RAM, flash
 #      MCU_FLASH, stack MCU_STACK: the link fails when they do not fit), and fails when a
 #      floating-point helper of libgcc is linked;
@@ -91,7 +92,9 @@ for core in m0plus m3; do
   # -fbuiltin after -ffreestanding: fixed-size memcpy/memset (raster.c's 8-byte stores)
   # are expanded inline as on a hosted build; libc_min.c itself is built without it
   # (a loop there must not become a call to the function it is in)
+  # platform/board/include: the board's own <string.h> (no C library's headers needed)
   XFLAGS="-std=c99 $WARN -O2 -g -mthumb -mcpu=$cpu -mfloat-abi=soft -ffreestanding -fbuiltin -ffunction-sections -fdata-sections \
+    -isystem platform/board/include \
     -DRS_WITH_888=0 -DRS_WITH_Z32=0 -DRS_WITH_TEX=0 $SIZES -I."
   objs="" ok=1
   for f in core/*.c raster/*.c; do
