@@ -11,7 +11,9 @@
  * platform/scene.c sets up a georeferenced DEM (default ramp over the crop's heights, sun
  * at 315 / 45 degrees, ambient 0.3, vertical scale 1) and the cameras as scene_camera
  * chooses them (60 degrees, near and far planes), at 320 x 240.  Selection as the
- * viewer's: hysteresis 1/4 and geomorph 1/2 of the threshold. */
+ * viewer's: hysteresis 1/4 and geomorph 1/2 of the threshold.  The frames are also drawn
+ * here by the product's own path (scene_frame, then the frame driver in 16-row RGB565
+ * bands with 16-bit depth) and their SPI stream checksums baked beside them. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,7 +22,9 @@
 #include "mcu/bake.h"
 #include "platform/campath.h"
 #include "platform/load.h"
+#include "platform/board/spi_band.h"
 #include "platform/scene.h"
+#include "raster/frame.h"
 
 #define FB_W 320
 #define FB_H 240
@@ -71,7 +75,57 @@ static int scene_of(scene *s, const hf *f, bake_info *b)
     return rt_scene_init(&s->rt, &s->f, &s->ramp, sun, b->ambient_q14) == BR_OK ? 0 : -1;
 }
 
-static int cameras(const scene *s, const char *path, bake_info *b, br_err *err)
+typedef struct sum_sink {
+    uint32_t sum;
+    int dc;
+    uint8_t row[2 * FB_W];
+} sum_sink;
+
+static void sum_put(void *user, int dc, const uint8_t *p, size_t n)
+{
+    sum_sink *k = (sum_sink *)user;
+    k->sum = spib_sum(k->sum, &k->dc, dc, p, n);
+}
+
+static br_status sum_band(void *user, int32_t y0, int32_t rows, const void *px, size_t stride)
+{
+    spib_band(sum_put, user, FB_W, y0, rows, px, stride, ((sum_sink *)user)->row);
+    return BR_OK;
+}
+
+/* The frames through scene_frame (its own tree and meshes: the hysteresis state runs
+ * through the path as on the board), their stream checksums into b->scene_sum. */
+static int scene_sums(scene *s, const cam *cams, bake_info *b, br_err *err)
+{
+    static uint8_t band[FB_W * 16 * 4 + 64];
+    int i;
+    if (scene_tree(s, err) != BR_OK || scene_reserve(s, 65536, err) != BR_OK) return -1;
+    for (i = 0; i < b->nframes; i++) {
+        bt_params bp;
+        rs_frame fr;
+        rs_prim prim;
+        rs_pipe pipe;
+        rs_pass terrain;
+        sum_sink k;
+        memset(&bp, 0, sizeof bp);
+        bp.pixel_err_q8 = b->pixel_err_q8; bp.hyst_q8 = b->hyst_q8; bp.morph_q8 = b->morph_q8;
+        memset(&fr, 0, sizeof fr);
+        fr.fmt = RS_FMT_RGB565; fr.depth = RS_DEPTH16; fr.clear_rgb = b->clear_rgb;
+        memset(&pipe, 0, sizeof pipe);
+        pipe.w = FB_W; pipe.h = FB_H; pipe.fmt = RS_FMT_RGB565; pipe.depth = RS_DEPTH16;
+        k.sum = SPIB_SUM_INIT; k.dc = -1;
+        if (scene_frame(s, &cams[i], &bp, &fr, &prim) != BR_OK || rs_pass_terrain(&terrain, &fr) != BR_OK
+            || rs_pipe_add(&pipe, &terrain) != BR_OK || rs_pipe_mem_size(&pipe, 16) > sizeof band
+            || rs_pipe_run(&pipe, 16, band, sizeof band, sum_band, &k, NULL) != BR_OK) {
+            br_err_set(err, BR_E_VALUE, NULL, "frame %d: the scene's frame path failed", i);
+            return -1;
+        }
+        b->scene_sum[i] = k.sum;
+    }
+    return 0;
+}
+
+static int cameras(const scene *s, const char *path, bake_info *b, cam *cams, br_err *err)
 {
     campath cp = { NULL, 0 };
     int i, j;
@@ -91,6 +145,7 @@ static int cameras(const scene *s, const char *path, bake_info *b, br_err *err)
         }
         b->cam[i].znear = c.znear;
         b->cam[i].zfar = c.zfar;
+        cams[i] = c;
     }
     campath_free(&cp);
     return 0;
@@ -136,7 +191,9 @@ static int write_c(const char *out, const char *src, const hf *f, const bt_tree 
         fprintf(o, "    { { %ld, %ld, %ld }, { %ld, %ld, %ld }, %ld, %ld },\n", (long)b->cam[i].eye[0],
                 (long)b->cam[i].eye[1], (long)b->cam[i].eye[2], (long)b->cam[i].tgt[0], (long)b->cam[i].tgt[1],
                 (long)b->cam[i].tgt[2], (long)b->cam[i].znear, (long)b->cam[i].zfar);
-    fprintf(o, "  }\n};\n");
+    fprintf(o, "  },\n  {");
+    for (i = 0; i < b->nframes; i++) fprintf(o, " 0x%08lxu,", (unsigned long)b->scene_sum[i]);
+    fprintf(o, " }\n};\n");
     return fclose(o) == 0 ? 0 : -1;
 }
 
@@ -146,6 +203,7 @@ int main(int argc, char **argv)
     scene s;
     bt_tree t;
     bake_info b;
+    cam cams[BAKE_MAX_FRAMES];
     br_err err;
     void *tmem, *scratch;
     uint32_t *lit;
@@ -188,7 +246,8 @@ int main(int argc, char **argv)
     b.fb_w = FB_W; b.fb_h = FB_H; b.fovy_mdeg = FOVY * 1000;
     b.pixel_err_q8 = (int32_t)perr; b.hyst_q8 = 64; b.morph_q8 = 128;
     b.clear_rgb = 0x99ccffu;
-    if (cameras(&s, argv[5], &b, &err) != 0) return fail("camera path", &err);
+    if (cameras(&s, argv[5], &b, cams, &err) != 0) return fail("camera path", &err);
+    if (scene_sums(&s, cams, &b, &err) != 0) return fail("the scene's frames", &err);
     if (write_c(argv[6], argv[1], &f, &t, lit, &b) != 0) {
         fprintf(stderr, "bake: %s: cannot write\n", argv[6]);
         return 1;
@@ -196,6 +255,7 @@ int main(int argc, char **argv)
     printf("bake: %s crop %ld,%ld %ldx%ld (%ld..%ld m), hierarchy %dx%d, %d frames -> %s\n", argv[1], x0, y0, side,
            side, (long)(b.ramp_zmin_mm / 1000), (long)(b.ramp_zmax_mm / 1000), (int)t.n, (int)t.n, (int)b.nframes,
            argv[6]);
-    free(tmem); free(lit); dem_free(&f);
+    free(tmem); free(lit);
+    scene_close(&s);        /* frees the crop's heights too (s.f holds them) */
     return 0;
 }

@@ -41,6 +41,11 @@ typedef struct bake_info {
     uint32_t clear_rgb;
     int32_t nframes;
     bake_cam cam[BAKE_MAX_FRAMES];
+    /* each frame's SPI stream checksum (platform/board/spi_band.h spib_sum) as the
+     * product's own frame path draws it on the host (platform/scene.h scene_frame: the
+     * view extraction in parts, the frame driver in 16-row RGB565 bands, 16-bit depth):
+     * what the board's frames must give */
+    uint32_t scene_sum[BAKE_MAX_FRAMES];
 } bake_info;
 
 extern const int32_t bake_z[];

@@ -4,7 +4,9 @@
 #   1. bakes the terrain (mcu/bake.c: a 257 x 257 crop of DEM, its hierarchy, shading and
 #      the camera path mcu/board-path.cam) into build/mcu/bake_data.c;
 #   2. builds and runs the desktop board main (build/mcu/bitrain-board-desktop), which
-#      also checks each band's SPI stream against platform/sink_spi.c's sink;
+#      also checks each band's SPI stream against platform/sink_spi.c's sink; both mains
+#      check each frame's checksum against the one the bake computed through the
+#      product's own frame path (platform/scene.h scene_frame);
 #   3. builds core/ and raster/ (an archive: only what the board main calls is linked)
 #      with the board main for each core, soft float, -ffreestanding, no C library (nor
 #      its headers: platform/board/include/string.h), into
@@ -45,7 +47,7 @@ if ! command -v $XCC >/dev/null 2>&1; then
 fi
 
 # ---- 1. bake (host)
-$CC -std=c99 -O2 $WARN -I. $(pkg-config --cflags libpng zlib) -o "$O/bake" mcu/bake.c "$B/libbitrain.a" \
+$CC -std=c99 -O2 $WARN -I. $(pkg-config --cflags libpng zlib) -o "$O/bake" mcu/bake.c platform/board/spi_band.c "$B/libbitrain.a" \
   $(pkg-config --libs sdl2 libpng zlib) -lm || { echo "mcu: cannot build the bake tool"; exit 1; }
 # shellcheck disable=SC2086
 "$O/bake" "$MCU_DEM" $MCU_CROP mcu/board-path.cam "$O/bake_data.c.new" "$MCU_PIXEL_ERROR_Q8" || exit 1

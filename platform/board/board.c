@@ -161,6 +161,7 @@ br_status board_frame(int32_t i, rs_sink tap, void *tap_user, board_frame_info *
     st = rs_pipe_run(&pipe, BOARD_BAND_ROWS, B.band, B.band_bytes, band_sink, &s, &total);
     if (st != BR_OK) return st;
     out->sum = s.sum;
+    out->expect = bake.scene_sum[i];
     out->ntri = B.mesh.ntri; out->nv = B.mesh.nv; out->ns = B.mesh.ns;
     out->overflow = B.mesh.overflow;
     out->pixels = total.pixels;

@@ -32,6 +32,8 @@ enum board_part { BP_STATE, BP_MESH, BP_VERTS, BP_CACHE, BP_CHUNKS, BP_BAND, BP_
 
 typedef struct board_frame_info {
     uint32_t sum;               /* the checksum of the frame's stream */
+    uint32_t expect;            /* the same frame's checksum through the product's frame
+                                   path on the host (mcu/bake.h scene_sum) */
     uint32_t ntri, nv, ns;      /* the mesh: triangles, vertices, strip indices */
     int32_t overflow;           /* the selection fell back to the budget rule */
     uint32_t pixels;            /* pixels written (depth test passed) */

@@ -4,7 +4,8 @@
  * for each frame, which `make mcu` compares with the board's `mcu frame N checksum:`.
  * Each band also goes through platform/sink_spi.c's own sink (spi_sink_band) into a
  * writer that sums what it is given the same way: a frame whose board stream differs
- * from the Linux sink's is an error.
+ * from the Linux sink's is an error, and so is one whose checksum is not the one baked
+ * from the product's frame path (mcu/bake.h scene_sum).
  *
  *   bitrain-board-desktop [-o DIR] [--mem] [--bare]
  *   -o DIR  also writes each frame as DIR/board-N.png (RGB565 expanded)
@@ -89,6 +90,11 @@ int main(int argc, char **argv)
         printf("desktop frame %d: %lu triangles, %lu vertices, %lu strip indices, %lu pixels%s\n", i,
                (unsigned long)fi.ntri, (unsigned long)fi.nv, (unsigned long)fi.ns, (unsigned long)fi.pixels,
                fi.overflow ? ", budget fallback" : "");
+        if (fi.sum != fi.expect) {
+            fprintf(stderr, "board: frame %d: %08lx differs from the scene path's %08lx (mcu/bake.h scene_sum)\n", i,
+                    (unsigned long)fi.sum, (unsigned long)fi.expect);
+            rc = 1;
+        }
         if (!bare && t.sum != fi.sum) {
             fprintf(stderr, "board: frame %d: the board's SPI stream (%08lx) differs from spi_sink_band's (%08lx)\n", i,
                     (unsigned long)fi.sum, (unsigned long)t.sum);

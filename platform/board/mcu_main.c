@@ -2,7 +2,8 @@
  * library): start-up, the frames of board.h, output through semihosting (the debug
  * probe's console; QEMU's -semihosting).  Prints
  *   mcu frame N checksum: XXXXXXXX
- * for each frame (`make mcu` compares them with the desktop build's), a line of mesh
+ * for each frame (`make mcu` compares them with the desktop build's; a frame whose
+ * checksum is not the one baked from the product's frame path fails here), a line of mesh
  * figures per frame, the RAM each part takes and the stack's high-water mark, then exits
  * through semihosting (status 0, or 1 after a failure).
  *
@@ -114,6 +115,11 @@ static int run(void)
         st = board_frame(i, NULL, NULL, &fi);
         if (st != BR_OK) { out_s("mcu: frame "); out_u((uint32_t)i); out_s(" failed, status "); out_u((uint32_t)st); out_end(); return 0; }
         out_s("mcu frame "); out_u((uint32_t)i); out_s(" checksum: "); out_x(fi.sum); out_end();
+        if (fi.sum != fi.expect) {
+            out_s("mcu frame "); out_u((uint32_t)i); out_s(": differs from the scene path's "); out_x(fi.expect);
+            out_end();
+            return 0;
+        }
         out_s("mcu frame "); out_u((uint32_t)i); out_s(": "); out_u(fi.ntri); out_s(" triangles, "); out_u(fi.nv);
         out_s(" vertices, "); out_u(fi.ns); out_s(" strip indices, "); out_u(fi.pixels); out_s(" pixels");
         if (fi.overflow) out_s(", budget fallback");
