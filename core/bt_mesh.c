@@ -84,6 +84,14 @@ static uint32_t hash_for(uint32_t max_tri, uint32_t max_v)
     return max_v != 0 && max_v < 2 * max_tri + 16 ? max_v : 2 * max_tri + 16;
 }
 
+/* Entries of the budget heap (and of the split id list after it): 4 per triangle the
+ * budget rule may buy: max_tri, or max_v / 2 for an explicit max_v when that is smaller
+ * (a terrain mesh has about one vertex for two triangles). */
+static uint32_t heap_for(uint32_t max_tri, uint32_t max_v)
+{
+    return 4 * (max_v != 0 && max_v / 2 < max_tri ? max_v / 2 : max_tri) + 8;
+}
+
 size_t bt_mesh_mem_size(uint32_t max_tri)
 {
     return bt_mesh_mem_size_v(max_tri, 0);
@@ -96,7 +104,7 @@ size_t bt_mesh_mem_size_v(uint32_t max_tri, uint32_t max_v)
     cap_v = cap_v_of(max_tri, max_v);
     cap_s = 5ull * max_tri + 8;
     hs = hash_size(hash_for(max_tri, max_v));
-    heap = 4ull * max_tri + 8;
+    heap = heap_for(max_tri, max_v);
     sz = cap_v * sizeof(bt_vert) + cap_s * 4 + hs * 4 + 4 + heap * sizeof(bti_heap_ent) + heap * 4 + 8
          + (uint64_t)memo_size(max_tri) * 8 + 64;
     if (sz > (uint64_t)SIZE_MAX) return 0;      /* 32-bit hosts */
@@ -120,6 +128,7 @@ br_status bt_mesh_init_v(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem
     cap_s = 5 * max_tri + 8;
     hs = hash_size(hash_for(max_tri, max_v));
     m->max_tri = max_tri;
+    m->heap_cap = heap_for(max_tri, max_v);
     m->v = (bt_vert *)(void *)p; p += (size_t)cap_v * sizeof(bt_vert);
     m->cap_v = cap_v;
     m->hash = (uint32_t *)(void *)p; p += (size_t)hs * 4 + 4;
