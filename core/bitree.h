@@ -166,7 +166,8 @@ br_status bt_mesh_init(bt_mesh *m, uint32_t max_tri, void *mem, size_t mem_bytes
 /* The same with at most max_v vertices (>= 16; 0: 3 max_tri + 3, what no mesh of max_tri
  * triangles exceeds; larger values are taken as that), for callers that know their
  * meshes (terrain frames use about one vertex for two triangles) and have little RAM:
- * the vertex array, the vertex hash and the budget rule's heap shrink with it.  A
+ * the vertex array, the vertex hash, the strip (4 indices a vertex), the decision memo
+ * (a cache: fewer slots, same meshes) and the budget rule's heap shrink with it.  A
  * selection that needs more vertices falls back to the budget rule as one that needs
  * more triangles does (m->overflow = 1), and that fallback then buys at most about
  * min(max_tri, max_v / 2) triangles (its heap holds 4 entries a triangle); when even
