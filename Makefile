@@ -1,6 +1,6 @@
 # bitrain — terrain on boards with no GPU.
 # The only two commands a user needs: `make run` and `make test`.
-# Other targets: all (default: ./bitrain + build/libbitrain.a), install, bench, fuzz, clean.
+# Other targets: all (default: ./bitrain + build/libbitrain.a), install, bench, fuzz, mcu, clean.
 #
 # Sources are found by folder, so adding a module is adding its .c/.h pair:
 #   core/*.c raster/*.c platform/*.c  -> build/libbitrain.a (platform/main.c -> ./bitrain)
@@ -81,7 +81,7 @@ DIV32_TEST_BIN = $(B)/div32-tests/test_raster $(B)/div32-tests/test_raster_rende
                  $(B)/div32-tests/test_framecost $(B)/div32-tests/test_terrain
 
 .SECONDARY:
-.PHONY: all run test test-fast cross-test bench fuzz clean deps check-nofloat install FORCE
+.PHONY: all run test test-fast cross-test bench fuzz clean deps check-nofloat install mcu FORCE
 all: deps bitrain $(B)/libbitrain.a
 
 deps:
@@ -172,6 +172,15 @@ cross-test: deps
 	@sh mk/deps.sh --optional $(CROSS_PKGS)
 	@XDET_KNOB_TARGETS="native $(CROSS_TARGETS)" sh tests/cross/run.sh; p=$$?; \
 	 sh tests/cross/suite.sh $(CROSS_TARGETS) && exit $$p
+
+# The board build (docs/mcu.md): core/ and raster/ with the bare-metal main of
+# platform/board/ for Cortex-M0+ and Cortex-M3, run under qemu-system-arm against the
+# desktop build of the same code (mk/mcu.sh; MCU_RAM= MCU_STACK= MCU_FLASH= size the link).
+# Without the cross compiler it is reported as skipped.
+MCU_PKGS = gcc-arm-none-eabi qemu-system-arm
+mcu: deps $(B)/libbitrain.a
+	@sh mk/deps.sh --optional $(MCU_PKGS)
+	@B=$(B) CC="$(CC)" sh mk/mcu.sh
 
 # make install [PREFIX=/usr/local] [DESTDIR=]: the program, libbitrain.a, the public
 # headers under include/bitrain/ (so that "core/hf.h" etc. resolve with the .pc's

@@ -4,6 +4,7 @@
  * of a static guest binary with `nm -n`.
  *
  *   qemu-arm -plugin ./qemu_insn.so,out=FILE ./prog args
+ *   qemu-system-arm -M mps2-an385 ... -plugin ./qemu_insn.so,out=FILE   (one vCPU: make mcu)
  *
  * FILE (default: stderr) gets one line `total N` and then one line per distinct
  * (start address, instruction count) translation, `ADDR NINSN EXECS` (hex address,
@@ -119,8 +120,8 @@ static void qi_exit(qemu_plugin_id_t id, void *userdata)
 QI_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_t *info, int argc, char **argv)
 {
     int i;
-    if (info->system_emulation) {
-        qemu_plugin_outs("qemu_insn: user mode only (counts are not per vCPU)\n");
+    if (info->system_emulation && info->u.system.smp_vcpus != 1) {
+        qemu_plugin_outs("qemu_insn: user mode or one vCPU only (counts are not per vCPU)\n");
         return -1;
     }
     for (i = 0; i < argc; i++) {

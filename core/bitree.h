@@ -228,11 +228,25 @@ typedef struct bt_mesh {
     uint64_t *memo;        /* this frame's decisions (internal), memo_mask + 1 entries */
     uint32_t memo_mask, memo_gen;
     int32_t overflow;      /* 1 if the last extraction had to fall back to the budget */
+    uint32_t heap_cap;     /* entries of the budget heap and of the split list (internal;
+                              0 reads as 4 max_tri + 8) */
 } bt_mesh;
 
 /* Bytes for a mesh that holds up to max_tri triangles (>= 2). */
 size_t bt_mesh_mem_size(uint32_t max_tri);
 br_status bt_mesh_init(bt_mesh *m, uint32_t max_tri, void *mem, size_t mem_bytes);
+/* The same with at most max_v vertices (>= 16; 0: 3 max_tri + 3, what no mesh of max_tri
+ * triangles exceeds; larger values are taken as that), for callers that know their
+ * meshes (terrain frames use about one vertex for two triangles) and have little RAM:
+ * the vertex array, the vertex hash, the strip (4 indices a vertex), the decision memo
+ * (a cache: fewer slots, same meshes) and the budget rule's heap shrink with it.  A
+ * selection that needs more vertices falls back to the budget rule as one that needs
+ * more triangles does (m->overflow = 1), and that fallback then buys at most about
+ * min(max_tri, max_v / 2) triangles (its heap holds 4 entries a triangle); when even
+ * that does not fit, bt_extract returns BR_E_NOMEM and the mesh is incomplete.  0 on a
+ * bad size. */
+size_t bt_mesh_mem_size_v(uint32_t max_tri, uint32_t max_v);
+br_status bt_mesh_init_v(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem, size_t mem_bytes);
 
 /* ---------------------------------------------------------------- selection */
 enum { BT_FIDELITY = 0, BT_VIEW = 1, BT_BUDGET = 2 };

@@ -1,0 +1,56 @@
+/* mcu/bake.h — what mcu/bake.c writes for a board: a real heightfield, its bitree
+ * hierarchy, the lit colour of every sample, and a camera path, all as const arrays
+ * (flash), so that a board without a file system or the RAM to build the hierarchy
+ * draws the same frames as the desktop.
+ *
+ * The arrays (build/mcu/bake_data.c, generated):
+ *   bake_z[w * h]       heights, the heightfield's units (hf.z: row 0 north), no voids
+ *                       removed (HF_NODATA stays)
+ *   bake_node[n * n]    the hierarchy's per-diamond words (core/bitree.h bt_tree.node)
+ *   bake_lit[w * h]     RT_LIT | 0xRRGGBB for every valid sample, 0 for voids: the
+ *                       colour cache of raster/terrain.h filled for every sample, so the
+ *                       renderer only reads it (rt_scene.lit)
+ * and bake_info below.  Cameras are in the world frame of raster/terrain.h (rt_scene_init
+ * of the same heightfield gives the same frame on the board). */
+#ifndef BR_MCU_BAKE_H
+#define BR_MCU_BAKE_H
+#include <stdint.h>
+
+#define BAKE_MAX_FRAMES 16
+
+typedef struct bake_cam {
+    int32_t eye[3], tgt[3];     /* world units */
+    int32_t znear, zfar;        /* world units */
+} bake_cam;
+
+typedef struct bake_info {
+    /* the heightfield (core/hf.h) */
+    int32_t w, h, z_num, z_den;
+    int64_t dx_um, dy_um;
+    int32_t geo_kind;
+    int64_t geo_x0, geo_y0, geo_sx, geo_sy;
+    /* the hierarchy (core/bitree.h bt_tree) */
+    int32_t n, k, metric, zmin, zmax;
+    int64_t nvalid;
+    /* shading: the default ramp over [ramp_zmin_mm, ramp_zmax_mm], sun, ambient */
+    int64_t ramp_zmin_mm, ramp_zmax_mm;
+    int32_t sun_az_mdeg, sun_alt_mdeg, ambient_q14;
+    /* the frames: size, field of view, selection, the camera path */
+    int32_t fb_w, fb_h, fovy_mdeg;
+    int32_t pixel_err_q8, hyst_q8, morph_q8;
+    uint32_t clear_rgb;
+    int32_t nframes;
+    bake_cam cam[BAKE_MAX_FRAMES];
+    /* each frame's SPI stream checksum (platform/board/spi_band.h spib_sum) as the
+     * product's own frame path draws it on the host (platform/scene.h scene_frame: the
+     * view extraction in parts, the frame driver in 16-row RGB565 bands, 16-bit depth):
+     * what the board's frames must give */
+    uint32_t scene_sum[BAKE_MAX_FRAMES];
+} bake_info;
+
+extern const int32_t bake_z[];
+extern const uint32_t bake_node[];
+extern const uint32_t bake_lit[];
+extern const bake_info bake;
+
+#endif

@@ -1,0 +1,169 @@
+/* platform/board/board.c — the board's frames (see board.h).  Freestanding: core/,
+ * raster/, the baked arrays and memset/memcpy, nothing else. */
+#include "platform/board/board.h"
+#include <string.h>
+#include "core/bitree.h"
+#include "mcu/bake.h"
+#include "mcu/board_tree.h"
+#include "platform/board/spi_band.h"
+#include "raster/frame.h"
+#include "raster/ramp.h"
+#include "raster/terrain.h"
+
+struct board_state {
+    hf f;
+    rs_ramp ramp;
+    rt_scene rt;
+    bt_tree tree;
+    bt_mesh mesh;
+    rs_vertex *verts;
+    rs_cvert *cache;
+    int16_t *chunks;
+    void *band;
+    size_t band_bytes;
+    uint8_t *row;               /* the SPI row buffer, 2 w bytes */
+    uint32_t vcap;
+};
+
+static struct board_state B;
+
+typedef struct stream {
+    uint32_t sum;
+    int dc;
+    rs_sink tap;
+    void *tap_user;
+} stream;
+
+static const char *const part_name[BP_N] = {
+    "LOD state (bt_tree.st)", "mesh (bt_mesh)", "raster vertices", "vertex cache", "chunk table",
+    "band colour + depth", "SPI row buffer"
+};
+
+const char *board_part_name(int part)
+{
+    return part >= 0 && part < BP_N ? part_name[part] : "?";
+}
+
+size_t board_state_size(void)
+{
+    return sizeof B;
+}
+
+int32_t board_frames(void)
+{
+    return bake.nframes;
+}
+
+static void put(void *user, int dc, const uint8_t *p, size_t n)
+{
+    stream *s = (stream *)user;
+    s->sum = spib_sum(s->sum, &s->dc, dc, p, n);
+}
+
+static br_status band_sink(void *user, int32_t y0, int32_t rows, const void *px, size_t stride)
+{
+    stream *s = (stream *)user;
+    spib_band(put, s, bake.fb_w, y0, rows, px, stride, B.row);
+    return s->tap ? s->tap(s->tap_user, y0, rows, px, stride) : BR_OK;
+}
+
+static size_t up8(size_t n)
+{
+    return (n + 7) & ~(size_t)7;
+}
+
+br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
+{
+    size_t sz[BP_N], total = 0;
+    uint8_t *p = (uint8_t *)arena;
+    fx_q14 sun[3];
+    rs_pipe pipe;
+    rs_prim longest;
+    int i;
+    memset(&B, 0, sizeof B);
+    B.f.w = bake.w; B.f.h = bake.h;
+    B.f.z = (int32_t *)(uintptr_t)bake_z;     /* read only: no path writes hf.z */
+    B.f.z_num = bake.z_num; B.f.z_den = bake.z_den;
+    B.f.dx_um = bake.dx_um; B.f.dy_um = bake.dy_um;
+    B.f.geo.kind = bake.geo_kind;
+    B.f.geo.x0 = bake.geo_x0; B.f.geo.y0 = bake.geo_y0; B.f.geo.sx = bake.geo_sx; B.f.geo.sy = bake.geo_sy;
+    rs_ramp_default(&B.ramp, bake.ramp_zmin_mm, bake.ramp_zmax_mm);
+    rs_sun_dir(bake.sun_az_mdeg, bake.sun_alt_mdeg, sun);
+    if (rt_scene_init(&B.rt, &B.f, &B.ramp, sun, bake.ambient_q14) != BR_OK) return BR_E_ARG;
+    /* every valid sample's lit colour is baked, so rt_vertex only reads the cache */
+    B.rt.lit = (uint32_t *)(uintptr_t)bake_lit;
+    B.vcap = BOARD_MAX_V;
+    memset(&pipe, 0, sizeof pipe);
+    pipe.w = bake.fb_w; pipe.h = bake.fb_h; pipe.fmt = RS_FMT_RGB565; pipe.depth = RS_DEPTH16;
+    longest.kind = RS_STRIP; longest.n = 5u * BOARD_MAX_TRI + 8u; longest.idx = NULL;
+    sz[BP_STATE] = up8(board_tree_ram_size(&bake));
+    sz[BP_MESH] = up8(bt_mesh_mem_size_v(BOARD_MAX_TRI, BOARD_MAX_V));
+    sz[BP_VERTS] = up8(sizeof(rs_vertex) * B.vcap);
+    sz[BP_CACHE] = up8(rs_cache_mem_size(B.vcap));
+    sz[BP_CHUNKS] = up8(rs_chunk_mem_size(&longest, 1));
+    sz[BP_BAND] = up8(rs_pipe_mem_size(&pipe, BOARD_BAND_ROWS));
+    sz[BP_ROW] = up8((size_t)bake.fb_w * 2);
+    for (i = 0; i < BP_N; i++) {
+        if (size) size[i] = sz[i];
+        total += sz[i];
+    }
+    if (!arena || ((uintptr_t)arena & 7) != 0 || total > arena_bytes) return BR_E_NOMEM;
+    if (board_tree_attach(&B.tree, &B.f, &bake, bake_node, p, sz[BP_STATE]) != BR_OK) return BR_E_ARG;
+    p += sz[BP_STATE];
+    if (bt_mesh_init_v(&B.mesh, BOARD_MAX_TRI, BOARD_MAX_V, p, sz[BP_MESH]) != BR_OK) return BR_E_ARG;
+    p += sz[BP_MESH];
+    B.verts = (rs_vertex *)(void *)p; p += sz[BP_VERTS];
+    B.cache = (rs_cvert *)(void *)p; p += sz[BP_CACHE];
+    B.chunks = (int16_t *)(void *)p; p += sz[BP_CHUNKS];
+    B.band = p; B.band_bytes = sz[BP_BAND]; p += sz[BP_BAND];
+    B.row = p;
+    return BR_OK;
+}
+
+br_status board_frame(int32_t i, rs_sink tap, void *tap_user, board_frame_info *out)
+{
+    const bake_cam *bc;
+    cam c;
+    bt_params bp;
+    rs_prim prim;
+    rs_frame fr;
+    rs_pipe pipe;
+    rs_pass terrain;
+    rs_band_stats total;
+    stream s;
+    br_status st;
+    if (i < 0 || i >= bake.nframes || !B.row) return BR_E_ARG;
+    bc = &bake.cam[i];
+    st = cam_look_at(&c, bc->eye, bc->tgt, bake.fovy_mdeg, bake.fb_w, bake.fb_h, bc->znear, bc->zfar);
+    if (st != BR_OK) return st;
+    memset(&bp, 0, sizeof bp);
+    bp.mode = BT_VIEW;
+    bp.c = &c;
+    bp.fr = B.rt.fr;
+    bp.pixel_err_q8 = bake.pixel_err_q8;
+    bp.hyst_q8 = bake.hyst_q8;
+    bp.morph_q8 = bake.morph_q8;
+    if ((st = bt_extract(&B.tree, &bp, &B.mesh)) != BR_OK) return st;
+    if (B.mesh.nv > B.vcap) return BR_E_NOMEM;
+    rt_from_mesh(&B.rt, &B.mesh, B.verts);
+    prim.kind = RS_STRIP; prim.n = B.mesh.ns; prim.idx = B.mesh.strip;
+    memset(&fr, 0, sizeof fr);
+    fr.w = bake.fb_w; fr.h = bake.fb_h; fr.fmt = RS_FMT_RGB565; fr.depth = RS_DEPTH16;
+    fr.clear_rgb = bake.clear_rgb;
+    fr.v = B.verts; fr.nv = B.mesh.nv; fr.cache = B.cache;
+    fr.prims = &prim; fr.nprims = 1; fr.chunks = B.chunks;
+    cam_viewproj(&c, &fr.vp);
+    if ((st = rs_frame_prepare(&fr)) != BR_OK) return st;
+    memset(&pipe, 0, sizeof pipe);
+    pipe.w = fr.w; pipe.h = fr.h; pipe.fmt = fr.fmt; pipe.depth = fr.depth;
+    if ((st = rs_pass_terrain(&terrain, &fr)) != BR_OK || (st = rs_pipe_add(&pipe, &terrain)) != BR_OK) return st;
+    s.sum = SPIB_SUM_INIT; s.dc = -1; s.tap = tap; s.tap_user = tap_user;
+    st = rs_pipe_run(&pipe, BOARD_BAND_ROWS, B.band, B.band_bytes, band_sink, &s, &total);
+    if (st != BR_OK) return st;
+    out->sum = s.sum;
+    out->expect = bake.scene_sum[i];
+    out->ntri = B.mesh.ntri; out->nv = B.mesh.nv; out->ns = B.mesh.ns;
+    out->overflow = B.mesh.overflow;
+    out->pixels = total.pixels;
+    return BR_OK;
+}

@@ -1,0 +1,56 @@
+/* platform/board/spi_band.c — see spi_band.h. */
+#include "platform/board/spi_band.h"
+#include <string.h>
+
+enum { C_CASET = 0x2a, C_RASET = 0x2b, C_RAMWR = 0x2c };   /* ST7789V and ILI9341 data sheets */
+
+static void window(spib_put_fn *put, void *user, uint8_t c, int32_t a, int32_t b)
+{
+    const uint8_t p[4] = { (uint8_t)(a >> 8), (uint8_t)a, (uint8_t)(b >> 8), (uint8_t)b };
+    put(user, 0, &c, 1);
+    put(user, 1, p, 4);
+}
+
+uint32_t spib_sum(uint32_t h, int *dc_last, int dc, const uint8_t *p, size_t n)
+{
+    size_t i;
+    if (dc != *dc_last) {
+        h = (h ^ (uint32_t)(0x100 + dc)) * 16777619u;
+        *dc_last = dc;
+    }
+    for (i = 0; i < n; i++) h = (h ^ p[i]) * 16777619u;
+    return h;
+}
+
+void spib_band(spib_put_fn *put, void *user, int32_t w, int32_t y0, int32_t rows, const void *px, size_t stride,
+               uint8_t *row)
+{
+    const uint8_t ramwr = C_RAMWR;
+    int32_t y, x;
+    window(put, user, C_CASET, 0, w - 1);
+    window(put, user, C_RASET, y0, y0 + rows - 1);
+    put(user, 0, &ramwr, 1);
+    for (y = 0; y < rows; y++) {
+        const uint16_t *r = (const uint16_t *)(const void *)((const uint8_t *)px + (size_t)y * stride);
+        x = 0;
+#if defined(__GNUC__) && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+        if ((((uintptr_t)r | (uintptr_t)row) & 3) == 0) {
+            /* little-endian: two pixels a word, each 16-bit half byte-swapped (REV16 on
+             * ARM), stores high, low of the first pixel, then of the second */
+            const uint8_t *ra = (const uint8_t *)__builtin_assume_aligned(r, 4);
+            uint8_t *oa = (uint8_t *)__builtin_assume_aligned(row, 4);
+            for (; x + 2 <= w; x += 2) {
+                uint32_t v;
+                memcpy(&v, ra + 2 * x, 4);
+                v = ((v & 0x00ff00ffu) << 8) | ((v >> 8) & 0x00ff00ffu);
+                memcpy(oa + 2 * x, &v, 4);
+            }
+        }
+#endif
+        for (; x < w; x++) {
+            row[2 * x] = (uint8_t)(r[x] >> 8);
+            row[2 * x + 1] = (uint8_t)r[x];
+        }
+        put(user, 1, row, (size_t)w * 2);
+    }
+}
