@@ -6,10 +6,11 @@
  * The arrays (build/mcu/bake_data.c, generated):
  *   bake_z[w * h]       heights, the heightfield's units (hf.z: row 0 north), no voids
  *                       removed (HF_NODATA stays)
- *   bake_node[n * n]    the hierarchy's per-diamond words (core/bitree.h bt_tree.node)
- *   bake_lit[w * h]     RT_LIT | 0xRRGGBB for every valid sample, 0 for voids: the
- *                       colour cache of raster/terrain.h filled for every sample, so the
- *                       renderer only reads it (rt_scene.lit)
+ *   bake_tree[]         the hierarchy as bt_tree_save writes it (bake_tree_bytes bytes),
+ *                       attached in place by bt_attach (core/bitree.h)
+ *   bake_lvl[w * h]     the shading cache's light levels (raster/terrain.h rt_scene.lvl)
+ *   bake_ztab[nz]       and its ramp colour per height unit (rt_scene.ztab), filled for
+ *                       every valid sample, so the renderer only reads them
  * and bake_info below.  Cameras are in the world frame of raster/terrain.h (rt_scene_init
  * of the same heightfield gives the same frame on the board). */
 #ifndef BR_MCU_BAKE_H
@@ -32,6 +33,8 @@ typedef struct bake_info {
     /* the hierarchy (core/bitree.h bt_tree) */
     int32_t n, k, metric, zmin, zmax;
     int64_t nvalid;
+    uint32_t nslot;             /* frame state bytes bt_attach needs (bt_tree.nslot) */
+    int32_t nz;                 /* entries of bake_ztab (rt_scene.nz) */
     /* shading: the default ramp over [ramp_zmin_mm, ramp_zmax_mm], sun, ambient */
     int64_t ramp_zmin_mm, ramp_zmax_mm;
     int32_t sun_az_mdeg, sun_alt_mdeg, ambient_q14;
@@ -49,8 +52,10 @@ typedef struct bake_info {
 } bake_info;
 
 extern const int32_t bake_z[];
-extern const uint32_t bake_node[];
-extern const uint32_t bake_lit[];
+extern const uint32_t bake_tree[];
+extern const uint32_t bake_tree_bytes;
+extern const uint16_t bake_lvl[];
+extern const uint32_t bake_ztab[];
 extern const bake_info bake;
 
 #endif

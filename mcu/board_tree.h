@@ -1,7 +1,6 @@
-/* mcu/board_tree.h — a bt_tree over a hierarchy baked into flash (mcu/bake.h): the node
- * words are read where they lie, only the per-vertex frame state (bt_tree.st, n * n
- * bytes) is in RAM.  The one place that knows the baked layout: when core/bitree.h
- * gains its attach call for prebuilt hierarchies, this file becomes a call to it. */
+/* mcu/board_tree.h — the board's bt_tree: the hierarchy baked into flash (mcu/bake.h
+ * bake_tree, saved by bt_tree_save) attached in place with bt_attach; only the frame
+ * state (bt_tree.st, bake.nslot bytes) is in RAM. */
 #ifndef BR_MCU_BOARD_TREE_H
 #define BR_MCU_BOARD_TREE_H
 #include <stddef.h>
@@ -11,10 +10,10 @@
 
 /* Bytes of RAM the attached tree needs (its frame state). */
 size_t board_tree_ram_size(const bake_info *b);
-/* Fills t for heightfield f (made from the same bake) with node words node (const, never
- * written: the per-frame paths only read t->node) and frame state in st (st_bytes >=
- * board_tree_ram_size, cleared here).  BR_E_ARG when f or the sizes do not match b. */
-br_status board_tree_attach(bt_tree *t, const hf *f, const bake_info *b, const uint32_t *node, uint8_t *st,
-                            size_t st_bytes);
+/* Attaches the baked hierarchy (blob of `bytes` bytes) for heightfield f (made from the
+ * same bake), frame state in st (st_bytes >= board_tree_ram_size, cleared by
+ * bt_attach).  BR_E_ARG when the blob does not belong to f or the sizes are short. */
+br_status board_tree_attach(bt_tree *t, const hf *f, const bake_info *b, const uint32_t *blob, size_t bytes,
+                            uint8_t *st, size_t st_bytes);
 
 #endif

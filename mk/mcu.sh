@@ -123,7 +123,7 @@ for core in m0plus m3; do
   if [ -n "$fl" ]; then echo "mcu: $core: floating-point helpers linked: $fl"; fail=$((fail + 1)); continue; fi
   eval "$(arm-none-eabi-size -A "$elf" | awk '$1 == ".text" { t = $2 } $1 == ".data" { d = $2 } $1 == ".bss" { b = $2 } $1 == ".stack" { s = $2 } $1 == ".ARM.exidx" { x = $2 } END { printf "text=%d data=%d bss=%d stk=%d\n", t + x, d, b, s }')"
   ram=$((data + bss + stk))
-  baked=$(arm-none-eabi-nm -S --radix=d "$elf" | awk '$NF ~ /^bake(_z|_node|_lit)?$/ { s += $2 } END { print s + 0 }')
+  baked=$(arm-none-eabi-nm -S --radix=d "$elf" | awk '$NF ~ /^bake(_z|_tree|_lvl|_ztab)?$/ { s += $2 } END { print s + 0 }')
   line="$core: text $text (code $((text - baked)), baked terrain $baked), data $data, bss $bss"
   if [ $have_qemu = 0 ]; then
     echo "mcu: $line; run skipped: no qemu-system-arm"; skip=$((skip + 1)); summary="$summary

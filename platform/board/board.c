@@ -90,8 +90,10 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
     rs_ramp_default(&B.ramp, bake.ramp_zmin_mm, bake.ramp_zmax_mm);
     rs_sun_dir(bake.sun_az_mdeg, bake.sun_alt_mdeg, sun);
     if (rt_scene_init(&B.rt, &B.f, &B.ramp, sun, bake.ambient_q14) != BR_OK) return BR_E_ARG;
-    /* every valid sample's lit colour is baked, so rt_vertex only reads the cache */
-    B.rt.lit = (uint32_t *)(uintptr_t)bake_lit;
+    /* the shading cache is baked for every valid sample, so rt_vertex only reads it */
+    B.rt.lvl = (uint16_t *)(uintptr_t)bake_lvl;
+    B.rt.ztab = (uint32_t *)(uintptr_t)bake_ztab;
+    B.rt.nz = bake.nz;
     B.vcap = BOARD_MAX_V;
     memset(&pipe, 0, sizeof pipe);
     pipe.w = bake.fb_w; pipe.h = bake.fb_h; pipe.fmt = RS_FMT_RGB565; pipe.depth = RS_DEPTH16;
@@ -108,7 +110,7 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
         total += sz[i];
     }
     if (!arena || ((uintptr_t)arena & 7) != 0 || total > arena_bytes) return BR_E_NOMEM;
-    if (board_tree_attach(&B.tree, &B.f, &bake, bake_node, p, sz[BP_STATE]) != BR_OK) return BR_E_ARG;
+    if (board_tree_attach(&B.tree, &B.f, &bake, bake_tree, bake_tree_bytes, p, sz[BP_STATE]) != BR_OK) return BR_E_ARG;
     p += sz[BP_STATE];
     if (bt_mesh_init_v(&B.mesh, BOARD_MAX_TRI, BOARD_MAX_V, p, sz[BP_MESH]) != BR_OK) return BR_E_ARG;
     p += sz[BP_MESH];
