@@ -6,7 +6,14 @@
   lake-path.cam     55 m over Lake Constance (surface 395 m), from off Meersburg
                     towards Lindau, 20 m a frame, 300 frames;
   alps-path.cam     over the Alpstein (Saentis, 2502 m) 400 m above the highest
-                    ground within 1 km ahead, 20 m a frame, 300 frames.
+                    ground within 1 km ahead, 20 m a frame, 300 frames;
+and two over ../shared/data/dem/hgt/N50E008.hgt (the Taunus, 62 .. 885 m) into
+benchmarks/, for comparing one tile with the merged N50E008-N50E010 (3601 x 1201: its
+west third is N50E008, so the same positions fly over the same ground):
+  n50-steep.cam     3000 m up, 47 degrees down to the east-north-east (all the ground
+                    in view lies inside N50E008), 20 m a frame, 300 frames;
+  n50-horizon.cam   the same, 5 degrees down (the horizon in view: the merged tiles
+                    show three times the ground of one tile).
 Positions in the scene's frame (x east from the west edge, y north from the south
 edge, metres).  Usage: python3 benchmarks/make_paths.py (from the repository root)."""
 import gzip, math, struct
@@ -54,3 +61,17 @@ fly('lake-path.cam', '# 55 m over Lake Constance, off Meersburg towards Lindau, 
 fly('alps-path.cam', '# Over the Alpstein (Saentis), 400 m above the highest ground 1 km ahead, 20 m a frame (benchmarks/make_paths.py)\n',
     (9.25, 47.26), (9.45, 47.23),
     lambda x, y, ux, uy: 400 + max(ground(x + k * ux, y + k * uy) for k in range(0, 1001, 50)))
+
+def n50(name, head, ahead):                  # N50E008: 3" x 3" is 59.12 x 92.70 m
+    w, h = 1200 * 59.124512, 1200 * 92.698903
+    ux, uy = math.cos(math.radians(20)), math.sin(math.radians(20))
+    e0 = (0.5 * w, 0.3 * h, 3000.0)
+    out = [((e0[0] + 20 * i * ux, e0[1] + 20 * i * uy, e0[2]),
+            (e0[0] + (20 * i + ahead) * ux, e0[1] + (20 * i + ahead) * uy, 300.0)) for i in range(300)]
+    with open('benchmarks/' + name, 'w') as f:
+        f.write(head)
+        for e, t in out:
+            f.write('%.1f,%.1f,%.1f,%.1f,%.1f,%.1f\n' % (e + t))
+
+n50('n50-steep.cam', '# 3000 m over N50E008 (Taunus), 47 degrees down to the east-north-east, 20 m a frame (benchmarks/make_paths.py)\n', 2500)
+n50('n50-horizon.cam', '# 3000 m over N50E008 (Taunus), 5 degrees down to the east-north-east, 20 m a frame (benchmarks/make_paths.py)\n', 30000)
