@@ -106,6 +106,32 @@ static void water_rows(rw_frame *r)
     r->wlo = lo; r->whi = hi;
 }
 
+/* Water below the eye shows only below the horizon: a point of a water triangle lies at
+ * most `top` (the highest water vertex) high, so with top < eye z its view ray goes down,
+ * and with no roll (right z = 0: cam_look_at's up hint is +z) the ray of row y's pixel
+ * centres goes down exactly when s(y) = up_z (h - 2 y - 1) 2^16 + fwd_z 2 f_q16 < 0
+ * (twice f times the ray's z, Q30 + Q16; s falls with y when up_z > 0).  Both terms
+ * are shifted right by sh so that f_q16 >> sh < 2^30: |s| < 2^30 2^13 2^16 + 2^30 2^31
+ * < 2^63, and the shift moves the boundary by under 2^-29 of f, far below a row.  A
+ * drawn pixel's centre lies within the subpixel snap and the transform's rounding (well
+ * under a row) of such a point's projection: two rows of margin above the first row
+ * whose rays go down.  Raises wlo, never lowers it. */
+static void water_horizon(rw_frame *r, const cam *c, int64_t f16)
+{
+    const rs_frame *wf = r->water;
+    int32_t top = INT32_MIN, y, sh = 0;
+    uint32_t i;
+    while (sh < 16 && (f16 >> sh) >= ((int64_t)1 << 30)) sh++;
+    if (r->wlo > r->whi || !wf || c->right[2] != 0 || c->up[2] <= 0 || f16 <= 0 || (f16 >> sh) >= ((int64_t)1 << 30))
+        return;
+    for (i = 0; i < wf->nv; i++)
+        if (wf->v[i].p[2] > top) top = wf->v[i].p[2];
+    if (r->eye[2] <= top) return;
+    for (y = r->wlo; y <= r->whi; y++)
+        if ((int64_t)c->up[2] * (r->h - 2 * y - 1) * (65536 >> sh) + (int64_t)c->fwd[2] * 2 * (f16 >> sh) < 0) break;
+    if (y - 2 > r->wlo) r->wlo = y - 2;
+}
+
 /* Fog table: weight by depth d >> fog_sh (d in 30-bit units, D znear / zc). */
 static void fog_table(rw_frame *r, int64_t K)
 {
@@ -236,6 +262,7 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         r->water_bias = m > 0x3fffffffu ? 0x3fffffffu : (uint32_t)m;
     }
     water_rows(r);
+    water_horizon(r, c, f16);
     return BR_OK;
 }
 
@@ -311,32 +338,78 @@ static int water_touched(const void *user, int32_t y0, int32_t rows)
     return r->water && r->wlo <= r->whi && y0 <= r->whi && y0 + rows > r->wlo;
 }
 
-/* o = max(t - bias, dfar), a row of depths (buffers that do not overlap); with GCC's
- * vector extension (gcc, clang) four at a time, the same values. */
+/* One row of the water pass's scratch: depth o = max(t - bias, dfar) from the terrain's
+ * row t, colour c = 0 (no id), n pixels (buffers that do not overlap).  t - bias > dfar
+ * exactly when t > bias + dfar (all three below 2^30 for 30-bit depths, 2^16 for 16-bit
+ * ones: no overflow).  With GCC's vector extension (gcc, clang) 16 bytes a step; the
+ * colour is cleared in the same loop (one store per vector of depths, no second pass
+ * over the row). */
 #if defined(__GNUC__)
-typedef int32_t seed_v4 __attribute__((vector_size(16)));
+typedef uint32_t seed_u32x4 __attribute__((vector_size(16)));
+typedef uint16_t seed_u16x8 __attribute__((vector_size(16)));
 #endif
-static void seed32(int32_t *restrict o, const int32_t *restrict t, int32_t n, int32_t bias, int32_t dfar)
+static inline void seed32(uint32_t *restrict o, uint32_t *restrict c, const uint32_t *restrict t, int32_t n,
+                          uint32_t bias, uint32_t dfar, const int clear)
 {
+    const uint32_t thr = bias + dfar;
     int32_t i = 0;
 #if defined(__GNUC__)
-    const seed_v4 vb = { bias, bias, bias, bias }, vf = { dfar, dfar, dfar, dfar };
+    const seed_u32x4 vb = { bias, bias, bias, bias }, vf = { dfar, dfar, dfar, dfar }, vt = { thr, thr, thr, thr };
+    uint32_t zero = 0;
+    seed_u32x4 z;
+    __asm__("" : "+r"(zero));   /* opaque: GCC would split the zero stores into a memset,
+                                   a second pass over the row */
+    z = (seed_u32x4){ zero, zero, zero, zero };
     for (; i + 4 <= n; i += 4) {
-        seed_v4 v, m;
+        seed_u32x4 v, m;
         memcpy(&v, t + i, sizeof v);
-        v -= vb;
-        m = v > vf;
-        v = (v & m) | (vf & ~m);
+        m = (seed_u32x4)(v > vt);
+        v = ((v - vb) & m) | (vf & ~m);
         memcpy(o + i, &v, sizeof v);
+        if (clear) memcpy(c + i, &z, sizeof z);
     }
 #endif
-    for (; i < n; i++) { const int32_t v = t[i] - bias; o[i] = v > dfar ? v : dfar; }
+    for (; i < n; i++) {
+        o[i] = t[i] > thr ? t[i] - bias : dfar;
+        if (clear) c[i] = 0;
+    }
 }
 
-static void seed16(uint16_t *restrict o, const uint16_t *restrict t, int32_t n, int32_t bias, int32_t dfar)
+static inline void seed16(uint16_t *restrict o, uint16_t *restrict c, const uint16_t *restrict t, int32_t n,
+                          uint32_t bias, uint32_t dfar, const int clear)
 {
-    int32_t i;
-    for (i = 0; i < n; i++) { const int32_t v = (int32_t)t[i] - bias; o[i] = (uint16_t)(v > dfar ? v : dfar); }
+    int32_t i = 0;
+    if (bias + dfar >= 65535u) {    /* no terrain depth passes: every pixel is dfar */
+        for (; i < n; i++) {
+            o[i] = (uint16_t)dfar;
+            if (clear) c[i] = 0;
+        }
+        return;
+    }
+    {
+        const uint16_t thr = (uint16_t)(bias + dfar), b16 = (uint16_t)bias, f16 = (uint16_t)dfar;
+#if defined(__GNUC__)
+        const seed_u16x8 vb = { b16, b16, b16, b16, b16, b16, b16, b16 };
+        const seed_u16x8 vf = { f16, f16, f16, f16, f16, f16, f16, f16 };
+        const seed_u16x8 vt = { thr, thr, thr, thr, thr, thr, thr, thr };
+        uint16_t zero = 0;
+        seed_u16x8 z;
+        __asm__("" : "+r"(zero));   /* as in seed32 */
+        z = (seed_u16x8){ zero, zero, zero, zero, zero, zero, zero, zero };
+        for (; i + 8 <= n; i += 8) {
+            seed_u16x8 v, m;
+            memcpy(&v, t + i, sizeof v);
+            m = (seed_u16x8)(v > vt);
+            v = ((v - vb) & m) | (vf & ~m);
+            memcpy(o + i, &v, sizeof v);
+            if (clear) memcpy(c + i, &z, sizeof z);
+        }
+#endif
+        for (; i < n; i++) {
+            o[i] = t[i] > thr ? (uint16_t)(t[i] - b16) : f16;
+            if (clear) c[i] = 0;
+        }
+    }
 }
 
 /* The water pass's scratch, seeded from the terrain pass's depth of the same rows (the
@@ -347,22 +420,31 @@ static void seed16(uint16_t *restrict o, const uint16_t *restrict t, int32_t n, 
 static br_status water_run(const void *user, rs_band *b, int32_t self, rs_band_stats *st)
 {
     const rw_frame *r = (const rw_frame *)user;
-    const int32_t bias = (int32_t)r->water_bias, dfar = (int32_t)r->dfar, w = b->w;
+    const uint32_t bias = r->water_bias, dfar = r->dfar;
+    const int32_t w = b->w;
     const int32_t lo = r->wlo > b->y0 ? r->wlo : b->y0;
     const int32_t hi = r->whi < b->y0 + b->rows - 1 ? r->whi : b->y0 + b->rows - 1;
     int32_t y;
     if (b->scratch_y0[self] != b->y0 || b->scratch_rows[self] != b->rows) return BR_E_ARG;
     /* only the water rows wlo .. whi: no water triangle reaches the others, and rw_post
-     * reads no other row of this scratch (depths are below 2^30: signed compares) */
+     * reads no other row of this scratch */
     for (y = lo; y <= hi; y++) {
         const size_t row = (size_t)(y - b->y0);
-        memset((uint8_t *)b->scratch[self] + row * b->scratch_stride[self], 0, b->scratch_stride[self]);
-        if (r->depth == RS_DEPTH16)
-            seed16((uint16_t *)b->scratch_depth[self] + row * (size_t)w, (const uint16_t *)b->depth + row * (size_t)w,
-                   w, bias, dfar);
-        else
-            seed32((int32_t *)b->scratch_depth[self] + row * (size_t)w, (const int32_t *)b->depth + row * (size_t)w,
-                   w, bias, dfar);
+        uint8_t *c = (uint8_t *)b->scratch[self] + row * b->scratch_stride[self];
+        uint8_t *o = (uint8_t *)b->scratch_depth[self] + row * (size_t)w * (r->depth == RS_DEPTH16 ? 2u : 4u);
+        const uint8_t *t = (const uint8_t *)b->depth + row * (size_t)w * (r->depth == RS_DEPTH16 ? 2u : 4u);
+        /* the colour is cleared with the depths where both have the same pixel size */
+        if (r->depth == RS_DEPTH16 && r->fmt == RS_FMT_RGB565)
+            seed16((uint16_t *)(void *)o, (uint16_t *)(void *)c, (const uint16_t *)(const void *)t, w, bias, dfar, 1);
+        else if (r->depth != RS_DEPTH16 && r->fmt != RS_FMT_RGB565)
+            seed32((uint32_t *)(void *)o, (uint32_t *)(void *)c, (const uint32_t *)(const void *)t, w, bias, dfar, 1);
+        else {
+            memset(c, 0, (size_t)w * (r->fmt == RS_FMT_RGB565 ? 2u : 4u));
+            if (r->depth == RS_DEPTH16)
+                seed16((uint16_t *)(void *)o, NULL, (const uint16_t *)(const void *)t, w, bias, dfar, 0);
+            else
+                seed32((uint32_t *)(void *)o, NULL, (const uint32_t *)(const void *)t, w, bias, dfar, 0);
+        }
     }
     return rs_draw_band(r->water, b->scratch_y0[self], b->scratch_rows[self], b->scratch[self],
                         b->scratch_stride[self], b->scratch_depth[self], st);
@@ -514,17 +596,35 @@ static int shore_wet(const rw_frame *r, int32_t x, int32_t y, uint32_t id, uint3
     return r->p.wet[iy * (size_t)r->p.wet_w + ix] == id;
 }
 
-/* The first pixel at or after x of a water-pass row whose id is set (w if none): four
- * pixels a test. */
+/* The first pixel at or after x of a water-pass row whose id is set (w if none): sixteen
+ * pixels a test (64-bit words, read with memcpy: rows need no alignment), then one by
+ * one. */
+static inline uint64_t ld64(const void *p)
+{
+    uint64_t v;
+    memcpy(&v, p, sizeof v);
+    return v;
+}
+
 static inline int32_t next_water(const uint8_t *wc, int32_t x, int32_t w, const int32_t fmt)
 {
     if (fmt == RS_FMT_RGB565) {
         const uint16_t *p = (const uint16_t *)(const void *)wc;
-        while (x + 4 <= w && !((p[x] | p[x + 1] | p[x + 2] | p[x + 3]) & 0xf800u)) x += 4;
+        const uint64_t m = 0xf800f800f800f800ull;
+        for (; x + 16 <= w; x += 16) {
+            const uint8_t *q = (const uint8_t *)(p + x);
+            if ((ld64(q) | ld64(q + 8) | ld64(q + 16) | ld64(q + 24)) & m) break;
+        }
         while (x < w && !(p[x] & 0xf800u)) x++;
     } else {
         const uint32_t *p = (const uint32_t *)(const void *)wc;
-        while (x + 4 <= w && !((p[x] | p[x + 1] | p[x + 2] | p[x + 3]) & (31u << 19))) x += 4;
+        const uint64_t m = (uint64_t)(31u << 19) << 32 | (31u << 19);
+        for (; x + 16 <= w; x += 16) {
+            const uint8_t *q = (const uint8_t *)(p + x);
+            if ((ld64(q) | ld64(q + 8) | ld64(q + 16) | ld64(q + 24) | ld64(q + 32) | ld64(q + 40) | ld64(q + 48)
+                 | ld64(q + 56)) & m)
+                break;
+        }
         while (x < w && !(p[x] & (31u << 19))) x++;
     }
     return x;
