@@ -307,16 +307,18 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err 
     rw_fog_vertices(r, tf);
     memset(&w->pipe, 0, sizeof w->pipe);
     w->pipe.w = tf->w; w->pipe.h = tf->h; w->pipe.fmt = tf->fmt; w->pipe.depth = tf->depth;
-    if (rfr) {
-        rw_pass_reflection(&pass, r);
-        r->refl_pass = w->pipe.npasses;
-        rs_pipe_add(&w->pipe, &pass);
-    }
+    /* terrain, water, then the reflection: it draws only the rows around the band's
+     * water pixels, which the water pass has found */
     if (rs_pass_terrain(&w->tpass, tf) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "terrain frame without a chunk table");
     rs_pipe_add(&w->pipe, &w->tpass);
     if (wfr) {
         rw_pass_water(&pass, r);
         r->water_pass = w->pipe.npasses;
+        rs_pipe_add(&w->pipe, &pass);
+    }
+    if (rfr) {
+        rw_pass_reflection(&pass, r);
+        r->refl_pass = w->pipe.npasses;
         rs_pipe_add(&w->pipe, &pass);
     }
     w->pipe.post = rw_post;

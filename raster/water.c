@@ -6,6 +6,11 @@
 #include "raster/water.h"
 
 #define Q12 4096
+#if defined(__GNUC__)
+#define RW_INLINE inline __attribute__((always_inline))   /* inner loops' helpers */
+#else
+#define RW_INLINE inline
+#endif
 
 /* ---------------------------------------------------------------- set-up */
 
@@ -36,6 +41,72 @@ static uint32_t mix_rgb(uint32_t a, uint32_t b, uint32_t t)    /* t Q8: a (0) ..
     const uint32_t rb = ((a & 0xff00ffu) * u + (b & 0xff00ffu) * t + 0x800080u) >> 8;
     const uint32_t g = ((a & 0xff00u) * u + (b & 0xff00u) * t + 0x8000u) >> 8;
     return (rb & 0xff00ffu) | (g & 0xff00u);
+}
+
+/* mix_rgb(a, b, t) with b and t fixed: u = 256 - t, brb = (b & 0xff00ff) t + 0x800080,
+ * bg = (b & 0xff00) t + 0x8000 (the same sums, so the same value). */
+static uint32_t mix_pre(uint32_t a, uint32_t u, uint32_t brb, uint32_t bg)
+{
+    const uint32_t rb = ((a & 0xff00ffu) * u + brb) >> 8, g = ((a & 0xff00u) * u + bg) >> 8;
+    return (rb & 0xff00ffu) | (g & 0xff00u);
+}
+
+/* Quotients of the per-frame set-up with no 64-bit divide where the target has none
+ * (core/config.h BR_DIV64_NATIVE = 0, 32-bit boards: each int64 `/` would be a libgcc
+ * call): a divisor below 2^32 divides the high word by a 32-bit divide and the rest,
+ * (nh mod d) 2^32 + nl < d 2^32, through one fx_recip of d (exact: fx_udiv_r's bound);
+ * a divisor of 2^32 or more leaves a quotient below 2^32, by fx_udiv_bits' 32
+ * compare-and-subtract steps.  The quotients equal C's `/` (BR_DIV64_NATIVE = 1 uses
+ * it), so the pixels do not depend on the build. */
+typedef struct wdiv {
+    uint64_t d;                 /* >= 1 */
+    fx_recip rc;                /* of d when d < 2^32 (BR_DIV64_NATIVE = 0) */
+} wdiv;
+
+static void wdiv_make(wdiv *q, uint64_t d)
+{
+    q->d = d;
+    memset(&q->rc, 0, sizeof q->rc);
+#if !BR_DIV64_NATIVE
+    if (d <= 0xffffffffu) q->rc = fx_recip_make((uint32_t)d);
+#endif
+}
+
+static uint64_t wdiv_u(const wdiv *q, uint64_t n)    /* floor(n / d) */
+{
+#if BR_DIV64_NATIVE
+    return n / q->d;
+#else
+    const uint32_t d = (uint32_t)q->d, nh = (uint32_t)(n >> 32);
+    uint32_t qh;
+    if (q->d > 0xffffffffu) return fx_udiv_bits(n, q->d, 32);
+    qh = nh / d;
+    return ((uint64_t)qh << 32) | fx_udiv_r(((uint64_t)(nh - qh * d) << 32) | (uint32_t)n, &q->rc);
+#endif
+}
+
+static int64_t wdiv_s(const wdiv *q, int64_t n)      /* n / d truncated, as C's `/`; |n| < 2^63 */
+{
+    return n < 0 ? -(int64_t)wdiv_u(q, (uint64_t)-n) : (int64_t)wdiv_u(q, (uint64_t)n);
+}
+
+static uint64_t udiv64(uint64_t n, uint64_t d)       /* floor(n / d), d >= 1, one divisor once */
+{
+    wdiv q;
+    wdiv_make(&q, d);
+    return wdiv_u(&q, n);
+}
+
+static int64_t sdiv64(int64_t n, int64_t d)          /* n / d truncated, d != 0, |n|, |d| < 2^63 */
+{
+    wdiv q;
+    wdiv_make(&q, (uint64_t)(d < 0 ? -d : d));
+    return d < 0 ? -wdiv_s(&q, n) : wdiv_s(&q, n);
+}
+
+static int64_t sfloor64(int64_t n, int64_t d)        /* floor(n / d), d >= 1, |n| < 2^63 */
+{
+    return n >= 0 ? (int64_t)udiv64((uint64_t)n, (uint64_t)d) : -(int64_t)udiv64((uint64_t)(-n - 1), (uint64_t)d) - 1;
 }
 
 /* 4x4 ordered dither (Bayer), 0 .. 15, by screen position. */
@@ -136,16 +207,20 @@ static void water_horizon(rw_frame *r, const cam *c, int64_t f16)
 static void fog_table(rw_frame *r, int64_t K)
 {
     const int64_t zs = r->p.fog_start, ze = r->p.fog_end;
-    int64_t dstart = K / zs;
+    int64_t dstart = (int64_t)udiv64((uint64_t)K, (uint64_t)zs);
+    wdiv span;
     int32_t sh = 0, i;
     while ((dstart >> sh) > RW_TAB) sh++;
     r->fog_sh = sh;
+    wdiv_make(&span, (uint64_t)(ze - zs));
     for (i = 0; i <= RW_TAB; i++) {
         int64_t d = ((int64_t)i << sh) + (((int64_t)1 << sh) >> 1), zc, t;
-        zc = d > 0 ? K / d : ze;
-        t = zc <= zs ? 0 : zc >= ze ? 256 : ((zc - zs) << 8) / (ze - zs);
+        if (d > dstart) break;      /* d >= K / zs + 1 > K / zs: zc < zs, no fog from here on */
+        zc = d > 0 ? (int64_t)udiv64((uint64_t)K, (uint64_t)d) : ze;
+        t = zc <= zs ? 0 : zc >= ze ? 256 : (int64_t)wdiv_u(&span, (uint64_t)(zc - zs) << 8);
         r->fog[i] = (uint8_t)((t * t + 128) >> 8 > 255 ? 255 : (t * t + 128) >> 8);
     }
+    for (; i <= RW_TAB; i++) r->fog[i] = 0;
 }
 
 br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame *terrain,
@@ -155,10 +230,12 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
     const cam_vp *vp;
     int64_t K, f16;
     int32_t x, y, k;
+    wdiv df, dtint;
     if (!r || !p || !c || !terrain || terrain->w != c->w || terrain->h != c->h
         || p->res_shift < 0 || p->res_shift > 2
         || (p->fog_on && !(p->fog_start > 0 && p->fog_end > p->fog_start))
         || (p->water_on && (p->tint_len <= 0 || p->wave_len <= 0 || p->wave_amp < 0))
+        || p->tint_fixed < 0 || p->tint_fixed > 256
         || (water && (water->w != terrain->w || water->h != terrain->h))
         || (refl && (refl->w != terrain->w >> p->res_shift || refl->h != terrain->h >> p->res_shift)))
         return BR_E_ARG;
@@ -171,7 +248,7 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
     r->refl_pass = r->water_pass = -1;
     r->w = terrain->w; r->h = terrain->h; r->fmt = terrain->fmt; r->depth = terrain->depth;
     K = (int64_t)RS_DEPTH_ONE * vp->znear;
-    r->dfar = (uint32_t)(K / vp->zfar);
+    r->dfar = (uint32_t)udiv64((uint64_t)K, (uint64_t)vp->zfar);      /* zfar > znear > 0 */
     r->rdfar = r->dfar;
     if (r->depth == RS_DEPTH16) { r->dfar >>= 14; r->rdfar >>= 14; }
     for (k = 0; k < 3; k++) r->eye[k] = c->eye[k];
@@ -179,68 +256,89 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         tables(r);
         r->tables_ready = 1;
     }
+    if (r->skyrefl_of[0] != r->p.sky_horizon || r->skyrefl_of[1] != r->p.sky_zenith) {   /* never 0 */
+        for (k = 0; k <= RW_TAB; k++) r->skyrefl[k] = mix_rgb(r->p.sky_horizon, r->p.sky_zenith, r->skyw[k]);
+        r->skyrefl_of[0] = r->p.sky_horizon; r->skyrefl_of[1] = r->p.sky_zenith;
+    }
+    {
+        const uint32_t t = (uint32_t)r->p.tint_fixed;     /* 0 .. 256 (checked above) */
+        r->tint_u = 256u - t;
+        r->tint_rb = (r->p.water_rgb & 0xff00ffu) * t + 0x800080u;
+        r->tint_g = (r->p.water_rgb & 0xff00u) * t + 0x8000u;
+    }
     f16 = vp->f_q16;
-    for (x = 0; x < r->w; x++) r->aq[x] = (int32_t)(((int64_t)(2 * x + 1 - r->w) * ((int64_t)1 << 27)) / f16);
+    wdiv_make(&df, (uint64_t)f16);
+    if (p->water_on) wdiv_make(&dtint, (uint64_t)p->tint_len);
+    for (x = 0; x < r->w; x++) r->aq[x] = (int32_t)wdiv_s(&df, (int64_t)(2 * x + 1 - r->w) * ((int64_t)1 << 27));
     for (y = 0; y < r->h; y++) {
-        int64_t b = ((int64_t)(r->h - 2 * y - 1) * ((int64_t)1 << 27)) / f16, rz, len2;
+        int64_t b = wdiv_s(&df, (int64_t)(r->h - 2 * y - 1) * ((int64_t)1 << 27)), rz, len2;
         uint32_t s2;
         r->bq[y] = (int32_t)b;
         rz = ((int64_t)c->up[2] * b + (int64_t)c->fwd[2] * Q12) >> 30;
         r->rz[y] = (int32_t)rz;
         len2 = b * b + (int64_t)Q12 * Q12;
         /* the zenith weight 1.5 sin(elevation) of the row's centre ray, Q8 */
-        s2 = rz > 0 ? (uint32_t)((fx_isqrt64((uint64_t)(((rz * rz) << 24) / len2)) * 3u + 16u) >> 5) : 0;
+        s2 = rz > 0 ? (uint32_t)((fx_isqrt64(udiv64((uint64_t)((rz * rz) << 24), (uint64_t)len2)) * 3u + 16u) >> 5) : 0;
         r->sky[y] = p->sky_on ? mix_rgb(r->p.sky_horizon, r->p.sky_zenith, s2 > 256u ? 256u : s2)
                               : terrain->clear_rgb;
         for (k = 0; k < 4; k++)
             r->clear4[4 * y + k] = terrain->fmt == RS_FMT_RGB565 && p->sky_on ? dither888(r->sky[y], k, y) : r->sky[y];
         /* the plane point of the row's rays: E + lam ray, lam = (H - ez) / ray_z */
-        r->wbase[y][0] = r->wbase[y][1] = r->wstep[y][0] = r->wstep[y][1] = 0;
+        r->wrel[y][0] = r->wrel[y][1] = r->wstep[y][0] = r->wstep[y][1] = 0;
         r->tkr[y] = -1;
         if (rz < 0 && r->eye[2] > p->plane_z) {
-            int64_t lam = (((int64_t)p->plane_z - r->eye[2]) * Q12) / rz;    /* world units per unit ray */
+            int64_t lam = sdiv64(((int64_t)p->plane_z - r->eye[2]) * Q12, rz);    /* world units per unit ray */
             if (lam > ((int64_t)1 << 31)) lam = (int64_t)1 << 31;
             for (k = 0; k < 2; k++) {
                 int64_t ray = (((int64_t)c->up[k] * b) >> 30) + (c->fwd[k] >> 18);   /* Q12 */
-                r->wbase[y][k] = r->eye[k] + ((lam * ray) >> 12);
+                r->wrel[y][k] = (lam * ray) >> 12;
                 r->wstep[y][k] = (lam * c->right[k]) >> 30;
             }
             /* the ray's forward component is 1: lam is the plane point's zc */
-            r->tkr[y] = p->water_on ? ((lam << 21) / p->tint_len) : -1;
+            r->tkr[y] = p->water_on ? wdiv_s(&dtint, lam << 21) : -1;
             if (r->tkr[y] > ((int64_t)1 << 40)) r->tkr[y] = (int64_t)1 << 40;
         }
     }
     for (k = 0; k < 2; k++) {
         int64_t len = k == 0 ? p->wave_len : p->wave_len * 5 / 8;
         if (len < 1) len = 1;
-        r->kx[k] = ((int64_t)dir[k][0] * ((int64_t)1 << 18)) / len;        /* 2^32 turns per world unit */
-        r->ky[k] = ((int64_t)dir[k][1] * ((int64_t)1 << 18)) / len;
-        r->kt[k] = ((int64_t)1 << 32) / (k == 0 ? 2100 : 1300);
+        r->kx[k] = sdiv64((int64_t)dir[k][0] * ((int64_t)1 << 18), len);        /* 2^32 turns per world unit */
+        r->ky[k] = sdiv64((int64_t)dir[k][1] * ((int64_t)1 << 18), len);
+        r->kt[k] = k == 0 ? 2045222 : 3303820;      /* 2^32 / 2100, 2^32 / 1300 (periods in ms) */
     }
+    for (y = 0; y < r->h; y++)      /* phase = px kx + py ky + t kt at the row's point, mod 2^32 */
+        for (k = 0; k < 2; k++)
+            r->wph[y][k] = (uint32_t)(r->eye[0] + r->wrel[y][0]) * (uint32_t)r->kx[k]
+                           + (uint32_t)(r->eye[1] + r->wrel[y][1]) * (uint32_t)r->ky[k]
+                           + (uint32_t)p->time_ms * (uint32_t)r->kt[k];
     {   /* displacement Q8 px = d amp_m >> 32 = A f 2^8 / zc */
         int64_t num = p->wave_amp * (f16 >> 4);
-        int64_t m = K > 0 ? fx_div_floor(num << 12, K) << 16 : 0;
+        int64_t m = K > 0 ? sfloor64(num << 12, K) << 16 : 0;
         r->amp_m = m > ((int64_t)1 << 33) ? (int64_t)1 << 33 : m;
         /* waves fade beyond 8 wave lengths */
-        r->wave_fade_d = (uint32_t)(K / (8 * (p->wave_len > 0 ? p->wave_len : 1)) > 0xffffffffLL ? 0xffffffffu
-                                    : K / (8 * (p->wave_len > 0 ? p->wave_len : 1)));
-        r->inv_fade = ((uint64_t)1 << 32) / ((r->wave_fade_d >> 14) | 1u);
+        const uint64_t fd = udiv64((uint64_t)K, 8 * (uint64_t)(p->wave_len > 0 ? p->wave_len : 1));
+        r->wave_fade_d = fd > 0xffffffffu ? 0xffffffffu : (uint32_t)fd;
+        r->inv_fade = udiv64((uint64_t)1 << 32, (r->wave_fade_d >> 14) | 1u);
     }
     for (k = 0; k <= RW_MAX_ID; k++) {     /* the bodies' plane points from the reflected plane's */
         const int64_t e0 = r->eye[2] - p->plane_z, eb = r->eye[2] - p->body_z[k];
-        int64_t q = e0 > 0 && eb > 0 ? (eb << 16) / e0 : 0;
+        int64_t q = e0 > 0 && eb > 0 ? (int64_t)udiv64((uint64_t)eb << 16, (uint64_t)e0) : 0;
         r->bratio[k] = (int32_t)(q > ((int64_t)1 << 20) ? 0 : q);
         r->ebody[k] = eb;
         /* the shore bound without a world term: dt - dw <= shore_c / E (30-bit depths);
          * 0xffffffff: no bound (every nearer terrain pixel is tested) */
         r->shore_dd[k] = 0xffffffffu;
         if (p->shore_bound && p->shore_w == 0 && eb > 0) {
-            int64_t qd = fx_div_floor(p->shore_c, eb);
+            int64_t qd = sfloor64(p->shore_c, eb);
             r->shore_dd[k] = qd >= 0xffffffffLL ? 0xffffffffu : (uint32_t)qd;
         }
     }
-    r->inv_sx = p->grid_sx > 0 ? ((((uint64_t)1 << 32) + (uint64_t)p->grid_sx - 1) / (uint64_t)p->grid_sx) : 0;
-    r->inv_sy = p->grid_sy > 0 ? ((((uint64_t)1 << 32) + (uint64_t)p->grid_sy - 1) / (uint64_t)p->grid_sy) : 0;
+    r->inv_sx = p->grid_sx > 0 ? udiv64(((uint64_t)1 << 32) + (uint64_t)p->grid_sx - 1, (uint64_t)p->grid_sx) : 0;
+    r->inv_sy = p->grid_sy > 0 ? udiv64(((uint64_t)1 << 32) + (uint64_t)p->grid_sy - 1, (uint64_t)p->grid_sy) : 0;
+    r->gx0 = r->eye[0] - p->grid_ox + p->grid_sx / 2;
+    r->gy0 = p->grid_oy - r->eye[1] + p->grid_sy / 2;
+    r->gxmax = p->grid_sx > 0 && p->wet_w > 0 ? (uint64_t)((int64_t)p->wet_w * p->grid_sx) : 0;
+    r->gymax = p->grid_sy > 0 && p->wet_h > 0 ? (uint64_t)((int64_t)p->wet_h * p->grid_sy) : 0;
     if (p->fog_on) fog_table(r, K);
     {   /* dquiet: terrain pixels at least this near (buffer units) get no fog */
         uint64_t d30 = 0;
@@ -308,15 +406,48 @@ static int refl_touched(const void *user, int32_t y0, int32_t rows)
     return r->refl && r->wlo <= r->whi && y0 <= r->whi + RW_WAVE_PX && y0 + rows > r->wlo - RW_WAVE_PX;
 }
 
+static inline int32_t next_water(const uint8_t *wc, int32_t x, int32_t w, const int32_t fmt);
+
+/* 1 when row y of the band's water-pass scratch (y in the band and in wlo .. whi) holds
+ * a water id. */
+static int water_in_row(const rw_frame *r, const rs_band *b, int32_t y)
+{
+    const int32_t i = r->water_pass;
+    const uint8_t *row = (const uint8_t *)b->scratch[i] + (size_t)(y - b->scratch_y0[i]) * b->scratch_stride[i];
+    return r->fmt == RS_FMT_RGB565 ? next_water(row, 0, b->w, RS_FMT_RGB565) < b->w
+                                   : next_water(row, 0, b->w, RS_FMT_XRGB8888) < b->w;
+}
+
+/* The reflection of the band: when the water pass ran before this one (ws_frame adds it
+ * first), only the reduced rows the hook can read, those of the band's rows that hold a
+ * water id widened by the waves' reach (RW_WAVE_PX; the hook reads row y + dy, |dy| <=
+ * RW_WAVE_PX, of water pixels only), drawn at their places in the scratch; nothing when
+ * the band holds no water.  Otherwise every row refl_rows gives. */
 static br_status refl_run(const void *user, rs_band *b, int32_t self, rs_band_stats *st)
 {
     const rw_frame *r = (const rw_frame *)user;
-    const size_t bpp = r->fmt == RS_FMT_RGB565 ? 2u : 4u;
-    int32_t h0, h1;
+    const size_t bpp = r->fmt == RS_FMT_RGB565 ? 2u : 4u, dbp = r->depth == RS_DEPTH16 ? 2u : 4u;
+    const int32_t s = r->p.res_shift, wp = r->water_pass;
+    int32_t h0, h1, g0, g1;
     refl_rows(r, b->scratch_y0[self], b->scratch_y0[self] + b->scratch_rows[self], &h0, &h1);
     if (h1 <= h0) return BR_OK;
-    return rs_draw_band(r->refl, h0, h1 - h0, b->scratch[self], (size_t)r->refl->w * bpp,
-                        b->scratch_depth[self], st);
+    g0 = h0; g1 = h1;
+    if (wp >= 0 && wp < self && b->scratch[wp] && b->scratch_y0[wp] == b->y0 && b->scratch_rows[wp] == b->rows) {
+        const int32_t lo = r->wlo > b->y0 ? r->wlo : b->y0;
+        const int32_t hi = r->whi < b->y0 + b->rows - 1 ? r->whi : b->y0 + b->rows - 1;
+        int32_t ya = lo, yb = hi;
+        while (ya <= hi && !water_in_row(r, b, ya)) ya++;
+        if (ya > hi) return BR_OK;                  /* no water in the band: nothing reads it */
+        while (yb > ya && !water_in_row(r, b, yb)) yb--;
+        ya = ya - RW_WAVE_PX < 0 ? 0 : ya - RW_WAVE_PX;
+        yb = yb + RW_WAVE_PX > r->h - 1 ? r->h - 1 : yb + RW_WAVE_PX;
+        if ((ya >> s) > g0) g0 = ya >> s;
+        if ((yb >> s) + 1 < g1) g1 = (yb >> s) + 1;
+        if (g1 <= g0) return BR_OK;
+    } else if (wp >= 0 && wp < self) return BR_OK;  /* the water pass skipped the band */
+    return rs_draw_band(r->refl, g0, g1 - g0, (uint8_t *)b->scratch[self] + (size_t)(g0 - h0) * (size_t)r->refl->w * bpp,
+                        (size_t)r->refl->w * bpp,
+                        (uint8_t *)b->scratch_depth[self] + (size_t)(g0 - h0) * (size_t)r->refl->w * dbp, st);
 }
 
 br_status rw_pass_reflection(rs_pass *pass, const rw_frame *r)
@@ -492,7 +623,7 @@ typedef struct refl_view {
 
 /* The colour of water pixel (x, y): terrain colour ct and depth dt under it, water depth
  * dw (30-bit units), body id. */
-static uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int32_t y, uint32_t ct,
+static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int32_t y, uint32_t ct,
                          uint32_t dt, uint32_t dw, uint32_t id)
 {
     const int32_t a = r->aq[x], rz = r->rz[y], s = r->p.res_shift;
@@ -503,11 +634,11 @@ static uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int3
     uint32_t refl, refr, fr, x32;
     if (ci > RW_TAB) ci = RW_TAB;
     if (r->p.waves_on) {
-        const int64_t px = r->wbase[y][0] + ((a * r->wstep[y][0]) >> 12);
-        const int64_t py = r->wbase[y][1] + ((a * r->wstep[y][1]) >> 12);
-        const int64_t t = r->p.time_ms;
-        const uint32_t f0 = (uint32_t)((px * r->kx[0] + py * r->ky[0] + t * r->kt[0]) >> 24) & 255u;
-        const uint32_t f1 = (uint32_t)((px * r->kx[1] + py * r->ky[1] + t * r->kt[1]) >> 24) & 255u;
+        /* the phase's bits 24..31 depend on it modulo 2^32 only: the row's phase at its point
+         * plus the offset a wstep (floored, Q12) times the wave numbers, mod 2^32 */
+        const uint32_t ox = (uint32_t)((a * r->wstep[y][0]) >> 12), oy = (uint32_t)((a * r->wstep[y][1]) >> 12);
+        const uint32_t f0 = ((r->wph[y][0] + ox * (uint32_t)r->kx[0] + oy * (uint32_t)r->ky[0]) >> 24) & 255u;
+        const uint32_t f1 = ((r->wph[y][1] + ox * (uint32_t)r->kx[1] + oy * (uint32_t)r->ky[1]) >> 24) & 255u;
         const int32_t c0 = r->sine[(f0 + 64u) & 255u], c1 = r->sine[(f1 + 64u) & 255u];
         int64_t q8 = ((int64_t)dw * r->amp_m) >> 32;
         int32_t ti;
@@ -521,7 +652,7 @@ static uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int3
         ci = ti < 0 ? 0u : ti > RW_TAB ? (uint32_t)RW_TAB : (uint32_t)ti;
     }
     fr = r->p.fresnel_one ? 256u : r->fres[ci];
-    refl = mix_rgb(r->p.sky_horizon, r->p.sky_zenith, r->skyw[ci]);     /* the reflected sky */
+    refl = r->skyrefl[ci];      /* the reflected sky */
     if (rv->col && id == (uint32_t)r->p.refl_body) {
         int32_t yy = y + dy, xx = x + dx, ry, rx;
         if (yy < 0) yy = 0;
@@ -540,11 +671,10 @@ static uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int3
      * body's plane point's zc = the reflected plane's times bratio: tkr[y] bratio q >> 48
      * with q = (dw - dt) / dt, Q16, from both depths brought to 16 bits */
     x32 = 255;
-    if (r->p.tint_fixed) return mix_rgb(mix_rgb(ct, r->p.water_rgb, (uint32_t)r->p.tint_fixed), refl, fr);
+    if (r->p.tint_fixed) return mix_rgb(mix_pre(ct, r->tint_u, r->tint_rb, r->tint_g), refl, fr);
     if (r->tkr[y] >= 0 && r->bratio[id] && dt < dw) {
-        int32_t sh = 0;
+        const int32_t sh = dw >= 65536u ? 16 - fx_clz32(dw) : 0;    /* dw >> sh < 2^16 */
         uint32_t w16, t16;
-        while ((dw >> sh) >= 65536u) sh++;
         w16 = dw >> sh; t16 = dt >> sh;
         if (t16) {
             uint32_t q = ((w16 - t16) << 16) / t16;
@@ -572,24 +702,20 @@ static uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int3
  * depths brought to 16 bits (a 32-bit division); the grid sample nearest P_t. */
 static int shore_wet(const rw_frame *r, int32_t x, int32_t y, uint32_t id, uint32_t dt, uint32_t dw)
 {
-    int64_t f, p[2], gx, gy;
-    uint32_t q, t16, w16;
-    int32_t sh = 0, k;
+    int64_t f, gx, gy;
+    uint32_t q, t16;
+    int32_t sh;
     size_t ix, iy;
     if (!r->p.wet || r->tkr[y] < 0 || !r->bratio[id]) return 0;
-    while ((dt >> sh) >= 65536u) sh++;
-    t16 = dt >> sh; w16 = dw >> sh;
+    sh = dt >= 65536u ? 16 - fx_clz32(dt) : 0;      /* the smallest sh with dt >> sh < 2^16 */
+    t16 = dt >> sh;
     if (!t16) return 0;
-    q = (w16 << 16) / t16;
+    q = ((dw >> sh) << 16) / t16;
     f = ((int64_t)r->bratio[id] * q) >> 16;
-    for (k = 0; k < 2; k++) {
-        const int64_t d = r->wbase[y][k] + (((int64_t)r->aq[x] * r->wstep[y][k]) >> 12) - r->eye[k];
-        p[k] = r->eye[k] + ((d * f) >> 16);
-    }
-    gx = p[0] - r->p.grid_ox + r->p.grid_sx / 2;
-    gy = r->p.grid_oy - p[1] + r->p.grid_sy / 2;
-    if (gx < 0 || gy < 0 || gx >= (int64_t)r->p.wet_w * r->p.grid_sx || gy >= (int64_t)r->p.wet_h * r->p.grid_sy)
-        return 0;
+    /* P_t - E = (P_0 - E) f >> 16 per axis; the grid position of P_t plus half a step */
+    gx = r->gx0 + (((r->wrel[y][0] + (((int64_t)r->aq[x] * r->wstep[y][0]) >> 12)) * f) >> 16);
+    gy = r->gy0 - (((r->wrel[y][1] + (((int64_t)r->aq[x] * r->wstep[y][1]) >> 12)) * f) >> 16);
+    if ((uint64_t)gx >= r->gxmax || (uint64_t)gy >= r->gymax) return 0;       /* negative: huge */
     ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);
     iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);
     if (ix >= (size_t)r->p.wet_w || iy >= (size_t)r->p.wet_h) return 0;
