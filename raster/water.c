@@ -491,13 +491,17 @@ static inline void seed32(uint32_t *restrict o, uint32_t *restrict c, const uint
     __asm__("" : "+r"(zero));   /* opaque: GCC would split the zero stores into a memset,
                                    a second pass over the row */
     z = (seed_u32x4){ zero, zero, zero, zero };
-    for (; i + 4 <= n; i += 4) {
-        seed_u32x4 v, m;
+    for (; i + 8 <= n; i += 8) {
+        seed_u32x4 v, u, m, k;
         memcpy(&v, t + i, sizeof v);
+        memcpy(&u, t + i + 4, sizeof u);
         m = (seed_u32x4)(v > vt);
+        k = (seed_u32x4)(u > vt);
         v = ((v - vb) & m) | (vf & ~m);
+        u = ((u - vb) & k) | (vf & ~k);
         memcpy(o + i, &v, sizeof v);
-        if (clear) memcpy(c + i, &z, sizeof z);
+        memcpy(o + i + 4, &u, sizeof u);
+        if (clear) { memcpy(c + i, &z, sizeof z); memcpy(c + i + 4, &z, sizeof z); }
     }
 #endif
     for (; i < n; i++) {
@@ -722,9 +726,9 @@ static int shore_wet(const rw_frame *r, int32_t x, int32_t y, uint32_t id, uint3
     return r->p.wet[iy * (size_t)r->p.wet_w + ix] == id;
 }
 
-/* The first pixel at or after x of a water-pass row whose id is set (w if none): sixteen
- * pixels a test (64-bit words, read with memcpy: rows need no alignment), then one by
- * one. */
+/* The first pixel at or after x of a water-pass row whose id is set (w if none): x itself
+ * first (runs of water), then sixteen pixels a test (64-bit words, read with memcpy: rows
+ * need no alignment), then one by one. */
 static inline uint64_t ld64(const void *p)
 {
     uint64_t v;
@@ -737,6 +741,7 @@ static inline int32_t next_water(const uint8_t *wc, int32_t x, int32_t w, const 
     if (fmt == RS_FMT_RGB565) {
         const uint16_t *p = (const uint16_t *)(const void *)wc;
         const uint64_t m = 0xf800f800f800f800ull;
+        if (x < w && (p[x] & 0xf800u)) return x;       /* inside a run of water */
         for (; x + 16 <= w; x += 16) {
             const uint8_t *q = (const uint8_t *)(p + x);
             if ((ld64(q) | ld64(q + 8) | ld64(q + 16) | ld64(q + 24)) & m) break;
@@ -745,6 +750,7 @@ static inline int32_t next_water(const uint8_t *wc, int32_t x, int32_t w, const 
     } else {
         const uint32_t *p = (const uint32_t *)(const void *)wc;
         const uint64_t m = (uint64_t)(31u << 19) << 32 | (31u << 19);
+        if (x < w && (p[x] & (31u << 19))) return x;   /* inside a run of water */
         for (; x + 16 <= w; x += 16) {
             const uint8_t *q = (const uint8_t *)(p + x);
             if ((ld64(q) | ld64(q + 8) | ld64(q + 16) | ld64(q + 24) | ld64(q + 32) | ld64(q + 40) | ld64(q + 48)
