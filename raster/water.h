@@ -3,16 +3,19 @@
  * gradient and fog.  Integer only; every pixel from frame-wide data, so any band height
  * gives the frame's pixels (DESIGN.md invariant 4).
  *
- * PASSES (the caller adds them in this order around the terrain pass):
+ * PASSES (the caller adds them in this order after the terrain pass):
+ *   terrain (rs_pass_terrain);
+ *   water (scratch, no margin): the water surfaces' strips, their vertex colour the body
+ *     id (RW_ID_RGB), into the pass's scratch: id and depth of the water per pixel, in the
+ *     rows wlo .. whi only (below the horizon when every water vertex is below the eye);
  *   reflection (scratch, margin RW_WAVE_PX): the terrain mirrored in the reflected water
  *     plane z = plane_z (z -> 2 plane_z - z by the view matrix, rw_mirror_vp), only what
  *     lies at or above the plane (rs_frame.clip_z: the clipper's plane, so nothing under
  *     the water leaks in), winding flipped by the caller (the strip with its first index
  *     doubled), drawn at full, half or quarter resolution (res_shift 0, 1, 2) into the
- *     pass's scratch band; skipped in bands where no water shows (rows wlo .. whi);
- *   terrain (rs_pass_terrain);
- *   water (scratch, no margin): the water surfaces' strips, their vertex colour the body
- *     id (RW_ID_RGB), into the pass's scratch: id and depth of the water per pixel.
+ *     pass's scratch band, only in the rows the hook reads: those of the band's rows that
+ *     hold a water id in the water pass's scratch, widened by RW_WAVE_PX (added before
+ *     the water pass, it draws every row where water may show).
  * POST HOOK rw_post (user: the rw_frame):
  *   water pixels: a water id whose depth is nearer than the terrain's, or whose terrain
  *     lies on a wet sample of that body (the shore test: the terrain's point on the
@@ -50,7 +53,10 @@
  * look-at cameras have none); the reflection at half or quarter resolution is sampled
  * nearest; one plane per frame gets a mirror.
  *
- * MEMORY: rw_frame is caller-owned (about 270 KB: per-row and per-column tables for up to
+ * DIVISION: no 64-bit division per frame where core/config.h's BR_DIV64_NATIVE is 0
+ * (the set-up's quotients through fx_recip, the per-pixel ones 32-bit).
+ *
+ * MEMORY: rw_frame is caller-owned (about 330 KB: per-row and per-column tables for up to
  * RS_MAX_DIM), zero-initialised by the caller before its first rw_setup, then filled by
  * rw_setup each frame (the frame-independent tables only the first time); nothing is
  * allocated. */
