@@ -68,7 +68,7 @@ SAN_LIB_OBJ= $(LIB_SRC:%.c=$(B)/san/%.o)
 SAN_SUP_OBJ= $(SUPPORT_SRC:%.c=$(B)/san/%.o)
 SAN_TEST_BIN = $(TEST_SRC:tests/%.c=$(B)/san-tests/%)
 
-# The raster tests again with the divide-free quotients of 32-bit boards
+# The raster and water tests again with the divide-free quotients of 32-bit boards
 # (core/config.h BR_DIV64_NATIVE = 0), which must give the same bytes as `/`, and
 # with fx_inv40's branch for targets with a 32-bit divide (FX_TEST_IDIV stands in
 # for __ARM_FEATURE_IDIV; test_fx checks that branch against `/` for every a) and
@@ -78,7 +78,7 @@ DIV32_FLAGS = $(OPT) -g -DBR_DIV64_NATIVE=0 -DFX_TEST_IDIV -DRS_TEST_32BIT -DRS_
 DIV32_LIB_OBJ = $(LIB_SRC:%.c=$(B)/div32/%.o)
 DIV32_SUP_OBJ = $(SUPPORT_SRC:%.c=$(B)/div32/%.o)
 DIV32_TEST_BIN = $(B)/div32-tests/test_raster $(B)/div32-tests/test_raster_render $(B)/div32-tests/test_fx \
-                 $(B)/div32-tests/test_framecost $(B)/div32-tests/test_terrain
+                 $(B)/div32-tests/test_framecost $(B)/div32-tests/test_terrain $(B)/div32-tests/test_water
 
 .SECONDARY:
 .PHONY: all run test test-fast cross-test bench fuzz clean deps check-nofloat install mcu FORCE

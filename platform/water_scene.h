@@ -68,6 +68,7 @@ typedef struct water_scene {
     rs_cvert *wcache;
     int16_t *wchunks;
     rs_prim wprim;
+    uint8_t *wtid;              /* per water triangle: its body id */
     rs_frame wfr;
     uint32_t *rstrip;           /* the terrain strip with its first index doubled */
     uint32_t rstrip_cap;

@@ -1,262 +1,17 @@
 /* raster/water.c — reflection pass, water pass, and the post hook that composites water,
- * sky and fog (see water.h).  Right shifts of negative values are arithmetic (checked
- * once in core/fx.h's users; gcc and clang on every target we build). */
+ * sky and fog (see water.h; the per-frame set-up is raster/water_setup.c).  Right shifts
+ * of negative values are arithmetic (checked once in core/fx.h's users; gcc and clang on
+ * every target we build). */
 #include <string.h>
 #include "core/fx.h"
 #include "raster/water.h"
+#include "raster/water_int.h"
 
-#define Q12 4096
-
-/* ---------------------------------------------------------------- set-up */
-
-br_status rw_mirror_vp(const cam_vp *vp, int32_t plane_z, int32_t res_shift, int32_t w, int32_t h,
-                       cam_vp *out)
-{
-    int i;
-    if (!vp || !out || res_shift < 0 || res_shift > 2 || (w >> res_shift) < 1 || (h >> res_shift) < 1
-        || plane_z > CAM_COORD_MAX / 2 || plane_z < -(CAM_COORD_MAX / 2))
-        return BR_E_ARG;
-    *out = *vp;
-    /* r (x, y, 2 H - z) + t = r' p + t' with r'[i][2] = -r[i][2], t' = t + 2 H r[i][2]:
-     * |2 H r| < 2^30 2^30, the sum stays within cam_vp's bound */
-    for (i = 0; i < 3; i++) {
-        out->r[i][2] = -vp->r[i][2];
-        out->t[i] = vp->t[i] + 2 * (int64_t)plane_z * vp->r[i][2];
-    }
-    out->f_q16 = vp->f_q16 >> res_shift;
-    out->cx_q16 = (w >> res_shift) * (FX_Q16_ONE / 2);
-    out->cy_q16 = (h >> res_shift) * (FX_Q16_ONE / 2);
-    return BR_OK;
-}
-
-static uint32_t mix_rgb(uint32_t a, uint32_t b, uint32_t t)    /* t Q8: a (0) .. b (256) */
-{
-    /* red and blue in one word, green in another: each field's sum is below 2^16 */
-    const uint32_t u = 256u - t;
-    const uint32_t rb = ((a & 0xff00ffu) * u + (b & 0xff00ffu) * t + 0x800080u) >> 8;
-    const uint32_t g = ((a & 0xff00u) * u + (b & 0xff00u) * t + 0x8000u) >> 8;
-    return (rb & 0xff00ffu) | (g & 0xff00u);
-}
-
-/* 4x4 ordered dither (Bayer), 0 .. 15, by screen position. */
-static const uint8_t bayer4[4][4] = { { 0, 8, 2, 10 }, { 12, 4, 14, 6 }, { 3, 11, 1, 9 }, { 15, 7, 13, 5 } };
-
-static uint16_t pack565_dither(uint32_t rgb, int32_t x, int32_t y)
-{
-    const uint32_t d = bayer4[y & 3][x & 3];
-    uint32_t rr = (((rgb >> 16) & 255u) + (d >> 1)) >> 3, g = (((rgb >> 8) & 255u) + (d >> 2)) >> 2,
-             bb = ((rgb & 255u) + (d >> 1)) >> 3;
-    if (rr > 31u) rr = 31u;
-    if (g > 63u) g = 63u;
-    if (bb > 31u) bb = 31u;
-    return (uint16_t)((rr << 11) | (g << 5) | bb);
-}
-
-/* The 888 colour whose 5/6/5 truncation is rgb's dithered value at (x, y). */
-static uint32_t dither888(uint32_t rgb, int32_t x, int32_t y)
-{
-    const uint32_t v = pack565_dither(rgb, x, y), rr = v >> 11, g = (v >> 5) & 63u, bb = v & 31u;
-    return ((rr << 3 | rr >> 2) << 16) | ((g << 2 | g >> 4) << 8) | (bb << 3 | bb >> 2);
-}
-
-static void tables(rw_frame *r)
-{
-    /* R0 = ((1.33 - 1) / (1.33 + 1))^2 = 33^2 / 233^2, Q16 */
-    const uint32_t r0 = (uint32_t)((33u * 33u * 65536u + 233u * 233u / 2) / (233u * 233u));
-    uint32_t i, e = 65536u;
-    for (i = 0; i <= RW_TAB; i++) {
-        uint32_t c = fx_isqrt64((uint64_t)i << 22);        /* cos t, Q16 (i / 1024 = cos^2) */
-        uint64_t m = 65536u - (c > 65536u ? 65536u : c), p = m;
-        uint32_t f, s;
-        int k;
-        for (k = 1; k < 5; k++) p = (p * m) >> 16;          /* (1 - cos)^5, Q16 */
-        f = r0 + (uint32_t)(((65536u - r0) * p) >> 16);
-        r->fres[i] = (uint8_t)((f + 128u) >> 8 > 255u ? 255u : (f + 128u) >> 8);
-        s = (c * 3u) >> 1;                                  /* 1.5 sin of the elevation, Q16 */
-        r->skyw[i] = (uint8_t)((s + 128u) >> 8 > 255u ? 255u : (s + 128u) >> 8);
-    }
-    for (i = 0; i < 256; i++) {     /* e = exp(-i / 32), Q16: exp(-1/32) = 63520 / 65536 */
-        r->tint[i] = (uint8_t)(255u - (e >> 8 > 255u ? 255u : e >> 8));
-        e = (e * 63520u + 32768u) >> 16;
-    }
-    for (i = 0; i < 256; i++) {
-        fx_q30 s, c;
-        fx_sincos((fx_angle)(i << 24), &s, &c);
-        r->sine[i] = (int8_t)((s * (int64_t)127 + ((int64_t)1 << 29)) >> 30);
-    }
-}
-
-/* Rows where water may show: the water frame's vertices' rows (everything when one
- * needs the clipper). */
-static void water_rows(rw_frame *r)
-{
-    const rs_frame *wf = r->water;
-    uint32_t i;
-    int32_t lo = INT32_MAX, hi = INT32_MIN;
-    r->wlo = 1; r->whi = 0;
-    if (!wf || !r->p.water_on || wf->nv == 0 || wf->nprims == 0) return;
-    for (i = 0; i < wf->nv; i++) {
-        const rs_cvert *v = &wf->cache[i];
-        if (v->c & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)) { r->wlo = 0; r->whi = r->h - 1; return; }
-        if (v->y < lo) lo = v->y;
-        if (v->y > hi) hi = v->y;
-    }
-    lo = lo < 0 ? 0 : lo >> RS_SUBPIX_BITS;
-    hi = hi >= r->h << RS_SUBPIX_BITS ? r->h - 1 : hi >> RS_SUBPIX_BITS;
-    r->wlo = lo; r->whi = hi;
-}
-
-/* Fog table: weight by depth d >> fog_sh (d in 30-bit units, D znear / zc). */
-static void fog_table(rw_frame *r, int64_t K)
-{
-    const int64_t zs = r->p.fog_start, ze = r->p.fog_end;
-    int64_t dstart = K / zs;
-    int32_t sh = 0, i;
-    while ((dstart >> sh) > RW_TAB) sh++;
-    r->fog_sh = sh;
-    for (i = 0; i <= RW_TAB; i++) {
-        int64_t d = ((int64_t)i << sh) + (((int64_t)1 << sh) >> 1), zc, t;
-        zc = d > 0 ? K / d : ze;
-        t = zc <= zs ? 0 : zc >= ze ? 256 : ((zc - zs) << 8) / (ze - zs);
-        r->fog[i] = (uint8_t)((t * t + 128) >> 8 > 255 ? 255 : (t * t + 128) >> 8);
-    }
-}
-
-br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame *terrain,
-                   const rs_frame *water, const rs_frame *refl)
-{
-    static const int32_t dir[2][2] = { { 13107, 9830 }, { -6226, 15073 } };   /* Q14 unit vectors */
-    const cam_vp *vp;
-    int64_t K, f16;
-    int32_t x, y, k;
-    if (!r || !p || !c || !terrain || terrain->w != c->w || terrain->h != c->h
-        || p->res_shift < 0 || p->res_shift > 2
-        || (p->fog_on && !(p->fog_start > 0 && p->fog_end > p->fog_start))
-        || (p->water_on && (p->tint_len <= 0 || p->wave_len <= 0 || p->wave_amp < 0))
-        || (water && (water->w != terrain->w || water->h != terrain->h))
-        || (refl && (refl->w != terrain->w >> p->res_shift || refl->h != terrain->h >> p->res_shift)))
-        return BR_E_ARG;
-    vp = &terrain->vp;
-    r->p = *p;
-    if (!r->p.water_rgb) r->p.water_rgb = 0x1c4660u;
-    if (!r->p.sky_horizon) r->p.sky_horizon = 0xc8dcf0u;
-    if (!r->p.sky_zenith) r->p.sky_zenith = 0x5a8cd2u;
-    r->terrain = terrain; r->water = water; r->refl = refl;
-    r->refl_pass = r->water_pass = -1;
-    r->w = terrain->w; r->h = terrain->h; r->fmt = terrain->fmt; r->depth = terrain->depth;
-    K = (int64_t)RS_DEPTH_ONE * vp->znear;
-    r->dfar = (uint32_t)(K / vp->zfar);
-    r->rdfar = r->dfar;
-    if (r->depth == RS_DEPTH16) { r->dfar >>= 14; r->rdfar >>= 14; }
-    for (k = 0; k < 3; k++) r->eye[k] = c->eye[k];
-    if (!r->tables_ready) {     /* they depend on no frame: once per rw_frame */
-        tables(r);
-        r->tables_ready = 1;
-    }
-    f16 = vp->f_q16;
-    for (x = 0; x < r->w; x++) r->aq[x] = (int32_t)(((int64_t)(2 * x + 1 - r->w) * ((int64_t)1 << 27)) / f16);
-    for (y = 0; y < r->h; y++) {
-        int64_t b = ((int64_t)(r->h - 2 * y - 1) * ((int64_t)1 << 27)) / f16, rz, len2;
-        uint32_t s2;
-        r->bq[y] = (int32_t)b;
-        rz = ((int64_t)c->up[2] * b + (int64_t)c->fwd[2] * Q12) >> 30;
-        r->rz[y] = (int32_t)rz;
-        len2 = b * b + (int64_t)Q12 * Q12;
-        /* the zenith weight 1.5 sin(elevation) of the row's centre ray, Q8 */
-        s2 = rz > 0 ? (uint32_t)((fx_isqrt64((uint64_t)(((rz * rz) << 24) / len2)) * 3u + 16u) >> 5) : 0;
-        r->sky[y] = p->sky_on ? mix_rgb(r->p.sky_horizon, r->p.sky_zenith, s2 > 256u ? 256u : s2)
-                              : terrain->clear_rgb;
-        for (k = 0; k < 4; k++)
-            r->clear4[4 * y + k] = terrain->fmt == RS_FMT_RGB565 && p->sky_on ? dither888(r->sky[y], k, y) : r->sky[y];
-        /* the plane point of the row's rays: E + lam ray, lam = (H - ez) / ray_z */
-        r->wbase[y][0] = r->wbase[y][1] = r->wstep[y][0] = r->wstep[y][1] = 0;
-        r->tkr[y] = -1;
-        if (rz < 0 && r->eye[2] > p->plane_z) {
-            int64_t lam = (((int64_t)p->plane_z - r->eye[2]) * Q12) / rz;    /* world units per unit ray */
-            if (lam > ((int64_t)1 << 31)) lam = (int64_t)1 << 31;
-            for (k = 0; k < 2; k++) {
-                int64_t ray = (((int64_t)c->up[k] * b) >> 30) + (c->fwd[k] >> 18);   /* Q12 */
-                r->wbase[y][k] = r->eye[k] + ((lam * ray) >> 12);
-                r->wstep[y][k] = (lam * c->right[k]) >> 30;
-            }
-            /* the ray's forward component is 1: lam is the plane point's zc */
-            r->tkr[y] = p->water_on ? ((lam << 21) / p->tint_len) : -1;
-            if (r->tkr[y] > ((int64_t)1 << 40)) r->tkr[y] = (int64_t)1 << 40;
-        }
-    }
-    for (k = 0; k < 2; k++) {
-        int64_t len = k == 0 ? p->wave_len : p->wave_len * 5 / 8;
-        if (len < 1) len = 1;
-        r->kx[k] = ((int64_t)dir[k][0] * ((int64_t)1 << 18)) / len;        /* 2^32 turns per world unit */
-        r->ky[k] = ((int64_t)dir[k][1] * ((int64_t)1 << 18)) / len;
-        r->kt[k] = ((int64_t)1 << 32) / (k == 0 ? 2100 : 1300);
-    }
-    {   /* displacement Q8 px = d amp_m >> 32 = A f 2^8 / zc */
-        int64_t num = p->wave_amp * (f16 >> 4);
-        int64_t m = K > 0 ? fx_div_floor(num << 12, K) << 16 : 0;
-        r->amp_m = m > ((int64_t)1 << 33) ? (int64_t)1 << 33 : m;
-        /* waves fade beyond 8 wave lengths */
-        r->wave_fade_d = (uint32_t)(K / (8 * (p->wave_len > 0 ? p->wave_len : 1)) > 0xffffffffLL ? 0xffffffffu
-                                    : K / (8 * (p->wave_len > 0 ? p->wave_len : 1)));
-        r->inv_fade = ((uint64_t)1 << 32) / ((r->wave_fade_d >> 14) | 1u);
-    }
-    for (k = 0; k <= RW_MAX_ID; k++) {     /* the bodies' plane points from the reflected plane's */
-        const int64_t e0 = r->eye[2] - p->plane_z, eb = r->eye[2] - p->body_z[k];
-        int64_t q = e0 > 0 && eb > 0 ? (eb << 16) / e0 : 0;
-        r->bratio[k] = (int32_t)(q > ((int64_t)1 << 20) ? 0 : q);
-        r->ebody[k] = eb;
-        /* the shore bound without a world term: dt - dw <= shore_c / E (30-bit depths);
-         * 0xffffffff: no bound (every nearer terrain pixel is tested) */
-        r->shore_dd[k] = 0xffffffffu;
-        if (p->shore_bound && p->shore_w == 0 && eb > 0) {
-            int64_t qd = fx_div_floor(p->shore_c, eb);
-            r->shore_dd[k] = qd >= 0xffffffffLL ? 0xffffffffu : (uint32_t)qd;
-        }
-    }
-    r->inv_sx = p->grid_sx > 0 ? ((((uint64_t)1 << 32) + (uint64_t)p->grid_sx - 1) / (uint64_t)p->grid_sx) : 0;
-    r->inv_sy = p->grid_sy > 0 ? ((((uint64_t)1 << 32) + (uint64_t)p->grid_sy - 1) / (uint64_t)p->grid_sy) : 0;
-    if (p->fog_on) fog_table(r, K);
-    {   /* dquiet: terrain pixels at least this near (buffer units) get no fog */
-        uint64_t d30 = 0;
-        int32_t i;
-        if (p->fog_on)
-            for (i = RW_TAB; i >= 0; i--)
-                if (r->fog[i]) { d30 = (uint64_t)(i + 1) << r->fog_sh; break; }
-        if (r->depth == RS_DEPTH16) d30 = (d30 + (1u << 14) - 1) >> 14;
-        r->dquiet = d30 > r->dfar ? (d30 > 0xffffffffu ? 0xffffffffu : (uint32_t)d30) : r->dfar + 1;
-    }
-    r->pixel_fog = terrain->tex != NULL;
-    {   /* the largest shore bound of the bodies on screen, in the depth buffer's units
-         * (rounded up); no bound: every water pixel behind the terrain is drawn */
-        uint64_t m = 0;
-        for (k = 1; k <= RW_MAX_ID; k++)
-            if (((p->seen_mask >> k) & 1u) && r->shore_dd[k] > m) m = r->shore_dd[k];
-        if (!p->shore_bound || p->shore_w || !p->seen_mask) m = 0xffffffffu;
-        if (r->depth == RS_DEPTH16) m = (m + (1u << 14) - 1) >> 14;
-        r->water_bias = m > 0x3fffffffu ? 0x3fffffffu : (uint32_t)m;
-    }
-    water_rows(r);
-    return BR_OK;
-}
-
-void rw_fog_vertices(rw_frame *r, rs_frame *f)
-{
-    uint32_t i;
-    if (!r || !f || !f->cache) return;
-    f->clear_rows = r->clear4;
-    if (!r->p.fog_on || r->pixel_fog) return;
-    for (i = 0; i < f->nv; i++) {
-        rs_cvert *o = &f->cache[i];
-        const uint32_t oc = o->c >> 24, q = o->d >> r->fog_sh;
-        uint32_t fw, rgb;
-        int32_t y;
-        if ((oc & (RS_OUT_NEAR | RS_OUT_GUARD)) || q > RW_TAB || (fw = r->fog[q]) == 0) continue;
-        y = o->y >> RS_SUBPIX_BITS;
-        y = y < 0 ? 0 : y >= r->h ? r->h - 1 : y;
-        rgb = mix_rgb(o->c & 0xffffffu, r->sky[y], fw);
-        rs_cvert_recolour(o, rgb);
-    }
-}
+#if defined(__GNUC__)
+#define RW_INLINE inline __attribute__((always_inline))   /* inner loops' helpers */
+#else
+#define RW_INLINE inline
+#endif
 
 /* ---------------------------------------------------------------- passes */
 
@@ -281,15 +36,48 @@ static int refl_touched(const void *user, int32_t y0, int32_t rows)
     return r->refl && r->wlo <= r->whi && y0 <= r->whi + RW_WAVE_PX && y0 + rows > r->wlo - RW_WAVE_PX;
 }
 
+static inline int32_t next_water(const uint8_t *wc, int32_t x, int32_t w, const int32_t fmt);
+
+/* 1 when row y of the band's water-pass scratch (y in the band and in wlo .. whi) holds
+ * a water id. */
+static int water_in_row(const rw_frame *r, const rs_band *b, int32_t y)
+{
+    const int32_t i = r->water_pass;
+    const uint8_t *row = (const uint8_t *)b->scratch[i] + (size_t)(y - b->scratch_y0[i]) * b->scratch_stride[i];
+    return r->fmt == RS_FMT_RGB565 ? next_water(row, 0, b->w, RS_FMT_RGB565) < b->w
+                                   : next_water(row, 0, b->w, RS_FMT_XRGB8888) < b->w;
+}
+
+/* The reflection of the band: when the water pass ran before this one (ws_frame adds it
+ * first), only the reduced rows the hook can read, those of the band's rows that hold a
+ * water id widened by the waves' reach (RW_WAVE_PX; the hook reads row y + dy, |dy| <=
+ * RW_WAVE_PX, of water pixels only), drawn at their places in the scratch; nothing when
+ * the band holds no water.  Otherwise every row refl_rows gives. */
 static br_status refl_run(const void *user, rs_band *b, int32_t self, rs_band_stats *st)
 {
     const rw_frame *r = (const rw_frame *)user;
-    const size_t bpp = r->fmt == RS_FMT_RGB565 ? 2u : 4u;
-    int32_t h0, h1;
+    const size_t bpp = r->fmt == RS_FMT_RGB565 ? 2u : 4u, dbp = r->depth == RS_DEPTH16 ? 2u : 4u;
+    const int32_t s = r->p.res_shift, wp = r->water_pass;
+    int32_t h0, h1, g0, g1;
     refl_rows(r, b->scratch_y0[self], b->scratch_y0[self] + b->scratch_rows[self], &h0, &h1);
     if (h1 <= h0) return BR_OK;
-    return rs_draw_band(r->refl, h0, h1 - h0, b->scratch[self], (size_t)r->refl->w * bpp,
-                        b->scratch_depth[self], st);
+    g0 = h0; g1 = h1;
+    if (wp >= 0 && wp < self && b->scratch[wp] && b->scratch_y0[wp] == b->y0 && b->scratch_rows[wp] == b->rows) {
+        const int32_t lo = r->wlo > b->y0 ? r->wlo : b->y0;
+        const int32_t hi = r->whi < b->y0 + b->rows - 1 ? r->whi : b->y0 + b->rows - 1;
+        int32_t ya = lo, yb = hi;
+        while (ya <= hi && !water_in_row(r, b, ya)) ya++;
+        if (ya > hi) return BR_OK;                  /* no water in the band: nothing reads it */
+        while (yb > ya && !water_in_row(r, b, yb)) yb--;
+        ya = ya - RW_WAVE_PX < 0 ? 0 : ya - RW_WAVE_PX;
+        yb = yb + RW_WAVE_PX > r->h - 1 ? r->h - 1 : yb + RW_WAVE_PX;
+        if ((ya >> s) > g0) g0 = ya >> s;
+        if ((yb >> s) + 1 < g1) g1 = (yb >> s) + 1;
+        if (g1 <= g0) return BR_OK;
+    } else if (wp >= 0 && wp < self) return BR_OK;  /* the water pass skipped the band */
+    return rs_draw_band(r->refl, g0, g1 - g0, (uint8_t *)b->scratch[self] + (size_t)(g0 - h0) * (size_t)r->refl->w * bpp,
+                        (size_t)r->refl->w * bpp,
+                        (uint8_t *)b->scratch_depth[self] + (size_t)(g0 - h0) * (size_t)r->refl->w * dbp, st);
 }
 
 br_status rw_pass_reflection(rs_pass *pass, const rw_frame *r)
@@ -311,32 +99,82 @@ static int water_touched(const void *user, int32_t y0, int32_t rows)
     return r->water && r->wlo <= r->whi && y0 <= r->whi && y0 + rows > r->wlo;
 }
 
-/* o = max(t - bias, dfar), a row of depths (buffers that do not overlap); with GCC's
- * vector extension (gcc, clang) four at a time, the same values. */
+/* One row of the water pass's scratch: depth o = max(t - bias, dfar) from the terrain's
+ * row t, colour c = 0 (no id), n pixels (buffers that do not overlap).  t - bias > dfar
+ * exactly when t > bias + dfar (all three below 2^30 for 30-bit depths, 2^16 for 16-bit
+ * ones: no overflow).  With GCC's vector extension (gcc, clang) 16 bytes a step; the
+ * colour is cleared in the same loop (one store per vector of depths, no second pass
+ * over the row). */
 #if defined(__GNUC__)
-typedef int32_t seed_v4 __attribute__((vector_size(16)));
+typedef uint32_t seed_u32x4 __attribute__((vector_size(16)));
+typedef uint16_t seed_u16x8 __attribute__((vector_size(16)));
 #endif
-static void seed32(int32_t *restrict o, const int32_t *restrict t, int32_t n, int32_t bias, int32_t dfar)
+static inline void seed32(uint32_t *restrict o, uint32_t *restrict c, const uint32_t *restrict t, int32_t n,
+                          uint32_t bias, uint32_t dfar, const int clear)
 {
+    const uint32_t thr = bias + dfar;
     int32_t i = 0;
 #if defined(__GNUC__)
-    const seed_v4 vb = { bias, bias, bias, bias }, vf = { dfar, dfar, dfar, dfar };
-    for (; i + 4 <= n; i += 4) {
-        seed_v4 v, m;
+    const seed_u32x4 vb = { bias, bias, bias, bias }, vf = { dfar, dfar, dfar, dfar }, vt = { thr, thr, thr, thr };
+    uint32_t zero = 0;
+    seed_u32x4 z;
+    __asm__("" : "+r"(zero));   /* opaque: GCC would split the zero stores into a memset,
+                                   a second pass over the row */
+    z = (seed_u32x4){ zero, zero, zero, zero };
+    for (; i + 8 <= n; i += 8) {
+        seed_u32x4 v, u, m, k;
         memcpy(&v, t + i, sizeof v);
-        v -= vb;
-        m = v > vf;
-        v = (v & m) | (vf & ~m);
+        memcpy(&u, t + i + 4, sizeof u);
+        m = (seed_u32x4)(v > vt);
+        k = (seed_u32x4)(u > vt);
+        v = ((v - vb) & m) | (vf & ~m);
+        u = ((u - vb) & k) | (vf & ~k);
         memcpy(o + i, &v, sizeof v);
+        memcpy(o + i + 4, &u, sizeof u);
+        if (clear) { memcpy(c + i, &z, sizeof z); memcpy(c + i + 4, &z, sizeof z); }
     }
 #endif
-    for (; i < n; i++) { const int32_t v = t[i] - bias; o[i] = v > dfar ? v : dfar; }
+    for (; i < n; i++) {
+        o[i] = t[i] > thr ? t[i] - bias : dfar;
+        if (clear) c[i] = 0;
+    }
 }
 
-static void seed16(uint16_t *restrict o, const uint16_t *restrict t, int32_t n, int32_t bias, int32_t dfar)
+static inline void seed16(uint16_t *restrict o, uint16_t *restrict c, const uint16_t *restrict t, int32_t n,
+                          uint32_t bias, uint32_t dfar, const int clear)
 {
-    int32_t i;
-    for (i = 0; i < n; i++) { const int32_t v = (int32_t)t[i] - bias; o[i] = (uint16_t)(v > dfar ? v : dfar); }
+    int32_t i = 0;
+    if (bias + dfar >= 65535u) {    /* no terrain depth passes: every pixel is dfar */
+        for (; i < n; i++) {
+            o[i] = (uint16_t)dfar;
+            if (clear) c[i] = 0;
+        }
+        return;
+    }
+    {
+        const uint16_t thr = (uint16_t)(bias + dfar), b16 = (uint16_t)bias, f16 = (uint16_t)dfar;
+#if defined(__GNUC__)
+        const seed_u16x8 vb = { b16, b16, b16, b16, b16, b16, b16, b16 };
+        const seed_u16x8 vf = { f16, f16, f16, f16, f16, f16, f16, f16 };
+        const seed_u16x8 vt = { thr, thr, thr, thr, thr, thr, thr, thr };
+        uint16_t zero = 0;
+        seed_u16x8 z;
+        __asm__("" : "+r"(zero));   /* as in seed32 */
+        z = (seed_u16x8){ zero, zero, zero, zero, zero, zero, zero, zero };
+        for (; i + 8 <= n; i += 8) {
+            seed_u16x8 v, m;
+            memcpy(&v, t + i, sizeof v);
+            m = (seed_u16x8)(v > vt);
+            v = ((v - vb) & m) | (vf & ~m);
+            memcpy(o + i, &v, sizeof v);
+            if (clear) memcpy(c + i, &z, sizeof z);
+        }
+#endif
+        for (; i < n; i++) {
+            o[i] = t[i] > thr ? (uint16_t)(t[i] - b16) : f16;
+            if (clear) c[i] = 0;
+        }
+    }
 }
 
 /* The water pass's scratch, seeded from the terrain pass's depth of the same rows (the
@@ -347,22 +185,31 @@ static void seed16(uint16_t *restrict o, const uint16_t *restrict t, int32_t n, 
 static br_status water_run(const void *user, rs_band *b, int32_t self, rs_band_stats *st)
 {
     const rw_frame *r = (const rw_frame *)user;
-    const int32_t bias = (int32_t)r->water_bias, dfar = (int32_t)r->dfar, w = b->w;
+    const uint32_t bias = r->water_bias, dfar = r->dfar;
+    const int32_t w = b->w;
     const int32_t lo = r->wlo > b->y0 ? r->wlo : b->y0;
     const int32_t hi = r->whi < b->y0 + b->rows - 1 ? r->whi : b->y0 + b->rows - 1;
     int32_t y;
     if (b->scratch_y0[self] != b->y0 || b->scratch_rows[self] != b->rows) return BR_E_ARG;
     /* only the water rows wlo .. whi: no water triangle reaches the others, and rw_post
-     * reads no other row of this scratch (depths are below 2^30: signed compares) */
+     * reads no other row of this scratch */
     for (y = lo; y <= hi; y++) {
         const size_t row = (size_t)(y - b->y0);
-        memset((uint8_t *)b->scratch[self] + row * b->scratch_stride[self], 0, b->scratch_stride[self]);
-        if (r->depth == RS_DEPTH16)
-            seed16((uint16_t *)b->scratch_depth[self] + row * (size_t)w, (const uint16_t *)b->depth + row * (size_t)w,
-                   w, bias, dfar);
-        else
-            seed32((int32_t *)b->scratch_depth[self] + row * (size_t)w, (const int32_t *)b->depth + row * (size_t)w,
-                   w, bias, dfar);
+        uint8_t *c = (uint8_t *)b->scratch[self] + row * b->scratch_stride[self];
+        uint8_t *o = (uint8_t *)b->scratch_depth[self] + row * (size_t)w * (r->depth == RS_DEPTH16 ? 2u : 4u);
+        const uint8_t *t = (const uint8_t *)b->depth + row * (size_t)w * (r->depth == RS_DEPTH16 ? 2u : 4u);
+        /* the colour is cleared with the depths where both have the same pixel size */
+        if (r->depth == RS_DEPTH16 && r->fmt == RS_FMT_RGB565)
+            seed16((uint16_t *)(void *)o, (uint16_t *)(void *)c, (const uint16_t *)(const void *)t, w, bias, dfar, 1);
+        else if (r->depth != RS_DEPTH16 && r->fmt != RS_FMT_RGB565)
+            seed32((uint32_t *)(void *)o, (uint32_t *)(void *)c, (const uint32_t *)(const void *)t, w, bias, dfar, 1);
+        else {
+            memset(c, 0, (size_t)w * (r->fmt == RS_FMT_RGB565 ? 2u : 4u));
+            if (r->depth == RS_DEPTH16)
+                seed16((uint16_t *)(void *)o, NULL, (const uint16_t *)(const void *)t, w, bias, dfar, 0);
+            else
+                seed32((uint32_t *)(void *)o, NULL, (const uint32_t *)(const void *)t, w, bias, dfar, 0);
+        }
     }
     return rs_draw_band(r->water, b->scratch_y0[self], b->scratch_rows[self], b->scratch[self],
                         b->scratch_stride[self], b->scratch_depth[self], st);
@@ -410,7 +257,7 @@ typedef struct refl_view {
 
 /* The colour of water pixel (x, y): terrain colour ct and depth dt under it, water depth
  * dw (30-bit units), body id. */
-static uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int32_t y, uint32_t ct,
+static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int32_t y, uint32_t ct,
                          uint32_t dt, uint32_t dw, uint32_t id)
 {
     const int32_t a = r->aq[x], rz = r->rz[y], s = r->p.res_shift;
@@ -421,11 +268,11 @@ static uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int3
     uint32_t refl, refr, fr, x32;
     if (ci > RW_TAB) ci = RW_TAB;
     if (r->p.waves_on) {
-        const int64_t px = r->wbase[y][0] + ((a * r->wstep[y][0]) >> 12);
-        const int64_t py = r->wbase[y][1] + ((a * r->wstep[y][1]) >> 12);
-        const int64_t t = r->p.time_ms;
-        const uint32_t f0 = (uint32_t)((px * r->kx[0] + py * r->ky[0] + t * r->kt[0]) >> 24) & 255u;
-        const uint32_t f1 = (uint32_t)((px * r->kx[1] + py * r->ky[1] + t * r->kt[1]) >> 24) & 255u;
+        /* the phase's bits 24..31 depend on it modulo 2^32 only: the row's phase at its point
+         * plus the offset a wstep (floored, Q12) times the wave numbers, mod 2^32 */
+        const uint32_t ox = (uint32_t)((a * r->wstep[y][0]) >> 12), oy = (uint32_t)((a * r->wstep[y][1]) >> 12);
+        const uint32_t f0 = ((r->wph[y][0] + ox * (uint32_t)r->kx[0] + oy * (uint32_t)r->ky[0]) >> 24) & 255u;
+        const uint32_t f1 = ((r->wph[y][1] + ox * (uint32_t)r->kx[1] + oy * (uint32_t)r->ky[1]) >> 24) & 255u;
         const int32_t c0 = r->sine[(f0 + 64u) & 255u], c1 = r->sine[(f1 + 64u) & 255u];
         int64_t q8 = ((int64_t)dw * r->amp_m) >> 32;
         int32_t ti;
@@ -439,7 +286,7 @@ static uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int3
         ci = ti < 0 ? 0u : ti > RW_TAB ? (uint32_t)RW_TAB : (uint32_t)ti;
     }
     fr = r->p.fresnel_one ? 256u : r->fres[ci];
-    refl = mix_rgb(r->p.sky_horizon, r->p.sky_zenith, r->skyw[ci]);     /* the reflected sky */
+    refl = r->skyrefl[ci];      /* the reflected sky */
     if (rv->col && id == (uint32_t)r->p.refl_body) {
         int32_t yy = y + dy, xx = x + dx, ry, rx;
         if (yy < 0) yy = 0;
@@ -458,11 +305,10 @@ static uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int3
      * body's plane point's zc = the reflected plane's times bratio: tkr[y] bratio q >> 48
      * with q = (dw - dt) / dt, Q16, from both depths brought to 16 bits */
     x32 = 255;
-    if (r->p.tint_fixed) return mix_rgb(mix_rgb(ct, r->p.water_rgb, (uint32_t)r->p.tint_fixed), refl, fr);
+    if (r->p.tint_fixed) return mix_rgb(mix_pre(ct, r->tint_u, r->tint_rb, r->tint_g), refl, fr);
     if (r->tkr[y] >= 0 && r->bratio[id] && dt < dw) {
-        int32_t sh = 0;
+        const int32_t sh = dw >= 65536u ? 16 - fx_clz32(dw) : 0;    /* dw >> sh < 2^16 */
         uint32_t w16, t16;
-        while ((dw >> sh) >= 65536u) sh++;
         w16 = dw >> sh; t16 = dt >> sh;
         if (t16) {
             uint32_t q = ((w16 - t16) << 16) / t16;
@@ -490,41 +336,57 @@ static uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int3
  * depths brought to 16 bits (a 32-bit division); the grid sample nearest P_t. */
 static int shore_wet(const rw_frame *r, int32_t x, int32_t y, uint32_t id, uint32_t dt, uint32_t dw)
 {
-    int64_t f, p[2], gx, gy;
-    uint32_t q, t16, w16;
-    int32_t sh = 0, k;
+    int64_t f, gx, gy;
+    uint32_t q, t16;
+    int32_t sh;
     size_t ix, iy;
     if (!r->p.wet || r->tkr[y] < 0 || !r->bratio[id]) return 0;
-    while ((dt >> sh) >= 65536u) sh++;
-    t16 = dt >> sh; w16 = dw >> sh;
+    sh = dt >= 65536u ? 16 - fx_clz32(dt) : 0;      /* the smallest sh with dt >> sh < 2^16 */
+    t16 = dt >> sh;
     if (!t16) return 0;
-    q = (w16 << 16) / t16;
+    q = ((dw >> sh) << 16) / t16;
     f = ((int64_t)r->bratio[id] * q) >> 16;
-    for (k = 0; k < 2; k++) {
-        const int64_t d = r->wbase[y][k] + (((int64_t)r->aq[x] * r->wstep[y][k]) >> 12) - r->eye[k];
-        p[k] = r->eye[k] + ((d * f) >> 16);
-    }
-    gx = p[0] - r->p.grid_ox + r->p.grid_sx / 2;
-    gy = r->p.grid_oy - p[1] + r->p.grid_sy / 2;
-    if (gx < 0 || gy < 0 || gx >= (int64_t)r->p.wet_w * r->p.grid_sx || gy >= (int64_t)r->p.wet_h * r->p.grid_sy)
-        return 0;
+    /* P_t - E = (P_0 - E) f >> 16 per axis; the grid position of P_t plus half a step */
+    gx = r->gx0 + (((r->wrel[y][0] + (((int64_t)r->aq[x] * r->wstep[y][0]) >> 12)) * f) >> 16);
+    gy = r->gy0 - (((r->wrel[y][1] + (((int64_t)r->aq[x] * r->wstep[y][1]) >> 12)) * f) >> 16);
+    if ((uint64_t)gx >= r->gxmax || (uint64_t)gy >= r->gymax) return 0;       /* negative: huge */
     ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);
     iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);
     if (ix >= (size_t)r->p.wet_w || iy >= (size_t)r->p.wet_h) return 0;
     return r->p.wet[iy * (size_t)r->p.wet_w + ix] == id;
 }
 
-/* The first pixel at or after x of a water-pass row whose id is set (w if none): four
- * pixels a test. */
+/* The first pixel at or after x of a water-pass row whose id is set (w if none): x itself
+ * first (runs of water), then sixteen pixels a test (64-bit words, read with memcpy: rows
+ * need no alignment), then one by one. */
+static inline uint64_t ld64(const void *p)
+{
+    uint64_t v;
+    memcpy(&v, p, sizeof v);
+    return v;
+}
+
 static inline int32_t next_water(const uint8_t *wc, int32_t x, int32_t w, const int32_t fmt)
 {
     if (fmt == RS_FMT_RGB565) {
         const uint16_t *p = (const uint16_t *)(const void *)wc;
-        while (x + 4 <= w && !((p[x] | p[x + 1] | p[x + 2] | p[x + 3]) & 0xf800u)) x += 4;
+        const uint64_t m = 0xf800f800f800f800ull;
+        if (x < w && (p[x] & 0xf800u)) return x;       /* inside a run of water */
+        for (; x + 16 <= w; x += 16) {
+            const uint8_t *q = (const uint8_t *)(p + x);
+            if ((ld64(q) | ld64(q + 8) | ld64(q + 16) | ld64(q + 24)) & m) break;
+        }
         while (x < w && !(p[x] & 0xf800u)) x++;
     } else {
         const uint32_t *p = (const uint32_t *)(const void *)wc;
-        while (x + 4 <= w && !((p[x] | p[x + 1] | p[x + 2] | p[x + 3]) & (31u << 19))) x += 4;
+        const uint64_t m = (uint64_t)(31u << 19) << 32 | (31u << 19);
+        if (x < w && (p[x] & (31u << 19))) return x;   /* inside a run of water */
+        for (; x + 16 <= w; x += 16) {
+            const uint8_t *q = (const uint8_t *)(p + x);
+            if ((ld64(q) | ld64(q + 8) | ld64(q + 16) | ld64(q + 24) | ld64(q + 32) | ld64(q + 40) | ld64(q + 48)
+                 | ld64(q + 56)) & m)
+                break;
+        }
         while (x < w && !(p[x] & (31u << 19))) x++;
     }
     return x;

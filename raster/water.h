@@ -3,16 +3,19 @@
  * gradient and fog.  Integer only; every pixel from frame-wide data, so any band height
  * gives the frame's pixels (DESIGN.md invariant 4).
  *
- * PASSES (the caller adds them in this order around the terrain pass):
+ * PASSES (the caller adds them in this order after the terrain pass):
+ *   terrain (rs_pass_terrain);
+ *   water (scratch, no margin): the water surfaces' strips, their vertex colour the body
+ *     id (RW_ID_RGB), into the pass's scratch: id and depth of the water per pixel, in the
+ *     rows wlo .. whi only (below the horizon when every water vertex is below the eye);
  *   reflection (scratch, margin RW_WAVE_PX): the terrain mirrored in the reflected water
  *     plane z = plane_z (z -> 2 plane_z - z by the view matrix, rw_mirror_vp), only what
  *     lies at or above the plane (rs_frame.clip_z: the clipper's plane, so nothing under
  *     the water leaks in), winding flipped by the caller (the strip with its first index
  *     doubled), drawn at full, half or quarter resolution (res_shift 0, 1, 2) into the
- *     pass's scratch band; skipped in bands where no water shows (rows wlo .. whi);
- *   terrain (rs_pass_terrain);
- *   water (scratch, no margin): the water surfaces' strips, their vertex colour the body
- *     id (RW_ID_RGB), into the pass's scratch: id and depth of the water per pixel.
+ *     pass's scratch band, only in the rows the hook reads: those of the band's rows that
+ *     hold a water id in the water pass's scratch, widened by RW_WAVE_PX (added before
+ *     the water pass, it draws every row where water may show).
  * POST HOOK rw_post (user: the rw_frame):
  *   water pixels: a water id whose depth is nearer than the terrain's, or whose terrain
  *     lies on a wet sample of that body (the shore test: the terrain's point on the
@@ -50,7 +53,10 @@
  * look-at cameras have none); the reflection at half or quarter resolution is sampled
  * nearest; one plane per frame gets a mirror.
  *
- * MEMORY: rw_frame is caller-owned (about 270 KB: per-row and per-column tables for up to
+ * DIVISION: no 64-bit division per frame where core/config.h's BR_DIV64_NATIVE is 0
+ * (the set-up's quotients through fx_recip, the per-pixel ones 32-bit).
+ *
+ * MEMORY: rw_frame is caller-owned (about 330 KB: per-row and per-column tables for up to
  * RS_MAX_DIM), zero-initialised by the caller before its first rw_setup, then filled by
  * rw_setup each frame (the frame-independent tables only the first time); nothing is
  * allocated. */
@@ -115,8 +121,11 @@ typedef struct rw_frame {
     int32_t bq[RS_MAX_DIM];     /* per row: ray b = (cy - y - 1/2) / f, Q12 */
     int32_t rz[RS_MAX_DIM];     /* per row: world z of the ray (a = 0), Q12 */
     uint32_t sky[RS_MAX_DIM];   /* per row: sky colour */
-    int64_t wbase[RS_MAX_DIM][2], wstep[RS_MAX_DIM][2]; /* per row: plane point = base + a step (Q12 a) */
+    int64_t wrel[RS_MAX_DIM][2], wstep[RS_MAX_DIM][2];  /* per row: plane point = eye + rel + a step
+                                                           (Q12 a, world units) */
     int64_t kx[2], ky[2], kt[2];        /* wave phase per world unit (x, y) and per ms, 2^-24 turns */
+    uint32_t wph[RS_MAX_DIM][2];        /* per row: wave phase (mod 2^32) at the plane point eye + wrel and
+                                           time_ms, 2^-24 turns (only its bits 24..31 are used) */
     int64_t amp_m;              /* displacement, Q8 pixels = (d * amp_m) >> 32 */
     uint32_t wave_fade_d;       /* depth (30-bit) beyond which the waves fade */
     int64_t tkr[RS_MAX_DIM];    /* per row: 32 zc / tint_len of the reflected plane's point,
@@ -128,12 +137,20 @@ typedef struct rw_frame {
     uint32_t shore_dd[RW_MAX_ID + 1];   /* shore_c / ebody: the largest dt - dw (30-bit) worth a shore
                                            test when shore_w is 0 (0xffffffff: any) */
     uint64_t inv_sx, inv_sy;    /* 2^32 / grid step, rounded up */
+    int64_t gx0, gy0;           /* the eye's grid position plus half a step, world units:
+                                   eye x - grid_ox + grid_sx / 2, grid_oy - eye y + grid_sy / 2 */
+    uint64_t gxmax, gymax;      /* wet_w grid_sx, wet_h grid_sy */
     int32_t fog_sh;             /* fog table index: depth >> fog_sh */
     uint32_t dquiet;            /* buffer depth from which terrain gets no fog (> dfar) */
     int32_t pixel_fog;          /* 1: the hook fogs terrain pixels (textured frames); 0: the
                                    terrain's vertices were fogged (rw_fog_vertices) */
     uint64_t inv_fade;          /* 2^32 / (wave_fade_d >> 14 | 1), rounded down */
     uint32_t clear4[4 * RS_MAX_DIM];    /* the sky rows for rs_frame.clear_rows (dithered for RGB565) */
+    uint32_t skyrefl[RW_TAB + 1];       /* the reflected sky by cos^2 t: the horizon colour mixed
+                                           towards the zenith colour by skyw */
+    uint32_t skyrefl_of[2];     /* the horizon and zenith colours skyrefl was made for */
+    uint32_t tint_u, tint_rb, tint_g;   /* mix_rgb(c, water_rgb, tint_fixed) = c's fields times
+                                           tint_u plus these, >> 8 */
     uint8_t fres[RW_TAB + 1];   /* F by cos^2 t, Q8 (256 = 1) */
     uint8_t skyw[RW_TAB + 1];   /* zenith weight by sin^2 of elevation, Q8 */
     uint8_t tint[256];          /* 1 - exp(-x / 32), Q8, by x = L / tint_len in 1/32 */

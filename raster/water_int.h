@@ -1,0 +1,48 @@
+/* raster/water_int.h — what raster/water.c (the passes and the post hook) and
+ * raster/water_setup.c (the per-frame set-up) share: colour mixing and the RGB565
+ * dither.  Private to those two files. */
+#ifndef BR_RWATER_INT_H
+#define BR_RWATER_INT_H
+#include <stdint.h>
+
+#define Q12 4096
+
+static inline uint32_t mix_rgb(uint32_t a, uint32_t b, uint32_t t)    /* t Q8: a (0) .. b (256) */
+{
+    /* red and blue in one word, green in another: each field's sum is below 2^16 */
+    const uint32_t u = 256u - t;
+    const uint32_t rb = ((a & 0xff00ffu) * u + (b & 0xff00ffu) * t + 0x800080u) >> 8;
+    const uint32_t g = ((a & 0xff00u) * u + (b & 0xff00u) * t + 0x8000u) >> 8;
+    return (rb & 0xff00ffu) | (g & 0xff00u);
+}
+
+/* mix_rgb(a, b, t) with b and t fixed: u = 256 - t, brb = (b & 0xff00ff) t + 0x800080,
+ * bg = (b & 0xff00) t + 0x8000 (the same sums, so the same value). */
+static inline uint32_t mix_pre(uint32_t a, uint32_t u, uint32_t brb, uint32_t bg)
+{
+    const uint32_t rb = ((a & 0xff00ffu) * u + brb) >> 8, g = ((a & 0xff00u) * u + bg) >> 8;
+    return (rb & 0xff00ffu) | (g & 0xff00u);
+}
+
+/* 4x4 ordered dither (Bayer), 0 .. 15, by screen position. */
+static const uint8_t bayer4[4][4] = { { 0, 8, 2, 10 }, { 12, 4, 14, 6 }, { 3, 11, 1, 9 }, { 15, 7, 13, 5 } };
+
+static inline uint16_t pack565_dither(uint32_t rgb, int32_t x, int32_t y)
+{
+    const uint32_t d = bayer4[y & 3][x & 3];
+    uint32_t rr = (((rgb >> 16) & 255u) + (d >> 1)) >> 3, g = (((rgb >> 8) & 255u) + (d >> 2)) >> 2,
+             bb = ((rgb & 255u) + (d >> 1)) >> 3;
+    if (rr > 31u) rr = 31u;
+    if (g > 63u) g = 63u;
+    if (bb > 31u) bb = 31u;
+    return (uint16_t)((rr << 11) | (g << 5) | bb);
+}
+
+/* The 888 colour whose 5/6/5 truncation is rgb's dithered value at (x, y). */
+static inline uint32_t dither888(uint32_t rgb, int32_t x, int32_t y)
+{
+    const uint32_t v = pack565_dither(rgb, x, y), rr = v >> 11, g = (v >> 5) & 63u, bb = v & 31u;
+    return ((rr << 3 | rr >> 2) << 16) | ((g << 2 | g >> 4) << 8) | (bb << 3 | bb >> 2);
+}
+
+#endif

@@ -1,0 +1,341 @@
+/* raster/water_setup.c — the water frame's per-frame set-up (see water.h): the mirror's
+ * view, the per-row and per-column tables, the fog table, the per-vertex fog.  Right
+ * shifts of negative values are arithmetic (checked once in core/fx.h's users; gcc and
+ * clang on every target we build). */
+#include <string.h>
+#include "core/fx.h"
+#include "raster/water.h"
+#include "raster/water_int.h"
+
+/* ---------------------------------------------------------------- set-up */
+
+br_status rw_mirror_vp(const cam_vp *vp, int32_t plane_z, int32_t res_shift, int32_t w, int32_t h,
+                       cam_vp *out)
+{
+    int i;
+    if (!vp || !out || res_shift < 0 || res_shift > 2 || (w >> res_shift) < 1 || (h >> res_shift) < 1
+        || plane_z > CAM_COORD_MAX / 2 || plane_z < -(CAM_COORD_MAX / 2))
+        return BR_E_ARG;
+    *out = *vp;
+    /* r (x, y, 2 H - z) + t = r' p + t' with r'[i][2] = -r[i][2], t' = t + 2 H r[i][2]:
+     * |2 H r| < 2^30 2^30, the sum stays within cam_vp's bound */
+    for (i = 0; i < 3; i++) {
+        out->r[i][2] = -vp->r[i][2];
+        out->t[i] = vp->t[i] + 2 * (int64_t)plane_z * vp->r[i][2];
+    }
+    out->f_q16 = vp->f_q16 >> res_shift;
+    out->cx_q16 = (w >> res_shift) * (FX_Q16_ONE / 2);
+    out->cy_q16 = (h >> res_shift) * (FX_Q16_ONE / 2);
+    return BR_OK;
+}
+
+/* Quotients of the per-frame set-up with no 64-bit divide where the target has none
+ * (core/config.h BR_DIV64_NATIVE = 0, 32-bit boards: each int64 `/` would be a libgcc
+ * call): a divisor below 2^32 divides the high word by a 32-bit divide and the rest,
+ * (nh mod d) 2^32 + nl < d 2^32, through one fx_recip of d (exact: fx_udiv_r's bound);
+ * a divisor of 2^32 or more leaves a quotient below 2^32, by fx_udiv_bits' 32
+ * compare-and-subtract steps.  The quotients equal C's `/` (BR_DIV64_NATIVE = 1 uses
+ * it), so the pixels do not depend on the build. */
+typedef struct wdiv {
+    uint64_t d;                 /* >= 1 */
+    fx_recip rc;                /* of d when d < 2^32 (BR_DIV64_NATIVE = 0) */
+} wdiv;
+
+static void wdiv_make(wdiv *q, uint64_t d)
+{
+    q->d = d;
+    memset(&q->rc, 0, sizeof q->rc);
+#if !BR_DIV64_NATIVE
+    if (d <= 0xffffffffu) q->rc = fx_recip_make((uint32_t)d);
+#endif
+}
+
+static uint64_t wdiv_u(const wdiv *q, uint64_t n)    /* floor(n / d) */
+{
+#if BR_DIV64_NATIVE
+    return n / q->d;
+#else
+    const uint32_t d = (uint32_t)q->d, nh = (uint32_t)(n >> 32);
+    uint32_t qh;
+    if (q->d > 0xffffffffu) return fx_udiv_bits(n, q->d, 32);
+    qh = nh / d;
+    return ((uint64_t)qh << 32) | fx_udiv_r(((uint64_t)(nh - qh * d) << 32) | (uint32_t)n, &q->rc);
+#endif
+}
+
+static int64_t wdiv_s(const wdiv *q, int64_t n)      /* n / d truncated, as C's `/`; |n| < 2^63 */
+{
+    return n < 0 ? -(int64_t)wdiv_u(q, (uint64_t)-n) : (int64_t)wdiv_u(q, (uint64_t)n);
+}
+
+static uint64_t udiv64(uint64_t n, uint64_t d)       /* floor(n / d), d >= 1, one divisor once */
+{
+    wdiv q;
+    wdiv_make(&q, d);
+    return wdiv_u(&q, n);
+}
+
+static int64_t sdiv64(int64_t n, int64_t d)          /* n / d truncated, d != 0, |n|, |d| < 2^63 */
+{
+    wdiv q;
+    wdiv_make(&q, (uint64_t)(d < 0 ? -d : d));
+    return d < 0 ? -wdiv_s(&q, n) : wdiv_s(&q, n);
+}
+
+static int64_t sfloor64(int64_t n, int64_t d)        /* floor(n / d), d >= 1, |n| < 2^63 */
+{
+    return n >= 0 ? (int64_t)udiv64((uint64_t)n, (uint64_t)d) : -(int64_t)udiv64((uint64_t)(-n - 1), (uint64_t)d) - 1;
+}
+
+static void tables(rw_frame *r)
+{
+    /* R0 = ((1.33 - 1) / (1.33 + 1))^2 = 33^2 / 233^2, Q16 */
+    const uint32_t r0 = (uint32_t)((33u * 33u * 65536u + 233u * 233u / 2) / (233u * 233u));
+    uint32_t i, e = 65536u;
+    for (i = 0; i <= RW_TAB; i++) {
+        uint32_t c = fx_isqrt64((uint64_t)i << 22);        /* cos t, Q16 (i / 1024 = cos^2) */
+        uint64_t m = 65536u - (c > 65536u ? 65536u : c), p = m;
+        uint32_t f, s;
+        int k;
+        for (k = 1; k < 5; k++) p = (p * m) >> 16;          /* (1 - cos)^5, Q16 */
+        f = r0 + (uint32_t)(((65536u - r0) * p) >> 16);
+        r->fres[i] = (uint8_t)((f + 128u) >> 8 > 255u ? 255u : (f + 128u) >> 8);
+        s = (c * 3u) >> 1;                                  /* 1.5 sin of the elevation, Q16 */
+        r->skyw[i] = (uint8_t)((s + 128u) >> 8 > 255u ? 255u : (s + 128u) >> 8);
+    }
+    for (i = 0; i < 256; i++) {     /* e = exp(-i / 32), Q16: exp(-1/32) = 63520 / 65536 */
+        r->tint[i] = (uint8_t)(255u - (e >> 8 > 255u ? 255u : e >> 8));
+        e = (e * 63520u + 32768u) >> 16;
+    }
+    for (i = 0; i < 256; i++) {
+        fx_q30 s, c;
+        fx_sincos((fx_angle)(i << 24), &s, &c);
+        r->sine[i] = (int8_t)((s * (int64_t)127 + ((int64_t)1 << 29)) >> 30);
+    }
+}
+
+/* Rows where water may show: the water frame's vertices' rows (everything when one
+ * needs the clipper). */
+static void water_rows(rw_frame *r)
+{
+    const rs_frame *wf = r->water;
+    uint32_t i;
+    int32_t lo = INT32_MAX, hi = INT32_MIN;
+    r->wlo = 1; r->whi = 0;
+    if (!wf || !r->p.water_on || wf->nv == 0 || wf->nprims == 0) return;
+    for (i = 0; i < wf->nv; i++) {
+        const rs_cvert *v = &wf->cache[i];
+        if (v->c & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)) { r->wlo = 0; r->whi = r->h - 1; return; }
+        if (v->y < lo) lo = v->y;
+        if (v->y > hi) hi = v->y;
+    }
+    lo = lo < 0 ? 0 : lo >> RS_SUBPIX_BITS;
+    hi = hi >= r->h << RS_SUBPIX_BITS ? r->h - 1 : hi >> RS_SUBPIX_BITS;
+    r->wlo = lo; r->whi = hi;
+}
+
+/* Water below the eye shows only below the horizon: a point of a water triangle lies at
+ * most `top` (the highest water vertex) high, so with top < eye z its view ray goes down,
+ * and with no roll (right z = 0: cam_look_at's up hint is +z) the ray of row y's pixel
+ * centres goes down exactly when s(y) = up_z (h - 2 y - 1) 2^16 + fwd_z 2 f_q16 < 0
+ * (twice f times the ray's z, Q30 + Q16; s falls with y when up_z > 0).  Both terms
+ * are shifted right by sh so that f_q16 >> sh < 2^30: |s| < 2^30 2^13 2^16 + 2^30 2^31
+ * < 2^63, and the shift moves the boundary by under 2^-29 of f, far below a row.  A
+ * drawn pixel's centre lies within the subpixel snap and the transform's rounding (well
+ * under a row) of such a point's projection: two rows of margin above the first row
+ * whose rays go down.  Raises wlo, never lowers it. */
+static void water_horizon(rw_frame *r, const cam *c, int64_t f16)
+{
+    const rs_frame *wf = r->water;
+    int32_t top = INT32_MIN, y, sh = 0;
+    uint32_t i;
+    while (sh < 16 && (f16 >> sh) >= ((int64_t)1 << 30)) sh++;
+    if (r->wlo > r->whi || !wf || c->right[2] != 0 || c->up[2] <= 0 || f16 <= 0 || (f16 >> sh) >= ((int64_t)1 << 30))
+        return;
+    for (i = 0; i < wf->nv; i++)
+        if (wf->v[i].p[2] > top) top = wf->v[i].p[2];
+    if (r->eye[2] <= top) return;
+    for (y = r->wlo; y <= r->whi; y++)
+        if ((int64_t)c->up[2] * (r->h - 2 * y - 1) * (65536 >> sh) + (int64_t)c->fwd[2] * 2 * (f16 >> sh) < 0) break;
+    if (y - 2 > r->wlo) r->wlo = y - 2;
+}
+
+/* Fog table: weight by depth d >> fog_sh (d in 30-bit units, D znear / zc). */
+static void fog_table(rw_frame *r, int64_t K)
+{
+    const int64_t zs = r->p.fog_start, ze = r->p.fog_end;
+    int64_t dstart = (int64_t)udiv64((uint64_t)K, (uint64_t)zs);
+    wdiv span;
+    int32_t sh = 0, i;
+    while ((dstart >> sh) > RW_TAB) sh++;
+    r->fog_sh = sh;
+    wdiv_make(&span, (uint64_t)(ze - zs));
+    for (i = 0; i <= RW_TAB; i++) {
+        int64_t d = ((int64_t)i << sh) + (((int64_t)1 << sh) >> 1), zc, t;
+        if (d > dstart) break;      /* d >= K / zs + 1 > K / zs: zc < zs, no fog from here on */
+        zc = d > 0 ? (int64_t)udiv64((uint64_t)K, (uint64_t)d) : ze;
+        t = zc <= zs ? 0 : zc >= ze ? 256 : (int64_t)wdiv_u(&span, (uint64_t)(zc - zs) << 8);
+        r->fog[i] = (uint8_t)((t * t + 128) >> 8 > 255 ? 255 : (t * t + 128) >> 8);
+    }
+    for (; i <= RW_TAB; i++) r->fog[i] = 0;
+}
+
+br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame *terrain,
+                   const rs_frame *water, const rs_frame *refl)
+{
+    static const int32_t dir[2][2] = { { 13107, 9830 }, { -6226, 15073 } };   /* Q14 unit vectors */
+    const cam_vp *vp;
+    int64_t K, f16;
+    int32_t x, y, k;
+    wdiv df, dtint;
+    if (!r || !p || !c || !terrain || terrain->w != c->w || terrain->h != c->h
+        || p->res_shift < 0 || p->res_shift > 2
+        || (p->fog_on && !(p->fog_start > 0 && p->fog_end > p->fog_start))
+        || (p->water_on && (p->tint_len <= 0 || p->wave_len <= 0 || p->wave_amp < 0))
+        || p->tint_fixed < 0 || p->tint_fixed > 256
+        || (water && (water->w != terrain->w || water->h != terrain->h))
+        || (refl && (refl->w != terrain->w >> p->res_shift || refl->h != terrain->h >> p->res_shift)))
+        return BR_E_ARG;
+    vp = &terrain->vp;
+    r->p = *p;
+    if (!r->p.water_rgb) r->p.water_rgb = 0x1c4660u;
+    if (!r->p.sky_horizon) r->p.sky_horizon = 0xc8dcf0u;
+    if (!r->p.sky_zenith) r->p.sky_zenith = 0x5a8cd2u;
+    r->terrain = terrain; r->water = water; r->refl = refl;
+    r->refl_pass = r->water_pass = -1;
+    r->w = terrain->w; r->h = terrain->h; r->fmt = terrain->fmt; r->depth = terrain->depth;
+    K = (int64_t)RS_DEPTH_ONE * vp->znear;
+    r->dfar = (uint32_t)udiv64((uint64_t)K, (uint64_t)vp->zfar);      /* zfar > znear > 0 */
+    r->rdfar = r->dfar;
+    if (r->depth == RS_DEPTH16) { r->dfar >>= 14; r->rdfar >>= 14; }
+    for (k = 0; k < 3; k++) r->eye[k] = c->eye[k];
+    if (!r->tables_ready) {     /* they depend on no frame: once per rw_frame */
+        tables(r);
+        r->tables_ready = 1;
+    }
+    if (r->skyrefl_of[0] != r->p.sky_horizon || r->skyrefl_of[1] != r->p.sky_zenith) {   /* never 0 */
+        for (k = 0; k <= RW_TAB; k++) r->skyrefl[k] = mix_rgb(r->p.sky_horizon, r->p.sky_zenith, r->skyw[k]);
+        r->skyrefl_of[0] = r->p.sky_horizon; r->skyrefl_of[1] = r->p.sky_zenith;
+    }
+    {
+        const uint32_t t = (uint32_t)r->p.tint_fixed;     /* 0 .. 256 (checked above) */
+        r->tint_u = 256u - t;
+        r->tint_rb = (r->p.water_rgb & 0xff00ffu) * t + 0x800080u;
+        r->tint_g = (r->p.water_rgb & 0xff00u) * t + 0x8000u;
+    }
+    f16 = vp->f_q16;
+    wdiv_make(&df, (uint64_t)f16);
+    if (p->water_on) wdiv_make(&dtint, (uint64_t)p->tint_len);
+    for (x = 0; x < r->w; x++) r->aq[x] = (int32_t)wdiv_s(&df, (int64_t)(2 * x + 1 - r->w) * ((int64_t)1 << 27));
+    for (y = 0; y < r->h; y++) {
+        int64_t b = wdiv_s(&df, (int64_t)(r->h - 2 * y - 1) * ((int64_t)1 << 27)), rz, len2;
+        uint32_t s2;
+        r->bq[y] = (int32_t)b;
+        rz = ((int64_t)c->up[2] * b + (int64_t)c->fwd[2] * Q12) >> 30;
+        r->rz[y] = (int32_t)rz;
+        len2 = b * b + (int64_t)Q12 * Q12;
+        /* the zenith weight 1.5 sin(elevation) of the row's centre ray, Q8 */
+        s2 = rz > 0 ? (uint32_t)((fx_isqrt64(udiv64((uint64_t)((rz * rz) << 24), (uint64_t)len2)) * 3u + 16u) >> 5) : 0;
+        r->sky[y] = p->sky_on ? mix_rgb(r->p.sky_horizon, r->p.sky_zenith, s2 > 256u ? 256u : s2)
+                              : terrain->clear_rgb;
+        for (k = 0; k < 4; k++)
+            r->clear4[4 * y + k] = terrain->fmt == RS_FMT_RGB565 && p->sky_on ? dither888(r->sky[y], k, y) : r->sky[y];
+        /* the plane point of the row's rays: E + lam ray, lam = (H - ez) / ray_z */
+        r->wrel[y][0] = r->wrel[y][1] = r->wstep[y][0] = r->wstep[y][1] = 0;
+        r->tkr[y] = -1;
+        if (rz < 0 && r->eye[2] > p->plane_z) {
+            int64_t lam = sdiv64(((int64_t)p->plane_z - r->eye[2]) * Q12, rz);    /* world units per unit ray */
+            if (lam > ((int64_t)1 << 31)) lam = (int64_t)1 << 31;
+            for (k = 0; k < 2; k++) {
+                int64_t ray = (((int64_t)c->up[k] * b) >> 30) + (c->fwd[k] >> 18);   /* Q12 */
+                r->wrel[y][k] = (lam * ray) >> 12;
+                r->wstep[y][k] = (lam * c->right[k]) >> 30;
+            }
+            /* the ray's forward component is 1: lam is the plane point's zc */
+            r->tkr[y] = p->water_on ? wdiv_s(&dtint, lam << 21) : -1;
+            if (r->tkr[y] > ((int64_t)1 << 40)) r->tkr[y] = (int64_t)1 << 40;
+        }
+    }
+    for (k = 0; k < 2; k++) {
+        int64_t len = k == 0 ? p->wave_len : p->wave_len * 5 / 8;
+        if (len < 1) len = 1;
+        r->kx[k] = sdiv64((int64_t)dir[k][0] * ((int64_t)1 << 18), len);        /* 2^32 turns per world unit */
+        r->ky[k] = sdiv64((int64_t)dir[k][1] * ((int64_t)1 << 18), len);
+        r->kt[k] = k == 0 ? 2045222 : 3303820;      /* 2^32 / 2100, 2^32 / 1300 (periods in ms) */
+    }
+    for (y = 0; y < r->h; y++)      /* phase = px kx + py ky + t kt at the row's point, mod 2^32 */
+        for (k = 0; k < 2; k++)
+            r->wph[y][k] = (uint32_t)(r->eye[0] + r->wrel[y][0]) * (uint32_t)r->kx[k]
+                           + (uint32_t)(r->eye[1] + r->wrel[y][1]) * (uint32_t)r->ky[k]
+                           + (uint32_t)p->time_ms * (uint32_t)r->kt[k];
+    {   /* displacement Q8 px = d amp_m >> 32 = A f 2^8 / zc */
+        int64_t num = p->wave_amp * (f16 >> 4);
+        int64_t m = K > 0 ? sfloor64(num << 12, K) << 16 : 0;
+        r->amp_m = m > ((int64_t)1 << 33) ? (int64_t)1 << 33 : m;
+        /* waves fade beyond 8 wave lengths */
+        const uint64_t fd = udiv64((uint64_t)K, 8 * (uint64_t)(p->wave_len > 0 ? p->wave_len : 1));
+        r->wave_fade_d = fd > 0xffffffffu ? 0xffffffffu : (uint32_t)fd;
+        r->inv_fade = udiv64((uint64_t)1 << 32, (r->wave_fade_d >> 14) | 1u);
+    }
+    for (k = 0; k <= RW_MAX_ID; k++) {     /* the bodies' plane points from the reflected plane's */
+        const int64_t e0 = r->eye[2] - p->plane_z, eb = r->eye[2] - p->body_z[k];
+        int64_t q = e0 > 0 && eb > 0 ? (int64_t)udiv64((uint64_t)eb << 16, (uint64_t)e0) : 0;
+        r->bratio[k] = (int32_t)(q > ((int64_t)1 << 20) ? 0 : q);
+        r->ebody[k] = eb;
+        /* the shore bound without a world term: dt - dw <= shore_c / E (30-bit depths);
+         * 0xffffffff: no bound (every nearer terrain pixel is tested) */
+        r->shore_dd[k] = 0xffffffffu;
+        if (p->shore_bound && p->shore_w == 0 && eb > 0) {
+            int64_t qd = sfloor64(p->shore_c, eb);
+            r->shore_dd[k] = qd >= 0xffffffffLL ? 0xffffffffu : (uint32_t)qd;
+        }
+    }
+    r->inv_sx = p->grid_sx > 0 ? udiv64(((uint64_t)1 << 32) + (uint64_t)p->grid_sx - 1, (uint64_t)p->grid_sx) : 0;
+    r->inv_sy = p->grid_sy > 0 ? udiv64(((uint64_t)1 << 32) + (uint64_t)p->grid_sy - 1, (uint64_t)p->grid_sy) : 0;
+    r->gx0 = r->eye[0] - p->grid_ox + p->grid_sx / 2;
+    r->gy0 = p->grid_oy - r->eye[1] + p->grid_sy / 2;
+    r->gxmax = p->grid_sx > 0 && p->wet_w > 0 ? (uint64_t)((int64_t)p->wet_w * p->grid_sx) : 0;
+    r->gymax = p->grid_sy > 0 && p->wet_h > 0 ? (uint64_t)((int64_t)p->wet_h * p->grid_sy) : 0;
+    if (p->fog_on) fog_table(r, K);
+    {   /* dquiet: terrain pixels at least this near (buffer units) get no fog */
+        uint64_t d30 = 0;
+        int32_t i;
+        if (p->fog_on)
+            for (i = RW_TAB; i >= 0; i--)
+                if (r->fog[i]) { d30 = (uint64_t)(i + 1) << r->fog_sh; break; }
+        if (r->depth == RS_DEPTH16) d30 = (d30 + (1u << 14) - 1) >> 14;
+        r->dquiet = d30 > r->dfar ? (d30 > 0xffffffffu ? 0xffffffffu : (uint32_t)d30) : r->dfar + 1;
+    }
+    r->pixel_fog = terrain->tex != NULL;
+    {   /* the largest shore bound of the bodies on screen, in the depth buffer's units
+         * (rounded up); no bound: every water pixel behind the terrain is drawn */
+        uint64_t m = 0;
+        for (k = 1; k <= RW_MAX_ID; k++)
+            if (((p->seen_mask >> k) & 1u) && r->shore_dd[k] > m) m = r->shore_dd[k];
+        if (!p->shore_bound || p->shore_w || !p->seen_mask) m = 0xffffffffu;
+        if (r->depth == RS_DEPTH16) m = (m + (1u << 14) - 1) >> 14;
+        r->water_bias = m > 0x3fffffffu ? 0x3fffffffu : (uint32_t)m;
+    }
+    water_rows(r);
+    water_horizon(r, c, f16);
+    return BR_OK;
+}
+
+void rw_fog_vertices(rw_frame *r, rs_frame *f)
+{
+    uint32_t i;
+    if (!r || !f || !f->cache) return;
+    f->clear_rows = r->clear4;
+    if (!r->p.fog_on || r->pixel_fog) return;
+    for (i = 0; i < f->nv; i++) {
+        rs_cvert *o = &f->cache[i];
+        const uint32_t oc = o->c >> 24, q = o->d >> r->fog_sh;
+        uint32_t fw, rgb;
+        int32_t y;
+        if ((oc & (RS_OUT_NEAR | RS_OUT_GUARD)) || q > RW_TAB || (fw = r->fog[q]) == 0) continue;
+        y = o->y >> RS_SUBPIX_BITS;
+        y = y < 0 ? 0 : y >= r->h ? r->h - 1 : y;
+        rgb = mix_rgb(o->c & 0xffffffu, r->sky[y], fw);
+        rs_cvert_recolour(o, rgb);
+    }
+}
