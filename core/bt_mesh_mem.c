@@ -1,0 +1,117 @@
+/* core/bt_mesh_mem.c — a mesh's memory (core/bitree.h bt_mesh_mem_size, bt_mesh_init
+ * and their _v forms with a vertex capacity of their own): one caller block carved
+ * into the vertices, the vertex hash, the strip, the budget heap with its id list
+ * (which the hysteresis step borrows for the previous frame's splits) and the
+ * decision memo. */
+#include <string.h>
+#include "core/bitree.h"
+#include "core/bt_int.h"
+#include "core/bt_em.h"
+
+static uint32_t hash_size(uint32_t cap_v)
+{
+    uint32_t s = 16;
+    while (s < 2 * cap_v && s < 0x80000000u) s <<= 1;
+    return s;
+}
+
+/* Slots of the decision memo: 2 per triangle, 64 .. 2^18 (2 MiB); a lossy cache */
+static uint32_t memo_size(uint32_t max_tri)
+{
+    uint32_t s = 64;
+    while (s < 2 * (uint64_t)max_tri && s < (1u << 18)) s <<= 1;
+    return s;
+}
+
+/* The vertex capacity for max_v (0: 3 max_tri + 3, each triangle's own vertices) and the
+ * count the hash is sized for: 2 max_tri + 16, or an explicit max_v when that is smaller
+ * (the hash then still has at least twice the slots of the vertices it can hold). */
+static uint32_t cap_v_of(uint32_t max_tri, uint32_t max_v)
+{
+    return max_v == 0 || max_v > 3 * max_tri + 3 ? 3 * max_tri + 3 : max_v;
+}
+
+static uint32_t hash_for(uint32_t max_tri, uint32_t max_v)
+{
+    return max_v != 0 && max_v < 2 * max_tri + 16 ? max_v : 2 * max_tri + 16;
+}
+
+/* Strip capacity: 5 indices a triangle, or 4 a vertex for an explicit max_v when that is
+ * smaller (a terrain strip has about 3 indices a vertex: 1.5 a triangle). */
+static uint32_t strip_for(uint32_t max_tri, uint32_t max_v)
+{
+    return max_v != 0 && 4 * (uint64_t)max_v < 5 * (uint64_t)max_tri ? 4 * max_v + 8 : 5 * max_tri + 8;
+}
+
+/* Triangles the decision memo is sized for: max_tri, or max_v / 2 for an explicit max_v
+ * when that is smaller (the memo is a lossy cache: fewer slots cost time, never a
+ * different mesh). */
+static uint32_t memo_for(uint32_t max_tri, uint32_t max_v)
+{
+    return max_v != 0 && max_v / 2 < max_tri ? max_v / 2 : max_tri;
+}
+
+/* Entries of the budget heap (and of the split id list after it): 4 per triangle the
+ * budget rule may buy: max_tri, or max_v / 2 for an explicit max_v when that is smaller
+ * (a terrain mesh has about one vertex for two triangles). */
+static uint32_t heap_for(uint32_t max_tri, uint32_t max_v)
+{
+    return 4 * (max_v != 0 && max_v / 2 < max_tri ? max_v / 2 : max_tri) + 8;
+}
+
+size_t bt_mesh_mem_size(uint32_t max_tri)
+{
+    return bt_mesh_mem_size_v(max_tri, 0);
+}
+
+size_t bt_mesh_mem_size_v(uint32_t max_tri, uint32_t max_v)
+{
+    uint64_t cap_v, cap_s, hs, heap, sz;
+    if (max_tri < 2 || max_tri > 0x10000000u || (max_v != 0 && max_v < 16)) return 0;
+    cap_v = cap_v_of(max_tri, max_v);
+    cap_s = strip_for(max_tri, max_v);
+    hs = hash_size(hash_for(max_tri, max_v));
+    heap = heap_for(max_tri, max_v);
+    sz = cap_v * sizeof(bt_vert) + cap_s * 4 + hs * 4 + 4 + heap * sizeof(bti_heap_ent) + heap * 4 + 8
+         + (uint64_t)memo_size(memo_for(max_tri, max_v)) * 8 + 64;
+    if (sz > (uint64_t)SIZE_MAX) return 0;      /* 32-bit hosts */
+    return (size_t)sz;
+}
+
+br_status bt_mesh_init(bt_mesh *m, uint32_t max_tri, void *mem, size_t mem_bytes)
+{
+    return bt_mesh_init_v(m, max_tri, 0, mem, mem_bytes);
+}
+
+br_status bt_mesh_init_v(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem, size_t mem_bytes)
+{
+    uint8_t *p = (uint8_t *)mem;
+    uint32_t cap_v, cap_s, hs;
+    if (!m || !mem || max_tri < 2 || max_tri > 0x10000000u || (max_v != 0 && max_v < 16)) return BR_E_ARG;
+    if (mem_bytes < bt_mesh_mem_size_v(max_tri, max_v)) return BR_E_ARG;
+    if (((uintptr_t)mem & 7) != 0) return BR_E_ARG;
+    memset(m, 0, sizeof *m);
+    cap_v = cap_v_of(max_tri, max_v);
+    cap_s = strip_for(max_tri, max_v);
+    hs = hash_size(hash_for(max_tri, max_v));
+    m->max_tri = max_tri;
+    m->heap_cap = heap_for(max_tri, max_v);
+    m->v = (bt_vert *)(void *)p; p += (size_t)cap_v * sizeof(bt_vert);
+    m->cap_v = cap_v;
+    m->hash = (uint32_t *)(void *)p; p += (size_t)hs * 4 + 4;
+    m->hmask = hs - 1;
+    memset(m->hash, 0, (size_t)hs * 4 + 4);   /* + the generation word, see reset_mesh */
+    m->strip = (uint32_t *)(void *)p; p += (size_t)cap_s * 4;
+    m->cap_s = cap_s;
+    p += (8 - ((uintptr_t)p & 7)) & 7;
+    m->splits = (uint32_t *)(void *)p;   /* heap entries + id list share this tail */
+    p = (uint8_t *)(void *)(bti_ids_of(m) + bti_heap_cap(m));
+    p += (8 - ((uintptr_t)p & 7)) & 7;
+    m->memo = (uint64_t *)(void *)p;
+    m->memo_mask = memo_size(memo_for(max_tri, max_v)) - 1;
+    memset(m->memo, 0, ((size_t)m->memo_mask + 1) * 8);
+    m->memo_gen = 0;
+    return BR_OK;
+}
+
+
