@@ -27,37 +27,51 @@
 static int key_of(int a, int b, int ph, int par) { return ((a * NCAND + b) * 3 + ph) * 2 + par; }
 
 /* The search's view of the candidates: positions, the leaves as bit masks of
- * candidate slots, and the orientation of each triple (computed on first use). */
+ * candidate slots, and for each pair (a, b) the candidates r by the triangle
+ * (a, b, r) (computed on first use of the pair). */
 typedef struct bsearch {
     const bt_vert *v[NCAND];
     int32_t x[NCAND], y[NCAND];
     unsigned lm, nm;                 /* candidates of L, of N */
-    int8_t sg[NCAND * NCAND * NCAND]; /* sign of cross(b - a, r - a), 3: collinear in (x, y)
-                                        only (a vertical sliver, bti_flat); 2: not yet known */
+    uint64_t known;                  /* bit a * NCAND + b: the pair's masks are set */
+    uint8_t rz[NCAND * NCAND];       /* r giving a line triangle (a repeated index,
+                                        or collinear in (x, y, z)): it draws nothing */
+    uint8_t rp[NCAND * NCAND];       /* r with cross(b - a, r - a) > 0 */
+    uint8_t rn[NCAND * NCAND];       /* r with cross(b - a, r - a) < 0; r collinear in
+                                        (x, y) only (a vertical sliver, bti_flat) is in none */
     int8_t hc[NCAND * NCAND * 3];     /* hcost by state (without parity); -1: not yet known */
 } bsearch;
 
-/* Triangle (a, b, r) of candidate slots appended at strip length len: 0 line
- * triangle (collinear in (x, y, z): it draws nothing), 1 it draws the target (mask
- * tm) with the right winding, -1 else (a triangle that is not the target, or a
- * vertical sliver). */
-static int step(bsearch *q, int a, int b, int r, uint32_t len, unsigned tm)
+static void pair_masks(bsearch *q, int a, int b, int nc)
 {
-    int8_t *g = &q->sg[(a * NCAND + b) * NCAND + r];
-    int sgn;
-    if (a == b || b == r || a == r) return 0;
-    if (*g == 2) {
-        int64_t cr = (int64_t)(q->x[b] - q->x[a]) * (q->y[r] - q->y[a]) -
-                     (int64_t)(q->y[b] - q->y[a]) * (q->x[r] - q->x[a]);
-        *g = (int8_t)((cr > 0) - (cr < 0));
-        if (cr == 0 && !bti_flat(q->v[a], q->v[b], q->v[r])) *g = 3;
+    int ab = a * NCAND + b, r;
+    unsigned z = 0, p = 0, n = 0;
+    for (r = 0; r < nc; r++) {
+        int64_t cr;
+        if (a == b || r == a || r == b) { z |= 1u << r; continue; }
+        cr = (int64_t)(q->x[b] - q->x[a]) * (q->y[r] - q->y[a]) -
+             (int64_t)(q->y[b] - q->y[a]) * (q->x[r] - q->x[a]);
+        if (cr > 0) p |= 1u << r;
+        else if (cr < 0) n |= 1u << r;
+        else if (bti_flat(q->v[a], q->v[b], q->v[r])) z |= 1u << r;
     }
-    sgn = *g;
-    if (sgn == 0) return 0;
-    if (sgn == 3) return -1;
-    if (((tm >> a) & (tm >> b) & (tm >> r) & 1u) == 0) return -1;
-    if (len & 1) sgn = -sgn;          /* odd triangles are drawn (b, a, r) */
-    return sgn < 0 ? 1 : -1;
+    q->rz[ab] = (uint8_t)z; q->rp[ab] = (uint8_t)p; q->rn[ab] = (uint8_t)n;
+    q->known |= (uint64_t)1 << ab;
+}
+
+/* The candidates r that may follow (a, b) at strip length len with target
+ * candidates tm: the line triangles, and (in *draw) those drawing the target
+ * with the right winding (counter-clockwise; odd triangles are drawn (b, a, r),
+ * so they need cross > 0, even ones cross < 0).  Every other r draws a triangle
+ * that is not the target, or a vertical sliver. */
+static unsigned next_set(bsearch *q, int a, int b, int nc, uint32_t len, unsigned tm, unsigned *draw)
+{
+    int ab = a * NCAND + b;
+    unsigned d = 0;
+    if (!((q->known >> ab) & 1u)) pair_masks(q, a, b, nc);
+    if ((tm >> a) & (tm >> b) & 1u) d = (unsigned)((len & 1) ? q->rp[ab] : q->rn[ab]) & tm;
+    *draw = d;
+    return q->rz[ab] | d;
 }
 
 static int pc8(unsigned v)
@@ -121,7 +135,7 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
             for (k = 0; k < nc; k++) dup |= cand[k] == N[i];
             if (!dup) cand[nc++] = N[i];
         }
-    memset(q.sg, 2, sizeof q.sg);
+    q.known = 0;
     memset(q.hc, 0xff, sizeof q.hc);
     q.lm = q.nm = 0;
     for (i = 0; i < nc; i++) {
@@ -147,10 +161,10 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
             for (i = 0; i < ncur; i++) {
                 int k = cur[i], par = k & 1, ph = (k >> 1) % 3, ab = (k >> 1) / 3;
                 int a = ab / NCAND, b = ab % NCAND, r;
-                for (r = 0; r < nc; r++) {
-                    int s = step(&q, a, b, r, len, ph == 0 ? q.lm : (ph == 1 ? q.nm : 0u));
-                    int nph = ph + (s > 0), nk;
-                    if (s < 0) continue;
+                unsigned draw, rs = next_set(&q, a, b, nc, len, ph == 0 ? q.lm : (ph == 1 ? q.nm : 0u), &draw);
+                for (r = 0; rs != 0; r++, rs >>= 1) {
+                    int nph = ph + (int)((draw >> r) & 1u), nk;
+                    if (!(rs & 1u)) continue;
                     nk = key_of(b, r, nph, par ^ 1);
                     if (pred[nk] >= 0) continue;
                     if (q.hc[(b * NCAND + r) * 3 + nph] < 0)
