@@ -20,11 +20,16 @@
 #include <string.h>
 #include "core/bt_int.h"
 
-#define NCAND 8
+#define NCAND 8                  /* a state key packs two slots in 3 bits each */
 #define NKEY (NCAND * NCAND * 3 * 2)
 #define MAXD BTS_PLAN
+#define BTS_SLACK 2              /* the first bound over the lower bound (see bts_bridge) */
 
-static int key_of(int a, int b, int ph, int par) { return ((a * NCAND + b) * 3 + ph) * 2 + par; }
+
+
+/* a state: the strip's last two candidates, the phase (0: L still to draw, 1: N
+ * still to draw, 2: done) and the strip length's parity */
+static int key_of(int a, int b, int ph, int par) { return ((ph * 2 + par) << 6) | (a << 3) | b; }
 
 /* The search's view of the candidates: positions, the leaves as bit masks of
  * candidate slots, and for each pair (a, b) the candidates r by the triangle
@@ -39,7 +44,7 @@ typedef struct bsearch {
     uint8_t rp[NCAND * NCAND];       /* r with cross(b - a, r - a) > 0 */
     uint8_t rn[NCAND * NCAND];       /* r with cross(b - a, r - a) < 0; r collinear in
                                         (x, y) only (a vertical sliver, bti_flat) is in none */
-    int8_t hc[NCAND * NCAND * 3];     /* hcost by state (without parity); -1: not yet known */
+    int hn0;                         /* hcost's part for N in phase 0 */
 } bsearch;
 
 static void pair_masks(bsearch *q, int a, int b, int nc)
@@ -74,26 +79,27 @@ static unsigned next_set(bsearch *q, int a, int b, int nc, uint32_t len, unsigne
     return q->rz[ab] | d;
 }
 
-static int pc8(unsigned v)
-{
-    static const int8_t pc4[16] = { 0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4 };
-    return pc4[v & 15u] + pc4[(v >> 4) & 15u];
-}
+static const int8_t pc8[256] = {
+#define P2(n) n, n + 1, n + 1, n + 2
+#define P4(n) P2(n), P2(n + 1), P2(n + 1), P2(n + 2)
+#define P6(n) P4(n), P4(n + 1), P4(n + 1), P4(n + 2)
+    P6(0), P6(1), P6(1), P6(2)
+#undef P2
+#undef P4
+#undef P6
+};
 
-/* Lower bound of the indices still to append from state (a, b) in phase ph:
- * every vertex of a leaf still to draw that is not among the last two must be
- * appended, and each leaf needs at least its own drawing index. */
-static int hcost(const bsearch *q, int a, int b, int ph, int goal)
+/* Lower bound of the indices still to append from state (a, b) (ab: their bits)
+ * in phase ph: every vertex of a leaf still to draw that is not among the last
+ * two must be appended, and each leaf needs at least its own drawing index
+ * (q->hn0: N's part when L is still to draw, its vertices not L's). */
+static int hcost(const bsearch *q, unsigned ab, int ph, int goal)
 {
-    unsigned ab = (1u << a) | (1u << b);
-    int h = 0, hn = goal == 2 ? pc8(q->nm & ~(ph == 0 ? q->lm : ab)) : 0;
+    int h;
     if (ph >= goal) return 0;
-    if (ph == 0) {
-        h = pc8(q->lm & ~ab);
-        h = h < 1 ? 1 : h;
-    }
-    if (goal == 2) h += hn < 1 ? 1 : hn;
-    return h;
+    if (ph == 1) { h = pc8[q->nm & ~ab]; return h < 1 ? 1 : h; }
+    h = pc8[q->lm & ~ab];
+    return (h < 1 ? 1 : h) + q->hn0;
 }
 
 int bts_follow(bt_mesh *m, const uint32_t plan[BTS_PLAN], int *nplan, uint32_t o0, uint32_t o1, const uint32_t *N)
@@ -136,7 +142,6 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
             if (!dup) cand[nc++] = N[i];
         }
     q.known = 0;
-    memset(q.hc, 0xff, sizeof q.hc);
     q.lm = q.nm = 0;
     for (i = 0; i < nc; i++) {
         q.v[i] = &m->v[cand[i]];
@@ -145,10 +150,20 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
         if (N && (cand[i] == N[0] || cand[i] == N[1] || cand[i] == N[2])) q.nm |= 1u << i;
     }
     for (i = 0; i < nc; i++) { if (cand[i] == src[0]) a0 = i; if (cand[i] == src[1]) b0 = i; }
+    q.hn0 = goal == 2 ? pc8[q.nm & ~q.lm] : 0;
+    q.hn0 = goal == 2 && q.hn0 < 1 ? 1 : q.hn0;
     /* breadth-first, one layer per appended index, pruned by a lower bound of
      * the indices still needed (A*-style: bound = 1 + the previous one until a
-     * goal is reached, so the first goal layer is the optimum) */
-    for (bound = hcost(&q, a0, b0, 0, goal); bound <= MAXD && best < 0; bound++) {
+     * goal is reached, so the first goal layer is the optimum D).  Any bound
+     * B >= D gives the same answer: call a state live when the goal can be
+     * reached from it within B - depth.  hcost is a lower bound, so no live
+     * state is pruned; a live state's first generator is live (it reaches the
+     * goal through it), so the live states of each layer, their order and their
+     * predecessors are those of the search with B = D, and the goals of layer D
+     * are all live.  Hence the first bound may exceed hcost's by BTS_SLACK, which
+     * skips the rounds that find nothing. */
+    bound = hcost(&q, (1u << a0) | (1u << b0), 0, goal) + BTS_SLACK;
+    for (bound = bound < MAXD ? bound : MAXD; bound <= MAXD && best < 0; bound++) {
         int k0 = key_of(a0, b0, 0, (int)(len0 & 1));
         memset(pred, 0xff, sizeof pred);
         pred[k0] = (int16_t)k0;
@@ -159,17 +174,15 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
             uint32_t len = len0 + (uint32_t)d;
             nnxt = 0;
             for (i = 0; i < ncur; i++) {
-                int k = cur[i], par = k & 1, ph = (k >> 1) % 3, ab = (k >> 1) / 3;
-                int a = ab / NCAND, b = ab % NCAND, r;
+                int k = cur[i], par = (k >> 6) & 1, ph = k >> 7;
+                int a = (k >> 3) & 7, b = k & 7, r;
                 unsigned draw, rs = next_set(&q, a, b, nc, len, ph == 0 ? q.lm : (ph == 1 ? q.nm : 0u), &draw);
                 for (r = 0; rs != 0; r++, rs >>= 1) {
                     int nph = ph + (int)((draw >> r) & 1u), nk;
                     if (!(rs & 1u)) continue;
                     nk = key_of(b, r, nph, par ^ 1);
                     if (pred[nk] >= 0) continue;
-                    if (q.hc[(b * NCAND + r) * 3 + nph] < 0)
-                        q.hc[(b * NCAND + r) * 3 + nph] = (int8_t)hcost(&q, b, r, nph, goal);
-                    if (d + 1 + q.hc[(b * NCAND + r) * 3 + nph] > bound) continue;
+                    if (d + 1 + hcost(&q, (1u << b) | (1u << r), nph, goal) > bound) continue;
                     pred[nk] = (int16_t)k;
                     via[nk] = (int8_t)r;
                     nxt[nnxt++] = (int16_t)nk;
@@ -192,7 +205,7 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
             k = pred[k];
         }
         for (j = np - 1; j >= 0; j--)
-            if (((path[j] >> 1) % 3) == 1 || ((path[j] >> 1) % 3) == 2) { first_l = j; break; }
+            if ((path[j] >> 7) >= 1) { first_l = j; break; }
         if (first_l < 0 || m->ns + (uint32_t)(np - first_l) > m->cap_s) return -1;
         for (j = np - 1; j >= first_l; j--) m->strip[m->ns++] = cand[(int)via[path[j]]];
         m->nline += (uint32_t)(np - 1 - first_l);
