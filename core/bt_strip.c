@@ -50,16 +50,18 @@ typedef struct bsearch {
 static void pair_masks(bsearch *q, int a, int b, int nc)
 {
     int ab = a * NCAND + b, r;
-    unsigned z = 0, p = 0, n = 0;
-    for (r = 0; r < nc; r++) {
-        int64_t cr;
-        if (a == b || r == a || r == b) { z |= 1u << r; continue; }
-        cr = (int64_t)(q->x[b] - q->x[a]) * (q->y[r] - q->y[a]) -
-             (int64_t)(q->y[b] - q->y[a]) * (q->x[r] - q->x[a]);
-        if (cr > 0) p |= 1u << r;
-        else if (cr < 0) n |= 1u << r;
-        else if (bti_flat(q->v[a], q->v[b], q->v[r])) z |= 1u << r;
-    }
+    unsigned z = (1u << a) | (1u << b), p = 0, n = 0;
+    int64_t dx = (int64_t)q->x[b] - q->x[a], dy = (int64_t)q->y[b] - q->y[a];
+    if (a == b) z = (1u << nc) - 1u;
+    else
+        for (r = 0; r < nc; r++) {
+            int64_t cr;
+            if (r == a || r == b) continue;
+            cr = dx * (q->y[r] - q->y[a]) - dy * (q->x[r] - q->x[a]);
+            if (cr > 0) p |= 1u << r;
+            else if (cr < 0) n |= 1u << r;
+            else if (bti_flat(q->v[a], q->v[b], q->v[r])) z |= 1u << r;
+        }
     q->rz[ab] = (uint8_t)z; q->rp[ab] = (uint8_t)p; q->rn[ab] = (uint8_t)n;
     q->known |= (uint64_t)1 << ab;
 }
