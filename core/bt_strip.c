@@ -49,7 +49,7 @@ typedef struct bsearch {
 
 static void pair_masks(bsearch *q, int a, int b, int nc)
 {
-    int ab = a * NCAND + b, r;
+    int ab = a * NCAND + b, ba = b * NCAND + a, r;
     unsigned z = (1u << a) | (1u << b), p = 0, n = 0;
     int64_t dx = (int64_t)q->x[b] - q->x[a], dy = (int64_t)q->y[b] - q->y[a];
     if (a == b) z = (1u << nc) - 1u;
@@ -63,7 +63,10 @@ static void pair_masks(bsearch *q, int a, int b, int nc)
             else if (bti_flat(q->v[a], q->v[b], q->v[r])) z |= 1u << r;
         }
     q->rz[ab] = (uint8_t)z; q->rp[ab] = (uint8_t)p; q->rn[ab] = (uint8_t)n;
-    q->known |= (uint64_t)1 << ab;
+    /* pair (b, a): cross(a - b, r - b) = -cross(b - a, r - a), and collinearity
+     * in (x, y, z) does not depend on the order */
+    q->rz[ba] = (uint8_t)z; q->rp[ba] = (uint8_t)n; q->rn[ba] = (uint8_t)p;
+    q->known |= (uint64_t)1 << ab | (uint64_t)1 << ba;
 }
 
 /* The candidates r that may follow (a, b) at strip length len with target
