@@ -77,7 +77,7 @@ static int32_t zreal(const bt_tree *t, int32_t x, int32_t y)
 /* ------------------------------------------------------------ view */
 /* a * b for a, b >= 0, INT64_MAX when it is larger (no divide: the high half of
  * the 64 x 64 product from 32-bit halves) */
-static int64_t isat_mul(int64_t a, int64_t b)
+static inline int64_t isat_mul(int64_t a, int64_t b)
 {
     uint64_t ua = (uint64_t)a, ub = (uint64_t)b, a1 = ua >> 32, b1 = ub >> 32, mid, lo, r;
     if ((ua | ub) < ((uint64_t)1 << 31)) return a * b;
@@ -91,7 +91,7 @@ static int64_t isat_mul(int64_t a, int64_t b)
 
 /* Lower bound of the distance from the eye to the box [lo, hi] (world units):
  * max(|dmax|, (|dx|+|dy|+|dz|) * 147/256), 147/256 < 1/sqrt(3). */
-static int64_t box_dist(const int32_t eye[3], const int64_t lo[3], const int64_t hi[3])
+static inline int64_t box_dist(const int32_t eye[3], const int64_t lo[3], const int64_t hi[3])
 {
     int64_t d[3], mx = 0, s = 0, l1;
     int i;

@@ -20,66 +20,91 @@
 #include <string.h>
 #include "core/bt_int.h"
 
-#define NCAND 8
+#define NCAND 8                  /* a state key packs two slots in 3 bits each */
 #define NKEY (NCAND * NCAND * 3 * 2)
 #define MAXD BTS_PLAN
+#define BTS_SLACK 2              /* the first bound over the lower bound (see bts_bridge) */
 
-static int key_of(int a, int b, int ph, int par) { return ((a * NCAND + b) * 3 + ph) * 2 + par; }
+
+
+/* a state: the strip's last two candidates, the phase (0: L still to draw, 1: N
+ * still to draw, 2: done) and the strip length's parity */
+static int key_of(int a, int b, int ph, int par) { return ((ph * 2 + par) << 6) | (a << 3) | b; }
 
 /* The search's view of the candidates: positions, the leaves as bit masks of
- * candidate slots, and the orientation of each triple (computed on first use). */
+ * candidate slots, and for each pair (a, b) the candidates r by the triangle
+ * (a, b, r) (computed on first use of the pair). */
 typedef struct bsearch {
     const bt_vert *v[NCAND];
     int32_t x[NCAND], y[NCAND];
     unsigned lm, nm;                 /* candidates of L, of N */
-    int8_t sg[NCAND * NCAND * NCAND]; /* sign of cross(b - a, r - a), 3: collinear in (x, y)
-                                        only (a vertical sliver, bti_flat); 2: not yet known */
-    int8_t hc[NCAND * NCAND * 3];     /* hcost by state (without parity); -1: not yet known */
+    uint64_t known;                  /* bit a * NCAND + b: the pair's masks are set */
+    uint8_t rz[NCAND * NCAND];       /* r giving a line triangle (a repeated index,
+                                        or collinear in (x, y, z)): it draws nothing */
+    uint8_t rp[NCAND * NCAND];       /* r with cross(b - a, r - a) > 0 */
+    uint8_t rn[NCAND * NCAND];       /* r with cross(b - a, r - a) < 0; r collinear in
+                                        (x, y) only (a vertical sliver, bti_flat) is in none */
+    int hn0;                         /* hcost's part for N in phase 0 */
 } bsearch;
 
-/* Triangle (a, b, r) of candidate slots appended at strip length len: 0 line
- * triangle (collinear in (x, y, z): it draws nothing), 1 it draws the target (mask
- * tm) with the right winding, -1 else (a triangle that is not the target, or a
- * vertical sliver). */
-static int step(bsearch *q, int a, int b, int r, uint32_t len, unsigned tm)
+static void pair_masks(bsearch *q, int a, int b, int nc)
 {
-    int8_t *g = &q->sg[(a * NCAND + b) * NCAND + r];
-    int sgn;
-    if (a == b || b == r || a == r) return 0;
-    if (*g == 2) {
-        int64_t cr = (int64_t)(q->x[b] - q->x[a]) * (q->y[r] - q->y[a]) -
-                     (int64_t)(q->y[b] - q->y[a]) * (q->x[r] - q->x[a]);
-        *g = (int8_t)((cr > 0) - (cr < 0));
-        if (cr == 0 && !bti_flat(q->v[a], q->v[b], q->v[r])) *g = 3;
-    }
-    sgn = *g;
-    if (sgn == 0) return 0;
-    if (sgn == 3) return -1;
-    if (((tm >> a) & (tm >> b) & (tm >> r) & 1u) == 0) return -1;
-    if (len & 1) sgn = -sgn;          /* odd triangles are drawn (b, a, r) */
-    return sgn < 0 ? 1 : -1;
+    int ab = a * NCAND + b, ba = b * NCAND + a, r;
+    unsigned z = (1u << a) | (1u << b), p = 0, n = 0;
+    int64_t dx = (int64_t)q->x[b] - q->x[a], dy = (int64_t)q->y[b] - q->y[a];
+    if (a == b) z = (1u << nc) - 1u;
+    else
+        for (r = 0; r < nc; r++) {
+            int64_t cr;
+            if (r == a || r == b) continue;
+            cr = dx * (q->y[r] - q->y[a]) - dy * (q->x[r] - q->x[a]);
+            if (cr > 0) p |= 1u << r;
+            else if (cr < 0) n |= 1u << r;
+            else if (bti_flat(q->v[a], q->v[b], q->v[r])) z |= 1u << r;
+        }
+    q->rz[ab] = (uint8_t)z; q->rp[ab] = (uint8_t)p; q->rn[ab] = (uint8_t)n;
+    /* pair (b, a): cross(a - b, r - b) = -cross(b - a, r - a), and collinearity
+     * in (x, y, z) does not depend on the order */
+    q->rz[ba] = (uint8_t)z; q->rp[ba] = (uint8_t)n; q->rn[ba] = (uint8_t)p;
+    q->known |= (uint64_t)1 << ab | (uint64_t)1 << ba;
 }
 
-static int pc8(unsigned v)
+/* The candidates r that may follow (a, b) at strip length len with target
+ * candidates tm: the line triangles, and (in *draw) those drawing the target
+ * with the right winding (counter-clockwise; odd triangles are drawn (b, a, r),
+ * so they need cross > 0, even ones cross < 0).  Every other r draws a triangle
+ * that is not the target, or a vertical sliver. */
+static unsigned next_set(bsearch *q, int a, int b, int nc, uint32_t len, unsigned tm, unsigned *draw)
 {
-    static const int8_t pc4[16] = { 0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4 };
-    return pc4[v & 15u] + pc4[(v >> 4) & 15u];
+    int ab = a * NCAND + b;
+    unsigned d = 0;
+    if (!((q->known >> ab) & 1u)) pair_masks(q, a, b, nc);
+    if ((tm >> a) & (tm >> b) & 1u) d = (unsigned)((len & 1) ? q->rp[ab] : q->rn[ab]) & tm;
+    *draw = d;
+    return q->rz[ab] | d;
 }
 
-/* Lower bound of the indices still to append from state (a, b) in phase ph:
- * every vertex of a leaf still to draw that is not among the last two must be
- * appended, and each leaf needs at least its own drawing index. */
-static int hcost(const bsearch *q, int a, int b, int ph, int goal)
+static const int8_t pc8[256] = {
+#define P2(n) n, n + 1, n + 1, n + 2
+#define P4(n) P2(n), P2(n + 1), P2(n + 1), P2(n + 2)
+#define P6(n) P4(n), P4(n + 1), P4(n + 1), P4(n + 2)
+    P6(0), P6(1), P6(1), P6(2)
+#undef P2
+#undef P4
+#undef P6
+};
+
+/* Lower bound of the indices still to append from state (a, b) (ab: their bits)
+ * in phase ph: every vertex of a leaf still to draw that is not among the last
+ * two must be appended, and each leaf needs at least its own drawing index
+ * (q->hn0: N's part when L is still to draw, its vertices not L's). */
+static int hcost(const bsearch *q, unsigned ab, int ph, int goal)
 {
-    unsigned ab = (1u << a) | (1u << b);
-    int h = 0, hn = goal == 2 ? pc8(q->nm & ~(ph == 0 ? q->lm : ab)) : 0;
+    int h;
     if (ph >= goal) return 0;
-    if (ph == 0) {
-        h = pc8(q->lm & ~ab);
-        h = h < 1 ? 1 : h;
-    }
-    if (goal == 2) h += hn < 1 ? 1 : hn;
-    return h;
+    if (ph == 1) { h = pc8[q->nm & ~ab]; return h < 1 ? 1 : h; }
+    h = pc8[q->lm & ~ab];
+    return (h < 1 ? 1 : h) + q->hn0;
 }
 
 int bts_follow(bt_mesh *m, const uint32_t plan[BTS_PLAN], int *nplan, uint32_t o0, uint32_t o1, const uint32_t *N)
@@ -121,8 +146,7 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
             for (k = 0; k < nc; k++) dup |= cand[k] == N[i];
             if (!dup) cand[nc++] = N[i];
         }
-    memset(q.sg, 2, sizeof q.sg);
-    memset(q.hc, 0xff, sizeof q.hc);
+    q.known = 0;
     q.lm = q.nm = 0;
     for (i = 0; i < nc; i++) {
         q.v[i] = &m->v[cand[i]];
@@ -131,10 +155,20 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
         if (N && (cand[i] == N[0] || cand[i] == N[1] || cand[i] == N[2])) q.nm |= 1u << i;
     }
     for (i = 0; i < nc; i++) { if (cand[i] == src[0]) a0 = i; if (cand[i] == src[1]) b0 = i; }
+    q.hn0 = goal == 2 ? pc8[q.nm & ~q.lm] : 0;
+    q.hn0 = goal == 2 && q.hn0 < 1 ? 1 : q.hn0;
     /* breadth-first, one layer per appended index, pruned by a lower bound of
      * the indices still needed (A*-style: bound = 1 + the previous one until a
-     * goal is reached, so the first goal layer is the optimum) */
-    for (bound = hcost(&q, a0, b0, 0, goal); bound <= MAXD && best < 0; bound++) {
+     * goal is reached, so the first goal layer is the optimum D).  Any bound
+     * B >= D gives the same answer: call a state live when the goal can be
+     * reached from it within B - depth.  hcost is a lower bound, so no live
+     * state is pruned; a live state's first generator is live (it reaches the
+     * goal through it), so the live states of each layer, their order and their
+     * predecessors are those of the search with B = D, and the goals of layer D
+     * are all live.  Hence the first bound may exceed hcost's by BTS_SLACK, which
+     * skips the rounds that find nothing. */
+    bound = hcost(&q, (1u << a0) | (1u << b0), 0, goal) + BTS_SLACK;
+    for (bound = bound < MAXD ? bound : MAXD; bound <= MAXD && best < 0; bound++) {
         int k0 = key_of(a0, b0, 0, (int)(len0 & 1));
         memset(pred, 0xff, sizeof pred);
         pred[k0] = (int16_t)k0;
@@ -145,17 +179,15 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
             uint32_t len = len0 + (uint32_t)d;
             nnxt = 0;
             for (i = 0; i < ncur; i++) {
-                int k = cur[i], par = k & 1, ph = (k >> 1) % 3, ab = (k >> 1) / 3;
-                int a = ab / NCAND, b = ab % NCAND, r;
-                for (r = 0; r < nc; r++) {
-                    int s = step(&q, a, b, r, len, ph == 0 ? q.lm : (ph == 1 ? q.nm : 0u));
-                    int nph = ph + (s > 0), nk;
-                    if (s < 0) continue;
+                int k = cur[i], par = (k >> 6) & 1, ph = k >> 7;
+                int a = (k >> 3) & 7, b = k & 7, r;
+                unsigned draw, rs = next_set(&q, a, b, nc, len, ph == 0 ? q.lm : (ph == 1 ? q.nm : 0u), &draw);
+                for (r = 0; rs != 0; r++, rs >>= 1) {
+                    int nph = ph + (int)((draw >> r) & 1u), nk;
+                    if (!(rs & 1u)) continue;
                     nk = key_of(b, r, nph, par ^ 1);
                     if (pred[nk] >= 0) continue;
-                    if (q.hc[(b * NCAND + r) * 3 + nph] < 0)
-                        q.hc[(b * NCAND + r) * 3 + nph] = (int8_t)hcost(&q, b, r, nph, goal);
-                    if (d + 1 + q.hc[(b * NCAND + r) * 3 + nph] > bound) continue;
+                    if (d + 1 + hcost(&q, (1u << b) | (1u << r), nph, goal) > bound) continue;
                     pred[nk] = (int16_t)k;
                     via[nk] = (int8_t)r;
                     nxt[nnxt++] = (int16_t)nk;
@@ -178,7 +210,7 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
             k = pred[k];
         }
         for (j = np - 1; j >= 0; j--)
-            if (((path[j] >> 1) % 3) == 1 || ((path[j] >> 1) % 3) == 2) { first_l = j; break; }
+            if ((path[j] >> 7) >= 1) { first_l = j; break; }
         if (first_l < 0 || m->ns + (uint32_t)(np - first_l) > m->cap_s) return -1;
         for (j = np - 1; j >= first_l; j--) m->strip[m->ns++] = cand[(int)via[path[j]]];
         m->nline += (uint32_t)(np - 1 - first_l);
