@@ -225,6 +225,7 @@ int cmd_bench_default(int argc, char **argv)
     if (scene_open(&r->s, dems, ndem, &so, &err) != BR_OK) { fprintf(stderr, "bitrain bench: %s\n", err.msg); goto done; }
     wo.shore_bound = 1;
     wo.shore_px = r->pix_err;
+    wo.view_px = r->pix_err;
     if (r->water && ws_open(&r->ws, &r->s, &wo, &err) != BR_OK) {
         r->water = 0;
         fprintf(stderr, "bitrain bench: %s\n", err.msg);

@@ -88,6 +88,7 @@ static rs_pipe *water_pipe(view_app *a, const cam *c, rs_frame *fr)
     if (a->clock_waves) a->ws.o.time_s = v->now - a->t_start;
     a->ws.o.shore_bound = 1;              /* the selection's screen error (+/-, --fps) */
     a->ws.o.shore_px = v->pix_err;
+    a->ws.o.view_px = v->pix_err;         /* the reflection's own selection scales it */
     st = ws_frame(&a->ws, &a->s, c, fr, &err);
     a->ws.nbodies = a->nbodies;
     if (st != BR_OK) { view_note(v, 3, "water: %s", err.msg); return NULL; }

@@ -16,6 +16,8 @@ void ws_args_table(ws_args *a, ws_opts *o, opt_spec t[WS_ARGS_N])
         { "--time", OPT_NUM, &o->time_s, -1e6, 1e6, 0, NULL, "T", "the instant of the waves, seconds (render: default 0; view: default the clock)", &a->time_seen },
         { "--reflection", OPT_CHOICE, &a->refl, 0, 0, 0, "full|half|quarter|none", "R",
           "reflection resolution (default half)", &a->refl_seen },
+        { "--reflection-error", OPT_NUM, &o->refl_err, 1, 64, 0, NULL, "F",
+          "the reflection's screen error, F times --pixel-error (default 4)", NULL },
         OPT_END
     };
     memset(a, 0, sizeof *a);
