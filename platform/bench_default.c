@@ -231,8 +231,9 @@ int cmd_bench_default(int argc, char **argv)
         fprintf(stderr, "bitrain bench: %s\n", err.msg);
         goto done;
     }
-    if (scene_tree(&r->s, &err) != BR_OK || scene_reserve(&r->s, BD_MAX_TRI, &err) != BR_OK) {
-        fprintf(stderr, "bitrain bench: %s: %s\n", dems[0], err.msg);
+    if (scene_tree(&r->s, &err) != BR_OK || scene_reserve(&r->s, BD_MAX_TRI, &err) != BR_OK
+        || (r->water && ws_reserve(&r->ws, &r->s) != BR_OK)) {
+        fprintf(stderr, "bitrain bench: %s: %s\n", dems[0], r->water && r->s.mesh_mem ? "out of memory" : err.msg);
         goto done;
     }
     r->color = malloc((size_t)r->w * (size_t)r->h * 4);

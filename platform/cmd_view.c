@@ -498,6 +498,10 @@ static int setup(view_app *a, view_opts *o, int argc, char **argv)
         fprintf(stderr, "bitrain: %s: %s\n", in[0], err.msg);
         return 1;
     }
+    if (a->ws_on && ws_reserve(&a->ws, &a->s) != BR_OK) {
+        fprintf(stderr, "bitrain: out of memory for the reflection's mesh\n");
+        return 1;
+    }
     {
         rs_prim cap;
         cap.kind = RS_STRIP; cap.n = a->s.mesh.cap_s; cap.idx = NULL;

@@ -217,25 +217,14 @@ static int refl_own(water_scene *w, scene *s, const cam *c, const rs_frame *tf, 
 {
     bt_tree t;
     bt_params bp;
-    double mult = w->o.refl_err > 0 ? w->o.refl_err : WS_REFL_ERR;
+    const double mult = w->o.refl_err;
     int k;
     w->rown = 0;
-    if (!(w->o.view_px > 0) || !s->tree.node || !s->mesh_mem || s->prims != &s->prim || tf->v != s->verts)
+    if (!(mult >= 1) || !(w->o.view_px > 0) || !s->tree.node || !s->mesh_mem || s->prims != &s->prim || tf->v != s->verts)
         return -1;
     if ((int64_t)2 * plane_z - c->eye[2] < -CAM_COORD_MAX || (int64_t)2 * plane_z - c->eye[2] > CAM_COORD_MAX)
         return -1;
-    if (!w->rmesh_mem) {
-        size_t mb = bt_mesh_mem_size(s->mesh.max_tri);
-        w->rmesh_mem = mb ? malloc(mb) : NULL;
-        if (!w->rmesh_mem || bt_mesh_init(&w->rmesh, s->mesh.max_tri, w->rmesh_mem, mb) != BR_OK) {
-            free(w->rmesh_mem);
-            w->rmesh_mem = NULL;
-            return -1;
-        }
-        w->rverts = malloc(sizeof *w->rverts * (w->rmesh.cap_v ? w->rmesh.cap_v : 1));
-        if (!w->rverts) return -1;
-    }
-    if (!w->rverts) return -1;
+    if (!w->rmesh_mem && ws_reserve(w, s) != BR_OK) return -1;
     w->rcam = *c;
     w->rcam.eye[2] = 2 * plane_z - c->eye[2];
     for (k = 0; k < 3; k++) {
@@ -255,6 +244,22 @@ static int refl_own(water_scene *w, scene *s, const cam *c, const rs_frame *tf, 
     w->rmprim.kind = RS_STRIP; w->rmprim.n = w->rmesh.ns; w->rmprim.idx = w->rmesh.strip;
     w->rown = 1;
     return 0;
+}
+
+br_status ws_reserve(water_scene *w, scene *s)
+{
+    uint32_t cap = s->mesh.max_tri < WS_REFL_TRI ? s->mesh.max_tri : WS_REFL_TRI;
+    size_t mb;
+    if (w->rmesh_mem || !w->nbodies || !s->mesh_mem || cap < 2) return BR_OK;
+    mb = bt_mesh_mem_size(cap);
+    w->rmesh_mem = mb ? malloc(mb) : NULL;
+    w->rverts = malloc(sizeof *w->rverts * (size_t)(3 * cap + 3));
+    if (!w->rmesh_mem || !w->rverts || bt_mesh_init(&w->rmesh, cap, w->rmesh_mem, mb) != BR_OK) {
+        free(w->rmesh_mem); free(w->rverts);
+        w->rmesh_mem = NULL; w->rverts = NULL;
+        return BR_E_NOMEM;
+    }
+    return BR_OK;
 }
 
 /* The mirrored terrain frame for plane_z at res_shift: the reflection's own selection
