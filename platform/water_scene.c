@@ -250,7 +250,7 @@ br_status ws_reserve(water_scene *w, scene *s)
 {
     uint32_t cap = s->mesh.max_tri < WS_REFL_TRI ? s->mesh.max_tri : WS_REFL_TRI;
     size_t mb;
-    if (w->rmesh_mem || !w->nbodies || !s->mesh_mem || cap < 2) return BR_OK;
+    if (w->rmesh_mem || !w->nbodies || !(w->o.refl_err >= 1) || !s->mesh_mem || cap < 2) return BR_OK;
     mb = bt_mesh_mem_size(cap);
     w->rmesh_mem = mb ? malloc(mb) : NULL;
     w->rverts = malloc(sizeof *w->rverts * (size_t)(3 * cap + 3));

@@ -124,8 +124,9 @@ br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err);
  * 2 H - z in the reflected plane z = H, sees the terrain above the plane at the distances
  * the camera sees its mirror image, so its selection is the mirror image's LOD. */
 br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err *err);
-/* The reflection's own mesh (rmesh, rverts), once per scene, after scene_reserve (ws_frame
- * does it on the first frame that needs it otherwise).  BR_E_NOMEM. */
+/* The reflection's own mesh (rmesh, rverts) when o.refl_err >= 1, once per scene, after
+ * scene_reserve (ws_frame does it on the first frame that needs it otherwise).
+ * BR_E_NOMEM. */
 br_status ws_reserve(water_scene *w, scene *s);
 void ws_close(water_scene *w);
 
