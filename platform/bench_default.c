@@ -207,7 +207,7 @@ int cmd_bench_default(int argc, char **argv)
                        tables, argc, argv, pos, 0, &npos);
         if (pr == OPT_OK) pr = ws_args_finish(&wa, "bench");
         if (pr == OPT_OK && !r->water && (wo.no_water || wo.have_level || wo.water_file || wo.no_fog || wa.fog
-                                          || wa.time_seen || wa.refl_seen))
+                                          || wa.time_seen || wa.refl_seen || wo.refl_err > 0))
             pr = opt_fail("bench", "--no-water", "water options need --with-water");
         if (pr != OPT_OK) { free(r); return pr == OPT_HELP ? 0 : 2; }
         r->w = size[0];
@@ -225,13 +225,15 @@ int cmd_bench_default(int argc, char **argv)
     if (scene_open(&r->s, dems, ndem, &so, &err) != BR_OK) { fprintf(stderr, "bitrain bench: %s\n", err.msg); goto done; }
     wo.shore_bound = 1;
     wo.shore_px = r->pix_err;
+    wo.view_px = r->pix_err;
     if (r->water && ws_open(&r->ws, &r->s, &wo, &err) != BR_OK) {
         r->water = 0;
         fprintf(stderr, "bitrain bench: %s\n", err.msg);
         goto done;
     }
-    if (scene_tree(&r->s, &err) != BR_OK || scene_reserve(&r->s, BD_MAX_TRI, &err) != BR_OK) {
-        fprintf(stderr, "bitrain bench: %s: %s\n", dems[0], err.msg);
+    if (scene_tree(&r->s, &err) != BR_OK || scene_reserve(&r->s, BD_MAX_TRI, &err) != BR_OK
+        || (r->water && ws_reserve(&r->ws, &r->s) != BR_OK)) {
+        fprintf(stderr, "bitrain bench: %s: %s\n", dems[0], r->water && r->s.mesh_mem ? "out of memory" : err.msg);
         goto done;
     }
     r->color = malloc((size_t)r->w * (size_t)r->h * 4);

@@ -322,6 +322,7 @@ int cmd_render(int argc, char **argv)
     wo.shore_bound = 1;       /* the mesh's error bound spares the shore test on land */
     wo.shore_px = j->full_step > 0 || j->mode == BT_FIDELITY ? 0 : j->pix_err;
     wo.shore_m = j->full_step > 0 || j->mode != BT_FIDELITY ? 0 : j->max_err;
+    wo.view_px = wo.shore_px;  /* the reflection's own selection: view meshes only */
     if (j->use_pipe && ws_open(&j->ws, &j->s, &wo, &err) != BR_OK) {
         fprintf(stderr, "bitrain: %s\n", err.msg);
         j->use_pipe = 0;

@@ -88,6 +88,7 @@ static rs_pipe *water_pipe(view_app *a, const cam *c, rs_frame *fr)
     if (a->clock_waves) a->ws.o.time_s = v->now - a->t_start;
     a->ws.o.shore_bound = 1;              /* the selection's screen error (+/-, --fps) */
     a->ws.o.shore_px = v->pix_err;
+    a->ws.o.view_px = v->pix_err;         /* the reflection's own selection scales it */
     st = ws_frame(&a->ws, &a->s, c, fr, &err);
     a->ws.nbodies = a->nbodies;
     if (st != BR_OK) { view_note(v, 3, "water: %s", err.msg); return NULL; }
@@ -495,6 +496,10 @@ static int setup(view_app *a, view_opts *o, int argc, char **argv)
     o->have_cam |= r;
     if (scene_tree(&a->s, &err) != BR_OK || scene_reserve(&a->s, VIEW_MAX_TRI, &err) != BR_OK) {
         fprintf(stderr, "bitrain: %s: %s\n", in[0], err.msg);
+        return 1;
+    }
+    if (a->ws_on && ws_reserve(&a->ws, &a->s) != BR_OK) {
+        fprintf(stderr, "bitrain: out of memory for the reflection's mesh\n");
         return 1;
     }
     {

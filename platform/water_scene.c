@@ -145,6 +145,7 @@ void ws_close(water_scene *w)
     if (w->wf.z) free(w->wf.z);
     free(w->id); wm_free(&w->mesh); free(w->wverts); free(w->wtid); free(w->wcache); free(w->wchunks);
     free(w->rstrip); free(w->rcache); free(w->rchunks); free(w->rw);
+    free(w->rmesh_mem); free(w->rverts);
     memset(w, 0, sizeof *w);
 }
 
@@ -206,12 +207,71 @@ static void copy_idx(uint32_t *restrict o, const uint32_t *restrict in, uint32_t
     for (; i < n; i++) o[i] = in[i];
 }
 
-/* The mirrored terrain frame for plane_z at res_shift, sharing tf's vertices. */
-static br_status refl_frame(water_scene *w, const rs_frame *tf, int32_t plane_z, int32_t res)
+/* The reflection's own selection (water_scene.h rmesh): the mirrored camera's view
+ * selection at refl_err times the terrain's screen error, without geomorph, from a copy
+ * of the scene's tree with no frame state (view mode without hysteresis: the terrain's
+ * state stays as the terrain's selection left it), serial, so the mesh and its vertices
+ * are the same for every thread count.  0 when it is drawn; -1: the terrain's mesh is
+ * drawn instead (no view-dependent terrain mesh, or the selection does not fit rmesh). */
+static int refl_own(water_scene *w, scene *s, const cam *c, const rs_frame *tf, int32_t plane_z)
 {
-    const rs_prim *tp = &tf->prims[0];
+    bt_tree t;
+    bt_params bp;
+    const double mult = w->o.refl_err;
+    int k;
+    w->rown = 0;
+    if (!(mult >= 1) || !(w->o.view_px > 0) || !s->tree.node || !s->mesh_mem || s->prims != &s->prim || tf->v != s->verts)
+        return -1;
+    if ((int64_t)2 * plane_z - c->eye[2] < -CAM_COORD_MAX || (int64_t)2 * plane_z - c->eye[2] > CAM_COORD_MAX)
+        return -1;
+    if (!w->rmesh_mem && ws_reserve(w, s) != BR_OK) return -1;
+    w->rcam = *c;
+    w->rcam.eye[2] = 2 * plane_z - c->eye[2];
+    for (k = 0; k < 3; k++) {
+        w->rcam.right[k] = k == 2 ? -c->right[k] : c->right[k];
+        w->rcam.up[k] = k == 2 ? c->up[k] : -c->up[k];
+        w->rcam.fwd[k] = k == 2 ? -c->fwd[k] : c->fwd[k];
+    }
+    t = s->tree;
+    t.st = NULL;
+    memset(&bp, 0, sizeof bp);
+    bp.mode = BT_VIEW;
+    bp.c = &w->rcam;
+    bp.fr = s->rt.fr;
+    bp.pixel_err_q8 = (int32_t)lround(w->o.view_px * mult * 256 < 1 << 30 ? w->o.view_px * mult * 256 : 1 << 30);
+    if (bt_extract(&t, &bp, &w->rmesh) != BR_OK || w->rmesh.ns < 3) return -1;
+    rt_from_mesh(&s->rt, &w->rmesh, w->rverts);
+    w->rmprim.kind = RS_STRIP; w->rmprim.n = w->rmesh.ns; w->rmprim.idx = w->rmesh.strip;
+    w->rown = 1;
+    return 0;
+}
+
+br_status ws_reserve(water_scene *w, scene *s)
+{
+    uint32_t cap = s->mesh.max_tri < WS_REFL_TRI ? s->mesh.max_tri : WS_REFL_TRI;
+    size_t mb;
+    if (w->rmesh_mem || !w->nbodies || !(w->o.refl_err >= 1) || !s->mesh_mem || cap < 2) return BR_OK;
+    mb = bt_mesh_mem_size(cap);
+    w->rmesh_mem = mb ? malloc(mb) : NULL;
+    w->rverts = malloc(sizeof *w->rverts * (size_t)(3 * cap + 3));
+    if (!w->rmesh_mem || !w->rverts || bt_mesh_init(&w->rmesh, cap, w->rmesh_mem, mb) != BR_OK) {
+        free(w->rmesh_mem); free(w->rverts);
+        w->rmesh_mem = NULL; w->rverts = NULL;
+        return BR_E_NOMEM;
+    }
+    return BR_OK;
+}
+
+/* The mirrored terrain frame for plane_z at res_shift: the reflection's own selection
+ * (refl_own), or the terrain's strip and vertices. */
+static br_status refl_frame(water_scene *w, scene *s, const cam *c, const rs_frame *tf, int32_t plane_z, int32_t res)
+{
+    const int own = refl_own(w, s, c, tf, plane_z) == 0;
+    const rs_prim *tp = own ? &w->rmprim : &tf->prims[0];
+    const uint32_t nv = own ? w->rmesh.nv : tf->nv;
     size_t cb;
-    if (tf->nprims != 1 || tp->kind != RS_STRIP || tp->n < 3) return BR_E_ARG;
+    if (!own && (tf->nprims != 1 || tp->kind != RS_STRIP)) return BR_E_ARG;
+    if (tp->n < 3) return BR_E_ARG;
     if (w->rstrip_cap < tp->n + 1) {
         free(w->rstrip);
         w->rstrip_cap = tp->n + 1 + tp->n / 4;
@@ -223,9 +283,9 @@ static br_status refl_frame(water_scene *w, const rs_frame *tf, int32_t plane_z,
     w->rstrip[0] = tp->idx[0];
     copy_idx(w->rstrip + 1, tp->idx, tp->n);
     w->rprim.kind = RS_STRIP; w->rprim.n = tp->n + 1; w->rprim.idx = w->rstrip;
-    if (w->rcache_cap < tf->nv) {
+    if (w->rcache_cap < nv) {
         free(w->rcache);
-        w->rcache_cap = tf->nv + tf->nv / 4;
+        w->rcache_cap = nv + nv / 4;
         w->rcache = malloc(rs_cache_mem_size(w->rcache_cap));
         if (!w->rcache) { w->rcache_cap = 0; return BR_E_NOMEM; }
     }
@@ -238,6 +298,7 @@ static br_status refl_frame(water_scene *w, const rs_frame *tf, int32_t plane_z,
     }
     w->rfr = *tf;
     w->rfr.w = tf->w >> res; w->rfr.h = tf->h >> res;
+    if (own) { w->rfr.v = w->rverts; w->rfr.nv = nv; }
     w->rfr.cache = w->rcache;
     w->rfr.prims = &w->rprim; w->rfr.nprims = 1;
     w->rfr.chunks = w->rchunks;
@@ -320,7 +381,7 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err 
             p.shore_w = ww < 2e9 ? (int64_t)ww : (int64_t)2e9;
         }
         if (body && res >= 0 && c->eye[2] > p.plane_z && tf->nprims == 1 && tf->prims[0].kind == RS_STRIP) {
-            if (refl_frame(w, tf, p.plane_z, res) != BR_OK)
+            if (refl_frame(w, s, c, tf, p.plane_z, res) != BR_OK)
                 return br_err_set(err, BR_E_NOMEM, NULL, "cannot set up the reflection");
             rfr = &w->rfr;
         }

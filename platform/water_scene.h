@@ -5,6 +5,7 @@
  * the pipe (raster/frame.h, raster/water.h) that `render` runs.
  *
  * Order: scene_open, ws_open (it changes the heightfield), scene_tree, scene_reserve;
+ * ws_reserve (optional: else on the first frame);
  * per frame: the terrain frame prepared with a chunk table, then ws_frame, then
  * rs_pipe_run(&w->pipe, ...). */
 #ifndef BR_WATER_SCENE_H
@@ -20,6 +21,7 @@
 #define WS_TINT_FIXED 248       /* the default tint of water without bathymetry, Q8 (0.97) */
 #define WS_MIN_AREA_M2 1000000  /* a flat region of at least 1 km^2 is a lake */
 #define WS_JOIN_DZ_MM 5000      /* the seam rule joins flat regions within 5 m */
+#define WS_REFL_TRI 262144     /* the reflection's own mesh holds at most this many triangles */
 
 /* The water surfaces' mesh (platform/water_mesh.c): grid vertices (x column, y row, z in
  * heightfield units, body id), triangles counter-clockwise seen from +z, watertight. */
@@ -53,6 +55,12 @@ typedef struct ws_opts {        /* zero = defaults: water found automatically, f
                                    both 0: the full grid), which spares the shore test on land
                                    (raster/water.h rw_params.shore_bound); 0: test it everywhere */
     double shore_px, shore_m;
+    double view_px;             /* the terrain's screen error in pixels when it is the scene's
+                                   view-dependent bitree mesh (scene_mesh in BT_VIEW mode);
+                                   0: another mesh, which the reflection then draws itself */
+    double refl_err;            /* --reflection-error F: 0 (default) the reflection draws the
+                                   terrain's mesh; F >= 1 its own selection at F view_px
+                                   (1: the terrain's screen error) */
     int quiet;
 } ws_opts;
 
@@ -77,6 +85,19 @@ typedef struct water_scene {
     int16_t *rchunks;
     size_t rchunks_cap;
     rs_prim rprim;
+    /* the reflection's own LOD (ws_frame): the view selection of the mirrored camera at
+     * refl_err times the terrain's screen error, without frame state (the terrain's
+     * hysteresis is not touched), into rmesh (ws_reserve, or the first frame that
+     * needs it: min(WS_REFL_TRI, the terrain mesh's capacity) triangles, 43 MB); rown 1
+     * when this frame's reflection draws it, 0 when it draws the terrain's mesh (no
+     * view-dependent terrain mesh, or a selection larger than rmesh: bt_extract without
+     * frame state gives BR_E_NOMEM, no budget fallback) */
+    bt_mesh rmesh;
+    void *rmesh_mem;
+    rs_vertex *rverts;
+    rs_prim rmprim;             /* rmesh's strip as it is (the mirrored camera's winding) */
+    cam rcam;                   /* the mirrored camera */
+    int rown;
     rs_frame rfr;
     rw_frame *rw;
     rs_pass tpass;
@@ -84,8 +105,9 @@ typedef struct water_scene {
 } water_scene;
 
 /* The options --no-water, --water-level M, --water FILE, --fog, --no-fog, --time T,
- * --reflection full|half|quarter|none as a table for opt_parse (platform/water_args.c). */
-#define WS_ARGS_N 8     /* entries of the table, OPT_END included */
+ * --reflection full|half|quarter|none, --reflection-error F as a table for opt_parse
+ * (platform/water_args.c). */
+#define WS_ARGS_N 9     /* entries of the table, OPT_END included */
 typedef struct ws_args {
     ws_opts *o;
     int fog, refl, refl_seen;
@@ -96,8 +118,16 @@ int ws_args_finish(ws_args *a, const char *cmd);
 
 br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err);
 /* Builds this frame's water frame (the scene's water mesh transformed), reflection frame
- * and pipe for camera c and the prepared terrain frame tf (its chunk table set). */
+ * and pipe for camera c and the prepared terrain frame tf (its chunk table set).  The
+ * reflection draws its own selection (see rmesh) when o.refl_err >= 1, o.view_px > 0 and
+ * tf draws the scene's bitree mesh; the mirrored camera C2 = (M right, -M up, M fwd) at M eye, M: z ->
+ * 2 H - z in the reflected plane z = H, sees the terrain above the plane at the distances
+ * the camera sees its mirror image, so its selection is the mirror image's LOD. */
 br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err *err);
+/* The reflection's own mesh (rmesh, rverts) when o.refl_err >= 1, once per scene, after
+ * scene_reserve (ws_frame does it on the first frame that needs it otherwise).
+ * BR_E_NOMEM. */
+br_status ws_reserve(water_scene *w, scene *s);
 void ws_close(water_scene *w);
 
 #endif

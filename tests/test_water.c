@@ -284,6 +284,94 @@ static br_status to_img(void *user, int32_t y0, int32_t rows, const void *px, si
     return BR_OK;
 }
 
+/* The reflection's own LOD: the lake from the water at 320x192, 1 px.  At
+ * --reflection-error 4 the mirrored camera's selection has fewer triangles than at 1 and
+ * the reflection frame sets up fewer (drawn whole, full resolution); by default (0) it
+ * draws the terrain's mesh; the terrain's mesh
+ * and its hysteresis state are untouched by it (the same strip before and after).
+ * Nothing under the plane leaks: the reflection's own mesh moved under the plane draws
+ * no pixel through the clipper's plane (without the plane, it does). */
+static void test_refl_lod(void)
+{
+    enum { W = 320, H = 192 };
+    const char *in[1];
+    static uint32_t col[W * H], dep[W * H];
+    double eye[3] = { 40000, 66000, 420 }, tgt[3] = { 60000, 50000, 500 };
+    scene s;
+    scene_opts so;
+    ws_opts wo;
+    water_scene ws;
+    br_err err;
+    cam c;
+    bt_params bp;
+    rs_frame fr;
+    rs_band_stats st;
+    uint32_t ntri[2] = { 0, 0 }, tris[2] = { 0, 0 }, tns, i;
+    uint32_t *tstrip = NULL;
+    int k;
+    memset(&s, 0, sizeof s); memset(&so, 0, sizeof so); memset(&wo, 0, sizeof wo); memset(&ws, 0, sizeof ws);
+    memset(&fr, 0, sizeof fr); memset(&bp, 0, sizeof bp); memset(&err, 0, sizeof err);
+    in[0] = t_data("hgt/N47E009.hgt");
+    so.ramp_abs = 1;
+    so.quiet = 1;
+    wo.reflection = 1; wo.no_fog = 1; wo.quiet = 1; wo.view_px = 1;
+    CHECK_EQ(scene_open(&s, in, 1, &so, &err), BR_OK);
+    CHECK_EQ(ws_open(&ws, &s, &wo, &err), BR_OK);
+    CHECK_EQ(scene_camera(&s, eye, tgt, 50, W, H, &c), BR_OK);
+    CHECK_EQ(scene_tree(&s, &err), BR_OK);
+    CHECK_EQ(scene_reserve(&s, 2000000, &err), BR_OK);
+    bp.mode = BT_VIEW; bp.c = &c; bp.fr = s.rt.fr; bp.pixel_err_q8 = 256; bp.hyst_q8 = 64;
+    CHECK_EQ(scene_mesh(&s, &c, &bp), BR_OK);
+    fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32;
+    CHECK_EQ(scene_terrain(&s, &c, &fr, NULL), BR_OK);
+    tns = s.mesh.ns;
+    tstrip = malloc(sizeof *tstrip * (tns ? tns : 1));
+    CHECK(tstrip != NULL);
+    if (!tstrip) goto done;
+    memcpy(tstrip, s.mesh.strip, sizeof *tstrip * tns);
+    CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);     /* the default: the terrain's mesh */
+    CHECK(ws.rown == 0 && ws.rfr.v == s.verts && ws.rfr.nv == s.mesh.nv);
+    for (k = 0; k < 2; k++) {
+        ws.o.refl_err = k ? 4 : 1;
+        CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
+        CHECK_EQ(ws.rown, 1);
+        if (!ws.rown) goto done;
+        CHECK(ws.rfr.clip_z_on && ws.rfr.v == ws.rverts && ws.rfr.nv == ws.rmesh.nv);
+        ntri[k] = ws.rmesh.ntri;
+        memset(&st, 0, sizeof st);
+        CHECK_EQ(rs_draw_band(&ws.rfr, 0, H, col, W * 4, dep, &st), BR_OK);
+        tris[k] = st.tris;
+    }
+    printf("reflection LOD: %u triangles selected, %u set up at the terrain's error; %u, %u at 4x; terrain %u\n",
+           ntri[0], tris[0], ntri[1], tris[1], s.mesh.ntri);
+    CHECK_MSG(ntri[1] * 2 < ntri[0], "%u triangles at 4x, %u at 1x", ntri[1], ntri[0]);
+    CHECK_MSG(tris[1] * 2 < tris[0], "%u triangles set up at 4x, %u at 1x", tris[1], tris[0]);
+    /* the terrain's mesh is the one its selection made: the reflection's does not touch
+     * its hysteresis state (the next frame's terrain selection reads it) */
+    CHECK(s.mesh.ns == tns && !memcmp(tstrip, s.mesh.strip, sizeof *tstrip * tns));
+    CHECK_EQ(scene_mesh(&s, &c, &bp), BR_OK);
+    CHECK(s.mesh.ns == tns && !memcmp(tstrip, s.mesh.strip, sizeof *tstrip * tns));
+    /* the reflection's mesh moved down until its highest vertex is one unit under the
+     * plane: nothing through the clipper's plane; without the plane it shows */
+    {
+        int32_t zmax = INT32_MIN;
+        for (i = 0; i < ws.rfr.nv; i++) if (ws.rverts[i].p[2] > zmax) zmax = ws.rverts[i].p[2];
+        for (i = 0; i < ws.rfr.nv; i++) ws.rverts[i].p[2] -= zmax - ws.rfr.clip_z + 1;
+    }
+    for (k = 0; k < 2; k++) {
+        ws.rfr.clip_z_on = !k;
+        CHECK_EQ(rs_frame_prepare(&ws.rfr), BR_OK);
+        memset(&st, 0, sizeof st);
+        CHECK_EQ(rs_draw_band(&ws.rfr, 0, H, col, W * 4, dep, &st), BR_OK);
+        if (k == 0) CHECK_MSG(st.pixels == 0, "%u pixels under the plane", st.pixels);
+        else CHECK_MSG(st.pixels > 1000, "%u pixels without the plane", st.pixels);
+    }
+done:
+    free(tstrip);
+    ws_close(&ws);
+    scene_close(&s);
+}
+
 /* A still flat mirror: waves off, the Fresnel term forced to 1, full-resolution
  * reflection, fog off, the lake from the water (test_goldens' camera).  The mirrored
  * camera C2 = (M right, -M up, M fwd) at M eye (M: z -> 2 H - z; a proper rotation, so
@@ -293,7 +381,9 @@ static br_status to_img(void *user, int32_t y0, int32_t rows, const void *px, si
  * shows terrain is compared.  The projection rounds -y and y to subpixels differently,
  * so edge functions and Gouraud gradients differ by a rounding: tolerance, at least 3/4
  * of the pixels exact, at most 3 % more than 2 per channel off (triangle edges, where
- * the neighbouring triangle wins); measured 283 exact, 67 within 2, 7 beyond, of 357. */
+ * the neighbouring triangle wins).  The reflection draws its own LOD at the terrain's
+ * error (--reflection-error 1): the mirrored camera's own mesh, which C2 draws here;
+ * measured 287 exact, 68 within 2, 6 beyond, of 361. */
 static void test_still_mirror(void)
 {
     enum { W = 160, H = 96 };
@@ -320,6 +410,7 @@ static void test_still_mirror(void)
     so.ramp_abs = 1;
     so.quiet = 1;
     wo.reflection = 1; wo.no_waves = 1; wo.fresnel_one = 1; wo.no_fog = 1; wo.quiet = 1;
+    wo.view_px = 1; wo.refl_err = 1;    /* the reflection's own selection at the terrain's error */
     CHECK_EQ(scene_open(&s, in, 1, &so, &err), BR_OK);
     CHECK_EQ(ws_open(&ws, &s, &wo, &err), BR_OK);
     CHECK_EQ(scene_camera(&s, eye, tgt, 50, W, H, &c), BR_OK);
@@ -331,7 +422,7 @@ static void test_still_mirror(void)
     CHECK_EQ(scene_terrain(&s, &c, &fr, NULL), BR_OK);
     CHECK_EQ(rs_draw_band(&fr, 0, H, dry, W * 4, dep, NULL), BR_OK);      /* the terrain alone */
     CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
-    CHECK(ws.rfr.nv > 0 && ws.rfr.w == W);
+    CHECK(ws.rfr.nv > 0 && ws.rfr.w == W && ws.rown == 1);
     ms = rs_pipe_mem_size(&ws.pipe, H);
     mem = malloc(ms);
     is.px = wet; is.w = W;
@@ -346,9 +437,10 @@ static void test_still_mirror(void)
         c2.up[k] = k == 2 ? c.up[k] : -c.up[k];
         c2.fwd[k] = k == 2 ? -c.fwd[k] : c.fwd[k];
     }
+    CHECK(!memcmp(&c2, &ws.rcam, sizeof c2));
     dfr = ws.rfr;
-    dfr.prims = fr.prims;       /* C2 is a proper rotation: the terrain's own winding */
-    dfr.nprims = fr.nprims;
+    dfr.prims = &ws.rmprim;     /* C2 is a proper rotation: the mesh's own winding */
+    dfr.nprims = 1;
     dcache = malloc(rs_cache_mem_size(dfr.nv));
     dchunks = malloc(rs_chunk_mem_size(dfr.prims, 1) + 4);
     CHECK(dcache && dchunks);
@@ -604,6 +696,7 @@ int main(void)
     T_RUN(test_goldens);
     T_RUN(test_reflection_colour);
     T_RUN(test_still_mirror);
+    T_RUN(test_refl_lod);
     T_RUN(test_fog_from_high);
     T_RUN(test_bench_water);
     return t_finish();
