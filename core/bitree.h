@@ -181,7 +181,10 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
  * array in flash.  bt_attach refuses (BR_E_ARG, before reading past `bytes`) a
  * blob that is truncated, corrupt (checksums of header and nodes), of another
  * version, or not built from f (dimensions, a fingerprint of f's heights and
- * units); BR_E_UNSUPPORTED on a big-endian host.  The blob must be 4-byte aligned
+ * units).  The node array is read in the host's byte order: a saved blob (its
+ * bytes are the same on every host) attaches as it is on a little-endian host; on a
+ * big-endian host call bt_blob_to_host on it first (it turns the node words around
+ * in place; nothing on a little-endian host).  The blob must be 4-byte aligned
  * and outlive t; attach reads f once (fingerprint), nothing is written to the blob.
  * st: the caller's memory for the frame state, st_bytes >= t->nslot
  * (bt_slot_count), zeroed by attach; or NULL: no frame state, so view mode
@@ -193,6 +196,7 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
 size_t bt_tree_blob_size(const bt_tree *t);
 br_status bt_tree_save(const bt_tree *t, void *buf, size_t bytes);
 br_status bt_attach(bt_tree *t, const hf *f, const void *blob, size_t bytes, uint8_t *st, size_t st_bytes);
+void bt_blob_to_host(void *blob, size_t bytes);
 
 /* Value (heightfield units for the exact metric) of an error code; BT_CODE_SPLIT
  * gives INT64_MAX. */

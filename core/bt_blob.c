@@ -8,15 +8,19 @@
  *   9 nvalid (< 2^31: w*h <= BR_MAX_SAMPLES)   10 nslot
  *   11 FNV-1a (32-bit) of the heightfield: w, h, every height (the tree does not
  *      depend on the units or the spacing)
- *   12 FNV-1a (32-bit) of the node array's bytes
+ *   12 FNV-1a (32-bit) of the node array's bytes (as saved: little-endian)
  *   13 FNV-1a (32-bit) of words 0 .. 12   14, 15 zero
  * Attach checks every word against the heightfield it is given (the layout and
  * the statistics recomputed, not trusted) and both checksums, so a blob that is
  * truncated, corrupt, for another grid or from another version is refused before
  * anything points into it.  The node values need no further check for memory
  * safety: the walk indexes only wz_lo/wz_hi[256] with their bytes.  The node
- * array is used in place (4-byte aligned, little-endian hosts), so it may live in
- * read-only memory: the selection never writes it (bt_tree.node is const). */
+ * array is used in place (4-byte aligned), so it may live in read-only memory: the
+ * selection never writes it (bt_tree.node is const).  In place means in the host's
+ * byte order: attach checks the node checksum over the values as read, written
+ * little-endian, so a saved blob attaches as it is on a little-endian host, and a
+ * big-endian host first turns the node words around (bt_blob_to_host); the blob's
+ * bytes, and so the file, are the same on every host. */
 #include <string.h>
 #include "core/bitree.h"
 #include "core/bt_int.h"
@@ -112,6 +116,17 @@ br_status bt_tree_save(const bt_tree *t, void *buf, size_t bytes)
     return BR_OK;
 }
 
+void bt_blob_to_host(void *blob, size_t bytes)
+{
+    uint8_t *p = (uint8_t *)blob;
+    size_t i;
+    if (little_endian() || !blob || bytes < HDR_BYTES) return;
+    for (i = HDR_BYTES; i + 4 <= bytes; i += 4) {
+        uint32_t v = rd32(p + i);
+        memcpy(p + i, &v, 4);
+    }
+}
+
 br_status bt_attach(bt_tree *t, const hf *f, const void *blob, size_t bytes, uint8_t *st, size_t st_bytes)
 {
     const uint8_t *p = (const uint8_t *)blob;
@@ -135,12 +150,13 @@ br_status bt_attach(bt_tree *t, const hf *f, const void *blob, size_t bytes, uin
     nt.metric = (int32_t)rd32(p + 24);
     if (nt.metric != BT_METRIC_EXACT && nt.metric != BT_METRIC_CURVATURE) return BR_E_ARG;
     if (st && st_bytes < nt.nslot) return BR_E_ARG;
-    if (!little_endian()) return BR_E_UNSUPPORTED;
     /* the heightfield: fingerprint and statistics; then the node array's checksum;
      * finally the whole header as this tree would write it */
     {
-        uint32_t ck = fnv32(2166136261u, p + HDR_BYTES, (size_t)nt.nslot * 4);
-        uint32_t hfp = hf_print(f, &nt.zmin, &nt.zmax, &nt.nvalid);
+        const uint32_t *node = (const uint32_t *)(const void *)(p + HDR_BYTES);
+        uint32_t ck = 2166136261u, hfp;
+        for (i = 0; i < nt.nslot; i++) ck = fnv32_word(ck, node[i]);
+        hfp = hf_print(f, &nt.zmin, &nt.zmax, &nt.nvalid);
         header(&nt, hfp, ck, w);
         for (i = 0; i < HDR_WORDS; i++)
             if (rd32(p + 4 * i) != w[i]) return BR_E_ARG;

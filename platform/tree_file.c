@@ -42,6 +42,7 @@ br_status tree_file_attach(bt_tree *t, const hf *f, const char *path, void **mem
     if (!buf) { fclose(fp); return br_err_set(err, BR_E_NOMEM, path, "out of memory for the tree (%zu bytes)", n + ns); }
     if (fread(buf, 1, n, fp) != n) { fclose(fp); free(buf); return br_err_set(err, BR_E_IO, path, "read failed"); }
     fclose(fp);
+    bt_blob_to_host(buf, n);
     s = bt_attach(t, f, buf, n, buf + stoff, ns);
     if (s != BR_OK) {
         free(buf);

@@ -182,6 +182,7 @@ static void test_attach_same(void)
     st = malloc(t.nslot);
     CHECK_EQ(bt_tree_save(&t, blob, n), BR_OK);
     CHECK_EQ(bt_tree_save(&t, blob, n - 1), BR_E_ARG);
+    bt_blob_to_host(blob, n);         /* big-endian hosts: the node words turned around */
     ro = ro_copy(blob, n);
     CHECK(ro != NULL);
     CHECK_EQ(bt_attach(&a, &f, ro, n, st, t.nslot), BR_OK);
@@ -247,6 +248,7 @@ static void test_corrupt_blobs(void)
     n = bt_tree_blob_size(&t);
     blob = malloc(n);
     CHECK_EQ(bt_tree_save(&t, blob, n), BR_OK);
+    bt_blob_to_host(blob, n);
     for (i = 0; i < n; i += (i < 128 ? 1 : 97)) {         /* truncations */
         bad = malloc(i ? i : 1);
         memcpy(bad, blob, i);
