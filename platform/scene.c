@@ -202,7 +202,14 @@ br_status scene_tree(scene *s, br_err *err)
     size_t tb = bt_mem_size(s->f.w, s->f.h), sb = bt_scratch_size(s->f.w, s->f.h);
     void *scratch;
     br_status st;
-    if (s->tree_file) return tree_file_attach(&s->tree, &s->f, s->tree_file, &s->tree_mem, err);
+    if (s->tree_file) {
+        br_status a = tree_file_attach(&s->tree, &s->f, s->tree_file, &s->tree_mem, err);
+        if (a == BR_E_FORMAT && s->beds_lowered)
+            return br_err_set(err, a, s->tree_file, "not a bitree for these heights: the water found lowers the "
+                              "flattened lakes' and sea's samples to a bottom before the tree is built, which a tree "
+                              "saved by `bitrain mesh --save-tree` does not know; add --no-water");
+        return a;
+    }
     s->tree_mem = malloc(tb);
     scratch = malloc(sb);
     if (!s->tree_mem || !scratch) {

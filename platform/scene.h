@@ -52,6 +52,9 @@ typedef struct scene {
     rs_cvert *cache;                 /* vertex cache for the rasteriser */
     void *tree_mem, *mesh_mem;
     const char *tree_file;           /* scene_opts.tree: attach it instead of building */
+    int beds_lowered;                /* platform/water_scene.c lowered flattened water's
+                                        samples (its bottom) before the tree: a tree saved
+                                        from the file's heights does not belong to them */
     /* the view extraction in parts (core/bitree.h bt_extract_begin), on pool's threads
      * (NULL: the caller's only); the same mesh for every pool */
     bt_parts *parts;

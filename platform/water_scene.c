@@ -133,7 +133,10 @@ br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err)
     if (depth < 1) depth = 1;
     if (!w->o.water_file && !w->o.have_level)     /* the user's water keeps its bathymetry */
         for (i = 0; i < n; i++)
-            if (w->id[i] && f->z[i] != HF_NODATA && f->z[i] > wz[i] - depth) f->z[i] = wz[i] - depth;
+            if (w->id[i] && f->z[i] != HF_NODATA && f->z[i] > wz[i] - depth) {
+                f->z[i] = wz[i] - depth;
+                s->beds_lowered = 1;
+            }
     for (i = 0; i < n; i++) if (!w->id[i]) wz[i] = HF_NODATA;
     w->wf = *f;
     w->wf.z = wz;

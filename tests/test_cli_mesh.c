@@ -30,6 +30,22 @@ static int run_mesh(int argc, char **argv, const char *out)
     return rc;
 }
 
+static int run_render(int argc, char **argv, const char *out)
+{
+    int saved, fd, rc;
+    fflush(stdout);
+    saved = dup(1);
+    fd = open(out, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (saved < 0 || fd < 0) return -1;
+    dup2(fd, 1);
+    close(fd);
+    rc = cmd_render(argc, argv);
+    fflush(stdout);
+    dup2(saved, 1);
+    close(saved);
+    return rc;
+}
+
 typedef struct figs { long tri, vert, fict, refs, lines; double err; } figs;
 
 static int read_json(const char *path, figs *g)
@@ -255,10 +271,47 @@ static void test_saved_tree(void)
     CHECK_EQ(run_mesh(9, argv, out), 1);
 }
 
+/* A tree saved by `mesh --save-tree` holds the file's heights; render with its water
+ * found lowers the flattened lakes to a bottom first, so the tree is refused with a
+ * message that says why and what to add; with --no-water it attaches. */
+static void test_saved_tree_water(void)
+{
+    char dem[] = "assets/N47E009.hgt.gz", cm[] = "--save-tree", o[] = "-o", tr[] = "--tree", sz[] = "--size",
+         szv[] = "64x48", nw[] = "--no-water";
+    char tree[256], obj[256], png[256], out[256], err[256], *argv[8];
+    int saved, fd, rc;
+    FILE *fp;
+    char line[512] = "";
+    snprintf(tree, sizeof tree, "%s/cli_tree_lakes.bt", t_outdir());
+    snprintf(obj, sizeof obj, "%s/cli_tree_lakes.obj", t_outdir());
+    snprintf(png, sizeof png, "%s/cli_tree_lakes.png", t_outdir());
+    snprintf(out, sizeof out, "%s/cli_tree_lakes.txt", t_outdir());
+    snprintf(err, sizeof err, "%s/cli_tree_lakes.err", t_outdir());
+    argv[0] = dem; argv[1] = cm; argv[2] = tree; argv[3] = o; argv[4] = obj;
+    CHECK_EQ(run_mesh(5, argv, out), 0);
+    argv[0] = dem; argv[1] = tr; argv[2] = tree; argv[3] = sz; argv[4] = szv; argv[5] = o; argv[6] = png;
+    fflush(stderr);
+    saved = dup(2);
+    fd = open(err, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (saved < 0 || fd < 0) { CHECK(0); return; }
+    dup2(fd, 2);
+    close(fd);
+    rc = run_render(7, argv, out);
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    CHECK_EQ(rc, 1);
+    if ((fp = fopen(err, "r"))) { if (!fgets(line, sizeof line, fp)) line[0] = 0; fclose(fp); }
+    CHECK_MSG(strstr(line, "cli_tree_lakes.bt") && strstr(line, "add --no-water"), "%s", line);
+    argv[7] = nw;
+    CHECK_EQ(run_render(8, argv, out), 0);
+}
+
 int main(void)
 {
     T_RUN(test_fidelity_obj);
     T_RUN(test_saved_tree);
+    T_RUN(test_saved_tree_water);
     T_RUN(test_voids_view_ply_stl);
     T_RUN(test_bad_usage);
     return t_finish();
