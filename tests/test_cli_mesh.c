@@ -14,37 +14,36 @@
 #include "platform/load.h"
 
 /* Runs cmd_mesh with stdout sent to file out; returns its exit code. */
-static int run_mesh(int argc, char **argv, const char *out)
+/* Sends file descriptor fd to path (returns the saved descriptor, -1 on failure), and back. */
+static int redirect(int fd, const char *path)
 {
-    int saved, fd, rc;
-    fflush(stdout);
-    saved = dup(1);
-    fd = open(out, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (saved < 0 || fd < 0) return -1;
-    dup2(fd, 1);
-    close(fd);
-    rc = cmd_mesh(argc, argv);
-    fflush(stdout);
-    dup2(saved, 1);
+    int saved = dup(fd), f = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (saved < 0 || f < 0) return -1;
+    dup2(f, fd);
+    close(f);
+    return saved;
+}
+
+static void restore(int fd, int saved)
+{
+    dup2(saved, fd);
     close(saved);
+}
+
+/* Runs a command (cmd_mesh, cmd_render) with its standard output sent to out. */
+static int run_cmd(int (*cmd)(int, char **), int argc, char **argv, const char *out)
+{
+    int saved, rc;
+    fflush(stdout);
+    if ((saved = redirect(1, out)) < 0) return -1;
+    rc = cmd(argc, argv);
+    fflush(stdout);
+    restore(1, saved);
     return rc;
 }
 
-static int run_render(int argc, char **argv, const char *out)
-{
-    int saved, fd, rc;
-    fflush(stdout);
-    saved = dup(1);
-    fd = open(out, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (saved < 0 || fd < 0) return -1;
-    dup2(fd, 1);
-    close(fd);
-    rc = cmd_render(argc, argv);
-    fflush(stdout);
-    dup2(saved, 1);
-    close(saved);
-    return rc;
-}
+static int run_mesh(int argc, char **argv, const char *out) { return run_cmd(cmd_mesh, argc, argv, out); }
+static int run_render(int argc, char **argv, const char *out) { return run_cmd(cmd_render, argc, argv, out); }
 
 typedef struct figs { long tri, vert, fict, refs, lines; double err; } figs;
 
@@ -279,7 +278,7 @@ static void test_saved_tree_water(void)
     char dem[] = "assets/N47E009.hgt.gz", cm[] = "--save-tree", o[] = "-o", tr[] = "--tree", sz[] = "--size",
          szv[] = "64x48", nw[] = "--no-water";
     char tree[256], obj[256], png[256], out[256], err[256], *argv[8];
-    int saved, fd, rc;
+    int saved, rc;
     FILE *fp;
     char line[512] = "";
     snprintf(tree, sizeof tree, "%s/cli_tree_lakes.bt", t_outdir());
@@ -291,15 +290,10 @@ static void test_saved_tree_water(void)
     CHECK_EQ(run_mesh(5, argv, out), 0);
     argv[0] = dem; argv[1] = tr; argv[2] = tree; argv[3] = sz; argv[4] = szv; argv[5] = o; argv[6] = png;
     fflush(stderr);
-    saved = dup(2);
-    fd = open(err, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (saved < 0 || fd < 0) { CHECK(0); return; }
-    dup2(fd, 2);
-    close(fd);
+    if ((saved = redirect(2, err)) < 0) { CHECK(0); return; }
     rc = run_render(7, argv, out);
     fflush(stderr);
-    dup2(saved, 2);
-    close(saved);
+    restore(2, saved);
     CHECK_EQ(rc, 1);
     if ((fp = fopen(err, "r"))) { if (!fgets(line, sizeof line, fp)) line[0] = 0; fclose(fp); }
     CHECK_MSG(strstr(line, "cli_tree_lakes.bt") && strstr(line, "add --no-water"), "%s", line);
