@@ -55,26 +55,20 @@ static int crop(const hf *full, int32_t x0, int32_t y0, int32_t side, hf *out)
     return 0;
 }
 
-/* What scene_open does for a georeferenced grid, on a heightfield already in memory. */
+/* The scene over the crop as scene_open sets up a file (default ramp over its heights,
+ * sun 315 / 45 degrees, ambient 0.3, vertical scale 1), and what the board needs of it. */
 static int scene_of(scene *s, const hf *f, bake_info *b)
 {
-    fx_q14 sun[3];
+    br_err err;
     memset(s, 0, sizeof *s);
     s->f = *f;
-    hf_stats_get(&s->f, &s->st);
-    s->zscale = 1;
-    s->zmin_m = (double)hf_z_to_mm(&s->f, s->st.zmin) / 1000;
-    s->zmax_m = (double)hf_z_to_mm(&s->f, s->st.zmax) / 1000;
-    s->width_m = (double)(s->f.w - 1) * (double)s->f.dx_um / 1e6;
-    s->depth_m = (double)(s->f.h - 1) * (double)s->f.dy_um / 1e6;
+    if (scene_setup(s, NULL, "crop", &err) != BR_OK) return -1;
     b->ramp_zmin_mm = hf_z_to_mm(&s->f, s->st.zmin);
     b->ramp_zmax_mm = hf_z_to_mm(&s->f, s->st.zmax);
     b->sun_az_mdeg = 315000;
     b->sun_alt_mdeg = 45000;
     b->ambient_q14 = (int32_t)lround(0.3 * FX_Q14_ONE);
-    rs_ramp_default(&s->ramp, b->ramp_zmin_mm, b->ramp_zmax_mm);
-    rs_sun_dir(b->sun_az_mdeg, b->sun_alt_mdeg, sun);
-    return rt_scene_init(&s->rt, &s->f, &s->ramp, sun, b->ambient_q14) == BR_OK ? 0 : -1;
+    return 0;
 }
 
 typedef struct sum_sink {

@@ -154,8 +154,6 @@ br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o
 {
     scene_opts d;
     dem_opts dd;
-    fx_q14 sun[3];
-    int def_sun;
     memset(s, 0, sizeof *s);
     memset(&d, 0, sizeof d);
     if (!o) o = &d;
@@ -167,10 +165,20 @@ br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o
     if (dem_load_many(in, n, &dd, &s->f, err) != BR_OK) return err ? err->code : BR_E_IO;
     if (dd.fill_voids && !o->quiet)
         printf("%s: %lld void samples filled from their borders (--fill-voids)\n", in[0], (long long)s->filled);
+    return scene_setup(s, o, in[0], err);
+}
+
+br_status scene_setup(scene *s, const scene_opts *o, const char *name, br_err *err)
+{
+    scene_opts d;
+    fx_q14 sun[3];
+    int def_sun;
+    memset(&d, 0, sizeof d);
+    if (!o) o = &d;
     hf_stats_get(&s->f, &s->st);
     if (s->st.voids == (int64_t)s->f.w * s->f.h) {
-        dem_free(&s->f);
-        return br_err_set(err, BR_E_VALUE, in[0], "every sample is a void (nodata): nothing to draw");
+        scene_close(s);
+        return br_err_set(err, BR_E_VALUE, name, "every sample is a void (nodata): nothing to draw");
     }
     s->zmin_m = (double)hf_z_to_mm(&s->f, s->st.zmin) / 1000;
     s->zmax_m = (double)hf_z_to_mm(&s->f, s->st.zmax) / 1000;
@@ -187,13 +195,13 @@ br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o
     rs_sun_dir((int32_t)lround((def_sun ? 315 : o->sun_az) * 1000), (int32_t)lround((def_sun ? 45 : o->sun_alt) * 1000), sun);
     if (rt_scene_init(&s->rt, &s->f, &s->ramp, sun, (int32_t)lround((o->ambient_set ? o->ambient : 0.3) * FX_Q14_ONE)) != BR_OK) {
         scene_close(s);
-        return br_err_set(err, BR_E_ARG, in[0], "invalid heightfield");
+        return br_err_set(err, BR_E_ARG, name, "invalid heightfield");
     }
     if (o->texture && load_texture(s, o->texture, err) != BR_OK) {
         scene_close(s);
         return err ? err->code : BR_E_FORMAT;
     }
-    apply_zscale(s, o, in[0]);
+    apply_zscale(s, o, name);
     return BR_OK;
 }
 

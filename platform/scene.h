@@ -79,6 +79,10 @@ typedef struct scene {
 /* Loads the files (merged when several), the ramp, texture and vertical scale.
  * A grid whose every sample is a void is refused (BR_E_VALUE): nothing to draw. */
 br_status scene_open(scene *s, const char *const *in, int n, const scene_opts *o, br_err *err);
+/* What scene_open does after loading, for a heightfield the caller put in s->f (the
+ * rest of s zeroed; scene_close frees s->f's heights): statistics, colour ramp, sun,
+ * shading and vertical scale from o (NULL: the defaults); name labels the messages. */
+br_status scene_setup(scene *s, const scene_opts *o, const char *name, br_err *err);
 /* Builds the bitree (exact metric) once. */
 br_status scene_tree(scene *s, br_err *err);
 /* Allocates the mesh (max_tri triangles; beyond it the bitree falls back to its
