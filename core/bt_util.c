@@ -63,37 +63,37 @@ void bti_layout(bt_layout *ly, int32_t w, int32_t h, int32_t n, uint32_t *nslot)
     }
 }
 
+/* One band of padding: `need` steps beyond the data across it, position `along` it,
+ * (x | y) for the level's alignment; the band's near slots and its per-level first
+ * slots, first index, count and row length (the east band's columns run along the
+ * padded side n, the south band's rows along w). */
+static inline uint32_t band_slot(const bt_tree *t, int32_t need, int32_t along, int32_t xy,
+                                 const int32_t *nearv, const uint32_t *base, const int32_t *m0,
+                                 const int32_t *nc, int32_t side, int32_t across)
+{
+    const bt_layout *ly = &t->lay;
+    int32_t l, i;
+    if (need < BT_LAY_NEAR) {
+        l = ly->lnear[need];
+        if (nearv[need] < 0 || (along & (((int32_t)1 << l) - 1)) != 0) return t->nslot - 1;
+        return (uint32_t)nearv[need] + (uint32_t)(along >> l);
+    }
+    l = need_level(need);
+    if ((xy & (((int32_t)1 << l) - 1)) != 0) return t->nslot - 1;
+    i = (across >> l) - m0[l];
+    if (i < 0 || i >= nc[l]) return t->nslot - 1;
+    return base[l] + (uint32_t)i * (uint32_t)(((side - 1) >> l) + 1) + (uint32_t)(along >> l);
+}
+
 /* The walk's padding diamonds are mostly within BT_LAY_NEAR of the data: those
  * columns and rows have their level and first slot in the layout (bti_layout);
  * farther ones compute them. */
 uint32_t bti_slot_pad(const bt_tree *t, int32_t x, int32_t y)
 {
     const bt_layout *ly = &t->lay;
-    int32_t l, i, need;
-    if (x >= t->w) {
-        need = x - t->w;
-        if (need < BT_LAY_NEAR) {
-            l = ly->lnear[need];
-            if (ly->enear[need] < 0 || (y & (((int32_t)1 << l) - 1)) != 0) return t->nslot - 1;
-            return (uint32_t)ly->enear[need] + (uint32_t)(y >> l);
-        }
-        l = need_level(need);
-        if (((x | y) & (((int32_t)1 << l) - 1)) != 0) return t->nslot - 1;
-        i = (x >> l) - ly->em0[l];
-        if (i < 0 || i >= ly->enc[l]) return t->nslot - 1;
-        return ly->east[l] + (uint32_t)i * (uint32_t)(((t->n - 1) >> l) + 1) + (uint32_t)(y >> l);
-    }
-    need = y - t->h;
-    if (need < BT_LAY_NEAR) {
-        l = ly->lnear[need];
-        if (ly->snear[need] < 0 || (x & (((int32_t)1 << l) - 1)) != 0) return t->nslot - 1;
-        return (uint32_t)ly->snear[need] + (uint32_t)(x >> l);
-    }
-    l = need_level(need);
-    if (((x | y) & (((int32_t)1 << l) - 1)) != 0) return t->nslot - 1;
-    i = (y >> l) - ly->sm0[l];
-    if (i < 0 || i >= ly->snc[l]) return t->nslot - 1;
-    return ly->south[l] + (uint32_t)i * (uint32_t)(((t->w - 1) >> l) + 1) + (uint32_t)(x >> l);
+    if (x >= t->w)
+        return band_slot(t, x - t->w, y, x | y, ly->enear, ly->east, ly->em0, ly->enc, t->n, x);
+    return band_slot(t, y - t->h, x, x | y, ly->snear, ly->south, ly->sm0, ly->snc, t->w, y);
 }
 
 uint32_t bt_node_at(const bt_tree *t, int32_t x, int32_t y)
