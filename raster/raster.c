@@ -238,7 +238,7 @@ static int64_t plane_val(int p, const clipv *v, int64_t f8, int64_t g8, int64_t 
  * Always computed from the inside end, so the two triangles sharing a clipped edge get
  * the same point. */
 static void intersect(const clipv *P, const clipv *Q, int64_t dp, int64_t dq, int plane,
-                      int64_t znear, clipv *o)
+                      int64_t znear, int tex, clipv *o)
 {
     int64_t num = dp, den = dp - dq, t;
     int k;
@@ -252,8 +252,8 @@ static void intersect(const clipv *P, const clipv *Q, int64_t dp, int64_t dq, in
     for (k = 0; k < 3; k++) o->c[k] = P->c[k] + (((Q->c[k] - P->c[k]) * t) >> 24);
     for (k = 0; k < 3; k++)
         o->col[k] = P->col[k] + (int32_t)((((int64_t)Q->col[k] - P->col[k]) * t) >> 24);
-    for (k = 0; k < 2; k++)
-        o->uv[k] = P->uv[k] + (int32_t)((((int64_t)Q->uv[k] - P->uv[k]) * t) >> 24);
+    for (k = 0; k < 2; k++)     /* read by the textured variants only */
+        o->uv[k] = tex ? P->uv[k] + (int32_t)((((int64_t)Q->uv[k] - P->uv[k]) * t) >> 24) : 0;
     /* |pz| < 2^32 and t <= 2^24: the product fits */
     o->pz = plane == 5 ? 0 : P->pz + (((Q->pz - P->pz) * t) >> 24);
     if (plane == 0 || o->c[2] < znear) o->c[2] = znear;
@@ -262,7 +262,10 @@ static void intersect(const clipv *P, const clipv *Q, int64_t dp, int64_t dq, in
 /* A triangle with a vertex behind the near plane or outside the guard band: clipped in
  * camera space (Sutherland-Hodgman against the near plane and the four guard-band
  * planes: at most 3 + 5 = RS_CLIP_MAX vertices), projected, and drawn as a fan by
- * tri_raster. */
+ * tri_raster.  The outcodes are exact (xform.c: RS_OUT_NEAR is plane 0's value < 0,
+ * RS_OUT_GUARD one of planes 1 .. 4's): when no vertex has either, planes 0 .. 4 pass
+ * the three vertices unchanged, so they are not evaluated and only plane 5 (the world
+ * plane: the reflection's shore triangles) cuts, giving the same polygon. */
 static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf)
 {
     const rs_frame *f = bd->f;
@@ -270,9 +273,11 @@ static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf)
     int64_t f8 = rsi_f_q8(vp), g8 = (int64_t)RS_GUARD_PX << 8;
     clipv buf[2][RS_CLIP_MAX];
     int32_t n = 3, p, i, k, cur = 0, nplanes = f->clip_z_on ? 6 : 5;
+    const int tex = f->tex != 0;
     uint32_t idx[3];
     rs_cvert sv[RS_CLIP_MAX];
     idx[0] = ia; idx[1] = ib; idx[2] = ic;
+    p = (f->cache[ia].c | f->cache[ib].c | f->cache[ic].c) & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24) ? 0 : 5;
     for (i = 0; i < 3; i++) {
         uint32_t rgb = f->v[idx[i]].rgb;
         rsi_to_camera(vp, f->v[idx[i]].p, buf[0][i].c);
@@ -281,7 +286,7 @@ static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf)
         buf[0][i].uv[1] = f->v[idx[i]].uv[1];
         buf[0][i].pz = (int64_t)f->v[idx[i]].p[2] - f->clip_z;
     }
-    for (p = 0; p < nplanes; p++) {
+    for (; p < nplanes; p++) {
         clipv *in = buf[cur], *out = buf[cur ^ 1];
         int32_t m = 0, all_in = 1;
         int64_t d[RS_CLIP_MAX];
@@ -294,8 +299,8 @@ static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf)
             int32_t j = i + 1 == n ? 0 : i + 1;
             if (d[i] >= 0) out[m++] = in[i];
             if ((d[i] >= 0) != (d[j] >= 0)) {
-                if (d[i] >= 0) intersect(&in[i], &in[j], d[i], d[j], p, vp->znear, &out[m]);
-                else intersect(&in[j], &in[i], d[j], d[i], p, vp->znear, &out[m]);
+                if (d[i] >= 0) intersect(&in[i], &in[j], d[i], d[j], p, vp->znear, tex, &out[m]);
+                else intersect(&in[j], &in[i], d[j], d[i], p, vp->znear, tex, &out[m]);
                 m++;
             }
         }
