@@ -255,24 +255,49 @@ typedef struct refl_view {
     int32_t h0, h1, rw;
 } refl_view;
 
-/* The colour of water pixel (x, y): terrain colour ct and depth dt under it, water depth
- * dw (30-bit units), body id. */
-static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, int32_t x, int32_t y, uint32_t ct,
+/* Row y's values for the per-pixel functions below, read once a row (the hook's pixel
+ * stores may alias the frame's 32-bit tables, so the compiler would reload them, and
+ * redo their products, at every pixel). */
+typedef struct rw_rowk {
+    int32_t y;
+    int shore;                  /* the shore test has a plane point in this row: wet and tkr >= 0 */
+    uint32_t cnum;              /* (rz^2 >> 8) << 10 as 32 bits: cos^2 t's numerator */
+    int64_t bb;                 /* bq^2 + Q12^2: the row's part of cos^2 t's denominator */
+    int64_t ws0, ws1, wrel0, wrel1, tkr;        /* wstep[y], wrel[y], tkr[y] */
+    uint32_t wph0, wph1;        /* wph[y] */
+} rw_rowk;
+
+static RW_INLINE void row_k(const rw_frame *r, int32_t y, rw_rowk *k)
+{
+    const int32_t rz = r->rz[y];
+    const int64_t b = r->bq[y];
+    k->y = y;
+    k->tkr = r->tkr[y];
+    k->shore = r->p.wet && k->tkr >= 0;
+    k->cnum = (uint32_t)(((uint64_t)((int64_t)rz * rz) >> 8) << 10);
+    k->bb = b * b + (int64_t)Q12 * Q12;
+    k->ws0 = r->wstep[y][0]; k->ws1 = r->wstep[y][1];
+    k->wrel0 = r->wrel[y][0]; k->wrel1 = r->wrel[y][1];
+    k->wph0 = r->wph[y][0]; k->wph1 = r->wph[y][1];
+}
+
+/* The colour of water pixel (x, k->y): terrain colour ct and depth dt under it, water
+ * depth dw (30-bit units), body id. */
+static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const rw_rowk *k, int32_t x, uint32_t ct,
                          uint32_t dt, uint32_t dw, uint32_t id)
 {
-    const int32_t a = r->aq[x], rz = r->rz[y], s = r->p.res_shift;
-    const int64_t b = r->bq[y];
-    uint32_t den = (uint32_t)(((int64_t)a * a + b * b + (int64_t)Q12 * Q12) >> 8);
-    uint32_t ci = (uint32_t)(((uint64_t)((int64_t)rz * rz) >> 8) << 10) / (den ? den : 1);
+    const int32_t a = r->aq[x], y = k->y, s = r->p.res_shift;
+    uint32_t den = (uint32_t)(((int64_t)a * a + k->bb) >> 8);
+    uint32_t ci = k->cnum / (den ? den : 1);
     int32_t dx = 0, dy = 0;
     uint32_t refl, refr, fr, x32;
     if (ci > RW_TAB) ci = RW_TAB;
     if (r->p.waves_on) {
         /* the phase's bits 24..31 depend on it modulo 2^32 only: the row's phase at its point
          * plus the offset a wstep (floored, Q12) times the wave numbers, mod 2^32 */
-        const uint32_t ox = (uint32_t)((a * r->wstep[y][0]) >> 12), oy = (uint32_t)((a * r->wstep[y][1]) >> 12);
-        const uint32_t f0 = ((r->wph[y][0] + ox * (uint32_t)r->kx[0] + oy * (uint32_t)r->ky[0]) >> 24) & 255u;
-        const uint32_t f1 = ((r->wph[y][1] + ox * (uint32_t)r->kx[1] + oy * (uint32_t)r->ky[1]) >> 24) & 255u;
+        const uint32_t ox = (uint32_t)((a * k->ws0) >> 12), oy = (uint32_t)((a * k->ws1) >> 12);
+        const uint32_t f0 = ((k->wph0 + ox * (uint32_t)r->kx[0] + oy * (uint32_t)r->ky[0]) >> 24) & 255u;
+        const uint32_t f1 = ((k->wph1 + ox * (uint32_t)r->kx[1] + oy * (uint32_t)r->ky[1]) >> 24) & 255u;
         const int32_t c0 = r->sine[(f0 + 64u) & 255u], c1 = r->sine[(f1 + 64u) & 255u];
         int64_t q8 = ((int64_t)dw * r->amp_m) >> 32;
         int32_t ti;
@@ -306,13 +331,13 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, int32
      * with q = (dw - dt) / dt, Q16, from both depths brought to 16 bits */
     x32 = 255;
     if (r->p.tint_fixed) return mix_rgb(mix_pre(ct, r->tint_u, r->tint_rb, r->tint_g), refl, fr);
-    if (r->tkr[y] >= 0 && r->bratio[id] && dt < dw) {
+    if (k->tkr >= 0 && r->bratio[id] && dt < dw) {
         const int32_t sh = dw >= 65536u ? 16 - fx_clz32(dw) : 0;    /* dw >> sh < 2^16 */
         uint32_t w16, t16;
         w16 = dw >> sh; t16 = dt >> sh;
         if (t16) {
             uint32_t q = ((w16 - t16) << 16) / t16;
-            int64_t tb = (r->tkr[y] * r->bratio[id]) >> 16;
+            int64_t tb = (k->tkr * r->bratio[id]) >> 16;
             uint64_t v;
             if (tb > ((int64_t)1 << 40)) tb = (int64_t)1 << 40;
             v = ((uint64_t)tb * (q > (1u << 20) ? (1u << 20) : q)) >> 32;
@@ -334,21 +359,21 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, int32
  * terrain LOD over flattened water), 0 otherwise (land, or no plane point for the row).
  * P_t = E + (P_0 - E) bratio dw / dt, P_0 the reflected plane's point; dw / dt from the
  * depths brought to 16 bits (a 32-bit division); the grid sample nearest P_t. */
-static int shore_wet(const rw_frame *r, int32_t x, int32_t y, uint32_t id, uint32_t dt, uint32_t dw)
+static RW_INLINE int shore_wet(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, uint32_t dt, uint32_t dw)
 {
     int64_t f, gx, gy;
     uint32_t q, t16;
     int32_t sh;
     size_t ix, iy;
-    if (!r->p.wet || r->tkr[y] < 0 || !r->bratio[id]) return 0;
+    if (!k->shore || !r->bratio[id]) return 0;
     sh = dt >= 65536u ? 16 - fx_clz32(dt) : 0;      /* the smallest sh with dt >> sh < 2^16 */
     t16 = dt >> sh;
     if (!t16) return 0;
     q = ((dw >> sh) << 16) / t16;
     f = ((int64_t)r->bratio[id] * q) >> 16;
     /* P_t - E = (P_0 - E) f >> 16 per axis; the grid position of P_t plus half a step */
-    gx = r->gx0 + (((r->wrel[y][0] + (((int64_t)r->aq[x] * r->wstep[y][0]) >> 12)) * f) >> 16);
-    gy = r->gy0 - (((r->wrel[y][1] + (((int64_t)r->aq[x] * r->wstep[y][1]) >> 12)) * f) >> 16);
+    gx = r->gx0 + (((k->wrel0 + (((int64_t)r->aq[x] * k->ws0) >> 12)) * f) >> 16);
+    gy = r->gy0 - (((k->wrel1 + (((int64_t)r->aq[x] * k->ws1) >> 12)) * f) >> 16);
     if ((uint64_t)gx >= r->gxmax || (uint64_t)gy >= r->gymax) return 0;       /* negative: huge */
     ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);
     iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);
@@ -406,14 +431,14 @@ static inline const uint8_t *water_row(const rw_frame *r, const rs_band *b, cons
  * and dw (water) in buffer units (<< dsh: 30-bit): the water is nearer; or the two tie
  * (RW_DEPTH_TIE) and the plane's point is wet; or the terrain is nearer within the shore
  * bound and its point on the ray is wet (the LOD over water). */
-static inline int water_shows(const rw_frame *r, int32_t x, int32_t y, uint32_t id, uint32_t dt, uint32_t dw,
-                              int32_t dsh)
+static RW_INLINE int water_shows(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, uint32_t dt,
+                                 uint32_t dw, int32_t dsh)
 {
-    if (dw + RW_DEPTH_TIE > dt) return dw > dt || shore_wet(r, x, y, id, dw << dsh, dw << dsh);
+    if (dw + RW_DEPTH_TIE > dt) return dw > dt || shore_wet(r, k, x, id, dw << dsh, dw << dsh);
     if (((dt - dw) << dsh) > r->shore_dd[id]) return 0;
     if (r->p.shore_bound && r->p.shore_w
         && r->ebody[id] * (int64_t)((dt - dw) << dsh) > r->p.shore_w * (int64_t)(dt << dsh) + r->p.shore_c) return 0;
-    return shore_wet(r, x, y, id, dt << dsh, dw << dsh);
+    return shore_wet(r, k, x, id, dt << dsh, dw << dsh);
 }
 
 /* Writes a pixel the hook computed (RGB565: dithered). */
@@ -437,15 +462,19 @@ static inline void water_rows_only(const rw_frame *r, rs_band *b, const refl_vie
         uint8_t *crow = (uint8_t *)b->color + (size_t)row * b->stride;
         const uint8_t *drow = (const uint8_t *)b->depth + (size_t)row * (size_t)b->w * dbp, *wd = NULL;
         const uint8_t *wc = water_row(r, b, wcol, wdep, wy0, wrows, y, dbp, &wd);
+        rw_rowk k;
+        uint32_t sky;
         if (!wc) continue;
+        row_k(r, y, &k);
+        sky = r->sky[y];
         for (x = next_water(wc, 0, b->w, fmt); x < b->w; x = next_water(wc, x + 1, b->w, fmt)) {
             const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
             uint32_t rgb, d, fw;
-            if (!water_shows(r, x, y, id, dt, dw, dsh)) continue;
-            rgb = water_px(r, rv, x, y, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id);
+            if (!water_shows(r, &k, x, id, dt, dw, dsh)) continue;
+            rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id);
             d = dw << dsh;
             if (r->p.fog_on && (d >> r->fog_sh) <= RW_TAB && (fw = r->fog[d >> r->fog_sh]) != 0)
-                rgb = mix_rgb(rgb, r->sky[y], fw);
+                rgb = mix_rgb(rgb, sky, fw);
             put_px(crow, x, y, rgb, fmt);
         }
     }
@@ -465,6 +494,8 @@ static inline void post_rows(const rw_frame *r, rs_band *b, const refl_view *rv,
         const uint8_t *drow = (const uint8_t *)b->depth + (size_t)row * (size_t)b->w * dbp;
         const uint8_t *wd = NULL, *wc = water_row(r, b, wcol, wdep, wy0, wrows, y, dbp, &wd);
         const uint32_t sky = r->sky[y];
+        rw_rowk k;
+        row_k(r, y, &k);
         for (x = 0; x < b->w; x++) {
             const uint32_t dt = get_depth(depth, drow, x);
             uint32_t rgb, d, fw;
@@ -480,8 +511,8 @@ static inline void post_rows(const rw_frame *r, rs_band *b, const refl_view *rv,
                 d = dt << dsh;
                 if (wc) {
                     const uint32_t id = get_id(fmt, wc, x), dw = get_depth(depth, wd, x);
-                    if (id && water_shows(r, x, y, id, dt, dw, dsh)) {
-                        rgb = water_px(r, rv, x, y, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id);
+                    if (id && water_shows(r, &k, x, id, dt, dw, dsh)) {
+                        rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id);
                         d = dw << dsh;
                         changed = 1;
                     }
