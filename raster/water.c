@@ -450,7 +450,7 @@ static inline void put_px(uint8_t *crow, int32_t x, int32_t y, uint32_t rgb, con
 
 /* The hook when the terrain frame carries its own fog and sky (rw_fog_vertices): only
  * water pixels change, fogged by the water's depth.  Same specialisation as post_rows. */
-static inline void water_rows_only(const rw_frame *r, rs_band *b, const refl_view *rv, const uint8_t *wcol,
+static RW_INLINE void water_rows_only(const rw_frame *r, rs_band *b, const refl_view *rv, const uint8_t *wcol,
                                    const uint8_t *wdep, int32_t wy0, int32_t wrows, const int32_t fmt,
                                    const int32_t depth)
 {
@@ -480,9 +480,10 @@ static inline void water_rows_only(const rw_frame *r, rs_band *b, const refl_vie
     }
 }
 
-/* The hook's pixels for one band (textured terrain: fog per pixel), specialised by the
- * compiler for each format and depth (fmt, depth are constants at every call). */
-static inline void post_rows(const rw_frame *r, rs_band *b, const refl_view *rv, const uint8_t *wcol,
+/* The hook's pixels for one band (textured terrain: fog per pixel), specialised for each
+ * format and depth (fmt, depth are constants at every call; always inlined: as a plain
+ * inline function GCC kept one copy that tested them at every pixel). */
+static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *rv, const uint8_t *wcol,
                              const uint8_t *wdep, int32_t wy0, int32_t wrows, const int32_t fmt, const int32_t depth)
 {
     const size_t dbp = depth == RS_DEPTH16 ? 2u : 4u;
