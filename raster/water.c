@@ -38,21 +38,32 @@ static int refl_touched(const void *user, int32_t y0, int32_t rows)
 
 static inline int32_t next_water(const uint8_t *wc, int32_t x, int32_t w, const int32_t fmt);
 
+static inline uint32_t get_id(int32_t fmt, const void *row, int32_t x);
+
 /* 1 when row y of the band's water-pass scratch (y in the band and in wlo .. whi) holds
- * a water id. */
-static int water_in_row(const rw_frame *r, const rs_band *b, int32_t y)
+ * the id of the body with the mirror (refl_body: the hook reads the reflection for that
+ * body's pixels only). */
+static int refl_body_in_row(const rw_frame *r, const rs_band *b, int32_t y)
 {
-    const int32_t i = r->water_pass;
+    const int32_t i = r->water_pass, w = b->w;
+    const uint32_t id = (uint32_t)r->p.refl_body;
     const uint8_t *row = (const uint8_t *)b->scratch[i] + (size_t)(y - b->scratch_y0[i]) * b->scratch_stride[i];
-    return r->fmt == RS_FMT_RGB565 ? next_water(row, 0, b->w, RS_FMT_RGB565) < b->w
-                                   : next_water(row, 0, b->w, RS_FMT_XRGB8888) < b->w;
+    int32_t x;
+    if (r->fmt == RS_FMT_RGB565) {
+        for (x = next_water(row, 0, w, RS_FMT_RGB565); x < w; x = next_water(row, x + 1, w, RS_FMT_RGB565))
+            if (get_id(RS_FMT_RGB565, row, x) == id) return 1;
+    } else {
+        for (x = next_water(row, 0, w, RS_FMT_XRGB8888); x < w; x = next_water(row, x + 1, w, RS_FMT_XRGB8888))
+            if (get_id(RS_FMT_XRGB8888, row, x) == id) return 1;
+    }
+    return 0;
 }
 
 /* The reflection of the band: when the water pass ran before this one (ws_frame adds it
- * first), only the reduced rows the hook can read, those of the band's rows that hold a
- * water id widened by the waves' reach (RW_WAVE_PX; the hook reads row y + dy, |dy| <=
- * RW_WAVE_PX, of water pixels only), drawn at their places in the scratch; nothing when
- * the band holds no water.  Otherwise every row refl_rows gives. */
+ * first), only the reduced rows the hook can read, those of the band's rows that hold
+ * refl_body's id widened by the waves' reach (RW_WAVE_PX; the hook reads row y + dy,
+ * |dy| <= RW_WAVE_PX, of that body's water pixels only), drawn at their places in the
+ * scratch; nothing when the band holds none.  Otherwise every row refl_rows gives. */
 static br_status refl_run(const void *user, rs_band *b, int32_t self, rs_band_stats *st)
 {
     const rw_frame *r = (const rw_frame *)user;
@@ -66,9 +77,9 @@ static br_status refl_run(const void *user, rs_band *b, int32_t self, rs_band_st
         const int32_t lo = r->wlo > b->y0 ? r->wlo : b->y0;
         const int32_t hi = r->whi < b->y0 + b->rows - 1 ? r->whi : b->y0 + b->rows - 1;
         int32_t ya = lo, yb = hi;
-        while (ya <= hi && !water_in_row(r, b, ya)) ya++;
-        if (ya > hi) return BR_OK;                  /* no water in the band: nothing reads it */
-        while (yb > ya && !water_in_row(r, b, yb)) yb--;
+        while (ya <= hi && !refl_body_in_row(r, b, ya)) ya++;
+        if (ya > hi) return BR_OK;                  /* none in the band: nothing reads it */
+        while (yb > ya && !refl_body_in_row(r, b, yb)) yb--;
         ya = ya - RW_WAVE_PX < 0 ? 0 : ya - RW_WAVE_PX;
         yb = yb + RW_WAVE_PX > r->h - 1 ? r->h - 1 : yb + RW_WAVE_PX;
         if ((ya >> s) > g0) g0 = ya >> s;
@@ -244,7 +255,7 @@ static uint32_t get_depth(int32_t depth, const void *row, int32_t x)
 }
 
 /* The water id of a water-pass pixel (RW_ID_RGB: the top five bits of red). */
-static uint32_t get_id(int32_t fmt, const void *row, int32_t x)
+static inline uint32_t get_id(int32_t fmt, const void *row, int32_t x)
 {
     return fmt == RS_FMT_RGB565 ? (uint32_t)((const uint16_t *)row)[x] >> 11 : (((const uint32_t *)row)[x] >> 19) & 31u;
 }
