@@ -74,8 +74,11 @@ static br_status refl_run(const void *user, rs_band *b, int32_t self, rs_band_st
     if (h1 <= h0) return BR_OK;
     g0 = h0; g1 = h1;
     if (wp >= 0 && wp < self && b->scratch[wp] && b->scratch_y0[wp] == b->y0 && b->scratch_rows[wp] == b->rows) {
-        const int32_t lo = r->wlo > b->y0 ? r->wlo : b->y0;
-        const int32_t hi = r->whi < b->y0 + b->rows - 1 ? r->whi : b->y0 + b->rows - 1;
+        /* the rows of the band that can hold refl_body's pixels (the water pass drew
+         * rows wlo .. whi only) */
+        const int32_t wl = r->wlo > r->rlo ? r->wlo : r->rlo, wh = r->whi < r->rhi ? r->whi : r->rhi;
+        const int32_t lo = wl > b->y0 ? wl : b->y0;
+        const int32_t hi = wh < b->y0 + b->rows - 1 ? wh : b->y0 + b->rows - 1;
         int32_t ya = lo, yb = hi;
         while (ya <= hi && !refl_body_in_row(r, b, ya)) ya++;
         if (ya > hi) return BR_OK;                  /* none in the band: nothing reads it */

@@ -115,6 +115,7 @@ typedef struct rw_frame {
     int32_t refl_pass, water_pass;      /* indices of the passes in the pipe (-1: absent) */
     int32_t w, h, fmt, depth;
     int32_t wlo, whi;           /* rows where water may show (wlo > whi: none) */
+    int32_t rlo, rhi;           /* rows where refl_body's water may show (rlo > rhi: none) */
     uint32_t dfar, rdfar;       /* clear depths of terrain and reflection (buffer units) */
     int64_t eye[3];             /* world units */
     int32_t aq[RS_MAX_DIM];     /* per column: ray a = (x + 1/2 - cx) / f, Q12 */

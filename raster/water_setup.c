@@ -114,24 +114,43 @@ static void tables(rw_frame *r)
     }
 }
 
+/* Rows lo .. hi (sub-pixels, near: a vertex needs the clipper) to frame rows. */
+static void rows_of(const rw_frame *r, int32_t lo, int32_t hi, int near, int32_t *rlo, int32_t *rhi)
+{
+    if (near) { *rlo = 0; *rhi = r->h - 1; return; }
+    if (lo > hi) { *rlo = 1; *rhi = 0; return; }
+    *rlo = lo < 0 ? 0 : lo >> RS_SUBPIX_BITS;
+    *rhi = hi >= r->h << RS_SUBPIX_BITS ? r->h - 1 : hi >> RS_SUBPIX_BITS;
+}
+
 /* Rows where water may show: the water frame's vertices' rows (everything when one
- * needs the clipper). */
+ * needs the clipper); and those of refl_body's vertices, the vertices whose colour is
+ * its id (RW_ID_RGB): a water triangle's three vertices carry its body's id (the pass
+ * interpolates them into its pixels' ids), so refl_body's pixels lie in those rows. */
 static void water_rows(rw_frame *r)
 {
     const rs_frame *wf = r->water;
+    const uint32_t rid = RW_ID_RGB(r->p.refl_body);
     uint32_t i;
-    int32_t lo = INT32_MAX, hi = INT32_MIN;
-    r->wlo = 1; r->whi = 0;
+    int32_t lo = INT32_MAX, hi = INT32_MIN, blo = INT32_MAX, bhi = INT32_MIN;
+    int near = 0, bnear = 0;
+    r->wlo = r->rlo = 1; r->whi = r->rhi = 0;
     if (!wf || !r->p.water_on || wf->nv == 0 || wf->nprims == 0) return;
     for (i = 0; i < wf->nv; i++) {
         const rs_cvert *v = &wf->cache[i];
-        if (v->c & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)) { r->wlo = 0; r->whi = r->h - 1; return; }
+        const int body = (v->c & 0xffffffu) == rid;
+        if (v->c & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)) {
+            near = 1;
+            bnear |= body;
+            continue;
+        }
         if (v->y < lo) lo = v->y;
         if (v->y > hi) hi = v->y;
+        if (body && v->y < blo) blo = v->y;
+        if (body && v->y > bhi) bhi = v->y;
     }
-    lo = lo < 0 ? 0 : lo >> RS_SUBPIX_BITS;
-    hi = hi >= r->h << RS_SUBPIX_BITS ? r->h - 1 : hi >> RS_SUBPIX_BITS;
-    r->wlo = lo; r->whi = hi;
+    rows_of(r, lo, hi, near, &r->wlo, &r->whi);
+    rows_of(r, blo, bhi, bnear, &r->rlo, &r->rhi);
 }
 
 /* Water below the eye shows only below the horizon: a point of a water triangle lies at
