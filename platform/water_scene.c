@@ -170,18 +170,21 @@ static br_status water_frame(water_scene *w, const rs_frame *tf)
 static int32_t biggest_body(const water_scene *w, uint32_t *seen)
 {
     int64_t area[RW_MAX_ID + 1];
-    uint32_t k;
-    int32_t best = 0, i;
+    const uint32_t nt = w->wprim.n / 3;
     const uint32_t *ix = w->wprim.idx;
+    const rs_cvert *const wc = w->wcache;
+    const uint8_t *const tid = w->wtid;
+    uint32_t t;
+    int32_t best = 0, i;
     memset(area, 0, sizeof area);
-    for (k = 0; k + 2 < w->wprim.n; k += 3) {
-        const rs_cvert *a = &w->wcache[ix[k]], *b = &w->wcache[ix[k + 1]], *c = &w->wcache[ix[k + 2]];
-        const uint32_t id = w->wtid[k / 3];
+    for (t = 0; t < nt; t++, ix += 3) {
+        const rs_cvert *a = &wc[ix[0]], *b = &wc[ix[1]], *c = &wc[ix[2]];
+        const uint32_t ca = a->c, cb = b->c, cc = c->c;
         int64_t ar;
-        if ((a->c | b->c | c->c) & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)) ar = (int64_t)1 << 40;
-        else if (a->c & b->c & c->c & ((uint32_t)0x1f << 24)) ar = 0;
+        if ((ca | cb | cc) & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)) ar = (int64_t)1 << 40;
+        else if (ca & cb & cc & ((uint32_t)0x1f << 24)) continue;     /* off screen: no area */
         else ar = ((int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(c->x - a->x) * (b->y - a->y));
-        area[id] += ar < 0 ? -ar : ar;
+        area[tid[t]] += ar < 0 ? -ar : ar;
     }
     *seen = 0;
     for (i = 1; i <= RW_MAX_ID; i++) {
