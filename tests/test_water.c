@@ -372,6 +372,73 @@ done:
     scene_close(&s);
 }
 
+/* The reflection pass draws only the rows around the pixels of the body with the mirror
+ * (refl_body: the hook reads the reflection for that body's pixels only).  At the lake
+ * path's first camera the mirror goes to body 2 (its triangles near the camera need the
+ * clipper and count as the whole screen), whose pixels show nowhere while body 1 fills
+ * the view: with the half-resolution reflection the frame has the bytes and the drawn
+ * triangles of the frame without one (it drew 1,820 triangles more, for rows of body 1,
+ * before; 64-row bands, 320x240, fog on). */
+static void test_refl_body_rows(void)
+{
+    enum { W = 320, H = 240, BR = 64 };
+    const char *in[1];
+    double eye[3] = { 21096.2, 76714.6, 464.0 }, tgt[3] = { 23604.8, 75069.3, 164.0 };
+    uint8_t *px[2] = { NULL, NULL };
+    uint32_t tris[2] = { 0, 0 };
+    int k;
+    in[0] = t_data("hgt/N47E009.hgt");
+    for (k = 0; k < 2; k++) {
+        scene s;
+        scene_opts so;
+        ws_opts wo;
+        water_scene ws;
+        br_err err;
+        cam c;
+        bt_params bp;
+        rs_frame fr;
+        size_t mb;
+        void *mem = NULL;
+        int32_t y0;
+        memset(&s, 0, sizeof s); memset(&so, 0, sizeof so); memset(&wo, 0, sizeof wo); memset(&ws, 0, sizeof ws);
+        memset(&fr, 0, sizeof fr); memset(&bp, 0, sizeof bp); memset(&err, 0, sizeof err);
+        so.quiet = 1;
+        wo.reflection = k ? 4 : 0;          /* none; the default, half */
+        wo.quiet = 1; wo.view_px = 1;
+        CHECK_EQ(scene_open(&s, in, 1, &so, &err), BR_OK);
+        CHECK_EQ(ws_open(&ws, &s, &wo, &err), BR_OK);
+        CHECK_EQ(scene_camera(&s, eye, tgt, 50, W, H, &c), BR_OK);
+        CHECK_EQ(scene_tree(&s, &err), BR_OK);
+        CHECK_EQ(scene_reserve(&s, 2000000, &err), BR_OK);
+        bp.mode = BT_VIEW; bp.c = &c; bp.fr = s.rt.fr; bp.pixel_err_q8 = 256;
+        CHECK_EQ(scene_mesh(&s, &c, &bp), BR_OK);
+        fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32;
+        CHECK_EQ(scene_terrain(&s, &c, &fr, NULL), BR_OK);
+        CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
+        if (k == 0) CHECK(ws.rw->refl != NULL && ws.rw->p.refl_body == 2);
+        mb = rs_pipe_mem_size(&ws.pipe, BR);
+        mem = malloc(mb);
+        px[k] = malloc((size_t)W * H * 4);
+        CHECK(mem && px[k]);
+        for (y0 = 0; mem && px[k] && y0 < H; y0 += BR) {
+            rs_band b;
+            rs_band_stats st;
+            const int32_t rows = H - y0 < BR ? H - y0 : BR;
+            int32_t y;
+            CHECK_EQ(rs_pipe_band(&ws.pipe, y0, rows, mem, mb, &b, &st), BR_OK);
+            tris[k] += st.tris;
+            for (y = 0; y < rows; y++)
+                memcpy(px[k] + (size_t)(y0 + y) * W * 4, (const uint8_t *)b.color + (size_t)y * b.stride, (size_t)W * 4);
+        }
+        free(mem);
+        ws_close(&ws);
+        scene_close(&s);
+    }
+    CHECK_MSG(tris[0] == tris[1], "%u triangles with the reflection, %u without", tris[0], tris[1]);
+    CHECK(px[0] && px[1] && !memcmp(px[0], px[1], (size_t)W * H * 4));
+    free(px[0]); free(px[1]);
+}
+
 /* A still flat mirror: waves off, the Fresnel term forced to 1, full-resolution
  * reflection, fog off, the lake from the water (test_goldens' camera).  The mirrored
  * camera C2 = (M right, -M up, M fwd) at M eye (M: z -> 2 H - z; a proper rotation, so
@@ -697,6 +764,7 @@ int main(void)
     T_RUN(test_reflection_colour);
     T_RUN(test_still_mirror);
     T_RUN(test_refl_lod);
+    T_RUN(test_refl_body_rows);
     T_RUN(test_fog_from_high);
     T_RUN(test_bench_water);
     return t_finish();
