@@ -638,7 +638,9 @@ RSI_INLINE static void draw_strips(band *bd, const int vf)
                         const int32_t lo = (ylo + RSI_HALF - 1) >> RSI_SUB, hi = (yhi - RSI_HALF) >> RSI_SUB;
                         if ((lo > bd->y0 ? lo : bd->y0) > (hi < bd->y1 - 1 ? hi : bd->y1 - 1)) continue;
                     }
-                    tri_raster(bd, va, vb, vc, vf);
+                    /* tri_raster's body for this variant, without its call and switch */
+                    tri_box(bd, va, vb, vc, vc, va->y < vb->y ? va->y : vb->y, va->y > vb->y ? va->y : vb->y,
+                            va->x < vb->x ? va->x : vb->x, va->x > vb->x ? va->x : vb->x, 0, vf);
                 }
             }
         }
