@@ -275,6 +275,7 @@ typedef struct refl_view {
 typedef struct rw_rowk {
     int32_t y;
     int shore;                  /* the shore test has a plane point in this row: wet and tkr >= 0 */
+    int wbound;                 /* the shore bound has a world term (shore_bound and shore_w) */
     uint32_t cnum;              /* (rz^2 >> 8) << 10 as 32 bits: cos^2 t's numerator */
     int64_t bb;                 /* bq^2 + Q12^2: the row's part of cos^2 t's denominator */
     int64_t ws0, ws1, wrel0, wrel1, tkr;        /* wstep[y], wrel[y], tkr[y] */
@@ -288,6 +289,7 @@ static RW_INLINE void row_k(const rw_frame *r, int32_t y, rw_rowk *k)
     k->y = y;
     k->tkr = r->tkr[y];
     k->shore = r->p.wet && k->tkr >= 0;
+    k->wbound = r->p.shore_bound && r->p.shore_w;
     k->cnum = (uint32_t)(((uint64_t)((int64_t)rz * rz) >> 8) << 10);
     k->bb = b * b + (int64_t)Q12 * Q12;
     k->ws0 = r->wstep[y][0]; k->ws1 = r->wstep[y][1];
@@ -450,7 +452,7 @@ static RW_INLINE int water_shows(const rw_frame *r, const rw_rowk *k, int32_t x,
 {
     if (dw + RW_DEPTH_TIE > dt) return dw > dt || shore_wet(r, k, x, id, dw << dsh, dw << dsh);
     if (((dt - dw) << dsh) > r->shore_dd[id]) return 0;
-    if (r->p.shore_bound && r->p.shore_w
+    if (k->wbound
         && r->ebody[id] * (int64_t)((dt - dw) << dsh) > r->p.shore_w * (int64_t)(dt << dsh) + r->p.shore_c) return 0;
     return shore_wet(r, k, x, id, dt << dsh, dw << dsh);
 }
