@@ -167,23 +167,88 @@ static br_status water_frame(water_scene *w, const rs_frame *tf)
 
 /* The body with the largest screen area (triangles that need the clipper: near the
  * camera, counted as the whole screen). */
-static int32_t biggest_body(const water_scene *w, uint32_t *seen)
+/* Sutherland-Hodgman: the part of polygon (x, y)[n] (n <= 8) where k (x) + l (y) <= m
+ * (one screen edge), into (ox, oy); returns its vertex count (<= n + 1). */
+static int clip_edge(const double *x, const double *y, int n, double k, double l, double m,
+                     double *ox, double *oy)
+{
+    int i, o = 0;
+    for (i = 0; i < n; i++) {
+        const int j = (i + 1) % n;
+        const double si = k * x[i] + l * y[i] - m, sj = k * x[j] + l * y[j] - m;
+        if (si <= 0) { ox[o] = x[i]; oy[o] = y[i]; o++; }
+        if ((si < 0 && sj > 0) || (si > 0 && sj < 0)) {
+            const double t = si / (si - sj);
+            ox[o] = x[i] + t * (x[j] - x[i]);
+            oy[o] = y[i] + t * (y[j] - y[i]);
+            o++;
+        }
+    }
+    return o;
+}
+
+/* Twice the screen area, in sub-pixels squared (the units of the cross product of two
+ * screen edges), of world triangle p[3] seen by c: the triangle cut
+ * at the near plane (camera space, up to 4 corners), projected, cut to the w x h
+ * screen (up to 8), shoelace.  For the triangles whose corners the transform left
+ * without a screen position (behind the near plane or beyond the guard band). */
+static int64_t near_area(const cam *c, const int32_t *p[3])
+{
+    double cx[4], cy[4], cz[4], x[16], y[16], x2[16], y2[16], a = 0;
+    const double zn = c->znear, f = (double)c->f_q16 / 65536.0;
+    int i, n = 0;
+    for (i = 0; i < 3; i++) {
+        int64_t v[3], u[3];
+        cam_to_view(c, p[i], v);
+        cam_to_view(c, p[(i + 1) % 3], u);
+        if (v[2] >= c->znear) { cx[n] = (double)v[0]; cy[n] = (double)v[1]; cz[n] = (double)v[2]; n++; }
+        if ((v[2] < c->znear) != (u[2] < c->znear)) {
+            const double t = (zn - (double)v[2]) / ((double)u[2] - (double)v[2]);
+            cx[n] = (double)v[0] + t * (double)(u[0] - v[0]);
+            cy[n] = (double)v[1] + t * (double)(u[1] - v[1]);
+            cz[n] = zn;
+            n++;
+        }
+    }
+    for (i = 0; i < n; i++) {
+        x[i] = c->w * 0.5 + f * cx[i] / cz[i];
+        y[i] = c->h * 0.5 - f * cy[i] / cz[i];
+    }
+    n = clip_edge(x, y, n, -1, 0, 0, x2, y2);                     /* x >= 0 */
+    n = clip_edge(x2, y2, n, 1, 0, c->w, x, y);                   /* x <= w */
+    n = clip_edge(x, y, n, 0, -1, 0, x2, y2);                     /* y >= 0 */
+    n = clip_edge(x2, y2, n, 0, 1, c->h, x, y);                   /* y <= h */
+    for (i = 0; i < n; i++) a += x[i] * y[(i + 1) % n] - x[(i + 1) % n] * y[i];
+    return llround(fabs(a) * (double)(1 << RS_SUBPIX_BITS) * (double)(1 << RS_SUBPIX_BITS));
+}
+
+/* The body whose water covers most of the screen (the reflection's plane), 0 when
+ * none shows; *seen: bit i set when body i has area on screen.  Screen area in
+ * sub-pixels squared from the water frame's vertices; a triangle that needs the clipper
+ * gets its area from near_area (in the same units), which is 0 when it lies off the
+ * screen: counting such a triangle as the whole screen gave the mirror to a body that
+ * lay beside or behind the camera while the lake in view reflected only sky. */
+static int32_t biggest_body(const water_scene *w, const cam *c, uint32_t *seen)
 {
     int64_t area[RW_MAX_ID + 1];
     const uint32_t nt = w->wprim.n / 3;
     const uint32_t *ix = w->wprim.idx;
     const rs_cvert *const wc = w->wcache;
+    const rs_vertex *const wv = w->wfr.v;
     const uint8_t *const tid = w->wtid;
     uint32_t t;
     int32_t best = 0, i;
     memset(area, 0, sizeof area);
     for (t = 0; t < nt; t++, ix += 3) {
-        const rs_cvert *a = &wc[ix[0]], *b = &wc[ix[1]], *c = &wc[ix[2]];
-        const uint32_t ca = a->c, cb = b->c, cc = c->c;
+        const rs_cvert *a = &wc[ix[0]], *b = &wc[ix[1]], *cc = &wc[ix[2]];
+        const uint32_t oa = a->c, ob = b->c, oc = cc->c;
         int64_t ar;
-        if ((ca | cb | cc) & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)) ar = (int64_t)1 << 40;
-        else if (ca & cb & cc & ((uint32_t)0x1f << 24)) continue;     /* off screen: no area */
-        else ar = ((int64_t)(b->x - a->x) * (c->y - a->y) - (int64_t)(c->x - a->x) * (b->y - a->y));
+        if (oa & ob & oc & ((uint32_t)0x3f << 24)) continue;      /* off screen, or behind */
+        if ((oa | ob | oc) & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)) {
+            const int32_t *p[3];
+            p[0] = wv[ix[0]].p; p[1] = wv[ix[1]].p; p[2] = wv[ix[2]].p;
+            ar = near_area(c, p);
+        } else ar = ((int64_t)(b->x - a->x) * (cc->y - a->y) - (int64_t)(cc->x - a->x) * (b->y - a->y));
         area[tid[t]] += ar < 0 ? -ar : ar;
     }
     *seen = 0;
@@ -352,7 +417,7 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err 
     if (w->nbodies) {
         if (water_frame(w, tf) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "cannot set up the water frame");
         wfr = &w->wfr;
-        body = biggest_body(w, &p.seen_mask);
+        body = biggest_body(w, c, &p.seen_mask);
     }
     if (wfr && w->wfr.nv) {
         int64_t hgt;
