@@ -298,9 +298,10 @@ static RW_INLINE void row_k(const rw_frame *r, int32_t y, rw_rowk *k)
 }
 
 /* The colour of water pixel (x, k->y): terrain colour ct and depth dt under it, water
- * depth dw (30-bit units), body id. */
+ * depth dw (30-bit units), body id; fmt and depth are the frame's (constants at each
+ * call, as in post_rows). */
 static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const rw_rowk *k, int32_t x, uint32_t ct,
-                         uint32_t dt, uint32_t dw, uint32_t id)
+                         uint32_t dt, uint32_t dw, uint32_t id, const int32_t fmt, const int32_t depth)
 {
     const int32_t a = r->aq[x], y = k->y, s = r->p.res_shift;
     uint32_t den = (uint32_t)(((int64_t)a * a + k->bb) >> 8);
@@ -338,8 +339,8 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
         if (rx >= rv->rw) rx = rv->rw - 1;
         if (ry >= rv->h0 && ry < rv->h1) {
             const size_t o = (size_t)(ry - rv->h0) * (size_t)rv->rw;
-            const size_t bpp = r->fmt == RS_FMT_RGB565 ? 2u : 4u, dbp = r->depth == RS_DEPTH16 ? 2u : 4u;
-            if (get_depth(r->depth, rv->dep + o * dbp, rx) != r->rdfar) refl = get_rgb(r->fmt, rv->col + o * bpp, rx);
+            const size_t bpp = fmt == RS_FMT_RGB565 ? 2u : 4u, dbp = depth == RS_DEPTH16 ? 2u : 4u;
+            if (get_depth(depth, rv->dep + o * dbp, rx) != r->rdfar) refl = get_rgb(fmt, rv->col + o * bpp, rx);
         }
     }
     /* refraction: x32 = 32 L / tint_len, L = zc_w (dw / dt - 1) (dt < dw), zc_w the
@@ -487,7 +488,7 @@ static RW_INLINE void water_rows_only(const rw_frame *r, rs_band *b, const refl_
             const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
             uint32_t rgb, d, fw;
             if (!water_shows(r, &k, x, id, dt, dw, dsh)) continue;
-            rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id);
+            rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, fmt, depth);
             d = dw << dsh;
             if (r->p.fog_on && (d >> r->fog_sh) <= RW_TAB && (fw = r->fog[d >> r->fog_sh]) != 0)
                 rgb = mix_rgb(rgb, sky, fw);
@@ -529,7 +530,7 @@ static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *
                 if (wc) {
                     const uint32_t id = get_id(fmt, wc, x), dw = get_depth(depth, wd, x);
                     if (id && water_shows(r, &k, x, id, dt, dw, dsh)) {
-                        rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id);
+                        rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, fmt, depth);
                         d = dw << dsh;
                         changed = 1;
                     }
