@@ -372,13 +372,13 @@ done:
     scene_close(&s);
 }
 
-/* The reflection pass draws only the rows around the pixels of the body with the mirror
- * (refl_body: the hook reads the reflection for that body's pixels only).  At the lake
- * path's first camera the mirror goes to body 2 (its triangles near the camera need the
- * clipper and count as the whole screen), whose pixels show nowhere while body 1 fills
- * the view: with the half-resolution reflection the frame has the bytes and the drawn
- * triangles of the frame without one (it drew 1,820 triangles more, for rows of body 1,
- * before; 64-row bands, 320x240, fog on). */
+/* The mirror goes to the body whose water covers the screen.  At the lake path's first
+ * camera body 2 has triangles beside and behind the camera that need the clipper, while
+ * body 1 fills the view; counted as the whole screen, those gave body 2 the mirror and
+ * the lake in view reflected only sky (the frame had the bytes and the drawn triangles
+ * of the frame without a reflection).  Their area cut at the near plane and the screen
+ * gives it to body 1, and the half-resolution reflection shows: more triangles drawn,
+ * other bytes (64-row bands, 320x240, fog on). */
 static void test_refl_body_rows(void)
 {
     enum { W = 320, H = 240, BR = 64 };
@@ -415,7 +415,7 @@ static void test_refl_body_rows(void)
         fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32;
         CHECK_EQ(scene_terrain(&s, &c, &fr, NULL), BR_OK);
         CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
-        if (k == 0) CHECK(ws.rw->refl != NULL && ws.rw->p.refl_body == 2);
+        if (k == 0) CHECK_MSG(ws.rw->refl != NULL && ws.rw->p.refl_body == 1, "mirror on body %d", (int)ws.rw->p.refl_body);
         mb = rs_pipe_mem_size(&ws.pipe, BR);
         mem = malloc(mb);
         px[k] = malloc((size_t)W * H * 4);
@@ -434,8 +434,8 @@ static void test_refl_body_rows(void)
         ws_close(&ws);
         scene_close(&s);
     }
-    CHECK_MSG(tris[0] == tris[1], "%u triangles with the reflection, %u without", tris[0], tris[1]);
-    CHECK(px[0] && px[1] && !memcmp(px[0], px[1], (size_t)W * H * 4));
+    CHECK_MSG(tris[0] > tris[1] + 1000, "%u triangles with the reflection, %u without", tris[0], tris[1]);
+    CHECK(px[0] && px[1] && memcmp(px[0], px[1], (size_t)W * H * 4) != 0);
     free(px[0]); free(px[1]);
 }
 
