@@ -6,11 +6,20 @@
 #include <stdint.h>
 #include "core/bitree.h"
 #include "core/bt_int.h"
+#include "core/config.h"
 
 /* per-sample frame state bits (bt_tree.st): ST_PREV split in the previous view
  * frame (hysteresis), ST_SPLIT / ST_PUSHED the budget rule's marks, ST_CUR the
  * serial walk's "already recorded this frame" */
 enum { ST_PREV = 1, ST_SPLIT = 2, ST_PUSHED = 4, ST_CUR = 8 };
+
+/* Words of a decision memo entry: the decision, and with BR_COHERENCE its expiry
+ * (core/bt_mesh.c decide_memo) */
+#if BR_COHERENCE
+#define BTI_MEMO_W 2
+#else
+#define BTI_MEMO_W 1
+#endif
 
 /* A vertex on its way down the recursion; idx caches its output index (the
  * children of a split share their parent's pt instances, so most lookups are
@@ -57,6 +66,9 @@ typedef struct bti_extract {
     struct bti_snap *snap;  /* a part's walk: the writer's state after each of its first
                                BTI_SNAPS leaves (core/bt_part.c), else NULL */
     uint32_t nsnap;
+    const bt_coh *coh;      /* frame coherence (bti_coh_frame): expiries are computed; NULL: not */
+    uint64_t coh_acc;       /* its accumulated travel now; UINT64_MAX: no entry of an earlier
+                               frame is reused */
 } bti_extract;
 
 /* A leaf waiting to be written: its vertex indices, exit edge {o0, o1} and the
@@ -114,12 +126,20 @@ struct bt_parts {
     uint32_t hfull, mfull;         /* slots allocated for each part's hash, memo */
     bti_extract fx;                /* the seams' writer (bt_extract_end) */
     uint32_t recent[96], nrecent;  /* its vertex identification by (x, y) */
+    bt_coh coh;                    /* frame coherence of the parts' memos */
 };
 
 br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p);
 uint32_t bti_reset_mesh(bt_mesh *m);
 void bti_part_roots(bti_extract *e, bt_parts *ps);
 void bti_part_walk(bti_extract *e, const bti_root *r);
+/* Frame coherence (core/bt_mesh.c): accounts the eye's travel since c's last frame,
+ * or starts afresh when anything else changed; sets e->coh, e->coh_acc.  1 when
+ * the memos that c covers must be cleared (the accumulator wrapped). */
+int bti_coh_frame(bti_extract *e, bt_coh *c);
+/* The expiry (an accumulated travel, core/bt_coh.c) up to which decide's answer sp
+ * (-1 culled, 0, 1) with morph for L = ew f and distance d holds; 0: this frame only. */
+uint64_t bti_coh_expiry(const bti_extract *e, int64_t L, int64_t d, int sp, uint16_t morph);
 
 /* Diamond geometry: scale h and type (1 = D) of sample (x, y), not a corner. */
 static inline int32_t bti_dscale(int32_t x, int32_t y, int32_t S, int *typeD)

@@ -75,19 +75,7 @@ static int32_t zreal(const bt_tree *t, int32_t x, int32_t y)
 
 
 /* ------------------------------------------------------------ view */
-/* a * b for a, b >= 0, INT64_MAX when it is larger (no divide: the high half of
- * the 64 x 64 product from 32-bit halves) */
-static inline int64_t isat_mul(int64_t a, int64_t b)
-{
-    uint64_t ua = (uint64_t)a, ub = (uint64_t)b, a1 = ua >> 32, b1 = ub >> 32, mid, lo, r;
-    if ((ua | ub) < ((uint64_t)1 << 31)) return a * b;
-    if (a1 && b1) return INT64_MAX;
-    mid = a1 * (ub & 0xffffffffu) + b1 * (ua & 0xffffffffu);   /* one term is 0: < 2^63 */
-    if (mid >> 31) return INT64_MAX;
-    lo = (ua & 0xffffffffu) * (ub & 0xffffffffu);
-    r = (mid << 32) + lo;
-    return r < lo || r > (uint64_t)INT64_MAX ? INT64_MAX : (int64_t)r;
-}
+#define isat_mul bti_isat_mul
 
 /* Lower bound of the distance from the eye to the box [lo, hi] (world units):
  * max(|dmax|, (|dx|+|dy|+|dz|) * 147/256), 147/256 < 1/sqrt(3). */
@@ -230,13 +218,16 @@ static uint16_t morph_at(const bti_extract *e, int64_t lhs, int64_t d)
 
 /* Diamond (x, y) in slot idx: returns 1 split, 0 leaf, -1 drop (culled); *morph
  * set for split vertices; *mask: frustum planes still to test (view and budget
- * modes) */
-static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph)
+ * modes); *exp: how long the view rule's answer holds (core/bt_coh.c), 0 for one
+ * frame */
+static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph,
+                  uint64_t *exp)
 {
     bt_tree *t = e->t;
     int64_t ew = 0, d = 0;
     int r;
     *morph = BT_MORPH_ONE;
+    *exp = 0;
     if (e->fid) return BT_NODE_ERR(e->t->node[idx]) > e->cthr;
     if (e->p->mode == BT_BUDGET || e->tau < 0) {
         if (e->p->mode == BT_FIDELITY) return (t->st[idx] & ST_SPLIT) != 0;
@@ -255,33 +246,51 @@ static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *
         int sp = lhs > isat_mul(e->tau, d) ||
                  ((e->prev[idx] & ST_PREV) && lhs > isat_mul(e->tau_lo, d));
         if (sp && e->morph_span > 0) *morph = d > 0 ? morph_at(e, lhs, d) : BT_MORPH_ONE;
+        if (e->coh) *exp = bti_coh_expiry(e, lhs, d, sp, *morph);
         return sp;
     }
 }
 
-/* decide() for the view rule, memoised within the frame.  A diamond is reached
+/* decide() for the view rule, memoised.  Within the frame: a diamond is reached
  * twice, once from each half, and the rule gives both visits the same answer: it
  * reads only the diamond, the camera and ST_PREV (unchanged until the frame ends),
  * and culled() answers the same under either half's plane mask, because a plane
  * leaves a mask only when an enclosing volume lies inside it (volumes nest).  A
  * memo hit keeps the parent's mask: the children test planes they could skip, with
- * the same answers.  The memo is a direct-mapped cache (a miss only recomputes);
- * an entry is gen << 48 | (answer + 1) << 46 | morph << 30 | slot (< 2^30: w, h <=
- * BR_MAX_SIDE = 16385, so w*h < 2^28, plus the bands), valid in the extraction
- * whose 16-bit generation (1 .. 0xFFFF, reset_mesh) it holds.  Padding diamonds
- * without a slot share the void slot and its answer: VOID is culled (-1) in the
- * view rule whatever the diamond. */
+ * the same answers.  Across frames (BR_COHERENCE): an entry of an earlier frame is
+ * the answer now when the eye's travel since is within its margin (its expiry >=
+ * e->coh_acc, core/bt_coh.c), the diamond's ST_PREV is the one the margin assumed
+ * (set iff it was split), and no frustum plane is left to test (*mask == 0: an
+ * enclosing volume lies inside every plane, so it is not culled; cull answers are
+ * never reused).  The memo is a direct-mapped cache (a miss only recomputes); an
+ * entry's first word is gen << 48 | (answer + 1) << 46 | morph << 30 | slot (< 2^30:
+ * w, h <= BR_MAX_SIDE = 16385, so w*h < 2^28, plus the bands), the frame of the
+ * extraction whose 16-bit generation (1 .. 0xFFFF, reset_mesh) it holds; its second
+ * the expiry.  Padding diamonds without a slot share the void slot and its answer:
+ * VOID is culled (-1) in the view rule whatever the diamond. */
 static int decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph)
 {
     const bt_mesh *m = e->m;
-    uint64_t *slot = &m->memo[(idx * 2654435761u >> 8) & m->memo_mask], v = *slot;
+    uint64_t *slot = &m->memo[((idx * 2654435761u >> 8) & m->memo_mask) * BTI_MEMO_W], v = *slot, exp;
     int sp;
-    if ((uint32_t)(v >> 48) == m->memo_gen && (uint32_t)(v & 0x3fffffffu) == idx) {
-        *morph = (uint16_t)(v >> 30);
-        return (int)((v >> 46) & 3) - 1;
+    if ((uint32_t)(v & 0x3fffffffu) == idx) {
+        sp = (int)((v >> 46) & 3) - 1;
+        if ((uint32_t)(v >> 48) == m->memo_gen
+#if BR_COHERENCE
+            || (*mask == 0 && e->coh_acc <= slot[1] && (sp > 0) == ((e->prev[idx] & ST_PREV) != 0))
+#endif
+        ) {
+            *morph = (uint16_t)(v >> 30);
+            return sp;
+        }
     }
-    sp = decide(e, x, y, idx, mask, morph);
+    sp = decide(e, x, y, idx, mask, morph, &exp);
     *slot = (uint64_t)m->memo_gen << 48 | (uint64_t)(sp + 1) << 46 | (uint64_t)*morph << 30 | idx;
+#if BR_COHERENCE
+    slot[1] = exp;
+#else
+    (void)exp;
+#endif
     return sp;
 }
 
@@ -395,7 +404,10 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
     mm.y = a->y + (dy >> 1);
     id = bti_slot(e->t, mm.x, mm.y);
     if (e->rec_splits) sp = decide_memo(e, mm.x, mm.y, id, &mask, &mm.morph);
-    else sp = decide(e, mm.x, mm.y, id, &mask, &mm.morph);
+    else {
+        uint64_t exp;
+        sp = decide(e, mm.x, mm.y, id, &mask, &mm.morph, &exp);
+    }
     if (sp < 0) return;
     if (!sp) {
         /* a triangle over voids that a budget left unsplit is dropped, never
@@ -489,7 +501,8 @@ static void top(bti_extract *e, bt_parts *ps, pt *a, pt *c, pt *b, int in_hyp, i
         mm.idx = NO_IDX;
         mm.x = a->x + ((b->x - a->x) >> 1);
         mm.y = a->y + ((b->y - a->y) >> 1);
-        sp = decide(e, mm.x, mm.y, bti_slot(e->t, mm.x, mm.y), &mask, &mm.morph);
+        uint64_t exp;
+        sp = decide(e, mm.x, mm.y, bti_slot(e->t, mm.x, mm.y), &mask, &mm.morph, &exp);
         if (sp < 0) return;
     }
     if (!sp) {
@@ -617,7 +630,7 @@ uint32_t bti_reset_mesh(bt_mesh *m)
         *base = 0;
     } else *base += m->nv;
     if (++m->memo_gen > 0xFFFFu) {   /* entries of generation 0 were written 2^16 extractions ago */
-        memset(m->memo, 0, ((size_t)m->memo_mask + 1) * 8);
+        memset(m->memo, 0, ((size_t)m->memo_mask + 1) * 8 * BTI_MEMO_W);
         m->memo_gen = 1;
     }
     m->nv = 0; m->ns = 0; m->ntri = 0; m->nline = 0; m->nfict = 0; m->overflow = 0;
@@ -664,6 +677,8 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         e.fid = 0;
     } else {
         e.rec_splits = p->mode == BT_VIEW ? 1 : 0;
+        if (e.rec_splits && bti_coh_frame(&e, &m->coh))
+            memset(m->memo, 0, ((size_t)m->memo_mask + 1) * 8 * BTI_MEMO_W);
         run(&e);
         if (!e.full) {
             if (e.rec_splits) {
