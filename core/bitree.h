@@ -233,15 +233,17 @@ typedef struct bt_frame {
  * reciprocals of the thresholds that bound how far a decision stays valid. */
 typedef struct bt_coh_key {
     const uint32_t *node;
-    int32_t n, zmin, zmax, pad_;
+    int32_t n, zmin, zmax, no_cull;
     bt_frame fr;
     int64_t fq8, tau, tau_lo, span;
 } bt_coh_key;
 typedef struct bt_coh {
     bt_coh_key key;
     int32_t eye[3], valid;
-    uint64_t acc;          /* 1 .. 2^62: grows by the eye's L1 travel, and past every
+    cam_plane pl[CAM_NPLANES];  /* the last frame's frustum */
+    uint64_t acc;          /* 1 .. 2^51: grows by the eye's L1 travel, and past every
                               expiry at a key change */
+    uint64_t x;            /* the same plus the frustum planes' travel (core/bt_coh.c) */
     uint64_t r[3];         /* floor(2^sh / c) for c = tau_lo, tau, tau + span; 0: none */
     int32_t sh[3];
     int64_t slack;         /* test hook: added to every margin (too generous: other meshes);

@@ -35,7 +35,7 @@
  * a key change adds COH_JUMP, past every expiry. */
 #define COH_DMAX ((int64_t)1 << 32)
 #define COH_JUMP ((uint64_t)1 << 34)
-#define COH_LIMIT ((uint64_t)1 << 62)
+#define COH_LIMIT ((uint64_t)1 << 51)   /* + COH_JUMP + a margin < 2^52 (BTI_COH_EXP) */
 
 static int32_t bits64(uint64_t v)
 {
@@ -77,31 +77,51 @@ static int64_t above(int64_t L, int k, const bt_coh *c, int64_t cv, int strict)
     return q;
 }
 
-uint64_t bti_coh_expiry(const bti_extract *e, int64_t L, int64_t d, int sp, uint16_t morph)
+/* How far (L1 eye travel, world units) the answer sp (0, 1) for L and d holds: the
+ * distance interval [lo, hi] around d where it does, as margin min(hi - d, d - lo),
+ * at most COH_JUMP - 1; -1 when none is known. */
+static int64_t margin(const bti_extract *e, int sp, int64_t L, int64_t d, uint16_t morph)
 {
     const bt_coh *c = e->coh;
     int64_t lo = 0, hi = INT64_MAX, m = (int64_t)COH_JUMP - 1;
-    if (!c || sp < 0 || L == INT64_MAX) return 0;   /* a saturated L: no exact bound */
-    if (L == 0) return sp ? 0 : c->acc + (uint64_t)m;   /* ew = 0: never split (unless culled) */
-    if (d <= 0) return 0;
+    if (L == INT64_MAX) return -1;                   /* a saturated L: no exact bound */
+    if (L == 0) return sp ? -1 : m;                  /* ew = 0: never split (unless culled) */
+    if (d <= 0) return -1;
     if (sp) {
-        if (e->tau_lo > 0 && (hi = below(L, 0, c, e->tau_lo, 1)) < 0) return 0;
+        if (e->tau_lo > 0 && (hi = below(L, 0, c, e->tau_lo, 1)) < 0) return -1;
         if (e->morph_span > 0 && morph == BT_MORPH_ONE) {
             int64_t h2 = below(L, 2, c, e->tau + e->morph_span, 0);
-            if (h2 < 0) return 0;
+            if (h2 < 0) return -1;
             if (h2 < hi) hi = h2;
         } else if (e->morph_span > 0 && morph == 0) {
-            if ((lo = above(L, 1, c, e->tau, 1)) < 0) return 0;
-        } else if (e->morph_span > 0) return 0;       /* a weight that moves with d */
+            if ((lo = above(L, 1, c, e->tau, 1)) < 0) return -1;
+        } else if (e->morph_span > 0) return -1;       /* a weight that moves with d */
     } else {
-        if ((lo = above(L, 1, c, e->tau, 0)) < 0) return 0;
+        if ((lo = above(L, 1, c, e->tau, 0)) < 0) return -1;
         if (lo < 1) lo = 1;                           /* d' = 0: the eye inside, split */
     }
-    if (d > hi || d < lo) return 0;
+    if (d > hi || d < lo) return -1;
     if (hi < COH_DMAX && hi - d < m) m = hi - d;
     if (lo > 0 && d - lo < m) m = d - lo;
+    return m;
+}
+
+uint64_t bti_coh_entry(const bti_extract *e, int sp, int64_t L, int64_t d, uint16_t morph, unsigned m_in,
+                       unsigned m_out, int64_t cm)
+{
+    const bt_coh *c = e->coh;
+    int64_t m = sp < 0 || d < 0 ? (int64_t)COH_JUMP - 1 : margin(e, sp, L, d, morph);
+    if (m < 0) return 0;
+    if (m_in) {
+        /* a plane's value at the box moves by at most the planes' travel (Q30 world
+         * units over 2^30, bti_coh_frame); cm / 2^30 rounded down */
+        int64_t mc = cm >> 30;
+        if (mc < m) m = mc;
+    }
     m += c->slack;
-    return c->acc + (uint64_t)(m < 0 ? 0 : m);
+    if (m < 0) return 0;
+    return (uint64_t)m_out << (BTI_COH_BITS + 6) | (uint64_t)m_in << BTI_COH_BITS
+         | ((m_in ? c->x : c->acc) + (uint64_t)m);
 }
 
 static void recip(bt_coh *c, int k, int64_t v)
@@ -115,37 +135,63 @@ static void recip(bt_coh *c, int k, int64_t v)
     c->r[k] = fx_udiv_bits((uint64_t)1 << c->sh[k], (uint64_t)v, 33);   /* < 2^32 */
 }
 
+/* How far the planes' values may have moved at any point within +-CAM_COORD_MAX,
+ * over 2^30, rounded up: d + n . p moves by at most |d' - d| + sum |n'_k - n_k|
+ * CAM_COORD_MAX, and the volumes' corners lie in that cube (bti_setup).  |d| < 2^63
+ * (core/cam.h), so the difference fits 64 bits unsigned. */
+static uint64_t plane_travel(const cam_plane *a, const cam_plane *b)
+{
+    uint64_t mx = 0;
+    int i, k;
+    for (i = 0; i < CAM_NPLANES; i++) {
+        uint64_t dd = a[i].d >= b[i].d ? (uint64_t)a[i].d - (uint64_t)b[i].d : (uint64_t)b[i].d - (uint64_t)a[i].d;
+        uint64_t t = (dd >> 30) + 1;
+        for (k = 0; k < 3; k++) {
+            int64_t dn = (int64_t)a[i].n[k] - b[i].n[k];
+            t += (uint64_t)(dn < 0 ? -dn : dn);
+        }
+        if (t > mx) mx = t;
+    }
+    return mx;
+}
+
 int bti_coh_frame(bti_extract *e, bt_coh *c)
 {
     bt_coh_key k;
     const int32_t *eye = e->p->c->eye;
     int wrap = 0;
     memset(&k, 0, sizeof k);
-    k.node = e->t->node; k.n = e->t->n; k.zmin = e->t->zmin; k.zmax = e->t->zmax;
+    k.node = e->t->node; k.n = e->t->n; k.zmin = e->t->zmin; k.zmax = e->t->zmax; k.no_cull = e->p->no_cull != 0;
     k.fr = e->p->fr; k.fq8 = e->fq8; k.tau = e->tau; k.tau_lo = e->tau_lo; k.span = e->morph_span;
-    if (!c->valid || c->acc >= COH_LIMIT) {
+    if (!c->valid || c->acc >= COH_LIMIT || c->x >= COH_LIMIT) {
         int64_t slack = c->slack;
         wrap = c->valid;                              /* entries may hold any expiry */
         memset(c, 0, sizeof *c);
         c->slack = slack;
-        c->acc = 1;
+        c->acc = c->x = 1;
     }
     if (memcmp(&k, &c->key, sizeof k) != 0) {
         c->key = k;
         c->acc += c->valid ? COH_JUMP : 0;            /* every earlier expiry has passed */
+        c->x += c->valid ? COH_JUMP : 0;
         recip(c, 0, k.tau_lo);
         recip(c, 1, k.tau);
         recip(c, 2, k.tau + k.span);
     } else {
+        uint64_t t = 0, pt = plane_travel(e->pl, c->pl);
         int i;
         for (i = 0; i < 3; i++) {
             int64_t dv = (int64_t)eye[i] - c->eye[i];
-            c->acc += (uint64_t)(dv < 0 ? -dv : dv);
+            t += (uint64_t)(dv < 0 ? -dv : dv);
         }
+        c->acc += t;
+        c->x += t + (pt < COH_JUMP ? pt : COH_JUMP);
     }
     c->valid = 1;
     memcpy(c->eye, eye, sizeof c->eye);
+    memcpy(c->pl, e->pl, sizeof c->pl);
     e->coh = BR_COHERENCE ? c : NULL;
     e->coh_acc = BR_COHERENCE && !e->p->no_coherence ? c->acc : UINT64_MAX;
+    e->coh_x = BR_COHERENCE && !e->p->no_coherence ? c->x : UINT64_MAX;
     return wrap;
 }

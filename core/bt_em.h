@@ -67,8 +67,8 @@ typedef struct bti_extract {
                                BTI_SNAPS leaves (core/bt_part.c), else NULL */
     uint32_t nsnap;
     const bt_coh *coh;      /* frame coherence (bti_coh_frame): expiries are computed; NULL: not */
-    uint64_t coh_acc;       /* its accumulated travel now; UINT64_MAX: no entry of an earlier
-                               frame is reused */
+    uint64_t coh_acc, coh_x; /* its accumulated travels now (eye; eye and planes); UINT64_MAX:
+                               no entry of an earlier frame is reused */
 } bti_extract;
 
 /* A leaf waiting to be written: its vertex indices, exit edge {o0, o1} and the
@@ -137,9 +137,16 @@ void bti_part_walk(bti_extract *e, const bti_root *r);
  * or starts afresh when anything else changed; sets e->coh, e->coh_acc.  1 when
  * the memos that c covers must be cleared (the accumulator wrapped). */
 int bti_coh_frame(bti_extract *e, bt_coh *c);
-/* The expiry (an accumulated travel, core/bt_coh.c) up to which decide's answer sp
- * (-1 culled, 0, 1) with morph for L = ew f and distance d holds; 0: this frame only. */
-uint64_t bti_coh_expiry(const bti_extract *e, int64_t L, int64_t d, int sp, uint16_t morph);
+/* The second word of a memo entry (core/bt_mesh.c decide_memo) for decide's answer
+ * sp (-1 culled, 0, 1) with morph, L = ew f and distance d (d < 0: the answer holds
+ * at every distance), made under plane mask m_in, which left m_out, with cull margin
+ * cm (Q30 world units, culled()): m_out << 58 | m_in << 52 | expiry, the expiry an
+ * accumulated travel (the eye's for m_in = 0, else the eye's and the planes') up to
+ * which the answer holds; 0: this frame only. */
+#define BTI_COH_BITS 52
+#define BTI_COH_EXP ((((uint64_t)1) << BTI_COH_BITS) - 1)
+uint64_t bti_coh_entry(const bti_extract *e, int sp, int64_t L, int64_t d, uint16_t morph, unsigned m_in,
+                       unsigned m_out, int64_t cm);
 
 /* Diamond geometry: scale h and type (1 = D) of sample (x, y), not a corner. */
 static inline int32_t bti_dscale(int32_t x, int32_t y, int32_t S, int *typeD)

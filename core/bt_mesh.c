@@ -113,8 +113,11 @@ static void dvolume(const bti_extract *e, int32_t x, int32_t y, uint32_t id, int
 
 /* Frustum test of a box against the planes in *mask: 1 when it lies wholly
  * outside one of them (culled); planes it lies wholly inside are removed from
- * *mask, so descendants (whose volumes nest inside) skip them. */
-static int culled(const bti_extract *e, const int64_t lo[3], const int64_t hi[3], unsigned *mask)
+ * *mask, so descendants (whose volumes nest inside) skip them.  With frame
+ * coherence, *cm is lowered to how far (Q30 world units) the tested planes' values
+ * at the box may move before an answer changes: sp < 0 (outside) while the move is
+ * <= -sp - 1, sn >= 0 (inside) while <= sn, both else. */
+static int culled(const bti_extract *e, const int64_t lo[3], const int64_t hi[3], unsigned *mask, int64_t *cm)
 {
     int i, k;
     if (e->p->no_cull) { *mask = 0; return 0; }
@@ -127,6 +130,11 @@ static int culled(const bti_extract *e, const int64_t lo[3], const int64_t hi[3]
             sp += nk * (nk >= 0 ? hi[k] : lo[k]);
             sn += nk * (nk >= 0 ? lo[k] : hi[k]);
         }
+        if (e->coh) {
+            int64_t g = sp < 0 ? -sp - 1 : (sn >= 0 ? sn : (sp < -sn - 1 ? sp : -sn - 1));
+            if (sp < 0) { *cm = g; return 1; }
+            if (g < *cm) *cm = g;
+        }
         if (sp < 0) return 1;
         if (sn >= 0) *mask &= ~(1u << i);
     }
@@ -138,7 +146,7 @@ static int culled(const bti_extract *e, const int64_t lo[3], const int64_t hi[3]
  * culled (all void or outside the frustum), 1 when the error is unbounded (mixed
  * voids, or the eye inside the volume with a nonzero error), 0 otherwise. */
 static int view_err(const bti_extract *e, int32_t x, int32_t y, uint32_t id, unsigned *mask, int64_t *ew,
-                    int64_t *d)
+                    int64_t *d, int64_t *cm)
 {
     const bt_tree *t = e->t;
     int64_t lo[3], hi[3];
@@ -146,7 +154,7 @@ static int view_err(const bti_extract *e, int32_t x, int32_t y, uint32_t id, uns
     uint16_t code = BT_NODE_ERR(nv);
     if (BT_NODE_ZLO(nv) > BT_NODE_ZHI(nv)) return -1; /* all void */
     dvolume(e, x, y, id, lo, hi);
-    if (*mask && culled(e, lo, hi, mask)) return -1;
+    if (*mask && culled(e, lo, hi, mask, cm)) return -1;
     if (code == BT_CODE_SPLIT) return 1;
     *ew = isat_mul(bt_code_value(code), e->p->fr.sz_q16);
     *ew = *ew == INT64_MAX ? *ew : (*ew + 65535) >> 16;
@@ -159,8 +167,8 @@ static int view_err(const bti_extract *e, int32_t x, int32_t y, uint32_t id, uns
 static int64_t rho_q8(const bti_extract *e, int32_t x, int32_t y)
 {
     unsigned mask = 0x3f;
-    int64_t ew = 0, d = 0;
-    int r = view_err(e, x, y, bti_slot(e->t, x, y), &mask, &ew, &d);
+    int64_t ew = 0, d = 0, cm;
+    int r = view_err(e, x, y, bti_slot(e->t, x, y), &mask, &ew, &d, &cm);
     if (r < 0) return -1;
     if (r > 0) return INT64_MAX;
     if (d == 0) return 0;
@@ -224,29 +232,35 @@ static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *
                   uint64_t *exp)
 {
     bt_tree *t = e->t;
-    int64_t ew = 0, d = 0;
+    int64_t ew = 0, d = 0, cm = INT64_MAX;
+    unsigned m_in = *mask;
     int r;
     *morph = BT_MORPH_ONE;
     *exp = 0;
     if (e->fid) return BT_NODE_ERR(e->t->node[idx]) > e->cthr;
     if (e->p->mode == BT_BUDGET || e->tau < 0) {
         if (e->p->mode == BT_FIDELITY) return (t->st[idx] & ST_SPLIT) != 0;
-        r = view_err(e, x, y, idx, mask, &ew, &d);
+        r = view_err(e, x, y, idx, mask, &ew, &d, &cm);
         if (r < 0) return -1;
         if (!(t->st[idx] & ST_SPLIT)) return 0;
         if (e->morph_span > 0 && r == 0 && d > 0) *morph = morph_at(e, isat_mul(ew, e->fq8), d);
         return 1;
     }
-    r = view_err(e, x, y, idx, mask, &ew, &d);
-    if (r < 0) return -1;
-    if (r > 0) return 1;
+    r = view_err(e, x, y, idx, mask, &ew, &d, &cm);
+    if (r != 0) {
+        /* culled (outside a plane, or all void: cm stays INT64_MAX), or split whatever
+         * the distance (BT_CODE_SPLIT; the eye inside the volume: d = 0, not kept) */
+        if (e->coh && (r < 0 || BT_NODE_ERR(t->node[idx]) == BT_CODE_SPLIT))
+            *exp = bti_coh_entry(e, r, 0, -1, BT_MORPH_ONE, m_in, *mask, cm);
+        return r < 0 ? -1 : 1;
+    }
     {
         /* rho = ew * f / d > tau  <=>  ew * f > tau * d (no division) */
         int64_t lhs = isat_mul(ew, e->fq8);
         int sp = lhs > isat_mul(e->tau, d) ||
                  ((e->prev[idx] & ST_PREV) && lhs > isat_mul(e->tau_lo, d));
         if (sp && e->morph_span > 0) *morph = d > 0 ? morph_at(e, lhs, d) : BT_MORPH_ONE;
-        if (e->coh) *exp = bti_coh_expiry(e, lhs, d, sp, *morph);
+        if (e->coh) *exp = bti_coh_entry(e, sp, lhs, d, *morph, m_in, *mask, cm);
         return sp;
     }
 }
@@ -258,16 +272,17 @@ static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *
  * leaves a mask only when an enclosing volume lies inside it (volumes nest).  A
  * memo hit keeps the parent's mask: the children test planes they could skip, with
  * the same answers.  Across frames (BR_COHERENCE): an entry of an earlier frame is
- * the answer now when the eye's travel since is within its margin (its expiry >=
- * e->coh_acc, core/bt_coh.c), the diamond's ST_PREV is the one the margin assumed
- * (set iff it was split), and no frustum plane is left to test (*mask == 0: an
- * enclosing volume lies inside every plane, so it is not culled; cull answers are
- * never reused).  The memo is a direct-mapped cache (a miss only recomputes); an
- * entry's first word is gen << 48 | (answer + 1) << 46 | morph << 30 | slot (< 2^30:
- * w, h <= BR_MAX_SIDE = 16385, so w*h < 2^28, plus the bands), the frame of the
- * extraction whose 16-bit generation (1 .. 0xFFFF, reset_mesh) it holds; its second
- * the expiry.  Padding diamonds without a slot share the void slot and its answer:
- * VOID is culled (-1) in the view rule whatever the diamond. */
+ * the answer now when it was made under the same plane mask, the travel since is
+ * within its margin (core/bt_coh.c: the eye's, and with planes to test the planes'
+ * too) and the diamond's ST_PREV is the one the margin assumed (set iff it was
+ * split); the planes it left to its children then are the mask it hands on.  The
+ * memo is a direct-mapped cache (a miss only recomputes); an entry's first word is
+ * gen << 48 | (answer + 1) << 46 | morph << 30 | slot (< 2^30: w, h <= BR_MAX_SIDE =
+ * 16385, so w*h < 2^28, plus the bands), the frame of the extraction whose 16-bit
+ * generation (1 .. 0xFFFF, reset_mesh) it holds; its second mask_out << 58 |
+ * mask_in << 52 | expiry (bti_coh_entry).  Padding diamonds without a slot share the
+ * void slot and its answer: VOID is culled (-1) in the view rule whatever the
+ * diamond. */
 static int decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph)
 {
     const bt_mesh *m = e->m;
@@ -275,14 +290,22 @@ static int decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsig
     int sp;
     if ((uint32_t)(v & 0x3fffffffu) == idx) {
         sp = (int)((v >> 46) & 3) - 1;
-        if ((uint32_t)(v >> 48) == m->memo_gen
-#if BR_COHERENCE
-            || (*mask == 0 && e->coh_acc <= slot[1] && (sp > 0) == ((e->prev[idx] & ST_PREV) != 0))
-#endif
-        ) {
+        if ((uint32_t)(v >> 48) == m->memo_gen) {
             *morph = (uint16_t)(v >> 30);
             return sp;
         }
+#if BR_COHERENCE
+        {
+            uint64_t w = slot[1];
+            unsigned m_in = (unsigned)(w >> BTI_COH_BITS) & 63u;
+            if (*mask == m_in && (m_in ? e->coh_x : e->coh_acc) <= (w & BTI_COH_EXP)
+                && (sp > 0) == ((e->prev[idx] & ST_PREV) != 0)) {
+                *morph = (uint16_t)(v >> 30);
+                *mask = (unsigned)(w >> (BTI_COH_BITS + 6));
+                return sp;
+            }
+        }
+#endif
     }
     sp = decide(e, x, y, idx, mask, morph, &exp);
     *slot = (uint64_t)m->memo_gen << 48 | (uint64_t)(sp + 1) << 46 | (uint64_t)*morph << 30 | idx;
