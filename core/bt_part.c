@@ -112,10 +112,11 @@ void bt_extract_part(bt_parts *ps, uint32_t k)
     e = &ps->slot[k].e;
     /* tables for twice last frame's vertices (load <= 1/4 of the hash): a part's
      * hash and memo stay in cache where the allocated ones (sized for part_tri)
-     * would spread its few thousand vertices over megabytes */
+     * would spread its few thousand vertices over megabytes; the memo has 4 slots a
+     * hash slot, so that most of last frame's decisions are still there to reuse */
     while (hs < 8 * (uint64_t)ps->hint_nv[k] && hs < ps->hfull) hs <<= 1;
     if (hs > ps->hfull) hs = ps->hfull;
-    ms = hs < ps->mfull ? hs : ps->mfull;
+    ms = 4 * hs < ps->mfull ? 4 * hs : ps->mfull;
     part_reset(ps, k, hs, ms, e);
     bti_part_walk(e, &ps->root[k]);
     if (e->full && hs < ps->hfull) {     /* the small hash filled up: again with all of it */
