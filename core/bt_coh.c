@@ -88,14 +88,14 @@ static int64_t margin(const bti_extract *e, int sp, int64_t L, int64_t d, uint16
     if (L == 0) return sp ? -1 : m;                  /* ew = 0: never split (unless culled) */
     if (d <= 0) return -1;
     if (sp) {
-        if (e->tau_lo > 0 && (hi = below(L, 0, c, e->tau_lo, 1)) < 0) return -1;
         if (e->morph_span > 0 && morph == BT_MORPH_ONE) {
-            int64_t h2 = below(L, 2, c, e->tau + e->morph_span, 0);
-            if (h2 < 0) return -1;
-            if (h2 < hi) hi = h2;
-        } else if (e->morph_span > 0 && morph == 0) {
-            if ((lo = above(L, 1, c, e->tau, 1)) < 0) return -1;
-        } else if (e->morph_span > 0) return -1;       /* a weight that moves with d */
+            /* (tau + span) d' <= L implies tau_lo d' < L: tau_lo <= tau < tau + span, L > 0 */
+            if ((hi = below(L, 2, c, e->tau + e->morph_span, 0)) < 0) return -1;
+        } else {
+            if (e->morph_span > 0 && morph != 0) return -1;   /* a weight that moves with d */
+            if (e->tau_lo > 0 && (hi = below(L, 0, c, e->tau_lo, 1)) < 0) return -1;
+            if (e->morph_span > 0 && (lo = above(L, 1, c, e->tau, 1)) < 0) return -1;
+        }
     } else {
         if ((lo = above(L, 1, c, e->tau, 0)) < 0) return -1;
         if (lo < 1) lo = 1;                           /* d' = 0: the eye inside, split */
