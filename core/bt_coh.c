@@ -35,7 +35,7 @@
  * a key change adds COH_JUMP, past every expiry. */
 #define COH_DMAX ((int64_t)1 << 32)
 #define COH_JUMP ((uint64_t)1 << 34)
-#define COH_LIMIT ((uint64_t)1 << 51)   /* + COH_JUMP + a margin < 2^52 (BTI_COH_EXP) */
+#define COH_LIMIT ((uint64_t)1 << 50)   /* + COH_JUMP + a margin < 2^51 (BTI_COH_EXP) */
 
 static int32_t bits64(uint64_t v)
 {
@@ -79,8 +79,9 @@ static int64_t above(int64_t L, int k, const bt_coh *c, int64_t cv, int strict)
 
 /* How far (L1 eye travel, world units) the answer sp (0, 1) for L and d holds: the
  * distance interval [lo, hi] around d where it does, as margin min(hi - d, d - lo),
- * at most COH_JUMP - 1; -1 when none is known. */
-static int64_t margin(const bti_extract *e, int sp, int64_t L, int64_t d, uint16_t morph)
+ * at most COH_JUMP - 1; -1 when none is known.  *moving: the split holds, its weight
+ * does not (strictly between 0 and full, it moves with d). */
+static int64_t margin(const bti_extract *e, int sp, int64_t L, int64_t d, uint16_t morph, int *moving)
 {
     const bt_coh *c = e->coh;
     int64_t lo = 0, hi = INT64_MAX, m = (int64_t)COH_JUMP - 1;
@@ -92,9 +93,9 @@ static int64_t margin(const bti_extract *e, int sp, int64_t L, int64_t d, uint16
             /* (tau + span) d' <= L implies tau_lo d' < L: tau_lo <= tau < tau + span, L > 0 */
             if ((hi = below(L, 2, c, e->tau + e->morph_span, 0)) < 0) return -1;
         } else {
-            if (e->morph_span > 0 && morph != 0) return -1;   /* a weight that moves with d */
+            *moving = e->morph_span > 0 && morph != 0;
             if (e->tau_lo > 0 && (hi = below(L, 0, c, e->tau_lo, 1)) < 0) return -1;
-            if (e->morph_span > 0 && (lo = above(L, 1, c, e->tau, 1)) < 0) return -1;
+            if (e->morph_span > 0 && !*moving && (lo = above(L, 1, c, e->tau, 1)) < 0) return -1;
         }
     } else {
         if ((lo = above(L, 1, c, e->tau, 0)) < 0) return -1;
@@ -110,7 +111,8 @@ uint64_t bti_coh_entry(const bti_extract *e, int sp, int64_t L, int64_t d, uint1
                        unsigned m_out, int64_t cm)
 {
     const bt_coh *c = e->coh;
-    int64_t m = sp < 0 || d < 0 ? (int64_t)COH_JUMP - 1 : margin(e, sp, L, d, morph);
+    int moving = 0;
+    int64_t m = sp < 0 || d < 0 ? (int64_t)COH_JUMP - 1 : margin(e, sp, L, d, morph, &moving);
     if (m < 0) return 0;
     if (m_in) {
         /* a plane's value at the box moves by at most the planes' travel (Q30 world
@@ -121,7 +123,7 @@ uint64_t bti_coh_entry(const bti_extract *e, int sp, int64_t L, int64_t d, uint1
     m += c->slack;
     if (m < 0) return 0;
     return (uint64_t)m_out << (BTI_COH_BITS + 6) | (uint64_t)m_in << BTI_COH_BITS
-         | ((m_in ? c->x : c->acc) + (uint64_t)m);
+         | (moving ? BTI_COH_MOVING : 0) | ((m_in ? c->x : c->acc) + (uint64_t)m);
 }
 
 static void recip(bt_coh *c, int k, int64_t v)

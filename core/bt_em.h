@@ -140,11 +140,13 @@ int bti_coh_frame(bti_extract *e, bt_coh *c);
 /* The second word of a memo entry (core/bt_mesh.c decide_memo) for decide's answer
  * sp (-1 culled, 0, 1) with morph, L = ew f and distance d (d < 0: the answer holds
  * at every distance), made under plane mask m_in, which left m_out, with cull margin
- * cm (Q30 world units, culled()): m_out << 58 | m_in << 52 | expiry, the expiry an
- * accumulated travel (the eye's for m_in = 0, else the eye's and the planes') up to
- * which the answer holds; 0: this frame only. */
+ * cm (Q30 world units, culled()): m_out << 58 | m_in << 52 | moving << 51 | expiry,
+ * the expiry (< 2^51) an accumulated travel (the eye's for m_in = 0, else the eye's
+ * and the planes') up to which the answer holds, moving: a split whose geomorph
+ * weight moves with the distance (to be computed again); 0: this frame only. */
 #define BTI_COH_BITS 52
-#define BTI_COH_EXP ((((uint64_t)1) << BTI_COH_BITS) - 1)
+#define BTI_COH_MOVING ((uint64_t)1 << 51)
+#define BTI_COH_EXP (BTI_COH_MOVING - 1)
 uint64_t bti_coh_entry(const bti_extract *e, int sp, int64_t L, int64_t d, uint16_t morph, unsigned m_in,
                        unsigned m_out, int64_t cm);
 

@@ -265,6 +265,19 @@ static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *
     }
 }
 
+/* The geomorph weight decide() gives diamond (x, y) in slot idx, known to be split
+ * and not culled: view_err's distance and object error, decide's morph_at. */
+static uint16_t morph_now(const bti_extract *e, int32_t x, int32_t y, uint32_t idx)
+{
+    int64_t lo[3], hi[3], ew, d;
+    dvolume(e, x, y, idx, lo, hi);
+    d = box_dist(e->p->c->eye, lo, hi);
+    if (d <= 0) return BT_MORPH_ONE;
+    ew = isat_mul(bt_code_value(BT_NODE_ERR(e->t->node[idx])), e->p->fr.sz_q16);
+    ew = ew == INT64_MAX ? ew : (ew + 65535) >> 16;
+    return morph_at(e, isat_mul(ew, e->fq8), d);
+}
+
 /* decide() for the view rule, memoised.  Within the frame: a diamond is reached
  * twice, once from each half, and the rule gives both visits the same answer: it
  * reads only the diamond, the camera and ST_PREV (unchanged until the frame ends),
@@ -275,7 +288,9 @@ static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *
  * the answer now when it was made under the same plane mask, the travel since is
  * within its margin (core/bt_coh.c: the eye's, and with planes to test the planes'
  * too) and the diamond's ST_PREV is the one the margin assumed (set iff it was
- * split); the planes it left to its children then are the mask it hands on.  The
+ * split); the planes it left to its children then are the mask it hands on.  A
+ * split whose geomorph weight moves with the distance keeps its answer, and the
+ * weight is computed again (morph_now; the entry then holds it for this frame).  The
  * memo is a direct-mapped cache (a miss only recomputes); an entry's first word is
  * gen << 48 | (answer + 1) << 46 | morph << 30 | slot (< 2^30: w, h <= BR_MAX_SIDE =
  * 16385, so w*h < 2^28, plus the bands), the frame of the extraction whose 16-bit
@@ -300,9 +315,14 @@ static int decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsig
             unsigned m_in = (unsigned)(w >> BTI_COH_BITS) & 63u;
             if (*mask == m_in && (m_in ? e->coh_x : e->coh_acc) <= (w & BTI_COH_EXP)
                 && (sp > 0) == ((e->prev[idx] & ST_PREV) != 0)) {
-                *morph = (uint16_t)(v >> 30);
                 *mask = (unsigned)(w >> (BTI_COH_BITS + 6));
-                return sp;
+                if (!(w & BTI_COH_MOVING)) {
+                    *morph = (uint16_t)(v >> 30);
+                    return sp;
+                }
+                *morph = morph_now(e, x, y, idx);    /* the split holds, its weight moves */
+                *slot = (uint64_t)m->memo_gen << 48 | (uint64_t)2 << 46 | (uint64_t)*morph << 30 | idx;
+                return 1;
             }
         }
 #endif
