@@ -149,6 +149,8 @@ typedef struct bt_tree {
                               the diamond's volume: low (16-23), high (24-31); never
                               written after bt_build (may be read-only memory) */
     uint8_t *st;           /* per slot frame state bits */
+    uint64_t sum;          /* a hash of node[] (bt_build, bt_attach): a mesh's decision memo
+                              belongs to the tree with these nodes (frame coherence) */
     bt_layout lay;
 } bt_tree;
 
@@ -233,7 +235,8 @@ typedef struct bt_frame {
  * reciprocals of the thresholds that bound how far a decision stays valid. */
 typedef struct bt_coh_key {
     const uint32_t *node;
-    int32_t n, zmin, zmax, no_cull;
+    uint64_t sum;
+    int32_t n, w, h, zmin, zmax, no_cull;
     bt_frame fr;
     int64_t fq8, tau, tau_lo, span;
 } bt_coh_key;
@@ -336,7 +339,10 @@ br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri);
  * m holds, it falls back to budget mode with m's capacity (screen-space priority
  * in view mode, error priority in fidelity mode) and sets m->overflow = 1: a
  * coarser but still conforming mesh.  bt_extract updates the per-vertex state
- * used by hysteresis (call it once per frame).  Returns BR_E_ARG on bad params. */
+ * used by hysteresis (call it once per frame).  In view mode it reuses decisions of
+ * earlier extractions into m that the camera's travel since cannot have changed
+ * (frame coherence, docs/bitree.md; the same mesh; p->no_coherence: none).  Returns
+ * BR_E_ARG on bad params. */
 br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m);
 
 /* Partitioned view extraction, for several threads (the caller schedules; core/

@@ -163,7 +163,8 @@ int bti_coh_frame(bti_extract *e, bt_coh *c)
     const int32_t *eye = e->p->c->eye;
     int wrap = 0;
     memset(&k, 0, sizeof k);
-    k.node = e->t->node; k.n = e->t->n; k.zmin = e->t->zmin; k.zmax = e->t->zmax; k.no_cull = e->p->no_cull != 0;
+    k.node = e->t->node; k.sum = e->t->sum; k.n = e->t->n; k.w = e->t->w; k.h = e->t->h;
+    k.zmin = e->t->zmin; k.zmax = e->t->zmax; k.no_cull = e->p->no_cull != 0;
     k.fr = e->p->fr; k.fq8 = e->fq8; k.tau = e->tau; k.tau_lo = e->tau_lo; k.span = e->morph_span;
     if (!c->valid || c->acc >= COH_LIMIT || c->x >= COH_LIMIT) {
         int64_t slack = c->slack;

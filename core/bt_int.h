@@ -124,6 +124,15 @@ static inline int64_t bti_isat_mul(int64_t a, int64_t b)
     return r < lo || r > (uint64_t)INT64_MAX ? INT64_MAX : (int64_t)r;
 }
 
+/* FNV-1a over the node words (bt_tree.sum) */
+static inline uint64_t bti_node_sum(const uint32_t *node, uint32_t n)
+{
+    uint64_t h = 0xcbf29ce484222325ull;
+    uint32_t i;
+    for (i = 0; i < n; i++) h = (h ^ node[i]) * 0x100000001b3ull;
+    return h;
+}
+
 static inline int bti_bits(uint64_t v) { int b = 0; while (v >> b) b++; return b; }
 
 /* The geomorph weight of a split vertex (core/bt_mesh.c morph_of) for rho =
