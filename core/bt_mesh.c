@@ -63,6 +63,20 @@ static int valid(const bt_tree *t, int32_t x, int32_t y)
     return f->z[(size_t)y * f->w + x] != HF_NODATA;
 }
 
+/* The three corners are valid samples.  Without a void in the grid as read (only the
+ * padding), that is: they lie in it, x < w and y < h. */
+static inline int tri_valid(const bti_extract *e, const bti_pt *a, const bti_pt *c, const bti_pt *b)
+{
+    if (e->nonvoid) return 1;
+    if (e->nodata_free) {
+        int32_t mx = a->x > b->x ? a->x : b->x, my = a->y > b->y ? a->y : b->y;
+        mx = c->x > mx ? c->x : mx;
+        my = c->y > my ? c->y : my;
+        return mx < e->t->w && my < e->t->h;
+    }
+    return valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y);
+}
+
 static int32_t zreal(const bt_tree *t, int32_t x, int32_t y)
 {
     const hf *f = t->f;
@@ -438,7 +452,7 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
     uint32_t id;
     if (e->full) return;
     if ((a->x + b->x) & 1) {     /* unit legs: the hypotenuse midpoint is no sample */
-        if (e->nonvoid || (valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y)))
+        if (tri_valid(e, a, c, b))
             leaf(e, a, c, b, in_hyp, out_hyp);
         return;
     }
@@ -456,7 +470,7 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
         /* a triangle over voids that a budget left unsplit is dropped, never
          * drawn over the void (its corners may all be valid) */
         if (!e->nonvoid && BT_NODE_ERR(e->t->node[id]) == BT_CODE_SPLIT) return;
-        if (e->nonvoid || (valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y)))
+        if (tri_valid(e, a, c, b))
             leaf(e, a, c, b, in_hyp, out_hyp);
         return;
     }
@@ -585,6 +599,7 @@ br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p)
     if (!t || !p || !t->node) return BR_E_ARG;
     e->t = t; e->p = p; e->n = t->n; e->S = t->n - 1;
     e->nonvoid = t->nvalid == (int64_t)t->n * t->n;
+    e->nodata_free = t->nvalid == (int64_t)t->w * t->h;
     e->fid = p->mode == BT_FIDELITY;
     if (p->strip_order < BT_ORDER_AUTO || p->strip_order > BT_ORDER_BEST) return BR_E_ARG;
     e->reorder = p->strip_order == BT_ORDER_BEST || (p->strip_order == BT_ORDER_AUTO && p->mode == BT_FIDELITY);
