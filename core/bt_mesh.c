@@ -107,7 +107,7 @@ static inline int64_t box_dist(const int32_t eye[3], const int64_t lo[3], const 
     return l1 > mx ? l1 : mx;
 }
 
-static void dvolume(const bti_extract *e, int32_t x, int32_t y, uint32_t id, int64_t lo[3], int64_t hi[3])
+static inline void dvolume(const bti_extract *e, int32_t x, int32_t y, uint32_t id, int64_t lo[3], int64_t hi[3])
 {
     const bt_tree *t = e->t;
     const bt_frame *fr = &e->p->fr;
@@ -155,6 +155,14 @@ static int culled(const bti_extract *e, const int64_t lo[3], const int64_t hi[3]
     return 0;
 }
 
+/* The object error of code (not BT_CODE_SPLIT) in world units, rounded up;
+ * bt_code_value's exact codes below 4096 without the call */
+static inline int64_t obj_err(const bti_extract *e, uint16_t code)
+{
+    int64_t ew = isat_mul(code < 4096 ? (int64_t)code : bt_code_value(code), e->p->fr.sz_q16);
+    return ew == INT64_MAX ? ew : (ew + 65535) >> 16;
+}
+
 /* Screen-space error of diamond (x, y) in slot id: *ew = object error in world units
  * (rounded up), *d = lower bound of the distance to its volume.  Returns -1 when
  * culled (all void or outside the frustum), 1 when the error is unbounded (mixed
@@ -170,8 +178,7 @@ static int view_err(const bti_extract *e, int32_t x, int32_t y, uint32_t id, uns
     dvolume(e, x, y, id, lo, hi);
     if (*mask && culled(e, lo, hi, mask, cm)) return -1;
     if (code == BT_CODE_SPLIT) return 1;
-    *ew = isat_mul(bt_code_value(code), e->p->fr.sz_q16);
-    *ew = *ew == INT64_MAX ? *ew : (*ew + 65535) >> 16;
+    *ew = obj_err(e, code);
     *d = box_dist(e->p->c->eye, lo, hi);
     if (*d <= 0) { *d = 0; return *ew > 0 ? 1 : 0; }
     return 0;
@@ -287,8 +294,7 @@ static uint16_t morph_now(const bti_extract *e, int32_t x, int32_t y, uint32_t i
     dvolume(e, x, y, idx, lo, hi);
     d = box_dist(e->p->c->eye, lo, hi);
     if (d <= 0) return BT_MORPH_ONE;
-    ew = isat_mul(bt_code_value(BT_NODE_ERR(e->t->node[idx])), e->p->fr.sz_q16);
-    ew = ew == INT64_MAX ? ew : (ew + 65535) >> 16;
+    ew = obj_err(e, BT_NODE_ERR(e->t->node[idx]));
     return morph_at(e, isat_mul(ew, e->fq8), d);
 }
 
