@@ -174,7 +174,7 @@ int bti_coh_frame(bti_extract *e, bt_coh *c)
         c->acc = c->x = 1;
     }
     if (memcmp(&k, &c->key, sizeof k) != 0) {
-        c->key = k;
+        memcpy(&c->key, &k, sizeof k);   /* padding too: memcmp compares it */
         c->acc += c->valid ? COH_JUMP : 0;            /* every earlier expiry has passed */
         c->x += c->valid ? COH_JUMP : 0;
         recip(c, 0, k.tau_lo);

@@ -315,7 +315,7 @@ static uint16_t morph_now(const bti_extract *e, int32_t x, int32_t y, uint32_t i
  * gen << 48 | (answer + 1) << 46 | morph << 30 | slot (< 2^30: w, h <= BR_MAX_SIDE =
  * 16385, so w*h < 2^28, plus the bands), the frame of the extraction whose 16-bit
  * generation (1 .. 0xFFFF, reset_mesh) it holds; its second mask_out << 58 |
- * mask_in << 52 | expiry (bti_coh_entry).  Padding diamonds without a slot share the
+ * mask_in << 52 | moving << 51 | expiry (bti_coh_entry).  Padding diamonds without a slot share the
  * void slot and its answer: VOID is culled (-1) in the view rule whatever the
  * diamond. */
 static int decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph)
