@@ -286,6 +286,7 @@ static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *
     }
 }
 
+#if BR_COHERENCE
 /* The geomorph weight decide() gives diamond (x, y) in slot idx, known to be split
  * and not culled: view_err's distance and object error, decide's morph_at. */
 static uint16_t morph_now(const bti_extract *e, int32_t x, int32_t y, uint32_t idx)
@@ -297,6 +298,7 @@ static uint16_t morph_now(const bti_extract *e, int32_t x, int32_t y, uint32_t i
     ew = obj_err(e, BT_NODE_ERR(e->t->node[idx]));
     return morph_at(e, isat_mul(ew, e->fq8), d);
 }
+#endif
 
 /* decide() for the view rule, memoised.  Within the frame: a diamond is reached
  * twice, once from each half, and the rule gives both visits the same answer: it
