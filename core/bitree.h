@@ -149,6 +149,8 @@ typedef struct bt_tree {
                               the diamond's volume: low (16-23), high (24-31); never
                               written after bt_build (may be read-only memory) */
     uint8_t *st;           /* per slot frame state bits */
+    uint64_t sum;          /* a hash of node[] (bt_build, bt_attach): a mesh's decision memo
+                              belongs to the tree with these nodes (frame coherence) */
     bt_layout lay;
 } bt_tree;
 
@@ -216,6 +218,41 @@ typedef struct bt_vert {
     uint8_t pad_;
 } bt_vert;
 
+/* Grid to world (core/cam.h units): wx = ox + x*sx, wy = oy - y*sy (north up),
+ * wz = oz + (z*sz_q16 >> 16).  sx, sy in world units per grid step (> 0).
+ * The PADDED grid (n x n, heights zmin..zmax) must map inside +-CAM_COORD_MAX on
+ * every axis (the camera's precondition; bt_frame_auto's frames do): bt_count,
+ * bt_extract and bt_screen_error_q8 refuse a larger frame (BR_E_ARG / 0). */
+typedef struct bt_frame {
+    int32_t ox, oy, oz;
+    int32_t sx, sy;
+    int32_t sz_q16;
+} bt_frame;
+
+/* Frame coherence state of a decision memo (internal; core/bt_mesh.c bti_coh_frame):
+ * what the memo's decisions were made for besides the eye (the tree, frame, projection
+ * scale and thresholds), the last eye, the eye's accumulated L1 travel and the
+ * reciprocals of the thresholds that bound how far a decision stays valid. */
+typedef struct bt_coh_key {
+    const uint32_t *node;
+    uint64_t sum;
+    int32_t n, w, h, zmin, zmax, no_cull;
+    bt_frame fr;
+    int64_t fq8, tau, tau_lo, span;
+} bt_coh_key;
+typedef struct bt_coh {
+    bt_coh_key key;
+    int32_t eye[3], valid;
+    cam_plane pl[CAM_NPLANES];  /* the last frame's frustum */
+    uint64_t acc;          /* 1 .. 2^51: grows by the eye's L1 travel, and past every
+                              expiry at a key change */
+    uint64_t x;            /* the same plus the frustum planes' travel (core/bt_coh.c) */
+    uint64_t r[3];         /* floor(2^sh / c) for c = tau_lo, tau, tau + span; 0: none */
+    int32_t sh[3];
+    int64_t slack;         /* test hook: added to every margin (too generous: other meshes);
+                              0 outside tests */
+} bt_coh;
+
 typedef struct bt_mesh {
     bt_vert *v;            /* vertices, capacity cap_v */
     uint32_t nv, cap_v;
@@ -229,11 +266,12 @@ typedef struct bt_mesh {
     uint32_t hmask;
     uint32_t *splits;      /* diamonds split this frame (internal: hysteresis) */
     uint32_t nsplits;
-    uint64_t *memo;        /* this frame's decisions (internal), memo_mask + 1 entries */
+    uint64_t *memo;        /* decisions (internal), memo_mask + 1 entries of BTI_MEMO_W words */
     uint32_t memo_mask, memo_gen;
     int32_t overflow;      /* 1 if the last extraction had to fall back to the budget */
     uint32_t heap_cap;     /* entries of the budget heap and of the split list (internal;
                               0 reads as 4 max_tri + 8) */
+    bt_coh coh;            /* frame coherence of memo (internal) */
 } bt_mesh;
 
 /* Bytes for a mesh that holds up to max_tri triangles (>= 2). */
@@ -254,17 +292,6 @@ br_status bt_mesh_init_v(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem
 
 /* ---------------------------------------------------------------- selection */
 enum { BT_FIDELITY = 0, BT_VIEW = 1, BT_BUDGET = 2 };
-
-/* Grid to world (core/cam.h units): wx = ox + x*sx, wy = oy - y*sy (north up),
- * wz = oz + (z*sz_q16 >> 16).  sx, sy in world units per grid step (> 0).
- * The PADDED grid (n x n, heights zmin..zmax) must map inside +-CAM_COORD_MAX on
- * every axis (the camera's precondition; bt_frame_auto's frames do): bt_count,
- * bt_extract and bt_screen_error_q8 refuse a larger frame (BR_E_ARG / 0). */
-typedef struct bt_frame {
-    int32_t ox, oy, oz;
-    int32_t sx, sy;
-    int32_t sz_q16;
-} bt_frame;
 
 /* World position (core/cam.h units) of an output vertex: what the rasteriser
  * transforms.  Exact integers; the frame comes from the caller (bt_frame_auto). */
@@ -290,6 +317,9 @@ typedef struct bt_params {
                               0..65536, else BR_E_ARG */
     uint32_t budget;       /* BT_BUDGET: at most this many triangles */
     int32_t no_cull;       /* 1: no frustum culling */
+    int32_t no_coherence;  /* BT_VIEW: 1: evaluate every diamond this frame instead of reusing
+                              decisions of earlier frames that the eye's travel since cannot
+                              have changed (core/config.h BR_COHERENCE; the same mesh) */
     int32_t strip_order;   /* where voids or culling break the recursive walk, the strip can
                               be written again in a greedy leaf order (fewer references, the
                               same triangles; about 4-5x the extraction's time where it runs):
@@ -309,7 +339,10 @@ br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri);
  * m holds, it falls back to budget mode with m's capacity (screen-space priority
  * in view mode, error priority in fidelity mode) and sets m->overflow = 1: a
  * coarser but still conforming mesh.  bt_extract updates the per-vertex state
- * used by hysteresis (call it once per frame).  Returns BR_E_ARG on bad params. */
+ * used by hysteresis (call it once per frame).  In view mode it reuses decisions of
+ * earlier extractions into m that the camera's travel since cannot have changed
+ * (frame coherence, docs/bitree.md; the same mesh; p->no_coherence: none).  Returns
+ * BR_E_ARG on bad params. */
 br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m);
 
 /* Partitioned view extraction, for several threads (the caller schedules; core/

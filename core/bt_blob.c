@@ -162,6 +162,7 @@ br_status bt_attach(bt_tree *t, const hf *f, const void *blob, size_t bytes, uin
             if (rd32(p + 4 * i) != w[i]) return BR_E_ARG;
     }
     nt.node = (const uint32_t *)(const void *)(p + HDR_BYTES);
+    nt.sum = bti_node_sum(nt.node, nt.nslot);
     nt.st = st;
     if (st) memset(st, 0, nt.nslot);
     *t = nt;

@@ -205,5 +205,6 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
             for (x = hh; x < S && x <= xe; x += 2 * hh) bte_diamond(t, &c, x, y, hh, 1);
         bte_pad(t, &c, hh, 1);
     }
+    t->sum = bti_node_sum(t->node, t->nslot);
     return BR_OK;
 }

@@ -6,11 +6,20 @@
 #include <stdint.h>
 #include "core/bitree.h"
 #include "core/bt_int.h"
+#include "core/config.h"
 
 /* per-sample frame state bits (bt_tree.st): ST_PREV split in the previous view
  * frame (hysteresis), ST_SPLIT / ST_PUSHED the budget rule's marks, ST_CUR the
  * serial walk's "already recorded this frame" */
 enum { ST_PREV = 1, ST_SPLIT = 2, ST_PUSHED = 4, ST_CUR = 8 };
+
+/* Words of a decision memo entry: the decision, and with BR_COHERENCE its expiry
+ * (core/bt_mesh.c decide_memo) */
+#if BR_COHERENCE
+#define BTI_MEMO_W 2
+#else
+#define BTI_MEMO_W 1
+#endif
 
 /* A vertex on its way down the recursion; idx caches its output index (the
  * children of a split share their parent's pt instances, so most lookups are
@@ -40,6 +49,7 @@ typedef struct bti_extract {
                                ST_CUR (serial), 2 without writing t->st (a part) */
     int lost;               /* the split list overflowed */
     int nonvoid;            /* the padded grid has no void sample: skip the checks */
+    int nodata_free;        /* the grid as read has none: a sample is valid iff in it */
     int64_t wz_lo[256], wz_hi[256]; /* world z of the quantised height codes (floor, ceil) */
     struct bti_leaf { uint32_t ia, ic, ib, o0, o1, other; } pend; /* see bti_leaf */
     int has_pend;
@@ -57,6 +67,9 @@ typedef struct bti_extract {
     struct bti_snap *snap;  /* a part's walk: the writer's state after each of its first
                                BTI_SNAPS leaves (core/bt_part.c), else NULL */
     uint32_t nsnap;
+    const bt_coh *coh;      /* frame coherence (bti_coh_frame): expiries are computed; NULL: not */
+    uint64_t coh_acc, coh_x; /* its accumulated travels now (eye; eye and planes); UINT64_MAX:
+                               no entry of an earlier frame is reused */
 } bti_extract;
 
 /* A leaf waiting to be written: its vertex indices, exit edge {o0, o1} and the
@@ -114,12 +127,29 @@ struct bt_parts {
     uint32_t hfull, mfull;         /* slots allocated for each part's hash, memo */
     bti_extract fx;                /* the seams' writer (bt_extract_end) */
     uint32_t recent[96], nrecent;  /* its vertex identification by (x, y) */
+    bt_coh coh;                    /* frame coherence of the parts' memos */
 };
 
 br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p);
 uint32_t bti_reset_mesh(bt_mesh *m);
 void bti_part_roots(bti_extract *e, bt_parts *ps);
 void bti_part_walk(bti_extract *e, const bti_root *r);
+/* Frame coherence (core/bt_mesh.c): accounts the eye's travel since c's last frame,
+ * or starts afresh when anything else changed; sets e->coh, e->coh_acc.  1 when
+ * the memos that c covers must be cleared (the accumulator wrapped). */
+int bti_coh_frame(bti_extract *e, bt_coh *c);
+/* The second word of a memo entry (core/bt_mesh.c decide_memo) for decide's answer
+ * sp (-1 culled, 0, 1) with morph, L = ew f and distance d (d < 0: the answer holds
+ * at every distance), made under plane mask m_in, which left m_out, with cull margin
+ * cm (Q30 world units, culled()): m_out << 58 | m_in << 52 | moving << 51 | expiry,
+ * the expiry (< 2^51) an accumulated travel (the eye's for m_in = 0, else the eye's
+ * and the planes') up to which the answer holds, moving: a split whose geomorph
+ * weight moves with the distance (to be computed again); 0: this frame only. */
+#define BTI_COH_BITS 52
+#define BTI_COH_MOVING ((uint64_t)1 << 51)
+#define BTI_COH_EXP (BTI_COH_MOVING - 1)
+uint64_t bti_coh_entry(const bti_extract *e, int sp, int64_t L, int64_t d, uint16_t morph, unsigned m_in,
+                       unsigned m_out, int64_t cm);
 
 /* Diamond geometry: scale h and type (1 = D) of sample (x, y), not a corner. */
 static inline int32_t bti_dscale(int32_t x, int32_t y, int32_t S, int *typeD)

@@ -110,6 +110,29 @@ static inline uint8_t bti_q_hi(const bti_build_ctx *c, int64_t z)
 
 static inline uint16_t bti_enc_small(int64_t e) { return e < 4096 ? (uint16_t)e : bt_code_encode(e); }
 
+/* a * b for a, b >= 0, INT64_MAX when it is larger (no divide: the high half of
+ * the 64 x 64 product from 32-bit halves) */
+static inline int64_t bti_isat_mul(int64_t a, int64_t b)
+{
+    uint64_t ua = (uint64_t)a, ub = (uint64_t)b, a1 = ua >> 32, b1 = ub >> 32, mid, lo, r;
+    if ((ua | ub) < ((uint64_t)1 << 31)) return a * b;
+    if (a1 && b1) return INT64_MAX;
+    mid = a1 * (ub & 0xffffffffu) + b1 * (ua & 0xffffffffu);   /* one term is 0: < 2^63 */
+    if (mid >> 31) return INT64_MAX;
+    lo = (ua & 0xffffffffu) * (ub & 0xffffffffu);
+    r = (mid << 32) + lo;
+    return r < lo || r > (uint64_t)INT64_MAX ? INT64_MAX : (int64_t)r;
+}
+
+/* FNV-1a over the node words (bt_tree.sum) */
+static inline uint64_t bti_node_sum(const uint32_t *node, uint32_t n)
+{
+    uint64_t h = 0xcbf29ce484222325ull;
+    uint32_t i;
+    for (i = 0; i < n; i++) h = (h ^ node[i]) * 0x100000001b3ull;
+    return h;
+}
+
 static inline int bti_bits(uint64_t v) { int b = 0; while (v >> b) b++; return b; }
 
 /* The geomorph weight of a split vertex (core/bt_mesh.c morph_of) for rho =

@@ -63,6 +63,20 @@ static int valid(const bt_tree *t, int32_t x, int32_t y)
     return f->z[(size_t)y * f->w + x] != HF_NODATA;
 }
 
+/* The three corners are valid samples.  Without a void in the grid as read (only the
+ * padding), that is: they lie in it, x < w and y < h. */
+static inline int tri_valid(const bti_extract *e, const bti_pt *a, const bti_pt *c, const bti_pt *b)
+{
+    if (e->nonvoid) return 1;
+    if (e->nodata_free) {
+        int32_t mx = a->x > b->x ? a->x : b->x, my = a->y > b->y ? a->y : b->y;
+        mx = c->x > mx ? c->x : mx;
+        my = c->y > my ? c->y : my;
+        return mx < e->t->w && my < e->t->h;
+    }
+    return valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y);
+}
+
 static int32_t zreal(const bt_tree *t, int32_t x, int32_t y)
 {
     const hf *f = t->f;
@@ -75,19 +89,7 @@ static int32_t zreal(const bt_tree *t, int32_t x, int32_t y)
 
 
 /* ------------------------------------------------------------ view */
-/* a * b for a, b >= 0, INT64_MAX when it is larger (no divide: the high half of
- * the 64 x 64 product from 32-bit halves) */
-static inline int64_t isat_mul(int64_t a, int64_t b)
-{
-    uint64_t ua = (uint64_t)a, ub = (uint64_t)b, a1 = ua >> 32, b1 = ub >> 32, mid, lo, r;
-    if ((ua | ub) < ((uint64_t)1 << 31)) return a * b;
-    if (a1 && b1) return INT64_MAX;
-    mid = a1 * (ub & 0xffffffffu) + b1 * (ua & 0xffffffffu);   /* one term is 0: < 2^63 */
-    if (mid >> 31) return INT64_MAX;
-    lo = (ua & 0xffffffffu) * (ub & 0xffffffffu);
-    r = (mid << 32) + lo;
-    return r < lo || r > (uint64_t)INT64_MAX ? INT64_MAX : (int64_t)r;
-}
+#define isat_mul bti_isat_mul
 
 /* Lower bound of the distance from the eye to the box [lo, hi] (world units):
  * max(|dmax|, (|dx|+|dy|+|dz|) * 147/256), 147/256 < 1/sqrt(3). */
@@ -105,7 +107,7 @@ static inline int64_t box_dist(const int32_t eye[3], const int64_t lo[3], const 
     return l1 > mx ? l1 : mx;
 }
 
-static void dvolume(const bti_extract *e, int32_t x, int32_t y, uint32_t id, int64_t lo[3], int64_t hi[3])
+static inline void dvolume(const bti_extract *e, int32_t x, int32_t y, uint32_t id, int64_t lo[3], int64_t hi[3])
 {
     const bt_tree *t = e->t;
     const bt_frame *fr = &e->p->fr;
@@ -125,8 +127,11 @@ static void dvolume(const bti_extract *e, int32_t x, int32_t y, uint32_t id, int
 
 /* Frustum test of a box against the planes in *mask: 1 when it lies wholly
  * outside one of them (culled); planes it lies wholly inside are removed from
- * *mask, so descendants (whose volumes nest inside) skip them. */
-static int culled(const bti_extract *e, const int64_t lo[3], const int64_t hi[3], unsigned *mask)
+ * *mask, so descendants (whose volumes nest inside) skip them.  With frame
+ * coherence, *cm is lowered to how far (Q30 world units) the tested planes' values
+ * at the box may move before an answer changes: sp < 0 (outside) while the move is
+ * <= -sp - 1, sn >= 0 (inside) while <= sn, both else. */
+static int culled(const bti_extract *e, const int64_t lo[3], const int64_t hi[3], unsigned *mask, int64_t *cm)
 {
     int i, k;
     if (e->p->no_cull) { *mask = 0; return 0; }
@@ -139,10 +144,23 @@ static int culled(const bti_extract *e, const int64_t lo[3], const int64_t hi[3]
             sp += nk * (nk >= 0 ? hi[k] : lo[k]);
             sn += nk * (nk >= 0 ? lo[k] : hi[k]);
         }
+        if (e->coh) {
+            int64_t g = sp < 0 ? -sp - 1 : (sn >= 0 ? sn : (sp < -sn - 1 ? sp : -sn - 1));
+            if (sp < 0) { *cm = g; return 1; }
+            if (g < *cm) *cm = g;
+        }
         if (sp < 0) return 1;
         if (sn >= 0) *mask &= ~(1u << i);
     }
     return 0;
+}
+
+/* The object error of code (not BT_CODE_SPLIT) in world units, rounded up;
+ * bt_code_value's exact codes below 4096 without the call */
+static inline int64_t obj_err(const bti_extract *e, uint16_t code)
+{
+    int64_t ew = isat_mul(code < 4096 ? (int64_t)code : bt_code_value(code), e->p->fr.sz_q16);
+    return ew == INT64_MAX ? ew : (ew + 65535) >> 16;
 }
 
 /* Screen-space error of diamond (x, y) in slot id: *ew = object error in world units
@@ -150,7 +168,7 @@ static int culled(const bti_extract *e, const int64_t lo[3], const int64_t hi[3]
  * culled (all void or outside the frustum), 1 when the error is unbounded (mixed
  * voids, or the eye inside the volume with a nonzero error), 0 otherwise. */
 static int view_err(const bti_extract *e, int32_t x, int32_t y, uint32_t id, unsigned *mask, int64_t *ew,
-                    int64_t *d)
+                    int64_t *d, int64_t *cm)
 {
     const bt_tree *t = e->t;
     int64_t lo[3], hi[3];
@@ -158,10 +176,9 @@ static int view_err(const bti_extract *e, int32_t x, int32_t y, uint32_t id, uns
     uint16_t code = BT_NODE_ERR(nv);
     if (BT_NODE_ZLO(nv) > BT_NODE_ZHI(nv)) return -1; /* all void */
     dvolume(e, x, y, id, lo, hi);
-    if (*mask && culled(e, lo, hi, mask)) return -1;
+    if (*mask && culled(e, lo, hi, mask, cm)) return -1;
     if (code == BT_CODE_SPLIT) return 1;
-    *ew = isat_mul(bt_code_value(code), e->p->fr.sz_q16);
-    *ew = *ew == INT64_MAX ? *ew : (*ew + 65535) >> 16;
+    *ew = obj_err(e, code);
     *d = box_dist(e->p->c->eye, lo, hi);
     if (*d <= 0) { *d = 0; return *ew > 0 ? 1 : 0; }
     return 0;
@@ -171,8 +188,8 @@ static int view_err(const bti_extract *e, int32_t x, int32_t y, uint32_t id, uns
 static int64_t rho_q8(const bti_extract *e, int32_t x, int32_t y)
 {
     unsigned mask = 0x3f;
-    int64_t ew = 0, d = 0;
-    int r = view_err(e, x, y, bti_slot(e->t, x, y), &mask, &ew, &d);
+    int64_t ew = 0, d = 0, cm;
+    int r = view_err(e, x, y, bti_slot(e->t, x, y), &mask, &ew, &d, &cm);
     if (r < 0) return -1;
     if (r > 0) return INT64_MAX;
     if (d == 0) return 0;
@@ -230,58 +247,115 @@ static uint16_t morph_at(const bti_extract *e, int64_t lhs, int64_t d)
 
 /* Diamond (x, y) in slot idx: returns 1 split, 0 leaf, -1 drop (culled); *morph
  * set for split vertices; *mask: frustum planes still to test (view and budget
- * modes) */
-static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph)
+ * modes); *exp: how long the view rule's answer holds (core/bt_coh.c), 0 for one
+ * frame */
+static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph,
+                  uint64_t *exp)
 {
     bt_tree *t = e->t;
-    int64_t ew = 0, d = 0;
+    int64_t ew = 0, d = 0, cm = INT64_MAX;
+    unsigned m_in = *mask;
     int r;
     *morph = BT_MORPH_ONE;
+    *exp = 0;
     if (e->fid) return BT_NODE_ERR(e->t->node[idx]) > e->cthr;
     if (e->p->mode == BT_BUDGET || e->tau < 0) {
         if (e->p->mode == BT_FIDELITY) return (t->st[idx] & ST_SPLIT) != 0;
-        r = view_err(e, x, y, idx, mask, &ew, &d);
+        r = view_err(e, x, y, idx, mask, &ew, &d, &cm);
         if (r < 0) return -1;
         if (!(t->st[idx] & ST_SPLIT)) return 0;
         if (e->morph_span > 0 && r == 0 && d > 0) *morph = morph_at(e, isat_mul(ew, e->fq8), d);
         return 1;
     }
-    r = view_err(e, x, y, idx, mask, &ew, &d);
-    if (r < 0) return -1;
-    if (r > 0) return 1;
+    r = view_err(e, x, y, idx, mask, &ew, &d, &cm);
+    if (r != 0) {
+        /* culled (outside a plane, or all void: cm stays INT64_MAX), or split whatever
+         * the distance (BT_CODE_SPLIT; the eye inside the volume: d = 0, not kept) */
+        if (e->coh && (r < 0 || BT_NODE_ERR(t->node[idx]) == BT_CODE_SPLIT))
+            *exp = bti_coh_entry(e, r, 0, -1, BT_MORPH_ONE, m_in, *mask, cm);
+        return r < 0 ? -1 : 1;
+    }
     {
         /* rho = ew * f / d > tau  <=>  ew * f > tau * d (no division) */
         int64_t lhs = isat_mul(ew, e->fq8);
         int sp = lhs > isat_mul(e->tau, d) ||
                  ((e->prev[idx] & ST_PREV) && lhs > isat_mul(e->tau_lo, d));
         if (sp && e->morph_span > 0) *morph = d > 0 ? morph_at(e, lhs, d) : BT_MORPH_ONE;
+        if (e->coh) *exp = bti_coh_entry(e, sp, lhs, d, *morph, m_in, *mask, cm);
         return sp;
     }
 }
 
-/* decide() for the view rule, memoised within the frame.  A diamond is reached
+#if BR_COHERENCE
+/* The geomorph weight decide() gives diamond (x, y) in slot idx, known to be split
+ * and not culled: view_err's distance and object error, decide's morph_at. */
+static uint16_t morph_now(const bti_extract *e, int32_t x, int32_t y, uint32_t idx)
+{
+    int64_t lo[3], hi[3], ew, d;
+    dvolume(e, x, y, idx, lo, hi);
+    d = box_dist(e->p->c->eye, lo, hi);
+    if (d <= 0) return BT_MORPH_ONE;
+    ew = obj_err(e, BT_NODE_ERR(e->t->node[idx]));
+    return morph_at(e, isat_mul(ew, e->fq8), d);
+}
+#endif
+
+/* decide() for the view rule, memoised.  Within the frame: a diamond is reached
  * twice, once from each half, and the rule gives both visits the same answer: it
  * reads only the diamond, the camera and ST_PREV (unchanged until the frame ends),
  * and culled() answers the same under either half's plane mask, because a plane
  * leaves a mask only when an enclosing volume lies inside it (volumes nest).  A
  * memo hit keeps the parent's mask: the children test planes they could skip, with
- * the same answers.  The memo is a direct-mapped cache (a miss only recomputes);
- * an entry is gen << 48 | (answer + 1) << 46 | morph << 30 | slot (< 2^30: w, h <=
- * BR_MAX_SIDE = 16385, so w*h < 2^28, plus the bands), valid in the extraction
- * whose 16-bit generation (1 .. 0xFFFF, reset_mesh) it holds.  Padding diamonds
- * without a slot share the void slot and its answer: VOID is culled (-1) in the
- * view rule whatever the diamond. */
+ * the same answers.  Across frames (BR_COHERENCE): an entry of an earlier frame is
+ * the answer now when it was made under the same plane mask, the travel since is
+ * within its margin (core/bt_coh.c: the eye's, and with planes to test the planes'
+ * too) and the diamond's ST_PREV is the one the margin assumed (set iff it was
+ * split); the planes it left to its children then are the mask it hands on.  A
+ * split whose geomorph weight moves with the distance keeps its answer, and the
+ * weight is computed again (morph_now; the entry then holds it for this frame).  The
+ * memo is a direct-mapped cache (a miss only recomputes); an entry's first word is
+ * gen << 48 | (answer + 1) << 46 | morph << 30 | slot (< 2^30: w, h <= BR_MAX_SIDE =
+ * 16385, so w*h < 2^28, plus the bands), the frame of the extraction whose 16-bit
+ * generation (1 .. 0xFFFF, reset_mesh) it holds; its second mask_out << 58 |
+ * mask_in << 52 | moving << 51 | expiry (bti_coh_entry).  Padding diamonds without a slot share the
+ * void slot and its answer: VOID is culled (-1) in the view rule whatever the
+ * diamond. */
 static int decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph)
 {
     const bt_mesh *m = e->m;
-    uint64_t *slot = &m->memo[(idx * 2654435761u >> 8) & m->memo_mask], v = *slot;
+    uint64_t *slot = &m->memo[((idx * 2654435761u >> 8) & m->memo_mask) * BTI_MEMO_W], v = *slot, exp;
     int sp;
-    if ((uint32_t)(v >> 48) == m->memo_gen && (uint32_t)(v & 0x3fffffffu) == idx) {
-        *morph = (uint16_t)(v >> 30);
-        return (int)((v >> 46) & 3) - 1;
+    if ((uint32_t)(v & 0x3fffffffu) == idx) {
+        sp = (int)((v >> 46) & 3) - 1;
+        if ((uint32_t)(v >> 48) == m->memo_gen) {
+            *morph = (uint16_t)(v >> 30);
+            return sp;
+        }
+#if BR_COHERENCE
+        {
+            uint64_t w = slot[1];
+            unsigned m_in = (unsigned)(w >> BTI_COH_BITS) & 63u;
+            if (*mask == m_in && (m_in ? e->coh_x : e->coh_acc) <= (w & BTI_COH_EXP)
+                && (sp > 0) == ((e->prev[idx] & ST_PREV) != 0)) {
+                *mask = (unsigned)(w >> (BTI_COH_BITS + 6));
+                if (!(w & BTI_COH_MOVING)) {
+                    *morph = (uint16_t)(v >> 30);
+                    return sp;
+                }
+                *morph = morph_now(e, x, y, idx);    /* the split holds, its weight moves */
+                *slot = (uint64_t)m->memo_gen << 48 | (uint64_t)2 << 46 | (uint64_t)*morph << 30 | idx;
+                return 1;
+            }
+        }
+#endif
     }
-    sp = decide(e, x, y, idx, mask, morph);
+    sp = decide(e, x, y, idx, mask, morph, &exp);
     *slot = (uint64_t)m->memo_gen << 48 | (uint64_t)(sp + 1) << 46 | (uint64_t)*morph << 30 | idx;
+#if BR_COHERENCE
+    slot[1] = exp;
+#else
+    (void)exp;
+#endif
     return sp;
 }
 
@@ -386,7 +460,7 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
     uint32_t id;
     if (e->full) return;
     if ((a->x + b->x) & 1) {     /* unit legs: the hypotenuse midpoint is no sample */
-        if (e->nonvoid || (valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y)))
+        if (tri_valid(e, a, c, b))
             leaf(e, a, c, b, in_hyp, out_hyp);
         return;
     }
@@ -395,13 +469,16 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
     mm.y = a->y + (dy >> 1);
     id = bti_slot(e->t, mm.x, mm.y);
     if (e->rec_splits) sp = decide_memo(e, mm.x, mm.y, id, &mask, &mm.morph);
-    else sp = decide(e, mm.x, mm.y, id, &mask, &mm.morph);
+    else {
+        uint64_t exp;
+        sp = decide(e, mm.x, mm.y, id, &mask, &mm.morph, &exp);
+    }
     if (sp < 0) return;
     if (!sp) {
         /* a triangle over voids that a budget left unsplit is dropped, never
          * drawn over the void (its corners may all be valid) */
         if (!e->nonvoid && BT_NODE_ERR(e->t->node[id]) == BT_CODE_SPLIT) return;
-        if (e->nonvoid || (valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y)))
+        if (tri_valid(e, a, c, b))
             leaf(e, a, c, b, in_hyp, out_hyp);
         return;
     }
@@ -489,7 +566,8 @@ static void top(bti_extract *e, bt_parts *ps, pt *a, pt *c, pt *b, int in_hyp, i
         mm.idx = NO_IDX;
         mm.x = a->x + ((b->x - a->x) >> 1);
         mm.y = a->y + ((b->y - a->y) >> 1);
-        sp = decide(e, mm.x, mm.y, bti_slot(e->t, mm.x, mm.y), &mask, &mm.morph);
+        uint64_t exp;
+        sp = decide(e, mm.x, mm.y, bti_slot(e->t, mm.x, mm.y), &mask, &mm.morph, &exp);
         if (sp < 0) return;
     }
     if (!sp) {
@@ -529,6 +607,7 @@ br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p)
     if (!t || !p || !t->node) return BR_E_ARG;
     e->t = t; e->p = p; e->n = t->n; e->S = t->n - 1;
     e->nonvoid = t->nvalid == (int64_t)t->n * t->n;
+    e->nodata_free = t->nvalid == (int64_t)t->w * t->h;
     e->fid = p->mode == BT_FIDELITY;
     if (p->strip_order < BT_ORDER_AUTO || p->strip_order > BT_ORDER_BEST) return BR_E_ARG;
     e->reorder = p->strip_order == BT_ORDER_BEST || (p->strip_order == BT_ORDER_AUTO && p->mode == BT_FIDELITY);
@@ -617,7 +696,7 @@ uint32_t bti_reset_mesh(bt_mesh *m)
         *base = 0;
     } else *base += m->nv;
     if (++m->memo_gen > 0xFFFFu) {   /* entries of generation 0 were written 2^16 extractions ago */
-        memset(m->memo, 0, ((size_t)m->memo_mask + 1) * 8);
+        memset(m->memo, 0, ((size_t)m->memo_mask + 1) * 8 * BTI_MEMO_W);
         m->memo_gen = 1;
     }
     m->nv = 0; m->ns = 0; m->ntri = 0; m->nline = 0; m->nfict = 0; m->overflow = 0;
@@ -664,6 +743,8 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         e.fid = 0;
     } else {
         e.rec_splits = p->mode == BT_VIEW ? 1 : 0;
+        if (e.rec_splits && bti_coh_frame(&e, &m->coh))
+            memset(m->memo, 0, ((size_t)m->memo_mask + 1) * 8 * BTI_MEMO_W);
         run(&e);
         if (!e.full) {
             if (e.rec_splits) {

@@ -15,7 +15,8 @@ static uint32_t hash_size(uint32_t cap_v)
     return s;
 }
 
-/* Slots of the decision memo: 2 per triangle, 64 .. 2^18 (2 MiB); a lossy cache */
+/* Words of the decision memo: 2 per triangle, 64 .. 2^18 (2 MiB), an entry of
+ * BTI_MEMO_W of them each (BR_COHERENCE: 2, the expiry); a lossy cache */
 static uint32_t memo_size(uint32_t max_tri)
 {
     uint32_t s = 64;
@@ -108,8 +109,8 @@ br_status bt_mesh_init_v(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem
     p = (uint8_t *)(void *)(bti_ids_of(m) + bti_heap_cap(m));
     p += (8 - ((uintptr_t)p & 7)) & 7;
     m->memo = (uint64_t *)(void *)p;
-    m->memo_mask = memo_size(memo_for(max_tri, max_v)) - 1;
-    memset(m->memo, 0, ((size_t)m->memo_mask + 1) * 8);
+    m->memo_mask = memo_size(memo_for(max_tri, max_v)) / BTI_MEMO_W - 1;
+    memset(m->memo, 0, ((size_t)m->memo_mask + 1) * 8 * BTI_MEMO_W);
     m->memo_gen = 0;
     return BR_OK;
 }

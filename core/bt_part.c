@@ -63,6 +63,10 @@ br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh
     if (p->mode != BT_VIEW || ps->e0.reorder || !t->st) return bt_extract(t, p, m);
     ps->serial = 0;
     ps->e0.rec_splits = 2;
+    if (bti_coh_frame(&ps->e0, &ps->coh)) {
+        uint32_t k;
+        for (k = 0; k < BT_PARTS; k++) memset(ps->slot[k].m.memo, 0, (size_t)ps->mfull * 8 * BTI_MEMO_W);
+    }
     bti_part_roots(&ps->e0, ps);
     *nparts = ps->nroot;
     return BR_OK;
@@ -83,7 +87,7 @@ static void part_reset(bt_parts *ps, uint32_t k, uint32_t hs, uint32_t ms, bti_e
         ps->hbase[k] = 0;
     } else ps->hbase[k] += pm->nv;
     if (++pm->memo_gen > 0xFFFFu) {
-        memset(pm->memo, 0, (size_t)ps->mfull * 8);
+        memset(pm->memo, 0, (size_t)ps->mfull * 8 * BTI_MEMO_W);
         pm->memo_gen = 1;
     }
     pm->hmask = hs - 1;
@@ -108,10 +112,11 @@ void bt_extract_part(bt_parts *ps, uint32_t k)
     e = &ps->slot[k].e;
     /* tables for twice last frame's vertices (load <= 1/4 of the hash): a part's
      * hash and memo stay in cache where the allocated ones (sized for part_tri)
-     * would spread its few thousand vertices over megabytes */
+     * would spread its few thousand vertices over megabytes; the memo has 4 slots a
+     * hash slot, so that most of last frame's decisions are still there to reuse */
     while (hs < 8 * (uint64_t)ps->hint_nv[k] && hs < ps->hfull) hs <<= 1;
     if (hs > ps->hfull) hs = ps->hfull;
-    ms = hs < ps->mfull ? hs : ps->mfull;
+    ms = 4 * hs < ps->mfull ? 4 * hs : ps->mfull;
     part_reset(ps, k, hs, ms, e);
     bti_part_walk(e, &ps->root[k]);
     if (e->full && hs < ps->hfull) {     /* the small hash filled up: again with all of it */

@@ -40,6 +40,15 @@
 #endif
 #endif
 
+/* Frame coherence of the view rule's decisions (core/bt_mesh.c decide_memo;
+ * docs/bitree.md "Frame coherence"): 1 = a decision memo entry carries the eye travel
+ * up to which it stays valid, so later frames reuse it instead of evaluating the
+ * diamond again (16 bytes an entry: the memo's bytes hold half as many; the same
+ * meshes); 0 = the memo holds one frame's decisions only (8 bytes an entry). */
+#ifndef BR_COHERENCE
+#define BR_COHERENCE 1
+#endif
+
 /* ------------------------------------------------------------------ raster/ */
 
 /* Which variants of the per-triangle code are compiled (raster/raster_pixel.h): pixel

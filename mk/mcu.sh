@@ -95,9 +95,11 @@ for core in m0plus m3; do
   # are expanded inline as on a hosted build; libc_min.c itself is built without it
   # (a loop there must not become a call to the function it is in)
   # platform/board/include: the board's own <string.h> (no C library's headers needed)
+  # BR_COHERENCE=0: the decision memo holds one frame's decisions, twice as many in its
+  # bytes (the same meshes)
   XFLAGS="-std=c99 $WARN -O2 -g -mthumb -mcpu=$cpu -mfloat-abi=soft -ffreestanding -fbuiltin -ffunction-sections -fdata-sections \
     -isystem platform/board/include \
-    -DRS_WITH_888=0 -DRS_WITH_Z32=0 -DRS_WITH_TEX=0 $SIZES -I."
+    -DRS_WITH_888=0 -DRS_WITH_Z32=0 -DRS_WITH_TEX=0 -DBR_COHERENCE=0 $SIZES -I."
   objs="" ok=1
   for f in core/*.c raster/*.c; do
     o=$d/obj/$(echo "$f" | tr / _ | sed 's/\.c$/.o/')

@@ -1,0 +1,200 @@
+/* core/bt_coh.c — frame coherence of the view rule's decisions: how far the eye may
+ * travel before a decision made now can change (contract: core/bt_em.h; the proof
+ * is docs/bitree.md "Frame coherence").
+ *
+ * The view rule (core/bt_mesh.c decide) splits a diamond that is not culled iff
+ * L > thr d, L = ew f (saturated product), d = box_dist(eye, volume), thr = tau_lo
+ * when the diamond has ST_PREV, else tau; a split vertex's geomorph weight is a
+ * function of L and d, 0 when L < tau d and ONE when L >= (tau + span) d.  Every
+ * quantity but d is fixed while the key (tree, frame, f, thresholds) is, and
+ *   |box_dist(e', V) - box_dist(e, V)| <= |e' - e|_1                         (1)
+ * (each per-axis distance to an interval moves by at most that axis' move; their
+ * max and floor(147 sum / 256) by at most the sum of the moves, an integer).  So a
+ * decision holds for every eye whose distance d' lies in an interval [lo, hi]
+ * around d, i.e. while the L1 travel since stays within min(hi - d, d - lo), given
+ * the ST_PREV that the next frames will read: a split diamond is listed and has
+ * ST_PREV next frame (tau_lo), an unsplit one has not (tau).  The memo checks that
+ * bit on reuse, so a diamond whose state was lost (budget fallback, split list
+ * overflow, not reached for a frame) is evaluated again.  The travel is summed
+ * frame to frame into c->acc (triangle inequality: the sum bounds the travel since
+ * any earlier frame), and an entry holds acc + margin, its expiry.
+ *
+ * The bounds lo, hi need quotients L / c; they come from reciprocals computed when
+ * the key changes (no 64-bit divide per frame), rounded towards the smaller
+ * margin and then checked with the rule's own saturated products, so that the
+ * interval is right whatever the rounding: the rule's products are monotone in d. */
+#include <string.h>
+#include "core/bitree.h"
+#include "core/bt_int.h"
+#include "core/bt_em.h"
+
+/* d < 2^32: every coordinate of the eye and of the volumes is within +-CAM_COORD_MAX
+ * < 2^30 (core/cam.h; bti_setup refuses larger frames), so each per-axis distance is
+ * < 2^31 and box_dist <= max(2^31, 3 * 2^31 * 147 / 256) < 2^32.  So a bound >= 2^32
+ * never binds, margins are < 2^32, and an entry lives at most COH_JUMP - 1 of travel:
+ * a key change adds COH_JUMP, past every expiry. */
+#define COH_DMAX ((int64_t)1 << 32)
+#define COH_JUMP ((uint64_t)1 << 34)
+#define COH_LIMIT ((uint64_t)1 << 50)   /* + COH_JUMP + a margin < 2^51 (BTI_COH_EXP) */
+
+static int32_t bits64(uint64_t v)
+{
+    int32_t b = 0;
+    if (v >> 32) { b = 32; v >>= 32; }
+    return v ? b + 32 - fx_clz32((uint32_t)v) : b;
+}
+
+#define sat_mul bti_isat_mul   /* the rule's own saturated product */
+
+/* <= floor(L / c) for r = floor(2^sh / c), c < 2^32 (sh = 31 + bits(c)): with s =
+ * max(0, bits(L) - 32), (L >> s) r 2^s / 2^sh <= L / c, and the product < 2^64. */
+static int64_t quot_lo(uint64_t L, uint64_t r, int32_t sh)
+{
+    int32_t s = bits64(L) - 32;
+    if (s < 0) s = 0;
+    return (int64_t)(((L >> s) * r) >> (sh - s));
+}
+
+/* Smallest-margin-safe bounds: the largest d' (>= 0) with c d' < L (strict) or
+ * c d' <= L, from below; -1 when unknown.  Checked: the product at the bound. */
+static int64_t below(int64_t L, int k, const bt_coh *c, int64_t cv, int strict)
+{
+    int64_t q;
+    if (!c->r[k]) return -1;
+    q = quot_lo((uint64_t)(strict ? L - 1 : L), c->r[k], c->sh[k]);
+    if (strict ? sat_mul(cv, q) >= L : sat_mul(cv, q) > L) return -1;
+    return q;
+}
+
+/* The smallest d' with c d' >= L (or > L when strict), from above; -1 when unknown. */
+static int64_t above(int64_t L, int k, const bt_coh *c, int64_t cv, int strict)
+{
+    int64_t q;
+    if (!c->r[k]) return -1;
+    q = quot_lo((uint64_t)L, c->r[k], c->sh[k]);
+    q += (q >> 28) + 2;       /* quot_lo is within 2^-29 L / c + 2 of L / c */
+    if (strict ? sat_mul(cv, q) <= L : sat_mul(cv, q) < L) return -1;
+    return q;
+}
+
+/* How far (L1 eye travel, world units) the answer sp (0, 1) for L and d holds: the
+ * distance interval [lo, hi] around d where it does, as margin min(hi - d, d - lo),
+ * at most COH_JUMP - 1; -1 when none is known.  *moving: the split holds, its weight
+ * does not (strictly between 0 and full, it moves with d). */
+static int64_t margin(const bti_extract *e, int sp, int64_t L, int64_t d, uint16_t morph, int *moving)
+{
+    const bt_coh *c = e->coh;
+    int64_t lo = 0, hi = INT64_MAX, m = (int64_t)COH_JUMP - 1;
+    if (L == INT64_MAX) return -1;                   /* a saturated L: no exact bound */
+    if (L == 0) return sp ? -1 : m;                  /* ew = 0: never split (unless culled) */
+    if (d <= 0) return -1;
+    if (sp) {
+        if (e->morph_span > 0 && morph == BT_MORPH_ONE) {
+            /* (tau + span) d' <= L implies tau_lo d' < L: tau_lo <= tau < tau + span, L > 0 */
+            if ((hi = below(L, 2, c, e->tau + e->morph_span, 0)) < 0) return -1;
+        } else {
+            *moving = e->morph_span > 0 && morph != 0;
+            if (e->tau_lo > 0 && (hi = below(L, 0, c, e->tau_lo, 1)) < 0) return -1;
+            if (e->morph_span > 0 && !*moving && (lo = above(L, 1, c, e->tau, 1)) < 0) return -1;
+        }
+    } else {
+        if ((lo = above(L, 1, c, e->tau, 0)) < 0) return -1;
+        if (lo < 1) lo = 1;                           /* d' = 0: the eye inside, split */
+    }
+    if (d > hi || d < lo) return -1;
+    if (hi < COH_DMAX && hi - d < m) m = hi - d;
+    if (lo > 0 && d - lo < m) m = d - lo;
+    return m;
+}
+
+uint64_t bti_coh_entry(const bti_extract *e, int sp, int64_t L, int64_t d, uint16_t morph, unsigned m_in,
+                       unsigned m_out, int64_t cm)
+{
+    const bt_coh *c = e->coh;
+    int moving = 0;
+    int64_t m = sp < 0 || d < 0 ? (int64_t)COH_JUMP - 1 : margin(e, sp, L, d, morph, &moving);
+    if (m < 0) return 0;
+    if (m_in) {
+        /* a plane's value at the box moves by at most the planes' travel (Q30 world
+         * units over 2^30, bti_coh_frame); cm / 2^30 rounded down */
+        int64_t mc = cm >> 30;
+        if (mc < m) m = mc;
+    }
+    m += c->slack;
+    if (m < 0) return 0;
+    return (uint64_t)m_out << (BTI_COH_BITS + 6) | (uint64_t)m_in << BTI_COH_BITS
+         | (moving ? BTI_COH_MOVING : 0) | ((m_in ? c->x : c->acc) + (uint64_t)m);
+}
+
+static void recip(bt_coh *c, int k, int64_t v)
+{
+    int32_t b;
+    c->r[k] = 0;
+    c->sh[k] = 0;
+    if (v <= 0 || v >= ((int64_t)1 << 32)) return;
+    b = bits64((uint64_t)v);
+    c->sh[k] = 31 + b;
+    c->r[k] = fx_udiv_bits((uint64_t)1 << c->sh[k], (uint64_t)v, 33);   /* < 2^32 */
+}
+
+/* How far the planes' values may have moved at any point within +-CAM_COORD_MAX,
+ * over 2^30, rounded up: d + n . p moves by at most |d' - d| + sum |n'_k - n_k|
+ * CAM_COORD_MAX, and the volumes' corners lie in that cube (bti_setup).  |d| < 2^63
+ * (core/cam.h), so the difference fits 64 bits unsigned. */
+static uint64_t plane_travel(const cam_plane *a, const cam_plane *b)
+{
+    uint64_t mx = 0;
+    int i, k;
+    for (i = 0; i < CAM_NPLANES; i++) {
+        uint64_t dd = a[i].d >= b[i].d ? (uint64_t)a[i].d - (uint64_t)b[i].d : (uint64_t)b[i].d - (uint64_t)a[i].d;
+        uint64_t t = (dd >> 30) + 1;
+        for (k = 0; k < 3; k++) {
+            int64_t dn = (int64_t)a[i].n[k] - b[i].n[k];
+            t += (uint64_t)(dn < 0 ? -dn : dn);
+        }
+        if (t > mx) mx = t;
+    }
+    return mx;
+}
+
+int bti_coh_frame(bti_extract *e, bt_coh *c)
+{
+    bt_coh_key k;
+    const int32_t *eye = e->p->c->eye;
+    int wrap = 0;
+    memset(&k, 0, sizeof k);
+    k.node = e->t->node; k.sum = e->t->sum; k.n = e->t->n; k.w = e->t->w; k.h = e->t->h;
+    k.zmin = e->t->zmin; k.zmax = e->t->zmax; k.no_cull = e->p->no_cull != 0;
+    k.fr = e->p->fr; k.fq8 = e->fq8; k.tau = e->tau; k.tau_lo = e->tau_lo; k.span = e->morph_span;
+    if (!c->valid || c->acc >= COH_LIMIT || c->x >= COH_LIMIT) {
+        int64_t slack = c->slack;
+        wrap = c->valid;                              /* entries may hold any expiry */
+        memset(c, 0, sizeof *c);
+        c->slack = slack;
+        c->acc = c->x = 1;
+    }
+    if (memcmp(&k, &c->key, sizeof k) != 0) {
+        memcpy(&c->key, &k, sizeof k);   /* padding too: memcmp compares it */
+        c->acc += c->valid ? COH_JUMP : 0;            /* every earlier expiry has passed */
+        c->x += c->valid ? COH_JUMP : 0;
+        recip(c, 0, k.tau_lo);
+        recip(c, 1, k.tau);
+        recip(c, 2, k.tau + k.span);
+    } else {
+        uint64_t t = 0, pt = plane_travel(e->pl, c->pl);
+        int i;
+        for (i = 0; i < 3; i++) {
+            int64_t dv = (int64_t)eye[i] - c->eye[i];
+            t += (uint64_t)(dv < 0 ? -dv : dv);
+        }
+        c->acc += t;
+        c->x += t + (pt < COH_JUMP ? pt : COH_JUMP);
+    }
+    c->valid = 1;
+    memcpy(c->eye, eye, sizeof c->eye);
+    memcpy(c->pl, e->pl, sizeof c->pl);
+    e->coh = BR_COHERENCE ? c : NULL;
+    e->coh_acc = BR_COHERENCE && !e->p->no_coherence ? c->acc : UINT64_MAX;
+    e->coh_x = BR_COHERENCE && !e->p->no_coherence ? c->x : UINT64_MAX;
+    return wrap;
+}

@@ -1,0 +1,271 @@
+/* tests/test_coherence.c — frame coherence of the view selection (core/bt_coh.c,
+ * docs/bitree.md "Frame coherence"): with decisions reused across frames, every
+ * frame's mesh is byte for byte the one a from-scratch extraction (p->no_coherence)
+ * gives for the same camera and hysteresis state, serially and in parts.
+ * Two copies of the tree share its nodes and keep their own frame state; each frame
+ * both extract and the vertices, strip, counts and frame state (the split list the
+ * next frame's hysteresis reads) are compared.
+ * Scenes: the default terrain (assets/N47E009.hgt.gz) along the shipped camera paths
+ * and a 20 m a frame flight with stops, jumps, turns and parameter changes; the
+ * same flight over mt_rainier_90m.tif and fuji.png (../shared/data/dem, with voids).
+ * A margin made too generous by the test hook (bt_coh.slack) must show. */
+#include <math.h>
+#include "tests/test.h"
+#include "platform/campath.h"
+#include "platform/scene.h"
+#include "core/bt_em.h"
+#include "core/config.h"
+
+#define W 320
+#define H 240
+#define MAX_TRI 400000u
+
+typedef struct side {
+    bt_tree t;
+    bt_mesh m;
+    void *mm;
+    bt_parts *ps;
+    void *pm;
+} side;
+
+static scene sc;
+static side A, B;           /* A: coherent, B: from scratch */
+static long frames, differ;
+
+static int side_open(side *s)
+{
+    size_t mb = bt_mesh_mem_size(MAX_TRI), pb = bt_parts_mem_size(32768);
+    memset(s, 0, sizeof *s);
+    s->t = sc.tree;
+    s->t.st = calloc(sc.tree.nslot, 1);
+    s->mm = malloc(mb);
+    s->pm = malloc(pb);
+    if (!s->t.st || !s->mm || !s->pm) return 0;
+    return bt_mesh_init(&s->m, MAX_TRI, s->mm, mb) == BR_OK && bt_parts_init(&s->ps, 32768, s->pm, pb) == BR_OK;
+}
+
+static void side_close(side *s)
+{
+    free(s->t.st); free(s->mm); free(s->pm);
+    memset(s, 0, sizeof *s);
+}
+
+static int open_dem(const char *path)
+{
+    br_err err;
+    const char *in[1];
+    scene_opts o;
+    in[0] = path;
+    memset(&o, 0, sizeof o);
+    o.quiet = 1;
+    memset(&sc, 0, sizeof sc);
+    if (scene_open(&sc, in, 1, &o, &err) != BR_OK) { fprintf(stderr, "%s\n", err.msg); return 0; }
+    if (scene_tree(&sc, &err) != BR_OK) { fprintf(stderr, "%s\n", err.msg); return 0; }
+    return side_open(&A) && side_open(&B);
+}
+
+static void close_dem(void)
+{
+    side_close(&A); side_close(&B);
+    scene_close(&sc);
+}
+
+static br_status extract(side *s, const bt_params *p, int parts)
+{
+    uint32_t n, k, v0, nv;
+    br_status st;
+    if (!parts) return bt_extract(&s->t, p, &s->m);
+    st = bt_extract_begin(s->ps, &s->t, p, &s->m, &n);
+    if (st != BR_OK) return st;
+    for (k = n; k-- > 0;) bt_extract_part(s->ps, k);     /* any order */
+    st = bt_extract_end(s->ps, &n);
+    for (k = 0; k < n; k++) bt_extract_join(s->ps, k, &v0, &nv);
+    return st;
+}
+
+/* 1 when A's and B's meshes and frame states are the same */
+static int same(void)
+{
+    const bt_mesh *a = &A.m, *b = &B.m;
+    return a->nv == b->nv && a->ns == b->ns && a->ntri == b->ntri && a->nline == b->nline && a->nfict == b->nfict
+        && a->overflow == b->overflow && a->nsplits == b->nsplits
+        && !memcmp(a->v, b->v, (size_t)a->nv * sizeof *a->v) && !memcmp(a->strip, b->strip, (size_t)a->ns * 4)
+        && !memcmp(A.t.st, B.t.st, sc.tree.nslot);
+}
+
+static uint64_t fnv_mesh(const bt_mesh *m)
+{
+    const uint8_t *b = (const uint8_t *)m->v;
+    uint64_t h = 0xcbf29ce484222325ull;
+    size_t i;
+    for (i = 0; i < (size_t)m->nv * sizeof *m->v; i++) h = (h ^ b[i]) * 0x100000001b3ull;
+    return h;
+}
+
+typedef struct knobs { int32_t mode, pix_q8, hyst_q8, morph_q8, w, h, parts; uint32_t budget; } knobs;
+
+/* One frame on both sides; counts frames whose meshes differ (differ). */
+static int frame(const double eye[6], const knobs *k)
+{
+    cam c;
+    bt_params pa, pb;
+    if (scene_camera(&sc, eye, eye + 3, 60, k->w, k->h, &c) != BR_OK) return 0;
+    memset(&pa, 0, sizeof pa);
+    pa.mode = k->mode;
+    pa.c = &c;
+    pa.fr = sc.rt.fr;
+    pa.pixel_err_q8 = k->pix_q8; pa.hyst_q8 = k->hyst_q8; pa.morph_q8 = k->morph_q8;
+    pa.budget = k->budget;
+    pb = pa;
+    pb.no_coherence = 1;
+    if (extract(&A, &pa, k->parts) != BR_OK || extract(&B, &pb, k->parts) != BR_OK) return 0;
+    frames++;
+    if (!same()) differ++;
+    return A.m.ntri > 100;
+}
+
+static const knobs VIEWER = { BT_VIEW, 256, 64, 128, W, H, 1, 0 };
+
+static void fly_path(const char *file, int parts, int nmax)
+{
+    campath cp;
+    br_err err;
+    knobs k = VIEWER;
+    int i, ok = 1;
+    k.parts = parts;
+    CHECK(campath_read(file, &cp, &err) == BR_OK);
+    if (!cp.n) return;
+    frames = differ = 0;
+    for (i = 0; i < cp.n && i < nmax; i++) ok &= frame(cp.cam[i], &k);
+    CHECK_MSG(ok, "%s", file);
+    CHECK_MSG(differ == 0, "%s: %ld of %ld frames differ", file, differ, frames);
+    campath_free(&cp);
+}
+
+/* The shipped paths on the default terrain, frame by frame (about 16 m a frame), in
+ * parts (the viewer's and the bench's way) and serially. */
+static void test_coherence_paths(void)
+{
+    if (!open_dem("assets/N47E009.hgt.gz")) { CHECK(0); return; }
+    fly_path("assets/default-path.cam", 1, 300);
+    fly_path("assets/lake-path.cam", 1, 300);
+    fly_path("assets/alps-path.cam", 0, 120);     /* its first 120 frames: 18 k triangles each */
+    close_dem();
+}
+
+/* A flight over the scene towards its far corner at 20 m a frame, 1500 m above the
+ * highest sample at the start, descending, with stops (the same camera again), turns
+ * on the spot, a slow pan from one place, jumps, and frames with other parameters
+ * in between (hysteresis off, no geomorph, another pixel error, another size, the
+ * budget rule); every frame compared. */
+static void flight(int parts, int64_t slack)
+{
+    int i;
+    A.m.coh.slack = slack;
+    A.ps->coh.slack = slack;
+    for (i = 0; i < 160; i++) {
+        knobs k = VIEWER;
+        double e[6], a = 0.6 + 0.002 * i, t = i < 60 ? i : (i < 64 ? 60 : (i < 110 ? i - 4 : (i < 130 ? 106 : i - 24)));
+        k.parts = parts;
+        if (i >= 90 && i < 93) a += 0.4 * (i - 89);          /* turns on the spot */
+        if (i >= 110 && i < 130) a += 0.004 * (i - 110);      /* a slow pan: only the planes move */
+        e[0] = 0.15 * sc.width_m + 20.0 * t * 0.8;
+        e[1] = 0.10 * sc.depth_m + 20.0 * t * 0.6;
+        if (i >= 100) e[0] += 0.2 * sc.width_m;                /* jumps */
+        if (i >= 101) e[1] += 0.2 * sc.depth_m;
+        e[2] = sc.zmax_m + 1500.0 - 5.0 * i;
+        e[3] = e[0] + 3000 * cos(a); e[4] = e[1] + 3000 * sin(a); e[5] = e[2] - 900;
+        if (i == 70) k.hyst_q8 = 0;
+        if (i == 72) k.morph_q8 = 0;
+        if (i == 74) k.pix_q8 = 400;
+        if (i == 76) { k.w = 640; k.h = 480; }
+        if (i == 78) { k.mode = BT_BUDGET; k.budget = 3000; }
+        (void)frame(e, &k);
+    }
+}
+
+/* World units (core/cam.h) in a metre: the frame's grid step over the sample spacing */
+static int64_t metre(void)
+{
+    return (int64_t)((double)sc.rt.fr.sx * (sc.f.w - 1) / sc.width_m + 0.5);
+}
+
+static void test_coherence_flights(void)
+{
+    static const char *dems[] = { "assets/N47E009.hgt.gz", "tif/mt_rainier_90m.tif", "png/fuji.png" };
+    int d;
+    for (d = 0; d < 3; d++) {
+        const char *path = d ? t_data(dems[d]) : dems[d];
+        if (!open_dem(path)) { CHECK_MSG(0, "%s", dems[d]); continue; }
+        frames = differ = 0;
+        flight(0, 0);
+        flight(1, 0);
+        CHECK_MSG(frames == 320 && differ == 0, "%s: %ld of %ld frames differ", dems[d], differ, frames);
+        close_dem();
+    }
+}
+
+/* The comparison sees a margin that is too generous: 20 m more travel before a
+ * decision is evaluated again gives other meshes. */
+static void test_coherence_margin_matters(void)
+{
+    if (!open_dem("assets/N47E009.hgt.gz")) { CHECK(0); return; }
+    frames = differ = 0;
+    flight(1, 20 * metre());
+    CHECK_MSG(differ > 0 || !BR_COHERENCE, "%ld of %ld frames differ", differ, frames);
+    frames = differ = 0;
+    flight(0, 20 * metre());
+    CHECK_MSG(differ > 0 || !BR_COHERENCE, "%ld of %ld frames differ", differ, frames);
+    close_dem();
+}
+
+/* A tree built again into the same memory from other heights (same size, node
+ * pointer and height range) is another tree to the memo: the node hash (bt_tree.sum)
+ * is part of its key, so the coherent side still matches. */
+static void test_coherence_rebuilt_tree(void)
+{
+    size_t tb, sb;
+    void *scratch;
+    int32_t x, y, zmin, zmax;
+    uint64_t before;
+    knobs k = VIEWER;
+    double e[6];
+    int i;
+    if (!open_dem("assets/N47E009.hgt.gz")) { CHECK(0); return; }
+    tb = bt_mem_size(sc.f.w, sc.f.h);
+    sb = bt_scratch_size(sc.f.w, sc.f.h);
+    scratch = malloc(sb);
+    CHECK(scratch != NULL);
+    if (!scratch) { close_dem(); return; }
+    frames = differ = 0;
+    k.parts = 0;
+    e[0] = 0.3 * sc.width_m; e[1] = 0.3 * sc.depth_m; e[2] = sc.zmax_m + 500;
+    e[3] = 0.5 * sc.width_m; e[4] = 0.5 * sc.depth_m; e[5] = sc.zmin_m;
+    for (i = 0; i < 3; i++) { CHECK(frame(e, &k)); e[0] += 20; }
+    before = fnv_mesh(&B.m);
+    zmin = sc.tree.zmin; zmax = sc.tree.zmax;
+    /* the heights of the block the camera looks at, mirrored within their range */
+    for (y = sc.f.h / 3; y < sc.f.h * 2 / 3; y++)
+        for (x = sc.f.w / 3; x < sc.f.w * 2 / 3; x++) {
+            int32_t *z = &sc.f.z[(size_t)y * sc.f.w + x];
+            if (*z != HF_NODATA && *z > zmin + 1 && *z < zmax - 1) *z = zmax + zmin - *z;
+        }
+    CHECK_EQ(bt_build(&sc.tree, &sc.f, BT_METRIC_EXACT, sc.tree_mem, tb, scratch, sb), BR_OK);
+    CHECK(sc.tree.node == A.t.node && sc.tree.zmin == zmin && sc.tree.zmax == zmax && sc.tree.sum != A.t.sum);
+    A.t.node = B.t.node = sc.tree.node;
+    A.t.sum = B.t.sum = sc.tree.sum;
+    for (i = 0; i < 3; i++) { CHECK(frame(e, &k)); e[0] += 20; }
+    CHECK(fnv_mesh(&B.m) != before);        /* the new heights change the mesh */
+    CHECK_MSG(differ == 0, "%ld of %ld frames differ", differ, frames);
+    free(scratch);
+    close_dem();
+}
+
+int main(void)
+{
+    T_RUN(test_coherence_paths);
+    T_RUN(test_coherence_flights);
+    T_RUN(test_coherence_margin_matters);
+    T_RUN(test_coherence_rebuilt_tree);
+    return t_finish();
+}
