@@ -37,20 +37,13 @@
 #define COH_JUMP ((uint64_t)1 << 34)
 #define COH_LIMIT ((uint64_t)1 << 50)   /* + COH_JUMP + a margin < 2^51 (BTI_COH_EXP) */
 
-static int32_t bits64(uint64_t v)
-{
-    int32_t b = 0;
-    if (v >> 32) { b = 32; v >>= 32; }
-    return v ? b + 32 - fx_clz32((uint32_t)v) : b;
-}
-
 #define sat_mul bti_isat_mul   /* the rule's own saturated product */
 
 /* <= floor(L / c) for r = floor(2^sh / c), c < 2^32 (sh = 31 + bits(c)): with s =
  * max(0, bits(L) - 32), (L >> s) r 2^s / 2^sh <= L / c, and the product < 2^64. */
 static int64_t quot_lo(uint64_t L, uint64_t r, int32_t sh)
 {
-    int32_t s = bits64(L) - 32;
+    int32_t s = bti_bits(L) - 32;
     if (s < 0) s = 0;
     return (int64_t)(((L >> s) * r) >> (sh - s));
 }
@@ -132,7 +125,7 @@ static void recip(bt_coh *c, int k, int64_t v)
     c->r[k] = 0;
     c->sh[k] = 0;
     if (v <= 0 || v >= ((int64_t)1 << 32)) return;
-    b = bits64((uint64_t)v);
+    b = bti_bits((uint64_t)v);
     c->sh[k] = 31 + b;
     c->r[k] = fx_udiv_bits((uint64_t)1 << c->sh[k], (uint64_t)v, 33);   /* < 2^32 */
 }

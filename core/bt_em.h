@@ -4,6 +4,7 @@
 #ifndef BR_BT_EM_H
 #define BR_BT_EM_H
 #include <stdint.h>
+#include <string.h>
 #include "core/bitree.h"
 #include "core/bt_int.h"
 #include "core/config.h"
@@ -20,6 +21,12 @@ enum { ST_PREV = 1, ST_SPLIT = 2, ST_PUSHED = 4, ST_CUR = 8 };
 #else
 #define BTI_MEMO_W 1
 #endif
+
+/* Forgets every decision of a memo of `entries` entries (no generation matches 0) */
+static inline void bti_memo_clear(uint64_t *memo, uint32_t entries)
+{
+    memset(memo, 0, (size_t)entries * 8 * BTI_MEMO_W);
+}
 
 /* A vertex on its way down the recursion; idx caches its output index (the
  * children of a split share their parent's pt instances, so most lookups are

@@ -133,7 +133,13 @@ static inline uint64_t bti_node_sum(const uint32_t *node, uint32_t n)
     return h;
 }
 
-static inline int bti_bits(uint64_t v) { int b = 0; while (v >> b) b++; return b; }
+/* The bit length of v: 0 for 0, else 1 + the index of its highest set bit (1 .. 64) */
+static inline int bti_bits(uint64_t v)
+{
+    int b = 0;
+    if (v >> 32) { b = 32; v >>= 32; }
+    return v ? b + 32 - fx_clz32((uint32_t)v) : b;
+}
 
 /* The geomorph weight of a split vertex (core/bt_mesh.c morph_of) for rho =
  * floor(lhs / d), without a 64-bit divide: with q = rho - tau, 0 for q < 0, ONE for

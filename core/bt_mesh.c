@@ -188,7 +188,7 @@ static int view_err(const bti_extract *e, int32_t x, int32_t y, uint32_t id, uns
 static int64_t rho_q8(const bti_extract *e, int32_t x, int32_t y)
 {
     unsigned mask = 0x3f;
-    int64_t ew = 0, d = 0, cm;
+    int64_t ew = 0, d = 0, cm = INT64_MAX;
     int r = view_err(e, x, y, bti_slot(e->t, x, y), &mask, &ew, &d, &cm);
     if (r < 0) return -1;
     if (r > 0) return INT64_MAX;
@@ -696,7 +696,7 @@ uint32_t bti_reset_mesh(bt_mesh *m)
         *base = 0;
     } else *base += m->nv;
     if (++m->memo_gen > 0xFFFFu) {   /* entries of generation 0 were written 2^16 extractions ago */
-        memset(m->memo, 0, ((size_t)m->memo_mask + 1) * 8 * BTI_MEMO_W);
+        bti_memo_clear(m->memo, m->memo_mask + 1);
         m->memo_gen = 1;
     }
     m->nv = 0; m->ns = 0; m->ntri = 0; m->nline = 0; m->nfict = 0; m->overflow = 0;
@@ -744,7 +744,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
     } else {
         e.rec_splits = p->mode == BT_VIEW ? 1 : 0;
         if (e.rec_splits && bti_coh_frame(&e, &m->coh))
-            memset(m->memo, 0, ((size_t)m->memo_mask + 1) * 8 * BTI_MEMO_W);
+            bti_memo_clear(m->memo, m->memo_mask + 1);
         run(&e);
         if (!e.full) {
             if (e.rec_splits) {

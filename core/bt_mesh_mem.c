@@ -110,7 +110,7 @@ br_status bt_mesh_init_v(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem
     p += (8 - ((uintptr_t)p & 7)) & 7;
     m->memo = (uint64_t *)(void *)p;
     m->memo_mask = memo_size(memo_for(max_tri, max_v)) / BTI_MEMO_W - 1;
-    memset(m->memo, 0, ((size_t)m->memo_mask + 1) * 8 * BTI_MEMO_W);
+    bti_memo_clear(m->memo, m->memo_mask + 1);
     m->memo_gen = 0;
     return BR_OK;
 }

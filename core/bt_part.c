@@ -65,7 +65,7 @@ br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh
     ps->e0.rec_splits = 2;
     if (bti_coh_frame(&ps->e0, &ps->coh)) {
         uint32_t k;
-        for (k = 0; k < BT_PARTS; k++) memset(ps->slot[k].m.memo, 0, (size_t)ps->mfull * 8 * BTI_MEMO_W);
+        for (k = 0; k < BT_PARTS; k++) bti_memo_clear(ps->slot[k].m.memo, ps->mfull);
     }
     bti_part_roots(&ps->e0, ps);
     *nparts = ps->nroot;
@@ -87,7 +87,7 @@ static void part_reset(bt_parts *ps, uint32_t k, uint32_t hs, uint32_t ms, bti_e
         ps->hbase[k] = 0;
     } else ps->hbase[k] += pm->nv;
     if (++pm->memo_gen > 0xFFFFu) {
-        memset(pm->memo, 0, (size_t)ps->mfull * 8 * BTI_MEMO_W);
+        bti_memo_clear(pm->memo, ps->mfull);
         pm->memo_gen = 1;
     }
     pm->hmask = hs - 1;
