@@ -628,17 +628,9 @@ RSI_INLINE static void draw_strips(band *bd, const int vf)
                     const rs_cvert *va = &cache[ia], *vb = &cache[ib], *vc = &cache[ic];
                     if (va->c & vb->c & vc->c & REJECT) continue;
                     if ((va->c | vb->c | vc->c) & SLOW) { tri_clip(bd, ia, ib, ic, vf); continue; }
-                    {   /* tri_box's row test before the call: no pixel-centre row of the
-                         * band between the lowest and the highest vertex (many of a
-                         * list's triangles, as the water surfaces' shores, fall between
-                         * two rows or outside the band) */
-                        const int32_t ya = va->y, yb = vb->y, yc = vc->y;
-                        const int32_t ylo = ya < yb ? (ya < yc ? ya : yc) : (yb < yc ? yb : yc);
-                        const int32_t yhi = ya > yb ? (ya > yc ? ya : yc) : (yb > yc ? yb : yc);
-                        const int32_t lo = (ylo + RSI_HALF - 1) >> RSI_SUB, hi = (yhi - RSI_HALF) >> RSI_SUB;
-                        if ((lo > bd->y0 ? lo : bd->y0) > (hi < bd->y1 - 1 ? hi : bd->y1 - 1)) continue;
-                    }
-                    /* tri_raster's body for this variant, without its call and switch */
+                    /* tri_raster's body for this variant, without its call and switch: its
+                     * first test leaves a triangle with no pixel-centre row in the band
+                     * (many of a list's, as the water surfaces' shore slivers) */
                     tri_box(bd, va, vb, vc, vc, va->y < vb->y ? va->y : vb->y, va->y > vb->y ? va->y : vb->y,
                             va->x < vb->x ? va->x : vb->x, va->x > vb->x ? va->x : vb->x, 0, vf);
                 }
