@@ -284,6 +284,28 @@ static br_status to_img(void *user, int32_t y0, int32_t rows, const void *px, si
     return BR_OK;
 }
 
+/* What the lake tests start from: N47E009 opened with so, its water with wo, the camera
+ * eye -> tgt (fov 50) at w x h, the tree, a view mesh at 1 px (bp's other fields, such
+ * as hysteresis, the caller's) and the terrain frame fr (its format, depth and clear
+ * colour the caller's).  s, ws are zeroed first, so ws_close and scene_close may follow
+ * whatever failed. */
+static void lake_frame(scene *s, const scene_opts *so, water_scene *ws, const ws_opts *wo, const double eye[3],
+                       const double tgt[3], int32_t w, int32_t h, cam *c, bt_params *bp, rs_frame *fr)
+{
+    const char *in[1];
+    br_err err;
+    memset(s, 0, sizeof *s); memset(ws, 0, sizeof *ws); memset(&err, 0, sizeof err);
+    in[0] = t_data("hgt/N47E009.hgt");
+    CHECK_EQ(scene_open(s, in, 1, so, &err), BR_OK);
+    CHECK_EQ(ws_open(ws, s, wo, &err), BR_OK);
+    CHECK_EQ(scene_camera(s, eye, tgt, 50, w, h, c), BR_OK);
+    CHECK_EQ(scene_tree(s, &err), BR_OK);
+    CHECK_EQ(scene_reserve(s, 2000000, &err), BR_OK);
+    bp->mode = BT_VIEW; bp->c = c; bp->fr = s->rt.fr; bp->pixel_err_q8 = 256;
+    CHECK_EQ(scene_mesh(s, c, bp), BR_OK);
+    CHECK_EQ(scene_terrain(s, c, fr, NULL), BR_OK);
+}
+
 /* The reflection's own LOD: the lake from the water at 320x192, 1 px.  At
  * --reflection-error 4 the mirrored camera's selection has fewer triangles than at 1 and
  * the reflection frame sets up fewer (drawn whole, full resolution); by default (0) it
@@ -294,7 +316,6 @@ static br_status to_img(void *user, int32_t y0, int32_t rows, const void *px, si
 static void test_refl_lod(void)
 {
     enum { W = 320, H = 192 };
-    const char *in[1];
     static uint32_t col[W * H], dep[W * H];
     double eye[3] = { 40000, 66000, 420 }, tgt[3] = { 60000, 50000, 500 };
     scene s;
@@ -309,21 +330,14 @@ static void test_refl_lod(void)
     uint32_t ntri[2] = { 0, 0 }, tris[2] = { 0, 0 }, tns, i;
     uint32_t *tstrip = NULL;
     int k;
-    memset(&s, 0, sizeof s); memset(&so, 0, sizeof so); memset(&wo, 0, sizeof wo); memset(&ws, 0, sizeof ws);
+    memset(&so, 0, sizeof so); memset(&wo, 0, sizeof wo);
     memset(&fr, 0, sizeof fr); memset(&bp, 0, sizeof bp); memset(&err, 0, sizeof err);
-    in[0] = t_data("hgt/N47E009.hgt");
     so.ramp_abs = 1;
     so.quiet = 1;
     wo.reflection = 1; wo.no_fog = 1; wo.quiet = 1; wo.view_px = 1;
-    CHECK_EQ(scene_open(&s, in, 1, &so, &err), BR_OK);
-    CHECK_EQ(ws_open(&ws, &s, &wo, &err), BR_OK);
-    CHECK_EQ(scene_camera(&s, eye, tgt, 50, W, H, &c), BR_OK);
-    CHECK_EQ(scene_tree(&s, &err), BR_OK);
-    CHECK_EQ(scene_reserve(&s, 2000000, &err), BR_OK);
-    bp.mode = BT_VIEW; bp.c = &c; bp.fr = s.rt.fr; bp.pixel_err_q8 = 256; bp.hyst_q8 = 64;
-    CHECK_EQ(scene_mesh(&s, &c, &bp), BR_OK);
+    bp.hyst_q8 = 64;
     fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32;
-    CHECK_EQ(scene_terrain(&s, &c, &fr, NULL), BR_OK);
+    lake_frame(&s, &so, &ws, &wo, eye, tgt, W, H, &c, &bp, &fr);
     tns = s.mesh.ns;
     tstrip = malloc(sizeof *tstrip * (tns ? tns : 1));
     CHECK(tstrip != NULL);
@@ -382,12 +396,10 @@ done:
 static void test_refl_body_rows(void)
 {
     enum { W = 320, H = 240, BR = 64 };
-    const char *in[1];
     double eye[3] = { 21096.2, 76714.6, 464.0 }, tgt[3] = { 23604.8, 75069.3, 164.0 };
     uint8_t *px[2] = { NULL, NULL };
     uint32_t tris[2] = { 0, 0 };
     int k;
-    in[0] = t_data("hgt/N47E009.hgt");
     for (k = 0; k < 2; k++) {
         scene s;
         scene_opts so;
@@ -400,20 +412,13 @@ static void test_refl_body_rows(void)
         size_t mb;
         void *mem = NULL;
         int32_t y0;
-        memset(&s, 0, sizeof s); memset(&so, 0, sizeof so); memset(&wo, 0, sizeof wo); memset(&ws, 0, sizeof ws);
+        memset(&so, 0, sizeof so); memset(&wo, 0, sizeof wo);
         memset(&fr, 0, sizeof fr); memset(&bp, 0, sizeof bp); memset(&err, 0, sizeof err);
         so.quiet = 1;
         wo.reflection = k ? 4 : 0;          /* none; the default, half */
         wo.quiet = 1; wo.view_px = 1;
-        CHECK_EQ(scene_open(&s, in, 1, &so, &err), BR_OK);
-        CHECK_EQ(ws_open(&ws, &s, &wo, &err), BR_OK);
-        CHECK_EQ(scene_camera(&s, eye, tgt, 50, W, H, &c), BR_OK);
-        CHECK_EQ(scene_tree(&s, &err), BR_OK);
-        CHECK_EQ(scene_reserve(&s, 2000000, &err), BR_OK);
-        bp.mode = BT_VIEW; bp.c = &c; bp.fr = s.rt.fr; bp.pixel_err_q8 = 256;
-        CHECK_EQ(scene_mesh(&s, &c, &bp), BR_OK);
         fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32;
-        CHECK_EQ(scene_terrain(&s, &c, &fr, NULL), BR_OK);
+        lake_frame(&s, &so, &ws, &wo, eye, tgt, W, H, &c, &bp, &fr);
         CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
         if (k == 0) CHECK_MSG(ws.rw->refl != NULL && ws.rw->p.refl_body == 1, "mirror on body %d", (int)ws.rw->p.refl_body);
         mb = rs_pipe_mem_size(&ws.pipe, BR);
@@ -454,7 +459,6 @@ static void test_refl_body_rows(void)
 static void test_still_mirror(void)
 {
     enum { W = 160, H = 96 };
-    const char *in[1];
     static uint32_t wet[W * H], dry[W * H], dir[W * H], dep[W * H];
     double eye[3] = { 40000, 66000, 420 }, tgt[3] = { 60000, 50000, 500 };
     scene s;
@@ -471,22 +475,14 @@ static void test_still_mirror(void)
     void *mem = NULL;
     size_t ms;
     int32_t x, y, k, n = 0, same = 0, near = 0;
-    memset(&s, 0, sizeof s); memset(&so, 0, sizeof so); memset(&wo, 0, sizeof wo); memset(&ws, 0, sizeof ws);
+    memset(&so, 0, sizeof so); memset(&wo, 0, sizeof wo);
     memset(&fr, 0, sizeof fr); memset(&bp, 0, sizeof bp); memset(&err, 0, sizeof err);
-    in[0] = t_data("hgt/N47E009.hgt");
     so.ramp_abs = 1;
     so.quiet = 1;
     wo.reflection = 1; wo.no_waves = 1; wo.fresnel_one = 1; wo.no_fog = 1; wo.quiet = 1;
     wo.view_px = 1; wo.refl_err = 1;    /* the reflection's own selection at the terrain's error */
-    CHECK_EQ(scene_open(&s, in, 1, &so, &err), BR_OK);
-    CHECK_EQ(ws_open(&ws, &s, &wo, &err), BR_OK);
-    CHECK_EQ(scene_camera(&s, eye, tgt, 50, W, H, &c), BR_OK);
-    CHECK_EQ(scene_tree(&s, &err), BR_OK);
-    CHECK_EQ(scene_reserve(&s, 2000000, &err), BR_OK);
-    bp.mode = BT_VIEW; bp.c = &c; bp.fr = s.rt.fr; bp.pixel_err_q8 = 256;
-    CHECK_EQ(scene_mesh(&s, &c, &bp), BR_OK);
     fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32; fr.clear_rgb = 0x99ccffu;
-    CHECK_EQ(scene_terrain(&s, &c, &fr, NULL), BR_OK);
+    lake_frame(&s, &so, &ws, &wo, eye, tgt, W, H, &c, &bp, &fr);
     CHECK_EQ(rs_draw_band(&fr, 0, H, dry, W * 4, dep, NULL), BR_OK);      /* the terrain alone */
     CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
     CHECK(ws.rfr.nv > 0 && ws.rfr.w == W && ws.rown == 1);
