@@ -93,7 +93,8 @@ static br_status water_mesh_once(water_scene *w, scene *s, br_err *err)
     w->wprim.kind = RS_LIST; w->wprim.n = w->mesh.nidx; w->wprim.idx = w->mesh.idx;
     w->wtid = malloc(w->mesh.nidx / 3 + 1);
     if (!w->wtid) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
-    for (i = 0; i + 2 < w->mesh.nidx; i += 3) w->wtid[i / 3] = (uint8_t)((w->wverts[w->mesh.idx[i]].rgb >> 19) & 31u);
+    /* each triangle's body: a surface triangle's vertices are all of its body */
+    for (i = 0; i + 2 < w->mesh.nidx; i += 3) w->wtid[i / 3] = (uint8_t)w->mesh.v[w->mesh.idx[i]].id;
     cb = rs_chunk_mem_size(&w->wprim, 1) + 4;
     w->wchunks = malloc(cb);
     if (!w->wchunks) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
@@ -165,8 +166,6 @@ static br_status water_frame(water_scene *w, const rs_frame *tf)
     return rs_frame_prepare(&w->wfr);
 }
 
-/* The body with the largest screen area (triangles that need the clipper: near the
- * camera, counted as the whole screen). */
 /* Sutherland-Hodgman: the part of polygon (x, y)[n] (n <= 8) where k (x) + l (y) <= m
  * (one screen edge), into (ox, oy); returns its vertex count (<= n + 1). */
 static int clip_edge(const double *x, const double *y, int n, double k, double l, double m,
