@@ -245,10 +245,7 @@ br_status rw_pass_water(rs_pass *pass, const rw_frame *r)
 
 static uint32_t get_rgb(int32_t fmt, const void *row, int32_t x)
 {
-    if (fmt == RS_FMT_RGB565) {
-        uint32_t v = ((const uint16_t *)row)[x], rr = v >> 11, g = (v >> 5) & 63u, bb = v & 31u;
-        return ((rr << 3 | rr >> 2) << 16) | ((g << 2 | g >> 4) << 8) | (bb << 3 | bb >> 2);
-    }
+    if (fmt == RS_FMT_RGB565) return unpack565(((const uint16_t *)row)[x]);
     return ((const uint32_t *)row)[x] & 0xffffffu;
 }
 

@@ -38,11 +38,17 @@ static inline uint16_t pack565_dither(uint32_t rgb, int32_t x, int32_t y)
     return (uint16_t)((rr << 11) | (g << 5) | bb);
 }
 
+/* RGB565 v as 0xRRGGBB, each field's top bits repeated into its low ones. */
+static inline uint32_t unpack565(uint32_t v)
+{
+    const uint32_t rr = v >> 11, g = (v >> 5) & 63u, bb = v & 31u;
+    return ((rr << 3 | rr >> 2) << 16) | ((g << 2 | g >> 4) << 8) | (bb << 3 | bb >> 2);
+}
+
 /* The 888 colour whose 5/6/5 truncation is rgb's dithered value at (x, y). */
 static inline uint32_t dither888(uint32_t rgb, int32_t x, int32_t y)
 {
-    const uint32_t v = pack565_dither(rgb, x, y), rr = v >> 11, g = (v >> 5) & 63u, bb = v & 31u;
-    return ((rr << 3 | rr >> 2) << 16) | ((g << 2 | g >> 4) << 8) | (bb << 3 | bb >> 2);
+    return unpack565(pack565_dither(rgb, x, y));
 }
 
 #endif
