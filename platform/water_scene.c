@@ -148,7 +148,7 @@ void ws_close(water_scene *w)
 {
     if (w->wf.z) free(w->wf.z);
     free(w->id); wm_free(&w->mesh); free(w->wverts); free(w->wtid); free(w->wcache); free(w->wchunks);
-    free(w->rstrip); free(w->rcache); free(w->rchunks); free(w->rw);
+    free(w->rstrip); free(w->rcache); free(w->rchunks); free(w->rbed); free(w->rw);
     free(w->rmesh_mem); free(w->rverts);
     memset(w, 0, sizeof *w);
 }
@@ -332,13 +332,47 @@ br_status ws_reserve(water_scene *w, scene *s)
     return BR_OK;
 }
 
+/* The mirror's vertices (nv of them, src, from mesh m) with the lowered bed of body
+ * `body` back at the body's level plane_z: a vertex on one of its samples below
+ * plane_z is raised to it.  ws_open lowered flattened water WS_DEPTH_MM under its
+ * surface for the terrain pass; in the DEM those samples lie at (SRTM's flat lakes) or
+ * above (a region joined along a seam) the level, so the reflection sees the DEM's
+ * shore: the shore triangles end at the water plane and need no clipping, and the bed
+ * lies in the plane, where the mirror's reversed winding culls it.  Anything else below
+ * the plane is still clipped.  NULL when the vertices are not the mesh's or cannot be
+ * copied (the clipper then does it all). */
+static const rs_vertex *refl_bed_level(water_scene *w, const scene *s, const bt_mesh *m, const rs_vertex *src,
+                                       uint32_t nv, int32_t body, int32_t plane_z)
+{
+    const uint32_t gw = (uint32_t)s->f.w, gh = (uint32_t)s->f.h;
+    uint32_t i;
+    if (!s->beds_lowered || body < 1 || m->nv != nv || !w->id) return NULL;
+    if (w->rbed_cap < nv) {
+        free(w->rbed);
+        w->rbed_cap = nv + nv / 4;
+        w->rbed = malloc(sizeof *w->rbed * w->rbed_cap);
+        if (!w->rbed) { w->rbed_cap = 0; return NULL; }
+    }
+    for (i = 0; i < nv; i++) {
+        const bt_vert *g = &m->v[i];
+        rs_vertex v = src[i];
+        if (v.p[2] < plane_z && (uint32_t)g->x < gw && (uint32_t)g->y < gh && w->id[(size_t)g->y * gw + (size_t)g->x] == body)
+            v.p[2] = plane_z;
+        w->rbed[i] = v;
+    }
+    return w->rbed;
+}
+
 /* The mirrored terrain frame for plane_z at res_shift: the reflection's own selection
- * (refl_own), or the terrain's strip and vertices. */
-static br_status refl_frame(water_scene *w, scene *s, const cam *c, const rs_frame *tf, int32_t plane_z, int32_t res)
+ * (refl_own), or the terrain's strip and vertices; body's bed at its level
+ * (refl_bed_level). */
+static br_status refl_frame(water_scene *w, scene *s, const cam *c, const rs_frame *tf, int32_t body, int32_t plane_z,
+                            int32_t res)
 {
     const int own = refl_own(w, s, c, tf, plane_z) == 0;
     const rs_prim *tp = own ? &w->rmprim : &tf->prims[0];
     const uint32_t nv = own ? w->rmesh.nv : tf->nv;
+    const rs_vertex *bed;
     size_t cb;
     if (!own && (tf->nprims != 1 || tp->kind != RS_STRIP)) return BR_E_ARG;
     if (tp->n < 3) return BR_E_ARG;
@@ -369,6 +403,9 @@ static br_status refl_frame(water_scene *w, scene *s, const cam *c, const rs_fra
     w->rfr = *tf;
     w->rfr.w = tf->w >> res; w->rfr.h = tf->h >> res;
     if (own) { w->rfr.v = w->rverts; w->rfr.nv = nv; }
+    bed = own ? refl_bed_level(w, s, &w->rmesh, w->rverts, nv, body, plane_z)
+              : tf->v == s->verts ? refl_bed_level(w, s, &s->mesh, tf->v, nv, body, plane_z) : NULL;
+    if (bed) w->rfr.v = bed;
     w->rfr.cache = w->rcache;
     w->rfr.prims = &w->rprim; w->rfr.nprims = 1;
     w->rfr.chunks = w->rchunks;
@@ -451,7 +488,7 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err 
             p.shore_w = ww < 2e9 ? (int64_t)ww : (int64_t)2e9;
         }
         if (body && res >= 0 && c->eye[2] > p.plane_z && tf->nprims == 1 && tf->prims[0].kind == RS_STRIP) {
-            if (refl_frame(w, s, c, tf, p.plane_z, res) != BR_OK)
+            if (refl_frame(w, s, c, tf, body, p.plane_z, res) != BR_OK)
                 return br_err_set(err, BR_E_NOMEM, NULL, "cannot set up the reflection");
             rfr = &w->rfr;
         }

@@ -85,6 +85,9 @@ typedef struct water_scene {
     int16_t *rchunks;
     size_t rchunks_cap;
     rs_prim rprim;
+    rs_vertex *rbed;            /* the mirror's vertices with the body's lowered bed at its
+                                   level (refl_bed_level), rbed_cap of them */
+    uint32_t rbed_cap;
     /* the reflection's own LOD (ws_frame): the view selection of the mirrored camera at
      * refl_err times the terrain's screen error, without frame state (the terrain's
      * hysteresis is not touched), into rmesh (ws_reserve, or the first frame that

@@ -313,6 +313,26 @@ static void lake_frame(scene *s, const scene_opts *so, water_scene *ws, const ws
  * and its hysteresis state are untouched by it (the same strip before and after).
  * Nothing under the plane leaks: the reflection's own mesh moved under the plane draws
  * no pixel through the clipper's plane (without the plane, it does). */
+/* The mirror's vertices (ws.rbed) are the mesh's (src, from m), with the lowered bed of
+ * the mirror's body raised to the water plane and nothing else changed; the lake camera
+ * has such vertices. */
+static void bed_level_check(const water_scene *ws, const scene *s, const rs_vertex *src, const bt_mesh *m)
+{
+    uint32_t i, raised = 0, bad = 0, below = 0;
+    const int32_t plane = ws->rfr.clip_z, body = ws->rw->p.refl_body;
+    for (i = 0; i < m->nv; i++) {
+        const rs_vertex *a = &src[i], *b = &ws->rbed[i];
+        const int wet = ws->id[(size_t)m->v[i].y * (size_t)s->f.w + (size_t)m->v[i].x] == body;
+        const int32_t z = wet && a->p[2] < plane ? plane : a->p[2];
+        bad += b->p[0] != a->p[0] || b->p[1] != a->p[1] || b->p[2] != z || b->rgb != a->rgb;
+        raised += b->p[2] != a->p[2];
+        below += b->p[2] < plane;
+    }
+    printf("mirror vertices: %u of %u raised to the plane, %u left under it\n", raised, m->nv, below);
+    CHECK_EQ(bad, 0);
+    CHECK(raised > 10);
+}
+
 static void test_refl_lod(void)
 {
     enum { W = 320, H = 192 };
@@ -344,13 +364,15 @@ static void test_refl_lod(void)
     if (!tstrip) goto done;
     memcpy(tstrip, s.mesh.strip, sizeof *tstrip * tns);
     CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);     /* the default: the terrain's mesh */
-    CHECK(ws.rown == 0 && ws.rfr.v == s.verts && ws.rfr.nv == s.mesh.nv);
+    CHECK(ws.rown == 0 && ws.rfr.v == ws.rbed && ws.rfr.nv == s.mesh.nv);
+    bed_level_check(&ws, &s, s.verts, &s.mesh);
     for (k = 0; k < 2; k++) {
         ws.o.refl_err = k ? 4 : 1;
         CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
         CHECK_EQ(ws.rown, 1);
         if (!ws.rown) goto done;
-        CHECK(ws.rfr.clip_z_on && ws.rfr.v == ws.rverts && ws.rfr.nv == ws.rmesh.nv);
+        CHECK(ws.rfr.clip_z_on && ws.rfr.v == ws.rbed && ws.rfr.nv == ws.rmesh.nv);
+        bed_level_check(&ws, &s, ws.rverts, &ws.rmesh);
         ntri[k] = ws.rmesh.ntri;
         memset(&st, 0, sizeof st);
         CHECK_EQ(rs_draw_band(&ws.rfr, 0, H, col, W * 4, dep, &st), BR_OK);
@@ -371,6 +393,7 @@ static void test_refl_lod(void)
         int32_t zmax = INT32_MIN;
         for (i = 0; i < ws.rfr.nv; i++) if (ws.rverts[i].p[2] > zmax) zmax = ws.rverts[i].p[2];
         for (i = 0; i < ws.rfr.nv; i++) ws.rverts[i].p[2] -= zmax - ws.rfr.clip_z + 1;
+        ws.rfr.v = ws.rverts;   /* as they are, no bed raised to the plane */
     }
     for (k = 0; k < 2; k++) {
         ws.rfr.clip_z_on = !k;
