@@ -277,12 +277,37 @@ typedef struct rw_rowk {
     int64_t bb;                 /* bq^2 + Q12^2: the row's part of cos^2 t's denominator */
     int64_t ws0, ws1, wrel0, wrel1, tkr;        /* wstep[y], wrel[y], tkr[y] */
     uint32_t wph0, wph1;        /* wph[y] */
+    /* rfast: every row y + dy, |dy| <= RW_WAVE_PX, lies in the frame and its reduced row
+     * (y + dy) >> s in the stored rows [h0, h1), whose colour and depth rows are
+     * rcol[dy + RW_WAVE_PX], rdep[dy + RW_WAVE_PX]; then for x in [rx0, rx1] every
+     * x + dx lies in the frame's columns and (x + dx) >> s below rw: water_px's clamps
+     * change nothing there (|dx|, |dy| <= RW_WAVE_PX: see water_px) */
+    int rfast;
+    int32_t rx0, rx1;
+    const uint8_t *rcol[2 * RW_WAVE_PX + 1], *rdep[2 * RW_WAVE_PX + 1];
 } rw_rowk;
 
-static RW_INLINE void row_k(const rw_frame *r, int32_t y, rw_rowk *k)
+static RW_INLINE void row_k(const rw_frame *r, const refl_view *rv, int32_t y, rw_rowk *k, const int32_t fmt,
+                            const int32_t depth)
 {
-    const int32_t rz = r->rz[y];
+    const int32_t rz = r->rz[y], s = r->p.res_shift;
     const int64_t b = r->bq[y];
+    k->rfast = rv->col && y >= RW_WAVE_PX && y + RW_WAVE_PX < r->h && ((y - RW_WAVE_PX) >> s) >= rv->h0
+               && ((y + RW_WAVE_PX) >> s) < rv->h1;
+    if (k->rfast) {
+        const size_t bpp = fmt == RS_FMT_RGB565 ? 2u : 4u, dbp = depth == RS_DEPTH16 ? 2u : 4u;
+        const int32_t xmax = (rv->rw << s) - 1 < r->w - 1 ? (rv->rw << s) - 1 : r->w - 1;
+        int32_t j;
+        for (j = 0; j <= 2 * RW_WAVE_PX; j++) {
+            const size_t o = (size_t)(((y + j - RW_WAVE_PX) >> s) - rv->h0) * (size_t)rv->rw;
+            k->rcol[j] = rv->col + o * bpp;
+            k->rdep[j] = rv->dep + o * dbp;
+        }
+        k->rx0 = RW_WAVE_PX;
+        k->rx1 = xmax - RW_WAVE_PX;
+    } else {
+        k->rx0 = 1; k->rx1 = 0;     /* no column */
+    }
     k->y = y;
     k->tkr = r->tkr[y];
     k->shore = r->p.wet && k->tkr >= 0;
@@ -307,27 +332,35 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
     uint32_t refl, refr, fr, x32;
     if (ci > RW_TAB) ci = RW_TAB;
     if (r->p.waves_on) {
-        /* the phase's bits 24..31 depend on it modulo 2^32 only: the row's phase at its point
-         * plus the offset a wstep (floored, Q12) times the wave numbers, mod 2^32 */
-        const uint32_t ox = (uint32_t)((a * k->ws0) >> 12), oy = (uint32_t)((a * k->ws1) >> 12);
-        const uint32_t f0 = ((k->wph0 + ox * (uint32_t)r->kx[0] + oy * (uint32_t)r->ky[0]) >> 24) & 255u;
-        const uint32_t f1 = ((k->wph1 + ox * (uint32_t)r->kx[1] + oy * (uint32_t)r->ky[1]) >> 24) & 255u;
-        const int32_t c0 = r->sine[(f0 + 64u) & 255u], c1 = r->sine[(f1 + 64u) & 255u];
         int64_t q8 = ((int64_t)dw * r->amp_m) >> 32;
-        int32_t ti;
         if (q8 > RW_WAVE_PX * 128) q8 = RW_WAVE_PX * 128;
         /* beyond wave_fade_d (far away) the waves fade as 1/zc^2: shorter than a pixel
          * there, they would only alias */
         if (dw < r->wave_fade_d) q8 = (int64_t)(((uint64_t)q8 * (dw >> 14) * r->inv_fade) >> 32);
-        dx = (int32_t)((q8 * (c0 + c1)) >> 15);
-        dy = (int32_t)((q8 * (c0 - c1)) >> 15);
-        ti = (int32_t)ci + (int32_t)(((c0 + c1) * q8) >> 10);    /* the slope tilts cos t */
-        ci = ti < 0 ? 0u : ti > RW_TAB ? (uint32_t)RW_TAB : (uint32_t)ti;
+        if (q8 != 0) {      /* else dx = dy = 0 and ci untilted, whatever the phase */
+            /* the phase's bits 24..31 depend on it modulo 2^32 only: the row's phase at its
+             * point plus the offset a wstep (floored, Q12) times the wave numbers, mod 2^32 */
+            const uint32_t ox = (uint32_t)((a * k->ws0) >> 12), oy = (uint32_t)((a * k->ws1) >> 12);
+            const uint32_t f0 = ((k->wph0 + ox * (uint32_t)r->kx[0] + oy * (uint32_t)r->ky[0]) >> 24) & 255u;
+            const uint32_t f1 = ((k->wph1 + ox * (uint32_t)r->kx[1] + oy * (uint32_t)r->ky[1]) >> 24) & 255u;
+            const int32_t c0 = r->sine[(f0 + 64u) & 255u], c1 = r->sine[(f1 + 64u) & 255u];
+            int32_t ti;
+            dx = (int32_t)((q8 * (c0 + c1)) >> 15);
+            dy = (int32_t)((q8 * (c0 - c1)) >> 15);
+            ti = (int32_t)ci + (int32_t)(((c0 + c1) * q8) >> 10);    /* the slope tilts cos t */
+            ci = ti < 0 ? 0u : ti > RW_TAB ? (uint32_t)RW_TAB : (uint32_t)ti;
+        }
     }
     fr = r->p.fresnel_one ? 256u : r->fres[ci];
     refl = r->skyrefl[ci];      /* the reflected sky */
     if (rv->col && id == (uint32_t)r->p.refl_body) {
         int32_t yy = y + dy, xx = x + dx, ry, rx;
+        if (x >= k->rx0 && x <= k->rx1) {      /* the same lookup without its clamps */
+            rx = xx >> s;
+            if (get_depth(depth, k->rdep[dy + RW_WAVE_PX], rx) != r->rdfar)
+                refl = get_rgb(fmt, k->rcol[dy + RW_WAVE_PX], rx);
+            goto refracted;
+        }
         if (yy < 0) yy = 0;
         if (yy >= r->h) yy = r->h - 1;
         if (xx < 0) xx = 0;
@@ -340,6 +373,7 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
             if (get_depth(depth, rv->dep + o * dbp, rx) != r->rdfar) refl = get_rgb(fmt, rv->col + o * bpp, rx);
         }
     }
+refracted:
     /* refraction: x32 = 32 L / tint_len, L = zc_w (dw / dt - 1) (dt < dw), zc_w the
      * body's plane point's zc = the reflected plane's times bratio: tkr[y] bratio q >> 48
      * with q = (dw - dt) / dt, Q16, from both depths brought to 16 bits */
@@ -479,7 +513,7 @@ static RW_INLINE void water_rows_only(const rw_frame *r, rs_band *b, const refl_
         rw_rowk k;
         uint32_t sky;
         if (!wc) continue;
-        row_k(r, y, &k);
+        row_k(r, rv, y, &k, fmt, depth);
         sky = r->sky[y];
         for (x = next_water(wc, 0, b->w, fmt); x < b->w; x = next_water(wc, x + 1, b->w, fmt)) {
             const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
@@ -510,7 +544,7 @@ static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *
         const uint8_t *wd = NULL, *wc = water_row(r, b, wcol, wdep, wy0, wrows, y, dbp, &wd);
         const uint32_t sky = r->sky[y];
         rw_rowk k;
-        row_k(r, y, &k);
+        row_k(r, rv, y, &k, fmt, depth);
         for (x = 0; x < b->w; x++) {
             const uint32_t dt = get_depth(depth, drow, x);
             uint32_t rgb, d, fw;
