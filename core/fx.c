@@ -3,9 +3,13 @@
 
 uint32_t fx_isqrt64(uint64_t v)
 {
-    /* bit-by-bit method: one result bit per iteration, exact, no division */
-    uint64_t res = 0, bit = (uint64_t)1 << 62;
-    while (bit > v) bit >>= 2;
+    /* bit-by-bit method: one result bit per iteration, exact, no division; it starts at
+     * the largest power of 4 <= v, 2^(2 floor(log2(v) / 2)) */
+    uint64_t res = 0, bit;
+    int32_t lg;
+    if (!v) return 0;
+    lg = (uint32_t)(v >> 32) ? 63 - fx_clz32((uint32_t)(v >> 32)) : 31 - fx_clz32((uint32_t)v);
+    bit = (uint64_t)1 << (lg & ~1);
     while (bit) {
         if (v >= res + bit) { v -= res + bit; res = (res >> 1) + bit; }
         else res >>= 1;

@@ -235,11 +235,20 @@ static int32_t biggest_body(const water_scene *w, const cam *c, uint32_t *seen)
     const rs_cvert *const wc = w->wcache;
     const rs_vertex *const wv = w->wfr.v;
     const uint8_t *const tid = w->wtid;
+    const int16_t *const ch = w->wfr.chunks;
     uint32_t t;
     int32_t best = 0, i;
     memset(area, 0, sizeof area);
     for (t = 0; t < nt; t++, ix += 3) {
         const rs_cvert *a = &wc[ix[0]], *b = &wc[ix[1]], *cc = &wc[ix[2]];
+        if (t % RS_CHUNK == 0 && ch[2 * (t / RS_CHUNK)] > ch[2 * (t / RS_CHUNK) + 1]) {
+            /* no row: its vertices share an outcode that rejects all of its triangles
+             * (rs_frame_prepare's chunk table), which the test below would skip */
+            const uint32_t skip = nt - t < RS_CHUNK ? nt - t : RS_CHUNK;
+            t += skip - 1;
+            ix += 3 * (skip - 1);
+            continue;
+        }
         const uint32_t oa = a->c, ob = b->c, oc = cc->c;
         int64_t ar;
         if (oa & ob & oc & ((uint32_t)0x3f << 24)) continue;      /* off screen, or behind */
@@ -340,9 +349,10 @@ br_status ws_reserve(water_scene *w, scene *s)
  * shore: the shore triangles end at the water plane and need no clipping, and the bed
  * lies in the plane, where the mirror's reversed winding culls it.  Anything else below
  * the plane is still clipped.  NULL when the vertices are not the mesh's or cannot be
- * copied (the clipper then does it all). */
+ * copied (the clipper then does it all); else *below says whether a vertex is left
+ * under the plane. */
 static const rs_vertex *refl_bed_level(water_scene *w, const scene *s, const bt_mesh *m, const rs_vertex *src,
-                                       uint32_t nv, int32_t body, int32_t plane_z)
+                                       uint32_t nv, int32_t body, int32_t plane_z, int tex, int *below)
 {
     const uint32_t gw = (uint32_t)s->f.w, gh = (uint32_t)s->f.h;
     uint32_t i;
@@ -353,12 +363,19 @@ static const rs_vertex *refl_bed_level(water_scene *w, const scene *s, const bt_
         w->rbed = malloc(sizeof *w->rbed * w->rbed_cap);
         if (!w->rbed) { w->rbed_cap = 0; return NULL; }
     }
+    *below = 0;
     for (i = 0; i < nv; i++) {
+        const rs_vertex *a = &src[i];
+        rs_vertex *o = &w->rbed[i];
         const bt_vert *g = &m->v[i];
-        rs_vertex v = src[i];
-        if (v.p[2] < plane_z && (uint32_t)g->x < gw && (uint32_t)g->y < gh && w->id[(size_t)g->y * gw + (size_t)g->x] == body)
-            v.p[2] = plane_z;
-        w->rbed[i] = v;
+        o->p[0] = a->p[0]; o->p[1] = a->p[1]; o->p[2] = a->p[2];
+        o->rgb = a->rgb;
+        if (tex) { o->uv[0] = a->uv[0]; o->uv[1] = a->uv[1]; }     /* else nothing reads them */
+        if (a->p[2] < plane_z) {
+            if ((uint32_t)g->x < gw && (uint32_t)g->y < gh && w->id[(size_t)g->y * gw + (size_t)g->x] == body)
+                o->p[2] = plane_z;
+            else *below = 1;
+        }
     }
     return w->rbed;
 }
@@ -373,6 +390,7 @@ static br_status refl_frame(water_scene *w, scene *s, const cam *c, const rs_fra
     const rs_prim *tp = own ? &w->rmprim : &tf->prims[0];
     const uint32_t nv = own ? w->rmesh.nv : tf->nv;
     const rs_vertex *bed;
+    int below = 1;
     size_t cb;
     if (!own && (tf->nprims != 1 || tp->kind != RS_STRIP)) return BR_E_ARG;
     if (tp->n < 3) return BR_E_ARG;
@@ -403,13 +421,15 @@ static br_status refl_frame(water_scene *w, scene *s, const cam *c, const rs_fra
     w->rfr = *tf;
     w->rfr.w = tf->w >> res; w->rfr.h = tf->h >> res;
     if (own) { w->rfr.v = w->rverts; w->rfr.nv = nv; }
-    bed = own ? refl_bed_level(w, s, &w->rmesh, w->rverts, nv, body, plane_z)
-              : tf->v == s->verts ? refl_bed_level(w, s, &s->mesh, tf->v, nv, body, plane_z) : NULL;
+    bed = own ? refl_bed_level(w, s, &w->rmesh, w->rverts, nv, body, plane_z, tf->tex != NULL, &below)
+              : tf->v == s->verts ? refl_bed_level(w, s, &s->mesh, tf->v, nv, body, plane_z, tf->tex != NULL, &below)
+                                  : NULL;
     if (bed) w->rfr.v = bed;
     w->rfr.cache = w->rcache;
     w->rfr.prims = &w->rprim; w->rfr.nprims = 1;
     w->rfr.chunks = w->rchunks;
-    w->rfr.clip_z_on = 1; w->rfr.clip_z = plane_z;
+    /* the plane clips; with no vertex under it nothing is cut and no outcode is set */
+    w->rfr.clip_z_on = below; w->rfr.clip_z = plane_z;
     w->rfr.clear_rows = NULL;           /* the reflection's sky comes from the hook */
     if (rw_mirror_vp(&tf->vp, plane_z, res, tf->w, tf->h, &w->rfr.vp) != BR_OK) return BR_E_ARG;
     return rs_frame_prepare(&w->rfr);

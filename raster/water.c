@@ -276,7 +276,7 @@ typedef struct rw_rowk {
     uint32_t cnum;              /* (rz^2 >> 8) << 10 as 32 bits: cos^2 t's numerator */
     int64_t bb;                 /* bq^2 + Q12^2: the row's part of cos^2 t's denominator */
     int64_t ws0, ws1, wrel0, wrel1, tkr;        /* wstep[y], wrel[y], tkr[y] */
-    uint32_t wph0, wph1;        /* wph[y] */
+    uint32_t cph0, cph1;        /* wph[y] + 2^30: a quarter turn on, the cosines' phase */
     /* rfast: every row y + dy, |dy| <= RW_WAVE_PX, lies in the frame and its reduced row
      * (y + dy) >> s in the stored rows [h0, h1), whose colour and depth rows are
      * rcol[dy + RW_WAVE_PX], rdep[dy + RW_WAVE_PX]; then for x in [rx0, rx1] every
@@ -316,7 +316,7 @@ static RW_INLINE void row_k(const rw_frame *r, const refl_view *rv, int32_t y, r
     k->bb = b * b + (int64_t)Q12 * Q12;
     k->ws0 = r->wstep[y][0]; k->ws1 = r->wstep[y][1];
     k->wrel0 = r->wrel[y][0]; k->wrel1 = r->wrel[y][1];
-    k->wph0 = r->wph[y][0]; k->wph1 = r->wph[y][1];
+    k->cph0 = r->wph[y][0] + (64u << 24); k->cph1 = r->wph[y][1] + (64u << 24);
 }
 
 /* The colour of water pixel (x, k->y): terrain colour ct and depth dt under it, water
@@ -339,11 +339,12 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
         if (dw < r->wave_fade_d) q8 = (int64_t)(((uint64_t)q8 * (dw >> 14) * r->inv_fade) >> 32);
         if (q8 != 0) {      /* else dx = dy = 0 and ci untilted, whatever the phase */
             /* the phase's bits 24..31 depend on it modulo 2^32 only: the row's phase at its
-             * point plus the offset a wstep (floored, Q12) times the wave numbers, mod 2^32 */
+             * point plus the offset a wstep (floored, Q12) times the wave numbers, mod 2^32;
+             * the cosine is the sine a quarter turn (64 of 256) on, already in cph */
             const uint32_t ox = (uint32_t)((a * k->ws0) >> 12), oy = (uint32_t)((a * k->ws1) >> 12);
-            const uint32_t f0 = ((k->wph0 + ox * (uint32_t)r->kx[0] + oy * (uint32_t)r->ky[0]) >> 24) & 255u;
-            const uint32_t f1 = ((k->wph1 + ox * (uint32_t)r->kx[1] + oy * (uint32_t)r->ky[1]) >> 24) & 255u;
-            const int32_t c0 = r->sine[(f0 + 64u) & 255u], c1 = r->sine[(f1 + 64u) & 255u];
+            const uint32_t f0 = (k->cph0 + ox * (uint32_t)r->kx[0] + oy * (uint32_t)r->ky[0]) >> 24;
+            const uint32_t f1 = (k->cph1 + ox * (uint32_t)r->kx[1] + oy * (uint32_t)r->ky[1]) >> 24;
+            const int32_t c0 = r->sine[f0], c1 = r->sine[f1];
             int32_t ti;
             dx = (int32_t)((q8 * (c0 + c1)) >> 15);
             dy = (int32_t)((q8 * (c0 - c1)) >> 15);
