@@ -297,11 +297,17 @@ static RW_INLINE void row_k(const rw_frame *r, const refl_view *rv, int32_t y, r
     if (k->rfast) {
         const size_t bpp = fmt == RS_FMT_RGB565 ? 2u : 4u, dbp = depth == RS_DEPTH16 ? 2u : 4u;
         const int32_t xmax = (rv->rw << s) - 1 < r->w - 1 ? (rv->rw << s) - 1 : r->w - 1;
-        int32_t j;
-        for (j = 0; j <= 2 * RW_WAVE_PX; j++) {
-            const size_t o = (size_t)(((y + j - RW_WAVE_PX) >> s) - rv->h0) * (size_t)rv->rw;
-            k->rcol[j] = rv->col + o * bpp;
-            k->rdep[j] = rv->dep + o * dbp;
+        int32_t j, ry = (y - RW_WAVE_PX) >> s;
+        const uint8_t *pc = rv->col + (size_t)(ry - rv->h0) * (size_t)rv->rw * bpp;
+        const uint8_t *pd = rv->dep + (size_t)(ry - rv->h0) * (size_t)rv->rw * dbp;
+        for (j = 0; j <= 2 * RW_WAVE_PX; j++) {     /* (y + j - RW_WAVE_PX) >> s grows by 0 or 1 */
+            if ((y + j - RW_WAVE_PX) >> s != ry) {
+                ry++;
+                pc += (size_t)rv->rw * bpp;
+                pd += (size_t)rv->rw * dbp;
+            }
+            k->rcol[j] = pc;
+            k->rdep[j] = pd;
         }
         k->rx0 = RW_WAVE_PX;
         k->rx1 = xmax - RW_WAVE_PX;

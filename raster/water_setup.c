@@ -126,8 +126,9 @@ static void rows_of(const rw_frame *r, int32_t lo, int32_t hi, int near, int32_t
 /* Rows where water may show: the water frame's vertices' rows (everything when one
  * needs the clipper); and those of refl_body's vertices, the vertices whose colour is
  * its id (RW_ID_RGB): a water triangle's three vertices carry its body's id (the pass
- * interpolates them into its pixels' ids), so refl_body's pixels lie in those rows. */
-static void water_rows(rw_frame *r)
+ * interpolates them into its pixels' ids), so refl_body's pixels lie in those rows.
+ * *top: the highest water vertex's z (for water_horizon). */
+static void water_rows(rw_frame *r, int32_t *top)
 {
     const rs_frame *wf = r->water;
     const uint32_t rid = RW_ID_RGB(r->p.refl_body);
@@ -135,10 +136,12 @@ static void water_rows(rw_frame *r)
     int32_t lo = INT32_MAX, hi = INT32_MIN, blo = INT32_MAX, bhi = INT32_MIN;
     int near = 0, bnear = 0;
     r->wlo = r->rlo = 1; r->whi = r->rhi = 0;
+    *top = INT32_MIN;
     if (!wf || !r->p.water_on || wf->nv == 0 || wf->nprims == 0) return;
     for (i = 0; i < wf->nv; i++) {
         const rs_cvert *v = &wf->cache[i];
         const int body = (v->c & 0xffffffu) == rid;
+        if (wf->v[i].p[2] > *top) *top = wf->v[i].p[2];
         if (v->c & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)) {
             near = 1;
             bnear |= body;
@@ -163,16 +166,13 @@ static void water_rows(rw_frame *r)
  * drawn pixel's centre lies within the subpixel snap and the transform's rounding (well
  * under a row) of such a point's projection: two rows of margin above the first row
  * whose rays go down.  Raises wlo, never lowers it. */
-static void water_horizon(rw_frame *r, const cam *c, int64_t f16)
+static void water_horizon(rw_frame *r, const cam *c, int64_t f16, int32_t top)
 {
     const rs_frame *wf = r->water;
-    int32_t top = INT32_MIN, y, sh = 0;
-    uint32_t i;
+    int32_t y, sh = 0;
     while (sh < 16 && (f16 >> sh) >= ((int64_t)1 << 30)) sh++;
     if (r->wlo > r->whi || !wf || c->right[2] != 0 || c->up[2] <= 0 || f16 <= 0 || (f16 >> sh) >= ((int64_t)1 << 30))
         return;
-    for (i = 0; i < wf->nv; i++)
-        if (wf->v[i].p[2] > top) top = wf->v[i].p[2];
     if (r->eye[2] <= top) return;
     for (y = r->wlo; y <= r->whi; y++)
         if ((int64_t)c->up[2] * (r->h - 2 * y - 1) * (65536 >> sh) + (int64_t)c->fwd[2] * 2 * (f16 >> sh) < 0) break;
@@ -207,6 +207,7 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
     int64_t K, f16;
     int32_t x, y, k;
     wdiv df, dtint;
+    int dither;
     if (!r || !p || !c || !terrain || terrain->w != c->w || terrain->h != c->h
         || p->res_shift < 0 || p->res_shift > 2
         || (p->fog_on && !(p->fog_start > 0 && p->fog_end > p->fog_start))
@@ -242,6 +243,7 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         r->tint_rb = (r->p.water_rgb & 0xff00ffu) * t + 0x800080u;
         r->tint_g = (r->p.water_rgb & 0xff00u) * t + 0x8000u;
     }
+    dither = terrain->fmt == RS_FMT_RGB565 && p->sky_on;    /* the sky's clear pattern */
     f16 = vp->f_q16;
     wdiv_make(&df, (uint64_t)f16);
     if (p->water_on) wdiv_make(&dtint, (uint64_t)p->tint_len);
@@ -257,8 +259,7 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         s2 = rz > 0 ? (uint32_t)((fx_isqrt64(udiv64((uint64_t)((rz * rz) << 24), (uint64_t)len2)) * 3u + 16u) >> 5) : 0;
         r->sky[y] = p->sky_on ? mix_rgb(r->p.sky_horizon, r->p.sky_zenith, s2 > 256u ? 256u : s2)
                               : terrain->clear_rgb;
-        for (k = 0; k < 4; k++)
-            r->clear4[4 * y + k] = terrain->fmt == RS_FMT_RGB565 && p->sky_on ? dither888(r->sky[y], k, y) : r->sky[y];
+        for (k = 0; k < 4; k++) r->clear4[4 * y + k] = dither ? dither888(r->sky[y], k, y) : r->sky[y];
         /* the plane point of the row's rays: E + lam ray, lam = (H - ez) / ray_z */
         r->wrel[y][0] = r->wrel[y][1] = r->wstep[y][0] = r->wstep[y][1] = 0;
         r->tkr[y] = -1;
@@ -335,8 +336,11 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         if (r->depth == RS_DEPTH16) m = (m + (1u << 14) - 1) >> 14;
         r->water_bias = m > 0x3fffffffu ? 0x3fffffffu : (uint32_t)m;
     }
-    water_rows(r);
-    water_horizon(r, c, f16);
+    {
+        int32_t top;        /* the highest water vertex */
+        water_rows(r, &top);
+        water_horizon(r, c, f16, top);
+    }
     return BR_OK;
 }
 
@@ -346,15 +350,21 @@ void rw_fog_vertices(rw_frame *r, rs_frame *f)
     if (!r || !f || !f->cache) return;
     f->clear_rows = r->clear4;
     if (!r->p.fog_on || r->pixel_fog) return;
-    for (i = 0; i < f->nv; i++) {
-        rs_cvert *o = &f->cache[i];
-        const uint32_t oc = o->c >> 24, q = o->d >> r->fog_sh;
-        uint32_t fw, rgb;
-        int32_t y;
-        if ((oc & (RS_OUT_NEAR | RS_OUT_GUARD)) || q > RW_TAB || (fw = r->fog[q]) == 0) continue;
-        y = o->y >> RS_SUBPIX_BITS;
-        y = y < 0 ? 0 : y >= r->h ? r->h - 1 : y;
-        rgb = mix_rgb(o->c & 0xffffffu, r->sky[y], fw);
-        rs_cvert_recolour(o, rgb);
+    {   /* the frame's values in locals: rs_cvert_recolour's stores could alias them */
+        rs_cvert *const cache = f->cache;
+        const uint8_t *const fog = r->fog;
+        const uint32_t *const sky = r->sky;
+        const uint32_t nv = f->nv, sh = (uint32_t)r->fog_sh;
+        const int32_t h = r->h;
+        for (i = 0; i < nv; i++) {
+            rs_cvert *o = &cache[i];
+            const uint32_t oc = o->c >> 24, q = o->d >> sh;
+            uint32_t fw;
+            int32_t y;
+            if ((oc & (RS_OUT_NEAR | RS_OUT_GUARD)) || q > RW_TAB || (fw = fog[q]) == 0) continue;
+            y = o->y >> RS_SUBPIX_BITS;
+            y = y < 0 ? 0 : y >= h ? h - 1 : y;
+            rs_cvert_recolour(o, mix_rgb(o->c & 0xffffffu, sky[y], fw));
+        }
     }
 }
