@@ -111,8 +111,9 @@ br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err)
     size_t i;
     memset(w, 0, sizeof *w);
     if (o) w->o = *o;
-    w->rw = calloc(1, sizeof *w->rw);     /* zeroed: rw_setup fills its tables once */
+    w->rw = calloc(1, sizeof *w->rw);
     if (!w->rw) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
+    rw_tables(w->rw);                   /* here, not in the first frame */
     if (w->o.no_water) return BR_OK;
     w->id = malloc(n);
     wz = malloc(n * sizeof *wz);

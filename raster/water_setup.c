@@ -199,6 +199,14 @@ static void fog_table(rw_frame *r, int64_t K)
     for (; i <= RW_TAB; i++) r->fog[i] = 0;
 }
 
+void rw_tables(rw_frame *r)
+{
+    if (r && !r->tables_ready) {    /* they depend on no frame: once per rw_frame */
+        tables(r);
+        r->tables_ready = 1;
+    }
+}
+
 br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame *terrain,
                    const rs_frame *water, const rs_frame *refl)
 {
@@ -229,10 +237,7 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
     r->rdfar = r->dfar;
     if (r->depth == RS_DEPTH16) { r->dfar >>= 14; r->rdfar >>= 14; }
     for (k = 0; k < 3; k++) r->eye[k] = c->eye[k];
-    if (!r->tables_ready) {     /* they depend on no frame: once per rw_frame */
-        tables(r);
-        r->tables_ready = 1;
-    }
+    rw_tables(r);
     if (r->skyrefl_of[0] != r->p.sky_horizon || r->skyrefl_of[1] != r->p.sky_zenith) {   /* never 0 */
         for (k = 0; k <= RW_TAB; k++) r->skyrefl[k] = mix_rgb(r->p.sky_horizon, r->p.sky_zenith, r->skyw[k]);
         r->skyrefl_of[0] = r->p.sky_horizon; r->skyrefl_of[1] = r->p.sky_zenith;
