@@ -50,6 +50,20 @@ static void test_isqrt_div(void)
         uint64_t r = fx_isqrt64(v);
         CHECK(r * r <= v && (r + 1) * (r + 1) > v);
     }
+    {   /* around every power of two (where the first bit tried changes) and around squares
+         * over the whole range: floor(sqrt(v)) exactly, (r + 1)^2 compared without overflow */
+        int k, d;
+        for (k = 0; k < 64; k++)
+            for (d = -2; d <= 2; d++) {
+                const uint64_t p2 = (uint64_t)1 << k, sq = (uint64_t)1 << (k / 2 * 2);
+                const uint64_t vs[2] = { p2 + (uint64_t)(int64_t)d, (sq - 1) * (sq - 1) + (uint64_t)(int64_t)d };
+                int j;
+                for (j = 0; j < 2; j++) {
+                    const uint64_t r = fx_isqrt64(vs[j]);
+                    CHECK(r <= 0xffffffffu && r * r <= vs[j] && (r == 0xffffffffu || (r + 1) * (r + 1) > vs[j]));
+                }
+            }
+    }
     CHECK_EQ(fx_div_floor(-7, 2), -4);
     CHECK_EQ(fx_div_floor(7, -2), -4);
     CHECK_EQ(fx_div_floor(-8, 2), -4);
