@@ -277,12 +277,11 @@ typedef struct rw_rowk {
     int64_t bb;                 /* bq^2 + Q12^2: the row's part of cos^2 t's denominator */
     int64_t ws0, ws1, wrel0, wrel1, tkr;        /* wstep[y], wrel[y], tkr[y] */
     uint32_t cph0, cph1;        /* wph[y] + 2^30: a quarter turn on, the cosines' phase */
-    /* rfast: every row y + dy, |dy| <= RW_WAVE_PX, lies in the frame and its reduced row
-     * (y + dy) >> s in the stored rows [h0, h1), whose colour and depth rows are
-     * rcol[dy + RW_WAVE_PX], rdep[dy + RW_WAVE_PX]; then for x in [rx0, rx1] every
-     * x + dx lies in the frame's columns and (x + dx) >> s below rw: water_px's clamps
-     * change nothing there (|dx|, |dy| <= RW_WAVE_PX: see water_px) */
-    int rfast;
+    /* when every row y + dy, |dy| <= RW_WAVE_PX, lies in the frame and its reduced row
+     * (y + dy) >> s in the stored rows [h0, h1) (row_k), their colour and depth rows are
+     * rcol[dy + RW_WAVE_PX], rdep[dy + RW_WAVE_PX], and for x in [rx0, rx1] every x + dx
+     * lies in the frame's columns and (x + dx) >> s below rw: water_px's clamps change
+     * nothing there (|dx|, |dy| <= RW_WAVE_PX: see water_px).  Otherwise rx0 > rx1. */
     int32_t rx0, rx1;
     const uint8_t *rcol[2 * RW_WAVE_PX + 1], *rdep[2 * RW_WAVE_PX + 1];
 } rw_rowk;
@@ -292,9 +291,8 @@ static RW_INLINE void row_k(const rw_frame *r, const refl_view *rv, int32_t y, r
 {
     const int32_t rz = r->rz[y], s = r->p.res_shift;
     const int64_t b = r->bq[y];
-    k->rfast = rv->col && y >= RW_WAVE_PX && y + RW_WAVE_PX < r->h && ((y - RW_WAVE_PX) >> s) >= rv->h0
-               && ((y + RW_WAVE_PX) >> s) < rv->h1;
-    if (k->rfast) {
+    if (rv->col && y >= RW_WAVE_PX && y + RW_WAVE_PX < r->h && ((y - RW_WAVE_PX) >> s) >= rv->h0
+        && ((y + RW_WAVE_PX) >> s) < rv->h1) {
         const size_t bpp = fmt == RS_FMT_RGB565 ? 2u : 4u, dbp = depth == RS_DEPTH16 ? 2u : 4u;
         const int32_t xmax = (rv->rw << s) - 1 < r->w - 1 ? (rv->rw << s) - 1 : r->w - 1;
         int32_t j, ry = (y - RW_WAVE_PX) >> s;
@@ -360,14 +358,12 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
     }
     fr = r->p.fresnel_one ? 256u : r->fres[ci];
     refl = r->skyrefl[ci];      /* the reflected sky */
-    if (rv->col && id == (uint32_t)r->p.refl_body) {
+    if (rv->col && id == (uint32_t)r->p.refl_body && x >= k->rx0 && x <= k->rx1) {
+        /* the lookup below without its clamps, which change nothing here */
+        const int32_t rx = (x + dx) >> s;
+        if (get_depth(depth, k->rdep[dy + RW_WAVE_PX], rx) != r->rdfar) refl = get_rgb(fmt, k->rcol[dy + RW_WAVE_PX], rx);
+    } else if (rv->col && id == (uint32_t)r->p.refl_body) {
         int32_t yy = y + dy, xx = x + dx, ry, rx;
-        if (x >= k->rx0 && x <= k->rx1) {      /* the same lookup without its clamps */
-            rx = xx >> s;
-            if (get_depth(depth, k->rdep[dy + RW_WAVE_PX], rx) != r->rdfar)
-                refl = get_rgb(fmt, k->rcol[dy + RW_WAVE_PX], rx);
-            goto refracted;
-        }
         if (yy < 0) yy = 0;
         if (yy >= r->h) yy = r->h - 1;
         if (xx < 0) xx = 0;
@@ -380,7 +376,6 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
             if (get_depth(depth, rv->dep + o * dbp, rx) != r->rdfar) refl = get_rgb(fmt, rv->col + o * bpp, rx);
         }
     }
-refracted:
     /* refraction: x32 = 32 L / tint_len, L = zc_w (dw / dt - 1) (dt < dw), zc_w the
      * body's plane point's zc = the reflected plane's times bratio: tkr[y] bratio q >> 48
      * with q = (dw - dt) / dt, Q16, from both depths brought to 16 bits */

@@ -166,13 +166,13 @@ typedef struct rw_frame {
 br_status rw_mirror_vp(const cam_vp *vp, int32_t plane_z, int32_t res_shift, int32_t w, int32_t h,
                        cam_vp *out);
 
-/* Fills r for one frame: terrain (prepared), water and refl (prepared frames or NULL),
- * camera c (the terrain's).  BR_E_ARG on inconsistent sizes or parameters. */
 /* Fills r's frame-independent tables (Fresnel, sky weights, tint, sine) if not yet
  * done; rw_setup does it at its first call otherwise.  For a zeroed rw_frame, at set-up
  * time, so that no frame pays for them. */
 void rw_tables(rw_frame *r);
 
+/* Fills r for one frame: terrain (prepared), water and refl (prepared frames or NULL),
+ * camera c (the terrain's).  BR_E_ARG on inconsistent sizes or parameters. */
 br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame *terrain,
                    const rs_frame *water, const rs_frame *refl);
 
