@@ -283,6 +283,7 @@ typedef struct rw_rowk {
      * lies in the frame's columns and (x + dx) >> s below rw: water_px's clamps change
      * nothing there (|dx|, |dy| <= RW_WAVE_PX: see water_px).  Otherwise rx0 > rx1. */
     int32_t rx0, rx1;
+    int32_t s;                  /* the reflection's resolution shift (res_shift) */
     const uint8_t *rcol[2 * RW_WAVE_PX + 1], *rdep[2 * RW_WAVE_PX + 1];
 } rw_rowk;
 
@@ -313,6 +314,7 @@ static RW_INLINE void row_k(const rw_frame *r, const refl_view *rv, int32_t y, r
         k->rx0 = 1; k->rx1 = 0;     /* no column */
     }
     k->y = y;
+    k->s = s;
     k->tkr = r->tkr[y];
     k->shore = r->p.wet && k->tkr >= 0;
     k->wbound = r->p.shore_bound && r->p.shore_w;
@@ -327,15 +329,15 @@ static RW_INLINE void row_k(const rw_frame *r, const refl_view *rv, int32_t y, r
  * depth dw (30-bit units), body id; fmt and depth are the frame's (constants at each
  * call, as in post_rows). */
 static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const rw_rowk *k, int32_t x, uint32_t ct,
-                         uint32_t dt, uint32_t dw, uint32_t id, const int32_t fmt, const int32_t depth)
+                         uint32_t dt, uint32_t dw, uint32_t id, const int32_t fmt, const int32_t depth, const int common)
 {
-    const int32_t a = r->aq[x], y = k->y, s = r->p.res_shift;
+    const int32_t a = r->aq[x], y = k->y, s = k->s;
     uint32_t den = (uint32_t)(((int64_t)a * a + k->bb) >> 8);
     uint32_t ci = k->cnum / (den ? den : 1);
     int32_t dx = 0, dy = 0;
     uint32_t refl, refr, fr, x32;
     if (ci > RW_TAB) ci = RW_TAB;
-    if (r->p.waves_on) {
+    if (common || r->p.waves_on) {
         int64_t q8 = ((int64_t)dw * r->amp_m) >> 32;
         if (q8 > RW_WAVE_PX * 128) q8 = RW_WAVE_PX * 128;
         /* beyond wave_fade_d (far away) the waves fade as 1/zc^2: shorter than a pixel
@@ -356,11 +358,11 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
             ci = ti < 0 ? 0u : ti > RW_TAB ? (uint32_t)RW_TAB : (uint32_t)ti;
         }
     }
-    fr = r->p.fresnel_one ? 256u : r->fres[ci];
+    fr = !common && r->p.fresnel_one ? 256u : r->fres[ci];
     refl = r->skyrefl[ci];      /* the reflected sky */
-    if (rv->col && id == (uint32_t)r->p.refl_body && x >= k->rx0 && x <= k->rx1) {
+    if (id == (uint32_t)r->p.refl_body && x >= k->rx0 && x <= k->rx1) {     /* (rx0 <= rx1: rv->col) */
         /* the lookup below without its clamps, which change nothing here */
-        const int32_t rx = (x + dx) >> s;
+        const int32_t rx = (x + dx) >> k->s;
         if (get_depth(depth, k->rdep[dy + RW_WAVE_PX], rx) != r->rdfar) refl = get_rgb(fmt, k->rcol[dy + RW_WAVE_PX], rx);
     } else if (rv->col && id == (uint32_t)r->p.refl_body) {
         int32_t yy = y + dy, xx = x + dx, ry, rx;
@@ -380,7 +382,7 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
      * body's plane point's zc = the reflected plane's times bratio: tkr[y] bratio q >> 48
      * with q = (dw - dt) / dt, Q16, from both depths brought to 16 bits */
     x32 = 255;
-    if (r->p.tint_fixed) return mix_rgb(mix_pre(ct, r->tint_u, r->tint_rb, r->tint_g), refl, fr);
+    if (common || r->p.tint_fixed) return mix_rgb(mix_pre(ct, r->tint_u, r->tint_rb, r->tint_g), refl, fr);
     if (k->tkr >= 0 && r->bratio[id] && dt < dw) {
         const int32_t sh = dw >= 65536u ? 16 - fx_clz32(dw) : 0;    /* dw >> sh < 2^16 */
         uint32_t w16, t16;
@@ -502,29 +504,28 @@ static inline void put_px(uint8_t *crow, int32_t x, int32_t y, uint32_t rgb, con
  * water pixels change, fogged by the water's depth.  Same specialisation as post_rows. */
 static RW_INLINE void water_rows_only(const rw_frame *r, rs_band *b, const refl_view *rv, const uint8_t *wcol,
                                    const uint8_t *wdep, int32_t wy0, int32_t wrows, const int32_t fmt,
-                                   const int32_t depth)
+                                   const int32_t depth, const int common)
 {
     const size_t dbp = depth == RS_DEPTH16 ? 2u : 4u;
-    const int32_t dsh = depth == RS_DEPTH16 ? 14 : 0;
+    const int32_t dsh = depth == RS_DEPTH16 ? 14 : 0, w = b->w;      /* (the pixel stores may alias b) */
     int32_t row, x;
     for (row = 0; row < b->rows; row++) {
         const int32_t y = b->y0 + row;
         uint8_t *crow = (uint8_t *)b->color + (size_t)row * b->stride;
-        const uint8_t *drow = (const uint8_t *)b->depth + (size_t)row * (size_t)b->w * dbp, *wd = NULL;
+        const uint8_t *drow = (const uint8_t *)b->depth + (size_t)row * (size_t)w * dbp, *wd = NULL;
         const uint8_t *wc = water_row(r, b, wcol, wdep, wy0, wrows, y, dbp, &wd);
         rw_rowk k;
         uint32_t sky;
         if (!wc) continue;
         row_k(r, rv, y, &k, fmt, depth);
         sky = r->sky[y];
-        for (x = next_water(wc, 0, b->w, fmt); x < b->w; x = next_water(wc, x + 1, b->w, fmt)) {
+        for (x = next_water(wc, 0, w, fmt); x < w; x = next_water(wc, x + 1, w, fmt)) {
             const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
             uint32_t rgb, d, fw;
             if (!water_shows(r, &k, x, id, dt, dw, dsh)) continue;
-            rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, fmt, depth);
+            rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, fmt, depth, common);
             d = dw << dsh;
-            if (r->p.fog_on && (d >> r->fog_sh) <= RW_TAB && (fw = r->fog[d >> r->fog_sh]) != 0)
-                rgb = mix_rgb(rgb, sky, fw);
+            if (d < r->fog_d30 && (fw = r->fog[d >> r->fog_sh]) != 0) rgb = mix_rgb(rgb, sky, fw);
             put_px(crow, x, y, rgb, fmt);
         }
     }
@@ -563,7 +564,7 @@ static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *
                 if (wc) {
                     const uint32_t id = get_id(fmt, wc, x), dw = get_depth(depth, wd, x);
                     if (id && water_shows(r, &k, x, id, dt, dw, dsh)) {
-                        rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, fmt, depth);
+                        rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, fmt, depth, 0);
                         d = dw << dsh;
                         changed = 1;
                     }
@@ -602,11 +603,18 @@ br_status rw_post(const void *user, rs_band *b, rs_band_stats *st)
         wrows = b->scratch_rows[i];
     }
     if (!r->pixel_fog) {
+        /* the common case (waves, the fixed tint of detected water, Schlick's Fresnel) in
+         * the two pixel layouts of the benchmarks and boards with its three tests
+         * settled at compile time: fewer values live in the pixel loop */
+        const int common = r->p.waves_on && r->p.tint_fixed && !r->p.fresnel_one;
         if (r->fmt == RS_FMT_RGB565) {
-            if (r->depth == RS_DEPTH16) water_rows_only(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_RGB565, RS_DEPTH16);
-            else water_rows_only(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_RGB565, RS_DEPTH32);
-        } else if (r->depth == RS_DEPTH16) water_rows_only(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_XRGB8888, RS_DEPTH16);
-        else water_rows_only(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_XRGB8888, RS_DEPTH32);
+            if (r->depth == RS_DEPTH16) {
+                if (common) water_rows_only(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_RGB565, RS_DEPTH16, 1);
+                else water_rows_only(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_RGB565, RS_DEPTH16, 0);
+            } else water_rows_only(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_RGB565, RS_DEPTH32, 0);
+        } else if (r->depth == RS_DEPTH16) water_rows_only(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_XRGB8888, RS_DEPTH16, 0);
+        else if (common) water_rows_only(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_XRGB8888, RS_DEPTH32, 1);
+        else water_rows_only(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_XRGB8888, RS_DEPTH32, 0);
         return BR_OK;
     }
     if (r->fmt == RS_FMT_RGB565) {

@@ -143,6 +143,8 @@ typedef struct rw_frame {
     uint64_t gxmax, gymax;      /* wet_w grid_sx, wet_h grid_sy */
     int32_t fog_sh;             /* fog table index: depth >> fog_sh */
     uint32_t dquiet;            /* buffer depth from which terrain gets no fog (> dfar) */
+    uint32_t fog_d30;           /* 30-bit depth from which nothing gets fog: fog[d >> fog_sh] is 0
+                                   or past the table for every d >= fog_d30 (0: fog off) */
     int32_t pixel_fog;          /* 1: the hook fogs terrain pixels (textured frames); 0: the
                                    terrain's vertices were fogged (rw_fog_vertices) */
     uint64_t inv_fade;          /* 2^32 / (wave_fade_d >> 14 | 1), rounded down */

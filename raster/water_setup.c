@@ -328,6 +328,7 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         if (p->fog_on)
             for (i = RW_TAB; i >= 0; i--)
                 if (r->fog[i]) { d30 = (uint64_t)(i + 1) << r->fog_sh; break; }
+        r->fog_d30 = d30 > 0xffffffffu ? 0xffffffffu : (uint32_t)d30;    /* (d < 2^30 always) */
         if (r->depth == RS_DEPTH16) d30 = (d30 + (1u << 14) - 1) >> 14;
         r->dquiet = d30 > r->dfar ? (d30 > 0xffffffffu ? 0xffffffffu : (uint32_t)d30) : r->dfar + 1;
     }
