@@ -574,12 +574,14 @@ RSI_INLINE static void draw_strips(band *bd, const int vf)
                 const uint32_t *sp = s + t0 + 2;
                 const uint32_t *const se = s + t1 + 1;     /* steps while sp < se */
 #if RS_PREPASS
-                /* A chunk inside the band (or any chunk of a whole-frame band): its steps
-                 * set up by the pre-pass (the vertices gathered first: the low 16 bits of
-                 * x and y, the outcode), then masks and shading here.  A chunk that
-                 * crosses the band's edges (bands of a few rows) has most of its steps
-                 * outside, which the per-pair code below rejects for less. */
-                if ((bd->y0 == 0 && bd->y1 == f->h) || (ch && ch[0] >= bd->y0 && ch[1] < bd->y1)) {
+                /* The chunk's steps set up by the pre-pass (the vertices gathered first:
+                 * the low 16 bits of x and y, the outcode), then masks and shading here,
+                 * whether the chunk lies inside the band or crosses its edges: the
+                 * pre-pass cuts each step's box to the band's rows and passes over a
+                 * group of PP_L steps that draw nothing in the band at the cost of its
+                 * bounds, which costs less than the per-pair code below at every band
+                 * height (docs/perf-history.md). */
+                {
                     pp_soa q;
                     const int32_t n = (int32_t)((se - sp + 1) / 2);
                     pp_prepass(bd, &q, cache, s + t0, n);
@@ -587,8 +589,8 @@ RSI_INLINE static void draw_strips(band *bd, const int vf)
                     else pp_steps(bd, &q, sp, coff, zoff, cdiff, 0, vf);
                     v0 = q.ve[n]; v1 = q.vo[n];
                     sp += 2 * n;
-                } else
-#endif
+                }
+#else
                 {
                     uint32_t c01 = v0->c | v1->c;      /* carried: the previous step's c23 */
                     for (; sp < se; sp += 2) {
@@ -618,6 +620,7 @@ RSI_INLINE static void draw_strips(band *bd, const int vf)
                         v0 = v2; v1 = v3;
                     }
                 }
+#endif
                 if (sp < s + t1 + 2) {
                     const rs_cvert *v2 = &cache[sp[0]];
                     strip_tri(bd, v0, v1, v2, sp[-2], sp[-1], sp[0], vf);
