@@ -41,7 +41,7 @@ PKG_LIBS=$(pkg-config --libs libpng zlib)
 FLAGS="-std=c99 -g -O1 -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all -I. $PKG_CFLAGS"
 # decompressed archives capped at 64 MB so a zip bomb is a quick refusal, not an OOM
 DEFS="-DDEM_MAX_INFLATE=((size_t)64<<20)"
-SRC="$(ls core/*.c raster/*.c) platform/err.c platform/merge.c platform/scene.c platform/png_io.c $(ls platform/load*.c)"
+SRC="$(ls core/*.c raster/*.c) platform/clock.c platform/err.c platform/fill.c platform/merge.c platform/pipe_threads.c platform/scene.c platform/tree_file.c platform/png_io.c $(ls platform/load*.c)"
 OBJ=""
 for s in $SRC; do
   o="$D/obj/$(echo "$s" | tr / _ | sed 's/\.c$/.o/')"
@@ -81,7 +81,7 @@ per=$((T / n)); [ "$per" -lt 1 ] && per=1
 echo "fuzz: ${T}s divided evenly among $n harnesses: ${per}s each, one after another (build dir $D)"
 status=0
 for h in $harnesses; do
-  $CC $FLAGS -fsanitize=fuzzer "$DEFS" -o "$D/fuzz_$h" "tests/fuzz_$h.c" $OBJ $PKG_LIBS -lm ||
+  $CC $FLAGS -fsanitize=fuzzer "$DEFS" -o "$D/fuzz_$h" "tests/fuzz_$h.c" $OBJ $PKG_LIBS -lpthread -lm ||
     { echo "fuzz: cannot build tests/fuzz_$h.c" >&2; status=1; continue; }
   seeds="$S/$h"; [ -d "$seeds" ] || seeds=""
   mkdir -p "$D/corpus/$h"     # every harness, seeded or not (fuzz_raster has no seeds)
