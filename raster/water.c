@@ -327,7 +327,8 @@ static RW_INLINE void row_k(const rw_frame *r, const refl_view *rv, int32_t y, r
 
 /* The colour of water pixel (x, k->y): terrain colour ct and depth dt under it, water
  * depth dw (30-bit units), body id; fmt and depth are the frame's (constants at each
- * call, as in post_rows). */
+ * call, as in post_rows); common (a constant too) promises what rw_post checked: waves
+ * on, the fixed tint, Schlick's Fresnel term. */
 static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const rw_rowk *k, int32_t x, uint32_t ct,
                          uint32_t dt, uint32_t dw, uint32_t id, const int32_t fmt, const int32_t depth, const int common)
 {
