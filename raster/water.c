@@ -361,22 +361,25 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
     }
     fr = !common && r->p.fresnel_one ? 256u : r->fres[ci];
     refl = r->skyrefl[ci];      /* the reflected sky */
-    if (id == (uint32_t)r->p.refl_body && x >= k->rx0 && x <= k->rx1) {     /* (rx0 <= rx1: rv->col) */
-        /* the lookup below without its clamps, which change nothing here */
-        const int32_t rx = (x + dx) >> k->s;
-        if (get_depth(depth, k->rdep[dy + RW_WAVE_PX], rx) != r->rdfar) refl = get_rgb(fmt, k->rcol[dy + RW_WAVE_PX], rx);
-    } else if (rv->col && id == (uint32_t)r->p.refl_body) {
-        int32_t yy = y + dy, xx = x + dx, ry, rx;
-        if (yy < 0) yy = 0;
-        if (yy >= r->h) yy = r->h - 1;
-        if (xx < 0) xx = 0;
-        if (xx >= r->w) xx = r->w - 1;
-        ry = yy >> s; rx = xx >> s;
-        if (rx >= rv->rw) rx = rv->rw - 1;
-        if (ry >= rv->h0 && ry < rv->h1) {
-            const size_t o = (size_t)(ry - rv->h0) * (size_t)rv->rw;
-            const size_t bpp = fmt == RS_FMT_RGB565 ? 2u : 4u, dbp = depth == RS_DEPTH16 ? 2u : 4u;
-            if (get_depth(depth, rv->dep + o * dbp, rx) != r->rdfar) refl = get_rgb(fmt, rv->col + o * bpp, rx);
+    if (id == (uint32_t)r->p.refl_body) {     /* only the mirror's body reads the mirror */
+        if (x >= k->rx0 && x <= k->rx1) {      /* (rx0 <= rx1 only with rv->col) */
+            /* the lookup below without its clamps, which change nothing here */
+            const int32_t rx = (x + dx) >> k->s;
+            if (get_depth(depth, k->rdep[dy + RW_WAVE_PX], rx) != r->rdfar)
+                refl = get_rgb(fmt, k->rcol[dy + RW_WAVE_PX], rx);
+        } else if (rv->col) {
+            int32_t yy = y + dy, xx = x + dx, ry, rx;
+            if (yy < 0) yy = 0;
+            if (yy >= r->h) yy = r->h - 1;
+            if (xx < 0) xx = 0;
+            if (xx >= r->w) xx = r->w - 1;
+            ry = yy >> s; rx = xx >> s;
+            if (rx >= rv->rw) rx = rv->rw - 1;
+            if (ry >= rv->h0 && ry < rv->h1) {
+                const size_t o = (size_t)(ry - rv->h0) * (size_t)rv->rw;
+                const size_t bpp = fmt == RS_FMT_RGB565 ? 2u : 4u, dbp = depth == RS_DEPTH16 ? 2u : 4u;
+                if (get_depth(depth, rv->dep + o * dbp, rx) != r->rdfar) refl = get_rgb(fmt, rv->col + o * bpp, rx);
+            }
         }
     }
     /* refraction: x32 = 32 L / tint_len, L = zc_w (dw / dt - 1) (dt < dw), zc_w the
@@ -526,7 +529,7 @@ static RW_INLINE void water_rows_only(const rw_frame *r, rs_band *b, const refl_
             if (!water_shows(r, &k, x, id, dt, dw, dsh)) continue;
             rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, fmt, depth, common);
             d = dw << dsh;
-            if (d < r->fog_d30 && (fw = r->fog[d >> r->fog_sh]) != 0) rgb = mix_rgb(rgb, sky, fw);
+            if ((fw = fog_weight(r->fog, (uint32_t)r->fog_sh, r->fog_d30, d)) != 0) rgb = mix_rgb(rgb, sky, fw);
             put_px(crow, x, y, rgb, fmt);
         }
     }
@@ -570,7 +573,7 @@ static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *
                         changed = 1;
                     }
                 }
-                if (r->p.fog_on && (d >> r->fog_sh) <= RW_TAB && (fw = r->fog[d >> r->fog_sh]) != 0) {
+                if ((fw = fog_weight(r->fog, (uint32_t)r->fog_sh, r->fog_d30, d)) != 0) {
                     if (!changed) rgb = get_rgb(fmt, crow, x);
                     rgb = mix_rgb(rgb, sky, fw);
                     changed = 1;

@@ -24,6 +24,15 @@ static inline uint32_t mix_pre(uint32_t a, uint32_t u, uint32_t brb, uint32_t bg
     return (rb & 0xff00ffu) | (g & 0xff00u);
 }
 
+/* The fog weight (Q8) of 30-bit depth d from rw_frame's fog table: fog[d >> sh] below
+ * d30 (rw_frame.fog_d30), 0 from there on, where every entry is 0 or past the table
+ * (d30 is 0 when fog is off).  Values, not the frame: callers keep them in locals where
+ * their stores could alias it. */
+static inline uint32_t fog_weight(const uint8_t *fog, uint32_t sh, uint32_t d30, uint32_t d)
+{
+    return d < d30 ? fog[d >> sh] : 0u;
+}
+
 /* 4x4 ordered dither (Bayer), 0 .. 15, by screen position. */
 static const uint8_t bayer4[4][4] = { { 0, 8, 2, 10 }, { 12, 4, 14, 6 }, { 3, 11, 1, 9 }, { 15, 7, 13, 5 } };
 

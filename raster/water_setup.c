@@ -360,14 +360,14 @@ void rw_fog_vertices(rw_frame *r, rs_frame *f)
         rs_cvert *const cache = f->cache;
         const uint8_t *const fog = r->fog;
         const uint32_t *const sky = r->sky;
-        const uint32_t nv = f->nv, sh = (uint32_t)r->fog_sh;
+        const uint32_t nv = f->nv, sh = (uint32_t)r->fog_sh, d30 = r->fog_d30;
         const int32_t h = r->h;
         for (i = 0; i < nv; i++) {
             rs_cvert *o = &cache[i];
-            const uint32_t oc = o->c >> 24, q = o->d >> sh;
+            const uint32_t oc = o->c >> 24;
             uint32_t fw;
             int32_t y;
-            if ((oc & (RS_OUT_NEAR | RS_OUT_GUARD)) || q > RW_TAB || (fw = fog[q]) == 0) continue;
+            if ((oc & (RS_OUT_NEAR | RS_OUT_GUARD)) || (fw = fog_weight(fog, sh, d30, o->d)) == 0) continue;
             y = o->y >> RS_SUBPIX_BITS;
             y = y < 0 ? 0 : y >= h ? h - 1 : y;
             rs_cvert_recolour(o, mix_rgb(o->c & 0xffffffu, sky[y], fw));
