@@ -8,8 +8,9 @@
  * function of L and d, 0 when L < tau d and ONE when L >= (tau + span) d.  Every
  * quantity but d is fixed while the key (tree, frame, f, thresholds) is, and
  *   |box_dist(e', V) - box_dist(e, V)| <= |e' - e|_1                         (1)
- * (each per-axis distance to an interval moves by at most that axis' move; their
- * max and floor(147 sum / 256) by at most the sum of the moves, an integer).  So a
+ * (each per-axis distance to an interval moves by at most that axis' move; the
+ * floored linear forms of core/bt_mesh.c norm2_lo, coefficients <= 1, by at most
+ * the sum of the moves, an integer, and so does their maximum).  So a
  * decision holds for every eye whose distance d' lies in an interval [lo, hi]
  * around d, i.e. while the L1 travel since stays within min(hi - d, d - lo), given
  * the ST_PREV that the next frames will read: a split diamond is listed and has
@@ -30,7 +31,7 @@
 
 /* d < 2^32: every coordinate of the eye and of the volumes is within +-CAM_COORD_MAX
  * < 2^30 (core/cam.h; bti_setup refuses larger frames), so each per-axis distance is
- * < 2^31 and box_dist <= max(2^31, 3 * 2^31 * 147 / 256) < 2^32.  So a bound >= 2^32
+ * < 2^31 and box_dist <= their Euclidean norm < sqrt(3) 2^31 < 2^32.  So a bound >= 2^32
  * never binds, margins are < 2^32, and an entry lives at most COH_JUMP - 1 of travel:
  * a key change adds COH_JUMP, past every expiry. */
 #define COH_DMAX ((int64_t)1 << 32)

@@ -138,11 +138,14 @@ static void test_fidelity_obj(void)
     dem_free(&f);
 }
 
+/* The view mesh is about 1,000 triangles: on this void-cut terrain its references per
+ * triangle move between 1.51 and 1.56 with the pixel error (the bridges around the
+ * voids stay while the triangles between them come and go), 1.515 here. */
 static void test_voids_view_ply_stl(void)
 {
     char dem[256], me[] = "--max-error", mv[] = "0.5", o[] = "-o",
          js[] = "--json", cam[] = "--camera", cv[] = "0,0,1900,700,500,1700", px[] = "--pixel-error",
-         pv[] = "1", sz[] = "--size", sv[] = "320x240";
+         pv[] = "0.9", sz[] = "--size", sv[] = "320x240";
     char path[256], out[256], *argv[12];
     figs g, gv;
     FILE *fp;

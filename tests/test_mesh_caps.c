@@ -62,7 +62,7 @@ static void test_same_meshes_less_memory(void)
     CHECK_EQ(m2.cap_v, max_v);
     CHECK_EQ(bt_frame_auto(&g1, &fr, &us), BR_OK);
     memset(&p, 0, sizeof p);
-    p.mode = BT_VIEW; p.fr = fr; p.c = &c; p.hyst_q8 = 64; p.morph_q8 = 128; p.pixel_err_q8 = 480;
+    p.mode = BT_VIEW; p.fr = fr; p.c = &c; p.hyst_q8 = 64; p.morph_q8 = 128; p.pixel_err_q8 = 448;
     for (k = 0; k < 6; k++) {
         camera(us, k, &c);
         CHECK_EQ(bt_extract(&t1, &p, &m1), BR_OK);
@@ -94,7 +94,7 @@ static void test_too_few_vertices_fall_back(void)
     CHECK_EQ(bt_mesh_init_v(&m, MAX_TRI, 256, mem, s), BR_OK);
     CHECK_EQ(bt_frame_auto(&g, &fr, &us), BR_OK);
     memset(&p, 0, sizeof p);
-    p.mode = BT_VIEW; p.fr = fr; p.c = &c; p.hyst_q8 = 64; p.morph_q8 = 128; p.pixel_err_q8 = 480;
+    p.mode = BT_VIEW; p.fr = fr; p.c = &c; p.hyst_q8 = 64; p.morph_q8 = 128; p.pixel_err_q8 = 448;
     camera(us, 0, &c);
     /* the budget fallback's heap is sized by the vertices too, so what it buys fits them */
     st = bt_extract(&t, &p, &m);
