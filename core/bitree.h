@@ -322,10 +322,13 @@ typedef struct bt_params {
                               have changed (core/config.h BR_COHERENCE; the same mesh) */
     int32_t strip_order;   /* where voids or culling break the recursive walk, the strip can
                               be written again in a greedy leaf order (fewer references, the
-                              same triangles; about 4-5x the extraction's time where it runs):
-                              BT_ORDER_AUTO (0) in fidelity mode only (export), not in view and
-                              budget modes (per frame); BT_ORDER_WALK never; BT_ORDER_BEST in
-                              every mode */
+                              same triangles; about 4-5x the extraction's time where it runs),
+                              and each break bridged by the shortest run of line triangles
+                              (a search, thousands of instructions a break) instead of the
+                              fixed restart (up to 4): BT_ORDER_AUTO (0) both in fidelity mode
+                              (export), neither in view and budget modes (per frame);
+                              BT_ORDER_WALK the bridges only; BT_ORDER_BEST both in every
+                              mode */
 } bt_params;
 
 enum { BT_ORDER_AUTO = 0, BT_ORDER_WALK = 1, BT_ORDER_BEST = 2 };

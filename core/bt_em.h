@@ -67,6 +67,8 @@ typedef struct bti_extract {
     uint32_t hbase;         /* vertex hash generation (see reset_mesh) */
     uint32_t nbreak;        /* breaks of the walk bridged (the reorder pass runs if > 0) */
     int reorder;            /* p->strip_order asks for the reorder pass in this mode */
+    int bridge;             /* a break of the walk gets the shortest bridge (core/bt_strip.c),
+                               else the fixed restart (bti_setup: not per frame) */
     int64_t (*rho)(const struct bti_extract *e, int32_t x, int32_t y);
                             /* view and budget modes: the projected error of diamond (x, y)
                                in 1/256 pixel, -1 when culled (core/bt_mesh.c; the budget's

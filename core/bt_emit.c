@@ -67,7 +67,8 @@ int btw_write_leaf(bti_extract *e, const bti_leaf *L, const bti_leaf *N)
             l3[0] = L->ia; l3[1] = L->ic; l3[2] = L->ib;
             if (N) { n3[0] = N->ia; n3[1] = N->ic; n3[2] = N->ib; }
             e->nbreak++;
-            if (bts_bridge(m, l3, N ? n3 : NULL, N ? N->o0 : 0, N ? N->o1 : 0, e->plan, &e->nplan) == 0) return 0;
+            if (e->bridge && bts_bridge(m, l3, N ? n3 : NULL, N ? N->o0 : 0, N ? N->o1 : 0, e->plan, &e->nplan) == 0)
+                return 0;
         }
         if (hp && hq && p != q) {
             uint32_t z = (p != L->ia && q != L->ia) ? L->ia : ((p != L->ic && q != L->ic) ? L->ic : L->ib);
@@ -94,7 +95,7 @@ int btw_write_leaf(bti_extract *e, const bti_leaf *L, const bti_leaf *N)
          * grid cross < 0 for even i, > 0 for odd i (odd triangles are swapped) */
         uint32_t i0, v2 = L->o0, v3 = L->o1;
         const int ccw_first = bti_cross(&m->v[L->other], &m->v[L->o0], &m->v[L->o1]) < 0;
-        if (m->ns > 0) {    /* only if no bridge fits (bt_strip.c): 4 line triangles */
+        if (m->ns > 0) {    /* no bridge searched (e->bridge) or none fits: 4 line triangles */
             push(m, m->strip[m->ns - 1]);
             push(m, L->other);
             m->nline += 4;

@@ -629,6 +629,10 @@ br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p)
     e->fid = p->mode == BT_FIDELITY;
     if (p->strip_order < BT_ORDER_AUTO || p->strip_order > BT_ORDER_BEST) return BR_E_ARG;
     e->reorder = p->strip_order == BT_ORDER_BEST || (p->strip_order == BT_ORDER_AUTO && p->mode == BT_FIDELITY);
+    /* a bridge search costs thousands of instructions a break and saves two or three
+     * line triangles, which the rasteriser rejects in a few dozen: per frame (view and
+     * budget modes) the automatic order takes the fixed restart */
+    e->bridge = !(p->strip_order == BT_ORDER_AUTO && p->mode != BT_FIDELITY);
     if (p->mode == BT_FIDELITY) {
         int64_t thr = p->max_err;
         uint16_t lo = 0, hi = BT_CODE_SPLIT - 1;
