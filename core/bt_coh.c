@@ -3,13 +3,13 @@
  * is docs/bitree.md "Frame coherence").
  *
  * The view rule (core/bt_mesh.c decide) splits a diamond that is not culled iff
- * L > thr d, L = ew f (saturated product), d = box_dist(eye, volume), thr = tau_lo
+ * L > thr d, L = ew f (saturated product), d = bti_box_dist(eye, volume), thr = tau_lo
  * when the diamond has ST_PREV, else tau; a split vertex's geomorph weight is a
  * function of L and d, 0 when L < tau d and ONE when L >= (tau + span) d.  Every
  * quantity but d is fixed while the key (tree, frame, f, thresholds) is, and
- *   |box_dist(e', V) - box_dist(e, V)| <= |e' - e|_1                         (1)
+ *   |bti_box_dist(e', V) - bti_box_dist(e, V)| <= |e' - e|_1                 (1)
  * (each per-axis distance to an interval moves by at most that axis' move; the
- * floored linear forms of core/bt_mesh.c norm2_lo, coefficients <= 1, by at most
+ * floored linear forms of bti_norm2_lo (core/bt_int.h), coefficients <= 1, by at most
  * the sum of the moves, an integer, and so does their maximum).  So a
  * decision holds for every eye whose distance d' lies in an interval [lo, hi]
  * around d, i.e. while the L1 travel since stays within min(hi - d, d - lo), given
@@ -31,7 +31,7 @@
 
 /* d < 2^32: every coordinate of the eye and of the volumes is within +-CAM_COORD_MAX
  * < 2^30 (core/cam.h; bti_setup refuses larger frames), so each per-axis distance is
- * < 2^31 and box_dist <= their Euclidean norm < sqrt(3) 2^31 < 2^32.  So a bound >= 2^32
+ * < 2^31 and bti_box_dist <= their Euclidean norm < sqrt(3) 2^31 < 2^32.  So a bound >= 2^32
  * never binds, margins are < 2^32, and an entry lives at most COH_JUMP - 1 of travel:
  * a key change adds COH_JUMP, past every expiry. */
 #define COH_DMAX ((int64_t)1 << 32)

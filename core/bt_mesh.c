@@ -91,40 +91,6 @@ static int32_t zreal(const bt_tree *t, int32_t x, int32_t y)
 /* ------------------------------------------------------------ view */
 #define isat_mul bti_isat_mul
 
-/* The largest of five linear forms of a, b whose coefficient pairs, Q12 and rounded
- * down, are unit vectors at 0, 22.5, 45, 67.5 and 90 degrees or shorter: a lower bound
- * of sqrt(a^2 + b^2) (Cauchy-Schwarz) within cos(11.25 deg) = 0.981 of it, and
- * 1-Lipschitz in |da| + |db| (no coefficient exceeds 1; the floor of a real that moves
- * by at most an integer k moves by at most k).  3784^2 + 1567^2 and 2 * 2896^2 are
- * below 4096^2.  32 x 32 -> 64-bit products (one instruction on 32-bit ARM); the
- * result is below 2^32 (a, b < 2^31.5). */
-static inline uint32_t norm2_lo(uint32_t a, uint32_t b)
-{
-    uint64_t n = a > b ? a : b, v;
-    v = ((uint64_t)a * 3784u + (uint64_t)b * 1567u) >> 12; if (v > n) n = v;
-    v = ((uint64_t)a * 2896u + (uint64_t)b * 2896u) >> 12; if (v > n) n = v;
-    v = ((uint64_t)a * 1567u + (uint64_t)b * 3784u) >> 12; if (v > n) n = v;
-    return (uint32_t)n;
-}
-
-/* Lower bound of the distance from the eye to the box [lo, hi] (world units): the
- * per-axis distances' horizontal norm, then its norm with the vertical distance, each
- * by norm2_lo: at least 0.962 of the Euclidean distance (0.981^2), never more, and
- * 1-Lipschitz in the eye's L1 move (each per-axis distance moves by at most its
- * coordinate's move; core/bt_coh.c (1)).  Each per-axis distance is below 2^31 (eye
- * and box within CAM_COORD_MAX, checked by bti_setup), the horizontal norm below
- * 2^31.5. */
-static inline int64_t box_dist(const int32_t eye[3], const int64_t lo[3], const int64_t hi[3])
-{
-    uint32_t d[3];
-    int i;
-    for (i = 0; i < 3; i++) {
-        int64_t e = eye[i];
-        d[i] = (uint32_t)(e < lo[i] ? lo[i] - e : (e > hi[i] ? e - hi[i] : 0));
-    }
-    return norm2_lo(norm2_lo(d[0], d[1]), d[2]);
-}
-
 static inline void dvolume(const bti_extract *e, int32_t x, int32_t y, uint32_t id, int64_t lo[3], int64_t hi[3])
 {
     const bt_tree *t = e->t;
@@ -197,7 +163,7 @@ static int view_err(const bti_extract *e, int32_t x, int32_t y, uint32_t id, uns
     if (*mask && culled(e, lo, hi, mask, cm)) return -1;
     if (code == BT_CODE_SPLIT) return 1;
     *ew = obj_err(e, code);
-    *d = box_dist(e->p->c->eye, lo, hi);
+    *d = bti_box_dist(e->p->c->eye, lo, hi);
     if (*d <= 0) { *d = 0; return *ew > 0 ? 1 : 0; }
     return 0;
 }
@@ -311,7 +277,7 @@ static uint16_t morph_now(const bti_extract *e, int32_t x, int32_t y, uint32_t i
 {
     int64_t lo[3], hi[3], ew, d;
     dvolume(e, x, y, idx, lo, hi);
-    d = box_dist(e->p->c->eye, lo, hi);
+    d = bti_box_dist(e->p->c->eye, lo, hi);
     if (d <= 0) return BT_MORPH_ONE;
     ew = obj_err(e, BT_NODE_ERR(e->t->node[idx]));
     return morph_at(e, isat_mul(ew, e->fq8), d);

@@ -8,7 +8,8 @@
  * Scenes: the default terrain (assets/N47E009.hgt.gz) along the shipped camera paths
  * and a 20 m a frame flight with stops, jumps, turns and parameter changes; the
  * same flight over mt_rainier_90m.tif and fuji.png (../shared/data/dem, with voids).
- * A margin made too generous by the test hook (bt_coh.slack) must show. */
+ * A margin made too generous by the test hook (bt_coh.slack) must show.  The view
+ * rule's distance itself: a lower bound, near the Euclidean one, 1-Lipschitz. */
 #include <math.h>
 #include "tests/test.h"
 #include "platform/campath.h"
@@ -261,8 +262,82 @@ static void test_coherence_rebuilt_tree(void)
     close_dem();
 }
 
+/* xorshift64: the same draws everywhere */
+static uint64_t rng_state = 0x9e3779b97f4a7c15ull;
+static uint64_t rng(void)
+{
+    rng_state ^= rng_state << 13; rng_state ^= rng_state >> 7; rng_state ^= rng_state << 17;
+    return rng_state;
+}
+
+/* a coordinate in [-(2^30 - 1), 2^30 - 1], often near the ends or near 0 */
+static int32_t coord(void)
+{
+    uint64_t r = rng();
+    int32_t v = (int32_t)((r >> 8) % ((1u << 30) - 1));
+    switch (r & 3) {
+    case 0: v = CAM_COORD_MAX - (int32_t)((r >> 40) & 1023); break;
+    case 1: v = (int32_t)((r >> 40) & 4095); break;
+    default: break;
+    }
+    return (r >> 2) & 1 ? -v : v;
+}
+
+static double euclid(const int32_t eye[3], const int64_t lo[3], const int64_t hi[3])
+{
+    double s = 0;
+    int k;
+    for (k = 0; k < 3; k++) {
+        double d = eye[k] < lo[k] ? (double)(lo[k] - eye[k]) : eye[k] > hi[k] ? (double)(eye[k] - hi[k]) : 0;
+        s += d * d;
+    }
+    return sqrt(s);
+}
+
+/* The view rule's distance (core/bt_int.h bti_box_dist), over the whole coordinate
+ * range: never above the Euclidean distance from the eye to the box (so the screen
+ * error stays an upper bound), at least 0.962 of it, and moving by at most the eye's
+ * L1 move (what the coherence margins rest on, docs/bitree.md (1)). */
+static void test_box_dist(void)
+{
+    long i, n = t_emulated() ? 200000 : 2000000, bad_lo = 0, bad_near = 0, bad_lip = 0;
+    double worst = 1;
+    for (i = 0; i < n; i++) {
+        int32_t eye[3], e2[3];
+        int64_t lo[3], hi[3], d, d2, l1 = 0;
+        double ex;
+        int k;
+        for (k = 0; k < 3; k++) {
+            int32_t a = coord(), b = coord();
+            lo[k] = a < b ? a : b; hi[k] = a < b ? b : a;
+            eye[k] = coord();
+            e2[k] = eye[k];
+            if (rng() & 1) {        /* a move of the eye: small, or anywhere */
+                int64_t m = (rng() & 8) ? (int64_t)(rng() % 2001) - 1000 : (int64_t)coord() - eye[k];
+                int64_t v = eye[k] + m;
+                if (v > CAM_COORD_MAX) v = CAM_COORD_MAX;
+                if (v < -CAM_COORD_MAX) v = -CAM_COORD_MAX;
+                e2[k] = (int32_t)v;
+            }
+            l1 += e2[k] > eye[k] ? (int64_t)e2[k] - eye[k] : (int64_t)eye[k] - e2[k];
+        }
+        d = bti_box_dist(eye, lo, hi);
+        d2 = bti_box_dist(e2, lo, hi);
+        ex = euclid(eye, lo, hi);
+        bad_lo += d < 0 || (double)d > ex;
+        bad_near += (double)d < 0.962 * ex - 1;
+        bad_lip += (d2 > d ? d2 - d : d - d2) > l1;
+        if (ex > 1000 && (double)d / ex < worst) worst = (double)d / ex;
+    }
+    printf("  box distance: %ld eyes and boxes, worst %.4f of the Euclidean distance\n", n, worst);
+    CHECK_EQ(bad_lo, 0);
+    CHECK_EQ(bad_near, 0);
+    CHECK_EQ(bad_lip, 0);
+}
+
 int main(void)
 {
+    T_RUN(test_box_dist);
     T_RUN(test_coherence_paths);
     T_RUN(test_coherence_flights);
     T_RUN(test_coherence_margin_matters);
