@@ -150,7 +150,7 @@ void ws_close(water_scene *w)
     if (w->wf.z) free(w->wf.z);
     free(w->id); wm_free(&w->mesh); free(w->wverts); free(w->wtid); free(w->wcache); free(w->wchunks);
     free(w->rstrip); free(w->rcache); free(w->rchunks); free(w->rbed); free(w->rw);
-    free(w->rmesh_mem); free(w->rverts);
+    free(w->rmesh_mem); free(w->rverts); free(w->rst);
     memset(w, 0, sizeof *w);
 }
 
@@ -289,10 +289,11 @@ static void copy_idx(uint32_t *restrict o, const uint32_t *restrict in, uint32_t
 
 /* The reflection's own selection (water_scene.h rmesh): the mirrored camera's view
  * selection at refl_err times the terrain's screen error, without geomorph, from a copy
- * of the scene's tree with no frame state (view mode without hysteresis: the terrain's
- * state stays as the terrain's selection left it), serial, so the mesh and its vertices
- * are the same for every thread count.  0 when it is drawn; -1: the terrain's mesh is
- * drawn instead (no view-dependent terrain mesh, or the selection does not fit rmesh). */
+ * of the scene's tree with its own frame state (view mode without hysteresis, so the
+ * state only keeps the decision memo's frame coherence honest; the terrain's state stays
+ * as the terrain's selection left it), serial, so the mesh and its vertices are the same
+ * for every thread count.  0 when it is drawn; -1: the terrain's mesh is drawn instead
+ * (no view-dependent terrain mesh, or the selection does not fit rmesh). */
 static int refl_own(water_scene *w, scene *s, const cam *c, const rs_frame *tf, int32_t plane_z)
 {
     bt_tree t;
@@ -313,13 +314,13 @@ static int refl_own(water_scene *w, scene *s, const cam *c, const rs_frame *tf, 
         w->rcam.fwd[k] = k == 2 ? -c->fwd[k] : c->fwd[k];
     }
     t = s->tree;
-    t.st = NULL;
+    t.st = w->rst;
     memset(&bp, 0, sizeof bp);
     bp.mode = BT_VIEW;
     bp.c = &w->rcam;
     bp.fr = s->rt.fr;
     bp.pixel_err_q8 = (int32_t)lround(w->o.view_px * mult * 256 < 1 << 30 ? w->o.view_px * mult * 256 : 1 << 30);
-    if (bt_extract(&t, &bp, &w->rmesh) != BR_OK || w->rmesh.ns < 3) return -1;
+    if (bt_extract(&t, &bp, &w->rmesh) != BR_OK || w->rmesh.overflow || w->rmesh.ns < 3) return -1;
     rt_from_mesh(&s->rt, &w->rmesh, w->rverts);
     w->rmprim.kind = RS_STRIP; w->rmprim.n = w->rmesh.ns; w->rmprim.idx = w->rmesh.strip;
     w->rown = 1;
@@ -334,9 +335,10 @@ br_status ws_reserve(water_scene *w, scene *s)
     mb = bt_mesh_mem_size(cap);
     w->rmesh_mem = mb ? malloc(mb) : NULL;
     w->rverts = malloc(sizeof *w->rverts * (size_t)(3 * cap + 3));
-    if (!w->rmesh_mem || !w->rverts || bt_mesh_init(&w->rmesh, cap, w->rmesh_mem, mb) != BR_OK) {
-        free(w->rmesh_mem); free(w->rverts);
-        w->rmesh_mem = NULL; w->rverts = NULL;
+    w->rst = calloc(s->tree.nslot ? s->tree.nslot : 1, 1);
+    if (!w->rmesh_mem || !w->rverts || !w->rst || bt_mesh_init(&w->rmesh, cap, w->rmesh_mem, mb) != BR_OK) {
+        free(w->rmesh_mem); free(w->rverts); free(w->rst);
+        w->rmesh_mem = NULL; w->rverts = NULL; w->rst = NULL;
         return BR_E_NOMEM;
     }
     return BR_OK;

@@ -89,14 +89,16 @@ typedef struct water_scene {
                                    level (refl_bed_level), rbed_cap of them */
     uint32_t rbed_cap;
     /* the reflection's own LOD (ws_frame): the view selection of the mirrored camera at
-     * refl_err times the terrain's screen error, without frame state (the terrain's
-     * hysteresis is not touched), into rmesh (ws_reserve, or the first frame that
-     * needs it: min(WS_REFL_TRI, the terrain mesh's capacity) triangles, 43 MB); rown 1
-     * when this frame's reflection draws it, 0 when it draws the terrain's mesh (no
-     * view-dependent terrain mesh, or a selection larger than rmesh: bt_extract without
-     * frame state gives BR_E_NOMEM, no budget fallback) */
+     * refl_err times the terrain's screen error, with its own frame state rst (one byte
+     * a slot of the scene's tree, so the terrain's hysteresis is not touched; without
+     * hysteresis, it serves the decision memo and its frame coherence), into rmesh
+     * (ws_reserve, or the first frame that needs it: min(WS_REFL_TRI, the terrain
+     * mesh's capacity) triangles, 43 MB); rown 1 when this frame's reflection draws it,
+     * 0 when it draws the terrain's mesh (no view-dependent terrain mesh, or a selection
+     * larger than rmesh: bt_extract's budget fallback is not drawn) */
     bt_mesh rmesh;
     void *rmesh_mem;
+    uint8_t *rst;
     rs_vertex *rverts;
     rs_prim rmprim;             /* rmesh's strip as it is (the mirrored camera's winding) */
     cam rcam;                   /* the mirrored camera */
