@@ -65,7 +65,8 @@ typedef struct bti_extract {
     int fid;                /* plain fidelity rule (no budget marks) */
     int direct;             /* vertex hash slots by grid key (see home) */
     uint32_t hbase;         /* vertex hash generation (see reset_mesh) */
-    uint32_t nbreak;        /* breaks of the walk bridged (the reorder pass runs if > 0) */
+    uint32_t nbreak;        /* breaks of the walk, bridged or restarted (the reorder pass
+                               runs if > 0) */
     int reorder;            /* p->strip_order asks for the reorder pass in this mode */
     int bridge;             /* a break of the walk gets the shortest bridge (core/bt_strip.c),
                                else the fixed restart (bti_setup: not per frame) */

@@ -37,5 +37,7 @@ const char *t_data(const char *rel);/* "../shared/data/dem/" + rel (BITRAIN_DATA
 const char *t_outdir(void);         /* tests/out, created on demand */
 unsigned char *t_read_file(const char *path, size_t *len); /* malloc'd, NULL on error */
 int t_write_file(const char *path, const void *p, size_t len);
+/* xorshift64 from a fixed seed, one sequence a program: the same draws on every target */
+uint64_t t_xs64(void);
 
 #endif

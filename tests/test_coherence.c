@@ -262,18 +262,10 @@ static void test_coherence_rebuilt_tree(void)
     close_dem();
 }
 
-/* xorshift64: the same draws everywhere */
-static uint64_t rng_state = 0x9e3779b97f4a7c15ull;
-static uint64_t rng(void)
-{
-    rng_state ^= rng_state << 13; rng_state ^= rng_state >> 7; rng_state ^= rng_state << 17;
-    return rng_state;
-}
-
 /* a coordinate in [-(2^30 - 1), 2^30 - 1], often near the ends or near 0 */
 static int32_t coord(void)
 {
-    uint64_t r = rng();
+    uint64_t r = t_xs64();
     int32_t v = (int32_t)((r >> 8) % ((1u << 30) - 1));
     switch (r & 3) {
     case 0: v = CAM_COORD_MAX - (int32_t)((r >> 40) & 1023); break;
@@ -312,8 +304,8 @@ static void test_box_dist(void)
             lo[k] = a < b ? a : b; hi[k] = a < b ? b : a;
             eye[k] = coord();
             e2[k] = eye[k];
-            if (rng() & 1) {        /* a move of the eye: small, or anywhere */
-                int64_t m = (rng() & 8) ? (int64_t)(rng() % 2001) - 1000 : (int64_t)coord() - eye[k];
+            if (t_xs64() & 1) {        /* a move of the eye: small, or anywhere */
+                int64_t m = (t_xs64() & 8) ? (int64_t)(t_xs64() % 2001) - 1000 : (int64_t)coord() - eye[k];
                 int64_t v = eye[k] + m;
                 if (v > CAM_COORD_MAX) v = CAM_COORD_MAX;
                 if (v < -CAM_COORD_MAX) v = -CAM_COORD_MAX;

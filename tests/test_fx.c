@@ -89,17 +89,10 @@ static void test_isqrt_div(void)
     }
 }
 
-static uint64_t xs_state = 0x9e3779b97f4a7c15u;
-static uint64_t xs64(void)
-{
-    xs_state ^= xs_state << 13; xs_state ^= xs_state >> 7; xs_state ^= xs_state << 17;
-    return xs_state;
-}
-
 /* a divisor: all magnitudes equally likely, then any bits below the top one */
 static uint32_t any_divisor(void)
 {
-    const uint64_t r = xs64();
+    const uint64_t r = t_xs64();
     const uint32_t top = (uint32_t)1 << (r & 31);
     return top | ((uint32_t)(r >> 32) & (top - 1u));
 }
@@ -137,15 +130,15 @@ static void test_recip(void)
 {
     uint32_t i, d;
     for (i = 0; i < 256; i++) CHECK_EQ(fx_recip_seed[i], (1u << 25) / (257u + i) - 65536u);
-    for (d = 1; d <= (1u << 20); d++) check_recip(d, xs64());
+    for (d = 1; d <= (1u << 20); d++) check_recip(d, t_xs64());
     for (i = 0; i < 32; i++) {                    /* powers of two and their neighbours */
         d = (uint32_t)1 << i;
-        check_recip(d, xs64());
-        check_recip(d + 1u, xs64());
+        check_recip(d, t_xs64());
+        check_recip(d + 1u, t_xs64());
         if (d > 1) check_recip(d - 1u, UINT64_MAX);
     }
     check_recip(0xffffffffu, UINT64_MAX);
-    for (i = 0; i < 3000000; i++) check_recip(any_divisor(), xs64());
+    for (i = 0; i < 3000000; i++) check_recip(any_divisor(), t_xs64());
     /* the triangles' reciprocal of the doubled area: every a of the tiny and small
      * triangles (< 2^21), then any */
     for (d = 1; d < (1u << 21); d++) CHECK_EQ(fx_inv40(d), ((uint64_t)1 << 40) / d);
@@ -163,9 +156,9 @@ static void test_divisor(void)
 {
     int i;
     for (i = 0; i < 2000000; i++) {
-        const uint64_t r = xs64();
-        const int64_t d = (int64_t)(xs64() >> (1 + (r & 63) % 63)) + 1;
-        const int64_t n = (int64_t)(xs64() >> (2 + (r >> 6) % 62)) * ((r >> 12) & 1 ? -1 : 1);
+        const uint64_t r = t_xs64();
+        const int64_t d = (int64_t)(t_xs64() >> (1 + (r & 63) % 63)) + 1;
+        const int64_t n = (int64_t)(t_xs64() >> (2 + (r >> 6) % 62)) * ((r >> 12) & 1 ? -1 : 1);
         fx_divisor q;
         int64_t t = 777;
         fx_divisor_make(&q, d);

@@ -71,3 +71,10 @@ int t_write_file(const char *path, const void *p, size_t len)
     ok = fwrite(p, 1, len, f) == len;
     return fclose(f) == 0 && ok;
 }
+
+uint64_t t_xs64(void)
+{
+    static uint64_t x = 0x9e3779b97f4a7c15u;
+    x ^= x << 13; x ^= x >> 7; x ^= x << 17;
+    return x;
+}
