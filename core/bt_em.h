@@ -57,7 +57,8 @@ typedef struct bti_extract {
     int lost;               /* the split list overflowed */
     int nonvoid;            /* the padded grid has no void sample: skip the checks */
     int nodata_free;        /* the grid as read has none: a sample is valid iff in it */
-    int64_t wz_lo[256], wz_hi[256]; /* world z of the quantised height codes (floor, ceil) */
+    int32_t wz_lo[256], wz_hi[256]; /* world z of the quantised height codes (floor, ceil),
+                                       within +-CAM_COORD_MAX (bti_setup) */
     struct bti_leaf { uint32_t ia, ic, ib, o0, o1, other; } pend; /* see bti_leaf */
     int has_pend;
     uint32_t plan[BTS_PLAN]; int nplan; /* a bridge's way on to the next leaf */

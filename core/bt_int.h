@@ -75,13 +75,13 @@ static inline uint32_t bti_norm2_lo(uint32_t a, uint32_t b)
  * per-axis distance is below 2^31 (eye and box within CAM_COORD_MAX, checked by
  * bti_setup), the horizontal norm below 2^31.5.  tests/test_coherence.c checks all
  * three. */
-static inline int64_t bti_box_dist(const int32_t eye[3], const int64_t lo[3], const int64_t hi[3])
+static inline int64_t bti_box_dist(const int32_t eye[3], const int32_t lo[3], const int32_t hi[3])
 {
     uint32_t d[3];
     int i;
     for (i = 0; i < 3; i++) {
-        int64_t e = eye[i];
-        d[i] = (uint32_t)(e < lo[i] ? lo[i] - e : (e > hi[i] ? e - hi[i] : 0));
+        const int32_t e = eye[i];
+        d[i] = e < lo[i] ? (uint32_t)lo[i] - (uint32_t)e : (e > hi[i] ? (uint32_t)e - (uint32_t)hi[i] : 0u);
     }
     return bti_norm2_lo(bti_norm2_lo(d[0], d[1]), d[2]);
 }

@@ -91,7 +91,7 @@ static int32_t zreal(const bt_tree *t, int32_t x, int32_t y)
 /* ------------------------------------------------------------ view */
 #define isat_mul bti_isat_mul
 
-static inline void dvolume(const bti_extract *e, int32_t x, int32_t y, uint32_t id, int64_t lo[3], int64_t hi[3])
+static inline void dvolume(const bti_extract *e, int32_t x, int32_t y, uint32_t id, int32_t lo[3], int32_t hi[3])
 {
     const bt_tree *t = e->t;
     const bt_frame *fr = &e->p->fr;
@@ -101,10 +101,10 @@ static inline void dvolume(const bti_extract *e, int32_t x, int32_t y, uint32_t 
     int32_t x0 = x - r < 0 ? 0 : x - r, x1 = x + r > e->S ? e->S : x + r;
     int32_t y0 = y - r < 0 ? 0 : y - r, y1 = y + r > e->S ? e->S : y + r;
     uint32_t nv = t->node[id];
-    lo[0] = fr->ox + (int64_t)x0 * fr->sx;
-    hi[0] = fr->ox + (int64_t)x1 * fr->sx;
-    lo[1] = fr->oy - (int64_t)y1 * fr->sy;
-    hi[1] = fr->oy - (int64_t)y0 * fr->sy;
+    lo[0] = (int32_t)(fr->ox + (int64_t)x0 * fr->sx);
+    hi[0] = (int32_t)(fr->ox + (int64_t)x1 * fr->sx);
+    lo[1] = (int32_t)(fr->oy - (int64_t)y1 * fr->sy);
+    hi[1] = (int32_t)(fr->oy - (int64_t)y0 * fr->sy);
     lo[2] = e->wz_lo[BT_NODE_ZLO(nv)];
     hi[2] = e->wz_hi[BT_NODE_ZHI(nv)];
 }
@@ -114,8 +114,10 @@ static inline void dvolume(const bti_extract *e, int32_t x, int32_t y, uint32_t 
  * *mask, so descendants (whose volumes nest inside) skip them.  With frame
  * coherence, *cm is lowered to how far (Q30 world units) the tested planes' values
  * at the box may move before an answer changes: sp < 0 (outside) while the move is
- * <= -sp - 1, sn >= 0 (inside) while <= sn, both else. */
-static int culled(const bti_extract *e, const int64_t lo[3], const int64_t hi[3], unsigned *mask, int64_t *cm)
+ * <= -sp - 1, sn >= 0 (inside) while <= sn, both else.  The box's corners are 32-bit
+ * (within +-CAM_COORD_MAX, bti_setup) and the normals Q30: each product is 32 x 32 ->
+ * 64 bits, one instruction on 32-bit ARM. */
+static int culled(const bti_extract *e, const int32_t lo[3], const int32_t hi[3], unsigned *mask, int64_t *cm)
 {
     int i, k;
     if (e->p->no_cull) { *mask = 0; return 0; }
@@ -124,9 +126,9 @@ static int culled(const bti_extract *e, const int64_t lo[3], const int64_t hi[3]
         if (!(*mask & (1u << i))) continue;
         sp = sn = e->pl[i].d;
         for (k = 0; k < 3; k++) {
-            int64_t nk = e->pl[i].n[k];
-            sp += nk * (nk >= 0 ? hi[k] : lo[k]);
-            sn += nk * (nk >= 0 ? lo[k] : hi[k]);
+            const int32_t nk = e->pl[i].n[k];
+            sp += (int64_t)nk * (nk >= 0 ? hi[k] : lo[k]);
+            sn += (int64_t)nk * (nk >= 0 ? lo[k] : hi[k]);
         }
         if (e->coh) {
             int64_t g = sp < 0 ? -sp - 1 : (sn >= 0 ? sn : (sp < -sn - 1 ? sp : -sn - 1));
@@ -155,7 +157,7 @@ static int view_err(const bti_extract *e, int32_t x, int32_t y, uint32_t id, uns
                     int64_t *d, int64_t *cm)
 {
     const bt_tree *t = e->t;
-    int64_t lo[3], hi[3];
+    int32_t lo[3], hi[3];
     uint32_t nv = t->node[id];
     uint16_t code = BT_NODE_ERR(nv);
     if (BT_NODE_ZLO(nv) > BT_NODE_ZHI(nv)) return -1; /* all void */
@@ -275,7 +277,8 @@ static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *
  * and not culled: view_err's distance and object error, decide's morph_at. */
 static uint16_t morph_now(const bti_extract *e, int32_t x, int32_t y, uint32_t idx)
 {
-    int64_t lo[3], hi[3], ew, d;
+    int32_t lo[3], hi[3];
+    int64_t ew, d;
     dvolume(e, x, y, idx, lo, hi);
     d = bti_box_dist(e->p->c->eye, lo, hi);
     if (d <= 0) return BT_MORPH_ONE;
@@ -625,9 +628,11 @@ br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p)
         uint32_t rem = 0;
         int i;
         for (i = 0; i < 256; i++) {
-            int64_t zl = t->zmin + q, zh = zl + (rem != 0);
-            e->wz_lo[i] = p->fr.oz + ((zl * p->fr.sz_q16) >> 16);
-            e->wz_hi[i] = p->fr.oz + ((zh * p->fr.sz_q16 + 65535) >> 16);
+            const int64_t zl = t->zmin + q, zh = zl + (rem != 0);
+            const int64_t wl = p->fr.oz + ((zl * p->fr.sz_q16) >> 16), wh = p->fr.oz + ((zh * p->fr.sz_q16 + 65535) >> 16);
+            if (wl < -CAM_COORD_MAX || wh > CAM_COORD_MAX) return BR_E_ARG;     /* see below */
+            e->wz_lo[i] = (int32_t)wl;
+            e->wz_hi[i] = (int32_t)wh;
             q += qs;
             rem += rs;
             if (rem >= 255u) { rem -= 255u; q++; }
@@ -638,8 +643,8 @@ br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p)
          * offsets) below 2^62; a frame with a larger extent (e.g. sx = 2^20 over
          * 16384 steps: 2^34) would overflow them */
         if ((int64_t)p->fr.ox < -CAM_COORD_MAX || (int64_t)p->fr.ox + (int64_t)e->S * p->fr.sx > CAM_COORD_MAX ||
-            (int64_t)p->fr.oy > CAM_COORD_MAX || (int64_t)p->fr.oy - (int64_t)e->S * p->fr.sy < -CAM_COORD_MAX ||
-            e->wz_lo[0] < -CAM_COORD_MAX || e->wz_hi[255] > CAM_COORD_MAX) return BR_E_ARG;
+            (int64_t)p->fr.oy > CAM_COORD_MAX || (int64_t)p->fr.oy - (int64_t)e->S * p->fr.sy < -CAM_COORD_MAX)
+            return BR_E_ARG;
     }
     cam_frustum(p->c, e->pl);
     e->rho = rho_q8;

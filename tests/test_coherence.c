@@ -275,7 +275,7 @@ static int32_t coord(void)
     return (r >> 2) & 1 ? -v : v;
 }
 
-static double euclid(const int32_t eye[3], const int64_t lo[3], const int64_t hi[3])
+static double euclid(const int32_t eye[3], const int32_t lo[3], const int32_t hi[3])
 {
     double s = 0;
     int k;
@@ -295,8 +295,8 @@ static void test_box_dist(void)
     long i, n = t_emulated() ? 200000 : 2000000, bad_lo = 0, bad_near = 0, bad_lip = 0;
     double worst = 1;
     for (i = 0; i < n; i++) {
-        int32_t eye[3], e2[3];
-        int64_t lo[3], hi[3], d, d2, l1 = 0;
+        int32_t eye[3], e2[3], lo[3], hi[3];
+        int64_t d, d2, l1 = 0;
         double ex;
         int k;
         for (k = 0; k < 3; k++) {
