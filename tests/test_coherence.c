@@ -327,8 +327,34 @@ static void test_box_dist(void)
     CHECK_EQ(bad_lip, 0);
 }
 
+/* The geomorph weight without a 64-bit divide (core/bt_int.h bti_morph_nodiv, the
+ * path of targets without one: armhf, the boards) against floor(lhs / d) and morph_of's
+ * steps, over both of its ways (32-bit products and divisions, and the bit steps). */
+static void test_morph_nodiv(void)
+{
+    long i, n = t_emulated() ? 200000 : 2000000, bad = 0, fast = 0;
+    for (i = 0; i < n; i++) {
+        const int db = 1 + (int)(t_xs64() % 40), sb = 1 + (int)(t_xs64() % 20), tb = (int)(t_xs64() % 41);
+        const int64_t d = (int64_t)(t_xs64() % ((uint64_t)1 << db)) + 1;
+        const int64_t span = (int64_t)(t_xs64() % ((uint64_t)1 << sb)) + 1;
+        const int64_t tau = (int64_t)(t_xs64() % ((uint64_t)1 << tb));
+        int64_t rho = tau - span + (int64_t)(t_xs64() % (uint64_t)(3 * span + 1)), lhs, q, want;
+        if (rho < 0) rho = 0;
+        if ((double)rho * (double)d > 4e18) continue;
+        lhs = rho * d + (int64_t)(t_xs64() % (uint64_t)d);
+        q = lhs / d - tau;
+        want = q < 0 ? 0 : q >= span ? BT_MORPH_ONE : q * BT_MORPH_ONE / span;
+        bad += bti_morph_nodiv(lhs, d, tau, span) != (uint16_t)want;
+        fast += ((uint64_t)(tau + span) | (uint64_t)d) >> 32 == 0;
+    }
+    printf("  geomorph weight: %ld cases, %ld with 32-bit products\n", n, fast);
+    CHECK(fast > n / 4 && fast < n - n / 4);
+    CHECK_EQ(bad, 0);
+}
+
 int main(void)
 {
+    T_RUN(test_morph_nodiv);
     T_RUN(test_box_dist);
     T_RUN(test_coherence_paths);
     T_RUN(test_coherence_flights);
