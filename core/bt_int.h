@@ -56,15 +56,16 @@ static inline int32_t bti_iabs32(int32_t v) { return v < 0 ? -v : v; }
  * of sqrt(a^2 + b^2) (Cauchy-Schwarz) within cos(11.25 deg) = 0.981 of it, and
  * 1-Lipschitz in |da| + |db| (no coefficient exceeds 1; the floor of a real that moves
  * by at most an integer k moves by at most k).  3784^2 + 1567^2 and 2 * 2896^2 are
- * below 4096^2.  32 x 32 -> 64-bit products (one instruction on 32-bit ARM); the
- * result is below 2^32 (a, b < 2^31.5). */
+ * below 4096^2.  32 x 32 -> 64-bit products (one instruction on 32-bit ARM); each
+ * form is below 2^32 (a, b < 2^31.5: at most sqrt(a^2 + b^2) < 2^32), so it is kept in
+ * 32 bits. */
 static inline uint32_t bti_norm2_lo(uint32_t a, uint32_t b)
 {
-    uint64_t n = a > b ? a : b, v;
-    v = ((uint64_t)a * 3784u + (uint64_t)b * 1567u) >> 12; if (v > n) n = v;
-    v = ((uint64_t)a * 2896u + (uint64_t)b * 2896u) >> 12; if (v > n) n = v;
-    v = ((uint64_t)a * 1567u + (uint64_t)b * 3784u) >> 12; if (v > n) n = v;
-    return (uint32_t)n;
+    uint32_t n = a > b ? a : b, v;
+    v = (uint32_t)(((uint64_t)a * 3784u + (uint64_t)b * 1567u) >> 12); if (v > n) n = v;
+    v = (uint32_t)(((uint64_t)a * 2896u + (uint64_t)b * 2896u) >> 12); if (v > n) n = v;
+    v = (uint32_t)(((uint64_t)a * 1567u + (uint64_t)b * 3784u) >> 12); if (v > n) n = v;
+    return n;
 }
 
 /* The view rule's distance (core/bt_mesh.c): a lower bound of the distance from the eye

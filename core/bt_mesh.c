@@ -145,7 +145,10 @@ static int culled(const bti_extract *e, const int32_t lo[3], const int32_t hi[3]
  * bt_code_value's exact codes below 4096 without the call */
 static inline int64_t obj_err(const bti_extract *e, uint16_t code)
 {
-    int64_t ew = isat_mul(code < 4096 ? (int64_t)code : bt_code_value(code), e->p->fr.sz_q16);
+    int64_t ew;
+    if (code < 4096 && e->p->fr.sz_q16 >= 0)        /* below 2^43: one 32 x 32 -> 64 product */
+        return ((int64_t)code * e->p->fr.sz_q16 + 65535) >> 16;
+    ew = isat_mul(code < 4096 ? (int64_t)code : bt_code_value(code), e->p->fr.sz_q16);
     return ew == INT64_MAX ? ew : (ew + 65535) >> 16;
 }
 
