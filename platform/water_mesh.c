@@ -13,18 +13,21 @@
  *     terrain's LOD keeps it, the plane shows as shallow water over it; where the LOD
  *     sinks the island around it, the plane covers it as it covers the island);
  * a clean block is one quad at b's level, and a block that holds water of b but is not
- * clean is split into its four children.  A single cell that is not clean keeps those of
- * its two triangles (split along the south-west / north-east diagonal) whose three
- * corners pass the rule above, at the corners' own heights (wet: the surface height,
- * dry: the level).  A cell with corners of two bodies belongs to ONE of them, the lower
- * (the larger, lower id, at equal levels; under()): its corners on the higher body's
- * samples pass at that body's surface height, so the cell slopes from one surface to the
- * other and shares the higher body's edge, and the higher body skips the cell.  Blocks
- * meet along their edges with T-junctions where a block meets smaller ones; to keep the mesh watertight (no pixel gaps along a T-junction after
- * snapping), a block whose edges carry corners of smaller blocks of the same body is drawn
- * as a fan around its centre through every such corner.  So a lake whose shore rises is a
- * few dozen quads; the mesh only refines where water meets land below its level (an
- * outlet), another body or the grid's edge.
+ * clean is split into its four children, unless it is TESTED (WM_TESTED_S below: small,
+ * and only a few low or void samples fail), one quad whose pixels the post hook tests.
+ * A single cell that is not clean keeps those of its two triangles (split along the
+ * south-west / north-east diagonal) whose three corners pass the rule above, at the
+ * corners' own heights (wet: the surface height, dry: the level).  A cell with corners of
+ * two bodies belongs to ONE of them, the lower (the larger, lower id, at equal levels;
+ * under()): its corners on the higher body's samples pass at that body's surface height,
+ * so the cell slopes from one surface to the other and shares the higher body's edge, and
+ * the higher body skips the cell.  Blocks meet along their edges with T-junctions where a
+ * block meets smaller ones; to keep the mesh watertight (no pixel gaps along a T-junction
+ * after snapping), a block whose edges carry corners of smaller blocks of the same body is
+ * drawn as a fan around its centre through every such corner.  So a lake whose shore
+ * rises is a few dozen quads; the mesh only refines where water meets land below its
+ * level (an outlet; where such land is little, one tested block), another body or the grid's
+ * edge.
  *
  * Cost: the classification visits every cell once per body (bottom-up), the fans walk
  * every block's edges once. */
@@ -41,12 +44,27 @@ typedef struct wm_ctx {
                                    water or the grid's edge reaches (reach_low) */
     uint8_t body;
     int32_t level;
-    int32_t (*leaf)[3];         /* x0, y0, s; s negated: a cell that is not clean */
+    int32_t (*leaf)[3];         /* x0, y0, s; s negated: a cell that is not clean;
+                                   s + WM_LEAF_TESTED: a tested block */
     size_t nleaf, capleaf;
     int oom;
 } wm_ctx;
 
-enum { WM_WET = 1, WM_FAIL = 2, WM_ABOVE = 4, WM_BELOW = 8 };
+/* WM_EDGE, WM_LOW and WM_SLOPE say why a sample fails (with WM_FAIL): beyond the grid;
+ * dry land the plane may not cover (reach_low) or a void; wet but not at the level. */
+enum { WM_WET = 1, WM_FAIL = 2, WM_ABOVE = 4, WM_BELOW = 8, WM_EDGE = 16, WM_LOW = 32, WM_SLOPE = 64 };
+
+/* The largest TESTED block: a block of at most WM_TESTED_S cells a side whose samples
+ * fail only as low land or voids (WM_LOW), at most one in WM_TESTED_LOW of them, is one
+ * quad at the level whose pixels the post hook keeps only where the plane's point on the
+ * pixel's ray lies in a half cell emit_cell would keep (raster/water.h, RW_TESTED_RGB;
+ * wm_mesh.low marks the block's low samples), instead of a quadtree down to single cells
+ * along the low shore, whose cells cover less than a pixel from afar.  The bounds keep
+ * the tested pixels few near the camera, where each costs the hook its look-ups
+ * (docs/water.md). */
+#define WM_TESTED_S 32
+#define WM_TESTED_LOW 4
+#define WM_LEAF_TESTED (1 << 24)    /* added to a tested leaf's size (sizes < 2^15) */
 
 /* Whether body a's plane goes on under body b's samples in a cell they share: the lower
  * body takes the cell (its plane lies under the higher body's surface there, so it hides
@@ -59,20 +77,20 @@ static int under(const wm_ctx *c, uint8_t a, uint8_t b)
     return la < lb || (la == lb && a < b);
 }
 
-/* WM_WET when (x, y) is wet with the body at its level, WM_WET | WM_FAIL when wet but not
- * at the level (a --water layer that is not flat), WM_ABOVE when wet with a body above
- * this one (under(): the cells between them are this body's, larger blocks are not),
- * WM_FAIL | WM_BELOW when wet with a body under this one (the cells between them are
- * that body's), WM_FAIL when it may not lie under the body's plane, 0 for dry land at or
- * above the level. */
+/* WM_WET when (x, y) is wet with the body at its level, WM_WET | WM_FAIL | WM_SLOPE when
+ * wet but not at the level (a --water layer that is not flat), WM_ABOVE when wet with a
+ * body above this one (under(): the cells between them are this body's, larger blocks are
+ * not), WM_FAIL | WM_BELOW when wet with a body under this one (the cells between them are
+ * that body's), WM_FAIL | WM_LOW when it may not lie under the body's plane, WM_FAIL |
+ * WM_EDGE beyond the grid, 0 for dry land at or above the level. */
 static int sample_bits(const wm_ctx *c, int32_t x, int32_t y)
 {
     size_t i;
-    if (x >= c->f->w || y >= c->f->h) return WM_FAIL;
+    if (x >= c->f->w || y >= c->f->h) return WM_FAIL | WM_EDGE;
     i = (size_t)y * (size_t)c->f->w + (size_t)x;
-    if (c->id[i] == c->body) return c->wz[i] == c->level ? WM_WET : WM_WET | WM_FAIL;
+    if (c->id[i] == c->body) return c->wz[i] == c->level ? WM_WET : WM_WET | WM_FAIL | WM_SLOPE;
     if (c->id[i]) return under(c, c->body, c->id[i]) ? WM_ABOVE : WM_FAIL | WM_BELOW;
-    if (c->f->z[i] == HF_NODATA || c->low[i]) return WM_FAIL;
+    if (c->f->z[i] == HF_NODATA || c->low[i]) return WM_FAIL | WM_LOW;
     return 0;
 }
 
@@ -130,6 +148,15 @@ static void push_leaf(wm_ctx *c, int32_t x0, int32_t y0, int32_t s)
     c->nleaf++;
 }
 
+/* The samples of block (x0, y0, s) that fail as low land or voids. */
+static int32_t low_samples(const wm_ctx *c, int32_t x0, int32_t y0, int32_t s)
+{
+    int32_t x, y, n = 0;
+    for (y = y0; y <= y0 + s; y++)
+        for (x = x0; x <= x0 + s; x++) n += (sample_bits(c, x, y) & WM_LOW) != 0;
+    return n;
+}
+
 /* The block's bits (OR over its samples); its leaves appended to c->leaf. */
 static int classify(wm_ctx *c, int32_t x0, int32_t y0, int32_t s)
 {
@@ -148,6 +175,10 @@ static int classify(wm_ctx *c, int32_t x0, int32_t y0, int32_t s)
     if (bits == WM_WET) {
         c->nleaf = mark;
         push_leaf(c, x0, y0, 2 * s);
+    } else if (2 * s <= WM_TESTED_S && (bits & WM_WET) && !(bits & ~(WM_WET | WM_FAIL | WM_LOW))
+               && low_samples(c, x0, y0, 2 * s) * WM_TESTED_LOW <= (2 * s + 1) * (2 * s + 1)) {
+        c->nleaf = mark;
+        push_leaf(c, x0, y0, 2 * s + WM_LEAF_TESTED);
     }
     return bits;
 }
@@ -159,7 +190,7 @@ typedef struct wm_out {
     int oom;
 } wm_out;
 
-static int32_t add_vert(wm_out *o, int32_t x, int32_t y, int32_t z, uint8_t body)
+static int32_t add_vert(wm_out *o, int32_t x, int32_t y, int32_t z, uint8_t body, uint8_t tested)
 {
     wm_mesh *m = o->m;
     if (m->nv == o->capv) {
@@ -170,6 +201,7 @@ static int32_t add_vert(wm_out *o, int32_t x, int32_t y, int32_t z, uint8_t body
         o->capv = cap;
     }
     m->v[m->nv].x = x; m->v[m->nv].y = y; m->v[m->nv].z = z; m->v[m->nv].id = body;
+    m->v[m->nv].tested = tested;
     return (int32_t)m->nv++;
 }
 
@@ -193,7 +225,7 @@ static void add_tri(wm_out *o, int32_t a, int32_t b, int32_t c)
 static int32_t corner(wm_out *o, const wm_ctx *c, int32_t x, int32_t y)
 {
     const size_t i = (size_t)y * (size_t)c->f->w + (size_t)x;
-    if (o->vmap[i] < 0) o->vmap[i] = add_vert(o, x, y, c->id[i] ? c->wz[i] : c->level, c->body);
+    if (o->vmap[i] < 0) o->vmap[i] = add_vert(o, x, y, c->id[i] ? c->wz[i] : c->level, c->body, 0);
     return o->vmap[i];
 }
 
@@ -215,11 +247,12 @@ static void emit_cell(wm_out *o, const wm_ctx *c, int32_t x0, int32_t y0)
         add_tri(o, corner(o, c, cx[0], cy[0]), corner(o, c, cx[2], cy[2]), corner(o, c, cx[3], cy[3]));
 }
 
-/* A clean block: two triangles, or a fan around its centre through every corner of a
- * smaller block of the body on its edges (counter-clockwise from +z: the south edge west
- * to east, the east edge south to north, the north edge east to west, the west edge north
- * to south). */
-static void emit_block(wm_out *o, const wm_ctx *c, int32_t x0, int32_t y0, int32_t s, int32_t *loop)
+/* A clean or tested block: two triangles, or a fan around its centre through every
+ * corner of a smaller block of the body on its edges (counter-clockwise from +z: the
+ * south edge west to east, the east edge south to north, the north edge east to west,
+ * the west edge north to south).  A tested block's triangles get their own vertices,
+ * flagged, at the same grid points (so the same screen points: still no gaps). */
+static void emit_block(wm_out *o, const wm_ctx *c, int32_t x0, int32_t y0, int32_t s, int tested, int32_t *loop)
 {
     int32_t n = 0, t, k, ctr;
     for (k = 0; k < 4; k++)
@@ -229,12 +262,18 @@ static void emit_block(wm_out *o, const wm_ctx *c, int32_t x0, int32_t y0, int32
             const int32_t v = o->vmap[(size_t)y * (size_t)c->f->w + (size_t)x];
             if (v >= 0) loop[n++] = v;
         }
+    if (tested)
+        for (k = 0; k < n && !o->oom; k++) {
+            const wm_vert a = o->m->v[loop[k]];
+            loop[k] = add_vert(o, a.x, a.y, a.z, a.id, 1);
+        }
+    if (o->oom) return;
     if (n == 4) {
         add_tri(o, loop[0], loop[1], loop[2]);
         add_tri(o, loop[0], loop[2], loop[3]);
         return;
     }
-    ctr = add_vert(o, x0 + s / 2, y0 + s / 2, c->level, c->body);
+    ctr = add_vert(o, x0 + s / 2, y0 + s / 2, c->level, c->body, (uint8_t)tested);
     for (k = 0; k < n; k++) add_tri(o, ctr, loop[k], loop[(k + 1) % n]);
 }
 
@@ -288,10 +327,22 @@ br_status wm_build(const hf *f, const uint8_t *id, const int32_t *wz, const int3
         reach_low(&c, (uint32_t *)(void *)o.vmap);     /* the queue: vmap is set below */
         classify(&c, 0, 0, S);
         if (c.oom) break;
+        for (l = 0; l < c.nleaf; l++) {    /* tested leaves: their body's low land and voids */
+            const int32_t x0 = c.leaf[l][0], y0 = c.leaf[l][1], s = c.leaf[l][2] - WM_LEAF_TESTED;
+            int32_t x, y;
+            if (s < 0) continue;
+            if (!m->low && !(m->low = calloc(n, 1))) { c.oom = 1; break; }
+            for (y = y0; y <= y0 + s && y < f->h; y++)
+                for (x = x0; x <= x0 + s && x < f->w; x++) {
+                    const size_t j = (size_t)y * (size_t)f->w + (size_t)x;
+                    m->low[j] |= c.low[j] || f->z[j] == HF_NODATA;
+                }
+        }
+        if (c.oom) break;
         for (i = 0; i < n; i++) o.vmap[i] = -1;
         /* every block's corners first, so that the fans see their neighbours' */
         for (l = 0; l < c.nleaf; l++) {
-            const int32_t x0 = c.leaf[l][0], y0 = c.leaf[l][1], s = c.leaf[l][2];
+            const int32_t x0 = c.leaf[l][0], y0 = c.leaf[l][1], s = c.leaf[l][2] % WM_LEAF_TESTED;
             if (s < 0) continue;
             corner(&o, &c, x0, y0); corner(&o, &c, x0 + s, y0);
             corner(&o, &c, x0, y0 + s); corner(&o, &c, x0 + s, y0 + s);
@@ -300,7 +351,9 @@ br_status wm_build(const hf *f, const uint8_t *id, const int32_t *wz, const int3
         for (l = 0; l < c.nleaf; l++)
             if (c.leaf[l][2] < 0) emit_cell(&o, &c, c.leaf[l][0], c.leaf[l][1]);
         for (l = 0; l < c.nleaf; l++)
-            if (c.leaf[l][2] > 0) emit_block(&o, &c, c.leaf[l][0], c.leaf[l][1], c.leaf[l][2], loop);
+            if (c.leaf[l][2] > 0)
+                emit_block(&o, &c, c.leaf[l][0], c.leaf[l][1], c.leaf[l][2] % WM_LEAF_TESTED,
+                           c.leaf[l][2] >= WM_LEAF_TESTED, loop);
         if (o.oom) break;
     }
     free(c.leaf); free(o.vmap); free(loop); free(c.low);
@@ -310,6 +363,6 @@ br_status wm_build(const hf *f, const uint8_t *id, const int32_t *wz, const int3
 
 void wm_free(wm_mesh *m)
 {
-    free(m->v); free(m->idx);
+    free(m->v); free(m->idx); free(m->low);
     memset(m, 0, sizeof *m);
 }

@@ -88,7 +88,7 @@ static br_status water_mesh_once(water_scene *w, scene *s, br_err *err)
         const wm_vert *v = &w->mesh.v[i];
         rt_vertex(&s->rt, v->x, v->y, v->z, &w->wverts[i]);
         w->wverts[i].uv[0] = w->wverts[i].uv[1] = 0;
-        w->wverts[i].rgb = RW_ID_RGB(v->id);
+        w->wverts[i].rgb = RW_ID_RGB(v->id) | (v->tested ? RW_TESTED_RGB : 0);
     }
     w->wprim.kind = RS_LIST; w->wprim.n = w->mesh.nidx; w->wprim.idx = w->mesh.idx;
     w->wtid = malloc(w->mesh.nidx / 3 + 1);
@@ -497,6 +497,7 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err 
         p.tint_fixed = w->o.water_file || w->o.have_level ? 0 : WS_TINT_FIXED;
         p.res_shift = res < 0 ? 0 : res;
         p.wet = w->id;
+        p.low = w->mesh.low;
         p.wet_w = s->f.w; p.wet_h = s->f.h;
         p.grid_ox = s->rt.fr.ox; p.grid_oy = s->rt.fr.oy;
         p.grid_sx = s->rt.fr.sx; p.grid_sy = s->rt.fr.sy;

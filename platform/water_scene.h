@@ -28,12 +28,16 @@
 typedef struct wm_vert {
     int32_t x, y, z;
     uint8_t id;
+    uint8_t tested;             /* of a tested block: the hook tests its pixels (RW_TESTED_RGB) */
 } wm_vert;
 typedef struct wm_mesh {
     wm_vert *v;
     uint32_t nv;
     uint32_t *idx;              /* 3 per triangle */
     uint32_t nidx;
+    uint8_t *low;               /* per sample, 1 where a tested triangle's plane may not lie
+                                   (rw_params.low): in a body's tested block, its low land
+                                   and voids; NULL when no triangle is tested */
 } wm_mesh;
 /* Meshes the surfaces once: id per sample (0: none), wz the surface height where id is
  * set, level[b - 1] body b's level, bodies 1 .. nbodies.  BR_E_NOMEM. */

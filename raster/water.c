@@ -260,6 +260,12 @@ static inline uint32_t get_id(int32_t fmt, const void *row, int32_t x)
     return fmt == RS_FMT_RGB565 ? (uint32_t)((const uint16_t *)row)[x] >> 11 : (((const uint32_t *)row)[x] >> 19) & 31u;
 }
 
+/* Whether a water-pass pixel is of a tested block (RW_TESTED_RGB). */
+static inline int get_tested(int32_t fmt, const void *row, int32_t x)
+{
+    return fmt == RS_FMT_RGB565 ? (((const uint16_t *)row)[x] >> 10) & 1u : (((const uint32_t *)row)[x] >> 15) & 1u;
+}
+
 /* The reflection scratch as the hook reads it. */
 typedef struct refl_view {
     const uint8_t *col, *dep;
@@ -410,6 +416,30 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
  * whether the water plane's point on the pixel's ray is wet, not by the rounding. */
 #define RW_DEPTH_TIE 2u
 
+/* The point P = E + (P_0 - E) f >> 16 on pixel (x, k->y)'s ray (P_0 the reflected plane's
+ * point, f in Q16) as a grid position in world units plus half a step: *gx east from
+ * column 0, *gy south from row 0. */
+static RW_INLINE void grid_pos(const rw_frame *r, const rw_rowk *k, int32_t x, int64_t f, int64_t *gx, int64_t *gy)
+{
+    *gx = r->gx0 + (((k->wrel0 + (((int64_t)r->aq[x] * k->ws0) >> 12)) * f) >> 16);
+    *gy = r->gy0 - (((k->wrel1 + (((int64_t)r->aq[x] * k->ws1) >> 12)) * f) >> 16);
+}
+
+/* 1 when the grid sample nearest that point is wet with body id; 0 otherwise, or when the
+ * point lies off the grid or the row has no plane point. */
+static RW_INLINE int wet_at(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, int64_t f)
+{
+    int64_t gx, gy;
+    size_t ix, iy;
+    if (!k->shore) return 0;
+    grid_pos(r, k, x, f, &gx, &gy);
+    if ((uint64_t)gx >= r->gxmax || (uint64_t)gy >= r->gymax) return 0;       /* negative: huge */
+    ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);
+    iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);
+    if (ix >= (size_t)r->p.wet_w || iy >= (size_t)r->p.wet_h) return 0;
+    return r->p.wet[iy * (size_t)r->p.wet_w + ix] == id;
+}
+
 /* The shore test for water pixel (x, y) of body id whose terrain is nearer (dt > dw): 1
  * when the terrain's point on the pixel's ray lies on a sample wet with that body (the
  * terrain LOD over flattened water), 0 otherwise (land, or no plane point for the row).
@@ -417,24 +447,55 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
  * depths brought to 16 bits (a 32-bit division); the grid sample nearest P_t. */
 static RW_INLINE int shore_wet(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, uint32_t dt, uint32_t dw)
 {
-    int64_t f, gx, gy;
     uint32_t q, t16;
     int32_t sh;
-    size_t ix, iy;
     if (!k->shore || !r->bratio[id]) return 0;
     sh = dt >= 65536u ? 16 - fx_clz32(dt) : 0;      /* the smallest sh with dt >> sh < 2^16 */
     t16 = dt >> sh;
     if (!t16) return 0;
     q = ((dw >> sh) << 16) / t16;
-    f = ((int64_t)r->bratio[id] * q) >> 16;
-    /* P_t - E = (P_0 - E) f >> 16 per axis; the grid position of P_t plus half a step */
-    gx = r->gx0 + (((k->wrel0 + (((int64_t)r->aq[x] * k->ws0) >> 12)) * f) >> 16);
-    gy = r->gy0 - (((k->wrel1 + (((int64_t)r->aq[x] * k->ws1) >> 12)) * f) >> 16);
-    if ((uint64_t)gx >= r->gxmax || (uint64_t)gy >= r->gymax) return 0;       /* negative: huge */
+    return wet_at(r, k, x, id, ((int64_t)r->bratio[id] * q) >> 16);
+}
+
+/* The shore test at the plane's own point: shore_wet with dt = dw, whose quotient q is
+ * then 2^16 (f = bratio) for any nonzero dw. */
+static RW_INLINE int plane_wet(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id)
+{
+    return r->bratio[id] && wet_at(r, k, x, id, r->bratio[id]);
+}
+
+/* A tested triangle's pixel (x, k->y) of body id: 1 when the plane's point on its ray lies
+ * where the exact mesh would have a triangle (emit_cell, platform/water_mesh.c): in a grid
+ * cell with a corner wet with the body, in that cell's half (split along its south-west /
+ * north-east diagonal) whose three corners are wet with the body or dry and not low
+ * (rw_params.low).  So a tested quad shows water where the cells along the shore would. */
+static RW_INLINE int plane_cell(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id)
+{
+    const int64_t sx = r->p.grid_sx, sy = r->p.grid_sy;
+    const uint8_t *wet = r->p.wet, *low = r->p.low;
+    int64_t gx, gy, fx, fy;
+    size_t ix, iy, i, w = (size_t)r->p.wet_w;
+    uint32_t nw, ne, sw, se, ok;
+    if (!k->shore || !r->bratio[id]) return 0;
+    grid_pos(r, k, x, r->bratio[id], &gx, &gy);
+    gx -= sx / 2;           /* the point's own grid position */
+    gy -= sy / 2;
+    if (gx < 0 || gy < 0 || (uint64_t)gx >= r->gxmax || (uint64_t)gy >= r->gymax) return 0;
     ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);
     iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);
-    if (ix >= (size_t)r->p.wet_w || iy >= (size_t)r->p.wet_h) return 0;
-    return r->p.wet[iy * (size_t)r->p.wet_w + ix] == id;
+    if (ix + 1 >= w || iy + 1 >= (size_t)r->p.wet_h) return 0;
+    i = iy * w + ix;                    /* the cell's north-west corner (rows run south) */
+    nw = wet[i]; ne = wet[i + 1]; sw = wet[i + w]; se = wet[i + w + 1];
+    if ((nw & ne & sw & se) == id && (nw | ne | sw | se) == id) return 1;     /* inside the water */
+    if (nw != id && ne != id && sw != id && se != id) return 0;
+    /* a corner passes: wet with the body, or dry and not low (4 bits: nw ne sw se) */
+    ok = (nw == id || (!nw && !(low && low[i]))) | (ne == id || (!ne && !(low && low[i + 1]))) << 1
+         | (sw == id || (!sw && !(low && low[i + w]))) << 2 | (se == id || (!se && !(low && low[i + w + 1]))) << 3;
+    /* the south-east half (sw se ne) where fx / sx + fy / sy >= 1, fx, fy the offsets
+     * from the north-west corner, in world units (|fx| sy < 2^31 2^31: int64) */
+    fx = gx - (int64_t)ix * sx;
+    fy = gy - (int64_t)iy * sy;
+    return fx * sy + fy * sx >= sx * sy ? (ok & 14u) == 14u : (ok & 7u) == 7u;
 }
 
 /* The first pixel at or after x of a water-pass row whose id is set (w if none): x itself
@@ -484,13 +545,16 @@ static inline const uint8_t *water_row(const rw_frame *r, const rs_band *b, cons
 }
 
 /* 1 when the water of body id at pixel (x, y) shows over the terrain, depths dt (terrain)
- * and dw (water) in buffer units (<< dsh: 30-bit): the water is nearer; or the two tie
+ * and dw (water) in buffer units (<< dsh: 30-bit): the water is nearer (and, for a tested
+ * triangle's pixel in a row trows allows, plane_cell says so); or the two tie
  * (RW_DEPTH_TIE) and the plane's point is wet; or the terrain is nearer within the shore
  * bound and its point on the ray is wet (the LOD over water). */
-static RW_INLINE int water_shows(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, uint32_t dt,
-                                 uint32_t dw, int32_t dsh)
+static RW_INLINE int water_shows(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, const uint8_t *wc,
+                                 uint32_t dt, uint32_t dw, int32_t dsh, const int32_t fmt, const int trows)
 {
-    if (dw + RW_DEPTH_TIE > dt) return dw > dt || shore_wet(r, k, x, id, dw << dsh, dw << dsh);
+    /* (dw >= 1: the pass drew the pixel over a seed of at least dfar >= 0) */
+    if (dw + RW_DEPTH_TIE > dt)
+        return dw > dt ? !(trows && get_tested(fmt, wc, x)) || plane_cell(r, k, x, id) : plane_wet(r, k, x, id);
     if (((dt - dw) << dsh) > r->shore_dd[id]) return 0;
     if (k->wbound
         && r->ebody[id] * (int64_t)((dt - dw) << dsh) > r->p.shore_w * (int64_t)(dt << dsh) + r->p.shore_c) return 0;
@@ -504,6 +568,26 @@ static inline void put_px(uint8_t *crow, int32_t x, int32_t y, uint32_t rgb, con
     else ((uint32_t *)(void *)crow)[x] = rgb;
 }
 
+/* water_rows_only's pixels of one row; trows (a constant at each call): the row may hold
+ * a tested triangle's pixels (rw_frame.trow), whose flag is read only then. */
+static RW_INLINE void water_row_px(const rw_frame *r, const refl_view *rv, const rw_rowk *k, uint8_t *crow,
+                                   const uint8_t *drow, const uint8_t *wc, const uint8_t *wd, int32_t w,
+                                   const int32_t fmt, const int32_t depth, const int common, const int trows)
+{
+    const int32_t dsh = depth == RS_DEPTH16 ? 14 : 0, y = k->y;
+    const uint32_t sky = r->sky[y];
+    int32_t x;
+    for (x = next_water(wc, 0, w, fmt); x < w; x = next_water(wc, x + 1, w, fmt)) {
+        const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
+        uint32_t rgb, d, fw;
+        if (!water_shows(r, k, x, id, wc, dt, dw, dsh, fmt, trows)) continue;
+        rgb = water_px(r, rv, k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, fmt, depth, common);
+        d = dw << dsh;
+        if ((fw = fog_weight(r->fog, (uint32_t)r->fog_sh, r->fog_d30, d)) != 0) rgb = mix_rgb(rgb, sky, fw);
+        put_px(crow, x, y, rgb, fmt);
+    }
+}
+
 /* The hook when the terrain frame carries its own fog and sky (rw_fog_vertices): only
  * water pixels change, fogged by the water's depth.  Same specialisation as post_rows. */
 static RW_INLINE void water_rows_only(const rw_frame *r, rs_band *b, const refl_view *rv, const uint8_t *wcol,
@@ -511,27 +595,18 @@ static RW_INLINE void water_rows_only(const rw_frame *r, rs_band *b, const refl_
                                    const int32_t depth, const int common)
 {
     const size_t dbp = depth == RS_DEPTH16 ? 2u : 4u;
-    const int32_t dsh = depth == RS_DEPTH16 ? 14 : 0, w = b->w;      /* (the pixel stores may alias b) */
-    int32_t row, x;
+    const int32_t w = b->w;      /* (the pixel stores may alias b) */
+    int32_t row;
     for (row = 0; row < b->rows; row++) {
         const int32_t y = b->y0 + row;
         uint8_t *crow = (uint8_t *)b->color + (size_t)row * b->stride;
         const uint8_t *drow = (const uint8_t *)b->depth + (size_t)row * (size_t)w * dbp, *wd = NULL;
         const uint8_t *wc = water_row(r, b, wcol, wdep, wy0, wrows, y, dbp, &wd);
         rw_rowk k;
-        uint32_t sky;
         if (!wc) continue;
         row_k(r, rv, y, &k, fmt, depth);
-        sky = r->sky[y];
-        for (x = next_water(wc, 0, w, fmt); x < w; x = next_water(wc, x + 1, w, fmt)) {
-            const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
-            uint32_t rgb, d, fw;
-            if (!water_shows(r, &k, x, id, dt, dw, dsh)) continue;
-            rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, fmt, depth, common);
-            d = dw << dsh;
-            if ((fw = fog_weight(r->fog, (uint32_t)r->fog_sh, r->fog_d30, d)) != 0) rgb = mix_rgb(rgb, sky, fw);
-            put_px(crow, x, y, rgb, fmt);
-        }
+        if (r->trow[y]) water_row_px(r, rv, &k, crow, drow, wc, wd, w, fmt, depth, common, 1);
+        else water_row_px(r, rv, &k, crow, drow, wc, wd, w, fmt, depth, common, 0);
     }
 }
 
@@ -567,7 +642,7 @@ static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *
                 d = dt << dsh;
                 if (wc) {
                     const uint32_t id = get_id(fmt, wc, x), dw = get_depth(depth, wd, x);
-                    if (id && water_shows(r, &k, x, id, dt, dw, dsh)) {
+                    if (id && water_shows(r, &k, x, id, wc, dt, dw, dsh, fmt, 1)) {
                         rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, fmt, depth, 0);
                         d = dw << dsh;
                         changed = 1;

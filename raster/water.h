@@ -17,7 +17,9 @@
  *     hold a water id in the water pass's scratch, widened by RW_WAVE_PX (added before
  *     the water pass, it draws every row where water may show).
  * POST HOOK rw_post (user: the rw_frame):
- *   water pixels: a water id whose depth is nearer than the terrain's, or whose terrain
+ *   water pixels: a water id whose depth is nearer than the terrain's (of a tested
+ *     triangle, RW_TESTED_RGB: and whose plane point lies in a half cell with a wet corner
+ *     and no low one), or whose terrain
  *     lies on a wet sample of that body (the shore test: the terrain's point on the
  *     pixel's ray, found from the plane's point by the ratio of the two depths, looked up
  *     in `wet`): the coarse terrain LOD may draw the bottom under flattened water above
@@ -69,6 +71,13 @@
 #define RW_WAVE_PX 4            /* largest wave displacement of the reflection lookup, pixels */
 #define RW_MAX_ID 31            /* body ids 1 .. 31 survive RGB565 in the water pass's red bits */
 #define RW_ID_RGB(id) ((uint32_t)(id) << 19)
+#define RW_ID_MASK RW_ID_RGB(31)
+/* A water vertex colour's flag (green's top bit, which RGB565 keeps as its bit 10): where
+ * its triangles are nearer than the terrain, their pixels are water only where the
+ * plane's point on the pixel's ray lies in a half cell the water mesh split down to cells
+ * would cover (wet and `low`, rw_params): the mesh's tested blocks cover low dry land
+ * beside the water (platform/water_mesh.c). */
+#define RW_TESTED_RGB ((uint32_t)1 << 15)
 #define RW_TAB 1024             /* tables by cos^2 t, Q10 */
 
 typedef struct rw_params {      /* zero = off / defaults as stated */
@@ -95,6 +104,10 @@ typedef struct rw_params {      /* zero = off / defaults as stated */
      * maps to world x = grid_ox + x grid_sx, y = grid_oy - y grid_sy; body_z[id] the world
      * height of body id's plane. */
     const uint8_t *wet;
+    /* low[y * wet_w + x] (same grid; NULL: none): 1 where a tested triangle's plane may
+     * not lie (dry land below its level that reaches water or the grid's edge, a void):
+     * a tested pixel in a half cell with such a corner is not water. */
+    const uint8_t *low;
     int32_t wet_w, wet_h;
     int64_t grid_ox, grid_oy, grid_sx, grid_sy;
     int32_t body_z[RW_MAX_ID + 1];
@@ -122,6 +135,7 @@ typedef struct rw_frame {
     int32_t bq[RS_MAX_DIM];     /* per row: ray b = (cy - y - 1/2) / f, Q12 */
     int32_t rz[RS_MAX_DIM];     /* per row: world z of the ray (a = 0), Q12 */
     uint32_t sky[RS_MAX_DIM];   /* per row: sky colour */
+    uint8_t trow[RS_MAX_DIM];   /* per row: 1 when a tested water triangle may cover it */
     int64_t wrel[RS_MAX_DIM][2], wstep[RS_MAX_DIM][2];  /* per row: plane point = eye + rel + a step
                                                            (Q12 a, world units) */
     int64_t kx[2], ky[2], kt[2];        /* wave phase per world unit (x, y) and per ms, 2^-24 turns */

@@ -140,7 +140,7 @@ static void water_rows(rw_frame *r, int32_t *top)
     if (!wf || !r->p.water_on || wf->nv == 0 || wf->nprims == 0) return;
     for (i = 0; i < wf->nv; i++) {
         const rs_cvert *v = &wf->cache[i];
-        const int body = (v->c & 0xffffffu) == rid;
+        const int body = (v->c & RW_ID_MASK) == rid;
         if (wf->v[i].p[2] > *top) *top = wf->v[i].p[2];
         if (v->c & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)) {
             near = 1;
@@ -154,6 +154,38 @@ static void water_rows(rw_frame *r, int32_t *top)
     }
     rows_of(r, lo, hi, near, &r->wlo, &r->whi);
     rows_of(r, blo, bhi, bnear, &r->rlo, &r->rhi);
+}
+
+/* trow: the rows each tested water triangle (RW_TESTED_RGB) may cover, from its vertices'
+ * rows (every row when one needs the clipper); a list's triangles, or every row when a
+ * strip holds a tested vertex.  The hook tests a pixel's flag only in those rows. */
+static void tested_rows(rw_frame *r)
+{
+    const rs_frame *wf = r->water;
+    int32_t p;
+    memset(r->trow, 0, (size_t)r->h);
+    if (!wf || !r->p.water_on || wf->nv == 0) return;
+    for (p = 0; p < wf->nprims; p++) {
+        const rs_prim *pr = &wf->prims[p];
+        uint32_t t;
+        if (pr->kind != RS_LIST) {
+            for (t = 0; t < pr->n; t++)
+                if (wf->cache[pr->idx[t]].c & RW_TESTED_RGB) { memset(r->trow, 1, (size_t)r->h); return; }
+            continue;
+        }
+        for (t = 0; t + 2 < pr->n; t += 3) {
+            const rs_cvert *a = &wf->cache[pr->idx[t]], *b = &wf->cache[pr->idx[t + 1]], *c = &wf->cache[pr->idx[t + 2]];
+            const uint32_t out = (a->c | b->c | c->c) >> 24;
+            int32_t lo, hi, ylo, yhi;
+            if (!(a->c & RW_TESTED_RGB) || ((a->c & b->c & c->c) >> 24 & 0x3fu)) continue;   /* untested, off screen */
+            ylo = a->y < b->y ? a->y : b->y;
+            ylo = c->y < ylo ? c->y : ylo;
+            yhi = a->y > b->y ? a->y : b->y;
+            yhi = c->y > yhi ? c->y : yhi;
+            rows_of(r, ylo, yhi, (out & (RS_OUT_NEAR | RS_OUT_GUARD)) != 0, &lo, &hi);
+            if (lo <= hi) memset(r->trow + lo, 1, (size_t)(hi - lo + 1));
+        }
+    }
 }
 
 /* Water below the eye shows only below the horizon: a point of a water triangle lies at
@@ -346,6 +378,7 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         int32_t top;        /* the highest water vertex */
         water_rows(r, &top);
         water_horizon(r, c, f16, top);
+        tested_rows(r);
     }
     return BR_OK;
 }
