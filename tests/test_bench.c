@@ -224,7 +224,8 @@ int main(void)
     T_RUN(test_json_checker);
     T_RUN(test_chart);
     /* these two run the program, ./bitrain, which is built for the host only (it needs
-     * SDL2): under qemu-user they would test the host's build, not this target's */
+     * the display library): under qemu-user they would test the host's build, not this
+     * target's (mk/cross.mk leaves out the test programs that name that library) */
     if (!t_emulated()) {
         T_RUN(test_bad_options);
         T_RUN(test_board_table);
