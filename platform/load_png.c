@@ -230,7 +230,12 @@ static br_status decode(const char *name, png_src *s, const dem_opts *o, hf *out
                 int32_t v = px[0] << 16 | px[1] << 8 | px[2];
                 if (ch == 4 && px[3] == 0) z[x] = HF_NODATA;
                 else z[x] = enc == DEM_PNG_TERRARIUM ? v - 8388608 : v - 100000;
-                if (user_nd && z[x] != HF_NODATA && (double)z[x] / s->den == o->nodata) z[x] = HF_NODATA;
+                if (user_nd && z[x] != HF_NODATA) {
+                    /* the metres as a double before the compare: with x87's wider
+                     * registers (i686) the unrounded quotient never equals a stored one */
+                    volatile double m = (double)z[x] / s->den;
+                    if (m == o->nodata) z[x] = HF_NODATA;
+                }
             }
         }
     }
