@@ -464,6 +464,13 @@ static RW_INLINE int plane_wet(const rw_frame *r, const rw_rowk *k, int32_t x, u
     return r->bratio[id] && wet_at(r, k, x, id, r->bratio[id]);
 }
 
+/* A cell corner of sample j, wet with v, passes the split mesh's rule (emit_cell) for body
+ * id: wet with the body, or dry and not low. */
+static inline uint32_t corner_passes(uint32_t v, uint32_t id, const uint8_t *low, size_t j)
+{
+    return v == id || (!v && !(low && low[j]));
+}
+
 /* A tested triangle's pixel (x, k->y) of body id: 1 when the plane's point on its ray lies
  * where the exact mesh would have a triangle (emit_cell, platform/water_mesh.c): in a grid
  * cell with a corner wet with the body, in that cell's half (split along its south-west /
@@ -488,9 +495,9 @@ static RW_INLINE int plane_cell(const rw_frame *r, const rw_rowk *k, int32_t x, 
     nw = wet[i]; ne = wet[i + 1]; sw = wet[i + w]; se = wet[i + w + 1];
     if ((nw & ne & sw & se) == id && (nw | ne | sw | se) == id) return 1;     /* inside the water */
     if (nw != id && ne != id && sw != id && se != id) return 0;
-    /* a corner passes: wet with the body, or dry and not low (4 bits: nw ne sw se) */
-    ok = (nw == id || (!nw && !(low && low[i]))) | (ne == id || (!ne && !(low && low[i + 1]))) << 1
-         | (sw == id || (!sw && !(low && low[i + w]))) << 2 | (se == id || (!se && !(low && low[i + w + 1]))) << 3;
+    /* which corners pass (4 bits: nw ne sw se) */
+    ok = corner_passes(nw, id, low, i) | corner_passes(ne, id, low, i + 1) << 1
+         | corner_passes(sw, id, low, i + w) << 2 | corner_passes(se, id, low, i + w + 1) << 3;
     /* the south-east half (sw se ne) where fx / sx + fy / sy >= 1, fx, fy the offsets
      * from the north-west corner, in world units (|fx| sy < 2^31 2^31: int64) */
     fx = gx - (int64_t)ix * sx;
@@ -642,7 +649,7 @@ static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *
                 d = dt << dsh;
                 if (wc) {
                     const uint32_t id = get_id(fmt, wc, x), dw = get_depth(depth, wd, x);
-                    if (id && water_shows(r, &k, x, id, wc, dt, dw, dsh, fmt, 1)) {
+                    if (id && water_shows(r, &k, x, id, wc, dt, dw, dsh, fmt, r->trow[y])) {
                         rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, fmt, depth, 0);
                         d = dw << dsh;
                         changed = 1;
