@@ -58,13 +58,15 @@ static inline int32_t bti_iabs32(int32_t v) { return v < 0 ? -v : v; }
  * by at most an integer k moves by at most k).  3784^2 + 1567^2 and 2 * 2896^2 are
  * below 4096^2.  32 x 32 -> 64-bit products (one instruction on 32-bit ARM); each
  * form is below 2^32 (a, b < 2^31.5: at most sqrt(a^2 + b^2) < 2^32), so it is kept in
- * 32 bits. */
+ * 32 bits.  Only three forms can be the largest: with h = max(a, b), l = min(a, b),
+ * the 22.5-degree form that weights h more is at least the one that weights l more
+ * ((3784 - 1567)(h - l) >= 0, and the floor keeps the order), and 0 or 90 degrees is h. */
 static inline uint32_t bti_norm2_lo(uint32_t a, uint32_t b)
 {
-    uint32_t n = a > b ? a : b, v;
-    v = (uint32_t)(((uint64_t)a * 3784u + (uint64_t)b * 1567u) >> 12); if (v > n) n = v;
-    v = (uint32_t)(((uint64_t)a * 2896u + (uint64_t)b * 2896u) >> 12); if (v > n) n = v;
-    v = (uint32_t)(((uint64_t)a * 1567u + (uint64_t)b * 3784u) >> 12); if (v > n) n = v;
+    const uint32_t h = a > b ? a : b, l = a > b ? b : a;
+    uint32_t n = h, v;
+    v = (uint32_t)(((uint64_t)h * 3784u + (uint64_t)l * 1567u) >> 12); if (v > n) n = v;
+    v = (uint32_t)(((uint64_t)h * 2896u + (uint64_t)l * 2896u) >> 12); if (v > n) n = v;
     return n;
 }
 
