@@ -42,15 +42,19 @@ void spib_band(spib_put_fn *put, void *user, int32_t w, int32_t y0, int32_t rows
         x = 0;
 #if defined(__GNUC__) && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
         if ((((uintptr_t)r | (uintptr_t)row) & 3) == 0) {
-            /* little-endian: two pixels a word, each 16-bit half byte-swapped (REV16 on
-             * ARM), stores high, low of the first pixel, then of the second */
+            /* little-endian: two pixels a word, each 16-bit half byte-swapped (the
+             * word's bytes reversed, then its halves swapped: REV and a rotate on ARM),
+             * stores high, low of the first pixel, then of the second; two words a step */
             const uint8_t *ra = (const uint8_t *)__builtin_assume_aligned(r, 4);
             uint8_t *oa = (uint8_t *)__builtin_assume_aligned(row, 4);
-            for (; x + 2 <= w; x += 2) {
-                uint32_t v;
+            for (; x + 4 <= w; x += 4) {
+                uint32_t v, u;
                 memcpy(&v, ra + 2 * x, 4);
-                v = ((v & 0x00ff00ffu) << 8) | ((v >> 8) & 0x00ff00ffu);
+                memcpy(&u, ra + 2 * x + 4, 4);
+                v = __builtin_bswap32(v); u = __builtin_bswap32(u);
+                v = v >> 16 | v << 16; u = u >> 16 | u << 16;
                 memcpy(oa + 2 * x, &v, 4);
+                memcpy(oa + 2 * x + 4, &u, 4);
             }
         }
 #endif
