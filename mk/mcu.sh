@@ -88,7 +88,7 @@ top() {  # elf dir frames: instructions a frame by function (full run - set-up r
     sort -rn | head -n "$MCU_TOP" | sed "s/^/mcu:   /"
 }
 for core in m0plus m3; do
-  case $core in m0plus) cpu=cortex-m0plus ;; m3) cpu=cortex-m3 ;; esac
+  case $core in m0plus) cpu=cortex-m0plus narrow=24 ;; m3) cpu=cortex-m3 narrow=4 ;; esac
   d=$O/$core
   mkdir -p "$d/obj"
   # -fbuiltin after -ffreestanding: fixed-size memcpy/memset (raster.c's 8-byte stores)
@@ -97,9 +97,14 @@ for core in m0plus m3; do
   # platform/board/include: the board's own <string.h> (no C library's headers needed)
   # BR_COHERENCE=0: the decision memo holds one frame's decisions, twice as many in its
   # bytes (the same meshes)
+  # RS_NARROW: general triangles up to this many columns wide find their row spans by
+  # stepping the edge functions (in 32 bits for small ones, raster_general.h); wider
+  # ones by three divisions a row: 32-bit `/` on the M3 (one instruction), reciprocals
+  # in 64-bit arithmetic on the M0+, which has no divide (the same pixels either way;
+  # core/config.h).  The widths are each core's fastest on the board path.
   XFLAGS="-std=c99 $WARN -O2 -g -mthumb -mcpu=$cpu -mfloat-abi=soft -ffreestanding -fbuiltin -ffunction-sections -fdata-sections \
     -isystem platform/board/include \
-    -DRS_WITH_888=0 -DRS_WITH_Z32=0 -DRS_WITH_TEX=0 -DBR_COHERENCE=0 $SIZES -I."
+    -DRS_WITH_888=0 -DRS_WITH_Z32=0 -DRS_WITH_TEX=0 -DBR_COHERENCE=0 -DRS_NARROW=$narrow $SIZES -I."
   objs="" ok=1
   for f in core/*.c raster/*.c; do
     o=$d/obj/$(echo "$f" | tr / _ | sed 's/\.c$/.o/')

@@ -99,10 +99,12 @@ RSI_NOINLINE static void gs_lanes_make(gs_lanes *L, uint32_t gzu, uint64_t gc, i
 
 /* The gradients and row-start constants of one triangle (gen_grad).  x-gradients per
  * pixel: colour per channel in Q13, packed into the 21-bit fields (exact modulo 2^64,
- * see RS_CBIAS in raster.c) as gc; depth in Q0 as gz. */
+ * see RS_CBIAS in raster.c) as gc; depth in Q0 as gz.  dcb[k], dcc[k]: colour channel
+ * k's differences b - a and c - a (|.| <= 255), for the row starts of 32-bit targets. */
 typedef struct gen_grad_t {
     int64_t gz, inv, dzb, dzc, prg_b, prg_c, dcb2, dcc2;
     uint64_t gc, ca;
+    int32_t dcb[3], dcc[3];
 } gen_grad_t;
 
 /* Colour difference of channel k (0 = R, 1 = G, 2 = B) between v and a, from the packed
@@ -135,9 +137,17 @@ RSI_INLINE static void gen_grad(gen_grad_t *g, fx_divisor *ad, const rs_cvert *a
     if (small) {
         const int64_t inv = fx_div40((uint32_t)area2);
         g->inv = inv;
+#if RSI_REG64
         g->gc = ((uint64_t)(((dcb0 * dy2 - dcc0 * dy1) * inv) >> 23) << 42)
               + ((uint64_t)(((dcb1 * dy2 - dcc1 * dy1) * inv) >> 23) << 21)
               + (uint64_t)(((g->dcb2 * dy2 - g->dcc2 * dy1) * inv) >> 23);
+#else
+        /* colour differences (|.| <= 255) times vertex differences (< 2^10): 32-bit */
+        const int32_t y1 = (int32_t)dy1, y2 = (int32_t)dy2;
+        g->gc = ((uint64_t)(((int64_t)((int32_t)dcb0 * y2 - (int32_t)dcc0 * y1) * inv) >> 23) << 42)
+              + ((uint64_t)(((int64_t)((int32_t)dcb1 * y2 - (int32_t)dcc1 * y1) * inv) >> 23) << 21)
+              + (uint64_t)(((int64_t)((int32_t)g->dcb2 * y2 - (int32_t)g->dcc2 * y1) * inv) >> 23);
+#endif
         if (gzn < ((int64_t)1 << 22) && gzn > -((int64_t)1 << 22)) g->gz = (gzn * inv) >> 36;
         else {      /* rare: a divisor made for it alone; a quotient of 2^32 or more
                        (which fx_divisor_trunc32 may refuse) clamps as any beyond INT32_MAX */
@@ -157,6 +167,10 @@ RSI_INLINE static void gen_grad(gen_grad_t *g, fx_divisor *ad, const rs_cvert *a
         if (g->gz < -INT32_MAX) g->gz = -INT32_MAX;
     }
     g->prg_b = dcb0 * ((int64_t)1 << 32) + dcb1; g->prg_c = dcc0 * ((int64_t)1 << 32) + dcc1;
+#if !RSI_REG64
+    g->dcb[0] = (int32_t)dcb0; g->dcb[1] = (int32_t)dcb1; g->dcb[2] = (int32_t)g->dcb2;
+    g->dcc[0] = (int32_t)dcc0; g->dcc[1] = (int32_t)dcc1; g->dcc[2] = (int32_t)g->dcc2;
+#endif
     g->ca = (a->cp << 13) + RS_CBIAS - ((uint64_t)1 << 42);
 }
 
@@ -175,6 +189,31 @@ RSI_INLINE static int gen_scan(int32_t px0, int32_t px1, int64_t e0r, int64_t e2
     }
     {
         int64_t f0 = a0 + sx0, f1 = a1 + sx1, f2 = a2 + sx2;
+        r = l;
+        while (r < px1 && (f0 | f1 | f2) >= 0) { r++; f0 += sx0; f1 += sx1; f2 += sx2; }
+    }
+    *xl = l; *xr = r; *e0 = a0; *e2 = a2;
+    return 1;
+}
+
+/* gen_scan for small boxes in 32-bit arithmetic (two instructions fewer per step and
+ * edge on 32-bit cores), the same values: the box's extent is below SMALL <= 2^10
+ * sub-pixels both ways, so every |A_k|, |B_k| < 2^10 (vertex differences), and a
+ * scanned centre, at most one column past px1, lies within 2^10 + RSI_SUBONE of vertex
+ * a on each axis; so every edge value the scan forms is below 2^10 (2^10 + 2^4) 2 + 1
+ * < 2^22 in magnitude, as are e0r, e2r and S. */
+RSI_INLINE static int gen_scan32(int32_t px0, int32_t px1, int32_t e0r, int32_t e2r, int32_t S, int32_t sx0,
+                                int32_t sx2, int32_t *xl, int32_t *xr, int64_t *e0, int64_t *e2)
+{
+    int32_t a0 = e0r, a2 = e2r, a1 = S - e0r - e2r;
+    const int32_t sx1 = -(sx0 + sx2);
+    int32_t l = px0, r;
+    while ((a0 | a1 | a2) < 0) {
+        if (++l > px1) return 0;
+        a0 += sx0; a1 += sx1; a2 += sx2;
+    }
+    {
+        int32_t f0 = a0 + sx0, f1 = a1 + sx1, f2 = a2 + sx2;
         r = l;
         while (r < px1 && (f0 | f1 | f2) >= 0) { r++; f0 += sx0; f1 += sx1; f2 += sx2; }
     }
@@ -204,6 +243,23 @@ RSI_INLINE static int gen_edge(int64_t s, int64_t K, const fx_divisor *q, int64_
         } else return 0;
     } else if (s < 0) {
         const int64_t t = fx_divisor_trunc(q, K);
+        if (t < *r) *r = t;
+    }
+    return 1;
+}
+
+/* gen_edge for small boxes where the target divides 32-bit integers (RSI_IDIV32):
+ * |K| < 2^22 and |s| < 2^14 (gen_scan32's bounds), the same quotients by C's
+ * unsigned 32-bit `/`, whose truncation is fx_divisor_trunc's for these signs. */
+RSI_INLINE static int gen_edge32(int32_t s, int32_t K, int32_t *l, int32_t *r)
+{
+    if (K < 0) {
+        if (s > 0) {
+            const int32_t t = (int32_t)((uint32_t)~K / (uint32_t)s) + 1;
+            if (t > *l) *l = t;
+        } else return 0;
+    } else if (s < 0) {
+        const int32_t t = (int32_t)((uint32_t)K / (0u - (uint32_t)s));
         if (t < *r) *r = t;
     }
     return 1;
@@ -365,10 +421,22 @@ RSI_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, c
     int64_t dx1, dy1, dx2, dy2, area2, A0, A1, A2, B0, B1, B2, S, e0r, e2r, sx0, sx2, sy0, sy2;
     int64_t bias0, bias1, bias2;
     const int32_t w = bd->w;
+    /* small boxes on 32-bit targets: the set-up and the row spans in 32-bit arithmetic,
+     * the same values (on 64-bit targets the 64-bit forms cost no more) */
+    const int small32 = small && !RSI_REG64;
 
-    dx1 = (int64_t)b->x - a->x; dy1 = (int64_t)b->y - a->y;
-    dx2 = (int64_t)c->x - a->x; dy2 = (int64_t)c->y - a->y;
-    area2 = dx1 * dy2 - dx2 * dy1;
+    if (small32) {
+        /* the box is below SMALL <= 2^10 sub-pixels both ways: vertex differences below
+         * 2^10, area2 below 2^21, and (below) the row start's edge values below 2^22
+         * (gen_scan32's bound): 32-bit products, the same values */
+        const int32_t x1 = b->x - a->x, y1 = b->y - a->y, x2 = c->x - a->x, y2 = c->y - a->y;
+        dx1 = x1; dy1 = y1; dx2 = x2; dy2 = y2;
+        area2 = x1 * y2 - x2 * y1;
+    } else {
+        dx1 = (int64_t)b->x - a->x; dy1 = (int64_t)b->y - a->y;
+        dx2 = (int64_t)c->x - a->x; dy2 = (int64_t)c->y - a->y;
+        area2 = dx1 * dy2 - dx2 * dy1;
+    }
     if (!is_front(area2)) {
         if (area2 == 0 || bd->cull) return;
     } else {
@@ -386,11 +454,21 @@ RSI_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, c
     A0 = -dy1; B0 = dx1;
     A2 = dy2; B2 = -dx2;
     A1 = -(A0 + A2); B1 = -(B0 + B2);
-    bias0 = tl_bias64(A0, B0);
-    bias1 = tl_bias64(A1, B1);
-    bias2 = tl_bias64(A2, B2);
+    if (small32) {    /* |A_k|, |B_k| < SMALL <= 2^10: tl_bias16's bound, the same biases */
+        bias0 = tl_bias16((int32_t)A0, (int32_t)B0);
+        bias1 = tl_bias16((int32_t)A1, (int32_t)B1);
+        bias2 = tl_bias16((int32_t)A2, (int32_t)B2);
+    } else {
+        bias0 = tl_bias64(A0, B0);
+        bias1 = tl_bias64(A1, B1);
+        bias2 = tl_bias64(A2, B2);
+    }
     S = area2 - bias0 - bias1 - bias2;
-    {
+    if (small32) {
+        const int32_t ox = px0 * RSI_SUBONE + RSI_HALF - a->x, oy = py0 * RSI_SUBONE + RSI_HALF - a->y;
+        e0r = (int32_t)A0 * ox + (int32_t)B0 * oy - (int32_t)bias0;
+        e2r = (int32_t)A2 * ox + (int32_t)B2 * oy - (int32_t)bias2;
+    } else {
         int64_t ox = (int64_t)px0 * RSI_SUBONE + RSI_HALF - a->x, oy = (int64_t)py0 * RSI_SUBONE + RSI_HALF - a->y;
         e0r = A0 * ox + B0 * oy - bias0;
         e2r = A2 * ox + B2 * oy - bias2;
@@ -398,7 +476,7 @@ RSI_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, c
     sx0 = A0 * RSI_SUBONE; sx2 = A2 * RSI_SUBONE; sy0 = B0 * RSI_SUBONE; sy2 = B2 * RSI_SUBONE;
 
     {
-        gen_grad_t g = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+        gen_grad_t g = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, { 0, 0, 0 }, { 0, 0, 0 } };
         fx_divisor ad = FX_DIVISOR_INIT;     /* area2, made for large triangles only */
         gen_tex_t tx = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
         gs_lanes L;             /* made at the first span of eight or more pixels */
@@ -422,7 +500,7 @@ RSI_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, c
          * so with a 64-bit divide (C's `/`, no reciprocal) its divisor may stay 0
          * (branch-free), without one it is 1 (fx_recip_make needs d > 0) */
         fx_divisor q0 = FX_DIVISOR_INIT, q1 = FX_DIVISOR_INIT, q2 = FX_DIVISOR_INIT;    /* made when wide */
-        if (wide) {
+        if (wide && !(small && RSI_IDIV32)) {
             const int64_t s1_ = sx0 + sx2;
 #if BR_DIV64_NATIVE
             fx_divisor_make(&q0, sx0 < 0 ? -sx0 : sx0);
@@ -446,7 +524,18 @@ RSI_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, c
             int32_t xl = px0, xr = px1;
             int64_t e0, e2;
             if (!wide) {
-                if (!gen_scan(px0, px1, e0r, e2r, S, sx0, sx2, &xl, &xr, &e0, &e2)) continue;
+                if (small32 ? !gen_scan32(px0, px1, (int32_t)e0r, (int32_t)e2r, (int32_t)S, (int32_t)sx0,
+                                          (int32_t)sx2, &xl, &xr, &e0, &e2)
+                            : !gen_scan(px0, px1, e0r, e2r, S, sx0, sx2, &xl, &xr, &e0, &e2))
+                    continue;
+            } else if (small && RSI_IDIV32) {
+                const int32_t k0 = (int32_t)e0r, k2 = (int32_t)e2r, s0 = (int32_t)sx0, s2 = (int32_t)sx2;
+                int32_t l = 0, r = px1 - px0;
+                if (!gen_edge32(s0, k0, &l, &r) || !gen_edge32(-(s0 + s2), (int32_t)S - k0 - k2, &l, &r)
+                    || !gen_edge32(s2, k2, &l, &r) || l > r)
+                    continue;
+                xl = px0 + l; xr = px0 + r;
+                e0 = k0 + s0 * l; e2 = k2 + s2 * l;
             } else {
                 int64_t l = 0, r = px1 - px0;
                 if (!gen_edge(sx0, e0r, &q0, &l, &r) || !gen_edge(-(sx0 + sx2), S - e0r - e2r, &q1, &l, &r)
@@ -463,19 +552,30 @@ RSI_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, c
                  * 2^22: the weights of inside centres, e0 + e2 <= S <= area2), rg = v_R 2^32
                  * + v_G + 2^30 (every partial sum below 2^63 in magnitude) has v_G + 2^30 in
                  * [0, 2^32) as its low 32 bits, so rg >> 41 = floor(v_R / 2^9) and (low 32
-                 * bits) >> 9 = floor(v_G / 2^9) + 2^21, whose 2^21 (times 2^21) ca takes back. */
+                 * bits) >> 9 = floor(v_G / 2^9) + 2^21, whose 2^21 (times 2^21) ca takes back.
+                 * 32-bit targets form each v_k alone in 32 bits (|v_k| < 2^30), the same
+                 * fields: three pairs of one-instruction products instead of 64-bit ones. */
                 int64_t w1, w2;
                 uint64_t col;
                 uint32_t z;
                 const uint32_t gzu = (uint32_t)g.gz;
                 const int32_t n = xr - xl + 1;
-                if (small) { w1 = (e2 * g.inv) >> 18; w2 = (e0 * g.inv) >> 18; }
+                if (small32) { w1 = ((int64_t)(int32_t)e2 * g.inv) >> 18; w2 = ((int64_t)(int32_t)e0 * g.inv) >> 18; }
+                else if (small) { w1 = (e2 * g.inv) >> 18; w2 = (e0 * g.inv) >> 18; }
                 else { w1 = fx_divisor_trunc(&ad, e2 * ((int64_t)1 << 22)); w2 = fx_divisor_trunc(&ad, e0 * ((int64_t)1 << 22)); }
                 z = (uint32_t)((int64_t)a->d + ((g.dzb * w1 + g.dzc * w2) >> 22));
                 {
+#if RSI_REG64
                     const int64_t rg = g.prg_b * w1 + g.prg_c * w2 + ((int64_t)1 << 30);
                     col = g.ca + ((uint64_t)(rg >> 41) << 42) + ((uint64_t)((uint32_t)rg >> 9) << 21)
                           + (uint64_t)((g.dcb2 * w1 + g.dcc2 * w2) >> 9);
+#else
+                    const int32_t u1 = (int32_t)w1, u2 = (int32_t)w2;
+                    const int32_t vr = g.dcb[0] * u1 + g.dcc[0] * u2, vg = g.dcb[1] * u1 + g.dcc[1] * u2;
+                    const int32_t vb = g.dcb[2] * u1 + g.dcc[2] * u2;
+                    col = g.ca + ((uint64_t)(int64_t)(vr >> 9) << 42)
+                          + ((uint64_t)(uint32_t)((vg >> 9) + (1 << 21)) << 21) + (uint64_t)(int64_t)(vb >> 9);
+#endif
                 }
                 bd->pixels += (uint32_t)n;
                 if (VF_SLOW(vf))

@@ -51,6 +51,16 @@
 #define RSI_REG64 0
 #endif
 
+/* 1 on 32-bit targets with a 32-bit divide instruction (Armv7-M: Cortex-M3, M4), where
+ * the general path's small triangles find their row spans by C's 32-bit `/` (exact, as
+ * the reciprocals it replaces; raster_general.h gen_edge32).  Armv6-M (Cortex-M0+) and
+ * Debian's armv7-a have none. */
+#if !RSI_REG64 && defined(__ARM_FEATURE_IDIV)
+#define RSI_IDIV32 1
+#else
+#define RSI_IDIV32 0
+#endif
+
 #if defined(__GNUC__)
 #define RSI_NOINLINE __attribute__((noinline))
 #define RSI_INLINE inline __attribute__((always_inline))
