@@ -176,50 +176,35 @@ RSI_INLINE static void gen_grad(gen_grad_t *g, fx_divisor *ad, const rs_cvert *a
 
 /* Narrow boxes: a row's span [*xl, *xr] found by scanning from px0, e1 stepped by its own
  * x step (the same values as S - e0 - e2, exact integers); *e0, *e2 the edge values at
- * *xl.  0 when the row has no centre inside. */
-RSI_INLINE static int gen_scan(int32_t px0, int32_t px1, int64_t e0r, int64_t e2r, int64_t S, int64_t sx0,
-                              int64_t sx2, int32_t *xl, int32_t *xr, int64_t *e0, int64_t *e2)
-{
-    int64_t a0 = e0r, a2 = e2r, a1 = S - e0r - e2r;
-    const int64_t sx1 = -(sx0 + sx2);
-    int32_t l = px0, r;
-    while ((a0 | a1 | a2) < 0) {
-        if (++l > px1) return 0;
-        a0 += sx0; a1 += sx1; a2 += sx2;
-    }
-    {
-        int64_t f0 = a0 + sx0, f1 = a1 + sx1, f2 = a2 + sx2;
-        r = l;
-        while (r < px1 && (f0 | f1 | f2) >= 0) { r++; f0 += sx0; f1 += sx1; f2 += sx2; }
-    }
-    *xl = l; *xr = r; *e0 = a0; *e2 = a2;
-    return 1;
+ * *xl.  0 when the row has no centre inside.  Two instantiations, the same values:
+ * gen_scan in 64-bit arithmetic, any box; gen_scan32 in 32-bit arithmetic (two
+ * instructions fewer per step and edge on 32-bit cores) for small boxes: their extent is
+ * below SMALL <= 2^10 sub-pixels both ways, so every |A_k|, |B_k| < 2^10 (vertex
+ * differences), and a scanned centre, at most one column past px1, lies within 2^10 +
+ * RSI_SUBONE of vertex a on each axis; so every edge value the scan forms is below
+ * 2^10 (2^10 + 2^4) 2 + 1 < 2^22 in magnitude, as are e0r, e2r and S. */
+#define GEN_SCAN(NAME, T) \
+RSI_INLINE static int NAME(int32_t px0, int32_t px1, T e0r, T e2r, T S, T sx0, T sx2, int32_t *xl, int32_t *xr, \
+                           int64_t *e0, int64_t *e2) \
+{ \
+    T a0 = e0r, a2 = e2r, a1 = S - e0r - e2r; \
+    const T sx1 = -(sx0 + sx2); \
+    int32_t l = px0, r; \
+    while ((a0 | a1 | a2) < 0) { \
+        if (++l > px1) return 0; \
+        a0 += sx0; a1 += sx1; a2 += sx2; \
+    } \
+    { \
+        T f0 = a0 + sx0, f1 = a1 + sx1, f2 = a2 + sx2; \
+        r = l; \
+        while (r < px1 && (f0 | f1 | f2) >= 0) { r++; f0 += sx0; f1 += sx1; f2 += sx2; } \
+    } \
+    *xl = l; *xr = r; *e0 = a0; *e2 = a2; \
+    return 1; \
 }
-
-/* gen_scan for small boxes in 32-bit arithmetic (two instructions fewer per step and
- * edge on 32-bit cores), the same values: the box's extent is below SMALL <= 2^10
- * sub-pixels both ways, so every |A_k|, |B_k| < 2^10 (vertex differences), and a
- * scanned centre, at most one column past px1, lies within 2^10 + RSI_SUBONE of vertex
- * a on each axis; so every edge value the scan forms is below 2^10 (2^10 + 2^4) 2 + 1
- * < 2^22 in magnitude, as are e0r, e2r and S. */
-RSI_INLINE static int gen_scan32(int32_t px0, int32_t px1, int32_t e0r, int32_t e2r, int32_t S, int32_t sx0,
-                                int32_t sx2, int32_t *xl, int32_t *xr, int64_t *e0, int64_t *e2)
-{
-    int32_t a0 = e0r, a2 = e2r, a1 = S - e0r - e2r;
-    const int32_t sx1 = -(sx0 + sx2);
-    int32_t l = px0, r;
-    while ((a0 | a1 | a2) < 0) {
-        if (++l > px1) return 0;
-        a0 += sx0; a1 += sx1; a2 += sx2;
-    }
-    {
-        int32_t f0 = a0 + sx0, f1 = a1 + sx1, f2 = a2 + sx2;
-        r = l;
-        while (r < px1 && (f0 | f1 | f2) >= 0) { r++; f0 += sx0; f1 += sx1; f2 += sx2; }
-    }
-    *xl = l; *xr = r; *e0 = a0; *e2 = a2;
-    return 1;
-}
+GEN_SCAN(gen_scan, int64_t)
+GEN_SCAN(gen_scan32, int32_t)
+#undef GEN_SCAN
 
 /* Wide boxes, one edge K + s l (l the column relative to px0; floor((K + s px0) / s) =
  * floor(K / s) + px0: the same centres as from column 0, with no products by px0 to keep
