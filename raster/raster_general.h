@@ -99,12 +99,17 @@ RSI_NOINLINE static void gs_lanes_make(gs_lanes *L, uint32_t gzu, uint64_t gc, i
 
 /* The gradients and row-start constants of one triangle (gen_grad).  x-gradients per
  * pixel: colour per channel in Q13, packed into the 21-bit fields (exact modulo 2^64,
- * see RS_CBIAS in raster.c) as gc; depth in Q0 as gz.  dcb[k], dcc[k]: colour channel
- * k's differences b - a and c - a (|.| <= 255), for the row starts of 32-bit targets. */
+ * see RS_CBIAS in raster.c) as gc; depth in Q0 as gz.  dcbk, dcck: colour channel k's
+ * differences b - a and c - a (|.| <= 255); the row start takes R's and G's as one
+ * pair of packed products on 64-bit targets (prg_b, prg_c), one by one on 32-bit ones. */
 typedef struct gen_grad_t {
-    int64_t gz, inv, dzb, dzc, prg_b, prg_c, dcb2, dcc2;
+    int64_t gz, inv, dzb, dzc, dcb2, dcc2;
     uint64_t gc, ca;
-    int32_t dcb[3], dcc[3];
+#if RSI_REG64
+    int64_t prg_b, prg_c;
+#else
+    int32_t dcb0, dcb1, dcc0, dcc1;
+#endif
 } gen_grad_t;
 
 /* Colour difference of channel k (0 = R, 1 = G, 2 = B) between v and a, from the packed
@@ -137,17 +142,11 @@ RSI_INLINE static void gen_grad(gen_grad_t *g, fx_divisor *ad, const rs_cvert *a
     if (small) {
         const int64_t inv = fx_div40((uint32_t)area2);
         g->inv = inv;
-#if RSI_REG64
-        g->gc = ((uint64_t)(((dcb0 * dy2 - dcc0 * dy1) * inv) >> 23) << 42)
-              + ((uint64_t)(((dcb1 * dy2 - dcc1 * dy1) * inv) >> 23) << 21)
-              + (uint64_t)(((g->dcb2 * dy2 - g->dcc2 * dy1) * inv) >> 23);
-#else
         /* colour differences (|.| <= 255) times vertex differences (< 2^10): 32-bit */
         const int32_t y1 = (int32_t)dy1, y2 = (int32_t)dy2;
         g->gc = ((uint64_t)(((int64_t)((int32_t)dcb0 * y2 - (int32_t)dcc0 * y1) * inv) >> 23) << 42)
               + ((uint64_t)(((int64_t)((int32_t)dcb1 * y2 - (int32_t)dcc1 * y1) * inv) >> 23) << 21)
               + (uint64_t)(((int64_t)((int32_t)g->dcb2 * y2 - (int32_t)g->dcc2 * y1) * inv) >> 23);
-#endif
         if (gzn < ((int64_t)1 << 22) && gzn > -((int64_t)1 << 22)) g->gz = (gzn * inv) >> 36;
         else {      /* rare: a divisor made for it alone; a quotient of 2^32 or more
                        (which fx_divisor_trunc32 may refuse) clamps as any beyond INT32_MAX */
@@ -166,10 +165,10 @@ RSI_INLINE static void gen_grad(gen_grad_t *g, fx_divisor *ad, const rs_cvert *a
         if (g->gz > INT32_MAX) g->gz = INT32_MAX;
         if (g->gz < -INT32_MAX) g->gz = -INT32_MAX;
     }
+#if RSI_REG64
     g->prg_b = dcb0 * ((int64_t)1 << 32) + dcb1; g->prg_c = dcc0 * ((int64_t)1 << 32) + dcc1;
-#if !RSI_REG64
-    g->dcb[0] = (int32_t)dcb0; g->dcb[1] = (int32_t)dcb1; g->dcb[2] = (int32_t)g->dcb2;
-    g->dcc[0] = (int32_t)dcc0; g->dcc[1] = (int32_t)dcc1; g->dcc[2] = (int32_t)g->dcc2;
+#else
+    g->dcb0 = (int32_t)dcb0; g->dcb1 = (int32_t)dcb1; g->dcc0 = (int32_t)dcc0; g->dcc1 = (int32_t)dcc1;
 #endif
     g->ca = (a->cp << 13) + RS_CBIAS - ((uint64_t)1 << 42);
 }
@@ -461,7 +460,7 @@ RSI_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, c
     sx0 = A0 * RSI_SUBONE; sx2 = A2 * RSI_SUBONE; sy0 = B0 * RSI_SUBONE; sy2 = B2 * RSI_SUBONE;
 
     {
-        gen_grad_t g = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, { 0, 0, 0 }, { 0, 0, 0 } };
+        gen_grad_t g = { 0 };
         fx_divisor ad = FX_DIVISOR_INIT;     /* area2, made for large triangles only */
         gen_tex_t tx = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
         gs_lanes L;             /* made at the first span of eight or more pixels */
@@ -485,7 +484,7 @@ RSI_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, c
          * so with a 64-bit divide (C's `/`, no reciprocal) its divisor may stay 0
          * (branch-free), without one it is 1 (fx_recip_make needs d > 0) */
         fx_divisor q0 = FX_DIVISOR_INIT, q1 = FX_DIVISOR_INIT, q2 = FX_DIVISOR_INIT;    /* made when wide */
-        if (wide && !(small && RSI_IDIV32)) {
+        if (wide && !(small32 && RSI_IDIV32)) {
             const int64_t s1_ = sx0 + sx2;
 #if BR_DIV64_NATIVE
             fx_divisor_make(&q0, sx0 < 0 ? -sx0 : sx0);
@@ -513,7 +512,7 @@ RSI_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, c
                                           (int32_t)sx2, &xl, &xr, &e0, &e2)
                             : !gen_scan(px0, px1, e0r, e2r, S, sx0, sx2, &xl, &xr, &e0, &e2))
                     continue;
-            } else if (small && RSI_IDIV32) {
+            } else if (small32 && RSI_IDIV32) {
                 const int32_t k0 = (int32_t)e0r, k2 = (int32_t)e2r, s0 = (int32_t)sx0, s2 = (int32_t)sx2;
                 int32_t l = 0, r = px1 - px0;
                 if (!gen_edge32(s0, k0, &l, &r) || !gen_edge32(-(s0 + s2), (int32_t)S - k0 - k2, &l, &r)
@@ -556,8 +555,8 @@ RSI_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, c
                           + (uint64_t)((g.dcb2 * w1 + g.dcc2 * w2) >> 9);
 #else
                     const int32_t u1 = (int32_t)w1, u2 = (int32_t)w2;
-                    const int32_t vr = g.dcb[0] * u1 + g.dcc[0] * u2, vg = g.dcb[1] * u1 + g.dcc[1] * u2;
-                    const int32_t vb = g.dcb[2] * u1 + g.dcc[2] * u2;
+                    const int32_t vr = g.dcb0 * u1 + g.dcc0 * u2, vg = g.dcb1 * u1 + g.dcc1 * u2;
+                    const int32_t vb = (int32_t)g.dcb2 * u1 + (int32_t)g.dcc2 * u2;
                     col = g.ca + ((uint64_t)(int64_t)(vr >> 9) << 42)
                           + ((uint64_t)(uint32_t)((vg >> 9) + (1 << 21)) << 21) + (uint64_t)(int64_t)(vb >> 9);
 #endif
