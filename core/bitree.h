@@ -272,6 +272,8 @@ typedef struct bt_mesh {
     uint32_t heap_cap;     /* entries of the budget heap and of the split list (internal;
                               0 reads as 4 max_tri + 8) */
     bt_coh coh;            /* frame coherence of memo (internal) */
+    int32_t lent;          /* 1: the scratch was lent out since the last extraction
+                              (bt_mesh_lend_scratch; internal) */
 } bt_mesh;
 
 /* Bytes for a mesh that holds up to max_tri triangles (>= 2). */
@@ -289,6 +291,16 @@ br_status bt_mesh_init(bt_mesh *m, uint32_t max_tri, void *mem, size_t mem_bytes
  * bad size. */
 size_t bt_mesh_mem_size_v(uint32_t max_tri, uint32_t max_v);
 br_status bt_mesh_init_v(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem, size_t mem_bytes);
+/* The mesh's scratch: the bytes of its memory that only an extraction reads (the budget
+ * heap, the vertex hash, the decision memo; core/bt_mesh_mem.c), one 8-byte aligned
+ * block, free from the end of one extraction to the start of the next.  A caller short
+ * of RAM may lend it out after bt_extract (the board puts its raster vertices there);
+ * the next extraction clears what it needs first and starts without the memo's earlier
+ * decisions (a cache: the same mesh, one frame without frame coherence).  The vertices,
+ * the strip and the split list that hysteresis reads stay outside it.  *bytes gets its
+ * size, which bt_mesh_scratch_size_v gives before init for the same max_tri, max_v. */
+void *bt_mesh_lend_scratch(bt_mesh *m, size_t *bytes);
+size_t bt_mesh_scratch_size_v(uint32_t max_tri, uint32_t max_v);
 
 /* ---------------------------------------------------------------- selection */
 enum { BT_FIDELITY = 0, BT_VIEW = 1, BT_BUDGET = 2 };

@@ -87,11 +87,13 @@ typedef struct bti_extract {
  * third vertex */
 typedef struct bti_leaf bti_leaf;
 
-/* The mesh's tail area: the budget heap, then the split id list (bt_mesh_init);
- * the reorder pass borrows the heap's part as scratch. */
-static inline bti_heap_ent *bti_heap_of(const bt_mesh *m) { return (bti_heap_ent *)(void *)m->splits; }
+/* The mesh's tail area (core/bt_mesh_mem.c): the split id list, then the budget heap
+ * (heap_cap entries each; heap_cap is even, so the heap stays 8-byte aligned); the
+ * reorder pass borrows the heap as scratch.  The heap is the first of the scratch
+ * bytes a caller may borrow between extractions (bt_mesh_lend_scratch). */
 static inline uint32_t bti_heap_cap(const bt_mesh *m) { return m->heap_cap ? m->heap_cap : 4 * m->max_tri + 8; }
-static inline uint32_t *bti_ids_of(const bt_mesh *m) { return (uint32_t *)(void *)(bti_heap_of(m) + bti_heap_cap(m)); }
+static inline uint32_t *bti_ids_of(const bt_mesh *m) { return m->splits; }
+static inline bti_heap_ent *bti_heap_of(const bt_mesh *m) { return (bti_heap_ent *)(void *)(m->splits + bti_heap_cap(m)); }
 
 /* core/bt_emit.c: writes leaf L (N: the next leaf, or NULL), 1 when N was
  * written too; writes the pending leaf; after a complete extraction whose walk

@@ -683,10 +683,18 @@ br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri)
 /* Empties the mesh.  The vertex hash is not cleared: a slot holds base + 1 +
  * index, and the base (the word after the table) moves past every value of the
  * previous extraction, so old slots read as empty; cleared only when the base
- * would wrap. */
+ * would wrap, or when the scratch was lent out (bt_mesh_lend_scratch: the hash and
+ * the memo hold anything then, and the memo's frame coherence starts again). */
 uint32_t bti_reset_mesh(bt_mesh *m)
 {
     uint32_t *base = &m->hash[m->hmask + 1];
+    if (m->lent) {
+        memset(m->hash, 0, ((size_t)m->hmask + 1) * 4 + 4);
+        bti_memo_clear(m->memo, m->memo_mask + 1);
+        m->memo_gen = 0;
+        m->coh.valid = 0;
+        m->lent = 0;
+    }
     if (*base > 0xFFFFFFFFu - m->nv - m->cap_v - 1) {
         memset(m->hash, 0, ((size_t)m->hmask + 1) * 4);
         *base = 0;

@@ -1,8 +1,14 @@
 /* core/bt_mesh_mem.c — a mesh's memory (core/bitree.h bt_mesh_mem_size, bt_mesh_init
- * and their _v forms with a vertex capacity of their own): one caller block carved
- * into the vertices, the vertex hash, the strip, the budget heap with its id list
- * (which the hysteresis step borrows for the previous frame's splits) and the
- * decision memo. */
+ * and their _v forms with a vertex capacity of their own), and the scratch a caller may
+ * borrow between extractions (bt_mesh_lend_scratch).  One caller block, in this order:
+ *
+ *   vertices | strip | split id list | budget heap | vertex hash + its base word | memo
+ *   \----------- kept between frames ----------/ \------------- scratch -------------/
+ *
+ * The split id list holds the previous frame's splits (hysteresis) and the heap's ids in
+ * a budget frame; the heap holds the previous splits while a frame is selected.  The
+ * scratch is what only an extraction reads: the heap, the hash (stamped per extraction,
+ * core/bt_mesh.c bti_reset_mesh) and the memo (a cache). */
 #include <string.h>
 #include "core/bitree.h"
 #include "core/bt_int.h"
@@ -99,14 +105,14 @@ br_status bt_mesh_init_v(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem
     m->heap_cap = heap_for(max_tri, max_v);
     m->v = (bt_vert *)(void *)p; p += (size_t)cap_v * sizeof(bt_vert);
     m->cap_v = cap_v;
-    m->hash = (uint32_t *)(void *)p; p += (size_t)hs * 4 + 4;
-    m->hmask = hs - 1;
-    memset(m->hash, 0, (size_t)hs * 4 + 4);   /* + the generation word, see reset_mesh */
     m->strip = (uint32_t *)(void *)p; p += (size_t)cap_s * 4;
     m->cap_s = cap_s;
     p += (8 - ((uintptr_t)p & 7)) & 7;
-    m->splits = (uint32_t *)(void *)p;   /* heap entries + id list share this tail */
-    p = (uint8_t *)(void *)(bti_ids_of(m) + bti_heap_cap(m));
+    m->splits = (uint32_t *)(void *)p;   /* the id list, then the heap (bti_heap_of) */
+    p = (uint8_t *)(void *)(bti_heap_of(m) + bti_heap_cap(m));
+    m->hash = (uint32_t *)(void *)p; p += (size_t)hs * 4 + 4;
+    m->hmask = hs - 1;
+    memset(m->hash, 0, (size_t)hs * 4 + 4);   /* + the generation word, see reset_mesh */
     p += (8 - ((uintptr_t)p & 7)) & 7;
     m->memo = (uint64_t *)(void *)p;
     m->memo_mask = memo_size(memo_for(max_tri, max_v)) / BTI_MEMO_W - 1;
@@ -115,4 +121,28 @@ br_status bt_mesh_init_v(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem
     return BR_OK;
 }
 
+/* The heap (8-byte aligned: the split list before it has an even number of words), the
+ * hash with its base word (hs 4 + 4 bytes, hs a power of two >= 16), 4 bytes of padding
+ * to the memo's 8-byte alignment, the memo: what bt_mesh_init_v lays out. */
+size_t bt_mesh_scratch_size_v(uint32_t max_tri, uint32_t max_v)
+{
+    uint64_t sz;
+    if (bt_mesh_mem_size_v(max_tri, max_v) == 0) return 0;
+    sz = (uint64_t)heap_for(max_tri, max_v) * sizeof(bti_heap_ent) + (uint64_t)hash_size(hash_for(max_tri, max_v)) * 4 + 8
+         + (uint64_t)memo_size(memo_for(max_tri, max_v)) * 8;
+    return (size_t)sz;
+}
 
+void *bt_mesh_lend_scratch(bt_mesh *m, size_t *bytes)
+{
+    uint8_t *lo, *hi;
+    if (!m || !m->v) {
+        if (bytes) *bytes = 0;
+        return NULL;
+    }
+    lo = (uint8_t *)(void *)bti_heap_of(m);
+    hi = (uint8_t *)(void *)(m->memo + ((size_t)m->memo_mask + 1) * BTI_MEMO_W);
+    m->lent = 1;
+    if (bytes) *bytes = (size_t)(hi - lo);
+    return lo;
+}

@@ -143,6 +143,55 @@ static void fly_path(const char *file, int parts, int nmax)
     campath_free(&cp);
 }
 
+/* Fills a lent scratch as a hostile borrower would: random words, then in the memo's
+ * slots entries of the next extraction's generation that say "split" for the diamonds
+ * those slots hold (core/bt_mesh.c decide_memo's layout): reused, they would refine
+ * everything. */
+static void spoil_scratch(bt_mesh *m, uint64_t *w, size_t bytes)
+{
+    const uint64_t gen = (uint64_t)(m->memo_gen + 1) << 48;
+    uint32_t idx, nidx = 4 * (m->memo_mask + 1);
+    size_t i;
+    for (i = 0; i < bytes / 8; i++) w[i] = t_xs64();
+    for (idx = 0; idx < nidx && idx < sc.tree.nslot; idx++)
+        m->memo[((idx * 2654435761u >> 8) & m->memo_mask) * BTI_MEMO_W] = gen | (uint64_t)2 << 46 | idx;
+}
+
+/* A mesh whose scratch is lent out between frames (bt_mesh_lend_scratch, what the board
+ * does with its raster vertices): A lends its scratch after each extraction and spoils
+ * it, and still gives B's meshes and frame states; the spoiling must not reach the
+ * vertices, the strip or the split list the next frame's hysteresis reads. */
+static void test_coherence_lent_scratch(void)
+{
+    campath cp;
+    br_err err;
+    knobs k = VIEWER;
+    size_t bytes = 0;
+    int f, ok = 1, lost_memo = 0;
+    if (!open_dem("assets/N47E009.hgt.gz")) { CHECK(0); return; }
+    CHECK(campath_read("assets/lake-path.cam", &cp, &err) == BR_OK);
+    k.parts = 0;
+    frames = differ = 0;
+    for (f = 0; f < cp.n && f < 40; f++) {
+        uint64_t *w;
+        ok &= frame(cp.cam[f], &k);
+        CHECK(!A.m.lent);
+        w = (uint64_t *)bt_mesh_lend_scratch(&A.m, &bytes);
+        CHECK(w != NULL && ((uintptr_t)w & 7) == 0);
+        CHECK_EQ(bytes, bt_mesh_scratch_size_v(MAX_TRI, 0));
+        lost_memo += (uint8_t *)A.m.memo >= (uint8_t *)w && (uint8_t *)A.m.memo < (uint8_t *)w + bytes;
+        spoil_scratch(&A.m, w, bytes);
+        if (!same()) differ++;      /* the spoiling left the mesh and the frame state alone */
+    }
+    CHECK_EQ(lost_memo, f);
+    CHECK_MSG(ok, "lake path");
+    CHECK_MSG(differ == 0, "lent scratch: %ld of %ld frames differ", differ, frames);
+    CHECK(bt_mesh_lend_scratch(NULL, &bytes) == NULL && bytes == 0);
+    CHECK_EQ(bt_mesh_scratch_size_v(1, 0), 0);
+    campath_free(&cp);
+    close_dem();
+}
+
 /* The shipped paths on the default terrain, frame by frame (about 16 m a frame), in
  * parts (the viewer's and the bench's way) and serially. */
 static void test_coherence_paths(void)
@@ -360,5 +409,6 @@ int main(void)
     T_RUN(test_coherence_flights);
     T_RUN(test_coherence_margin_matters);
     T_RUN(test_coherence_rebuilt_tree);
+    T_RUN(test_coherence_lent_scratch);
     return t_finish();
 }

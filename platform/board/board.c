@@ -23,6 +23,8 @@ struct board_state {
     size_t band_bytes;
     uint8_t *row;               /* the SPI row buffer, 2 w bytes */
     uint32_t vcap;
+    int lend;                   /* 1: the raster's parts lie in the mesh's scratch */
+    size_t in_scratch[BP_N];    /* bytes each part takes there */
 };
 
 static struct board_state B;
@@ -42,6 +44,11 @@ static const char *const part_name[BP_N] = {
 const char *board_part_name(int part)
 {
     return part >= 0 && part < BP_N ? part_name[part] : "?";
+}
+
+size_t board_part_in_scratch(int part)
+{
+    return part >= 0 && part < BP_N ? B.in_scratch[part] : 0;
 }
 
 size_t board_state_size(void)
@@ -105,6 +112,16 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
     sz[BP_CHUNKS] = up8(rs_chunk_mem_size(&longest, 1));
     sz[BP_BAND] = up8(rs_pipe_mem_size(&pipe, BOARD_BAND_ROWS));
     sz[BP_ROW] = up8((size_t)bake.fb_w * 2);
+    /* The raster's per-frame parts are written after the selection and read before the
+     * next one: they fit in the mesh's scratch (bt_mesh_lend_scratch) when it is large
+     * enough, and then take no arena bytes of their own. */
+    if (sz[BP_VERTS] + sz[BP_CACHE] + sz[BP_CHUNKS] <= bt_mesh_scratch_size_v(BOARD_MAX_TRI, BOARD_MAX_V)) {
+        B.lend = 1;
+        for (i = BP_VERTS; i <= BP_CHUNKS; i++) {
+            B.in_scratch[i] = sz[i];
+            sz[i] = 0;
+        }
+    }
     for (i = 0; i < BP_N; i++) {
         if (size) size[i] = sz[i];
         total += sz[i];
@@ -114,9 +131,17 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
     p += sz[BP_STATE];
     if (bt_mesh_init_v(&B.mesh, BOARD_MAX_TRI, BOARD_MAX_V, p, sz[BP_MESH]) != BR_OK) return BR_E_ARG;
     p += sz[BP_MESH];
-    B.verts = (rs_vertex *)(void *)p; p += sz[BP_VERTS];
-    B.cache = (rs_cvert *)(void *)p; p += sz[BP_CACHE];
-    B.chunks = (int16_t *)(void *)p; p += sz[BP_CHUNKS];
+    if (B.lend) {
+        size_t n;
+        uint8_t *q = (uint8_t *)bt_mesh_lend_scratch(&B.mesh, &n);
+        B.verts = (rs_vertex *)(void *)q; q += B.in_scratch[BP_VERTS];
+        B.cache = (rs_cvert *)(void *)q; q += B.in_scratch[BP_CACHE];
+        B.chunks = (int16_t *)(void *)q;
+    } else {
+        B.verts = (rs_vertex *)(void *)p; p += sz[BP_VERTS];
+        B.cache = (rs_cvert *)(void *)p; p += sz[BP_CACHE];
+        B.chunks = (int16_t *)(void *)p; p += sz[BP_CHUNKS];
+    }
     B.band = p; B.band_bytes = sz[BP_BAND]; p += sz[BP_BAND];
     B.row = p;
     return BR_OK;
@@ -147,6 +172,7 @@ br_status board_frame(int32_t i, rs_sink tap, void *tap_user, board_frame_info *
     bp.morph_q8 = bake.morph_q8;
     if ((st = bt_extract(&B.tree, &bp, &B.mesh)) != BR_OK) return st;
     if (B.mesh.nv > B.vcap) return BR_E_NOMEM;
+    if (B.lend) (void)bt_mesh_lend_scratch(&B.mesh, NULL);   /* the same block as at init */
     rt_from_mesh(&B.rt, &B.mesh, B.verts);
     prim.kind = RS_STRIP; prim.n = B.mesh.ns; prim.idx = B.mesh.strip;
     memset(&fr, 0, sizeof fr);
