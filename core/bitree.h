@@ -254,7 +254,9 @@ typedef struct bt_coh {
 } bt_coh;
 
 typedef struct bt_mesh {
-    bt_vert *v;            /* vertices, capacity cap_v */
+    bt_vert *v;            /* vertices, capacity cap_v: output only (an extraction reads
+                              none it did not write, so a caller may reuse the bytes once
+                              it has read them; the board draws its bands there) */
     uint32_t nv, cap_v;
     uint32_t *strip;       /* strip indices into v, capacity cap_s */
     uint32_t ns, cap_s;

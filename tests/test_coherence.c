@@ -160,13 +160,16 @@ static void spoil_scratch(bt_mesh *m, uint64_t *w, size_t bytes)
 /* A mesh whose scratch is lent out between frames (bt_mesh_lend_scratch, what the board
  * does with its raster vertices): A lends its scratch after each extraction and spoils
  * it, and still gives B's meshes and frame states; the spoiling must not reach the
- * vertices, the strip or the split list the next frame's hysteresis reads. */
+ * vertices, the strip or the split list the next frame's hysteresis reads.  Then A's
+ * vertex array is overwritten too (the board draws its bands there): the next
+ * extraction must not read the old vertices. */
 static void test_coherence_lent_scratch(void)
 {
     campath cp;
     br_err err;
     knobs k = VIEWER;
     size_t bytes = 0;
+    uint32_t i;
     int f, ok = 1, lost_memo = 0;
     if (!open_dem("assets/N47E009.hgt.gz")) { CHECK(0); return; }
     CHECK(campath_read("assets/lake-path.cam", &cp, &err) == BR_OK);
@@ -182,6 +185,9 @@ static void test_coherence_lent_scratch(void)
         lost_memo += (uint8_t *)A.m.memo >= (uint8_t *)w && (uint8_t *)A.m.memo < (uint8_t *)w + bytes;
         spoil_scratch(&A.m, w, bytes);
         if (!same()) differ++;      /* the spoiling left the mesh and the frame state alone */
+        for (i = 0; i < A.m.cap_v; i++) {          /* the vertices are output only */
+            A.m.v[i].x = (int32_t)(i % 7); A.m.v[i].y = (int32_t)(i % 5); A.m.v[i].z = -1;
+        }
     }
     CHECK_EQ(lost_memo, f);
     CHECK_MSG(ok, "lake path");

@@ -24,7 +24,8 @@ struct board_state {
     uint8_t *row;               /* the SPI row buffer, 2 w bytes */
     uint32_t vcap;
     int lend;                   /* 1: the raster's parts lie in the mesh's scratch */
-    size_t in_scratch[BP_N];    /* bytes each part takes there */
+    int reuse_v;                /* 1: the band and the row lie in the mesh's vertex array */
+    size_t borrowed[BP_N];      /* bytes each part takes in the mesh's memory */
 };
 
 static struct board_state B;
@@ -46,9 +47,11 @@ const char *board_part_name(int part)
     return part >= 0 && part < BP_N ? part_name[part] : "?";
 }
 
-size_t board_part_in_scratch(int part)
+size_t board_part_borrowed(int part, const char **from)
 {
-    return part >= 0 && part < BP_N ? B.in_scratch[part] : 0;
+    if (part < 0 || part >= BP_N || !B.borrowed[part]) return 0;
+    if (from) *from = part >= BP_BAND ? "the mesh's vertices" : "the mesh's scratch";
+    return B.borrowed[part];
 }
 
 size_t board_state_size(void)
@@ -77,6 +80,13 @@ static br_status band_sink(void *user, int32_t y0, int32_t rows, const void *px,
 static size_t up8(size_t n)
 {
     return (n + 7) & ~(size_t)7;
+}
+
+/* The mesh's vertex capacity (core/bitree.h bt_mesh_init_v) */
+static uint32_t mesh_cap_v(void)
+{
+    const uint32_t most = 3u * BOARD_MAX_TRI + 3u;
+    return BOARD_MAX_V == 0 || BOARD_MAX_V > most ? most : BOARD_MAX_V;
 }
 
 br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
@@ -118,7 +128,17 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
     if (sz[BP_VERTS] + sz[BP_CACHE] + sz[BP_CHUNKS] <= bt_mesh_scratch_size_v(BOARD_MAX_TRI, BOARD_MAX_V)) {
         B.lend = 1;
         for (i = BP_VERTS; i <= BP_CHUNKS; i++) {
-            B.in_scratch[i] = sz[i];
+            B.borrowed[i] = sz[i];
+            sz[i] = 0;
+        }
+    }
+    /* The band and the SPI row are written after rt_from_mesh has read the mesh's
+     * vertices, which the next extraction writes anew without reading the old ones
+     * (core/bitree.h bt_mesh.v): they fit in the vertex array when it is large enough. */
+    if (sz[BP_BAND] + sz[BP_ROW] <= (size_t)mesh_cap_v() * sizeof(bt_vert)) {
+        B.reuse_v = 1;
+        for (i = BP_BAND; i <= BP_ROW; i++) {
+            B.borrowed[i] = sz[i];
             sz[i] = 0;
         }
     }
@@ -134,16 +154,21 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
     if (B.lend) {
         size_t n;
         uint8_t *q = (uint8_t *)bt_mesh_lend_scratch(&B.mesh, &n);
-        B.verts = (rs_vertex *)(void *)q; q += B.in_scratch[BP_VERTS];
-        B.cache = (rs_cvert *)(void *)q; q += B.in_scratch[BP_CACHE];
+        B.verts = (rs_vertex *)(void *)q; q += B.borrowed[BP_VERTS];
+        B.cache = (rs_cvert *)(void *)q; q += B.borrowed[BP_CACHE];
         B.chunks = (int16_t *)(void *)q;
     } else {
         B.verts = (rs_vertex *)(void *)p; p += sz[BP_VERTS];
         B.cache = (rs_cvert *)(void *)p; p += sz[BP_CACHE];
         B.chunks = (int16_t *)(void *)p; p += sz[BP_CHUNKS];
     }
-    B.band = p; B.band_bytes = sz[BP_BAND]; p += sz[BP_BAND];
-    B.row = p;
+    if (B.reuse_v) {
+        B.band = B.mesh.v; B.band_bytes = B.borrowed[BP_BAND];
+        B.row = (uint8_t *)B.band + B.band_bytes;
+    } else {
+        B.band = p; B.band_bytes = sz[BP_BAND]; p += sz[BP_BAND];
+        B.row = p;
+    }
     return BR_OK;
 }
 

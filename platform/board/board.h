@@ -7,8 +7,8 @@
  *
  * RAM: everything the frames write lies in the arena the caller hands to board_init
  * (carved in the parts of enum board_part; board_init's size[] says how much each takes,
- * and the raster's per-frame parts live in the mesh's scratch when it holds them,
- * board_part_in_scratch) plus the board's own state (struct board_state, sizeof in
+ * and the raster's per-frame parts live in the mesh's memory when it holds them,
+ * board_part_borrowed) plus the board's own state (struct board_state, sizeof in
  * board_state_size) and the stack.  Build-time sizes: BOARD_MAX_TRI triangles a mesh (beyond: the bitree's budget
  * rule, a coarser conforming mesh), BOARD_MAX_V raster vertices (a frame whose mesh has
  * more fails with BR_E_NOMEM, never writes past them).
@@ -42,10 +42,12 @@ typedef struct board_frame_info {
 
 /* Name of a part ("LOD state", "mesh", ...). */
 const char *board_part_name(int part);
-/* Bytes a part borrows from the mesh's scratch (core/bitree.h bt_mesh_lend_scratch)
- * instead of the arena: the raster vertices, the vertex cache and the chunk table live
- * there when it holds them (board_init decides; their size[] is then 0); else 0. */
-size_t board_part_in_scratch(int part);
+/* Bytes a part borrows from the mesh's memory instead of the arena (board_init decides;
+ * its size[] is then 0), else 0; *from (may be NULL) names where.  The raster vertices,
+ * the vertex cache and the chunk table live in the mesh's scratch (core/bitree.h
+ * bt_mesh_lend_scratch), the band and the SPI row in the mesh's vertex array once
+ * rt_from_mesh has read it, when they fit. */
+size_t board_part_borrowed(int part, const char **from);
 /* Bytes of the board's own state (static, outside the arena). */
 size_t board_state_size(void);
 /* Carves the arena (8-byte aligned) and sets up the scene, the tree over the baked

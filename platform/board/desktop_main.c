@@ -69,9 +69,9 @@ int main(int argc, char **argv)
     if (!arena || board_init(arena, total, size) != BR_OK) { fprintf(stderr, "board: cannot set up the scene\n"); return 1; }
     if (mem) {
         for (i = 0; i < BP_N; i++) {
-            if (board_part_in_scratch(i))
-                printf("board ram: %-24s %8zu bytes (in the mesh's scratch: %zu)\n", board_part_name(i), size[i],
-                       board_part_in_scratch(i));
+            const char *from = "";
+            size_t lent = board_part_borrowed(i, &from);
+            if (lent) printf("board ram: %-24s %8zu bytes (in %s: %zu)\n", board_part_name(i), size[i], from, lent);
             else printf("board ram: %-24s %8zu bytes\n", board_part_name(i), size[i]);
         }
         printf("board ram: %-24s %8zu bytes\n", "board state (static)", board_state_size());
