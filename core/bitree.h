@@ -243,6 +243,8 @@ typedef struct bt_coh_key {
 typedef struct bt_coh {
     bt_coh_key key;
     int32_t eye[3], valid;
+    int32_t fresh;         /* this frame started afresh (a key change, a restart): no
+                              earlier frame's answer holds */
     cam_plane pl[CAM_NPLANES];  /* the last frame's frustum */
     uint64_t acc;          /* 1 .. 2^51: grows by the eye's L1 travel, and past every
                               expiry at a key change */
@@ -276,6 +278,9 @@ typedef struct bt_mesh {
     bt_coh coh;            /* frame coherence of memo (internal) */
     int32_t lent;          /* 1: the scratch was lent out since the last extraction
                               (bt_mesh_lend_scratch; internal) */
+    struct bti_ztest *zlog; /* a part's strip tests that read heights (internal,
+                              core/bt_em.h; NULL: none kept) */
+    uint32_t nz, cap_z;
 } bt_mesh;
 
 /* Bytes for a mesh that holds up to max_tri triangles (>= 2). */
@@ -395,6 +400,9 @@ br_status bt_extract_end(bt_parts *ps, uint32_t *njoin);
 void bt_extract_join(bt_parts *ps, uint32_t k, uint32_t *v0, uint32_t *nv);
 /* Triangles of part k in the last extraction (0 if none): a scheduling hint. */
 uint32_t bt_part_tris(const bt_parts *ps, uint32_t k);
+/* Parts of the last extraction whose mesh was the frame before's with the heights of
+ * its moving vertices updated, not walked again (frame coherence; a statistic). */
+uint32_t bt_parts_reused(const bt_parts *ps);
 
 /* Budget mode scratch: bt_extract with BT_BUDGET (or a fallback) needs a heap;
  * it is carved from m (bt_mesh_mem_size includes it).  When the recursive walk

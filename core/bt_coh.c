@@ -155,7 +155,7 @@ int bti_coh_frame(bti_extract *e, bt_coh *c)
 {
     bt_coh_key k;
     const int32_t *eye = e->p->c->eye;
-    int wrap = 0;
+    int wrap = 0, fresh = 0;
     memset(&k, 0, sizeof k);
     k.node = e->t->node; k.sum = e->t->sum; k.n = e->t->n; k.w = e->t->w; k.h = e->t->h;
     k.zmin = e->t->zmin; k.zmax = e->t->zmax; k.no_cull = e->p->no_cull != 0;
@@ -163,12 +163,14 @@ int bti_coh_frame(bti_extract *e, bt_coh *c)
     if (!c->valid || c->acc >= COH_LIMIT || c->x >= COH_LIMIT) {
         int64_t slack = c->slack;
         wrap = c->valid;                              /* entries may hold any expiry */
+        fresh = 1;
         memset(c, 0, sizeof *c);
         c->slack = slack;
         c->acc = c->x = 1;
     }
     if (memcmp(&k, &c->key, sizeof k) != 0) {
         memcpy(&c->key, &k, sizeof k);   /* padding too: memcmp compares it */
+        fresh = 1;
         c->acc += c->valid ? COH_JUMP : 0;            /* every earlier expiry has passed */
         c->x += c->valid ? COH_JUMP : 0;
         recip(c, 0, k.tau_lo);
@@ -185,6 +187,7 @@ int bti_coh_frame(bti_extract *e, bt_coh *c)
         c->x += t + (pt < COH_JUMP ? pt : COH_JUMP);
     }
     c->valid = 1;
+    c->fresh = fresh;
     memcpy(c->eye, eye, sizeof c->eye);
     memcpy(c->pl, e->pl, sizeof c->pl);
     e->coh = BR_COHERENCE ? c : NULL;

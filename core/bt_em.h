@@ -22,6 +22,24 @@ enum { ST_PREV = 1, ST_SPLIT = 2, ST_PUSHED = 4, ST_CUR = 8 };
 #define BTI_MEMO_W 1
 #endif
 
+/* The memo entry slot idx maps to (core/bt_mesh.c decide_memo) */
+static inline uint64_t *bti_memo_slot(const bt_mesh *m, uint32_t idx)
+{
+    return &m->memo[((idx * 2654435761u >> 8) & m->memo_mask) * BTI_MEMO_W];
+}
+
+/* The second word of slot idx's memo entry (its expiry), 0 when the entry is another's */
+static inline uint64_t bti_memo_w(const bt_mesh *m, uint32_t idx)
+{
+#if BR_COHERENCE
+    const uint64_t *slot = bti_memo_slot(m, idx);
+    return (uint32_t)(slot[0] & 0x3fffffffu) == idx ? slot[1] : 0;
+#else
+    (void)m; (void)idx;
+    return 0;
+#endif
+}
+
 /* Forgets every decision of a memo of `entries` entries (no generation matches 0) */
 static inline void bti_memo_clear(uint64_t *memo, uint32_t entries)
 {
@@ -31,8 +49,47 @@ static inline void bti_memo_clear(uint64_t *memo, uint32_t entries)
 /* A vertex on its way down the recursion; idx caches its output index (the
  * children of a split share their parent's pt instances, so most lookups are
  * answered here and only the first use per instance goes to the hash). */
-typedef struct bti_pt { int32_t x, y, z; uint32_t idx; uint16_t morph; } bti_pt;
+typedef struct bti_pt { int32_t x, y, z; uint32_t idx; uint16_t morph; uint32_t ri; } bti_pt;
 #define BTI_NO_IDX 0xFFFFFFFFu
+
+/* A part's walk records each decision it makes (core/bt_part.c part_replay): the
+ * diamond (x, y) in slot idx, the answer sp, the plane mask it handed on (m_out);
+ * the records of its triangle's apex (cref: the split whose children it is, which
+ * handed it its plane mask) and hypotenuse ends (aref, bref); for a split, the split
+ * vertex's height z and weight morph and its index in the part's vertices (vidx,
+ * BTI_NO_IDX when no leaf used it).  A point's ri is the record of the split that
+ * made it, or BTI_REF_A / C / B for the part root's corners. */
+typedef struct bti_rec {
+    uint64_t w;             /* the answer's memo entry's second word then (0: none) */
+    int32_t z;
+    uint32_t idx, aref, bref, cref, vidx;
+    uint16_t x, y, morph;
+    uint16_t morph0;        /* the answer's weight (before bti_mid_z) */
+    uint8_t m_out;
+    int8_t sp;
+    uint8_t terms;          /* lo, hi, lhs hold bti_morph_terms (a moving weight's) */
+    int32_t lo[3], hi[3];
+    int64_t lhs;
+} bti_rec;
+/* A strip writer's test that reads vertex heights, kept by a part's walk (bt_mesh.zlog)
+ * so that a replay can tell whether moved heights change the strip: kind 0 rim_line
+ * (core/bt_emit.c) of vertices a, b, c, kind 1 bti_flat; its answer then. */
+typedef struct bti_ztest { uint32_t a, b, c; uint8_t kind, answer; } bti_ztest;
+static inline int bti_zlog(bt_mesh *m, int kind, uint32_t a, uint32_t b, uint32_t c, int answer)
+{
+    if (BR_COHERENCE && m->zlog) {      /* parts replay only with frame coherence */
+        if (m->nz < m->cap_z) {
+            bti_ztest *t = &m->zlog[m->nz];
+            t->a = a; t->b = b; t->c = c; t->kind = (uint8_t)kind; t->answer = (uint8_t)answer;
+        }
+        m->nz++;
+    }
+    return answer;
+}
+
+#define BTI_REF_A 0xFFFFFFFDu
+#define BTI_REF_C 0xFFFFFFFEu
+#define BTI_REF_B 0xFFFFFFFFu
 
 typedef struct bti_heap_ent { int64_t key; uint32_t id; uint32_t pad_; } bti_heap_ent;
 
@@ -81,6 +138,8 @@ typedef struct bti_extract {
     const bt_coh *coh;      /* frame coherence (bti_coh_frame): expiries are computed; NULL: not */
     uint64_t coh_acc, coh_x; /* its accumulated travels now (eye; eye and planes); UINT64_MAX:
                                no entry of an earlier frame is reused */
+    bti_rec *recs;          /* a part's walk: its decisions (bti_rec), else NULL */
+    uint32_t nrec, cap_rec; /* recorded, room; nrec > cap_rec: some were not */
 } bti_extract;
 
 /* A leaf waiting to be written: its vertex indices, exit edge {o0, o1} and the
@@ -138,6 +197,18 @@ struct bt_parts {
     uint32_t hbase[BT_PARTS];      /* vertex hash generation of each part (part_reset) */
     uint32_t hint_nv[BT_PARTS];    /* part k's vertices last frame: the hash and memo in use */
     uint32_t hfull, mfull;         /* slots allocated for each part's hash, memo */
+    /* part k's decisions of its last walk (bti_rec) and what reusing its mesh needs:
+     * the root it walked and the indices of that root's corners in its vertices;
+     * reuse[k] 1 when the walk was complete and every decision recorded */
+    bti_rec *rec[BT_PARTS];
+    uint32_t nrec[BT_PARTS], cap_rec;
+    bti_root last_root[BT_PARTS];
+    uint32_t ridx[BT_PARTS][3];
+    uint8_t reuse[BT_PARTS];
+    uint8_t replayed[BT_PARTS];    /* part k's mesh this frame is its last one's (part_replay) */
+    uint8_t misses[BT_PARTS];      /* part k's replays that failed in a row (0 .. 3) and the */
+    uint8_t wait[BT_PARTS];        /* frames it walks before the next try (2^misses - 1) */
+    uint32_t nreused;              /* parts replayed by the last extraction (bt_extract_end) */
     bti_extract fx;                /* the seams' writer (bt_extract_end) */
     uint32_t recent[96], nrecent;  /* its vertex identification by (x, y) */
     bt_coh coh;                    /* frame coherence of the parts' memos */
@@ -146,7 +217,44 @@ struct bt_parts {
 br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p);
 uint32_t bti_reset_mesh(bt_mesh *m);
 void bti_part_roots(bti_extract *e, bt_parts *ps);
-void bti_part_walk(bti_extract *e, const bti_root *r);
+/* core/bt_emit.c rim_line: 1 when the straight rim q-z-r2 may serve as a line triangle */
+int bti_rim_line(const bti_extract *e, uint32_t q, uint32_t z, uint32_t r2);
+/* Walks part root r; ridx gets the indices of r's corners in the part's vertices. */
+void bti_part_walk(bti_extract *e, const bti_root *r, uint32_t ridx[3]);
+/* decide_memo (core/bt_mesh.c): diamond (x, y) in slot idx under plane mask *mask (then
+ * the mask handed on), through the mesh's decision memo: -1 culled, 0 leaf, 1 split. */
+int bti_decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph);
+/* The geomorph weight of a split diamond for this frame's eye (BR_COHERENCE), from what
+ * does not depend on the eye: the volume lo..hi and lhs = object error times f of
+ * diamond (x, y) in slot idx (bti_morph_terms; they change only with the frame key). */
+void bti_morph_terms(const bti_extract *e, int32_t x, int32_t y, uint32_t idx, int32_t lo[3], int32_t hi[3],
+                     int64_t *lhs);
+uint16_t bti_morph_of_terms(const bti_extract *e, const int32_t lo[3], const int32_t hi[3], int64_t lhs);
+
+/* Height of sample (x, y), 0 outside the grid as read or on a void. */
+static inline int32_t bti_zreal(const bt_tree *t, int32_t x, int32_t y)
+{
+    const hf *f = t->f;
+    if (x >= f->w || y >= f->h) return 0;
+    {
+        int32_t v = f->z[(size_t)y * f->w + x];
+        return v == HF_NODATA ? 0 : v;
+    }
+}
+
+/* Height of split vertex (x, y) with weight *morph on the hypotenuse whose ends have
+ * heights az, bz: geomorphed between their interpolation and the real height.  Both
+ * triangles of a diamond share the ends, so it is a function of the diamond (given the
+ * ends').  A vertex whose real height IS the interpolation (in every mode) carries
+ * topology but no information: fictitious (002: deducible, never transmitted), *morph 0;
+ * its height is the same either way. */
+static inline int32_t bti_mid_z(const bti_extract *e, int32_t az, int32_t bz, int32_t x, int32_t y, uint16_t *morph)
+{
+    int32_t zs = e->nonvoid ? e->t->f->z[(size_t)y * (size_t)e->n + (size_t)x] : bti_zreal(e->t, x, y);
+    int64_t zf = ((int64_t)az + bz) >> 1;
+    if (2 * (int64_t)zs == (int64_t)az + bz) *morph = 0;
+    return *morph == BT_MORPH_ONE ? zs : (int32_t)(zf + ((((int64_t)zs - zf) * *morph + (1 << 14)) >> 15));
+}
 /* Frame coherence (core/bt_mesh.c): accounts the eye's travel since c's last frame,
  * or starts afresh when anything else changed; sets e->coh, e->coh_acc.  1 when
  * the memos that c covers must be cleared (the accumulator wrapped). */

@@ -24,7 +24,7 @@ static int collinear(const bt_mesh *m, uint32_t a, uint32_t b, uint32_t c)
  * to a point of it crosses the surface first: the depth test hides it.  Any other
  * grid-collinear triple is a vertical sliver standing out of the surface (or
  * hanging off an edge), drawn by the rasteriser. */
-static int rim_line(const bti_extract *e, uint32_t q, uint32_t z, uint32_t r2)
+int bti_rim_line(const bti_extract *e, uint32_t q, uint32_t z, uint32_t r2)
 {
     const bt_mesh *m = e->m;
     const bt_vert *a = &m->v[q], *c = &m->v[z], *b = &m->v[r2];
@@ -78,7 +78,7 @@ int btw_write_leaf(bti_extract *e, const bti_leaf *L, const bti_leaf *N)
                 if (N && ((N->o0 == p && N->o1 != z) || (N->o1 == p && N->o0 != z))) {
                     uint32_t r2 = N->o0 == p ? N->o1 : N->o0;
                     int nhas = (N->ia == p || N->ic == p || N->ib == p) && (N->ia == z || N->ic == z || N->ib == z);
-                    if (nhas && r2 != q && rim_line(e, q, z, r2)) {
+                    if (nhas && r2 != q && bti_zlog(m, 0, q, z, r2, bti_rim_line(e, q, z, r2))) {
                         push(m, z); push(m, r2); push(m, p);
                         m->nline++;
                         return 1;

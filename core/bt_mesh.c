@@ -46,12 +46,11 @@
 #include "core/bitree.h"
 #include "core/bt_int.h"
 #include "core/config.h"
-
+#include "core/bt_em.h"
 
 /* A vertex on its way down the recursion; idx caches its output index (the
  * children of a split share their parent's pt instances, so most lookups are
  * answered here and only the first use per instance goes to the hash). */
-#include "core/bt_em.h"
 typedef bti_pt pt;
 #define NO_IDX BTI_NO_IDX
 
@@ -76,17 +75,6 @@ static inline int tri_valid(const bti_extract *e, const bti_pt *a, const bti_pt 
     }
     return valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y);
 }
-
-static int32_t zreal(const bt_tree *t, int32_t x, int32_t y)
-{
-    const hf *f = t->f;
-    if (x >= f->w || y >= f->h) return 0;
-    {
-        int32_t v = f->z[(size_t)y * f->w + x];
-        return v == HF_NODATA ? 0 : v;
-    }
-}
-
 
 /* ------------------------------------------------------------ view */
 #define isat_mul bti_isat_mul
@@ -193,7 +181,6 @@ static int64_t rho_q8(const bti_extract *e, int32_t x, int32_t y)
 #endif
     }
 }
-
 
 int64_t bt_screen_error_q8(const bt_tree *t, const bt_params *p, int32_t x, int32_t y)
 {
@@ -310,10 +297,11 @@ static uint16_t morph_now(const bti_extract *e, int32_t x, int32_t y, uint32_t i
  * mask_in << 52 | moving << 51 | expiry (bti_coh_entry).  Padding diamonds without a slot share the
  * void slot and its answer: VOID is culled (-1) in the view rule whatever the
  * diamond. */
-static int decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph)
+static inline __attribute__((always_inline))
+int decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph)
 {
     const bt_mesh *m = e->m;
-    uint64_t *slot = &m->memo[((idx * 2654435761u >> 8) & m->memo_mask) * BTI_MEMO_W], v = *slot, exp;
+    uint64_t *slot = bti_memo_slot(m, idx), v = *slot, exp;
     int sp;
     if ((uint32_t)(v & 0x3fffffffu) == idx) {
         sp = (int)((v >> 46) & 3) - 1;
@@ -402,7 +390,6 @@ static uint32_t vid_find(bti_extract *e, pt *q)
     }
 }
 
-
 static uint32_t vid(bti_extract *e, pt *q) { return q->idx != NO_IDX ? q->idx : vid_find(e, q); }
 /* Leaf (a, c, b), apex c.  It is entered through edge {a, c} (or the hypotenuse
  * {a, b} when in_hyp) and left through {c, b} (or {a, b} when out_hyp). */
@@ -427,21 +414,6 @@ static void leaf(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp)
     if (e->snap && e->nsnap < BTI_SNAPS) snap_take(e, &L);
 }
 
-/* Height of split vertex mm (x, y, morph set) on hypotenuse a-b: geomorphed
- * between the interpolation of a and b and the real height.  Both triangles of a
- * diamond share a and b, so it is a function of the diamond (given the ends'). */
-static inline void mid_height(const bti_extract *e, const pt *a, const pt *b, pt *mm)
-{
-    int32_t zs = e->nonvoid ? e->t->f->z[(size_t)mm->y * (size_t)e->n + (size_t)mm->x] : zreal(e->t, mm->x, mm->y);
-    int64_t zf = ((int64_t)a->z + b->z) >> 1;
-    /* a vertex whose real height IS the interpolation of its hypotenuse ends
-     * (in every mode) carries topology but no information: fictitious (002:
-     * deducible, never transmitted); its height is the same either way */
-    if (2 * (int64_t)zs == (int64_t)a->z + b->z) mm->morph = 0;
-    mm->z = mm->morph == BT_MORPH_ONE ? zs
-          : (int32_t)(zf + ((((int64_t)zs - zf) * mm->morph + (1 << 14)) >> 15));
-}
-
 static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned mask)
 {
     int32_t dx = b->x - a->x, dy = b->y - a->y;
@@ -458,8 +430,16 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
     mm.x = a->x + (dx >> 1);
     mm.y = a->y + (dy >> 1);
     id = bti_slot(e->t, mm.x, mm.y);
-    if (e->rec_splits) sp = decide_memo(e, mm.x, mm.y, id, &mask, &mm.morph);
-    else {
+    if (e->rec_splits) {
+        sp = decide_memo(e, mm.x, mm.y, id, &mask, &mm.morph);
+        if (BR_COHERENCE && e->recs && (mm.ri = e->nrec++) < e->cap_rec) {     /* a part's walk: bti_rec */
+            bti_rec *r = &e->recs[mm.ri];
+            r->idx = id; r->x = (uint16_t)mm.x; r->y = (uint16_t)mm.y;
+            r->m_out = (uint8_t)mask; r->sp = (int8_t)sp; r->morph0 = mm.morph;
+            r->aref = a->ri; r->bref = b->ri; r->cref = c->ri; r->vidx = NO_IDX; r->terms = 0;
+            r->w = bti_memo_w(e->m, id);
+        }
+    } else {
         uint64_t exp;
         sp = decide(e, mm.x, mm.y, id, &mask, &mm.morph, &exp);
     }
@@ -484,9 +464,14 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
             } else e->lost = 1;
         }
     }
-    mid_height(e, a, b, &mm);
+    mm.z = bti_mid_z(e, a->z, b->z, mm.x, mm.y, &mm.morph);
     rec(e, a, &mm, c, !in_hyp, 0, mask);
     rec(e, c, &mm, b, 0, !out_hyp, mask);
+    if (BR_COHERENCE && e->recs && mm.ri < e->cap_rec) {
+        e->recs[mm.ri].z = mm.z;
+        e->recs[mm.ri].morph = mm.morph;
+        e->recs[mm.ri].vidx = mm.idx;
+    }
 }
 
 /* rec for the plain fidelity rule without voids: the same leaves in the same order
@@ -514,7 +499,7 @@ static void rec_fid(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp
 
 static void corner(const bt_tree *t, int32_t x, int32_t y, pt *q)
 {
-    q->x = x; q->y = y; q->z = zreal(t, x, y); q->morph = BT_MORPH_ONE; q->idx = NO_IDX;
+    q->x = x; q->y = y; q->z = bti_zreal(t, x, y); q->morph = BT_MORPH_ONE; q->idx = NO_IDX;
 }
 
 /* The grid's corners A (0, 0), B (S, 0), C (S, S), D (0, S): the two roots are (A, B, C)
@@ -567,7 +552,7 @@ static void top(bti_extract *e, bt_parts *ps, pt *a, pt *c, pt *b, int in_hyp, i
         return;
     }
     ps->top_ids[ps->ntop++] = bti_slot(e->t, mm.x, mm.y);
-    mid_height(e, a, b, &mm);
+    mm.z = bti_mid_z(e, a->z, b->z, mm.x, mm.y, &mm.morph);
     top(e, ps, a, &mm, c, !in_hyp, 0, mask, depth + 1);
     top(e, ps, c, &mm, b, 0, !out_hyp, mask, depth + 1);
 }
@@ -582,13 +567,33 @@ void bti_part_roots(bti_extract *e, bt_parts *ps)
     top(e, ps, &q[2], &q[3], &q[0], 1, 0, 0x3f, 0);
 }
 
-void bti_part_walk(bti_extract *e, const bti_root *r)
+void bti_part_walk(bti_extract *e, const bti_root *r, uint32_t ridx[3])
 {
     pt a = r->a, c = r->c, b = r->b;
+    a.ri = BTI_REF_A; c.ri = BTI_REF_C; b.ri = BTI_REF_B;
     e->has_pend = 0;
     e->nplan = 0;
     rec(e, &a, &c, &b, r->in_hyp, r->out_hyp, r->mask);
+    ridx[0] = a.idx; ridx[1] = c.idx; ridx[2] = b.idx;
 }
+
+int bti_decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph)
+{ return decide_memo(e, x, y, idx, mask, morph); }
+
+#if BR_COHERENCE
+void bti_morph_terms(const bti_extract *e, int32_t x, int32_t y, uint32_t idx, int32_t lo[3], int32_t hi[3],
+                     int64_t *lhs)
+{
+    dvolume(e, x, y, idx, lo, hi);
+    *lhs = isat_mul(obj_err(e, BT_NODE_ERR(e->t->node[idx])), e->fq8);
+}
+
+uint16_t bti_morph_of_terms(const bti_extract *e, const int32_t lo[3], const int32_t hi[3], int64_t lhs)
+{
+    const int64_t d = bti_box_dist(e->p->c->eye, lo, hi);
+    return d <= 0 ? BT_MORPH_ONE : morph_at(e, lhs, d);
+}
+#endif
 
 /* ------------------------------------------------------------ public */
 br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p)

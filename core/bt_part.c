@@ -21,12 +21,19 @@
 
 static uint64_t round8(uint64_t v) { return (v + 7) & ~(uint64_t)7; }
 
+/* Records of a part's walk (bti_rec): a decision a triangle of the part's room and 64;
+ * a walk that makes more is not replayed (part_replay), nothing else changes. */
+static uint32_t rec_cap(uint32_t part_tri) { return part_tri + 64; }
+/* Its strip writer's height tests (bti_ztest): one per four triangles; more: not replayed */
+static uint32_t ztest_cap(uint32_t part_tri) { return part_tri / 4 + 64; }
+
 size_t bt_parts_mem_size(uint32_t part_tri)
 {
     size_t mb = bt_mesh_mem_size(part_tri);
     uint64_t sz;
     if (!mb) return 0;
-    sz = round8(sizeof(bt_parts)) + (uint64_t)BT_PARTS * round8(mb);
+    sz = round8(sizeof(bt_parts)) + (uint64_t)BT_PARTS * round8(mb)
+       + (uint64_t)BT_PARTS * (rec_cap(part_tri) * sizeof(bti_rec) + round8(ztest_cap(part_tri) * sizeof(bti_ztest)));
     if (sz > (uint64_t)SIZE_MAX) return 0;
     return (size_t)sz;
 }
@@ -44,6 +51,12 @@ br_status bt_parts_init(bt_parts **out, uint32_t part_tri, void *mem, size_t mem
     q += round8(sizeof(bt_parts));
     for (k = 0; k < BT_PARTS; k++, q += round8(mb))
         if (bt_mesh_init(&ps->slot[k].m, part_tri, q, mb) != BR_OK) return BR_E_ARG;
+    ps->cap_rec = rec_cap(part_tri);
+    for (k = 0; k < BT_PARTS; k++, q += (size_t)ps->cap_rec * sizeof(bti_rec)) ps->rec[k] = (bti_rec *)(void *)q;
+    for (k = 0; k < BT_PARTS; k++, q += round8(ztest_cap(part_tri) * sizeof(bti_ztest))) {
+        ps->slot[k].m.zlog = (bti_ztest *)(void *)q;
+        ps->slot[k].m.cap_z = ztest_cap(part_tri);
+    }
     ps->hfull = ps->slot[0].m.hmask + 1;
     ps->mfull = ps->slot[0].m.memo_mask + 1;
     *out = ps;
@@ -94,9 +107,13 @@ static void part_reset(bt_parts *ps, uint32_t k, uint32_t hs, uint32_t ms, bti_e
     pm->memo_mask = ms - 1;
     pm->nv = 0; pm->ns = 0; pm->ntri = 0; pm->nline = 0; pm->nfict = 0; pm->overflow = 0;
     pm->nsplits = 0;
+    pm->nz = 0;
     *e = ps->e0;
     e->m = pm;
     e->snap = ps->snap[k];
+    e->recs = ps->wait[k] ? NULL : ps->rec[k];     /* recorded when the next frame tries */
+    e->nrec = 0;
+    e->cap_rec = ps->cap_rec;
     e->hbase = ps->hbase[k];
     e->direct = (uint64_t)e->n * (uint64_t)e->n <= 2 * (uint64_t)hs;
     hl = pm->hmask - (pm->hmask >> 2);
@@ -104,11 +121,128 @@ static void part_reset(bt_parts *ps, uint32_t k, uint32_t hs, uint32_t ms, bti_e
     e->lim_ns = pm->cap_s - 10;
 }
 
+/* Vertex i of part mesh pm gets height z and weight morph (its state as vid_find sets it). */
+static void set_height(bt_mesh *pm, uint32_t i, int32_t z, uint16_t morph)
+{
+    bt_vert *v = &pm->v[i];
+    const uint8_t st = morph == BT_MORPH_ONE ? BT_S : BT_F;
+    v->z = z;
+    v->morph = morph;
+    if (st != v->state) {
+        if (st == BT_F) pm->nfict++;
+        else pm->nfict--;
+        v->state = st;
+    }
+}
+
+/* Record r's decision made again under plane mask *mask (then the mask handed on): its
+ * answer when the entry it holds proves it, as decide_memo's frame coherence would from
+ * the memo (an entry is a proof however it is kept), else through the memo. */
+static inline int replay_decide(bti_extract *e, bti_rec *r, unsigned *mask, uint16_t *morph)
+{
+    int sp;
+#if BR_COHERENCE
+    const uint64_t w = r->w;
+    const unsigned m_in = (unsigned)(w >> BTI_COH_BITS) & 63u;
+    if (*mask == m_in && (m_in ? e->coh_x : e->coh_acc) <= (w & BTI_COH_EXP)
+        && (r->sp > 0) == ((e->prev[r->idx] & ST_PREV) != 0)) {
+        *mask = (unsigned)(w >> (BTI_COH_BITS + 6));
+        /* a split whose weight moves with the distance: the weight again */
+        if (w & BTI_COH_MOVING) {
+            if (!r->terms) { bti_morph_terms(e, r->x, r->y, r->idx, r->lo, r->hi, &r->lhs); r->terms = 1; }
+            *morph = bti_morph_of_terms(e, r->lo, r->hi, r->lhs);
+        } else *morph = r->morph0;
+        return r->sp;
+    }
+#endif
+    sp = bti_decide_memo(e, r->x, r->y, r->idx, mask, morph);
+    r->w = bti_memo_w(e->m, r->idx);
+    r->morph0 = *morph;
+    return sp;
+}
+
+static int same_pt(const bti_pt *a, const bti_pt *b) { return a->x == b->x && a->y == b->y; }
+
+/* The height of a split's hypotenuse end: a root corner (BTI_REF_*) or an earlier record */
+static inline int32_t ref_z(const bti_root *rt, const bti_rec *R, uint32_t ref)
+{
+    return ref == BTI_REF_A ? rt->a.z : ref == BTI_REF_C ? rt->c.z : ref == BTI_REF_B ? rt->b.z : R[ref].z;
+}
+
+/* Part k's mesh of the last frame with its split vertices' heights and weights
+ * updated, when that is this frame's: 1 then, else 0 (walk it).  The walk's decisions
+ * are a function of the diamond, the plane mask it is decided under, the camera and
+ * ST_PREV (decide_memo), and its course a function of their answers: from the same
+ * root, the same answers and masks at every decision in the same order mean the same
+ * leaves, vertices, strip, split list and snapshots; only the heights of split
+ * vertices (their weights and their hypotenuse ends') move.  So the recorded
+ * decisions are made again in order, through the memo as the walk would (the same
+ * entries result), and the first that differs sends the part to its walk (0; -1
+ * when it cannot be tried). */
+static int part_replay(bt_parts *ps, uint32_t k)
+{
+    bt_mesh *pm = &ps->slot[k].m;
+    bti_rec *R = ps->rec[k];
+    const bti_root *rt = &ps->root[k], *lr = &ps->last_root[k];
+    bti_extract e;
+    uint32_t i, n = ps->nrec[k], j;
+    if (!ps->reuse[k] || !ps->e0.coh || ps->coh.fresh || ps->e0.coh_acc == UINT64_MAX
+        || !same_pt(&rt->a, &lr->a) || !same_pt(&rt->c, &lr->c) || !same_pt(&rt->b, &lr->b)
+        || rt->in_hyp != lr->in_hyp || rt->out_hyp != lr->out_hyp || pm->memo_gen >= 0xFFFFu)
+        return -1;
+    ps->reuse[k] = 0;       /* until the replay succeeds */
+    pm->memo_gen++;
+    e = ps->e0;
+    e.m = pm;
+    for (i = 0; i < n; i++) {
+        bti_rec *r = &R[i];
+        unsigned mask = r->cref >= BTI_REF_A ? rt->mask : R[r->cref].m_out;  /* as the walk hands it on */
+        uint16_t morph;
+        int32_t az, bz;
+        if (replay_decide(&e, r, &mask, &morph) != r->sp) return 0;
+        r->m_out = (uint8_t)mask;
+        if (r->sp != 1) continue;
+        az = ref_z(rt, R, r->aref);
+        bz = ref_z(rt, R, r->bref);
+        r->z = bti_mid_z(&e, az, bz, r->x, r->y, &morph);
+        r->morph = morph;
+        if (r->vidx != BTI_NO_IDX) set_height(pm, r->vidx, r->z, morph);
+    }
+    for (j = 0; j < 3; j++) {
+        const bti_pt *q = j == 0 ? &rt->a : j == 1 ? &rt->c : &rt->b;
+        if (ps->ridx[k][j] != BTI_NO_IDX) set_height(pm, ps->ridx[k][j], q->z, q->morph);
+    }
+    /* the strip writer read heights only in these tests: the same answers, the same strip */
+    for (i = 0; i < pm->nz; i++) {
+        const bti_ztest *t = &pm->zlog[i];
+        const int now = t->kind == 0 ? bti_rim_line(&e, t->a, t->b, t->c)
+                                     : bti_flat(&pm->v[t->a], &pm->v[t->b], &pm->v[t->c]);
+        if (now != t->answer) return 0;
+    }
+    ps->last_root[k] = *rt;
+    ps->reuse[k] = 1;
+    return 1;
+}
+
 void bt_extract_part(bt_parts *ps, uint32_t k)
 {
     bti_extract *e;
     uint32_t hs = 1024, ms;
+    int tried;
     if (!ps || ps->serial || k >= ps->nroot) return;
+    /* a part whose replays keep failing (one near the eye, refined as it moves)
+     * tries again after 1, 3, 7 frames: a failed try costs up to a replay, a walk
+     * the same either way, so the output never depends on it */
+    tried = ps->wait[k] ? (ps->wait[k]--, -1) : part_replay(ps, k);
+    ps->replayed[k] = tried > 0;
+    if (tried > 0) {
+        ps->misses[k] = 0;
+        return;
+    }
+    if (tried == 0) {
+        if (ps->misses[k] < 3) ps->misses[k]++;
+        ps->wait[k] = (uint8_t)((1u << ps->misses[k]) - 1);
+    }
     e = &ps->slot[k].e;
     /* tables for twice last frame's vertices (load <= 1/4 of the hash): a part's
      * hash and memo stay in cache where the allocated ones (sized for part_tri)
@@ -118,12 +252,16 @@ void bt_extract_part(bt_parts *ps, uint32_t k)
     if (hs > ps->hfull) hs = ps->hfull;
     ms = 4 * hs < ps->mfull ? 4 * hs : ps->mfull;
     part_reset(ps, k, hs, ms, e);
-    bti_part_walk(e, &ps->root[k]);
+    bti_part_walk(e, &ps->root[k], ps->ridx[k]);
     if (e->full && hs < ps->hfull) {     /* the small hash filled up: again with all of it */
         part_reset(ps, k, ps->hfull, ps->mfull, e);
-        bti_part_walk(e, &ps->root[k]);
+        bti_part_walk(e, &ps->root[k], ps->ridx[k]);
     }
     ps->hint_nv[k] = ps->slot[k].m.nv;
+    ps->nrec[k] = e->nrec;
+    ps->last_root[k] = ps->root[k];
+    ps->reuse[k] = BR_COHERENCE && e->recs && !e->full && !e->lost && e->nrec <= e->cap_rec
+                && ps->slot[k].m.nz <= ps->slot[k].m.cap_z;
 }
 
 /* Old marks go, the listed splits become ST_PREV and m's id list (bt_extract
@@ -284,8 +422,10 @@ br_status bt_extract_end(bt_parts *ps, uint32_t *njoin)
     if (!ps || ps->serial) return BR_OK;
     m = ps->m;
     nsp = ps->ntop;
+    ps->nreused = 0;
     for (k = 0; k < ps->nroot; k++) {
         const bt_mesh *pm = &ps->slot[k].m;
+        ps->nreused += ps->replayed[k];
         if (ps->slot[k].e.full || ps->slot[k].e.lost) break;
         nsp += pm->nsplits;
         ps->voff[k] = (uint32_t)nv;
@@ -334,4 +474,9 @@ void bt_extract_join(bt_parts *ps, uint32_t k, uint32_t *v0, uint32_t *nv)
 uint32_t bt_part_tris(const bt_parts *ps, uint32_t k)
 {
     return ps && !ps->serial && k < ps->nroot ? ps->slot[k].m.ntri : 0;
+}
+
+uint32_t bt_parts_reused(const bt_parts *ps)
+{
+    return ps && !ps->serial ? ps->nreused : 0;
 }

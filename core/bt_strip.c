@@ -19,6 +19,7 @@
  * 8 x 8 x 3 phases x 2 parities states; it runs only at breaks. */
 #include <string.h>
 #include "core/bt_int.h"
+#include "core/bt_em.h"
 
 #define NCAND 8                  /* a state key packs two slots in 3 bits each */
 #define NKEY (NCAND * NCAND * 3 * 2)
@@ -35,6 +36,7 @@ static int key_of(int a, int b, int ph, int par) { return ((ph * 2 + par) << 6) 
  * candidate slots, and for each pair (a, b) the candidates r by the triangle
  * (a, b, r) (computed on first use of the pair). */
 typedef struct bsearch {
+    bt_mesh *m;                      /* (its height tests go to m's log: bti_zlog) */
     const bt_vert *v[NCAND];
     int32_t x[NCAND], y[NCAND];
     unsigned lm, nm;                 /* candidates of L, of N */
@@ -60,7 +62,9 @@ static void pair_masks(bsearch *q, int a, int b, int nc)
             cr = dx * (q->y[r] - q->y[a]) - dy * (q->x[r] - q->x[a]);
             if (cr > 0) p |= 1u << r;
             else if (cr < 0) n |= 1u << r;
-            else if (bti_flat(q->v[a], q->v[b], q->v[r])) z |= 1u << r;
+            else if (bti_zlog(q->m, 1, (uint32_t)(q->v[a] - q->m->v), (uint32_t)(q->v[b] - q->m->v),
+                              (uint32_t)(q->v[r] - q->m->v), bti_flat(q->v[a], q->v[b], q->v[r])))
+                z |= 1u << r;
         }
     q->rz[ab] = (uint8_t)z; q->rp[ab] = (uint8_t)p; q->rn[ab] = (uint8_t)n;
     /* pair (b, a): cross(a - b, r - b) = -cross(b - a, r - a), and collinearity
@@ -146,6 +150,7 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
             for (k = 0; k < nc; k++) dup |= cand[k] == N[i];
             if (!dup) cand[nc++] = N[i];
         }
+    q.m = m;
     q.known = 0;
     q.lm = q.nm = 0;
     for (i = 0; i < nc; i++) {
