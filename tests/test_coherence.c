@@ -218,6 +218,34 @@ static void test_coherence_paths(void)
     close_dem();
 }
 
+/* Part roots whose own corners move.  On N47E009 the diamonds above the parts are split
+ * at full weight on every shipped path, so a replayed part's root corners keep their
+ * heights there.  crater_0513.bt (513^2, no padding: the top diamonds carry their real
+ * errors) at 32 px, descending 25 m a frame towards eight points of the grid's coarse
+ * lattice: the top splits' weights move while the parts below keep their decisions, and
+ * a replayed part must take its corners' new heights (without it, 264 of 288 frames
+ * differ). */
+static void test_coherence_root_corners(void)
+{
+    static const int at[8][2] = { { 128, 128 }, { 256, 256 }, { 384, 384 }, { 384, 128 },
+                                  { 128, 384 }, { 256, 128 }, { 128, 256 }, { 256, 384 } };
+    knobs k = VIEWER;
+    int i, j;
+    if (!open_dem("../shared/data/dem/bt/crater_0513.bt")) { CHECK(0); return; }
+    k.pix_q8 = 32 * 256;
+    frames = differ = 0;
+    parts_run = parts_reused = 0;
+    for (i = 0; i < 8; i++)
+        for (j = 0; j < 36; j++) {
+            const double x = at[i][0] * 20.182251, y = at[i][1] * 27.304688;   /* its spacing */
+            const double eye[6] = { x - 300, y - 300, 7000 - 25 * j, x + 2000, y + 2000, 1500 };
+            CHECK(frame(eye, &k) || A.m.ntri > 0);
+        }
+    CHECK_MSG(differ == 0, "%ld of %ld frames differ", differ, frames);
+    CHECK_MSG(parts_reused * 2 > parts_run, "%ld of %ld parts reused", parts_reused, parts_run);
+    close_dem();
+}
+
 /* A flight over the scene towards its far corner at 20 m a frame, 1500 m above the
  * highest sample at the start, descending, with stops (the same camera again), turns
  * on the spot, a slow pan from one place, jumps, and frames with other parameters
@@ -421,6 +449,7 @@ int main(void)
     T_RUN(test_morph_nodiv);
     T_RUN(test_box_dist);
     T_RUN(test_coherence_paths);
+    T_RUN(test_coherence_root_corners);
     T_RUN(test_coherence_flights);
     T_RUN(test_coherence_margin_matters);
     T_RUN(test_coherence_rebuilt_tree);
