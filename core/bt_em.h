@@ -68,6 +68,7 @@ typedef struct bti_rec {
     uint8_t m_out;
     int8_t sp;
     uint8_t terms;          /* lo, hi, lhs hold bti_morph_terms (a moving weight's) */
+    uint8_t moved;          /* a replay changed z or morph (its children's ends moved) */
     int32_t lo[3], hi[3];
     int64_t lhs;
 } bti_rec;

@@ -137,9 +137,11 @@ static void set_height(bt_mesh *pm, uint32_t i, int32_t z, uint16_t morph)
 
 /* Record r's decision made again under plane mask *mask (then the mask handed on): its
  * answer when the entry it holds proves it, as decide_memo's frame coherence would from
- * the memo (an entry is a proof however it is kept), else through the memo. */
-static inline int replay_decide(bti_extract *e, bti_rec *r, unsigned *mask, uint16_t *morph)
+ * the memo (an entry is a proof however it is kept), else through the memo.  *same is
+ * set when the weight is the record's own, unchanged. */
+static inline int replay_decide(bti_extract *e, bti_rec *r, unsigned *mask, uint16_t *morph, int *same)
 {
+    *same = 0;
     int sp;
 #if BR_COHERENCE
     const uint64_t w = r->w;
@@ -151,7 +153,10 @@ static inline int replay_decide(bti_extract *e, bti_rec *r, unsigned *mask, uint
         if (w & BTI_COH_MOVING) {
             if (!r->terms) { bti_morph_terms(e, r->x, r->y, r->idx, r->lo, r->hi, &r->lhs); r->terms = 1; }
             *morph = bti_morph_of_terms(e, r->lo, r->hi, r->lhs);
-        } else *morph = r->morph0;
+        } else {
+            *morph = r->morph0;
+            *same = 1;
+        }
         return r->sp;
     }
 #endif
@@ -167,6 +172,12 @@ static int same_pt(const bti_pt *a, const bti_pt *b) { return a->x == b->x && a-
 static inline int32_t ref_z(const bti_root *rt, const bti_rec *R, uint32_t ref)
 {
     return ref == BTI_REF_A ? rt->a.z : ref == BTI_REF_C ? rt->c.z : ref == BTI_REF_B ? rt->b.z : R[ref].z;
+}
+
+/* Whether that end's height moved in this replay (moved[]: root corners a, c, b) */
+static inline int ref_moved(const int moved[3], const bti_rec *R, uint32_t ref)
+{
+    return ref >= BTI_REF_A ? moved[ref - BTI_REF_A] : R[ref].moved;
 }
 
 /* Part k's mesh of the last frame with its split vertices' heights and weights
@@ -186,6 +197,7 @@ static int part_replay(bt_parts *ps, uint32_t k)
     const bti_root *rt = &ps->root[k], *lr = &ps->last_root[k];
     bti_extract e;
     uint32_t i, n = ps->nrec[k], j;
+    int moved[3];
     if (!ps->reuse[k] || !ps->e0.coh || ps->coh.fresh || ps->e0.coh_acc == UINT64_MAX
         || !same_pt(&rt->a, &lr->a) || !same_pt(&rt->c, &lr->c) || !same_pt(&rt->b, &lr->b)
         || rt->in_hyp != lr->in_hyp || rt->out_hyp != lr->out_hyp || pm->memo_gen >= 0xFFFFu)
@@ -194,23 +206,33 @@ static int part_replay(bt_parts *ps, uint32_t k)
     pm->memo_gen++;
     e = ps->e0;
     e.m = pm;
+    for (j = 0; j < 3; j++) {
+        const bti_pt *q = j == 0 ? &rt->a : j == 1 ? &rt->c : &rt->b, *o = j == 0 ? &lr->a : j == 1 ? &lr->c : &lr->b;
+        moved[j] = q->z != o->z || q->morph != o->morph;
+    }
     for (i = 0; i < n; i++) {
         bti_rec *r = &R[i];
         unsigned mask = r->cref >= BTI_REF_A ? rt->mask : R[r->cref].m_out;  /* as the walk hands it on */
         uint16_t morph;
-        int32_t az, bz;
-        if (replay_decide(&e, r, &mask, &morph) != r->sp) return 0;
+        int32_t z;
+        int same;
+        if (replay_decide(&e, r, &mask, &morph, &same) != r->sp) return 0;
         r->m_out = (uint8_t)mask;
         if (r->sp != 1) continue;
-        az = ref_z(rt, R, r->aref);
-        bz = ref_z(rt, R, r->bref);
-        r->z = bti_mid_z(&e, az, bz, r->x, r->y, &morph);
+        /* the same weight between ends that stayed: the same height (bti_mid_z) */
+        if (same && !ref_moved(moved, R, r->aref) && !ref_moved(moved, R, r->bref)) {
+            r->moved = 0;
+            continue;
+        }
+        z = bti_mid_z(&e, ref_z(rt, R, r->aref), ref_z(rt, R, r->bref), r->x, r->y, &morph);
+        r->moved = z != r->z || morph != r->morph;
+        r->z = z;
         r->morph = morph;
-        if (r->vidx != BTI_NO_IDX) set_height(pm, r->vidx, r->z, morph);
+        if (r->moved && r->vidx != BTI_NO_IDX) set_height(pm, r->vidx, z, morph);
     }
     for (j = 0; j < 3; j++) {
         const bti_pt *q = j == 0 ? &rt->a : j == 1 ? &rt->c : &rt->b;
-        if (ps->ridx[k][j] != BTI_NO_IDX) set_height(pm, ps->ridx[k][j], q->z, q->morph);
+        if (moved[j] && ps->ridx[k][j] != BTI_NO_IDX) set_height(pm, ps->ridx[k][j], q->z, q->morph);
     }
     /* the strip writer read heights only in these tests: the same answers, the same strip */
     for (i = 0; i < pm->nz; i++) {
