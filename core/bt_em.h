@@ -273,6 +273,20 @@ int bti_coh_frame(bti_extract *e, bt_coh *c);
 uint64_t bti_coh_entry(const bti_extract *e, int sp, int64_t L, int64_t d, uint16_t morph, unsigned m_in,
                        unsigned m_out, int64_t cm);
 
+/* Whether memo word w (bti_coh_entry) proves answer sp of diamond idx now, under plane
+ * mask *mask (then *mask is the mask it handed on): the same incoming mask, the travel
+ * since within its margin, and the ST_PREV the margin assumed (set iff split).  An
+ * entry is a proof wherever it is kept: decide_memo's memo, a part's records. */
+static inline int bti_coh_proves(const bti_extract *e, uint64_t w, int sp, uint32_t idx, unsigned *mask)
+{
+    const unsigned m_in = (unsigned)(w >> BTI_COH_BITS) & 63u;
+    if (*mask != m_in || (m_in ? e->coh_x : e->coh_acc) > (w & BTI_COH_EXP)
+        || (sp > 0) != ((e->prev[idx] & ST_PREV) != 0))
+        return 0;
+    *mask = (unsigned)(w >> (BTI_COH_BITS + 6));
+    return 1;
+}
+
 /* Diamond geometry: scale h and type (1 = D) of sample (x, y), not a corner. */
 static inline int32_t bti_dscale(int32_t x, int32_t y, int32_t S, int *typeD)
 {

@@ -265,16 +265,33 @@ static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *
 #if BR_COHERENCE
 /* The geomorph weight decide() gives diamond (x, y) in slot idx, known to be split
  * and not culled: view_err's distance and object error, decide's morph_at. */
+static inline void morph_terms(const bti_extract *e, int32_t x, int32_t y, uint32_t idx, int32_t lo[3],
+                               int32_t hi[3], int64_t *lhs)
+{
+    dvolume(e, x, y, idx, lo, hi);
+    *lhs = isat_mul(obj_err(e, BT_NODE_ERR(e->t->node[idx])), e->fq8);
+}
+
+static inline uint16_t morph_of_terms(const bti_extract *e, const int32_t lo[3], const int32_t hi[3], int64_t lhs)
+{
+    const int64_t d = bti_box_dist(e->p->c->eye, lo, hi);
+    return d <= 0 ? BT_MORPH_ONE : morph_at(e, lhs, d);
+}
+
 static uint16_t morph_now(const bti_extract *e, int32_t x, int32_t y, uint32_t idx)
 {
     int32_t lo[3], hi[3];
-    int64_t ew, d;
-    dvolume(e, x, y, idx, lo, hi);
-    d = bti_box_dist(e->p->c->eye, lo, hi);
-    if (d <= 0) return BT_MORPH_ONE;
-    ew = obj_err(e, BT_NODE_ERR(e->t->node[idx]));
-    return morph_at(e, isat_mul(ew, e->fq8), d);
+    int64_t lhs;
+    morph_terms(e, x, y, idx, lo, hi, &lhs);
+    return morph_of_terms(e, lo, hi, lhs);
 }
+
+void bti_morph_terms(const bti_extract *e, int32_t x, int32_t y, uint32_t idx, int32_t lo[3], int32_t hi[3],
+                     int64_t *lhs)
+{ morph_terms(e, x, y, idx, lo, hi, lhs); }
+
+uint16_t bti_morph_of_terms(const bti_extract *e, const int32_t lo[3], const int32_t hi[3], int64_t lhs)
+{ return morph_of_terms(e, lo, hi, lhs); }
 #endif
 
 /* decide() for the view rule, memoised.  Within the frame: a diamond is reached
@@ -311,11 +328,8 @@ int decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *ma
         }
 #if BR_COHERENCE
         {
-            uint64_t w = slot[1];
-            unsigned m_in = (unsigned)(w >> BTI_COH_BITS) & 63u;
-            if (*mask == m_in && (m_in ? e->coh_x : e->coh_acc) <= (w & BTI_COH_EXP)
-                && (sp > 0) == ((e->prev[idx] & ST_PREV) != 0)) {
-                *mask = (unsigned)(w >> (BTI_COH_BITS + 6));
+            const uint64_t w = slot[1];
+            if (bti_coh_proves(e, w, sp, idx, mask)) {
                 if (!(w & BTI_COH_MOVING)) {
                     *morph = (uint16_t)(v >> 30);
                     return sp;
@@ -579,21 +593,6 @@ void bti_part_walk(bti_extract *e, const bti_root *r, uint32_t ridx[3])
 
 int bti_decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph)
 { return decide_memo(e, x, y, idx, mask, morph); }
-
-#if BR_COHERENCE
-void bti_morph_terms(const bti_extract *e, int32_t x, int32_t y, uint32_t idx, int32_t lo[3], int32_t hi[3],
-                     int64_t *lhs)
-{
-    dvolume(e, x, y, idx, lo, hi);
-    *lhs = isat_mul(obj_err(e, BT_NODE_ERR(e->t->node[idx])), e->fq8);
-}
-
-uint16_t bti_morph_of_terms(const bti_extract *e, const int32_t lo[3], const int32_t hi[3], int64_t lhs)
-{
-    const int64_t d = bti_box_dist(e->p->c->eye, lo, hi);
-    return d <= 0 ? BT_MORPH_ONE : morph_at(e, lhs, d);
-}
-#endif
 
 /* ------------------------------------------------------------ public */
 br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p)

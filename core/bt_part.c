@@ -141,16 +141,12 @@ static void set_height(bt_mesh *pm, uint32_t i, int32_t z, uint16_t morph)
  * set when the weight is the record's own, unchanged. */
 static inline int replay_decide(bti_extract *e, bti_rec *r, unsigned *mask, uint16_t *morph, int *same)
 {
-    *same = 0;
     int sp;
+    *same = 0;
 #if BR_COHERENCE
-    const uint64_t w = r->w;
-    const unsigned m_in = (unsigned)(w >> BTI_COH_BITS) & 63u;
-    if (*mask == m_in && (m_in ? e->coh_x : e->coh_acc) <= (w & BTI_COH_EXP)
-        && (r->sp > 0) == ((e->prev[r->idx] & ST_PREV) != 0)) {
-        *mask = (unsigned)(w >> (BTI_COH_BITS + 6));
+    if (bti_coh_proves(e, r->w, r->sp, r->idx, mask)) {
         /* a split whose weight moves with the distance: the weight again */
-        if (w & BTI_COH_MOVING) {
+        if (r->w & BTI_COH_MOVING) {
             if (!r->terms) { bti_morph_terms(e, r->x, r->y, r->idx, r->lo, r->hi, &r->lhs); r->terms = 1; }
             *morph = bti_morph_of_terms(e, r->lo, r->hi, r->lhs);
         } else {
@@ -168,10 +164,16 @@ static inline int replay_decide(bti_extract *e, bti_rec *r, unsigned *mask, uint
 
 static int same_pt(const bti_pt *a, const bti_pt *b) { return a->x == b->x && a->y == b->y; }
 
+/* Corner j of root r in record order: 0 a, 1 c, 2 b (BTI_REF_A + j) */
+static inline const bti_pt *root_corner(const bti_root *r, uint32_t j)
+{
+    return j == 0 ? &r->a : j == 1 ? &r->c : &r->b;
+}
+
 /* The height of a split's hypotenuse end: a root corner (BTI_REF_*) or an earlier record */
 static inline int32_t ref_z(const bti_root *rt, const bti_rec *R, uint32_t ref)
 {
-    return ref == BTI_REF_A ? rt->a.z : ref == BTI_REF_C ? rt->c.z : ref == BTI_REF_B ? rt->b.z : R[ref].z;
+    return ref >= BTI_REF_A ? root_corner(rt, ref - BTI_REF_A)->z : R[ref].z;
 }
 
 /* Whether that end's height moved in this replay (moved[]: root corners a, c, b) */
@@ -207,7 +209,7 @@ static int part_replay(bt_parts *ps, uint32_t k)
     e = ps->e0;
     e.m = pm;
     for (j = 0; j < 3; j++) {
-        const bti_pt *q = j == 0 ? &rt->a : j == 1 ? &rt->c : &rt->b, *o = j == 0 ? &lr->a : j == 1 ? &lr->c : &lr->b;
+        const bti_pt *q = root_corner(rt, j), *o = root_corner(lr, j);
         moved[j] = q->z != o->z || q->morph != o->morph;
     }
     for (i = 0; i < n; i++) {
@@ -231,7 +233,7 @@ static int part_replay(bt_parts *ps, uint32_t k)
         if (r->moved && r->vidx != BTI_NO_IDX) set_height(pm, r->vidx, z, morph);
     }
     for (j = 0; j < 3; j++) {
-        const bti_pt *q = j == 0 ? &rt->a : j == 1 ? &rt->c : &rt->b;
+        const bti_pt *q = root_corner(rt, j);
         if (moved[j] && ps->ridx[k][j] != BTI_NO_IDX) set_height(pm, ps->ridx[k][j], q->z, q->morph);
     }
     /* the strip writer read heights only in these tests: the same answers, the same strip */
