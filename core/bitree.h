@@ -368,15 +368,19 @@ br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri);
 br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m);
 
 /* Partitioned view extraction, for several threads (the caller schedules; core/
- * has none).  The walk is cut into at most BT_PARTS subtrees fixed by the tree
- * (those at depth 4 below the two root triangles), each extracted into its own
- * part mesh, then joined in walk order into m as one strip: part k's strip is
- * appended after line triangles that repeat the previous part's last index and
- * its first (parity kept).  The real triangles are the serial walk's, in its
- * order, with the same winding; a vertex on the edge between two parts may be
- * listed once per part (same x, y, z, morph), the one exception to "no two
- * vertices share (x, y)".  The result never depends on how the parts were
- * scheduled.  Protocol, for one frame:
+ * has none).  The walk is cut into at most BT_PARTS subtrees of the tree (those
+ * at depth 4 below the two root triangles, a part that had more than 256
+ * triangles cut in two from the next frame on, two halves with fewer than 128
+ * between them joined again), each extracted into its own part mesh, then joined
+ * in walk order into m as one strip: part k's strip is appended after line
+ * triangles that repeat the previous part's last index and its first (parity
+ * kept).  The real triangles are the serial walk's, in its order, with the same
+ * winding; a vertex on the edge between two parts may be listed once per part
+ * (same x, y, z, morph), the one exception to "no two vertices share (x, y)".
+ * The result never depends on how the parts were scheduled; which vertices are
+ * listed twice depends on the cut, so on the frames since bt_parts_init or
+ * bt_parts_reset (the strip's positions, and so the pixels, do not).  Protocol,
+ * for one frame:
  *   bt_extract_begin(ps, t, p, m, &n)     serial; n parts to extract
  *   bt_extract_part(ps, k), k < n         any order, concurrently for distinct k
  *   bt_extract_end(ps, &j)                serial; hysteresis state, offsets
@@ -387,12 +391,15 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m);
  * fallback to the budget rule is today's.  The walk of the parts reads t->st
  * only; bt_extract_end updates it, as bt_extract does.  ps, t, p and m must
  * stay unchanged from begin to the last join. */
-#define BT_PARTS 32
+#define BT_PARTS 128
 typedef struct bt_parts bt_parts;
 /* Bytes for parts of part_tri triangles each (>= 2); 0 if too large. */
 size_t bt_parts_mem_size(uint32_t part_tri);
 /* *out in mem (8-byte aligned, bt_parts_mem_size bytes). */
 br_status bt_parts_init(bt_parts **out, uint32_t part_tri, void *mem, size_t mem_bytes);
+/* Forgets the parts' history: the next extraction walks every part, cut at depth 4
+ * (see below); the memory stays. */
+void bt_parts_reset(bt_parts *ps);
 br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh *m, uint32_t *nparts);
 void bt_extract_part(bt_parts *ps, uint32_t k);
 br_status bt_extract_end(bt_parts *ps, uint32_t *njoin);

@@ -40,6 +40,10 @@ static inline uint64_t bti_memo_w(const bt_mesh *m, uint32_t idx)
 #endif
 }
 
+/* bt_mesh_init_v's layout of m in mem without clearing its hash and memo, which the
+ * caller clears before use (core/bt_part.c clears what each part uses). */
+br_status bti_mesh_layout(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem, size_t mem_bytes);
+
 /* Forgets every decision of a memo of `entries` entries (no generation matches 0) */
 static inline void bti_memo_clear(uint64_t *memo, uint32_t entries)
 {
@@ -167,6 +171,15 @@ void btw_reorder(bti_extract *e);
  * The view walk cut into at most BT_PARTS subtrees: the triangles at depth
  * BTI_PART_DEPTH below the two roots (2 << depth of them), or shallower leaves. */
 #define BTI_PART_DEPTH 4
+/* Part roots below BTI_PART_DEPTH: a part whose mesh had more than BTI_PART_SPLIT
+ * triangles is cut in two from the next frame on, down to depth BTI_PART_DEPTH_MAX;
+ * two halves with fewer than BTI_PART_MERGE between them are one again (bt_part.c
+ * regroup).  A triangle of the part walk is named by its code: 2 and 3 for the two
+ * roots, 2 code and 2 code + 1 for the halves of code (so depth + 1 bits). */
+#define BTI_PART_SPLIT 256
+#define BTI_PART_MERGE 128
+#define BTI_PART_DEPTH_MAX 24
+#define BTI_PART_DEEP (BT_PARTS - (2 << BTI_PART_DEPTH))
 typedef struct bti_root { bti_pt a, c, b; int32_t in_hyp, out_hyp; uint32_t mask; } bti_root;
 
 /* The writer's state after a part's leaf L was handed to it: strip length, its
@@ -189,31 +202,53 @@ struct bt_parts {
     uint32_t nroot;
     uint32_t top_ids[BT_PARTS];    /* diamonds split above the roots (< BT_PARTS of them) */
     uint32_t ntop;
+    uint32_t root_code[BT_PARTS];  /* each root's code (BTI_PART_SPLIT) */
+    /* the triangles below BTI_PART_DEPTH to cut this frame (deep) and those cut (used) */
+    uint32_t deep[BTI_PART_DEEP + 1], ndeep, used[BTI_PART_DEEP + 1], nused;
     uint32_t voff[BT_PARTS];       /* part k's vertices go to m->v + voff[k] */
     uint32_t soff[BT_PARTS], skip[BT_PARTS]; /* its strip from index skip[k] to m->strip + soff[k] */
-    /* part k's mesh and extraction, written by its thread at every leaf (counts,
-     * pending leaf); the padding keeps them off the next part's cache lines */
-    struct bti_slot { bt_mesh m; bti_extract e; uint8_t pad_[64]; } slot[BT_PARTS];
-    bti_snap snap[BT_PARTS][BTI_SNAPS];
-    uint32_t hbase[BT_PARTS];      /* vertex hash generation of each part (part_reset) */
-    uint32_t hint_nv[BT_PARTS];    /* part k's vertices last frame: the hash and memo in use */
-    uint32_t hfull, mfull;         /* slots allocated for each part's hash, memo */
-    /* part k's decisions of its last walk (bti_rec) and what reusing its mesh needs:
-     * the root it walked and the indices of that root's corners in its vertices;
-     * reuse[k] 1 when the walk was complete and every decision recorded */
-    bti_rec *rec[BT_PARTS];
-    uint32_t nrec[BT_PARTS], cap_rec;
-    bti_root last_root[BT_PARTS];
-    uint32_t ridx[BT_PARTS][3];
-    uint8_t reuse[BT_PARTS];
+    /* A part's slot: its mesh and extraction, written by its thread at every leaf
+     * (counts, pending leaf), and what the next frame's replay of the same root needs
+     * (part_replay).  Slot k holds root k's part; bt_extract_begin moves each slot to
+     * the root of its code (match_slots), so a part that did not change stays
+     * replayable when the parts before it are cut or joined.  The padding keeps the
+     * slots off each other's cache lines. */
+    struct bti_slot {
+        bt_mesh m;
+        bti_extract e;
+        bti_snap snap[BTI_SNAPS];
+        uint32_t code;             /* the root's code it last walked (0: none) */
+        /* its decisions of that walk (bti_rec), the root and the indices of the root's
+         * corners in its vertices; reuse 1 when the walk was complete and every
+         * decision recorded */
+        bti_rec *rec;
+        uint32_t nrec;
+        bti_root last_root;
+        uint32_t ridx[3];
+        uint8_t reuse;
+        uint32_t hbase;            /* vertex hash generation (part_reset) */
+        uint32_t hint_nv;          /* vertices last frame: the hash and memo in use */
+        /* the first hclean, mclean of the hfull, mfull hash and memo slots are cleared
+         * (part_reset): memory a part never needed is never touched */
+        uint32_t hclean, mclean;
+        uint8_t pad_[64];
+    } slot[BT_PARTS];
+    uint32_t hfull, mfull, cap_rec; /* slots allocated for each part's hash, memo; records */
     uint8_t replayed[BT_PARTS];    /* part k's mesh this frame is its last one's (part_replay) */
-    uint8_t misses[BT_PARTS];      /* part k's replays that failed in a row (0 .. 3) and the */
-    uint8_t wait[BT_PARTS];        /* frames it walks before the next try (2^misses - 1) */
     uint32_t nreused;              /* parts replayed by the last extraction (bt_extract_end) */
     bti_extract fx;                /* the seams' writer (bt_extract_end) */
     uint32_t recent[96], nrecent;  /* its vertex identification by (x, y) */
     bt_coh coh;                    /* frame coherence of the parts' memos */
 };
+
+/* 1 when the part walk cuts the triangle of this code (listed in ps->deep) */
+static inline int bti_part_cut(const bt_parts *ps, uint32_t code)
+{
+    uint32_t i;
+    for (i = 0; i < ps->ndeep; i++)
+        if (ps->deep[i] == code) return 1;
+    return 0;
+}
 
 br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p);
 uint32_t bti_reset_mesh(bt_mesh *m);

@@ -539,19 +539,20 @@ static void run(bti_extract *e)
 }
 
 /* ------------------------------------------------------------ parts */
-/* The walk down to depth BTI_PART_DEPTH below the two roots, in rec's order with
- * rec's decisions: each triangle where it stops (at that depth, or earlier as a
- * leaf of the selection) becomes a part root, with the plane mask rec would hand
- * it; the part's rec decides its diamond again (the same answer: decide reads
- * only the diamond, the camera and ST_PREV) and emits its subtree.  Diamonds
- * split here are listed in ps->top_ids.  Culled triangles give no part. */
+/* The walk down to depth BTI_PART_DEPTH below the two roots, and below it through
+ * the triangles ps->deep lists (bti_part_cut), in rec's order with rec's decisions:
+ * each triangle where it stops (there, or earlier as a leaf of the selection) becomes
+ * a part root, with the plane mask rec would hand it; the part's rec decides its
+ * diamond again (the same answer: decide reads only the diamond, the camera and
+ * ST_PREV) and emits its subtree.  Diamonds split here go to ps->top_ids.  Culled
+ * triangles give no part.  Roots: 2 << BTI_PART_DEPTH, plus one a listed cut. */
 static void top(bti_extract *e, bt_parts *ps, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned mask,
-                int depth)
+                int depth, uint32_t code)
 {
     pt mm;
     unsigned m0 = mask;
     int sp = 0;
-    if (depth < BTI_PART_DEPTH && !((a->x + b->x) & 1)) {
+    if ((depth < BTI_PART_DEPTH || bti_part_cut(ps, code)) && !((a->x + b->x) & 1)) {
         mm.idx = NO_IDX;
         mm.x = a->x + ((b->x - a->x) >> 1);
         mm.y = a->y + ((b->y - a->y) >> 1);
@@ -560,15 +561,17 @@ static void top(bti_extract *e, bt_parts *ps, pt *a, pt *c, pt *b, int in_hyp, i
         if (sp < 0) return;
     }
     if (!sp) {
-        bti_root *r = &ps->root[ps->nroot++];
+        bti_root *r = &ps->root[ps->nroot];
+        ps->root_code[ps->nroot++] = code;
         r->a = *a; r->c = *c; r->b = *b;
         r->in_hyp = in_hyp; r->out_hyp = out_hyp; r->mask = m0;
         return;
     }
+    if (depth >= BTI_PART_DEPTH) ps->used[ps->nused++] = code;
     ps->top_ids[ps->ntop++] = bti_slot(e->t, mm.x, mm.y);
     mm.z = bti_mid_z(e, a->z, b->z, mm.x, mm.y, &mm.morph);
-    top(e, ps, a, &mm, c, !in_hyp, 0, mask, depth + 1);
-    top(e, ps, c, &mm, b, 0, !out_hyp, mask, depth + 1);
+    top(e, ps, a, &mm, c, !in_hyp, 0, mask, depth + 1, code << 1);
+    top(e, ps, c, &mm, b, 0, !out_hyp, mask, depth + 1, code << 1 | 1);
 }
 
 void bti_part_roots(bti_extract *e, bt_parts *ps)
@@ -577,8 +580,9 @@ void bti_part_roots(bti_extract *e, bt_parts *ps)
     corners(e, q);
     ps->nroot = 0;
     ps->ntop = 0;
-    top(e, ps, &q[0], &q[1], &q[2], 0, 1, 0x3f, 0);
-    top(e, ps, &q[2], &q[3], &q[0], 1, 0, 0x3f, 0);
+    ps->nused = 0;
+    top(e, ps, &q[0], &q[1], &q[2], 0, 1, 0x3f, 0, 2);
+    top(e, ps, &q[2], &q[3], &q[0], 1, 0, 0x3f, 0, 3);
 }
 
 void bti_part_walk(bti_extract *e, const bti_root *r, uint32_t ridx[3])

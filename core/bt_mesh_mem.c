@@ -92,6 +92,15 @@ br_status bt_mesh_init(bt_mesh *m, uint32_t max_tri, void *mem, size_t mem_bytes
 
 br_status bt_mesh_init_v(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem, size_t mem_bytes)
 {
+    br_status s = bti_mesh_layout(m, max_tri, max_v, mem, mem_bytes);
+    if (s != BR_OK) return s;
+    memset(m->hash, 0, ((size_t)m->hmask + 1) * 4 + 4);   /* + the generation word, see reset_mesh */
+    bti_memo_clear(m->memo, m->memo_mask + 1);
+    return BR_OK;
+}
+
+br_status bti_mesh_layout(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem, size_t mem_bytes)
+{
     uint8_t *p = (uint8_t *)mem;
     uint32_t cap_v, cap_s, hs;
     if (!m || !mem || max_tri < 2 || max_tri > 0x10000000u || (max_v != 0 && max_v < 16)) return BR_E_ARG;
@@ -112,11 +121,9 @@ br_status bt_mesh_init_v(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem
     p = (uint8_t *)(void *)(bti_heap_of(m) + bti_heap_cap(m));
     m->hash = (uint32_t *)(void *)p; p += (size_t)hs * 4 + 4;
     m->hmask = hs - 1;
-    memset(m->hash, 0, (size_t)hs * 4 + 4);   /* + the generation word, see reset_mesh */
     p += (8 - ((uintptr_t)p & 7)) & 7;
     m->memo = (uint64_t *)(void *)p;
     m->memo_mask = memo_size(memo_for(max_tri, max_v)) / BTI_MEMO_W - 1;
-    bti_memo_clear(m->memo, m->memo_mask + 1);
     m->memo_gen = 0;
     return BR_OK;
 }

@@ -19,6 +19,9 @@
 #include "core/bt_int.h"
 #include "core/bt_em.h"
 
+/* match_slots numbers slots in a byte */
+typedef char bti_parts_fit_a_byte[BT_PARTS <= 255 ? 1 : -1];
+
 static uint64_t round8(uint64_t v) { return (v + 7) & ~(uint64_t)7; }
 
 /* Records of a part's walk (bti_rec): a decision a triangle of the part's room and 64;
@@ -50,9 +53,9 @@ br_status bt_parts_init(bt_parts **out, uint32_t part_tri, void *mem, size_t mem
     ps->part_tri = part_tri;
     q += round8(sizeof(bt_parts));
     for (k = 0; k < BT_PARTS; k++, q += round8(mb))
-        if (bt_mesh_init(&ps->slot[k].m, part_tri, q, mb) != BR_OK) return BR_E_ARG;
+        if (bti_mesh_layout(&ps->slot[k].m, part_tri, 0, q, mb) != BR_OK) return BR_E_ARG;
     ps->cap_rec = rec_cap(part_tri);
-    for (k = 0; k < BT_PARTS; k++, q += (size_t)ps->cap_rec * sizeof(bti_rec)) ps->rec[k] = (bti_rec *)(void *)q;
+    for (k = 0; k < BT_PARTS; k++, q += (size_t)ps->cap_rec * sizeof(bti_rec)) ps->slot[k].rec = (bti_rec *)(void *)q;
     for (k = 0; k < BT_PARTS; k++, q += round8(ztest_cap(part_tri) * sizeof(bti_ztest))) {
         ps->slot[k].m.zlog = (bti_ztest *)(void *)q;
         ps->slot[k].m.cap_z = ztest_cap(part_tri);
@@ -61,6 +64,52 @@ br_status bt_parts_init(bt_parts **out, uint32_t part_tri, void *mem, size_t mem
     ps->mfull = ps->slot[0].m.memo_mask + 1;
     *out = ps;
     return BR_OK;
+}
+
+/* Moves the slots so that root k's is the one that held root_code[k] last frame
+ * (when one did); the others take the free places.  Only when the roots' codes
+ * changed (a part cut or joined, one culled or back): a permutation by swaps, each
+ * slot moved once at most per cycle. */
+static void match_slots(bt_parts *ps)
+{
+    uint8_t dest[BT_PARTS], taken[BT_PARTS];
+    uint32_t j, k, n = ps->nroot, free_k = 0;
+    for (k = 0; k < n && ps->slot[k].code == ps->root_code[k]; k++) continue;
+    if (k == n) return;
+    memset(taken, 0, sizeof taken);
+    for (j = 0; j < BT_PARTS; j++) {
+        dest[j] = 0xFF;
+        for (k = 0; k < n && ps->slot[j].code; k++)
+            if (ps->root_code[k] == ps->slot[j].code) { dest[j] = (uint8_t)k; taken[k] = 1; break; }
+    }
+    for (j = 0; j < BT_PARTS; j++) {
+        if (dest[j] != 0xFF) continue;
+        while (taken[free_k]) free_k++;         /* BT_PARTS places for BT_PARTS slots */
+        dest[j] = (uint8_t)free_k;
+        taken[free_k] = 1;
+    }
+    for (j = 0; j < BT_PARTS; j++)
+        while (dest[j] != j) {
+            const uint32_t d = dest[j];
+            struct bti_slot tmp = ps->slot[d];
+            uint8_t td = dest[d];
+            ps->slot[d] = ps->slot[j];
+            ps->slot[j] = tmp;
+            dest[d] = (uint8_t)d;
+            dest[j] = td;
+        }
+    for (k = 0; k < BT_PARTS; k++) ps->slot[k].code = k < n ? ps->root_code[k] : 0;
+}
+
+void bt_parts_reset(bt_parts *ps)
+{
+    uint32_t k;
+    if (!ps) return;
+    ps->ndeep = 0;
+    for (k = 0; k < BT_PARTS; k++) {
+        ps->slot[k].code = 0;
+        ps->slot[k].reuse = 0;
+    }
 }
 
 br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh *m, uint32_t *nparts)
@@ -78,9 +127,10 @@ br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh
     ps->e0.rec_splits = 2;
     if (bti_coh_frame(&ps->e0, &ps->coh)) {
         uint32_t k;
-        for (k = 0; k < BT_PARTS; k++) bti_memo_clear(ps->slot[k].m.memo, ps->mfull);
+        for (k = 0; k < BT_PARTS; k++) bti_memo_clear(ps->slot[k].m.memo, ps->slot[k].mclean);
     }
     bti_part_roots(&ps->e0, ps);
+    match_slots(ps);
     *nparts = ps->nroot;
     return BR_OK;
 }
@@ -89,19 +139,27 @@ br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh
  * ms slots, the first ones of the allocated tables.  Only speed depends on the
  * sizes: vertices are numbered in first-use order, and the memo is a cache.  A
  * hash slot holds base + 1 + index (core/bt_mesh.c reset_mesh) with the base of
- * ps->hbase[k], which only grows, so slots of any earlier walk read as empty
+ * ps->slot[k].hbase, which only grows, so slots of any earlier walk read as empty
  * whatever the size then; both tables are cleared whole when a counter wraps. */
 static void part_reset(bt_parts *ps, uint32_t k, uint32_t hs, uint32_t ms, bti_extract *e)
 {
     bt_mesh *pm = &ps->slot[k].m;
     uint32_t hl;
-    if (ps->hbase[k] > 0xFFFFFFFFu - pm->nv - pm->cap_v - 1) {
-        memset(pm->hash, 0, (size_t)ps->hfull * 4);
-        ps->hbase[k] = 0;
-    } else ps->hbase[k] += pm->nv;
+    if (ps->slot[k].hbase > 0xFFFFFFFFu - pm->nv - pm->cap_v - 1) {
+        memset(pm->hash, 0, (size_t)ps->slot[k].hclean * 4);
+        ps->slot[k].hbase = 0;
+    } else ps->slot[k].hbase += pm->nv;
     if (++pm->memo_gen > 0xFFFFu) {
-        bti_memo_clear(pm->memo, ps->mfull);
+        bti_memo_clear(pm->memo, ps->slot[k].mclean);
         pm->memo_gen = 1;
+    }
+    if (hs > ps->slot[k].hclean) {       /* zero is empty for any base and generation */
+        memset(pm->hash + ps->slot[k].hclean, 0, (size_t)(hs - ps->slot[k].hclean) * 4);
+        ps->slot[k].hclean = hs;
+    }
+    if (ms > ps->slot[k].mclean) {
+        bti_memo_clear(pm->memo + (size_t)ps->slot[k].mclean * BTI_MEMO_W, ms - ps->slot[k].mclean);
+        ps->slot[k].mclean = ms;
     }
     pm->hmask = hs - 1;
     pm->memo_mask = ms - 1;
@@ -110,11 +168,11 @@ static void part_reset(bt_parts *ps, uint32_t k, uint32_t hs, uint32_t ms, bti_e
     pm->nz = 0;
     *e = ps->e0;
     e->m = pm;
-    e->snap = ps->snap[k];
-    e->recs = ps->wait[k] ? NULL : ps->rec[k];     /* recorded when the next frame tries */
+    e->snap = ps->slot[k].snap;
+    e->recs = ps->slot[k].rec;
     e->nrec = 0;
     e->cap_rec = ps->cap_rec;
-    e->hbase = ps->hbase[k];
+    e->hbase = ps->slot[k].hbase;
     e->direct = (uint64_t)e->n * (uint64_t)e->n <= 2 * (uint64_t)hs;
     hl = pm->hmask - (pm->hmask >> 2);
     e->lim_nv = (hl < pm->cap_v ? hl : pm->cap_v) - 6;
@@ -195,16 +253,16 @@ static inline int ref_moved(const int moved[3], const bti_rec *R, uint32_t ref)
 static int part_replay(bt_parts *ps, uint32_t k)
 {
     bt_mesh *pm = &ps->slot[k].m;
-    bti_rec *R = ps->rec[k];
-    const bti_root *rt = &ps->root[k], *lr = &ps->last_root[k];
+    bti_rec *R = ps->slot[k].rec;
+    const bti_root *rt = &ps->root[k], *lr = &ps->slot[k].last_root;
     bti_extract e;
-    uint32_t i, n = ps->nrec[k], j;
+    uint32_t i, n = ps->slot[k].nrec, j;
     int moved[3];
-    if (!ps->reuse[k] || !ps->e0.coh || ps->coh.fresh || ps->e0.coh_acc == UINT64_MAX
+    if (!ps->slot[k].reuse || !ps->e0.coh || ps->coh.fresh || ps->e0.coh_acc == UINT64_MAX
         || !same_pt(&rt->a, &lr->a) || !same_pt(&rt->c, &lr->c) || !same_pt(&rt->b, &lr->b)
         || rt->in_hyp != lr->in_hyp || rt->out_hyp != lr->out_hyp || pm->memo_gen >= 0xFFFFu)
         return -1;
-    ps->reuse[k] = 0;       /* until the replay succeeds */
+    ps->slot[k].reuse = 0;       /* until the replay succeeds */
     pm->memo_gen++;
     e = ps->e0;
     e.m = pm;
@@ -234,7 +292,7 @@ static int part_replay(bt_parts *ps, uint32_t k)
     }
     for (j = 0; j < 3; j++) {
         const bti_pt *q = root_corner(rt, j);
-        if (moved[j] && ps->ridx[k][j] != BTI_NO_IDX) set_height(pm, ps->ridx[k][j], q->z, q->morph);
+        if (moved[j] && ps->slot[k].ridx[j] != BTI_NO_IDX) set_height(pm, ps->slot[k].ridx[j], q->z, q->morph);
     }
     /* the strip writer read heights only in these tests: the same answers, the same strip */
     for (i = 0; i < pm->nz; i++) {
@@ -243,8 +301,8 @@ static int part_replay(bt_parts *ps, uint32_t k)
                                      : bti_flat(&pm->v[t->a], &pm->v[t->b], &pm->v[t->c]);
         if (now != t->answer) return 0;
     }
-    ps->last_root[k] = *rt;
-    ps->reuse[k] = 1;
+    ps->slot[k].last_root = *rt;
+    ps->slot[k].reuse = 1;
     return 1;
 }
 
@@ -252,39 +310,27 @@ void bt_extract_part(bt_parts *ps, uint32_t k)
 {
     bti_extract *e;
     uint32_t hs = 1024, ms;
-    int tried;
     if (!ps || ps->serial || k >= ps->nroot) return;
-    /* a part whose replays keep failing (one near the eye, refined as it moves)
-     * tries again after 1, 3, 7 frames: a failed try costs up to a replay, a walk
-     * the same either way, so the output never depends on it */
-    tried = ps->wait[k] ? (ps->wait[k]--, -1) : part_replay(ps, k);
-    ps->replayed[k] = tried > 0;
-    if (tried > 0) {
-        ps->misses[k] = 0;
-        return;
-    }
-    if (tried == 0) {
-        if (ps->misses[k] < 3) ps->misses[k]++;
-        ps->wait[k] = (uint8_t)((1u << ps->misses[k]) - 1);
-    }
+    ps->replayed[k] = part_replay(ps, k) > 0;
+    if (ps->replayed[k]) return;
     e = &ps->slot[k].e;
     /* tables for twice last frame's vertices (load <= 1/4 of the hash): a part's
      * hash and memo stay in cache where the allocated ones (sized for part_tri)
      * would spread its few thousand vertices over megabytes; the memo has 4 slots a
      * hash slot, so that most of last frame's decisions are still there to reuse */
-    while (hs < 8 * (uint64_t)ps->hint_nv[k] && hs < ps->hfull) hs <<= 1;
+    while (hs < 8 * (uint64_t)ps->slot[k].hint_nv && hs < ps->hfull) hs <<= 1;
     if (hs > ps->hfull) hs = ps->hfull;
     ms = 4 * hs < ps->mfull ? 4 * hs : ps->mfull;
     part_reset(ps, k, hs, ms, e);
-    bti_part_walk(e, &ps->root[k], ps->ridx[k]);
+    bti_part_walk(e, &ps->root[k], ps->slot[k].ridx);
     if (e->full && hs < ps->hfull) {     /* the small hash filled up: again with all of it */
         part_reset(ps, k, ps->hfull, ps->mfull, e);
-        bti_part_walk(e, &ps->root[k], ps->ridx[k]);
+        bti_part_walk(e, &ps->root[k], ps->slot[k].ridx);
     }
-    ps->hint_nv[k] = ps->slot[k].m.nv;
-    ps->nrec[k] = e->nrec;
-    ps->last_root[k] = ps->root[k];
-    ps->reuse[k] = BR_COHERENCE && e->recs && !e->full && !e->lost && e->nrec <= e->cap_rec
+    ps->slot[k].hint_nv = ps->slot[k].m.nv;
+    ps->slot[k].nrec = e->nrec;
+    ps->slot[k].last_root = ps->root[k];
+    ps->slot[k].reuse = BR_COHERENCE && e->recs && !e->full && !e->lost && e->nrec <= e->cap_rec
                 && ps->slot[k].m.nz <= ps->slot[k].m.cap_z;
 }
 
@@ -380,7 +426,7 @@ static int seam(bt_parts *ps, uint32_t k)
     if (fx->has_pend) { (void)seam_v(ps, fx->pend.ia); (void)seam_v(ps, fx->pend.ic); (void)seam_v(ps, fx->pend.ib); }
     for (j = 0; j < fx->nplan; j++) (void)seam_v(ps, fx->plan[j]);
     for (i = 0; i < ps->slot[k].e.nsnap; i++) {
-        const bti_snap *sn = &ps->snap[k][i];
+        const bti_snap *sn = &ps->slot[k].snap[i];
         bti_leaf L;
         seam_leaf(ps, &sn->L, off, &L);
         if (fx->has_pend && btw_write_leaf(fx, &fx->pend, &L)) fx->has_pend = 0;
@@ -437,6 +483,54 @@ static int join_strips(bt_parts *ps)
     return 0;
 }
 
+/* The root with code c, or -1. */
+static int32_t root_of(const bt_parts *ps, uint32_t c)
+{
+    uint32_t k;
+    for (k = 0; k < ps->nroot; k++)
+        if (ps->root_code[k] == c) return (int32_t)k;
+    return -1;
+}
+
+static int depth_of(uint32_t code)
+{
+    int d = -1;
+    while (code > 1) { code >>= 1; d++; }
+    return d;
+}
+
+/* Next frame's cuts below BTI_PART_DEPTH (bti_part_roots) from this frame's parts:
+ * this frame's, less those whose halves are both roots with fewer than
+ * BTI_PART_MERGE triangles between them, and each root deeper than ... with more
+ * than BTI_PART_SPLIT, while there is room (BTI_PART_DEEP: at most BT_PARTS roots).
+ * Only the parts' sizes depend on it, never the mesh: smaller parts near the eye,
+ * where the mesh changes every frame, keep the rest replayable (part_replay). */
+static void regroup(bt_parts *ps)
+{
+    uint32_t i, k, n = 0;
+    for (i = 0; i < ps->nused; i++) {
+        const uint32_t c = ps->used[i];
+        const int32_t a = root_of(ps, c << 1), b = root_of(ps, c << 1 | 1);
+        if (a >= 0 && b >= 0 && ps->slot[a].m.ntri + ps->slot[b].m.ntri < BTI_PART_MERGE) continue;
+        ps->deep[n++] = c;
+    }
+    for (k = 0; k < ps->nroot && n < BTI_PART_DEEP; k++)
+        if (ps->slot[k].m.ntri > BTI_PART_SPLIT && depth_of(ps->root_code[k]) < BTI_PART_DEPTH_MAX)
+            ps->deep[n++] = ps->root_code[k];
+    ps->ndeep = n;
+}
+
+/* After a frame a full part sent to bt_extract: those parts are cut from the next
+ * frame on (regroup's rule, their sizes unknown), the other cuts kept. */
+static void regroup_full(bt_parts *ps)
+{
+    uint32_t k, n = 0;
+    for (k = 0; k < ps->nused; k++) ps->deep[n++] = ps->used[k];
+    for (k = 0; k < ps->nroot && n < BTI_PART_DEEP; k++)
+        if (ps->slot[k].e.full && depth_of(ps->root_code[k]) < BTI_PART_DEPTH_MAX) ps->deep[n++] = ps->root_code[k];
+    ps->ndeep = n;
+}
+
 br_status bt_extract_end(bt_parts *ps, uint32_t *njoin)
 {
     bt_mesh *m;
@@ -469,9 +563,11 @@ br_status bt_extract_end(bt_parts *ps, uint32_t *njoin)
          * the serial extraction decides, with its fallback to the budget (t->st
          * is as the previous frame left it) */
         ps->serial = 1;
+        regroup_full(ps);
         return bt_extract(ps->t, ps->p, m);
     }
     hysteresis(ps, nsp);
+    regroup(ps);
     m->ntri = (uint32_t)ntri;
     m->nline = m->ns >= 3 ? m->ns - 2 - m->ntri : 0;
     m->nfict = nfict;

@@ -242,7 +242,7 @@ static br_status chunks_reserve(scene *s, size_t n)
     return BR_OK;
 }
 
-#define SCENE_PART_TRI 32768
+#define SCENE_PART_TRI 8192
 
 br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err)
 {

@@ -33,17 +33,19 @@ static scene sc;
 static side A, B;           /* A: coherent, B: from scratch */
 static long frames, differ;
 static long parts_run, parts_reused;   /* A's parts, and those its last mesh served */
+static uint32_t parts_most;            /* A's most parts in a frame */
+static uint32_t part_tri = 32768;      /* triangles a part holds (side_open) */
 
 static int side_open(side *s)
 {
-    size_t mb = bt_mesh_mem_size(MAX_TRI), pb = bt_parts_mem_size(32768);
+    size_t mb = bt_mesh_mem_size(MAX_TRI), pb = bt_parts_mem_size(part_tri);
     memset(s, 0, sizeof *s);
     s->t = sc.tree;
     s->t.st = calloc(sc.tree.nslot, 1);
     s->mm = malloc(mb);
     s->pm = malloc(pb);
     if (!s->t.st || !s->mm || !s->pm) return 0;
-    return bt_mesh_init(&s->m, MAX_TRI, s->mm, mb) == BR_OK && bt_parts_init(&s->ps, 32768, s->pm, pb) == BR_OK;
+    return bt_mesh_init(&s->m, MAX_TRI, s->mm, mb) == BR_OK && bt_parts_init(&s->ps, part_tri, s->pm, pb) == BR_OK;
 }
 
 static void side_close(side *s)
@@ -82,7 +84,11 @@ static br_status extract(side *s, const bt_params *p, int parts)
     for (k = n; k-- > 0;) bt_extract_part(s->ps, k);     /* any order */
     st = bt_extract_end(s->ps, &n);
     for (k = 0; k < n; k++) bt_extract_join(s->ps, k, &v0, &nv);
-    if (s == &A) { parts_run += n; parts_reused += bt_parts_reused(s->ps); }
+    if (s == &A) {
+        parts_run += n;
+        parts_reused += bt_parts_reused(s->ps);
+        if (n > parts_most) parts_most = n;
+    }
     return st;
 }
 
@@ -207,15 +213,32 @@ static void test_coherence_paths(void)
 {
     if (!open_dem("assets/N47E009.hgt.gz")) { CHECK(0); return; }
     parts_run = parts_reused = 0;
+    parts_most = 0;
     fly_path("assets/default-path.cam", 1, 300, 256);
     /* most parts keep their mesh from one frame to the next along the path (core/
-     * bt_part.c part_replay); the comparison above proves those meshes */
+     * bt_part.c part_replay); the comparison above proves those meshes, also while
+     * the parts near the eye are cut finer than depth 4's 32 (core/bt_part.c regroup) */
     CHECK_MSG(parts_reused * 4 > parts_run * 3, "%ld of %ld parts reused", parts_reused, parts_run);
+    CHECK_MSG(parts_most > 32, "at most %u parts", parts_most);
     fly_path("assets/lake-path.cam", 1, 300, 256);
     /* 64 px: a coarse mesh, other parts replayed and other splits moving */
     fly_path("assets/default-path.cam", 1, 300, 64 * 256);
     fly_path("assets/alps-path.cam", 0, 120, 256);     /* its first 120 frames: 18 k triangles each */
     close_dem();
+}
+
+/* Parts too small for the first frames: a part that fills its mesh sends the frame to
+ * the serial extraction and is cut from the next frame on (core/bt_part.c
+ * regroup_full), until the parts fit; every frame is the from-scratch mesh. */
+static void test_coherence_full_parts(void)
+{
+    part_tri = 700;
+    if (!open_dem("assets/N47E009.hgt.gz")) { CHECK(0); part_tri = 32768; return; }
+    parts_run = parts_reused = 0;
+    fly_path("assets/default-path.cam", 1, 40, 256);
+    CHECK_MSG(parts_run > 0 && parts_reused > 0, "%ld parts joined, %ld reused", parts_run, parts_reused);
+    close_dem();
+    part_tri = 32768;
 }
 
 /* Part roots whose own corners move.  On N47E009 the diamonds above the parts are split
@@ -449,6 +472,7 @@ int main(void)
     T_RUN(test_morph_nodiv);
     T_RUN(test_box_dist);
     T_RUN(test_coherence_paths);
+    T_RUN(test_coherence_full_parts);
     T_RUN(test_coherence_root_corners);
     T_RUN(test_coherence_flights);
     T_RUN(test_coherence_margin_matters);

@@ -280,6 +280,7 @@ static int fly(pt_pool *pool, int serial, sel_frame *out)
     rt_cache_clear(&sc.rt);   /* every run fills the shading cache from empty */
     sc.pool = pool;
     if (serial) sc.parts = NULL;
+    bt_parts_reset(keep);     /* every run cuts the parts from the same start */
     for (i = 0; ok && i < SEL_FRAMES; i++) {
         const double *k = cp.cam[(4 * i) % cp.n];
         cam c;
