@@ -22,6 +22,9 @@
 /* match_slots numbers slots in a byte */
 typedef char bti_parts_fit_a_byte[BT_PARTS <= 255 ? 1 : -1];
 
+/* A part's smallest vertex hash (bt_extract_part), its memo 4 times that */
+#define PART_HASH_MIN 1024u
+
 static uint64_t round8(uint64_t v) { return (v + 7) & ~(uint64_t)7; }
 
 /* Records of a part's walk (bti_rec): a decision a triangle of the part's room and 64;
@@ -62,6 +65,13 @@ br_status bt_parts_init(bt_parts **out, uint32_t part_tri, void *mem, size_t mem
     }
     ps->hfull = ps->slot[0].m.hmask + 1;
     ps->mfull = ps->slot[0].m.memo_mask + 1;
+    for (k = 0; k < BT_PARTS; k++) {     /* the smallest tables a walk uses, cleared now */
+        struct bti_slot *sl = &ps->slot[k];
+        sl->hclean = PART_HASH_MIN < ps->hfull ? PART_HASH_MIN : ps->hfull;
+        sl->mclean = 4 * sl->hclean < ps->mfull ? 4 * sl->hclean : ps->mfull;
+        memset(sl->m.hash, 0, (size_t)sl->hclean * 4);
+        bti_memo_clear(sl->m.memo, sl->mclean);
+    }
     *out = ps;
     return BR_OK;
 }
@@ -309,7 +319,7 @@ static int part_replay(bt_parts *ps, uint32_t k)
 void bt_extract_part(bt_parts *ps, uint32_t k)
 {
     bti_extract *e;
-    uint32_t hs = 1024, ms;
+    uint32_t hs = PART_HASH_MIN, ms;
     if (!ps || ps->serial || k >= ps->nroot) return;
     ps->replayed[k] = part_replay(ps, k) > 0;
     if (ps->replayed[k]) return;
@@ -501,10 +511,12 @@ static int depth_of(uint32_t code)
 
 /* Next frame's cuts below BTI_PART_DEPTH (bti_part_roots) from this frame's parts:
  * this frame's, less those whose halves are both roots with fewer than
- * BTI_PART_MERGE triangles between them, and each root deeper than ... with more
- * than BTI_PART_SPLIT, while there is room (BTI_PART_DEEP: at most BT_PARTS roots).
- * Only the parts' sizes depend on it, never the mesh: smaller parts near the eye,
- * where the mesh changes every frame, keep the rest replayable (part_replay). */
+ * BTI_PART_MERGE triangles between them; and each root with more than
+ * BTI_PART_SPLIT, cut at once into 2, 4 or 8 (down to about BTI_PART_SPLIT each, so
+ * the first frames settle in a few), within BTI_PART_DEPTH_MAX and while there is
+ * room (BTI_PART_DEEP: at most BT_PARTS roots).  Only the parts' sizes depend on it,
+ * never the mesh: smaller parts near the eye, where the mesh changes every frame,
+ * keep the rest replayable (part_replay). */
 static void regroup(bt_parts *ps)
 {
     uint32_t i, k, n = 0;
@@ -514,9 +526,17 @@ static void regroup(bt_parts *ps)
         if (a >= 0 && b >= 0 && ps->slot[a].m.ntri + ps->slot[b].m.ntri < BTI_PART_MERGE) continue;
         ps->deep[n++] = c;
     }
-    for (k = 0; k < ps->nroot && n < BTI_PART_DEEP; k++)
-        if (ps->slot[k].m.ntri > BTI_PART_SPLIT && depth_of(ps->root_code[k]) < BTI_PART_DEPTH_MAX)
-            ps->deep[n++] = ps->root_code[k];
+    for (k = 0; k < ps->nroot; k++) {
+        const uint32_t c = ps->root_code[k], t = ps->slot[k].m.ntri;
+        const int d = depth_of(c);
+        int levels = 1, l;
+        uint32_t j;
+        if (t <= BTI_PART_SPLIT) continue;
+        while (levels < 3 && (t >> levels) > BTI_PART_SPLIT) levels++;
+        if (levels > BTI_PART_DEPTH_MAX - d) levels = BTI_PART_DEPTH_MAX - d;
+        for (l = 0; l < levels; l++)            /* halves after what they halve */
+            for (j = 0; j < 1u << l && n < BTI_PART_DEEP; j++) ps->deep[n++] = c << l | j;
+    }
     ps->ndeep = n;
 }
 
