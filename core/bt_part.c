@@ -514,7 +514,7 @@ static int depth_of(uint32_t code)
  * BTI_PART_MERGE triangles between them; and each root with more than
  * BTI_PART_SPLIT, cut at once into 2, 4 or 8 (down to about BTI_PART_SPLIT each, so
  * the first frames settle in a few), within BTI_PART_DEPTH_MAX and while there is
- * room (BTI_PART_DEEP: at most BT_PARTS roots).  Only the parts' sizes depend on it,
+ * room (BTI_PART_DEEP: at most BT_PARTS roots), the largest parts first.  Only the parts' sizes depend on it,
  * never the mesh: smaller parts near the eye, where the mesh changes every frame,
  * keep the rest replayable (part_replay). */
 static void regroup(bt_parts *ps)
@@ -526,12 +526,18 @@ static void regroup(bt_parts *ps)
         if (a >= 0 && b >= 0 && ps->slot[a].m.ntri + ps->slot[b].m.ntri < BTI_PART_MERGE) continue;
         ps->deep[n++] = c;
     }
-    for (k = 0; k < ps->nroot; k++) {
-        const uint32_t c = ps->root_code[k], t = ps->slot[k].m.ntri;
+    uint32_t big[BT_PARTS], nbig = 0, q;
+    for (k = 0; k < ps->nroot; k++) {      /* the parts to cut, largest first */
+        const uint32_t t = ps->slot[k].m.ntri;
+        if (t <= BTI_PART_SPLIT) continue;
+        for (q = nbig++; q > 0 && ps->slot[big[q - 1]].m.ntri < t; q--) big[q] = big[q - 1];
+        big[q] = k;
+    }
+    for (q = 0; q < nbig; q++) {
+        const uint32_t c = ps->root_code[big[q]], t = ps->slot[big[q]].m.ntri;
         const int d = depth_of(c);
         int levels = 1, l;
         uint32_t j;
-        if (t <= BTI_PART_SPLIT) continue;
         while (levels < 3 && (t >> levels) > BTI_PART_SPLIT) levels++;
         if (levels > BTI_PART_DEPTH_MAX - d) levels = BTI_PART_DEPTH_MAX - d;
         for (l = 0; l < levels; l++)            /* halves after what they halve */
