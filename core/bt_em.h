@@ -241,13 +241,16 @@ struct bt_parts {
     bt_coh coh;                    /* frame coherence of the parts' memos */
 };
 
-/* 1 when the part walk cuts the triangle of this code (listed in ps->deep) */
+/* 1 when the part walk cuts the triangle of this code (listed in ps->deep, sorted) */
 static inline int bti_part_cut(const bt_parts *ps, uint32_t code)
 {
-    uint32_t i;
-    for (i = 0; i < ps->ndeep; i++)
-        if (ps->deep[i] == code) return 1;
-    return 0;
+    uint32_t lo = 0, hi = ps->ndeep;
+    while (lo < hi) {
+        const uint32_t mid = (lo + hi) / 2;
+        if (ps->deep[mid] < code) lo = mid + 1;
+        else hi = mid;
+    }
+    return lo < ps->ndeep && ps->deep[lo] == code;
 }
 
 br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p);

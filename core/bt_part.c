@@ -493,13 +493,16 @@ static int join_strips(bt_parts *ps)
     return 0;
 }
 
-/* The root with code c, or -1. */
-static int32_t root_of(const bt_parts *ps, uint32_t c)
+/* ps->deep in increasing order, for bti_part_cut's binary search (insertion sort:
+ * at most BTI_PART_DEEP codes) */
+static void sort_cuts(bt_parts *ps)
 {
-    uint32_t k;
-    for (k = 0; k < ps->nroot; k++)
-        if (ps->root_code[k] == c) return (int32_t)k;
-    return -1;
+    uint32_t i, q;
+    for (i = 1; i < ps->ndeep; i++) {
+        const uint32_t c = ps->deep[i];
+        for (q = i; q > 0 && ps->deep[q - 1] > c; q--) ps->deep[q] = ps->deep[q - 1];
+        ps->deep[q] = c;
+    }
 }
 
 static int depth_of(uint32_t code)
@@ -519,11 +522,18 @@ static int depth_of(uint32_t code)
  * keep the rest replayable (part_replay). */
 static void regroup(bt_parts *ps)
 {
-    uint32_t i, k, n = 0;
+    uint32_t i, k, n = 0, join[BT_PARTS], njoin = 0, next = 0;
+    /* the cuts whose halves are both roots, small together: two halves are roots k,
+     * k + 1 (walk order), so these come in the order of the cuts (preorder) */
+    for (k = 0; k + 1 < ps->nroot; k++) {
+        const uint32_t c = ps->root_code[k];
+        if (!(c & 1) && ps->root_code[k + 1] == c + 1
+            && ps->slot[k].m.ntri + ps->slot[k + 1].m.ntri < BTI_PART_MERGE)
+            join[njoin++] = c >> 1;
+    }
     for (i = 0; i < ps->nused; i++) {
         const uint32_t c = ps->used[i];
-        const int32_t a = root_of(ps, c << 1), b = root_of(ps, c << 1 | 1);
-        if (a >= 0 && b >= 0 && ps->slot[a].m.ntri + ps->slot[b].m.ntri < BTI_PART_MERGE) continue;
+        if (next < njoin && join[next] == c) { next++; continue; }
         ps->deep[n++] = c;
     }
     uint32_t big[BT_PARTS], nbig = 0, q;
@@ -544,6 +554,7 @@ static void regroup(bt_parts *ps)
             for (j = 0; j < 1u << l && n < BTI_PART_DEEP; j++) ps->deep[n++] = c << l | j;
     }
     ps->ndeep = n;
+    sort_cuts(ps);
 }
 
 /* After a frame a full part sent to bt_extract: those parts are cut from the next
@@ -555,6 +566,7 @@ static void regroup_full(bt_parts *ps)
     for (k = 0; k < ps->nroot && n < BTI_PART_DEEP; k++)
         if (ps->slot[k].e.full && depth_of(ps->root_code[k]) < BTI_PART_DEPTH_MAX) ps->deep[n++] = ps->root_code[k];
     ps->ndeep = n;
+    sort_cuts(ps);
 }
 
 br_status bt_extract_end(bt_parts *ps, uint32_t *njoin)
