@@ -180,6 +180,7 @@ void btw_reorder(bti_extract *e);
 #define BTI_PART_MERGE 128
 #define BTI_PART_DEPTH_MAX 24
 #define BTI_PART_DEEP (BT_PARTS - (2 << BTI_PART_DEPTH))
+#define BTI_TOP_MEMO 512
 typedef struct bti_root { bti_pt a, c, b; int32_t in_hyp, out_hyp; uint32_t mask; } bti_root;
 
 /* The writer's state after a part's leaf L was handed to it: strip length, its
@@ -237,6 +238,10 @@ struct bt_parts {
     uint8_t replayed[BT_PARTS];    /* part k's mesh this frame is its last one's (part_replay) */
     uint32_t nreused;              /* parts replayed by the last extraction (bt_extract_end) */
     bti_extract fx;                /* the seams' writer (bt_extract_end) */
+    /* the decision memo of the walk above the parts (bti_part_roots): a mesh with a memo
+     * only, BTI_TOP_MEMO entries */
+    bt_mesh top_m;
+    uint64_t top_memo[BTI_TOP_MEMO * BTI_MEMO_W];
     uint32_t recent[96], nrecent;  /* its vertex identification by (x, y) */
     bt_coh coh;                    /* frame coherence of the parts' memos */
 };

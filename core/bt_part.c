@@ -63,6 +63,8 @@ br_status bt_parts_init(bt_parts **out, uint32_t part_tri, void *mem, size_t mem
         ps->slot[k].m.zlog = (bti_ztest *)(void *)q;
         ps->slot[k].m.cap_z = ztest_cap(part_tri);
     }
+    ps->top_m.memo = ps->top_memo;          /* (zero: no entry) */
+    ps->top_m.memo_mask = BTI_TOP_MEMO - 1;
     ps->hfull = ps->slot[0].m.hmask + 1;
     ps->mfull = ps->slot[0].m.memo_mask + 1;
     for (k = 0; k < BT_PARTS; k++) {     /* the smallest tables a walk uses, cleared now */
@@ -138,8 +140,15 @@ br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh
     if (bti_coh_frame(&ps->e0, &ps->coh)) {
         uint32_t k;
         for (k = 0; k < BT_PARTS; k++) bti_memo_clear(ps->slot[k].m.memo, ps->slot[k].mclean);
+        bti_memo_clear(ps->top_memo, BTI_TOP_MEMO);
     }
+    if (++ps->top_m.memo_gen > 0xFFFFu) {
+        bti_memo_clear(ps->top_memo, BTI_TOP_MEMO);
+        ps->top_m.memo_gen = 1;
+    }
+    ps->e0.m = &ps->top_m;
     bti_part_roots(&ps->e0, ps);
+    ps->e0.m = NULL;
     match_slots(ps);
     *nparts = ps->nroot;
     return BR_OK;
@@ -524,10 +533,11 @@ static void regroup(bt_parts *ps)
 {
     uint32_t i, k, n = 0, join[BT_PARTS], njoin = 0, next = 0;
     /* the cuts whose halves are both roots, small together: two halves are roots k,
-     * k + 1 (walk order), so these come in the order of the cuts (preorder) */
+     * k + 1 (walk order), so these come in the order of the cuts (preorder; halves
+     * of a triangle above BTI_PART_DEPTH are no cut's) */
     for (k = 0; k + 1 < ps->nroot; k++) {
         const uint32_t c = ps->root_code[k];
-        if (!(c & 1) && ps->root_code[k + 1] == c + 1
+        if (!(c & 1) && ps->root_code[k + 1] == c + 1 && depth_of(c) > BTI_PART_DEPTH
             && ps->slot[k].m.ntri + ps->slot[k + 1].m.ntri < BTI_PART_MERGE)
             join[njoin++] = c >> 1;
     }
