@@ -235,6 +235,7 @@ struct bt_parts {
         uint8_t pad_[64];
     } slot[BT_PARTS];
     uint32_t hfull, mfull, cap_rec; /* slots allocated for each part's hash, memo; records */
+    uint32_t *cut_tris, *cut_lo, *cut_hi; /* regroup's counts over a part's records (cap_rec) */
     uint8_t replayed[BT_PARTS];    /* part k's mesh this frame is its last one's (part_replay) */
     uint32_t nreused;              /* parts replayed by the last extraction (bt_extract_end) */
     bti_extract fx;                /* the seams' writer (bt_extract_end) */

@@ -39,7 +39,8 @@ size_t bt_parts_mem_size(uint32_t part_tri)
     uint64_t sz;
     if (!mb) return 0;
     sz = round8(sizeof(bt_parts)) + (uint64_t)BT_PARTS * round8(mb)
-       + (uint64_t)BT_PARTS * (rec_cap(part_tri) * sizeof(bti_rec) + round8(ztest_cap(part_tri) * sizeof(bti_ztest)));
+       + (uint64_t)BT_PARTS * (rec_cap(part_tri) * sizeof(bti_rec) + round8(ztest_cap(part_tri) * sizeof(bti_ztest)))
+       + 3 * round8((uint64_t)rec_cap(part_tri) * 4);     /* regroup's counts */
     if (sz > (uint64_t)SIZE_MAX) return 0;
     return (size_t)sz;
 }
@@ -63,6 +64,9 @@ br_status bt_parts_init(bt_parts **out, uint32_t part_tri, void *mem, size_t mem
         ps->slot[k].m.zlog = (bti_ztest *)(void *)q;
         ps->slot[k].m.cap_z = ztest_cap(part_tri);
     }
+    ps->cut_tris = (uint32_t *)(void *)q; q += round8((uint64_t)ps->cap_rec * 4);
+    ps->cut_lo = (uint32_t *)(void *)q; q += round8((uint64_t)ps->cap_rec * 4);
+    ps->cut_hi = (uint32_t *)(void *)q;
     ps->top_m.memo = ps->top_memo;          /* (zero: no entry) */
     ps->top_m.memo_mask = BTI_TOP_MEMO - 1;
     ps->hfull = ps->slot[0].m.hmask + 1;
@@ -521,17 +525,58 @@ static int depth_of(uint32_t code)
     return d;
 }
 
+/* The leaves below each record of part k's walk this frame (ps->cut_tris; a half
+ * without a record, of unit legs, is one leaf) and the records of its two halves
+ * (cut_lo, cut_hi: the halves (a, m, c) and (c, m, b), as top and rec name them;
+ * BTI_NO_IDX for none).  A split's halves' records follow it and name it as their
+ * apex (cref), so in reverse order each is complete before it is added to its apex.
+ * 0 when the part's records are not complete. */
+static int count_below(bt_parts *ps, uint32_t k)
+{
+    const bti_rec *R = ps->slot[k].rec;
+    uint32_t j, n = ps->slot[k].nrec;
+    if (!ps->slot[k].reuse || n == 0 || n > ps->cap_rec) return 0;
+    for (j = 0; j < n; j++) {
+        ps->cut_tris[j] = R[j].sp == 0 ? 1u : 0u;
+        ps->cut_lo[j] = ps->cut_hi[j] = BTI_NO_IDX;
+    }
+    for (j = n; j-- > 0;) {
+        const bti_rec *r = &R[j];
+        if (r->sp == 1)       /* halves of unit legs have no record and are leaves */
+            ps->cut_tris[j] += (ps->cut_lo[j] == BTI_NO_IDX) + (ps->cut_hi[j] == BTI_NO_IDX);
+        if (r->cref >= BTI_REF_A) continue;
+        ps->cut_tris[r->cref] += ps->cut_tris[j];
+        if (r->aref == R[r->cref].aref) ps->cut_lo[r->cref] = j;
+        else ps->cut_hi[r->cref] = j;
+    }
+    return 1;
+}
+
+/* Cuts the triangle named code, whose diamond's record is i, when more than
+ * BTI_PART_SPLIT leaves lie below it, and its halves by the same rule. */
+/* Cuts the triangle named code (at depth), whose diamond's record is i, when more than
+ * BTI_PART_SPLIT leaves lie below it, and its halves by the same rule, down to levels
+ * levels in one frame (a part near the eye may take the room the others need; the
+ * next frame goes on). */
+static void cut_by_count(bt_parts *ps, uint32_t i, uint32_t code, int depth, int levels, uint32_t *n)
+{
+    if (ps->cut_tris[i] <= BTI_PART_SPLIT || depth >= BTI_PART_DEPTH_MAX || !levels || *n >= BTI_PART_DEEP) return;
+    ps->deep[(*n)++] = code;
+    if (ps->cut_lo[i] != BTI_NO_IDX) cut_by_count(ps, ps->cut_lo[i], code << 1, depth + 1, levels - 1, n);
+    if (ps->cut_hi[i] != BTI_NO_IDX) cut_by_count(ps, ps->cut_hi[i], code << 1 | 1, depth + 1, levels - 1, n);
+}
+
 /* Next frame's cuts below BTI_PART_DEPTH (bti_part_roots) from this frame's parts:
  * this frame's, less those whose halves are both roots with fewer than
  * BTI_PART_MERGE triangles between them; and each root with more than
- * BTI_PART_SPLIT, cut at once into 2, 4 or 8 (down to about BTI_PART_SPLIT each, so
+ * BTI_PART_SPLIT, cut where its walk's records put its triangles (cut_by_count, so
  * the first frames settle in a few), within BTI_PART_DEPTH_MAX and while there is
  * room (BTI_PART_DEEP: at most BT_PARTS roots), the largest parts first.  Only the parts' sizes depend on it,
  * never the mesh: smaller parts near the eye, where the mesh changes every frame,
  * keep the rest replayable (part_replay). */
 static void regroup(bt_parts *ps)
 {
-    uint32_t i, k, n = 0, join[BT_PARTS], njoin = 0, next = 0;
+    uint32_t i, k, n = 0, join[BT_PARTS], njoin = 0, next = 0, big[BT_PARTS], nbig = 0, q;
     /* the cuts whose halves are both roots, small together: two halves are roots k,
      * k + 1 (walk order), so these come in the order of the cuts (preorder; halves
      * of a triangle above BTI_PART_DEPTH are no cut's) */
@@ -546,18 +591,22 @@ static void regroup(bt_parts *ps)
         if (next < njoin && join[next] == c) { next++; continue; }
         ps->deep[n++] = c;
     }
-    uint32_t big[BT_PARTS], nbig = 0, q;
     for (k = 0; k < ps->nroot; k++) {      /* the parts to cut, largest first */
         const uint32_t t = ps->slot[k].m.ntri;
         if (t <= BTI_PART_SPLIT) continue;
         for (q = nbig++; q > 0 && ps->slot[big[q - 1]].m.ntri < t; q--) big[q] = big[q - 1];
         big[q] = k;
     }
-    for (q = 0; q < nbig; q++) {
+    for (q = 0; q < nbig && n < BTI_PART_DEEP; q++) {
         const uint32_t c = ps->root_code[big[q]], t = ps->slot[big[q]].m.ntri;
         const int d = depth_of(c);
         int levels = 1, l;
         uint32_t j;
+        if (count_below(ps, big[q])) {      /* where its triangles are */
+            cut_by_count(ps, 0, c, d, 4, &n);
+            continue;
+        }
+        /* no complete records: halves at once down to about BTI_PART_SPLIT each */
         while (levels < 3 && (t >> levels) > BTI_PART_SPLIT) levels++;
         if (levels > BTI_PART_DEPTH_MAX - d) levels = BTI_PART_DEPTH_MAX - d;
         for (l = 0; l < levels; l++)            /* halves after what they halve */
