@@ -172,7 +172,8 @@ void btw_reorder(bti_extract *e);
  * BTI_PART_DEPTH below the two roots (2 << depth of them), or shallower leaves. */
 #define BTI_PART_DEPTH 4
 /* Part roots below BTI_PART_DEPTH: a part whose mesh had more than BTI_PART_SPLIT
- * triangles is cut in two from the next frame on, down to depth BTI_PART_DEPTH_MAX;
+ * triangles is cut from the next frame on into pieces of at most that many (bt_part.c
+ * cut_by_count), down to depth BTI_PART_DEPTH_MAX;
  * two halves with fewer than BTI_PART_MERGE between them are one again (bt_part.c
  * regroup).  A triangle of the part walk is named by its code: 2 and 3 for the two
  * roots, 2 code and 2 code + 1 for the halves of code (so depth + 1 bits). */
