@@ -33,6 +33,20 @@ static uint32_t rec_cap(uint32_t part_tri) { return part_tri + 64; }
 /* Its strip writer's height tests (bti_ztest): one per four triangles; more: not replayed */
 static uint32_t ztest_cap(uint32_t part_tri) { return part_tri / 4 + 64; }
 
+/* Clears slot sl's hash and memo up to hs and ms slots where they are not yet (zero is
+ * empty for any hash base and memo generation). */
+static void clear_to(struct bti_slot *sl, uint32_t hs, uint32_t ms)
+{
+    if (hs > sl->hclean) {
+        memset(sl->m.hash + sl->hclean, 0, (size_t)(hs - sl->hclean) * 4);
+        sl->hclean = hs;
+    }
+    if (ms > sl->mclean) {
+        bti_memo_clear(sl->m.memo + (size_t)sl->mclean * BTI_MEMO_W, ms - sl->mclean);
+        sl->mclean = ms;
+    }
+}
+
 size_t bt_parts_mem_size(uint32_t part_tri)
 {
     size_t mb = bt_mesh_mem_size(part_tri);
@@ -72,11 +86,8 @@ br_status bt_parts_init(bt_parts **out, uint32_t part_tri, void *mem, size_t mem
     ps->hfull = ps->slot[0].m.hmask + 1;
     ps->mfull = ps->slot[0].m.memo_mask + 1;
     for (k = 0; k < BT_PARTS; k++) {     /* the smallest tables a walk uses, cleared now */
-        struct bti_slot *sl = &ps->slot[k];
-        sl->hclean = PART_HASH_MIN < ps->hfull ? PART_HASH_MIN : ps->hfull;
-        sl->mclean = 4 * sl->hclean < ps->mfull ? 4 * sl->hclean : ps->mfull;
-        memset(sl->m.hash, 0, (size_t)sl->hclean * 4);
-        bti_memo_clear(sl->m.memo, sl->mclean);
+        const uint32_t hs = PART_HASH_MIN < ps->hfull ? PART_HASH_MIN : ps->hfull;
+        clear_to(&ps->slot[k], hs, 4 * hs < ps->mfull ? 4 * hs : ps->mfull);
     }
     *out = ps;
     return BR_OK;
@@ -176,14 +187,7 @@ static void part_reset(bt_parts *ps, uint32_t k, uint32_t hs, uint32_t ms, bti_e
         bti_memo_clear(pm->memo, ps->slot[k].mclean);
         pm->memo_gen = 1;
     }
-    if (hs > ps->slot[k].hclean) {       /* zero is empty for any base and generation */
-        memset(pm->hash + ps->slot[k].hclean, 0, (size_t)(hs - ps->slot[k].hclean) * 4);
-        ps->slot[k].hclean = hs;
-    }
-    if (ms > ps->slot[k].mclean) {
-        bti_memo_clear(pm->memo + (size_t)ps->slot[k].mclean * BTI_MEMO_W, ms - ps->slot[k].mclean);
-        ps->slot[k].mclean = ms;
-    }
+    clear_to(&ps->slot[k], hs, ms);
     pm->hmask = hs - 1;
     pm->memo_mask = ms - 1;
     pm->nv = 0; pm->ns = 0; pm->ntri = 0; pm->nline = 0; pm->nfict = 0; pm->overflow = 0;
@@ -271,7 +275,7 @@ static inline int ref_moved(const int moved[3], const bti_rec *R, uint32_t ref)
  * leaves, vertices, strip, split list and snapshots; only the heights of split
  * vertices (their weights and their hypotenuse ends') move.  So the recorded
  * decisions are made again in order, through the memo as the walk would (the same
- * entries result), and the first that differs sends the part to its walk (0; -1
+ * entries result), and the first that differs sends the part to its walk (0, as
  * when it cannot be tried). */
 static int part_replay(bt_parts *ps, uint32_t k)
 {
@@ -284,7 +288,7 @@ static int part_replay(bt_parts *ps, uint32_t k)
     if (!ps->slot[k].reuse || !ps->e0.coh || ps->coh.fresh || ps->e0.coh_acc == UINT64_MAX
         || !same_pt(&rt->a, &lr->a) || !same_pt(&rt->c, &lr->c) || !same_pt(&rt->b, &lr->b)
         || rt->in_hyp != lr->in_hyp || rt->out_hyp != lr->out_hyp || pm->memo_gen >= 0xFFFFu)
-        return -1;
+        return 0;
     ps->slot[k].reuse = 0;       /* until the replay succeeds */
     pm->memo_gen++;
     e = ps->e0;
@@ -334,7 +338,7 @@ void bt_extract_part(bt_parts *ps, uint32_t k)
     bti_extract *e;
     uint32_t hs = PART_HASH_MIN, ms;
     if (!ps || ps->serial || k >= ps->nroot) return;
-    ps->replayed[k] = part_replay(ps, k) > 0;
+    ps->replayed[k] = (uint8_t)part_replay(ps, k);
     if (ps->replayed[k]) return;
     e = &ps->slot[k].e;
     /* tables for twice last frame's vertices (load <= 1/4 of the hash): a part's
@@ -552,8 +556,6 @@ static int count_below(bt_parts *ps, uint32_t k)
     return 1;
 }
 
-/* Cuts the triangle named code, whose diamond's record is i, when more than
- * BTI_PART_SPLIT leaves lie below it, and its halves by the same rule. */
 /* Cuts the triangle named code (at depth), whose diamond's record is i, when more than
  * BTI_PART_SPLIT leaves lie below it, and its halves by the same rule, down to levels
  * levels in one frame (a part near the eye may take the room the others need; the
@@ -571,9 +573,9 @@ static void cut_by_count(bt_parts *ps, uint32_t i, uint32_t code, int depth, int
  * BTI_PART_MERGE triangles between them; and each root with more than
  * BTI_PART_SPLIT, cut where its walk's records put its triangles (cut_by_count, so
  * the first frames settle in a few), within BTI_PART_DEPTH_MAX and while there is
- * room (BTI_PART_DEEP: at most BT_PARTS roots), the largest parts first.  Only the parts' sizes depend on it,
- * never the mesh: smaller parts near the eye, where the mesh changes every frame,
- * keep the rest replayable (part_replay). */
+ * room (BTI_PART_DEEP: at most BT_PARTS roots), the largest parts first.  Only the
+ * parts' sizes depend on it, never the mesh: smaller parts near the eye, where the
+ * mesh changes every frame, keep the rest replayable (part_replay). */
 static void regroup(bt_parts *ps)
 {
     uint32_t i, k, n = 0, join[BT_PARTS], njoin = 0, next = 0, big[BT_PARTS], nbig = 0, q;
