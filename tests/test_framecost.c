@@ -25,11 +25,12 @@ static uint64_t rnd(void)
 
 static void test_campath(void)
 {
-    const char *path = "tests/out/framecost_path.txt";
+    char path[256];
     FILE *fp;
     campath p;
     br_err err;
     double v[6];
+    snprintf(path, sizeof path, "%s/framecost_path.txt", t_outdir());
     CHECK_EQ(campath_parse_line("1,2,3,4,5,6", v), 0);
     CHECK(v[0] == 1 && v[5] == 6);
     CHECK_EQ(campath_parse_line(" 1.5 , -2e3,3,4,5, 6 \n", v), 0);
