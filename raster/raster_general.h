@@ -205,6 +205,52 @@ GEN_SCAN(gen_scan, int64_t)
 GEN_SCAN(gen_scan32, int32_t)
 #undef GEN_SCAN
 
+#if RS_SPANV && NARROW <= 8 && !defined(__OPTIMIZE_SIZE__)
+/* Narrow small boxes of the plain variants in vector lanes (their own copy, tri_gen_sn;
+ * not in builds for size, whose one copy decides small and wide at run time): lane i holds the three edge values at column px0 +
+ * i of the current row (gen_scan's a0, a1, a2 there), stepped down the rows by the y
+ * steps; bit i of bits is set for the box's columns (i <= px1 - px0).  A row's inside
+ * columns are an interval (three half-planes met by a line), so the lowest and highest
+ * inside lanes are gen_scan's l and r: the same spans.  Every value a lane takes lies
+ * within gen_scan32's bound (below 2^22: a lane's centre is at most NARROW - 1 <= 7
+ * columns past px0, within 2^10 + 2^7 sub-pixels of vertex a on each axis, as the box is
+ * below SMALL both ways), so the 32-bit lanes are exact; they add modulo 2^32 (unsigned)
+ * and take the sign as signed. */
+typedef uint32_t gn_v8u __attribute__((vector_size(32)));
+typedef int32_t gn_v8i __attribute__((vector_size(32)));
+typedef struct gn_rows { gn_v8u e0, e1, e2, y0, y1, y2, bits; } gn_rows;
+
+RSI_INLINE static void gn_rows_make(gn_rows *g, int32_t px0, int32_t px1, int64_t e0r, int64_t e2r, int64_t S,
+                                   int64_t sx0, int64_t sx2, int64_t sy0, int64_t sy2)
+{
+    const gn_v8u io = { 0, 1, 2, 3, 4, 5, 6, 7 };
+    const gn_v8u one = { 1, 2, 4, 8, 16, 32, 64, 128 };
+    g->e0 = (uint32_t)e0r + io * (uint32_t)sx0;
+    g->e2 = (uint32_t)e2r + io * (uint32_t)sx2;
+    g->e1 = (uint32_t)(S - e0r - e2r) - io * (uint32_t)(sx0 + sx2);
+    g->y0 = io - io + (uint32_t)sy0;
+    g->y2 = io - io + (uint32_t)sy2;
+    g->y1 = io - io - (uint32_t)(sy0 + sy2);
+    g->bits = one & (gn_v8u)(io <= (uint32_t)(px1 - px0));
+}
+
+/* This row's inside columns as a bit mask (bit i: column px0 + i), then the lanes
+ * stepped to the next row. */
+RSI_INLINE static uint32_t gn_row_mask(gn_rows *g)
+{
+    const gn_v8u out = (gn_v8u)((gn_v8i)(g->e0 | g->e1 | g->e2) >> 31);
+    gn_v8u m = g->bits & ~out;
+    m |= RS_SHUFFLE(m, m, gn_v8u, 4, 5, 6, 7, 4, 5, 6, 7);
+    m |= RS_SHUFFLE(m, m, gn_v8u, 2, 3, 2, 3, 2, 3, 2, 3);
+    m |= RS_SHUFFLE(m, m, gn_v8u, 1, 1, 1, 1, 1, 1, 1, 1);
+    g->e0 += g->y0; g->e1 += g->y1; g->e2 += g->y2;
+    return m[0];
+}
+#define GN_VEC 1
+#else
+#define GN_VEC 0
+#endif
+
 /* Wide boxes, one edge K + s l (l the column relative to px0; floor((K + s px0) / s) =
  * floor(K / s) + px0: the same centres as from column 0, with no products by px0 to keep
  * across the rows), q the divisor |s|:
@@ -408,6 +454,8 @@ RSI_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, c
     /* small boxes on 32-bit targets: the set-up and the row spans in 32-bit arithmetic,
      * the same values (on 64-bit targets the 64-bit forms cost no more) */
     const int small32 = small && !RSI_REG64;
+    /* narrow small boxes: the rows' spans from vector lanes (gn_rows) where there are such */
+    const int gnv = GN_VEC && !VF_SLOW(vf) && !wide && small;
 
     if (small32) {
         /* the box is below SMALL <= 2^10 sub-pixels both ways: vertex differences below
@@ -502,12 +550,25 @@ RSI_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, c
         uint8_t *crow = bd->color + (size_t)(py0 - bd->y0) * bd->stride;
         void *zrow = z_at(bd->depth, (ptrdiff_t)((size_t)(py0 - bd->y0) * (size_t)w), vf);
         const size_t cstride = bd->stride, zstride = (size_t)w * z_bytes(vf);
+#if GN_VEC
+        gn_rows gn;
+        if (gnv) gn_rows_make(&gn, px0, px1, e0r, e2r, S, sx0, sx2, sy0, sy2);
+#endif
         if (!one) gen_grad(&g, &ad, a, b, c, dy1, dy2, area2, small);
         if (one) py1 = py0;
         for (py = py0; py <= py1; py++, e0r += sy0, e2r += sy2, crow += cstride, zrow = (uint8_t *)zrow + zstride) {
             int32_t xl = px0, xr = px1;
             int64_t e0, e2;
-            if (!wide) {
+            if (gnv) {
+#if GN_VEC
+                const uint32_t mk = gn_row_mask(&gn);
+                int32_t l, r;
+                if (!mk) continue;
+                l = __builtin_ctz(mk); r = 31 - __builtin_clz(mk);
+                xl = px0 + l; xr = px0 + r;
+                e0 = e0r + sx0 * l; e2 = e2r + sx2 * l;
+#endif
+            } else if (!wide) {
                 if (small32 ? !gen_scan32(px0, px1, (int32_t)e0r, (int32_t)e2r, (int32_t)S, (int32_t)sx0,
                                           (int32_t)sx2, &xl, &xr, &e0, &e2)
                             : !gen_scan(px0, px1, e0r, e2r, S, sx0, sx2, &xl, &xr, &e0, &e2))
