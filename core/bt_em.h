@@ -207,6 +207,7 @@ struct bt_parts {
     uint32_t root_code[BT_PARTS];  /* each root's code (BTI_PART_SPLIT) */
     /* the triangles below BTI_PART_DEPTH to cut this frame (deep) and those cut (used) */
     uint32_t deep[BTI_PART_DEEP + 1], ndeep, used[BTI_PART_DEEP + 1], nused;
+    int cut_fresh;                 /* no cut yet: bt_extract_begin makes the first (cut_initial) */
     uint32_t voff[BT_PARTS];       /* part k's vertices go to m->v + voff[k] */
     uint32_t soff[BT_PARTS], skip[BT_PARTS]; /* its strip from index skip[k] to m->strip + soff[k] */
     /* A part's slot: its mesh and extraction, written by its thread at every leaf

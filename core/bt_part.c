@@ -89,6 +89,7 @@ br_status bt_parts_init(bt_parts **out, uint32_t part_tri, void *mem, size_t mem
         const uint32_t hs = PART_HASH_MIN < ps->hfull ? PART_HASH_MIN : ps->hfull;
         clear_to(&ps->slot[k], hs, 4 * hs < ps->mfull ? 4 * hs : ps->mfull);
     }
+    ps->cut_fresh = 1;
     *out = ps;
     return BR_OK;
 }
@@ -128,11 +129,34 @@ static void match_slots(bt_parts *ps)
     for (k = 0; k < BT_PARTS; k++) ps->slot[k].code = k < n ? ps->root_code[k] : 0;
 }
 
+/* The cut with no frame behind it (after bt_parts_init or bt_parts_reset), made at
+ * the next bt_extract_begin: every triangle down to BTI_PART_DEPTH + extra - 1 cut,
+ * 2 << (BTI_PART_DEPTH + extra) roots.  The first frame's sizes are unknown, and in a
+ * view of many triangles the parts at BTI_PART_DEPTH near the eye overflow part_tri
+ * (a full part sends the frame to the serial extraction); so extra grows with the
+ * screen in threshold areas, S = w h / pixel_err^2: 0 below 2^17 (320x240 at 1 px), 1
+ * below 2^19 (640x480 at 1 px), else 2 (1280x720), BT_PARTS roots.  (Views over
+ * N47E009 have a triangle per 20 to 50 threshold areas: first parts of about 100 to
+ * 600 triangles at these sizes.)  The next frames cut and join by size
+ * (regroup). */
+static void cut_initial(bt_parts *ps, const bt_params *p)
+{
+    /* (an error above 256 px counts as 256: no product overflows) */
+    const uint64_t err = p->pixel_err_q8 <= 0 ? 256u : p->pixel_err_q8 < 65536 ? (uint64_t)p->pixel_err_q8 : 65536u;
+    const uint64_t s16 = (uint64_t)p->c->w * (uint64_t)p->c->h * 65536u;   /* S err^2, below 2^44 */
+    const int extra = s16 >= ((uint64_t)1 << 19) * err * err ? 2 : s16 >= ((uint64_t)1 << 17) * err * err ? 1 : 0;
+    uint32_t c, n = 0;
+    for (c = 2u << BTI_PART_DEPTH; c < 2u << (BTI_PART_DEPTH + extra) && n < BTI_PART_DEEP; c++) ps->deep[n++] = c;
+    ps->ndeep = n;
+    ps->cut_fresh = 0;
+}
+
 void bt_parts_reset(bt_parts *ps)
 {
     uint32_t k;
     if (!ps) return;
     ps->ndeep = 0;
+    ps->cut_fresh = 1;
     for (k = 0; k < BT_PARTS; k++) {
         ps->slot[k].code = 0;
         ps->slot[k].reuse = 0;
@@ -161,6 +185,7 @@ br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh
         bti_memo_clear(ps->top_memo, BTI_TOP_MEMO);
         ps->top_m.memo_gen = 1;
     }
+    if (ps->cut_fresh) cut_initial(ps, p);
     ps->e0.m = &ps->top_m;
     bti_part_roots(&ps->e0, ps);
     ps->e0.m = NULL;
@@ -568,6 +593,20 @@ static void cut_by_count(bt_parts *ps, uint32_t i, uint32_t code, int depth, int
     if (ps->cut_hi[i] != BTI_NO_IDX) cut_by_count(ps, ps->cut_hi[i], code << 1 | 1, depth + 1, levels - 1, n);
 }
 
+/* Cuts the triangle named code, with t triangles below it and no complete records to
+ * say where: halves at once down to about BTI_PART_SPLIT each, at most 3 levels (8
+ * parts) and within BTI_PART_DEPTH_MAX and BTI_PART_DEEP, halves after what they halve. */
+static void cut_blind(bt_parts *ps, uint32_t code, uint32_t t, uint32_t *n)
+{
+    const int d = depth_of(code);
+    int levels = 1, l;
+    uint32_t j;
+    while (levels < 3 && (t >> levels) > BTI_PART_SPLIT) levels++;
+    if (levels > BTI_PART_DEPTH_MAX - d) levels = BTI_PART_DEPTH_MAX - d;
+    for (l = 0; l < levels; l++)
+        for (j = 0; j < 1u << l && *n < BTI_PART_DEEP; j++) ps->deep[(*n)++] = code << l | j;
+}
+
 /* Next frame's cuts below BTI_PART_DEPTH (bti_part_roots) from this frame's parts:
  * this frame's, less those whose halves are both roots with fewer than
  * BTI_PART_MERGE triangles between them; and each root with more than
@@ -600,32 +639,24 @@ static void regroup(bt_parts *ps)
         big[q] = k;
     }
     for (q = 0; q < nbig && n < BTI_PART_DEEP; q++) {
-        const uint32_t c = ps->root_code[big[q]], t = ps->slot[big[q]].m.ntri;
-        const int d = depth_of(c);
-        int levels = 1, l;
-        uint32_t j;
-        if (count_below(ps, big[q])) {      /* where its triangles are */
-            cut_by_count(ps, 0, c, d, 4, &n);
-            continue;
-        }
-        /* no complete records: halves at once down to about BTI_PART_SPLIT each */
-        while (levels < 3 && (t >> levels) > BTI_PART_SPLIT) levels++;
-        if (levels > BTI_PART_DEPTH_MAX - d) levels = BTI_PART_DEPTH_MAX - d;
-        for (l = 0; l < levels; l++)            /* halves after what they halve */
-            for (j = 0; j < 1u << l && n < BTI_PART_DEEP; j++) ps->deep[n++] = c << l | j;
+        const uint32_t c = ps->root_code[big[q]];
+        if (count_below(ps, big[q]))        /* where its triangles are */
+            cut_by_count(ps, 0, c, depth_of(c), 4, &n);
+        else
+            cut_blind(ps, c, ps->slot[big[q]].m.ntri, &n);
     }
     ps->ndeep = n;
     sort_cuts(ps);
 }
 
 /* After a frame a full part sent to bt_extract: those parts are cut from the next
- * frame on (regroup's rule, their sizes unknown), the other cuts kept. */
+ * frame on (cut_blind, at least part_tri triangles each), the other cuts kept. */
 static void regroup_full(bt_parts *ps)
 {
     uint32_t k, n = 0;
     for (k = 0; k < ps->nused; k++) ps->deep[n++] = ps->used[k];
     for (k = 0; k < ps->nroot && n < BTI_PART_DEEP; k++)
-        if (ps->slot[k].e.full && depth_of(ps->root_code[k]) < BTI_PART_DEPTH_MAX) ps->deep[n++] = ps->root_code[k];
+        if (ps->slot[k].e.full) cut_blind(ps, ps->root_code[k], ps->part_tri, &n);
     ps->ndeep = n;
     sort_cuts(ps);
 }

@@ -241,6 +241,35 @@ static void test_coherence_full_parts(void)
     part_tri = 32768;
 }
 
+/* The first frame's cut follows the screen (core/bt_part.c cut_initial): low over the
+ * lake at 1280x720 and 0.5 px (about 80 k triangles), parts of the scene's size (8192
+ * triangles).  Cut at depth 4, four of the 32 parts near the eye overflow and the first
+ * two frames are extracted serially; cut for the screen (128 triangles at depth 6, those
+ * in view become parts), the first frame is joined from its parts.  Every frame is the
+ * from-scratch mesh. */
+static void test_coherence_first_cut(void)
+{
+    campath cp;
+    br_err err;
+    knobs k = VIEWER;
+    int i, ok = 1;
+    part_tri = 8192;
+    if (!open_dem("assets/N47E009.hgt.gz")) { CHECK(0); part_tri = 32768; return; }
+    CHECK(campath_read("assets/lake-path.cam", &cp, &err) == BR_OK);
+    k.w = 1280; k.h = 720; k.pix_q8 = 128;
+    frames = differ = 0;
+    parts_most = 0;
+    ok &= frame(cp.cam[0], &k);
+    CHECK_MSG(parts_most > 32, "first frame joined from %u parts (0: serial)", parts_most);
+    CHECK_MSG(A.m.ntri > 60000, "%u triangles", A.m.ntri);
+    for (i = 1; i < 8 && i < cp.n; i++) ok &= frame(cp.cam[i], &k);
+    CHECK(ok);
+    CHECK_MSG(differ == 0, "%ld of %ld frames differ", differ, frames);
+    campath_free(&cp);
+    close_dem();
+    part_tri = 32768;
+}
+
 /* Part roots whose own corners move.  On N47E009 the diamonds above the parts are split
  * at full weight on every shipped path, so a replayed part's root corners keep their
  * heights there.  crater_0513.bt (513^2, no padding: the top diamonds carry their real
@@ -473,6 +502,7 @@ int main(void)
     T_RUN(test_box_dist);
     T_RUN(test_coherence_paths);
     T_RUN(test_coherence_full_parts);
+    T_RUN(test_coherence_first_cut);
     T_RUN(test_coherence_root_corners);
     T_RUN(test_coherence_flights);
     T_RUN(test_coherence_margin_matters);
