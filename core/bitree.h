@@ -392,7 +392,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m);
  * fallback to the budget rule is today's.  The walk of the parts reads t->st
  * only; bt_extract_end updates it, as bt_extract does.  ps, t, p and m must
  * stay unchanged from begin to the last join. */
-#define BT_PARTS 128
+#define BT_PARTS 255
 typedef struct bt_parts bt_parts;
 /* Bytes for parts of part_tri triangles each (>= 2); 0 if too large. */
 size_t bt_parts_mem_size(uint32_t part_tri);

@@ -135,10 +135,9 @@ static void match_slots(bt_parts *ps)
  * view of many triangles the parts at BTI_PART_DEPTH near the eye overflow part_tri
  * (a full part sends the frame to the serial extraction); so extra grows with the
  * screen in threshold areas, S = w h / pixel_err^2: 0 below 2^17 (320x240 at 1 px), 1
- * below 2^19 (640x480 at 1 px), else 2 (1280x720), BT_PARTS roots.  (Views over
- * N47E009 have a triangle per 20 to 50 threshold areas: first parts of about 100 to
- * 600 triangles at these sizes.)  The next frames cut and join by size
- * (regroup). */
+ * below 2^19 (640x480 at 1 px), else 2 (1280x720).  (Views over N47E009 have a
+ * triangle per 20 to 50 threshold areas: first parts of about 100 to 600 triangles at
+ * these sizes.)  The next frames cut and join by size (regroup). */
 static void cut_initial(bt_parts *ps, const bt_params *p)
 {
     /* (an error above 256 px counts as 256: no product overflows) */

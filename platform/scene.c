@@ -242,7 +242,9 @@ static br_status chunks_reserve(scene *s, size_t n)
     return BR_OK;
 }
 
-#define SCENE_PART_TRI 8192
+/* A part's room: BT_PARTS parts of 4,096 triangles (about 280 MB reserved, touched as
+ * used; docs/bitree.md "Cutting the parts") */
+#define SCENE_PART_TRI 4096
 
 br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err)
 {
