@@ -34,7 +34,7 @@ static side A, B;           /* A: coherent, B: from scratch */
 static long frames, differ;
 static long parts_run, parts_reused;   /* A's parts, and those its last mesh served */
 static uint32_t parts_most;            /* A's most parts in a frame */
-static uint32_t part_tri = 32768;      /* triangles a part holds (side_open) */
+static uint32_t part_tri = 4096;       /* triangles a part holds (side_open; the scene's) */
 
 static int side_open(side *s)
 {
@@ -233,12 +233,12 @@ static void test_coherence_paths(void)
 static void test_coherence_full_parts(void)
 {
     part_tri = 700;
-    if (!open_dem("assets/N47E009.hgt.gz")) { CHECK(0); part_tri = 32768; return; }
+    if (!open_dem("assets/N47E009.hgt.gz")) { CHECK(0); part_tri = 4096; return; }
     parts_run = parts_reused = 0;
     fly_path("assets/default-path.cam", 1, 40, 256);
     CHECK_MSG(parts_run > 0 && parts_reused > 0, "%ld parts joined, %ld reused", parts_run, parts_reused);
     close_dem();
-    part_tri = 32768;
+    part_tri = 4096;
 }
 
 /* The first frame's cut follows the screen (core/bt_part.c cut_initial): low over the
@@ -252,8 +252,7 @@ static void test_coherence_first_cut(void)
     br_err err;
     knobs k = VIEWER;
     int i, ok = 1;
-    part_tri = 4096;
-    if (!open_dem("assets/N47E009.hgt.gz")) { CHECK(0); part_tri = 32768; return; }
+    if (!open_dem("assets/N47E009.hgt.gz")) { CHECK(0); return; }
     CHECK(campath_read("assets/lake-path.cam", &cp, &err) == BR_OK);
     k.w = 1280; k.h = 720; k.pix_q8 = 224;
     frames = differ = 0;
@@ -266,7 +265,6 @@ static void test_coherence_first_cut(void)
     CHECK_MSG(differ == 0, "%ld of %ld frames differ", differ, frames);
     campath_free(&cp);
     close_dem();
-    part_tri = 32768;
 }
 
 /* Part roots whose own corners move.  On N47E009 the diamonds above the parts are split

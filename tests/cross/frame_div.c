@@ -27,7 +27,7 @@
 #include "raster/raster.h"
 #include "raster/terrain.h"
 
-enum { SIDE = 1201, MAX_TRI = 400000, PART_TRI = 32768, BAND = 16 };
+enum { SIDE = 1201, MAX_TRI = 400000, PART_TRI = 4096, BAND = 16 };
 
 static uint32_t px_hash;
 
