@@ -386,8 +386,10 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m);
  *   bt_extract_part(ps, k), k < n         any order, concurrently for distinct k
  *   bt_extract_end(ps, &j)                serial; hysteresis state, offsets
  *   bt_extract_join(ps, k, ..), k < j     any order, concurrently for distinct k
- * Only BT_VIEW without the reorder pass is partitioned; other modes, and a
- * frame where a part mesh is full or the joined mesh would not fit m, are
+ * A part whose mesh is full is cut, and the new parts extracted, within
+ * bt_extract_end (serially, up to 2 rounds; j is then the new count).  Only
+ * BT_VIEW without the reorder pass is partitioned; other modes, and a frame
+ * where a part mesh is still full or the joined mesh would not fit m, are
  * extracted by bt_extract (begin or end call it; n or j is then 0), so the
  * fallback to the budget rule is today's.  The walk of the parts reads t->st
  * only; bt_extract_end updates it, as bt_extract does.  ps, t, p and m must

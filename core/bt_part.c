@@ -184,6 +184,7 @@ br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh
         bti_memo_clear(ps->top_memo, BTI_TOP_MEMO);
         ps->top_m.memo_gen = 1;
     }
+    ps->frame++;
     if (ps->cut_fresh) cut_initial(ps, p);
     ps->e0.m = &ps->top_m;
     bti_part_roots(&ps->e0, ps);
@@ -363,6 +364,7 @@ void bt_extract_part(bt_parts *ps, uint32_t k)
     uint32_t hs = PART_HASH_MIN, ms;
     if (!ps || ps->serial || k >= ps->nroot) return;
     ps->replayed[k] = (uint8_t)part_replay(ps, k);
+    ps->slot[k].done = ps->frame;
     if (ps->replayed[k]) return;
     e = &ps->slot[k].e;
     /* tables for twice last frame's vertices (load <= 1/4 of the hash): a part's
@@ -660,6 +662,48 @@ static void regroup_full(bt_parts *ps)
     sort_cuts(ps);
 }
 
+/* Whether slot k's mesh is this frame's for root k: extracted this frame, whole, from
+ * the same triangle (part_replay's test of the corners) */
+static int slot_current(const bt_parts *ps, uint32_t k)
+{
+    const bti_root *rt = &ps->root[k], *lr = &ps->slot[k].last_root;
+    return ps->slot[k].done == ps->frame && !ps->slot[k].e.full && !ps->slot[k].e.lost
+        && same_pt(&rt->a, &lr->a) && same_pt(&rt->c, &lr->c) && same_pt(&rt->b, &lr->b)
+        && rt->in_hyp == lr->in_hyp && rt->out_hyp == lr->out_hyp;
+}
+
+/* Parts that filled their mesh, cut here (regroup_full, 3 levels) and extracted again
+ * in this frame, serially, up to BTI_PART_RETRY rounds: the roots are found again
+ * through the top walk's memo (this frame's entries: the same decisions), the parts the
+ * cut left alone keep the meshes they made this frame (slot_current), the pieces walk.
+ * A part still full after that, or one whose seams were lost, leaves the frame to the
+ * serial extraction (bt_extract_end); a cut that cannot grow (no room, or at
+ * BTI_PART_DEPTH_MAX) stops the rounds.  Costs the walk of the full parts' triangles
+ * again, where the serial extraction would walk every part's. */
+#define BTI_PART_RETRY 2
+static void retry_full(bt_parts *ps)
+{
+    int round;
+    for (round = 0; round < BTI_PART_RETRY; round++) {
+        uint32_t k, full = 0;
+        for (k = 0; k < ps->nroot; k++) {
+            if (ps->slot[k].e.lost) return;
+            full += ps->slot[k].e.full;
+        }
+        if (!full) return;
+        regroup_full(ps);
+        if (ps->ndeep <= ps->nused) return;
+        ps->e0.m = &ps->top_m;
+        bti_part_roots(&ps->e0, ps);
+        ps->e0.m = NULL;
+        match_slots(ps);
+        for (k = 0; k < ps->nroot; k++) {
+            if (slot_current(ps, k)) ps->replayed[k] = 0;
+            else bt_extract_part(ps, k);
+        }
+    }
+}
+
 br_status bt_extract_end(bt_parts *ps, uint32_t *njoin)
 {
     bt_mesh *m;
@@ -667,6 +711,7 @@ br_status bt_extract_end(bt_parts *ps, uint32_t *njoin)
     uint32_t k, nfict = 0;
     *njoin = 0;
     if (!ps || ps->serial) return BR_OK;
+    retry_full(ps);
     m = ps->m;
     nsp = ps->ntop;
     ps->nreused = 0;
