@@ -184,7 +184,11 @@ br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh
         bti_memo_clear(ps->top_memo, BTI_TOP_MEMO);
         ps->top_m.memo_gen = 1;
     }
-    ps->frame++;
+    if (++ps->frame == 0) {      /* (after 2^32 frames: no slot's done may match by wrapping) */
+        uint32_t k;
+        for (k = 0; k < BT_PARTS; k++) ps->slot[k].done = 0;
+        ps->frame = 1;
+    }
     if (ps->cut_fresh) cut_initial(ps, p);
     ps->e0.m = &ps->top_m;
     bti_part_roots(&ps->e0, ps);
