@@ -372,11 +372,10 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m);
  * at depth 4 below the two root triangles, or 5 or 6 for the first frame on a large
  * screen, a part that had more than 256 triangles cut from the next frame on where
  * its triangles are, two halves with fewer than 128 between them joined again),
- * each extracted into its own part
- * mesh, then joined in walk order into m as one strip: part k's strip is appended after line
- * triangles that repeat the previous part's last index and its first (parity
- * kept).  The real triangles are the serial walk's, in its order, with the same
- * winding; a vertex on the edge between two parts may be listed once per part
+ * each extracted into its own part mesh, then joined in walk order into m as one
+ * strip: part k's strip is appended after line triangles that repeat the previous
+ * part's last index and its first (parity kept).  The real triangles are the serial
+ * walk's, in its order, with the same winding; a vertex on the edge between two parts may be listed once per part
  * (same x, y, z, morph), the one exception to "no two vertices share (x, y)".
  * The result never depends on how the parts were scheduled; which vertices are
  * listed twice depends on the cut, so on the frames since bt_parts_init or

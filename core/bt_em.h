@@ -208,7 +208,6 @@ struct bt_parts {
     /* the triangles below BTI_PART_DEPTH to cut this frame (deep) and those cut (used) */
     uint32_t deep[BTI_PART_DEEP + 1], ndeep, used[BTI_PART_DEEP + 1], nused;
     int cut_fresh;                 /* no cut yet: bt_extract_begin makes the first (cut_initial) */
-    uint32_t frame;                /* bt_extract_begin's count (slot done) */
     uint32_t voff[BT_PARTS];       /* part k's vertices go to m->v + voff[k] */
     uint32_t soff[BT_PARTS], skip[BT_PARTS]; /* its strip from index skip[k] to m->strip + soff[k] */
     /* A part's slot: its mesh and extraction, written by its thread at every leaf
@@ -230,7 +229,7 @@ struct bt_parts {
         bti_root last_root;
         uint32_t ridx[3];
         uint8_t reuse;
-        uint32_t done;             /* ps->frame when its mesh is that frame's for its root */
+        uint8_t done;              /* extracted since this frame's bt_extract_begin */
         uint32_t hbase;            /* vertex hash generation (part_reset) */
         uint32_t hint_nv;          /* vertices last frame: the hash and memo in use */
         /* the first hclean, mclean of the hfull, mfull hash and memo slots are cleared

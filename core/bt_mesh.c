@@ -545,7 +545,8 @@ static void run(bti_extract *e)
  * a part root, with the plane mask rec would hand it; the part's rec decides its
  * diamond again (the same answer: decide reads only the diamond, the camera and
  * ST_PREV) and emits its subtree.  Diamonds split here go to ps->top_ids.  Culled
- * triangles give no part.  e->m is ps->top_m: a memo of these decisions alone.  Roots: 2 << BTI_PART_DEPTH, plus one a listed cut. */
+ * triangles give no part.  e->m is ps->top_m: a memo of these decisions alone.  Roots:
+ * 2 << BTI_PART_DEPTH, plus one a listed cut. */
 static void top(bti_extract *e, bt_parts *ps, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, unsigned mask,
                 int depth, uint32_t code)
 {

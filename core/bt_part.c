@@ -162,6 +162,16 @@ void bt_parts_reset(bt_parts *ps)
     }
 }
 
+/* This frame's roots from ps->deep (the walk above the parts, through its own memo),
+ * each given its slot (match_slots) */
+static void find_roots(bt_parts *ps)
+{
+    ps->e0.m = &ps->top_m;
+    bti_part_roots(&ps->e0, ps);
+    ps->e0.m = NULL;
+    match_slots(ps);
+}
+
 br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh *m, uint32_t *nparts)
 {
     br_status s;
@@ -184,16 +194,12 @@ br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh
         bti_memo_clear(ps->top_memo, BTI_TOP_MEMO);
         ps->top_m.memo_gen = 1;
     }
-    if (++ps->frame == 0) {      /* (after 2^32 frames: no slot's done may match by wrapping) */
+    {
         uint32_t k;
         for (k = 0; k < BT_PARTS; k++) ps->slot[k].done = 0;
-        ps->frame = 1;
     }
     if (ps->cut_fresh) cut_initial(ps, p);
-    ps->e0.m = &ps->top_m;
-    bti_part_roots(&ps->e0, ps);
-    ps->e0.m = NULL;
-    match_slots(ps);
+    find_roots(ps);
     *nparts = ps->nroot;
     return BR_OK;
 }
@@ -278,6 +284,14 @@ static inline int replay_decide(bti_extract *e, bti_rec *r, unsigned *mask, uint
 
 static int same_pt(const bti_pt *a, const bti_pt *b) { return a->x == b->x && a->y == b->y; }
 
+/* Whether roots r and q are the same triangle, entered the same way (their corners'
+ * heights and weights aside) */
+static int same_root(const bti_root *r, const bti_root *q)
+{
+    return same_pt(&r->a, &q->a) && same_pt(&r->c, &q->c) && same_pt(&r->b, &q->b)
+        && r->in_hyp == q->in_hyp && r->out_hyp == q->out_hyp;
+}
+
 /* Corner j of root r in record order: 0 a, 1 c, 2 b (BTI_REF_A + j) */
 static inline const bti_pt *root_corner(const bti_root *r, uint32_t j)
 {
@@ -315,8 +329,7 @@ static int part_replay(bt_parts *ps, uint32_t k)
     uint32_t i, n = ps->slot[k].nrec, j;
     int moved[3];
     if (!ps->slot[k].reuse || !ps->e0.coh || ps->coh.fresh || ps->e0.coh_acc == UINT64_MAX
-        || !same_pt(&rt->a, &lr->a) || !same_pt(&rt->c, &lr->c) || !same_pt(&rt->b, &lr->b)
-        || rt->in_hyp != lr->in_hyp || rt->out_hyp != lr->out_hyp || pm->memo_gen >= 0xFFFFu)
+        || !same_root(rt, lr) || pm->memo_gen >= 0xFFFFu)
         return 0;
     ps->slot[k].reuse = 0;       /* until the replay succeeds */
     pm->memo_gen++;
@@ -368,7 +381,7 @@ void bt_extract_part(bt_parts *ps, uint32_t k)
     uint32_t hs = PART_HASH_MIN, ms;
     if (!ps || ps->serial || k >= ps->nroot) return;
     ps->replayed[k] = (uint8_t)part_replay(ps, k);
-    ps->slot[k].done = ps->frame;
+    ps->slot[k].done = 1;
     if (ps->replayed[k]) return;
     e = &ps->slot[k].e;
     /* tables for twice last frame's vertices (load <= 1/4 of the hash): a part's
@@ -654,8 +667,9 @@ static void regroup(bt_parts *ps)
     sort_cuts(ps);
 }
 
-/* After a frame a full part sent to bt_extract: those parts are cut from the next
- * frame on (cut_blind, at least part_tri triangles each), the other cuts kept. */
+/* The cut with the full parts cut (cut_blind, at least part_tri triangles each) and
+ * the other cuts kept: for the retry in this frame (retry_full), and after a frame
+ * that a part still full sent to bt_extract, from the next frame on. */
 static void regroup_full(bt_parts *ps)
 {
     uint32_t k, n = 0;
@@ -667,13 +681,11 @@ static void regroup_full(bt_parts *ps)
 }
 
 /* Whether slot k's mesh is this frame's for root k: extracted this frame, whole, from
- * the same triangle (part_replay's test of the corners) */
+ * the same triangle */
 static int slot_current(const bt_parts *ps, uint32_t k)
 {
-    const bti_root *rt = &ps->root[k], *lr = &ps->slot[k].last_root;
-    return ps->slot[k].done == ps->frame && !ps->slot[k].e.full && !ps->slot[k].e.lost
-        && same_pt(&rt->a, &lr->a) && same_pt(&rt->c, &lr->c) && same_pt(&rt->b, &lr->b)
-        && rt->in_hyp == lr->in_hyp && rt->out_hyp == lr->out_hyp;
+    return ps->slot[k].done && !ps->slot[k].e.full && !ps->slot[k].e.lost
+        && same_root(&ps->root[k], &ps->slot[k].last_root);
 }
 
 /* Parts that filled their mesh, cut here (regroup_full, 3 levels) and extracted again
@@ -697,10 +709,7 @@ static void retry_full(bt_parts *ps)
         if (!full) return;
         regroup_full(ps);
         if (ps->ndeep <= ps->nused) return;
-        ps->e0.m = &ps->top_m;
-        bti_part_roots(&ps->e0, ps);
-        ps->e0.m = NULL;
-        match_slots(ps);
+        find_roots(ps);
         for (k = 0; k < ps->nroot; k++) {
             if (slot_current(ps, k)) ps->replayed[k] = 0;
             else bt_extract_part(ps, k);

@@ -207,9 +207,10 @@ GEN_SCAN(gen_scan32, int32_t)
 
 #if RS_SPANV && NARROW <= 8 && !defined(__OPTIMIZE_SIZE__)
 /* Narrow small boxes of the plain variants in vector lanes (their own copy, tri_gen_sn;
- * not in builds for size, whose one copy decides small and wide at run time): lane i holds the three edge values at column px0 +
- * i of the current row (gen_scan's a0, a1, a2 there), stepped down the rows by the y
- * steps; bit i of bits is set for the box's columns (i <= px1 - px0).  A row's inside
+ * not in builds for size, whose one copy decides small and wide at run time): lane i
+ * holds the three edge values at column px0 + i of the current row (gen_scan's a0, a1,
+ * a2 there), stepped down the rows by the y steps; bit i of bits is set for the box's
+ * columns (i <= px1 - px0).  A row's inside
  * columns are an interval (three half-planes met by a line), so the lowest and highest
  * inside lanes are gen_scan's l and r: the same spans.  Every value a lane takes lies
  * within gen_scan32's bound (below 2^22: a lane's centre is at most NARROW - 1 <= 7
