@@ -421,7 +421,7 @@ static void test_threads_parts_core(void)
     double eye[3], tgt[3];
     cam c;
     bt_params bp;
-    uint32_t n, k, v0, nv, cap;
+    uint32_t n, k, v0, nv, cap, pt;
     int round;
     CHECK(open_scene());
     if (!sc_ok) return;
@@ -429,13 +429,14 @@ static void test_threads_parts_core(void)
     CHECK_EQ(scene_camera(&sc, eye, tgt, 60, W, H, &c), BR_OK);
     for (round = 0; round < 2; round++) {
         cap = round == 0 ? 400000 : 3000;      /* round 1: the selection does not fit */
+        pt = cap < 4096 ? cap : 4096;          /* a part's room: the scene's */
         a = malloc(bt_mesh_mem_size(cap)); b = malloc(bt_mesh_mem_size(cap));
-        pm = malloc(bt_parts_mem_size(cap < 4096 ? cap : 4096));
+        pm = malloc(bt_parts_mem_size(pt));
         CHECK(a && b && pm);
         if (!a || !b || !pm) break;
         CHECK_EQ(bt_mesh_init(&ma, cap, a, bt_mesh_mem_size(cap)), BR_OK);
         CHECK_EQ(bt_mesh_init(&mb, cap, b, bt_mesh_mem_size(cap)), BR_OK);
-        CHECK_EQ(bt_parts_init(&ps, cap < 4096 ? cap : 4096, pm, bt_parts_mem_size(cap < 4096 ? cap : 4096)), BR_OK);
+        CHECK_EQ(bt_parts_init(&ps, pt, pm, bt_parts_mem_size(pt)), BR_OK);
         memset(&bp, 0, sizeof bp);
         bp.mode = BT_VIEW; bp.c = &c; bp.fr = sc.rt.fr; bp.pixel_err_q8 = 256; bp.hyst_q8 = 64;
         memset(sc.tree.st, 0, (size_t)sc.tree.nslot);
