@@ -182,7 +182,8 @@ int cmd_bench_default(int argc, char **argv)
     ws_args_table(&wa, &wo, water_t);
     {
         int size[2] = { 320, 240 }, fmt = 0, depth = 0, scene_choice = 0, npos = 0, pr;
-        const char *dem = NULL, *pos[1];
+        const char *pos[1];
+        opt_strs dem_list = { dems, 0, (int)(sizeof dems / sizeof dems[0]) };
         const opt_spec own[] = {
             { "--scene", OPT_CHOICE, &scene_choice, 0, 0, 0, "default", "S", "the users' scene (assets/N47E009.hgt.gz)", NULL },
             { "--path", OPT_STR, &path, 0, 0, 0, NULL, "FILE", "camera path: one --camera line a frame (assets/*.cam)", NULL },
@@ -193,7 +194,8 @@ int cmd_bench_default(int argc, char **argv)
             { "--format", OPT_CHOICE, &fmt, 0, 0, 0, "rgb888|rgb565", "F", "pixel format", NULL },
             { "--depth", OPT_CHOICE, &depth, 0, 0, 0, "32|16", "BITS", "depth buffer bits", NULL },
             { "--bands", OPT_INT, &r->bands, 1, RS_MAX_DIM, 0, NULL, "ROWS", "band height (default 64, the viewer's)", NULL },
-            { "--dem", OPT_STR, &dem, 0, 0, 0, NULL, "FILE", "another terrain instead of the default", NULL },
+            { "--dem", OPT_STRS, &dem_list, 0, 0, 0, NULL, "FILE",
+              "another terrain instead of the default; given again, tiles merged as render merges its inputs", NULL },
             { "--tree", OPT_STR, &tree, 0, 0, 0, NULL, "FILE", "attach the bitree saved by `bitrain mesh --save-tree` instead of building it", NULL },
             { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT.png", "write the last frame", NULL },
             { "--with-water", OPT_FLAG, &r->water, 0, 0, 0, NULL, NULL,
@@ -214,7 +216,7 @@ int cmd_bench_default(int argc, char **argv)
         r->h = size[1];
         r->fmt = fmt ? RS_FMT_RGB565 : RS_FMT_XRGB8888;
         r->depth = depth ? RS_DEPTH16 : RS_DEPTH32;
-        if (dem) dems[ndem++] = dem;
+        ndem = dem_list.n;
     }
     if (!ndem) dems[ndem++] = "assets/N47E009.hgt.gz";
     if (path && campath_read(path, &cp, &err) != BR_OK) { fprintf(stderr, "bitrain bench: %s\n", err.msg); goto done; }

@@ -40,8 +40,10 @@ static void range_text(const opt_spec *o, char *buf, size_t len)
 
 static int whole(double v) { return v == floor(v); }
 
-/* Reads a value of kind o->kind from v into o->dst; OPT_ERR with a message. */
-static int take_value(const char *cmd, const opt_spec *o, const char *v)
+/* Reads a value of kind o->kind from v into o->dst; OPT_ERR with a message.  given: the
+ * option was already given on this command line (an OPT_STR's default is not a value
+ * given). */
+static int take_value(const char *cmd, const opt_spec *o, const char *v, int given)
 {
     char range[64];
     double x[8];
@@ -85,8 +87,18 @@ static int take_value(const char *cmd, const opt_spec *o, const char *v)
     }
     case OPT_STR:
         if (!v[0]) return opt_fail(cmd, o->name, "needs a non-empty value");
+        if (given)
+            return opt_fail(cmd, o->name, "given twice ('%s', then '%s'): it takes one %s", *(const char **)o->dst,
+                            v, o->meta ? o->meta : "value");
         *(const char **)o->dst = v;
         return OPT_OK;
+    case OPT_STRS: {
+        opt_strs *l = (opt_strs *)o->dst;
+        if (!v[0]) return opt_fail(cmd, o->name, "needs a non-empty value");
+        if (l->n >= l->max) return opt_fail(cmd, o->name, "'%s': at most %d are accepted", v, l->max);
+        l->v[l->n++] = v;
+        return OPT_OK;
+    }
     case OPT_CHOICE: {
         const char *p = o->choices;
         int k = 0;
@@ -122,10 +134,22 @@ static int looks_like_number(const char *s)
     return s && read_number(s, s + strlen(s), &x);
 }
 
+/* Whether o is in done[0..n); adds it when not and there is room (opt_parse's record of
+ * the options given so far: OPT_STR refuses a second value). */
+static int given_before(const opt_spec **done, int *n, int cap, const opt_spec *o)
+{
+    int j;
+    for (j = 0; j < *n; j++)
+        if (done[j] == o) return 1;
+    if (*n < cap) done[(*n)++] = o;
+    return 0;
+}
+
 int opt_parse(const char *cmd, const char *synopsis, const opt_spec *const *tables, int argc, char **argv,
               const char **pos, int maxpos, int *npos)
 {
-    int i, only_pos = 0;
+    const opt_spec *done[128];
+    int i, only_pos = 0, given, ndone = 0;
     *npos = 0;
     for (i = 0; i < argc; i++) {
         const char *a = argv[i];
@@ -148,16 +172,17 @@ int opt_parse(const char *cmd, const char *synopsis, const opt_spec *const *tabl
             fprintf(stderr, "bitrain %s: unknown option '%s' (`bitrain %s --help` lists them)\n", cmd, a, cmd);
             return OPT_ERR;
         }
+        given = given_before(done, &ndone, 128, o);
         if (o->seen) *o->seen = 1;
         if (o->kind == OPT_FLAG) { *(int *)o->dst = 1; continue; }
         if (o->kind == OPT_INT_OPT) {
             if (i + 1 < argc && looks_like_number(argv[i + 1])) {
-                if (take_value(cmd, o, argv[++i]) != OPT_OK) return OPT_ERR;
+                if (take_value(cmd, o, argv[++i], given) != OPT_OK) return OPT_ERR;
             } else *(int *)o->dst = (int)o->lo;
             continue;
         }
         if (i + 1 >= argc) return opt_fail(cmd, a, "needs a value%s%s", o->meta ? " " : "", o->meta ? o->meta : "");
-        if (take_value(cmd, o, argv[++i]) != OPT_OK) return OPT_ERR;
+        if (take_value(cmd, o, argv[++i], given) != OPT_OK) return OPT_ERR;
     }
     return OPT_OK;
 }
@@ -172,7 +197,7 @@ void opt_help(FILE *f, const char *cmd, const char *synopsis, const opt_spec *co
             char head[64], range[64] = "";
             snprintf(head, sizeof head, "%s%s%s", o->name, o->meta ? " " : "", o->meta ? o->meta : "");
             if (o->kind == OPT_CHOICE) snprintf(range, sizeof range, " (%s)", o->choices);
-            else if (o->kind != OPT_FLAG && o->kind != OPT_STR) {
+            else if (o->kind != OPT_FLAG && o->kind != OPT_STR && o->kind != OPT_STRS) {
                 char r[48];
                 range_text(o, r, sizeof r);
                 snprintf(range, sizeof range, " (%s)", r);

@@ -22,7 +22,10 @@ typedef enum opt_kind {
     OPT_NUM,        /* a finite decimal number in [lo, hi]: *(double *)dst */
     OPT_NUMS,       /* n comma-separated finite numbers, each in [lo, hi]: double[n] at dst */
     OPT_SIZE,       /* WxH, whole numbers in [lo, hi]: int[2] at dst */
-    OPT_STR,        /* a non-empty string: *(const char **)dst */
+    OPT_STR,        /* a non-empty string: *(const char **)dst; given twice is an error (a
+                       second file name would silently replace the first) */
+    OPT_STRS,       /* a non-empty string each time the option is given, in order: an
+                       opt_strs at dst; more than its max is an error */
     OPT_CHOICE,     /* one of the '|'-separated words of `choices`: *(int *)dst = its index */
     OPT_INT_OPT     /* an optional whole number in [lo, hi]: taken when the next argument is
                        one, else *(int *)dst = (int)lo (e.g. `--full [STEP]`) */
@@ -40,6 +43,9 @@ typedef struct opt_spec {
     const char *help;       /* one line */
     int *seen;              /* optional: set to 1 when the option is given */
 } opt_spec;
+
+/* OPT_STRS's destination: v[0..n) the values given, at most max (the caller's array). */
+typedef struct opt_strs { const char **v; int n, max; } opt_strs;
 
 /* The end of a table. */
 #define OPT_END { NULL, OPT_FLAG, NULL, 0, 0, 0, NULL, NULL, NULL, NULL }

@@ -179,6 +179,33 @@ static void test_parser_unit(void)
     }
 }
 
+/* A file name given twice is refused (the second would silently replace the first); a
+ * list option (bench's --dem) keeps every value in order, up to its room. */
+static void test_strings(void)
+{
+    const char *file = "default.png", *list_v[2], *pos[1];
+    opt_strs list = { list_v, 0, 2 };
+    int npos = 0;
+    const opt_spec t[] = {
+        { "-o", OPT_STR, &file, 0, 0, 0, NULL, "OUT", "o", NULL },
+        { "--dem", OPT_STRS, &list, 0, 0, 0, NULL, "FILE", "dem", NULL },
+        OPT_END
+    };
+    const opt_spec *const tabs[] = { t, NULL };
+    char a0[] = "-o", a1[] = "a.png", a2[] = "--dem", a3[] = "x.hgt", a4[] = "--dem", a5[] = "y.hgt", a6[] = "-o",
+         a7[] = "b.png", a8[] = "--dem", a9[] = "z.hgt";
+    char *one[] = { a0, a1, a2, a3, a4, a5 };
+    char *twice[] = { a0, a1, a6, a7 };
+    char *three[] = { a2, a3, a4, a5, a8, a9 };
+    CHECK_EQ(opt_parse("t", "", tabs, 6, one, pos, 1, &npos), OPT_OK);
+    CHECK(!strcmp(file, "a.png"));
+    CHECK(list.n == 2 && !strcmp(list_v[0], "x.hgt") && !strcmp(list_v[1], "y.hgt"));
+    file = "default.png";
+    CHECK_EQ(opt_parse("t", "", tabs, 4, twice, pos, 1, &npos), OPT_ERR);
+    list.n = 0;
+    CHECK_EQ(opt_parse("t", "", tabs, 6, three, pos, 1, &npos), OPT_ERR);
+}
+
 static void test_version(void)
 {
     FILE *p = popen("./bitrain --version", "r");
@@ -193,6 +220,7 @@ static void test_version(void)
 int main(void)
 {
     T_RUN(test_parser_unit);
+    T_RUN(test_strings);
     T_RUN(test_bad_values_named);
     T_RUN(test_budget_and_unknown);
     T_RUN(test_monotone_error);
