@@ -15,6 +15,20 @@
 
 /* ---------------------------------------------------------------- passes */
 
+/* The reduced reflection row that full-resolution row y reads: the first whose sample
+ * (its centre, full-resolution row ry 2^s + 2^(s-1)) lies at or below row y's centre
+ * y + 1/2, that is ceil((y + 1/2 - 2^(s-1)) / 2^s) = (y + 2^(s-1)) >> s for s >= 1 (y
+ * itself at full resolution).  Never above: the mirror image of a shore begins at the
+ * shore line, so the water row just below it always reads mirrored terrain; the nearest
+ * sample (y >> s) lies half a row above it on every other row, and there the far
+ * shore's first water row read the sky, a bright line between the hills and their
+ * reflection (half resolution, 1 row in 2).  The image moves down by 1/2 row on average
+ * at half resolution, 3/2 at quarter. */
+static inline int32_t refl_row(int32_t y, int32_t s)
+{
+    return (y + ((1 << s) >> 1)) >> s;
+}
+
 /* Reflection rows (of the reduced frame) stored for scratch rows [top, bottom): those
  * the post hook can read, the water rows widened by the waves' reach. */
 static void refl_rows(const rw_frame *r, int32_t top, int32_t bottom, int32_t *h0, int32_t *h1)
@@ -24,8 +38,8 @@ static void refl_rows(const rw_frame *r, int32_t top, int32_t bottom, int32_t *h
     if (lo < top) lo = top;
     if (hi > bottom) hi = bottom;
     if (lo >= hi) { *h0 = *h1 = 0; return; }
-    *h0 = lo >> s;
-    *h1 = ((hi - 1) >> s) + 1;
+    *h0 = refl_row(lo, s);
+    *h1 = refl_row(hi - 1, s) + 1;
     if (*h1 > r->h >> s) *h1 = r->h >> s;
     if (*h0 > *h1) *h0 = *h1;
 }
@@ -85,8 +99,8 @@ static br_status refl_run(const void *user, rs_band *b, int32_t self, rs_band_st
         while (yb > ya && !refl_body_in_row(r, b, yb)) yb--;
         ya = ya - RW_WAVE_PX < 0 ? 0 : ya - RW_WAVE_PX;
         yb = yb + RW_WAVE_PX > r->h - 1 ? r->h - 1 : yb + RW_WAVE_PX;
-        if ((ya >> s) > g0) g0 = ya >> s;
-        if ((yb >> s) + 1 < g1) g1 = (yb >> s) + 1;
+        if (refl_row(ya, s) > g0) g0 = refl_row(ya, s);
+        if (refl_row(yb, s) + 1 < g1) g1 = refl_row(yb, s) + 1;
         if (g1 <= g0) return BR_OK;
     } else if (wp >= 0 && wp < self) return BR_OK;  /* the water pass skipped the band */
     return rs_draw_band(r->refl, g0, g1 - g0, (uint8_t *)b->scratch[self] + (size_t)(g0 - h0) * (size_t)r->refl->w * bpp,
@@ -284,7 +298,7 @@ typedef struct rw_rowk {
     int64_t ws0, ws1, wrel0, wrel1, tkr;        /* wstep[y], wrel[y], tkr[y] */
     uint32_t cph0, cph1;        /* wph[y] + 2^30: a quarter turn on, the cosines' phase */
     /* when every row y + dy, |dy| <= RW_WAVE_PX, lies in the frame and its reduced row
-     * (y + dy) >> s in the stored rows [h0, h1) (row_k), their colour and depth rows are
+     * refl_row(y + dy) in the stored rows [h0, h1) (row_k), their colour and depth rows are
      * rcol[dy + RW_WAVE_PX], rdep[dy + RW_WAVE_PX], and for x in [rx0, rx1] every x + dx
      * lies in the frame's columns and (x + dx) >> s below rw: water_px's clamps change
      * nothing there (|dx|, |dy| <= RW_WAVE_PX: see water_px).  Otherwise rx0 > rx1. */
@@ -298,15 +312,15 @@ static RW_INLINE void row_k(const rw_frame *r, const refl_view *rv, int32_t y, r
 {
     const int32_t rz = r->rz[y], s = r->p.res_shift;
     const int64_t b = r->bq[y];
-    if (rv->col && y >= RW_WAVE_PX && y + RW_WAVE_PX < r->h && ((y - RW_WAVE_PX) >> s) >= rv->h0
-        && ((y + RW_WAVE_PX) >> s) < rv->h1) {
+    if (rv->col && y >= RW_WAVE_PX && y + RW_WAVE_PX < r->h && refl_row(y - RW_WAVE_PX, s) >= rv->h0
+        && refl_row(y + RW_WAVE_PX, s) < rv->h1) {
         const size_t bpp = fmt == RS_FMT_RGB565 ? 2u : 4u, dbp = depth == RS_DEPTH16 ? 2u : 4u;
         const int32_t xmax = (rv->rw << s) - 1 < r->w - 1 ? (rv->rw << s) - 1 : r->w - 1;
-        int32_t j, ry = (y - RW_WAVE_PX) >> s;
+        int32_t j, ry = refl_row(y - RW_WAVE_PX, s);
         const uint8_t *pc = rv->col + (size_t)(ry - rv->h0) * (size_t)rv->rw * bpp;
         const uint8_t *pd = rv->dep + (size_t)(ry - rv->h0) * (size_t)rv->rw * dbp;
-        for (j = 0; j <= 2 * RW_WAVE_PX; j++) {     /* (y + j - RW_WAVE_PX) >> s grows by 0 or 1 */
-            if ((y + j - RW_WAVE_PX) >> s != ry) {
+        for (j = 0; j <= 2 * RW_WAVE_PX; j++) {     /* refl_row(y + j - RW_WAVE_PX) grows by 0 or 1 */
+            if (refl_row(y + j - RW_WAVE_PX, s) != ry) {
                 ry++;
                 pc += (size_t)rv->rw * bpp;
                 pd += (size_t)rv->rw * dbp;
@@ -379,7 +393,8 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
             if (yy >= r->h) yy = r->h - 1;
             if (xx < 0) xx = 0;
             if (xx >= r->w) xx = r->w - 1;
-            ry = yy >> s; rx = xx >> s;
+            ry = refl_row(yy, s); rx = xx >> s;
+            if (ry > (r->h >> s) - 1) ry = (r->h >> s) - 1;    /* (the last row, h even) */
             if (rx >= rv->rw) rx = rv->rw - 1;
             if (ry >= rv->h0 && ry < rv->h1) {
                 const size_t o = (size_t)(ry - rv->h0) * (size_t)rv->rw;
