@@ -53,7 +53,8 @@
  *
  * Approximations (docs/water.md): the per-row ray z ignores the camera's roll term (cam
  * look-at cameras have none); the reflection at half or quarter resolution is sampled
- * nearest; one plane per frame gets a mirror.
+ * at the nearest reduced row at or below the pixel (water.c refl_row); one plane per
+ * frame gets a mirror.
  *
  * DIVISION: no 64-bit division per frame where core/config.h's BR_DIV64_NATIVE is 0
  * (the set-up's quotients through fx_recip, the per-pixel ones 32-bit).
