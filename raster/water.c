@@ -296,7 +296,11 @@ typedef struct rw_rowk {
     uint32_t cnum;              /* (rz^2 >> 8) << 10 as 32 bits: cos^2 t's numerator */
     int64_t bb;                 /* bq^2 + Q12^2: the row's part of cos^2 t's denominator */
     int64_t ws0, ws1, wrel0, wrel1, tkr;        /* wstep[y], wrel[y], tkr[y] */
-    uint32_t cph0, cph1;        /* wph[y] + 2^30: a quarter turn on, the cosines' phase */
+    /* wave k's phase at column x, 2^-32 turns (mod 2^32; bits 24..31 index wsine):
+     * ph[k] + u dph[k], u = 2x + 1 - w: at the row's plane point eye + wrel and time_ms,
+     * a quarter turn on (the slope of a sine is its cosine), plus u times the point's move
+     * per unit of u (wsig) times the wave numbers */
+    uint32_t ph[RW_WAVES], dph[RW_WAVES];
     /* when every row y + dy, |dy| <= RW_WAVE_PX, lies in the frame and its reduced row
      * refl_row(y + dy) in the stored rows [h0, h1) (row_k), their colour and depth rows are
      * rcol[dy + RW_WAVE_PX], rdep[dy + RW_WAVE_PX], and for x in [rx0, rx1] every x + dx
@@ -342,8 +346,23 @@ static RW_INLINE void row_k(const rw_frame *r, const refl_view *rv, int32_t y, r
     k->bb = b * b + (int64_t)Q12 * Q12;
     k->ws0 = r->wstep[y][0]; k->ws1 = r->wstep[y][1];
     k->wrel0 = r->wrel[y][0]; k->wrel1 = r->wrel[y][1];
-    k->cph0 = r->wph[y][0] + (64u << 24); k->cph1 = r->wph[y][1] + (64u << 24);
+    {
+        const uint32_t px = (uint32_t)(r->eye[0] + k->wrel0), py = (uint32_t)(r->eye[1] + k->wrel1);
+        const uint64_t s0 = (uint64_t)r->wsig[y][0], s1 = (uint64_t)r->wsig[y][1];
+        int j;
+        for (j = 0; j < RW_WAVES; j++) {
+            /* products mod 2^32 (the phase's own modulus); dph's Q16 products wrap mod 2^64,
+             * and only their bits 16..47 are kept */
+            k->ph[j] = px * (uint32_t)r->kx[j] + py * (uint32_t)r->ky[j] + (uint32_t)r->p.time_ms * r->kt[j]
+                       + (64u << 24);
+            k->dph[j] = (uint32_t)((s0 * (uint64_t)r->kx[j] + s1 * (uint64_t)r->ky[j]) >> 16);
+        }
+    }
 }
+
+#if RW_WAVES != 4
+#error "raster/water.c: water_px sums exactly four waves (RW_WAVES)"
+#endif
 
 /* The colour of water pixel (x, k->y): terrain colour ct and depth dt under it, water
  * depth dw (30-bit units), body id; fmt and depth are the frame's (constants at each
@@ -365,17 +384,18 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
          * there, they would only alias */
         if (dw < r->wave_fade_d) q8 = (int64_t)(((uint64_t)q8 * (dw >> 14) * r->inv_fade) >> 32);
         if (q8 != 0) {      /* else dx = dy = 0 and ci untilted, whatever the phase */
-            /* the phase's bits 24..31 depend on it modulo 2^32 only: the row's phase at its
-             * point plus the offset a wstep (floored, Q12) times the wave numbers, mod 2^32;
-             * the cosine is the sine a quarter turn (64 of 256) on, already in cph */
-            const uint32_t ox = (uint32_t)((a * k->ws0) >> 12), oy = (uint32_t)((a * k->ws1) >> 12);
-            const uint32_t f0 = (k->cph0 + ox * (uint32_t)r->kx[0] + oy * (uint32_t)r->ky[0]) >> 24;
-            const uint32_t f1 = (k->cph1 + ox * (uint32_t)r->kx[1] + oy * (uint32_t)r->ky[1]) >> 24;
-            const int32_t c0 = r->sine[f0], c1 = r->sine[f1];
+            /* each wave's slope at the pixel (row_k's phases); |sx|, |sy| <= 254, the sum
+             * of the amplitudes (wave_set), so |dx|, |dy| <= 512 254 >> 15 < RW_WAVE_PX */
+            const uint32_t u = (uint32_t)(2 * x + 1 - r->w);
+            const int32_t c0 = r->wsine[0][(k->ph[0] + u * k->dph[0]) >> 24];
+            const int32_t c1 = r->wsine[1][(k->ph[1] + u * k->dph[1]) >> 24];
+            const int32_t c2 = r->wsine[2][(k->ph[2] + u * k->dph[2]) >> 24];
+            const int32_t c3 = r->wsine[3][(k->ph[3] + u * k->dph[3]) >> 24];
+            const int32_t sx = c0 + c1 + c2 + c3, sy = c0 - c1 + c2 - c3;
             int32_t ti;
-            dx = (int32_t)((q8 * (c0 + c1)) >> 15);
-            dy = (int32_t)((q8 * (c0 - c1)) >> 15);
-            ti = (int32_t)ci + (int32_t)(((c0 + c1) * q8) >> 10);    /* the slope tilts cos t */
+            dx = (int32_t)((q8 * sx) >> 15);
+            dy = (int32_t)((q8 * sy) >> 15);
+            ti = (int32_t)ci + (int32_t)((sx * q8) >> 10);    /* the slope tilts cos t */
             ci = ti < 0 ? 0u : ti > RW_TAB ? (uint32_t)RW_TAB : (uint32_t)ti;
         }
     }

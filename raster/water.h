@@ -46,10 +46,11 @@
  *   RGB565: the sky and the pixels this hook writes get a 4x4 ordered dither before the
  *     5/6/5 truncation (fixed by screen position, so bands stay exact); the fogged
  *     terrain is truncated as all terrain shading is.
- * Waves: two travelling sines of world position on the water plane and time (003's
- * parametric wave of per-vertex time and flow direction, per pixel here); their slopes
- * move the reflection lookup (at most RW_WAVE_PX pixels, scaled by 1/distance) and tilt
- * cos t.  time_ms fixes the instant.
+ * Waves: RW_WAVES travelling sines of world position on the water plane and time (003's
+ * parametric wave of per-vertex time and flow direction, per pixel here), of different
+ * directions, lengths and periods (water_setup.c wave_set); their slopes move the
+ * reflection lookup (at most RW_WAVE_PX pixels, scaled by 1/distance) and tilt cos t.
+ * time_ms fixes the instant.
  *
  * Approximations (docs/water.md): the per-row ray z ignores the camera's roll term (cam
  * look-at cameras have none); the reflection at half or quarter resolution is sampled
@@ -70,6 +71,7 @@
 #include "raster/frame.h"
 
 #define RW_WAVE_PX 4            /* largest wave displacement of the reflection lookup, pixels */
+#define RW_WAVES 4              /* travelling sines summed (water_setup.c wave_set) */
 #define RW_MAX_ID 31            /* body ids 1 .. 31 survive RGB565 in the water pass's red bits */
 #define RW_ID_RGB(id) ((uint32_t)(id) << 19)
 #define RW_ID_MASK RW_ID_RGB(31)
@@ -139,9 +141,10 @@ typedef struct rw_frame {
     uint8_t trow[RS_MAX_DIM];   /* per row: 1 when a tested water triangle may cover it */
     int64_t wrel[RS_MAX_DIM][2], wstep[RS_MAX_DIM][2];  /* per row: plane point = eye + rel + a step
                                                            (Q12 a, world units) */
-    int64_t kx[2], ky[2], kt[2];        /* wave phase per world unit (x, y) and per ms, 2^-24 turns */
-    uint32_t wph[RS_MAX_DIM][2];        /* per row: wave phase (mod 2^32) at the plane point eye + wrel and
-                                           time_ms, 2^-24 turns (only its bits 24..31 are used) */
+    int64_t kx[RW_WAVES], ky[RW_WAVES]; /* wave phase per world unit (x, y), 2^-32 turns (mod 2^32) */
+    uint32_t kt[RW_WAVES];              /* wave phase per ms, 2^-32 turns */
+    int64_t wsig[RS_MAX_DIM][2];        /* per row: the plane point's move per unit of u = 2x + 1 - w,
+                                           world units Q16 (wstep 2^31 / f_q16; 0: no plane point) */
     int64_t amp_m;              /* displacement, Q8 pixels = (d * amp_m) >> 32 */
     uint32_t wave_fade_d;       /* depth (30-bit) beyond which the waves fade */
     int64_t tkr[RS_MAX_DIM];    /* per row: 32 zc / tint_len of the reflected plane's point,
@@ -173,7 +176,8 @@ typedef struct rw_frame {
     uint8_t skyw[RW_TAB + 1];   /* zenith weight by sin^2 of elevation, Q8 */
     uint8_t tint[256];          /* 1 - exp(-x / 32), Q8, by x = L / tint_len in 1/32 */
     uint8_t fog[RW_TAB + 1];    /* fog weight by depth >> fog_sh, Q8 */
-    int8_t sine[256];           /* sin(2 pi i / 256), Q7 */
+    int8_t wsine[RW_WAVES][256];        /* wave k's slope amplitude times sin(2 pi i / 256); the
+                                           amplitudes sum to 254 (wave_set) */
     int32_t tables_ready;       /* 1: fres, skyw, tint and sine are filled */
 } rw_frame;
 

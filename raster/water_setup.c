@@ -29,6 +29,22 @@ br_status rw_mirror_vp(const cam_vp *vp, int32_t plane_z, int32_t res_shift, int
     return BR_OK;
 }
 
+
+/* The waves (water.h): four travelling sines whose directions spread over 130 degrees
+ * around a wind from the south-west, lengths 1, 0.62, 0.41 and 0.27 times wave_len,
+ * periods as deep water's (T proportional to the square root of the length: 2.1 s for
+ * the longest), slope amplitudes falling with the length and summing to 254 (so the sums
+ * of four table entries stay within the two Q7 sines' +-254 that water_px's bounds
+ * assume).  Two sines at right angles, as before, drew a regular lattice of bright
+ * spots (an egg crate) over the whole lake; four of unrelated lengths do not repeat
+ * within the view.  dir: unit vector (Q14) at 37, 112, -17 and 71 degrees from east;
+ * len_q8: length / wave_len, Q8; kt: 2^32 / period in ms, rounded. */
+static const struct { int32_t dir[2]; int32_t len_q8; uint32_t kt; int32_t amp; } wave_set[RW_WAVES] = {
+    { { 13085, 9860 }, 256, 2045223u, 88 },        /* 2100 ms */
+    { { -6138, 15191 }, 159, 2596715u, 70 },       /* 1654 ms */
+    { { 15668, -4790 }, 105, 3193284u, 54 },       /* 1345 ms */
+    { { 5334, 15491 }, 69, 3936725u, 42 },         /* 1091 ms */
+};
 /* Quotients of the per-frame set-up with no 64-bit divide where the target has none
  * (core/config.h BR_DIV64_NATIVE = 0, 32-bit boards: each int64 `/` would be a libgcc
  * call): a divisor below 2^32 divides the high word by a 32-bit divide and the rest,
@@ -109,8 +125,10 @@ static void tables(rw_frame *r)
     }
     for (i = 0; i < 256; i++) {
         fx_q30 s, c;
+        int k;
         fx_sincos((fx_angle)(i << 24), &s, &c);
-        r->sine[i] = (int8_t)((s * (int64_t)127 + ((int64_t)1 << 29)) >> 30);
+        for (k = 0; k < RW_WAVES; k++)
+            r->wsine[k][i] = (int8_t)((s * (int64_t)wave_set[k].amp + ((int64_t)1 << 29)) >> 30);
     }
 }
 
@@ -242,7 +260,6 @@ void rw_tables(rw_frame *r)
 br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame *terrain,
                    const rs_frame *water, const rs_frame *refl)
 {
-    static const int32_t dir[2][2] = { { 13107, 9830 }, { -6226, 15073 } };   /* Q14 unit vectors */
     const cam_vp *vp;
     int64_t K, f16;
     int32_t x, y, k;
@@ -299,6 +316,7 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         for (k = 0; k < 4; k++) r->clear4[4 * y + k] = dither ? dither888(r->sky[y], k, y) : r->sky[y];
         /* the plane point of the row's rays: E + lam ray, lam = (H - ez) / ray_z */
         r->wrel[y][0] = r->wrel[y][1] = r->wstep[y][0] = r->wstep[y][1] = 0;
+        r->wsig[y][0] = r->wsig[y][1] = 0;
         r->tkr[y] = -1;
         if (rz < 0 && r->eye[2] > p->plane_z) {
             int64_t lam = sdiv64(((int64_t)p->plane_z - r->eye[2]) * Q12, rz);    /* world units per unit ray */
@@ -307,30 +325,30 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
                 int64_t ray = (((int64_t)c->up[k] * b) >> 30) + (c->fwd[k] >> 18);   /* Q12 */
                 r->wrel[y][k] = (lam * ray) >> 12;
                 r->wstep[y][k] = (lam * c->right[k]) >> 30;
+                /* u = 2x + 1 - w moves a = u 2^27 / f_q16 (Q12), the point a wstep >> 12:
+                 * wstep 2^15 / f_q16 world units, Q16 (|wstep| <= 2^31: below 2^63) */
+                r->wsig[y][k] = wdiv_s(&df, r->wstep[y][k] * ((int64_t)1 << 31));
             }
             /* the ray's forward component is 1: lam is the plane point's zc */
             r->tkr[y] = p->water_on ? wdiv_s(&dtint, lam << 21) : -1;
             if (r->tkr[y] > ((int64_t)1 << 40)) r->tkr[y] = (int64_t)1 << 40;
         }
     }
-    for (k = 0; k < 2; k++) {
-        int64_t len = k == 0 ? p->wave_len : p->wave_len * 5 / 8;
+    for (k = 0; k < RW_WAVES; k++) {
+        int64_t len = (p->wave_len * wave_set[k].len_q8) >> 8;
         if (len < 1) len = 1;
-        r->kx[k] = sdiv64((int64_t)dir[k][0] * ((int64_t)1 << 18), len);        /* 2^32 turns per world unit */
-        r->ky[k] = sdiv64((int64_t)dir[k][1] * ((int64_t)1 << 18), len);
-        r->kt[k] = k == 0 ? 2045222 : 3303820;      /* 2^32 / 2100, 2^32 / 1300 (periods in ms) */
+        /* 2^32 turns per world unit: |dir 2^18| <= 2^32, so |kx| <= 2^32 */
+        r->kx[k] = sdiv64((int64_t)wave_set[k].dir[0] * ((int64_t)1 << 18), len);
+        r->ky[k] = sdiv64((int64_t)wave_set[k].dir[1] * ((int64_t)1 << 18), len);
+        r->kt[k] = wave_set[k].kt;
     }
-    for (y = 0; y < r->h; y++)      /* phase = px kx + py ky + t kt at the row's point, mod 2^32 */
-        for (k = 0; k < 2; k++)
-            r->wph[y][k] = (uint32_t)(r->eye[0] + r->wrel[y][0]) * (uint32_t)r->kx[k]
-                           + (uint32_t)(r->eye[1] + r->wrel[y][1]) * (uint32_t)r->ky[k]
-                           + (uint32_t)p->time_ms * (uint32_t)r->kt[k];
     {   /* displacement Q8 px = d amp_m >> 32 = A f 2^8 / zc */
         int64_t num = p->wave_amp * (f16 >> 4);
         int64_t m = K > 0 ? sfloor64(num << 12, K) << 16 : 0;
         r->amp_m = m > ((int64_t)1 << 33) ? (int64_t)1 << 33 : m;
-        /* waves fade beyond 8 wave lengths */
-        const uint64_t fd = udiv64((uint64_t)K, 8 * (uint64_t)(p->wave_len > 0 ? p->wave_len : 1));
+        /* waves fade beyond 8 lengths of the second wave (the shorter ones alias beyond) */
+        const uint64_t fd = udiv64((uint64_t)K << 8, 8 * (uint64_t)(p->wave_len > 0 ? p->wave_len : 1)
+                                                       * (uint64_t)wave_set[1].len_q8);
         r->wave_fade_d = fd > 0xffffffffu ? 0xffffffffu : (uint32_t)fd;
         r->inv_fade = udiv64((uint64_t)1 << 32, (r->wave_fade_d >> 14) | 1u);
     }
