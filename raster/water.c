@@ -364,12 +364,27 @@ static RW_INLINE void row_k(const rw_frame *r, const refl_view *rv, int32_t y, r
 #error "raster/water.c: water_px sums exactly four waves (RW_WAVES)"
 #endif
 
+/* The waves' displacement at water depth dw (30-bit units), Q8 pixels: A f / zc, at most
+ * RW_WAVE_PX / 2 (the slopes' sums reach 2 x it, water_px), fading as 1 / zc^2 beyond
+ * wave_fade_d; 0 with the waves off.  A function of dw alone: water_row_px keeps the last
+ * one of the row (a plane's pixels along a row mostly share their depth). */
+static RW_INLINE int64_t wave_q8(const rw_frame *r, uint32_t dw)
+{
+    int64_t q8 = ((int64_t)dw * r->amp_m) >> 32;
+    if (q8 > RW_WAVE_PX * 128) q8 = RW_WAVE_PX * 128;
+    /* beyond wave_fade_d (far away) the waves fade as 1/zc^2: shorter than a pixel there,
+     * they would only alias */
+    if (dw < r->wave_fade_d) q8 = (int64_t)(((uint64_t)q8 * (dw >> 14) * r->inv_fade) >> 32);
+    return q8;
+}
+
 /* The colour of water pixel (x, k->y): terrain colour ct and depth dt under it, water
- * depth dw (30-bit units), body id; fmt and depth are the frame's (constants at each
- * call, as in post_rows); common (a constant too) promises what rw_post checked: waves
- * on, the fixed tint, Schlick's Fresnel term. */
+ * depth dw (30-bit units), body id, q8 = wave_q8(dw) (0 with the waves off); fmt and
+ * depth are the frame's (constants at each call, as in post_rows); common (a constant
+ * too) promises what rw_post checked: waves on, the fixed tint, Schlick's Fresnel term. */
 static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const rw_rowk *k, int32_t x, uint32_t ct,
-                         uint32_t dt, uint32_t dw, uint32_t id, const int32_t fmt, const int32_t depth, const int common)
+                         uint32_t dt, uint32_t dw, uint32_t id, int64_t q8, const int32_t fmt, const int32_t depth,
+                         const int common)
 {
     const int32_t a = r->aq[x], y = k->y, s = k->s;
     uint32_t den = (uint32_t)(((int64_t)a * a + k->bb) >> 8);
@@ -378,11 +393,6 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
     uint32_t refl, refr, fr, x32;
     if (ci > RW_TAB) ci = RW_TAB;
     if (common || r->p.waves_on) {
-        int64_t q8 = ((int64_t)dw * r->amp_m) >> 32;
-        if (q8 > RW_WAVE_PX * 128) q8 = RW_WAVE_PX * 128;
-        /* beyond wave_fade_d (far away) the waves fade as 1/zc^2: shorter than a pixel
-         * there, they would only alias */
-        if (dw < r->wave_fade_d) q8 = (int64_t)(((uint64_t)q8 * (dw >> 14) * r->inv_fade) >> 32);
         if (q8 != 0) {      /* else dx = dy = 0 and ci untilted, whatever the phase */
             /* each wave's slope at the pixel (row_k's phases); |sx|, |sy| <= 254, the sum
              * of the amplitudes (wave_set), so |dx|, |dy| <= 512 254 >> 15 < RW_WAVE_PX */
@@ -618,12 +628,15 @@ static RW_INLINE void water_row_px(const rw_frame *r, const refl_view *rv, const
 {
     const int32_t dsh = depth == RS_DEPTH16 ? 14 : 0, y = k->y;
     const uint32_t sky = r->sky[y];
+    uint32_t qdw = 0;           /* the depth q8 was made for (0: none; a water depth is > 0) */
+    int64_t q8 = 0;
     int32_t x;
     for (x = next_water(wc, 0, w, fmt); x < w; x = next_water(wc, x + 1, w, fmt)) {
         const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
         uint32_t rgb, d, fw;
         if (!water_shows(r, k, x, id, wc, dt, dw, dsh, fmt, trows)) continue;
-        rgb = water_px(r, rv, k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, fmt, depth, common);
+        if ((common || r->p.waves_on) && dw != qdw) { qdw = dw; q8 = wave_q8(r, dw << dsh); }
+        rgb = water_px(r, rv, k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, q8, fmt, depth, common);
         d = dw << dsh;
         if ((fw = fog_weight(r->fog, (uint32_t)r->fog_sh, r->fog_d30, d)) != 0) rgb = mix_rgb(rgb, sky, fw);
         put_px(crow, x, y, rgb, fmt);
@@ -685,7 +698,8 @@ static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *
                 if (wc) {
                     const uint32_t id = get_id(fmt, wc, x), dw = get_depth(depth, wd, x);
                     if (id && water_shows(r, &k, x, id, wc, dt, dw, dsh, fmt, r->trow[y])) {
-                        rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, fmt, depth, 0);
+                        rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id,
+                                       r->p.waves_on ? wave_q8(r, dw << dsh) : 0, fmt, depth, 0);
                         d = dw << dsh;
                         changed = 1;
                     }
