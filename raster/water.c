@@ -297,10 +297,15 @@ typedef struct rw_rowk {
     int64_t bb;                 /* bq^2 + Q12^2: the row's part of cos^2 t's denominator */
     int64_t ws0, ws1, wrel0, wrel1, tkr;        /* wstep[y], wrel[y], tkr[y] */
     /* wave k's phase at column x, 2^-32 turns (mod 2^32; bits 24..31 index wsine):
-     * ph[k] + u dph[k], u = 2x + 1 - w: at the row's plane point eye + wrel and time_ms,
+     * ph_k + u dph_k, u = 2x + 1 - w: at the row's plane point eye + wrel and time_ms,
      * a quarter turn on (the slope of a sine is its cosine), plus u times the point's move
-     * per unit of u (wsig) times the wave numbers */
-    uint32_t ph[RW_WAVES], dph[RW_WAVES];
+     * per unit of u (wsig) times the wave numbers.  Two waves share a 64-bit word, wave 2j
+     * in the low half of ph[j] and dph[j], 2j + 1 in the high half: one product gives
+     * both phases.  The low half's product spills floor(u dph_2j / 2^32) into the high
+     * half's bit 0: |u| <= RS_MAX_DIM = 2^12 and dph_2j < 2^32, so at most 2^12 units of
+     * 2^-32 turns (and the low half's carry, 1): the high half's index (bits 24..31)
+     * moves only where its phase lies within 2^-20 turns of a 1/256 turn step. */
+    uint64_t ph[RW_WAVES / 2], dph[RW_WAVES / 2];
     /* when every row y + dy, |dy| <= RW_WAVE_PX, lies in the frame and its reduced row
      * refl_row(y + dy) in the stored rows [h0, h1) (row_k), their colour and depth rows are
      * rcol[dy + RW_WAVE_PX], rdep[dy + RW_WAVE_PX], and for x in [rx0, rx1] every x + dx
@@ -353,9 +358,11 @@ static RW_INLINE void row_k(const rw_frame *r, const refl_view *rv, int32_t y, r
         for (j = 0; j < RW_WAVES; j++) {
             /* products mod 2^32 (the phase's own modulus); dph's Q16 products wrap mod 2^64,
              * and only their bits 16..47 are kept */
-            k->ph[j] = px * (uint32_t)r->kx[j] + py * (uint32_t)r->ky[j] + (uint32_t)r->p.time_ms * r->kt[j]
-                       + (64u << 24);
-            k->dph[j] = (uint32_t)((s0 * (uint64_t)r->kx[j] + s1 * (uint64_t)r->ky[j]) >> 16);
+            const uint32_t ph = px * (uint32_t)r->kx[j] + py * (uint32_t)r->ky[j]
+                                + (uint32_t)r->p.time_ms * r->kt[j] + (64u << 24);
+            const uint32_t dph = (uint32_t)((s0 * (uint64_t)r->kx[j] + s1 * (uint64_t)r->ky[j]) >> 16);
+            if (j & 1) { k->ph[j >> 1] |= (uint64_t)ph << 32; k->dph[j >> 1] |= (uint64_t)dph << 32; }
+            else { k->ph[j >> 1] = ph; k->dph[j >> 1] = dph; }
         }
     }
 }
@@ -396,11 +403,10 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
         if (q8 != 0) {      /* else dx = dy = 0 and ci untilted, whatever the phase */
             /* each wave's slope at the pixel (row_k's phases); |sx|, |sy| <= 254, the sum
              * of the amplitudes (wave_set), so |dx|, |dy| <= 512 254 >> 15 < RW_WAVE_PX */
-            const uint32_t u = (uint32_t)(2 * x + 1 - r->w);
-            const int32_t c0 = r->wsine[0][(k->ph[0] + u * k->dph[0]) >> 24];
-            const int32_t c1 = r->wsine[1][(k->ph[1] + u * k->dph[1]) >> 24];
-            const int32_t c2 = r->wsine[2][(k->ph[2] + u * k->dph[2]) >> 24];
-            const int32_t c3 = r->wsine[3][(k->ph[3] + u * k->dph[3]) >> 24];
+            const uint64_t u = (uint64_t)(int64_t)(2 * x + 1 - r->w);
+            const uint64_t p01 = k->ph[0] + u * k->dph[0], p23 = k->ph[1] + u * k->dph[1];
+            const int32_t c0 = r->wsine[0][(p01 >> 24) & 255u], c1 = r->wsine[1][p01 >> 56];
+            const int32_t c2 = r->wsine[2][(p23 >> 24) & 255u], c3 = r->wsine[3][p23 >> 56];
             const int32_t sx = c0 + c1 + c2 + c3, sy = c0 - c1 + c2 - c3;
             int32_t ti;
             dx = (int32_t)((q8 * sx) >> 15);
