@@ -60,7 +60,7 @@
  * DIVISION: no 64-bit division per frame where core/config.h's BR_DIV64_NATIVE is 0
  * (the set-up's quotients through fx_recip, the per-pixel ones 32-bit).
  *
- * MEMORY: rw_frame is caller-owned (about 330 KB: per-row and per-column tables for up to
+ * MEMORY: rw_frame is caller-owned (about 370 KB: per-row and per-column tables for up to
  * RS_MAX_DIM), zero-initialised by the caller before its first rw_setup, then filled by
  * rw_setup each frame (the frame-independent tables only the first time); nothing is
  * allocated. */
