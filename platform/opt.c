@@ -40,10 +40,12 @@ static void range_text(const opt_spec *o, char *buf, size_t len)
 
 static int whole(double v) { return v == floor(v); }
 
-/* Reads a value of kind o->kind from v into o->dst; OPT_ERR with a message.  given: the
- * option was already given on this command line (an OPT_STR's default is not a value
- * given). */
-static int take_value(const char *cmd, const opt_spec *o, const char *v, int given)
+/* The string options opt_parse remembers (a command has far fewer; one first given past
+ * this many would not be refused when given again). */
+#define OPT_MAX_STRS 64
+
+/* Reads a value of kind o->kind from v into o->dst; OPT_ERR with a message. */
+static int take_value(const char *cmd, const opt_spec *o, const char *v)
 {
     char range[64];
     double x[8];
@@ -87,9 +89,6 @@ static int take_value(const char *cmd, const opt_spec *o, const char *v, int giv
     }
     case OPT_STR:
         if (!v[0]) return opt_fail(cmd, o->name, "needs a non-empty value");
-        if (given)
-            return opt_fail(cmd, o->name, "given twice ('%s', then '%s'): it takes one %s", *(const char **)o->dst,
-                            v, o->meta ? o->meta : "value");
         *(const char **)o->dst = v;
         return OPT_OK;
     case OPT_STRS: {
@@ -134,22 +133,23 @@ static int looks_like_number(const char *s)
     return s && read_number(s, s + strlen(s), &x);
 }
 
-/* Whether o is in done[0..n); adds it when not and there is room (opt_parse's record of
- * the options given so far: OPT_STR refuses a second value). */
-static int given_before(const opt_spec **done, int *n, int cap, const opt_spec *o)
+/* Whether OPT_STR o was given before on this command line (its destination may hold a
+ * default, so that cannot tell): strs[0..*n) are those given so far; o is added while
+ * there is room. */
+static int str_given_before(const opt_spec **strs, int *n, const opt_spec *o)
 {
     int j;
     for (j = 0; j < *n; j++)
-        if (done[j] == o) return 1;
-    if (*n < cap) done[(*n)++] = o;
+        if (strs[j] == o) return 1;
+    if (*n < OPT_MAX_STRS) strs[(*n)++] = o;
     return 0;
 }
 
 int opt_parse(const char *cmd, const char *synopsis, const opt_spec *const *tables, int argc, char **argv,
               const char **pos, int maxpos, int *npos)
 {
-    const opt_spec *done[128];
-    int i, only_pos = 0, given, ndone = 0;
+    const opt_spec *strs[OPT_MAX_STRS];
+    int i, only_pos = 0, nstrs = 0;
     *npos = 0;
     for (i = 0; i < argc; i++) {
         const char *a = argv[i];
@@ -172,17 +172,19 @@ int opt_parse(const char *cmd, const char *synopsis, const opt_spec *const *tabl
             fprintf(stderr, "bitrain %s: unknown option '%s' (`bitrain %s --help` lists them)\n", cmd, a, cmd);
             return OPT_ERR;
         }
-        given = given_before(done, &ndone, 128, o);
         if (o->seen) *o->seen = 1;
         if (o->kind == OPT_FLAG) { *(int *)o->dst = 1; continue; }
         if (o->kind == OPT_INT_OPT) {
             if (i + 1 < argc && looks_like_number(argv[i + 1])) {
-                if (take_value(cmd, o, argv[++i], given) != OPT_OK) return OPT_ERR;
+                if (take_value(cmd, o, argv[++i]) != OPT_OK) return OPT_ERR;
             } else *(int *)o->dst = (int)o->lo;
             continue;
         }
         if (i + 1 >= argc) return opt_fail(cmd, a, "needs a value%s%s", o->meta ? " " : "", o->meta ? o->meta : "");
-        if (take_value(cmd, o, argv[++i], given) != OPT_OK) return OPT_ERR;
+        if (o->kind == OPT_STR && str_given_before(strs, &nstrs, o))
+            return opt_fail(cmd, a, "given twice ('%s', then '%s'): it takes one %s", *(const char **)o->dst,
+                            argv[i + 1], o->meta ? o->meta : "value");
+        if (take_value(cmd, o, argv[++i]) != OPT_OK) return OPT_ERR;
     }
     return OPT_OK;
 }
