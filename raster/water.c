@@ -399,21 +399,19 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
     int32_t dx = 0, dy = 0;
     uint32_t refl, refr, fr, x32;
     if (ci > RW_TAB) ci = RW_TAB;
-    if (common || r->p.waves_on) {
-        if (q8 != 0) {      /* else dx = dy = 0 and ci untilted, whatever the phase */
-            /* each wave's slope at the pixel (row_k's phases); |sx|, |sy| <= 254, the sum
-             * of the amplitudes (wave_set), so |dx|, |dy| <= 512 254 >> 15 < RW_WAVE_PX */
-            const uint64_t u = (uint64_t)(int64_t)(2 * x + 1 - r->w);
-            const uint64_t p01 = k->ph[0] + u * k->dph[0], p23 = k->ph[1] + u * k->dph[1];
-            const int32_t c0 = r->wsine[0][(p01 >> 24) & 255u], c1 = r->wsine[1][p01 >> 56];
-            const int32_t c2 = r->wsine[2][(p23 >> 24) & 255u], c3 = r->wsine[3][p23 >> 56];
-            const int32_t sx = c0 + c1 + c2 + c3, sy = c0 - c1 + c2 - c3;
-            int32_t ti;
-            dx = (int32_t)((q8 * sx) >> 15);
-            dy = (int32_t)((q8 * sy) >> 15);
-            ti = (int32_t)ci + (int32_t)((sx * q8) >> 10);    /* the slope tilts cos t */
-            ci = ti < 0 ? 0u : ti > RW_TAB ? (uint32_t)RW_TAB : (uint32_t)ti;
-        }
+    if (q8 != 0) {      /* else dx = dy = 0 and ci untilted, whatever the phase */
+        /* each wave's slope at the pixel (row_k's phases); |sx|, |sy| <= 254, the sum
+         * of the amplitudes (wave_set), so |dx|, |dy| <= 512 254 >> 15 < RW_WAVE_PX */
+        const uint64_t u = (uint64_t)(int64_t)(2 * x + 1 - r->w);
+        const uint64_t p01 = k->ph[0] + u * k->dph[0], p23 = k->ph[1] + u * k->dph[1];
+        const int32_t c0 = r->wsine[0][(p01 >> 24) & 255u], c1 = r->wsine[1][p01 >> 56];
+        const int32_t c2 = r->wsine[2][(p23 >> 24) & 255u], c3 = r->wsine[3][p23 >> 56];
+        const int32_t sx = c0 + c1 + c2 + c3, sy = c0 - c1 + c2 - c3;
+        int32_t ti;
+        dx = (int32_t)((q8 * sx) >> 15);
+        dy = (int32_t)((q8 * sy) >> 15);
+        ti = (int32_t)ci + (int32_t)((sx * q8) >> 10);    /* the slope tilts cos t */
+        ci = ti < 0 ? 0u : ti > RW_TAB ? (uint32_t)RW_TAB : (uint32_t)ti;
     }
     fr = !common && r->p.fresnel_one ? 256u : r->fres[ci];
     refl = r->skyrefl[ci];      /* the reflected sky */

@@ -178,7 +178,7 @@ typedef struct rw_frame {
     uint8_t fog[RW_TAB + 1];    /* fog weight by depth >> fog_sh, Q8 */
     int8_t wsine[RW_WAVES][256];        /* wave k's slope amplitude times sin(2 pi i / 256); the
                                            amplitudes sum to 254 (wave_set) */
-    int32_t tables_ready;       /* 1: fres, skyw, tint and sine are filled */
+    int32_t tables_ready;       /* 1: fres, skyw, tint and wsine are filled */
 } rw_frame;
 
 /* The view-projection of the mirror: the same camera looking at the world mirrored in

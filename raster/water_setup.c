@@ -29,7 +29,6 @@ br_status rw_mirror_vp(const cam_vp *vp, int32_t plane_z, int32_t res_shift, int
     return BR_OK;
 }
 
-
 /* The waves (water.h): four travelling sines whose directions spread over 130 degrees
  * around a wind from the south-west, lengths 1, 0.62, 0.41 and 0.27 times wave_len,
  * periods as deep water's (T proportional to the square root of the length: 2.1 s for
@@ -45,6 +44,7 @@ static const struct { int32_t dir[2]; int32_t len_q8; uint32_t kt; int32_t amp; 
     { { 15668, -4790 }, 105, 3193284u, 54 },       /* 1345 ms */
     { { 5334, 15491 }, 69, 3936725u, 42 },         /* 1091 ms */
 };
+
 /* Quotients of the per-frame set-up with no 64-bit divide where the target has none
  * (core/config.h BR_DIV64_NATIVE = 0, 32-bit boards: each int64 `/` would be a libgcc
  * call): a divisor below 2^32 divides the high word by a 32-bit divide and the rest,
