@@ -51,25 +51,31 @@ static int64_t quot_lo(uint64_t L, uint64_t r, int32_t sh)
 
 /* Smallest-margin-safe bounds: the largest d' (>= 0) with c d' < L (strict) or
  * c d' <= L, from below; -1 when unknown.  Checked: the product at the bound. */
-static int64_t below(int64_t L, int k, const bt_coh *c, int64_t cv, int strict)
+static int64_t below_r(int64_t L, uint64_t r, int32_t sh, int64_t cv, int strict)
 {
     int64_t q;
-    if (!c->r[k]) return -1;
-    q = quot_lo((uint64_t)(strict ? L - 1 : L), c->r[k], c->sh[k]);
+    if (!r) return -1;
+    q = quot_lo((uint64_t)(strict ? L - 1 : L), r, sh);
     if (strict ? sat_mul(cv, q) >= L : sat_mul(cv, q) > L) return -1;
     return q;
 }
 
 /* The smallest d' with c d' >= L (or > L when strict), from above; -1 when unknown. */
-static int64_t above(int64_t L, int k, const bt_coh *c, int64_t cv, int strict)
+static int64_t above_r(int64_t L, uint64_t r, int32_t sh, int64_t cv, int strict)
 {
     int64_t q;
-    if (!c->r[k]) return -1;
-    q = quot_lo((uint64_t)L, c->r[k], c->sh[k]);
+    if (!r) return -1;
+    q = quot_lo((uint64_t)L, r, sh);
     q += (q >> 28) + 2;       /* quot_lo is within 2^-29 L / c + 2 of L / c */
     if (strict ? sat_mul(cv, q) <= L : sat_mul(cv, q) < L) return -1;
     return q;
 }
+
+/* below_r, above_r for threshold k of c (0 tau_lo, 1 tau, 2 tau + span) */
+static int64_t below(int64_t L, int k, const bt_coh *c, int64_t cv, int strict)
+{ return below_r(L, c->r[k], c->sh[k], cv, strict); }
+static int64_t above(int64_t L, int k, const bt_coh *c, int64_t cv, int strict)
+{ return above_r(L, c->r[k], c->sh[k], cv, strict); }
 
 /* How far (L1 eye travel, world units) the answer sp (0, 1) for L and d holds: the
  * distance interval [lo, hi] around d where it does, as margin min(hi - d, d - lo),
@@ -120,15 +126,64 @@ uint64_t bti_coh_entry(const bti_extract *e, int sp, int64_t L, int64_t d, uint1
          | (moving ? BTI_COH_MOVING : 0) | ((m_in ? c->x : c->acc) + (uint64_t)m);
 }
 
-static void recip(bt_coh *c, int k, int64_t v)
+/* *r = floor(2^sh / v), *sh = 31 + bits(v) (quot_lo's); *r = 0 (none) unless 0 < v < 2^32 */
+static void recip_of(int64_t v, uint64_t *r, int32_t *sh)
 {
-    int32_t b;
-    c->r[k] = 0;
-    c->sh[k] = 0;
+    *r = 0;
+    *sh = 0;
     if (v <= 0 || v >= ((int64_t)1 << 32)) return;
-    b = bti_bits((uint64_t)v);
-    c->sh[k] = 31 + b;
-    c->r[k] = fx_udiv_bits((uint64_t)1 << c->sh[k], (uint64_t)v, 33);   /* < 2^32 */
+    *sh = 31 + bti_bits((uint64_t)v);
+    *r = fx_udiv_bits((uint64_t)1 << *sh, (uint64_t)v, 33);   /* < 2^32 */
+}
+
+static void recip(bt_coh *c, int k, int64_t v) { recip_of(v, &c->r[k], &c->sh[k]); }
+
+void bti_wtab_set(bti_wtab *wt, int64_t tau, int64_t span)
+{
+    int64_t q;
+    if (wt->tau == tau && wt->span == span && wt->ready) return;
+    wt->tau = tau;
+    wt->span = span;
+    wt->ready = 1;
+    wt->on = span > 0 && span <= BTI_WQ_MAX && tau > 0;
+    for (q = 1; wt->on && q <= span; q++) {
+        uint64_t r;
+        int32_t sh;
+        recip_of(tau + q, &r, &sh);
+        wt->r[q] = (uint32_t)r;
+        wt->sh[q] = (uint8_t)sh;
+    }
+}
+
+/* A split's weight w (morph_at: floor((floor(L / d) - tau) 2^15 / span), clamped to
+ * 0 .. ONE) is a function of rho = floor(L / d) that stays while rho stays in w's run
+ * [tau + qa, tau + qb1 - 1]: qa = ceil(w span / 2^15) (none for w = 0: every rho <= tau
+ * gives 0), qb1 = ceil((w + 1) span / 2^15) (none for ONE: every rho >= tau + span gives
+ * it; 1 for w = 0, as span <= 2^15).  So it stays for every d > 0 with (tau + qa) d <= L
+ * < (tau + qb1) d, whose bounds below_r and above_r give from the table's reciprocals
+ * (checked with the rule's products, so the run may come out shorter, never longer). */
+void bti_coh_weight_run(const bti_wtab *wt, int64_t L, uint16_t morph, uint32_t *dlo, uint32_t *dhi)
+{
+    const int64_t tau = wt->tau, span = wt->span;
+    int64_t lo = 1, hi = UINT32_MAX;
+    *dlo = 1;
+    *dhi = 0;
+    if (!wt->on || L == INT64_MAX || morph > BT_MORPH_ONE) return;
+    if (morph > 0) {
+        const int64_t qa = ((int64_t)morph * span + 32767) >> 15;       /* 1 .. span */
+        if ((hi = below_r(L, wt->r[qa], wt->sh[qa], tau + qa, 0)) < 0) return;
+    }
+    if (morph < BT_MORPH_ONE) {
+        const int64_t qb1 = (((int64_t)morph + 1) * span + 32767) >> 15; /* 1 .. span */
+        if ((lo = above_r(L, wt->r[qb1], wt->sh[qb1], tau + qb1, 1)) < 0) return;
+    }
+    lo -= wt->slack;
+    hi += wt->slack;
+    if (lo < 1) lo = 1;
+    if (hi > UINT32_MAX) hi = UINT32_MAX;
+    if (lo > hi) return;
+    *dlo = (uint32_t)lo;
+    *dhi = (uint32_t)hi;
 }
 
 /* How far the planes' values may have moved at any point within +-CAM_COORD_MAX,

@@ -56,7 +56,7 @@ static inline void bti_memo_clear(uint64_t *memo, uint32_t entries)
 typedef struct bti_pt { int32_t x, y, z; uint32_t idx; uint16_t morph; uint32_t ri; } bti_pt;
 #define BTI_NO_IDX 0xFFFFFFFFu
 
-/* A part's walk records each decision it makes (core/bt_part.c part_replay): the
+/* A part's walk records each decision it makes (core/bt_replay.c bti_part_replay): the
  * diamond (x, y) in slot idx, the answer sp, the plane mask it handed on (m_out);
  * the records of its triangle's apex (cref: the split whose children it is, which
  * handed it its plane mask) and hypotenuse ends (aref, bref); for a split, the split
@@ -75,6 +75,9 @@ typedef struct bti_rec {
     uint8_t moved;          /* a replay changed z or morph (its children's ends moved) */
     int32_t lo[3], hi[3];
     int64_t lhs;
+    uint32_t wdlo, wdhi;    /* a moving weight: morph0 holds while the box distance stays
+                               in [wdlo, wdhi] (bti_coh_weight_run; wdlo > wdhi: make it), */
+    uint64_t wexp;          /* so while the eye's travel (coh_acc) stays <= wexp */
 } bti_rec;
 /* A strip writer's test that reads vertex heights, kept by a part's walk (bt_mesh.zlog)
  * so that a replay can tell whether moved heights change the strip: kind 0 rim_line
@@ -184,6 +187,16 @@ void btw_reorder(bti_extract *e);
 #define BTI_TOP_MEMO 512
 typedef struct bti_root { bti_pt a, c, b; int32_t in_hyp, out_hyp; uint32_t mask; } bti_root;
 
+static inline int bti_same_pt(const bti_pt *a, const bti_pt *b) { return a->x == b->x && a->y == b->y; }
+
+/* Whether roots r and q are the same triangle, entered the same way (their corners'
+ * heights and weights aside) */
+static inline int bti_same_root(const bti_root *r, const bti_root *q)
+{
+    return bti_same_pt(&r->a, &q->a) && bti_same_pt(&r->c, &q->c) && bti_same_pt(&r->b, &q->b)
+        && r->in_hyp == q->in_hyp && r->out_hyp == q->out_hyp;
+}
+
 /* The writer's state after a part's leaf L was handed to it: strip length, its
  * last two indices, the pending leaf, whether a bridge's plan is open */
 #define BTI_SNAPS 16
@@ -192,6 +205,19 @@ typedef struct bti_snap {
     uint32_t ns, t0, t1;
     int32_t has_pend, nplan;
 } bti_snap;
+
+/* The geomorph weights' own coherence (core/bt_replay.c bti_part_replay): a moving weight is
+ * made again only when its box distance leaves the run of distances that give it
+ * (bti_coh_weight_run), found from the reciprocals of tau + q, q = 1 .. span, for spans
+ * up to BTI_WQ_MAX (larger: on = 0, the weight is made every frame). */
+#define BTI_WQ_MAX 256
+typedef struct bti_wtab {
+    int64_t tau, span;          /* what r, sh were made for */
+    int32_t ready, on;          /* made; the spans fit */
+    uint32_t r[BTI_WQ_MAX + 1]; /* floor(2^sh[q] / (tau + q)), 0: none (quot_lo's) */
+    uint8_t sh[BTI_WQ_MAX + 1];
+    int64_t slack;              /* test hook: widens every run (other meshes); 0 outside tests */
+} bti_wtab;
 
 struct bt_parts {
     uint32_t part_tri;             /* triangles each part mesh holds */
@@ -212,7 +238,7 @@ struct bt_parts {
     uint32_t soff[BT_PARTS], skip[BT_PARTS]; /* its strip from index skip[k] to m->strip + soff[k] */
     /* A part's slot: its mesh and extraction, written by its thread at every leaf
      * (counts, pending leaf), and what the next frame's replay of the same root needs
-     * (part_replay).  Slot k holds root k's part; bt_extract_begin moves each slot to
+     * (bti_part_replay).  Slot k holds root k's part; bt_extract_begin moves each slot to
      * the root of its code (match_slots), so a part that did not change stays
      * replayable when the parts before it are cut or joined.  The padding keeps the
      * slots off each other's cache lines. */
@@ -239,7 +265,7 @@ struct bt_parts {
     } slot[BT_PARTS];
     uint32_t hfull, mfull, cap_rec; /* slots allocated for each part's hash, memo; records */
     uint32_t *cut_tris, *cut_lo, *cut_hi; /* regroup's counts over a part's records (cap_rec) */
-    uint8_t replayed[BT_PARTS];    /* part k's mesh this frame is its last one's (part_replay) */
+    uint8_t replayed[BT_PARTS];    /* part k's mesh this frame is its last one's (bti_part_replay) */
     uint32_t nreused;              /* parts replayed by the last extraction (bt_extract_end) */
     bti_extract fx;                /* the seams' writer (bt_extract_end) */
     /* the decision memo of the walk above the parts (bti_part_roots): a mesh with a memo
@@ -248,6 +274,7 @@ struct bt_parts {
     uint64_t top_memo[BTI_TOP_MEMO * BTI_MEMO_W];
     uint32_t recent[96], nrecent;  /* its vertex identification by (x, y) */
     bt_coh coh;                    /* frame coherence of the parts' memos */
+    bti_wtab wt;                   /* and of their records' moving weights (bti_part_replay) */
 };
 
 /* 1 when the part walk cuts the triangle of this code (listed in ps->deep, sorted) */
@@ -269,6 +296,9 @@ void bti_part_roots(bti_extract *e, bt_parts *ps);
 int bti_rim_line(const bti_extract *e, uint32_t q, uint32_t z, uint32_t r2);
 /* Walks part root r; ridx gets the indices of r's corners in the part's vertices. */
 void bti_part_walk(bti_extract *e, const bti_root *r, uint32_t ridx[3]);
+/* core/bt_replay.c: part k's mesh of the last frame made this frame's without its walk,
+ * 1; 0: it cannot be (walk it) */
+int bti_part_replay(bt_parts *ps, uint32_t k);
 /* decide_memo (core/bt_mesh.c): diamond (x, y) in slot idx under plane mask *mask (then
  * the mask handed on), through the mesh's decision memo: -1 culled, 0 leaf, 1 split. */
 int bti_decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph);
@@ -277,7 +307,8 @@ int bti_decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned
  * diamond (x, y) in slot idx (bti_morph_terms; they change only with the frame key). */
 void bti_morph_terms(const bti_extract *e, int32_t x, int32_t y, uint32_t idx, int32_t lo[3], int32_t hi[3],
                      int64_t *lhs);
-uint16_t bti_morph_of_terms(const bti_extract *e, const int32_t lo[3], const int32_t hi[3], int64_t lhs);
+/* for the box distance d = bti_box_dist(eye, lo, hi) */
+uint16_t bti_morph_at(const bti_extract *e, int64_t lhs, int64_t d);
 
 /* Height of sample (x, y), 0 outside the grid as read or on a void. */
 static inline int32_t bti_zreal(const bt_tree *t, int32_t x, int32_t y)
@@ -314,6 +345,12 @@ int bti_coh_frame(bti_extract *e, bt_coh *c);
  * the expiry (< 2^51) an accumulated travel (the eye's for m_in = 0, else the eye's
  * and the planes') up to which the answer holds, moving: a split whose geomorph
  * weight moves with the distance (to be computed again); 0: this frame only. */
+/* The weights' reciprocals for threshold tau and span (made again only when they change) */
+void bti_wtab_set(bti_wtab *wt, int64_t tau, int64_t span);
+/* The box distances [*dlo, *dhi] (empty: *dlo > *dhi) at which morph_at gives weight
+ * morph for L = ew f (a run of distances: the weight falls as d grows) */
+void bti_coh_weight_run(const bti_wtab *wt, int64_t L, uint16_t morph, uint32_t *dlo, uint32_t *dhi);
+
 #define BTI_COH_BITS 52
 #define BTI_COH_MOVING ((uint64_t)1 << 51)
 #define BTI_COH_EXP (BTI_COH_MOVING - 1)

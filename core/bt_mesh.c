@@ -290,8 +290,8 @@ void bti_morph_terms(const bti_extract *e, int32_t x, int32_t y, uint32_t idx, i
                      int64_t *lhs)
 { morph_terms(e, x, y, idx, lo, hi, lhs); }
 
-uint16_t bti_morph_of_terms(const bti_extract *e, const int32_t lo[3], const int32_t hi[3], int64_t lhs)
-{ return morph_of_terms(e, lo, hi, lhs); }
+uint16_t bti_morph_at(const bti_extract *e, int64_t lhs, int64_t d)
+{ return d <= 0 ? BT_MORPH_ONE : morph_at(e, lhs, d); }
 #endif
 
 /* decide() for the view rule, memoised.  Within the frame: a diamond is reached
@@ -452,6 +452,7 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
             r->m_out = (uint8_t)mask; r->sp = (int8_t)sp; r->morph0 = mm.morph;
             r->aref = a->ri; r->bref = b->ri; r->cref = c->ri; r->vidx = NO_IDX; r->terms = 0;
             r->w = bti_memo_w(e->m, id);
+            r->wdlo = 1; r->wdhi = 0; r->wexp = 0;
         }
     } else {
         uint64_t exp;

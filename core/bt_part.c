@@ -28,7 +28,7 @@ typedef char bti_parts_fit_a_byte[BT_PARTS <= 255 ? 1 : -1];
 static uint64_t round8(uint64_t v) { return (v + 7) & ~(uint64_t)7; }
 
 /* Records of a part's walk (bti_rec): a decision a triangle of the part's room and 64;
- * a walk that makes more is not replayed (part_replay), nothing else changes. */
+ * a walk that makes more is not replayed (bti_part_replay), nothing else changes. */
 static uint32_t rec_cap(uint32_t part_tri) { return part_tri + 64; }
 /* Its strip writer's height tests (bti_ztest): one per four triangles; more: not replayed */
 static uint32_t ztest_cap(uint32_t part_tri) { return part_tri / 4 + 64; }
@@ -190,6 +190,7 @@ br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh
         for (k = 0; k < BT_PARTS; k++) bti_memo_clear(ps->slot[k].m.memo, ps->slot[k].mclean);
         bti_memo_clear(ps->top_memo, BTI_TOP_MEMO);
     }
+    bti_wtab_set(&ps->wt, ps->e0.tau, ps->e0.morph_span);
     if (++ps->top_m.memo_gen > 0xFFFFu) {
         bti_memo_clear(ps->top_memo, BTI_TOP_MEMO);
         ps->top_m.memo_gen = 1;
@@ -241,146 +242,12 @@ static void part_reset(bt_parts *ps, uint32_t k, uint32_t hs, uint32_t ms, bti_e
     e->lim_ns = pm->cap_s - 10;
 }
 
-/* Vertex i of part mesh pm gets height z and weight morph (its state as vid_find sets it). */
-static void set_height(bt_mesh *pm, uint32_t i, int32_t z, uint16_t morph)
-{
-    bt_vert *v = &pm->v[i];
-    const uint8_t st = morph == BT_MORPH_ONE ? BT_S : BT_F;
-    v->z = z;
-    v->morph = morph;
-    if (st != v->state) {
-        if (st == BT_F) pm->nfict++;
-        else pm->nfict--;
-        v->state = st;
-    }
-}
-
-/* Record r's decision made again under plane mask *mask (then the mask handed on): its
- * answer when the entry it holds proves it, as decide_memo's frame coherence would from
- * the memo (an entry is a proof however it is kept), else through the memo.  *same is
- * set when the weight is the record's own, unchanged. */
-static inline int replay_decide(bti_extract *e, bti_rec *r, unsigned *mask, uint16_t *morph, int *same)
-{
-    int sp;
-    *same = 0;
-#if BR_COHERENCE
-    if (bti_coh_proves(e, r->w, r->sp, r->idx, mask)) {
-        /* a split whose weight moves with the distance: the weight again */
-        if (r->w & BTI_COH_MOVING) {
-            if (!r->terms) { bti_morph_terms(e, r->x, r->y, r->idx, r->lo, r->hi, &r->lhs); r->terms = 1; }
-            *morph = bti_morph_of_terms(e, r->lo, r->hi, r->lhs);
-        } else {
-            *morph = r->morph0;
-            *same = 1;
-        }
-        return r->sp;
-    }
-#endif
-    sp = bti_decide_memo(e, r->x, r->y, r->idx, mask, morph);
-    r->w = bti_memo_w(e->m, r->idx);
-    r->morph0 = *morph;
-    return sp;
-}
-
-static int same_pt(const bti_pt *a, const bti_pt *b) { return a->x == b->x && a->y == b->y; }
-
-/* Whether roots r and q are the same triangle, entered the same way (their corners'
- * heights and weights aside) */
-static int same_root(const bti_root *r, const bti_root *q)
-{
-    return same_pt(&r->a, &q->a) && same_pt(&r->c, &q->c) && same_pt(&r->b, &q->b)
-        && r->in_hyp == q->in_hyp && r->out_hyp == q->out_hyp;
-}
-
-/* Corner j of root r in record order: 0 a, 1 c, 2 b (BTI_REF_A + j) */
-static inline const bti_pt *root_corner(const bti_root *r, uint32_t j)
-{
-    return j == 0 ? &r->a : j == 1 ? &r->c : &r->b;
-}
-
-/* The height of a split's hypotenuse end: a root corner (BTI_REF_*) or an earlier record */
-static inline int32_t ref_z(const bti_root *rt, const bti_rec *R, uint32_t ref)
-{
-    return ref >= BTI_REF_A ? root_corner(rt, ref - BTI_REF_A)->z : R[ref].z;
-}
-
-/* Whether that end's height moved in this replay (moved[]: root corners a, c, b) */
-static inline int ref_moved(const int moved[3], const bti_rec *R, uint32_t ref)
-{
-    return ref >= BTI_REF_A ? moved[ref - BTI_REF_A] : R[ref].moved;
-}
-
-/* Part k's mesh of the last frame with its split vertices' heights and weights
- * updated, when that is this frame's: 1 then, else 0 (walk it).  The walk's decisions
- * are a function of the diamond, the plane mask it is decided under, the camera and
- * ST_PREV (decide_memo), and its course a function of their answers: from the same
- * root, the same answers and masks at every decision in the same order mean the same
- * leaves, vertices, strip, split list and snapshots; only the heights of split
- * vertices (their weights and their hypotenuse ends') move.  So the recorded
- * decisions are made again in order, through the memo as the walk would (the same
- * entries result), and the first that differs sends the part to its walk (0, as
- * when it cannot be tried). */
-static int part_replay(bt_parts *ps, uint32_t k)
-{
-    bt_mesh *pm = &ps->slot[k].m;
-    bti_rec *R = ps->slot[k].rec;
-    const bti_root *rt = &ps->root[k], *lr = &ps->slot[k].last_root;
-    bti_extract e;
-    uint32_t i, n = ps->slot[k].nrec, j;
-    int moved[3];
-    if (!ps->slot[k].reuse || !ps->e0.coh || ps->coh.fresh || ps->e0.coh_acc == UINT64_MAX
-        || !same_root(rt, lr) || pm->memo_gen >= 0xFFFFu)
-        return 0;
-    ps->slot[k].reuse = 0;       /* until the replay succeeds */
-    pm->memo_gen++;
-    e = ps->e0;
-    e.m = pm;
-    for (j = 0; j < 3; j++) {
-        const bti_pt *q = root_corner(rt, j), *o = root_corner(lr, j);
-        moved[j] = q->z != o->z || q->morph != o->morph;
-    }
-    for (i = 0; i < n; i++) {
-        bti_rec *r = &R[i];
-        unsigned mask = r->cref >= BTI_REF_A ? rt->mask : R[r->cref].m_out;  /* as the walk hands it on */
-        uint16_t morph;
-        int32_t z;
-        int same;
-        if (replay_decide(&e, r, &mask, &morph, &same) != r->sp) return 0;
-        r->m_out = (uint8_t)mask;
-        if (r->sp != 1) continue;
-        /* the same weight between ends that stayed: the same height (bti_mid_z) */
-        if (same && !ref_moved(moved, R, r->aref) && !ref_moved(moved, R, r->bref)) {
-            r->moved = 0;
-            continue;
-        }
-        z = bti_mid_z(&e, ref_z(rt, R, r->aref), ref_z(rt, R, r->bref), r->x, r->y, &morph);
-        r->moved = z != r->z || morph != r->morph;
-        r->z = z;
-        r->morph = morph;
-        if (r->moved && r->vidx != BTI_NO_IDX) set_height(pm, r->vidx, z, morph);
-    }
-    for (j = 0; j < 3; j++) {
-        const bti_pt *q = root_corner(rt, j);
-        if (moved[j] && ps->slot[k].ridx[j] != BTI_NO_IDX) set_height(pm, ps->slot[k].ridx[j], q->z, q->morph);
-    }
-    /* the strip writer read heights only in these tests: the same answers, the same strip */
-    for (i = 0; i < pm->nz; i++) {
-        const bti_ztest *t = &pm->zlog[i];
-        const int now = t->kind == 0 ? bti_rim_line(&e, t->a, t->b, t->c)
-                                     : bti_flat(&pm->v[t->a], &pm->v[t->b], &pm->v[t->c]);
-        if (now != t->answer) return 0;
-    }
-    ps->slot[k].last_root = *rt;
-    ps->slot[k].reuse = 1;
-    return 1;
-}
-
 void bt_extract_part(bt_parts *ps, uint32_t k)
 {
     bti_extract *e;
     uint32_t hs = PART_HASH_MIN, ms;
     if (!ps || ps->serial || k >= ps->nroot) return;
-    ps->replayed[k] = (uint8_t)part_replay(ps, k);
+    ps->replayed[k] = (uint8_t)bti_part_replay(ps, k);
     ps->slot[k].done = 1;
     if (ps->replayed[k]) return;
     e = &ps->slot[k].e;
@@ -632,7 +499,7 @@ static void cut_blind(bt_parts *ps, uint32_t code, uint32_t t, uint32_t *n)
  * the first frames settle in a few), within BTI_PART_DEPTH_MAX and while there is
  * room (BTI_PART_DEEP: at most BT_PARTS roots), the largest parts first.  Only the
  * parts' sizes depend on it, never the mesh: smaller parts near the eye, where the
- * mesh changes every frame, keep the rest replayable (part_replay). */
+ * mesh changes every frame, keep the rest replayable (bti_part_replay). */
 static void regroup(bt_parts *ps)
 {
     uint32_t i, k, n = 0, join[BT_PARTS], njoin = 0, next = 0, big[BT_PARTS], nbig = 0, q;
@@ -685,7 +552,7 @@ static void regroup_full(bt_parts *ps)
 static int slot_current(const bt_parts *ps, uint32_t k)
 {
     return ps->slot[k].done && !ps->slot[k].e.full && !ps->slot[k].e.lost
-        && same_root(&ps->root[k], &ps->slot[k].last_root);
+        && bti_same_root(&ps->root[k], &ps->slot[k].last_root);
 }
 
 /* Parts that filled their mesh, cut here (regroup_full, 3 levels) and extracted again

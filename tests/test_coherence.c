@@ -218,7 +218,7 @@ static void test_coherence_paths(void)
     parts_most = 0;
     fly_path("assets/default-path.cam", 1, 300, 256);
     /* most parts keep their mesh from one frame to the next along the path (core/
-     * bt_part.c part_replay); the comparison above proves those meshes, also while
+     * bt_replay.c bti_part_replay); the comparison above proves those meshes, also while
      * the parts near the eye are cut finer than depth 4's 32 (core/bt_part.c regroup) */
     CHECK_MSG(parts_reused * 4 > parts_run * 3, "%ld of %ld parts reused", parts_reused, parts_run);
     CHECK_MSG(parts_most > 32, "at most %u parts", parts_most);
@@ -369,6 +369,13 @@ static void test_coherence_margin_matters(void)
     CHECK_MSG(differ > 0 || !BR_COHERENCE, "%ld of %ld frames differ", differ, frames);
     frames = differ = 0;
     flight(0, 20 * metre());
+    CHECK_MSG(differ > 0 || !BR_COHERENCE, "%ld of %ld frames differ", differ, frames);
+    /* the runs of distances that keep a replayed part's geomorph weights
+     * (bti_coh_weight_run) 20 m longer at each end */
+    frames = differ = 0;
+    A.ps->wt.slack = 20 * metre();
+    flight(1, 0);
+    A.ps->wt.slack = 0;
     CHECK_MSG(differ > 0 || !BR_COHERENCE, "%ld of %ld frames differ", differ, frames);
     close_dem();
 }
