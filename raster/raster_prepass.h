@@ -242,8 +242,9 @@ RSI_INLINE static void pp_row(pp_soa *q, int32_t k, pp_row_edges *g, int32_t j, 
  * - kind: PK_SLOW (an outcode bit, and not both triangles rejected by the outcodes: the
  *   main pass does what the plain loop does), PK_NONE (no row of centres, an empty box in
  *   the band, neither triangle drawn (culled or of zero area), both rejected by the
- *   outcodes), PK_WIDE (more than TINY_H rows or TINY_W columns: pair_wide with lo, hi,
- *   xl, xh in py0, ny, px0, nx), PK_QUAD (any other box of up to TINY_W x TINY_H centres,
+ *   outcodes), PK_WIDE (more than TINY_H rows or TINY_W columns, and a row and a column
+ *   of centres in the band: pair_wide with lo, hi, xl, xh in py0, ny, px0, nx; a wide
+ *   box with none draws nothing there, as tri_box returns before counting), PK_QUAD (any other box of up to TINY_W x TINY_H centres,
  *   either orientation for each triangle).  One-candidate boxes are quads too (they
  *   are rare, and kinds of their own would cost more to classify than they save);
  * - for the quads the box, the areas, the number of triangles drawn (nt) and the coverage
@@ -293,7 +294,7 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
         {
             /* PP_L steps that all draw nothing here (camera B: strips off screen, slivers
              * near the horizon): kinds from the quantities above, nothing else is read */
-            const pp_v8 skip = slow | empty | (bempty & ~wide) | (iota >= (int16_t)(n - k));
+            const pp_v8 skip = slow | empty | bempty | (iota >= (int16_t)(n - k));
             uint64_t w[PP_L / 4];
             memcpy(w, &skip, sizeof w);
             if ((w[0] & w[1]
@@ -331,7 +332,7 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
         const pp_v8 f01 = VADD(SG1(e01), b01), f20 = VADD(SG1(e20), b20), f13 = VADD(SG2(e13), b13);
         pp_v8 kind = zero + PK_QUAD;
         kind = VSEL(~(ok1 | ok2) | bempty, zero + PK_NONE, kind);
-        kind = VSEL(wide, zero + PK_WIDE, kind);
+        kind = VSEL(wide & ~bempty, zero + PK_WIDE, kind);
         kind = VSEL(empty, zero + PK_NONE, kind);
         kind = VSEL(slow, VSEL(rej, zero + PK_NONE, zero + PK_SLOW), kind);
         PPS(q->kind, k, kind);
