@@ -252,6 +252,7 @@ struct bt_parts {
          * decision recorded */
         bti_rec *rec;
         uint32_t nrec;
+        uint8_t *vmoved;           /* a replay's moved vertices, a bit each (vbits of them) */
         bti_root last_root;
         uint32_t ridx[3];
         uint8_t reuse;
@@ -264,6 +265,7 @@ struct bt_parts {
         uint8_t pad_[64];
     } slot[BT_PARTS];
     uint32_t hfull, mfull, cap_rec; /* slots allocated for each part's hash, memo; records */
+    uint32_t vbits;                /* bits of each slot's vmoved (a multiple of 64) */
     uint32_t *cut_tris, *cut_lo, *cut_hi; /* regroup's counts over a part's records (cap_rec) */
     uint8_t replayed[BT_PARTS];    /* part k's mesh this frame is its last one's (bti_part_replay) */
     uint32_t nreused;              /* parts replayed by the last extraction (bt_extract_end) */

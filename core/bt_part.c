@@ -32,6 +32,9 @@ static uint64_t round8(uint64_t v) { return (v + 7) & ~(uint64_t)7; }
 static uint32_t rec_cap(uint32_t part_tri) { return part_tri + 64; }
 /* Its strip writer's height tests (bti_ztest): one per four triangles; more: not replayed */
 static uint32_t ztest_cap(uint32_t part_tri) { return part_tri / 4 + 64; }
+/* A replay's moved vertices, a bit each: the root's 3 corners and a vertex a record,
+ * so a replayed part has fewer than rec_cap + 3 (more: every test made again) */
+static uint32_t vbits_cap(uint32_t part_tri) { return rec_cap(part_tri) + 64; }
 
 /* Clears slot sl's hash and memo up to hs and ms slots where they are not yet (zero is
  * empty for any hash base and memo generation). */
@@ -53,7 +56,8 @@ size_t bt_parts_mem_size(uint32_t part_tri)
     uint64_t sz;
     if (!mb) return 0;
     sz = round8(sizeof(bt_parts)) + (uint64_t)BT_PARTS * round8(mb)
-       + (uint64_t)BT_PARTS * (rec_cap(part_tri) * sizeof(bti_rec) + round8(ztest_cap(part_tri) * sizeof(bti_ztest)))
+       + (uint64_t)BT_PARTS * (rec_cap(part_tri) * sizeof(bti_rec) + round8(ztest_cap(part_tri) * sizeof(bti_ztest))
+                               + round8(vbits_cap(part_tri) / 8))
        + 3 * round8((uint64_t)rec_cap(part_tri) * 4);     /* regroup's counts */
     if (sz > (uint64_t)SIZE_MAX) return 0;
     return (size_t)sz;
@@ -78,6 +82,8 @@ br_status bt_parts_init(bt_parts **out, uint32_t part_tri, void *mem, size_t mem
         ps->slot[k].m.zlog = (bti_ztest *)(void *)q;
         ps->slot[k].m.cap_z = ztest_cap(part_tri);
     }
+    ps->vbits = vbits_cap(part_tri);
+    for (k = 0; k < BT_PARTS; k++, q += round8(ps->vbits / 8)) ps->slot[k].vmoved = q;
     ps->cut_tris = (uint32_t *)(void *)q; q += round8((uint64_t)ps->cap_rec * 4);
     ps->cut_lo = (uint32_t *)(void *)q; q += round8((uint64_t)ps->cap_rec * 4);
     ps->cut_hi = (uint32_t *)(void *)q;

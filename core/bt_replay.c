@@ -1,14 +1,17 @@
 /* core/bt_replay.c — a part's mesh of the last frame made this frame's without its
  * walk (bti_part_replay; the proof is docs/bitree.md "Part replay"): its recorded
  * decisions made again, its split vertices' heights and weights updated. */
+#include <string.h>
 #include "core/bitree.h"
 #include "core/bt_int.h"
 #include "core/bt_em.h"
 
-/* Vertex i of part mesh pm gets height z and weight morph (its state as vid_find sets it). */
-static void set_height(bt_mesh *pm, uint32_t i, int32_t z, uint16_t morph)
+/* Vertex i of part mesh pm gets height z and weight morph (its state as vid_find sets it);
+ * its bit in moved (NULL: none) is set. */
+static void set_height(bt_mesh *pm, uint8_t *moved, uint32_t i, int32_t z, uint16_t morph)
 {
     bt_vert *v = &pm->v[i];
+    if (moved) moved[i >> 3] |= (uint8_t)(1u << (i & 7));
     const uint8_t st = morph == BT_MORPH_ONE ? BT_S : BT_F;
     v->z = z;
     v->morph = morph;
@@ -99,6 +102,7 @@ int bti_part_replay(bt_parts *ps, uint32_t k)
     const bti_root *rt = &ps->root[k], *lr = &ps->slot[k].last_root;
     bti_extract e;
     uint32_t i, n = ps->slot[k].nrec, j, nmoved = 0;
+    uint8_t *vm = ps->slot[k].vmoved;
     int moved[3];
     if (!ps->slot[k].reuse || !ps->e0.coh || ps->coh.fresh || ps->e0.coh_acc == UINT64_MAX
         || !bti_same_root(rt, lr) || pm->memo_gen >= 0xFFFFu)
@@ -111,6 +115,8 @@ int bti_part_replay(bt_parts *ps, uint32_t k)
         const bti_pt *q = root_corner(rt, j), *o = root_corner(lr, j);
         moved[j] = q->z != o->z || q->morph != o->morph;
     }
+    if (pm->nv <= ps->vbits) memset(vm, 0, (pm->nv + 7) >> 3);
+    else vm = NULL;
     for (i = 0; i < n; i++) {
         bti_rec *r = &R[i];
         unsigned mask = r->cref >= BTI_REF_A ? rt->mask : R[r->cref].m_out;  /* as the walk hands it on */
@@ -129,18 +135,23 @@ int bti_part_replay(bt_parts *ps, uint32_t k)
         r->moved = z != r->z || morph != r->morph;
         r->z = z;
         r->morph = morph;
-        if (r->moved && r->vidx != BTI_NO_IDX) { set_height(pm, r->vidx, z, morph); nmoved++; }
+        if (r->moved && r->vidx != BTI_NO_IDX) { set_height(pm, vm, r->vidx, z, morph); nmoved++; }
     }
     for (j = 0; j < 3; j++) {
         const bti_pt *q = root_corner(rt, j);
-        if (moved[j] && ps->slot[k].ridx[j] != BTI_NO_IDX) { set_height(pm, ps->slot[k].ridx[j], q->z, q->morph); nmoved++; }
+        if (moved[j] && ps->slot[k].ridx[j] != BTI_NO_IDX) {
+            set_height(pm, vm, ps->slot[k].ridx[j], q->z, q->morph);
+            nmoved++;
+        }
     }
     /* the strip writer read heights only in these tests: the same answers, the same
-     * strip (and with no height moved, the same heights) */
+     * strip (a test of three vertices whose heights stayed gives its answer again) */
     for (i = 0; nmoved && i < pm->nz; i++) {
         const bti_ztest *t = &pm->zlog[i];
-        const int now = t->kind == 0 ? bti_rim_line(&e, t->a, t->b, t->c)
-                                     : bti_flat(&pm->v[t->a], &pm->v[t->b], &pm->v[t->c]);
+        int now;
+        if (vm && !(((vm[t->a >> 3] >> (t->a & 7)) | (vm[t->b >> 3] >> (t->b & 7)) | (vm[t->c >> 3] >> (t->c & 7))) & 1))
+            continue;
+        now = t->kind == 0 ? bti_rim_line(&e, t->a, t->b, t->c) : bti_flat(&pm->v[t->a], &pm->v[t->b], &pm->v[t->c]);
         if (now != t->answer) return 0;
     }
     ps->slot[k].last_root = *rt;
