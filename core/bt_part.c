@@ -284,8 +284,9 @@ static void hysteresis(bt_parts *ps, uint64_t nsp)
 {
     bt_mesh *m = ps->m;
     bt_tree *t = ps->t;
-    uint32_t *ids = bti_ids_of(m), i, k, n = 0;
-    for (i = 0; i < m->nsplits; i++) t->st[ids[i]] &= (uint8_t)~ST_PREV;
+    uint32_t *ids = bti_ids_of(m), i, k, n = 0, nold = m->nsplits;
+    uint8_t *st = t->st;        /* a local: a byte store may alias anything */
+    for (i = 0; i < nold; i++) st[ids[i]] &= (uint8_t)~ST_PREV;
     m->nsplits = 0;
     if (nsp > bti_heap_cap(m)) {
         size_t nn = t->nslot, j;
@@ -298,7 +299,7 @@ static void hysteresis(bt_parts *ps, uint64_t nsp)
         memcpy(ids + n, bti_ids_of(pm), (size_t)pm->nsplits * 4);
         n += pm->nsplits;
     }
-    for (i = 0; i < n; i++) t->st[ids[i]] |= ST_PREV;
+    for (i = 0; i < n; i++) st[ids[i]] |= ST_PREV;
     m->nsplits = n;
 }
 
@@ -645,8 +646,13 @@ void bt_extract_join(bt_parts *ps, uint32_t k, uint32_t *v0, uint32_t *nv)
     if (!ps || ps->serial || k >= ps->nroot) return;
     pm = &ps->slot[k].m;
     off = ps->voff[k];
-    out = ps->m->strip + ps->soff[k];
-    for (i = ps->skip[k]; i < pm->ns; i++) out[i - ps->skip[k]] = pm->strip[i] + off;
+    {
+        /* locals: the stores could alias ps and pm as far as C knows (no vector loop) */
+        const uint32_t sk = ps->skip[k], n = pm->ns > sk ? pm->ns - sk : 0;
+        const uint32_t *in = pm->strip + sk;
+        out = ps->m->strip + ps->soff[k];
+        for (i = 0; i < n; i++) out[i] = in[i] + off;
+    }
     *v0 = off;
     *nv = pm->nv;
 }

@@ -226,12 +226,18 @@ void rt_from_mesh_range(const rt_scene *s, const bt_mesh *m, uint32_t first, uin
         for (i = first; i < first + n; i++) rt_vertex(s, m->v[i].x, m->v[i].y, m->v[i].z, &out[i]);
         return;
     }
-    for (i = first; i < first + n; i++) {
-        const bt_vert *v = &m->v[i];
-        uint32_t c;
-        if (vertex_base(s, v->x, v->y, v->z, &out[i])) continue;
-        c = s->lvl[(size_t)v->y * (size_t)s->f->w + (size_t)v->x];
-        out[i].rgb = c ? rs_light_apply(ramp_at(s, v->z), (int32_t)(c & ~RT_LVL)) : RT_PENDING;
+    {
+        /* locals: out's stores could alias s as far as C knows */
+        const uint16_t *lvl = s->lvl;
+        const size_t w = (size_t)s->f->w;
+        const bt_vert *v = m->v + first, *ve = v + n;
+        rs_vertex *o = out + first;
+        for (; v < ve; v++, o++) {
+            uint32_t c;
+            if (vertex_base(s, v->x, v->y, v->z, o)) continue;
+            c = lvl[(size_t)v->y * w + (size_t)v->x];
+            o->rgb = c ? rs_light_apply(ramp_at(s, v->z), (int32_t)(c & ~RT_LVL)) : RT_PENDING;
+        }
     }
 }
 
