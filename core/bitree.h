@@ -407,6 +407,12 @@ void bt_extract_part(bt_parts *ps, uint32_t k);
 br_status bt_extract_end(bt_parts *ps, uint32_t *njoin);
 /* Writes part k into m; m->v[*v0 .. *v0 + *nv) are its vertices. */
 void bt_extract_join(bt_parts *ps, uint32_t k, uint32_t *v0, uint32_t *nv);
+/* After bt_extract_end: the vertices of part k that may differ from the ones it had at
+ * the same place of m->v in the last frame joined from parts, a bit each (bit i & 7 of
+ * byte i >> 3 for m->v[v0 + i], v0 as bt_extract_join gives), or NULL when any may.  A
+ * caller that sets up every joined part's vertices every frame into one array may set
+ * up only these. */
+const uint8_t *bt_part_moved(const bt_parts *ps, uint32_t k);
 /* Triangles of part k in the last extraction (0 if none): a scheduling hint. */
 uint32_t bt_part_tris(const bt_parts *ps, uint32_t k);
 /* Parts of the last extraction whose mesh was the frame before's with the heights of

@@ -50,6 +50,17 @@ static void clear_to(struct bti_slot *sl, uint32_t hs, uint32_t ms)
     }
 }
 
+/* No slot's vertices are where the caller last set them up (bt_part_moved): after a
+ * frame not joined from parts, and at the start */
+static void forget_places(bt_parts *ps)
+{
+    uint32_t k;
+    for (k = 0; k < BT_PARTS; k++) {
+        ps->slot[k].last_voff = UINT32_MAX;
+        ps->slot[k].keep_v = 0;
+    }
+}
+
 size_t bt_parts_mem_size(uint32_t part_tri)
 {
     size_t mb = bt_mesh_mem_size(part_tri);
@@ -84,6 +95,7 @@ br_status bt_parts_init(bt_parts **out, uint32_t part_tri, void *mem, size_t mem
     }
     ps->vbits = vbits_cap(part_tri);
     for (k = 0; k < BT_PARTS; k++, q += round8(ps->vbits / 8)) ps->slot[k].vmoved = q;
+    forget_places(ps);
     ps->cut_tris = (uint32_t *)(void *)q; q += round8((uint64_t)ps->cap_rec * 4);
     ps->cut_lo = (uint32_t *)(void *)q; q += round8((uint64_t)ps->cap_rec * 4);
     ps->cut_hi = (uint32_t *)(void *)q;
@@ -166,6 +178,7 @@ void bt_parts_reset(bt_parts *ps)
         ps->slot[k].code = 0;
         ps->slot[k].reuse = 0;
     }
+    forget_places(ps);
 }
 
 /* This frame's roots from ps->deep (the walk above the parts, through its own memo),
@@ -188,7 +201,10 @@ br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh
     ps->nroot = 0;
     s = bti_setup(&ps->e0, t, p);
     if (s != BR_OK) return s;
-    if (p->mode != BT_VIEW || ps->e0.reorder || !t->st) return bt_extract(t, p, m);
+    if (p->mode != BT_VIEW || ps->e0.reorder || !t->st) {
+        forget_places(ps);
+        return bt_extract(t, p, m);
+    }
     ps->serial = 0;
     ps->e0.rec_splits = 2;
     if (bti_coh_frame(&ps->e0, &ps->coh)) {
@@ -625,7 +641,14 @@ br_status bt_extract_end(bt_parts *ps, uint32_t *njoin)
          * is as the previous frame left it) */
         ps->serial = 1;
         regroup_full(ps);
+        forget_places(ps);
         return bt_extract(ps->t, ps->p, m);
+    }
+    for (k = 0; k < BT_PARTS; k++) {
+        struct bti_slot *sl = &ps->slot[k];
+        const uint32_t at = k < ps->nroot ? ps->voff[k] : UINT32_MAX;
+        sl->keep_v = k < ps->nroot && ps->replayed[k] && sl->vm_ok && sl->last_voff == at;
+        sl->last_voff = at;
     }
     hysteresis(ps, nsp);
     regroup(ps);
@@ -655,6 +678,11 @@ void bt_extract_join(bt_parts *ps, uint32_t k, uint32_t *v0, uint32_t *nv)
     }
     *v0 = off;
     *nv = pm->nv;
+}
+
+const uint8_t *bt_part_moved(const bt_parts *ps, uint32_t k)
+{
+    return ps && !ps->serial && k < ps->nroot && ps->slot[k].keep_v ? ps->slot[k].vmoved : NULL;
 }
 
 uint32_t bt_part_tris(const bt_parts *ps, uint32_t k)

@@ -371,8 +371,10 @@ static void job_join(void *user, uint32_t k)
 {
     scene *s = (scene *)user;
     uint32_t v0, nv;
+    const uint8_t *moved = bt_part_moved(s->parts, k);   /* s->verts holds the rest */
     bt_extract_join(s->parts, k, &v0, &nv);
-    rt_from_mesh_range(&s->rt, &s->mesh, v0, nv, s->verts);
+    if (moved) rt_from_mesh_moved(&s->rt, &s->mesh, v0, nv, moved, s->verts);
+    else rt_from_mesh_range(&s->rt, &s->mesh, v0, nv, s->verts);
 }
 
 br_status scene_mesh(scene *s, const cam *c, bt_params *p)

@@ -241,6 +241,20 @@ void rt_from_mesh_range(const rt_scene *s, const bt_mesh *m, uint32_t first, uin
     }
 }
 
+void rt_from_mesh_moved(const rt_scene *s, const bt_mesh *m, uint32_t first, uint32_t n, const uint8_t *moved,
+                        rs_vertex *out)
+{
+    uint32_t i;
+    for (i = 0; i < n; i += 8) {
+        uint32_t b = moved[i >> 3];
+        if (n - i < 8) b &= (1u << (n - i)) - 1u;
+        for (; b; b &= b - 1u) {
+            const uint32_t j = first + i + (uint32_t)(31 - fx_clz32(b & (~b + 1u)));   /* the lowest bit */
+            rt_from_mesh_range(s, m, j, 1, out);
+        }
+    }
+}
+
 void rt_from_mesh_pending(const rt_scene *s, const bt_mesh *m, rs_vertex *out)
 {
     uint32_t i;

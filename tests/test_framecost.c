@@ -308,6 +308,57 @@ static void test_scene_bands(void)
     free(full); free(img); free(z);
 }
 
+/* Along a path, scene_frame sets up only the vertices of replayed parts that moved
+ * (core/bitree.h bt_part_moved, raster/terrain.h rt_from_mesh_moved): every frame's
+ * vertices equal a whole set-up of its mesh, and most parts take the short way. */
+static void fly_vertices(const char *path, int32_t w, int32_t h, long *parts_kept, long *parts_run)
+{
+    const char *in[1] = { "assets/N47E009.hgt.gz" };
+    scene s;
+    scene_opts o;
+    br_err err;
+    campath cp;
+    bt_params p;
+    rs_frame fr;
+    rs_prim prim;
+    rs_vertex *ref = NULL;
+    int i, bad = 0;
+    memset(&o, 0, sizeof o);
+    o.quiet = 1;
+    if (campath_read(path, &cp, &err) != BR_OK) { CHECK_MSG(0, "%s", path); return; }
+    if (scene_open(&s, in, 1, &o, &err) != BR_OK) { CHECK(0); campath_free(&cp); return; }
+    CHECK_EQ(scene_tree(&s, &err), BR_OK);
+    CHECK_EQ(scene_reserve(&s, 200000, &err), BR_OK);
+    ref = malloc(sizeof *ref * (s.mesh.cap_v ? s.mesh.cap_v : 1));
+    memset(&p, 0, sizeof p);
+    memset(&fr, 0, sizeof fr);
+    p.pixel_err_q8 = 256; p.hyst_q8 = 64; p.morph_q8 = 128;
+    fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32; fr.clear_rgb = 0x99ccffu;
+    for (i = 0; ref && i < cp.n && i < 150; i++) {
+        cam c;
+        uint32_t k;
+        if (scene_camera(&s, cp.cam[i], cp.cam[i] + 3, 60, w, h, &c) != BR_OK
+            || scene_frame(&s, &c, &p, &fr, &prim) != BR_OK) { bad++; break; }
+        rt_from_mesh(&s.rt, &s.mesh, ref);
+        bad += memcmp(ref, s.verts, sizeof *ref * s.mesh.nv) != 0;
+        for (k = 0; k < BT_PARTS; k++) *parts_kept += bt_part_moved(s.parts, k) != NULL;
+        *parts_run += bt_part_tris(s.parts, 0) ? (long)bt_parts_reused(s.parts) : 0;
+    }
+    CHECK_MSG(ref && bad == 0, "%s %dx%d: %d frames' vertices differ", path, w, h, bad);
+    free(ref);
+    scene_close(&s);
+    campath_free(&cp);
+}
+
+static void test_scene_vertices(void)
+{
+    long kept = 0, reused = 0;
+    fly_vertices("assets/default-path.cam", 640, 480, &kept, &reused);
+    fly_vertices("assets/lake-path.cam", 320, 240, &kept, &reused);
+    printf("  vertex set-up: %ld of %ld replayed parts set up their moved vertices only\n", kept, reused);
+    CHECK(kept * 2 > reused);
+}
+
 int main(void)
 {
     T_RUN(test_campath);
@@ -315,5 +366,6 @@ int main(void)
     T_RUN(test_view_pinned);
     T_RUN(test_budget_pinned);
     T_RUN(test_scene_bands);
+    T_RUN(test_scene_vertices);
     return t_finish();
 }
