@@ -31,6 +31,7 @@ static inline int replay_decide(bti_extract *e, const bti_wtab *wt, bti_rec *r, 
 {
     int sp;
     *same = 0;
+    (void)wt;               /* (BR_COHERENCE 0: no weight is kept) */
 #if BR_COHERENCE
     if (bti_coh_proves(e, r->w, r->sp, r->idx, mask)) {
         /* a split whose weight moves with the distance: the weight again when the
