@@ -11,8 +11,8 @@
 static void set_height(bt_mesh *pm, uint8_t *moved, uint32_t i, int32_t z, uint16_t morph)
 {
     bt_vert *v = &pm->v[i];
-    if (moved) moved[i >> 3] |= (uint8_t)(1u << (i & 7));
     const uint8_t st = morph == BT_MORPH_ONE ? BT_S : BT_F;
+    if (moved) moved[i >> 3] |= (uint8_t)(1u << (i & 7));
     v->z = z;
     v->morph = morph;
     if (st != v->state) {
@@ -21,6 +21,9 @@ static void set_height(bt_mesh *pm, uint8_t *moved, uint32_t i, int32_t z, uint1
         v->state = st;
     }
 }
+
+/* Vertex i's bit in a replay's moved bits (set_height) */
+static inline unsigned moved_bit(const uint8_t *moved, uint32_t i) { return (moved[i >> 3] >> (i & 7)) & 1u; }
 
 /* Record r's decision made again under plane mask *mask (then the mask handed on): its
  * answer when the entry it holds proves it, as decide_memo's frame coherence would from
@@ -150,8 +153,7 @@ int bti_part_replay(bt_parts *ps, uint32_t k)
     for (i = 0; nmoved && i < pm->nz; i++) {
         const bti_ztest *t = &pm->zlog[i];
         int now;
-        if (vm && !(((vm[t->a >> 3] >> (t->a & 7)) | (vm[t->b >> 3] >> (t->b & 7)) | (vm[t->c >> 3] >> (t->c & 7))) & 1))
-            continue;
+        if (vm && !(moved_bit(vm, t->a) | moved_bit(vm, t->b) | moved_bit(vm, t->c))) continue;
         now = t->kind == 0 ? bti_rim_line(&e, t->a, t->b, t->c) : bti_flat(&pm->v[t->a], &pm->v[t->b], &pm->v[t->c]);
         if (now != t->answer) return 0;
     }
