@@ -166,7 +166,7 @@ void bd_set_pool(bd_run *r, pt_pool *pool)
 int cmd_bench_default(int argc, char **argv)
 {
     const char *dems[16], *path = NULL, *out = NULL, *tree = NULL;
-    int ndem = 0, frames = 10, warm = 0, i, rc = 1;
+    int ndem = 0, frames = 10, warm = 0, fill_voids = 0, i, rc = 1;
     bd_run *r = calloc(1, sizeof *r);
     campath cp = {NULL, 0};
     scene_opts so;
@@ -197,6 +197,8 @@ int cmd_bench_default(int argc, char **argv)
             { "--dem", OPT_STRS, &dem_list, 0, 0, 0, NULL, "FILE",
               "another terrain instead of the default; given again, tiles merged as render merges its inputs", NULL },
             { "--tree", OPT_STR, &tree, 0, 0, 0, NULL, "FILE", "attach the bitree saved by `bitrain mesh --save-tree` instead of building it", NULL },
+            { "--fill-voids", OPT_FLAG, &fill_voids, 0, 0, 0, NULL, NULL,
+              "fill the terrain's voids from their borders first, as render and view do with it", NULL },
             { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT.png", "write the last frame", NULL },
             { "--with-water", OPT_FLAG, &r->water, 0, 0, 0, NULL, NULL,
               "draw water, sky and fog as render and view do (default: the terrain frame alone); "
@@ -224,6 +226,7 @@ int cmd_bench_default(int argc, char **argv)
     so.quiet = 1;
     so.ramp_abs = r->water;     /* render and view colour by absolute elevation with water */
     so.tree = tree;
+    so.dem.fill_voids = fill_voids;
     if (scene_open(&r->s, dems, ndem, &so, &err) != BR_OK) { fprintf(stderr, "bitrain bench: %s\n", err.msg); goto done; }
     wo.shore_bound = 1;
     wo.shore_px = r->pix_err;
