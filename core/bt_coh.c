@@ -141,10 +141,9 @@ static void recip(bt_coh *c, int k, int64_t v) { recip_of(v, &c->r[k], &c->sh[k]
 void bti_wtab_set(bti_wtab *wt, int64_t tau, int64_t span)
 {
     int64_t q;
-    if (wt->tau == tau && wt->span == span && wt->ready) return;
+    if (wt->tau == tau && wt->span == span) return;
     wt->tau = tau;
     wt->span = span;
-    wt->ready = 1;
     wt->on = span > 0 && span <= BTI_WQ_MAX && tau > 0;
     for (q = 1; wt->on && q <= span; q++) {
         uint64_t r;

@@ -213,7 +213,7 @@ typedef struct bti_snap {
 #define BTI_WQ_MAX 256
 typedef struct bti_wtab {
     int64_t tau, span;          /* what r, sh were made for */
-    int32_t ready, on;          /* made; the spans fit */
+    int32_t on;                 /* the spans fit (zeroed: tau = span = 0, off) */
     uint32_t r[BTI_WQ_MAX + 1]; /* floor(2^sh[q] / (tau + q)), 0: none (quot_lo's) */
     uint8_t sh[BTI_WQ_MAX + 1];
     int64_t slack;              /* test hook: widens every run (other meshes); 0 outside tests */
@@ -253,7 +253,6 @@ struct bt_parts {
         bti_rec *rec;
         uint32_t nrec;
         uint8_t *vmoved;           /* a replay's moved vertices, a bit each (vbits of them) */
-        uint8_t vm_ok;             /* the last replay listed every moved vertex in vmoved */
         uint8_t keep_v;            /* this frame's joined vertices are the last one's, at the same
                                       place, but for vmoved's (bt_part_moved) */
         uint32_t last_voff;        /* where its vertices went in the last frame joined from
@@ -270,7 +269,8 @@ struct bt_parts {
         uint8_t pad_[64];
     } slot[BT_PARTS];
     uint32_t hfull, mfull, cap_rec; /* slots allocated for each part's hash, memo; records */
-    uint32_t vbits;                /* bits of each slot's vmoved (a multiple of 64) */
+    uint32_t vbits;                /* bits of each slot's vmoved (a multiple of 64); a replay
+                                      of a part with more vertices lists none */
     uint32_t *cut_tris, *cut_lo, *cut_hi; /* regroup's counts over a part's records (cap_rec) */
     uint8_t replayed[BT_PARTS];    /* part k's mesh this frame is its last one's (bti_part_replay) */
     uint32_t nreused;              /* parts replayed by the last extraction (bt_extract_end) */
@@ -352,17 +352,16 @@ int bti_coh_frame(bti_extract *e, bt_coh *c);
  * the expiry (< 2^51) an accumulated travel (the eye's for m_in = 0, else the eye's
  * and the planes') up to which the answer holds, moving: a split whose geomorph
  * weight moves with the distance (to be computed again); 0: this frame only. */
-/* The weights' reciprocals for threshold tau and span (made again only when they change) */
-void bti_wtab_set(bti_wtab *wt, int64_t tau, int64_t span);
-/* The box distances [*dlo, *dhi] (empty: *dlo > *dhi) at which morph_at gives weight
- * morph for L = ew f (a run of distances: the weight falls as d grows) */
-void bti_coh_weight_run(const bti_wtab *wt, int64_t L, uint16_t morph, uint32_t *dlo, uint32_t *dhi);
-
 #define BTI_COH_BITS 52
 #define BTI_COH_MOVING ((uint64_t)1 << 51)
 #define BTI_COH_EXP (BTI_COH_MOVING - 1)
 uint64_t bti_coh_entry(const bti_extract *e, int sp, int64_t L, int64_t d, uint16_t morph, unsigned m_in,
                        unsigned m_out, int64_t cm);
+/* The weights' reciprocals for threshold tau and span (made again only when they change) */
+void bti_wtab_set(bti_wtab *wt, int64_t tau, int64_t span);
+/* The box distances [*dlo, *dhi] (empty: *dlo > *dhi) at which morph_at gives weight
+ * morph for L = ew f (a run of distances: the weight falls as d grows) */
+void bti_coh_weight_run(const bti_wtab *wt, int64_t L, uint16_t morph, uint32_t *dlo, uint32_t *dhi);
 
 /* Whether memo word w (bti_coh_entry) proves answer sp of diamond idx now, under plane
  * mask *mask (then *mask is the mask it handed on): the same incoming mask, the travel

@@ -33,8 +33,9 @@ static uint32_t rec_cap(uint32_t part_tri) { return part_tri + 64; }
 /* Its strip writer's height tests (bti_ztest): one per four triangles; more: not replayed */
 static uint32_t ztest_cap(uint32_t part_tri) { return part_tri / 4 + 64; }
 /* A replay's moved vertices, a bit each: the root's 3 corners and a vertex a record,
- * so a replayed part has fewer than rec_cap + 3 (more: every test made again) */
-static uint32_t vbits_cap(uint32_t part_tri) { return rec_cap(part_tri) + 64; }
+ * so a replayed part has at most rec_cap + 3 (more: every test made again); whole
+ * 64-bit words */
+static uint32_t vbits_cap(uint32_t part_tri) { return (rec_cap(part_tri) + 3 + 63) & ~63u; }
 
 /* Clears slot sl's hash and memo up to hs and ms slots where they are not yet (zero is
  * empty for any hash base and memo generation). */
@@ -647,7 +648,8 @@ br_status bt_extract_end(bt_parts *ps, uint32_t *njoin)
     for (k = 0; k < BT_PARTS; k++) {
         struct bti_slot *sl = &ps->slot[k];
         const uint32_t at = k < ps->nroot ? ps->voff[k] : UINT32_MAX;
-        sl->keep_v = k < ps->nroot && ps->replayed[k] && sl->vm_ok && sl->last_voff == at;
+        /* (a replay lists its moved vertices when they fit the bits, bti_part_replay) */
+        sl->keep_v = k < ps->nroot && ps->replayed[k] && sl->m.nv <= ps->vbits && sl->last_voff == at;
         sl->last_voff = at;
     }
     hysteresis(ps, nsp);

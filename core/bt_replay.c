@@ -159,6 +159,5 @@ int bti_part_replay(bt_parts *ps, uint32_t k)
     }
     ps->slot[k].last_root = *rt;
     ps->slot[k].reuse = 1;
-    ps->slot[k].vm_ok = vm != NULL;
     return 1;
 }

@@ -244,8 +244,9 @@ RSI_INLINE static void pp_row(pp_soa *q, int32_t k, pp_row_edges *g, int32_t j, 
  *   the band, neither triangle drawn (culled or of zero area), both rejected by the
  *   outcodes), PK_WIDE (more than TINY_H rows or TINY_W columns, and a row and a column
  *   of centres in the band: pair_wide with lo, hi, xl, xh in py0, ny, px0, nx; a wide
- *   box with none draws nothing there, as tri_box returns before counting), PK_QUAD (any other box of up to TINY_W x TINY_H centres,
- *   either orientation for each triangle).  One-candidate boxes are quads too (they
+ *   box with none draws nothing there, as tri_box returns before counting), PK_QUAD
+ *   (any other box of up to TINY_W x TINY_H centres, either orientation for each
+ *   triangle).  One-candidate boxes are quads too (they
  *   are rare, and kinds of their own would cost more to classify than they save);
  * - for the quads the box, the areas, the number of triangles drawn (nt) and the coverage
  *   and edge values of each candidate (see the candidate loop below).
