@@ -39,26 +39,23 @@ static inline int replay_decide(bti_extract *e, const bti_wtab *wt, bti_rec *r, 
     if (bti_coh_proves(e, r->w, r->sp, r->idx, mask)) {
         /* a split whose weight moves with the distance: the weight again when the
          * distance has left the run that gives the last one (bti_coh_weight_run) */
+        *same = 1;
         if ((r->w & BTI_COH_MOVING) && e->coh_acc > r->wexp) {
             int64_t d;
             if (!r->terms) { bti_morph_terms(e, r->x, r->y, r->idx, r->lo, r->hi, &r->lhs); r->terms = 1; }
             d = bti_box_dist(e->p->c->eye, r->lo, r->hi);
             if (d < r->wdlo || d > r->wdhi) {
-                *morph = bti_morph_at(e, r->lhs, d);
-                bti_coh_weight_run(wt, r->lhs, *morph, &r->wdlo, &r->wdhi);
-                *same = *morph == r->morph0;
-                r->morph0 = *morph;
-            } else {
-                *morph = r->morph0;
-                *same = 1;
+                const uint16_t w = bti_morph_at(e, r->lhs, d);
+                bti_coh_weight_run(wt, r->lhs, w, &r->wdlo, &r->wdhi);
+                *same = w == r->morph0;
+                r->morph0 = w;
             }
-            /* the distance moves by at most the eye's L1 travel (core/bt_coh.c (1)) */
+            /* the distance moves by at most the eye's L1 travel (core/bt_coh.c (1)); an
+             * empty run (d outside it) holds for this frame only */
             r->wexp = d < r->wdlo || d > r->wdhi ? 0
                     : e->coh_acc + (uint64_t)(d - r->wdlo < r->wdhi - d ? d - r->wdlo : r->wdhi - d);
-        } else {
-            *morph = r->morph0;
-            *same = 1;
         }
+        *morph = r->morph0;
         return r->sp;
     }
 #endif
