@@ -149,10 +149,14 @@
  * test's BR_DIV64_NATIVE=0 build).  Neither changes a pixel (tests/test_isa.c, the
  * div32 tests). */
 
+/* A compile-time assertion in C99 (_Static_assert is C11): an array of negative size
+ * when cond is false, so the compiler stops at the line and shows name. */
+#define BR_STATIC_ASSERT(cond, name) typedef char br_static_assert_##name[(cond) ? 1 : -1]
+
 /* The code relies on two's complement and arithmetic right shift of negative
  * values (every compiler we target does it; C99 leaves it to the implementation). */
-_Static_assert((-1 >> 1) == -1, "arithmetic right shift of negative values required");
-_Static_assert(sizeof(int) >= 4, "int must be at least 32 bits");
-_Static_assert(CHAR_BIT == 8, "8-bit bytes required");
+BR_STATIC_ASSERT((-1 >> 1) == -1, arithmetic_right_shift_of_negative_values);
+BR_STATIC_ASSERT(sizeof(int) >= 4, int_is_at_least_32_bits);
+BR_STATIC_ASSERT(CHAR_BIT == 8, bytes_are_8_bits);
 
 #endif

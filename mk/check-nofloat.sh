@@ -1,14 +1,16 @@
 #!/bin/sh
 # Prove that core/ and raster/ contain no floating point: compile every file with
 # -mgeneral-regs-only (x86-64, AArch64), which makes any float/double an error,
-# and also check that they include only freestanding headers.
+# and also check that they include only freestanding headers.  Every C file of the
+# project stays C99: GCC and clang accept C11 keywords such as _Static_assert under
+# -std=c99 -pedantic-errors without a word, so they are searched for by name.
 # Usage: mk/check-nofloat.sh CC file.c...
 cc=$1; shift
 fail=0
 arch=$($cc -dumpmachine 2>/dev/null)
 # compile FILE [DEFINE] with $flag; any float or double is an error there
 nofloat_cc() {
-  if ! $cc -std=c99 -O2 $flag $2 -I. -c -o /dev/null "$1" 2>/tmp/nofloat.$$; then
+  if ! $cc -std=c99 -pedantic-errors -O2 $flag $2 -I. -c -o /dev/null "$1" 2>/tmp/nofloat.$$; then
     echo "nofloat: $1 $2 uses floating point (or fails to build with $flag):"; head -5 /tmp/nofloat.$$; fail=1
   fi
 }
@@ -33,6 +35,10 @@ for h in $(ls core/*.h raster/*.h 2>/dev/null); do
   bad=$(grep -nE '^[[:space:]]*#[[:space:]]*include[[:space:]]*<' "$h" | grep -vE '<(stdint|stddef|string|limits|assert)\.h>')
   if [ -n "$bad" ]; then echo "nofloat: $h includes a non-freestanding header: $bad"; fail=1; fi
 done
+c11=$(grep -nE '\<_(Static_assert|Generic|Alignas|Alignof|Noreturn|Thread_local|Atomic)\>' \
+      $(ls core/*.[ch] raster/*.[ch] platform/*.[ch] platform/*/*.[ch] tests/*.[ch] tests/*/*.[ch] \
+         benchmarks/*.[ch] tools/*.[ch] 2>/dev/null) | grep -v 'C11' | head -5)
+if [ -n "$c11" ]; then echo "nofloat: C11 keyword in a C99 project:"; echo "$c11"; fail=1; fi
 # On x86-64 the normal build (SSE2 for raster.c's vector pre-pass) is also scanned:
 # no floating-point arithmetic, comparison, conversion or x87 instruction may appear
 # (the pre-pass uses integer SSE2 only: padd/psub/pmullw/pcmp/pmin/pmax/logic/moves).

@@ -110,7 +110,7 @@
 #include "core/hf.h"
 
 #define MC_VOID INT32_MIN
-_Static_assert(MC_VOID == HF_NODATA, "meshcheck void must equal HF_NODATA");
+BR_STATIC_ASSERT(MC_VOID == HF_NODATA, meshcheck_void_is_hf_nodata);
 
 typedef struct mc_vert {
     int32_t x, y;      /* grid column, row */
