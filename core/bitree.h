@@ -50,8 +50,10 @@
  *   both sides (core/bt_emit.c rim_line), so no vertical sliver shows;
  *   ns - 2 = ntri + nline when ns >= 3.
  * The real triangles form a conforming mesh: watertight (each interior edge in
- * exactly two triangles), no T-junctions, void samples never inside or on a
- * triangle, the void's boundary is a mesh boundary.
+ * exactly two triangles), no T-junctions, no vertex on a void; a void sample lies
+ * inside or on a triangle, and a valid sample beside a void is left out, only
+ * within the triangle's extent, which the error bound covers (bt_err.c "Voids";
+ * exact holes below a unit triangle's extent).
  *
  * ===========================================================================
  * TREE AND ERRORS
@@ -68,7 +70,9 @@
  *         hierarchy is monotone); BT_METRIC_CURVATURE: the accumulated 001
  *         curvature indicator (sum over the triangle's samples, see bt_err.c),
  *         made monotone the same way.  Code BT_CODE_SPLIT: a triangle of the
- *         diamond covers voids and valid samples (always split; 000's nodata).
+ *         diamond covers padding voids and valid samples, or voids with the
+ *         curvature metric (always split; 000's nodata).  Over the grid's own
+ *         voids the exact code also bounds the triangle's extent (bt_err.c).
  *         Codes decode with bt_code_value (exact below 4096, then 12-bit
  *         mantissa, rounded UP so the bound stays a bound).
  *         and (high 16 bits) the uint8 quantised height range zlo, zhi of the

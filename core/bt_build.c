@@ -151,6 +151,7 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
     c.w = w; c.h = h; c.n = n; c.z = zs; c.vp = voids ? vp : NULL; c.metric = metric;
     c.node = node;
     c.kap = NULL;
+    bte_extent_init(&c, f);
     /* int32 is enough when |N| <= 2 D R + 16 |A| < 2^31 with D <= S, |A| <= 2R */
     c.qr = (int64_t)nt.zmax - nt.zmin;
     c.qm = c.qr > 0 ? (255LL << 24) / c.qr : 0;

@@ -29,10 +29,21 @@
  * a code that rounds up (bt_code_encode): a TRUE bound.  Diamond value =
  * max(its triangles, its children), so the hierarchy is monotone.
  *
- * Voids (000): a triangle containing both valid and void samples gets
- * BT_CODE_SPLIT (always split); one with no valid sample gets 0 (never emitted:
- * its corners are voids).  Diamond triangles always have >= 4 samples, so
- * splitting mixed ones ends at unit triangles whose 3 corners decide.
+ * Voids (000): a triangle with no valid sample gets 0 (never emitted: its corners
+ * are voids).  A MIXED triangle (valid and void samples) is always split
+ * (BT_CODE_SPLIT) when one of its samples lies in the padding beyond w x h, or
+ * with the curvature metric.  Mixed over the grid's own voids (inside w x h, exact
+ * metric), its value is instead its EXTENT (void_extent: a bound on the distance
+ * between two of its points, in height units) joined with the error over its
+ * valid samples when its 3 corners are valid; left unsplit, such a triangle is
+ * drawn over the void (valid corners; every valid sample within the error) or
+ * dropped (a void corner): either way the hole is misplaced by at most that
+ * distance, which a view rule projects like any error.  So a void costs triangles
+ * in proportion to what the error asks for, not refinement to the sample at any
+ * distance (a floor that SRTM's scattered voids put on every frame), and below
+ * a unit triangle's extent holes are exact as before.  Diamond triangles always
+ * have >= 4 samples, so splitting mixed ones ends at unit triangles whose 3
+ * corners decide.
  * Empty triangles: what a mixed triangle finally contributes are its descendant
  * unit triangles with 3 valid corners (its CONTENT, computed bottom-up: a unit
  * pair's corners, else the OR of the two child halves).  A mixed triangle with no
@@ -62,7 +73,9 @@
 typedef struct tri_res {
     int64_t err;           /* exact error (ceil) or curvature sum */
     int32_t cls;           /* 0 full, 1 mixed, 2 all void */
-    int32_t zlo, zhi;      /* own volume (full triangles only) */
+    int32_t zlo, zhi;      /* own volume (full triangles, and mixed ones with vc) */
+    int32_t vc;            /* mixed, inside w x h, three valid corners, exact metric:
+                              err, zlo and zhi are over its valid samples */
 } tri_res;
 
 static int64_t max64(int64_t a, int64_t b) { return a > b ? a : b; }
@@ -149,6 +162,7 @@ static int tri_small(const bti_build_ctx *c, const int32_t a[2], const int32_t c
 {
     int32_t dx = b[0] - a[0], dy = b[1] - a[1];
     int32_t px[6], py[6], z[6], np, i, nv = 0, e2;
+    int ok[6];
     if (!((bti_iabs32(dx) == 2 && dy == 0) || (dx == 0 && bti_iabs32(dy) == 2) ||
           (bti_iabs32(dx) == 2 && bti_iabs32(dy) == 2))) return 0;
     px[0] = a[0]; py[0] = a[1]; px[1] = b[0]; py[1] = b[1]; px[2] = cc[0]; py[2] = cc[1];
@@ -159,13 +173,17 @@ static int tri_small(const bti_build_ctx *c, const int32_t a[2], const int32_t c
         px[5] = (b[0] + cc[0]) >> 1; py[5] = (b[1] + cc[1]) >> 1;
         np = 6;
     }
-    for (i = 0; i < np; i++) nv += samp(c, px[i], py[i], &z[i]);
-    r->err = 0; r->zlo = 0; r->zhi = 0;
-    if (nv != np) { r->cls = nv > 0 ? 1 : 2; return 1; }
-    r->cls = 0;
-    e2 = bti_iabs32(z[0] + z[1] - 2 * z[3]);
+    for (i = 0; i < np; i++) { ok[i] = samp(c, px[i], py[i], &z[i]); nv += ok[i]; }
+    r->err = 0; r->zlo = 0; r->zhi = 0; r->vc = 0;
+    r->cls = nv == np ? 0 : nv > 0 ? 1 : 2;
+    if (r->cls != 0 && !(r->cls == 1 && c->ext_den && ok[0] && ok[1] && ok[2])) return 1;
+    r->vc = r->cls == 1;
+    /* the samples off the plane: the hypotenuse's midpoint, and the legs' on a
+     * diagonal hypotenuse; a mixed triangle's valid ones only */
+    e2 = ok[3] ? bti_iabs32(z[0] + z[1] - 2 * z[3]) : 0;
     if (np == 6) {
-        int32_t e4 = bti_iabs32(z[2] + z[0] - 2 * z[4]), e5 = bti_iabs32(z[2] + z[1] - 2 * z[5]);
+        int32_t e4 = ok[4] ? bti_iabs32(z[2] + z[0] - 2 * z[4]) : 0;
+        int32_t e5 = ok[5] ? bti_iabs32(z[2] + z[1] - 2 * z[5]) : 0;
         if (e4 > e2) e2 = e4;
         if (e5 > e2) e2 = e5;
     }
@@ -217,6 +235,43 @@ static void tab_build(bti_build_ctx *c, const int32_t a[2], const int32_t cc[2],
     c->tabn[ti] = n;
 }
 
+/* A mixed triangle (a, cc, b) whose three corners are valid (so it lies inside w x h):
+ * the exact error over its valid samples, with the plane of tri_eval's wide path and
+ * a void test per sample (c->vp), into r (vc = 1).  Rows in c->ry/rx0/rx1 (nr). */
+static void mixed_err(const bti_build_ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2],
+                      int32_t nr, tri_res *r)
+{
+    int32_t za = c->z[(size_t)a[1] * c->w + a[0]], zb = c->z[(size_t)b[1] * c->w + b[0]];
+    int32_t zc = c->z[(size_t)cc[1] * c->w + cc[0]], i, k = 0, zl, zh;
+    int32_t ux = a[0] - cc[0], uy = a[1] - cc[1], vx = b[0] - cc[0], vy = b[1] - cc[1];
+    int64_t D, A, B, dza = (int64_t)za - zc, dzb = (int64_t)zb - zc, mx = 0, mn = 0;
+    D = (int64_t)ux * sgn32(vy) - (int64_t)uy * sgn32(vx);
+    A = (int64_t)sgn32(vy) * dza - (int64_t)sgn32(uy) * dzb;
+    B = -(int64_t)sgn32(vx) * dza + (int64_t)sgn32(ux) * dzb;
+    if (D < 0) { D = -D; A = -A; B = -B; }
+    while (((int64_t)1 << k) < D) k++;
+    for (i = 0; i < nr; i++) {
+        int32_t y = c->ry[i], x;
+        const int32_t *zr = c->z + (size_t)y * c->w;
+        const uint16_t *pr = c->vp + (size_t)y * (size_t)(c->w + 1);
+        int64_t p = D * zc + (int64_t)(c->rx0[i] - cc[0]) * A + (int64_t)(y - cc[1]) * B;
+        for (x = c->rx0[i]; x <= c->rx1[i]; x++, p += A) {
+            int64_t d;
+            if (pr[x + 1] != pr[x]) continue;
+            d = p - ((int64_t)zr[x] << k);
+            mx = d > mx ? d : mx;
+            mn = d < mn ? d : mn;
+        }
+    }
+    r->vc = 1;
+    r->err = (max64(mx, -mn) + D - 1) >> k;
+    zl = za < zb ? za : zb; zh = za > zb ? za : zb;
+    if (zc < zl) zl = zc;
+    if (zc > zh) zh = zc;
+    r->zlo = (int32_t)max64((int64_t)zl - r->err, 0);
+    r->zhi = (int32_t)min64((int64_t)zh + r->err, INT32_MAX);
+}
+
 /* dclean: the caller knows every sample of the triangle is valid (1), or not (0) */
 static void tri_eval(const bti_build_ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2],
                      int ti, int dclean, tri_res *r)
@@ -245,14 +300,14 @@ static void tri_eval(const bti_build_ctx *c, const int32_t a[2], const int32_t c
             zl = za < zb ? za : zb; zh = za > zb ? za : zb;
             if (zc < zl) zl = zc;
             if (zc > zh) zh = zc;
-            r->cls = 0; r->err = err;
+            r->cls = 0; r->vc = 0; r->err = err;
             r->zlo = zl - err < 0 ? 0 : zl - err;
             r->zhi = zh + err;
             return;
         }
     }
     if (c->metric == BT_METRIC_EXACT && c->narrow && ti < 0 && tri_small(c, a, cc, b, r)) return;
-    r->err = 0; r->cls = 0; r->zlo = 0; r->zhi = 0;
+    r->err = 0; r->cls = 0; r->zlo = 0; r->zhi = 0; r->vc = 0;
     nr = spans(c, a, cc, b);
     /* pass 1: classify (samples outside w x h are voids) */
     {
@@ -278,7 +333,14 @@ static void tri_eval(const bti_build_ctx *c, const int32_t a[2], const int32_t c
             valid += (cx1 - x0 + 1) - v;
         } else valid += cx1 - x0 + 1;
     }
-    if (voids > 0) { r->cls = valid > 0 ? 1 : 2; return; }
+    if (voids > 0) {
+        int32_t za, zb, zc;
+        r->cls = valid > 0 ? 1 : 2;
+        if (r->cls == 1 && c->ext_den && samp(c, a[0], a[1], &za) && samp(c, b[0], b[1], &zb) &&
+            samp(c, cc[0], cc[1], &zc))
+            mixed_err(c, a, cc, b, nr, r);
+        return;
+    }
     {
         int32_t za = c->z[(size_t)a[1] * c->w + a[0]];
         int32_t zb = c->z[(size_t)b[1] * c->w + b[0]];
@@ -351,6 +413,36 @@ static void tri_eval(const bti_build_ctx *c, const int32_t a[2], const int32_t c
 
 
 
+
+/* Codes order as their values do (bt_code_encode) */
+static uint16_t code_max(uint16_t a, uint16_t b) { return a > b ? a : b; }
+
+void bte_extent_init(bti_build_ctx *c, const hf *f)
+{
+    int64_t dx = f->dx_um, dy = f->dy_um, dg;
+    if (dx < ((int64_t)1 << 31) && dy < ((int64_t)1 << 31)) {
+        uint64_t v = (uint64_t)(dx * dx) + (uint64_t)(dy * dy), r = fx_isqrt64(v);   /* v < 2^63 */
+        dg = (int64_t)r + (r * r < v);
+    } else dg = dx + dy;                   /* at least the diagonal (steps above 2 km) */
+    c->step_um[0] = dx > dy ? dx : dy;
+    c->step_um[1] = dg;
+    c->ext_den = c->metric == BT_METRIC_EXACT ? (int64_t)f->z_num * 1000000 : 0;
+    c->ext_zden = f->z_den;
+}
+
+/* The EXTENT of a triangle of diamond scale h ("Voids" above): a bound on the
+ * distance between any two of its points, in heightfield units rounded up.  Type A
+ * (hypotenuse 2h steps on an axis, legs h diagonal steps): 2h times the longer axis
+ * step, >= both; type D (legs 2h axis steps): 2h diagonal steps.  Either is at
+ * least 2h times the longer axis step, which is what the referee relies on
+ * (meshcheck's void_reach).  The largest finite code when the product would
+ * overflow: 2h < 2^17 and a step < 2^39 um keep 2h * step below 2^56. */
+static uint16_t void_extent(const bti_build_ctx *c, int32_t h, int typeD)
+{
+    int64_t um = 2 * (int64_t)h * c->step_um[typeD ? 1 : 0];
+    if (um > (INT64_MAX - c->ext_den) / c->ext_zden) return (uint16_t)(BT_CODE_SPLIT - 1);
+    return bt_code_encode((um * c->ext_zden + c->ext_den - 1) / c->ext_den);
+}
 
 /* 1 when the mixed half (a, p, b), apex p, of diamond (x, y) is EMPTY (see the top
  * of this file): a void corner and no content.  Its children are the unit
@@ -447,8 +539,9 @@ void bte_diamond(bt_tree *t, const bti_build_ctx *c, int32_t x, int32_t y, int32
         if (em >= 0 && code != BT_CODE_SPLIT) {
             int32_t m1x = (a[0] + ap[i][0]) >> 1, m1y = (a[1] + ap[i][1]) >> 1;
             int32_t m2x = (b[0] + ap[i][0]) >> 1, m2y = (b[1] + ap[i][1]) >> 1;
-            int64_t u1 = c->ub[2 * (size_t)bti_slot(t, m1x, m1y) + bti_half_of(m1x, m1y, x, y)];
-            int64_t u2 = c->ub[2 * (size_t)bti_slot(t, m2x, m2y) + bti_half_of(m2x, m2y, x, y)];
+            size_t s1 = bti_slot(t, m1x, m1y), s2 = bti_slot(t, m2x, m2y);
+            size_t q1 = bti_half_of(m1x, m1y, x, y), q2 = bti_half_of(m2x, m2y, x, y);
+            int64_t u1 = c->ub[2 * s1 + q1], u2 = c->ub[2 * s2 + q2];
             int64_t sb = em + (u1 > u2 ? u1 : u2);
             if (u1 != BTI_UB_INF && u2 != BTI_UB_INF && sb <= cmax) {
                 int32_t zp = c->z[(size_t)ap[i][1] * c->w + ap[i][0]];
@@ -460,6 +553,11 @@ void bte_diamond(bt_tree *t, const bti_build_ctx *c, int32_t x, int32_t y, int32
                 if (l < lo) lo = l;
                 if (u > hi) hi = u;
                 c->ub[hv] = (int32_t)sb;
+                /* a child mixed over the grid's voids makes this half mixed: its extent */
+                if (((c->emp[s1] >> q1) | (c->emp[s2] >> q2)) & 4) {
+                    c->emp[idx] |= (uint8_t)(4u << (hv & 1));
+                    code = code_max(code, void_extent(c, h, typeD));
+                }
                 continue;
             }
         }
@@ -471,20 +569,36 @@ void bte_diamond(bt_tree *t, const bti_build_ctx *c, int32_t x, int32_t y, int32
             }
             tri_eval(c, a, ap[i], b, ti, dclean, &r);
         }
-        if (c->ub) c->ub[hv] = r.cls == 0 && r.err < BTI_UB_INF ? (int32_t)r.err : BTI_UB_INF;
+        if (c->ub) c->ub[hv] = (r.cls == 0 || r.vc) && r.err < BTI_UB_INF ? (int32_t)r.err : BTI_UB_INF;
         /* a mixed triangle with no descendant unit triangle of three valid corners draws
          * nothing: empty, not split (the padding to (2^k+1)^2 keeps no edge samples) */
         if (r.cls == 1 && half_empty(t, c, x, y, h, typeD, a, ap[i], b)) r.cls = 2;
         if (r.cls == 2) c->emp[idx] |= (uint8_t)(1u << (hv & 1));
-        if (r.cls == 1) {
-            /* mixed: always split, and its volume holds its valid corners and
-             * centre, the heights of the valid leaves it ends in at h = 1 (no child
-             * diamond holds them there): an empty range reads as all void and the
-             * view modes would cull those leaves, notching an edge at an odd row or
+        if (r.cls == 1 && r.vc) {
+            /* mixed over the grid's own voids, three valid corners: drawn over them
+             * when left unsplit, so its code bounds the valid samples' error and the
+             * hole's extent ("Voids" above) */
+            uint16_t e = code_max(bt_code_encode(r.err), void_extent(c, h, typeD));
+            uint8_t l = bti_q_lo(c, r.zlo), u = bti_q_hi(c, r.zhi);
+            c->emp[idx] |= (uint8_t)(4u << (hv & 1));
+            if (e > code) code = e;
+            if (l < lo) lo = l;
+            if (u > hi) hi = u;
+        } else if (r.cls == 1) {
+            /* mixed with a void corner: never drawn.  Inside w x h with the exact
+             * metric it may stay unsplit (dropped: the hole grows by at most its
+             * extent, its code); over the padding, or with the curvature metric,
+             * always split.  Its volume holds its valid corners and centre, the
+             * heights of the valid leaves it ends in at h = 1 (no child diamond
+             * holds them there): an empty range reads as all void and the view
+             * modes would cull those leaves, notching an edge at an odd row or
              * column one sample in two */
-            int32_t zv, k;
+            int32_t zv, k, mxx = a[0] > b[0] ? a[0] : b[0], myy = a[1] > b[1] ? a[1] : b[1];
             const int32_t px[4] = { a[0], b[0], ap[i][0], x }, py[4] = { a[1], b[1], ap[i][1], y };
-            code = BT_CODE_SPLIT;
+            if (ap[i][0] > mxx) mxx = ap[i][0];
+            if (ap[i][1] > myy) myy = ap[i][1];
+            code = c->ext_den && mxx < c->w && myy < c->h ? code_max(code, void_extent(c, h, typeD))
+                                                          : (uint16_t)BT_CODE_SPLIT;
             for (k = 0; k < 4; k++)
                 if (samp(c, px[k], py[k], &zv)) {
                     uint8_t l = bti_q_lo(c, zv), u = bti_q_hi(c, zv);

@@ -29,8 +29,15 @@ typedef struct bti_build_ctx {
     int32_t *ub;           /* 2 per slot: upper bound of each half's error (exact metric) */
     const uint8_t *vblk;   /* per 16 x 16 block of the domain: 1 if it holds a void (NULL: none) */
     int32_t bw;            /* blocks per row */
-    uint8_t *emp;          /* per slot, bit (1 << half): that half is EMPTY (see
-                              bte_diamond); zero = has content */
+    uint8_t *emp;          /* per slot, bit (1 << half): that half is EMPTY, bit
+                              (4 << half): it is MIXED over the grid's own voids with
+                              three valid corners (see bt_err.c "Voids") */
+    int64_t step_um[2];    /* the longer of a grid step along x and along y, and the
+                              diagonal step (rounded up), micrometres (bt_err.c
+                              void_extent) */
+    int64_t ext_den;       /* z_num * 10^6 (micrometres to heightfield units, times
+                              z_den); 0: voids always split (curvature metric) */
+    int32_t ext_zden;      /* z_den */
     int32_t tabn[16];
 } bti_build_ctx;
 
@@ -220,6 +227,7 @@ static inline uint16_t bti_morph_nodiv(int64_t lhs, int64_t d, int64_t tau, int6
 }
 
 void bte_diamond(bt_tree *t, const bti_build_ctx *c, int32_t x, int32_t y, int32_t h, int typeD);
+void bte_extent_init(bti_build_ctx *c, const hf *f);
 void bte_pad(bt_tree *t, const bti_build_ctx *c, int32_t h, int typeD);
 void bte_level1(bt_tree *t, const bti_build_ctx *c);
 void bte_level2(bt_tree *t, const bti_build_ctx *c);

@@ -142,8 +142,8 @@ static inline int64_t obj_err(const bti_extract *e, uint16_t code)
 
 /* Screen-space error of diamond (x, y) in slot id: *ew = object error in world units
  * (rounded up), *d = lower bound of the distance to its volume.  Returns -1 when
- * culled (all void or outside the frustum), 1 when the error is unbounded (mixed
- * voids, or the eye inside the volume with a nonzero error), 0 otherwise. */
+ * culled (all void or outside the frustum), 1 when the error is unbounded
+ * (BT_CODE_SPLIT, or the eye inside the volume with a nonzero error), 0 otherwise. */
 static int view_err(const bti_extract *e, int32_t x, int32_t y, uint32_t id, unsigned *mask, int64_t *ew,
                     int64_t *d, int64_t *cm)
 {
@@ -460,8 +460,10 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
     }
     if (sp < 0) return;
     if (!sp) {
-        /* a triangle over voids that a budget left unsplit is dropped, never
-         * drawn over the void (its corners may all be valid) */
+        /* a triangle over padding voids (BT_CODE_SPLIT) that a budget left
+         * unsplit is dropped, never drawn over them (its corners may all be
+         * valid); over the grid's own voids its code is its extent (bt_err.c) and
+         * it is drawn like any other */
         if (!e->nonvoid && BT_NODE_ERR(e->t->node[id]) == BT_CODE_SPLIT) return;
         if (tri_valid(e, a, c, b))
             leaf(e, a, c, b, in_hyp, out_hyp);

@@ -6,6 +6,7 @@
  * ../shared/data/dem is meshed at full size in the normal run (crops under the
  * sanitizers). */
 #include <stdint.h>
+#include <math.h>
 #include "tests/test.h"
 #include "tests/support/meshcheck.h"
 #include "tests/support/btcheck.h"
@@ -37,8 +38,8 @@ static int extract(built *b, const bt_params *p, uint32_t cap, omesh *o)
 }
 
 /* Runs meshcheck on o (strip decoded); returns ok and fills r. */
-static int judge(const hf *f, const omesh *o, int allow_uncovered, int64_t expect_area2,
-                 mc_report *r, mc_strip_report *sr)
+static int judge_reach(const hf *f, const omesh *o, int allow_uncovered, int64_t expect_area2,
+                       int32_t void_reach, mc_report *r, mc_strip_report *sr)
 {
     const bt_mesh *m = &o->m;
     mc_vert *v;
@@ -54,6 +55,7 @@ static int judge(const hf *f, const omesh *o, int allow_uncovered, int64_t expec
         memset(&opt, 0, sizeof opt);
         opt.allow_uncovered = allow_uncovered;
         opt.expect_area2 = expect_area2;
+        opt.void_reach = void_reach;
         ok = mc_check(&mm, f->w, f->h, f->z, &opt, r) == 1;
         if (!ok) mc_report_print(stderr, r);
         if (nt > 0) CHECK_EQ(r->orientation, -1);
@@ -62,6 +64,22 @@ static int judge(const hf *f, const omesh *o, int allow_uncovered, int64_t expec
     }
     free(v); free(s); free(tri);
     return ok;
+}
+
+static int judge(const hf *f, const omesh *o, int allow_uncovered, int64_t expect_area2,
+                 mc_report *r, mc_strip_report *sr)
+{
+    return judge_reach(f, o, allow_uncovered, expect_area2, 0, r, sr);
+}
+
+/* How far (samples) a mesh within e heightfield units may draw over a void or widen
+ * its hole: a triangle left unsplit over a void has an extent code <= e, and that
+ * extent is at least its bounding box's side times the longer grid step (core/bt_err.c
+ * void_extent). */
+static int32_t reach_of(const hf *f, int64_t e)
+{
+    int64_t step = f->dx_um > f->dy_um ? f->dx_um : f->dy_um;
+    return (int32_t)(e * 1000000 * f->z_num / f->z_den / step);
 }
 
 /* fuji.png padded to 513 x 513 by repeating the last row and column (martini's test) */
@@ -218,10 +236,12 @@ static void test_lossless_voids(void)
     /* the same into a mesh too small: budget downgrade, then the reorder pass */
     CHECK(extract(&b, &p, 600, &o) == 0);
     CHECK_EQ(o.m.overflow, 1);
-    CHECK(o.m.ntri <= 600 && o.m.ntri > 50);   /* voids take most of a small budget (117) */
-    CHECK(judge(&f, &o, 1, 0, &r, &sr) || r.uncovered > 0);
+    CHECK(o.m.ntri <= 600 && o.m.ntri > 50);
+    /* a budget has no bound: it may draw over voids (corners valid: bad_vertex) */
+    CHECK(judge_reach(&f, &o, 1, 0, f.w + f.h, &r, &sr) || r.uncovered > 0);
     CHECK_EQ(r.tjunctions, 0);
     CHECK_EQ(r.void_covered, 0);
+    CHECK_EQ(r.bad_vertex, 0);
     CHECK_EQ(r.nonmanifold_edges, 0);
     free(o.mem);
     {   /* view and budget modes over voids */
@@ -237,18 +257,63 @@ static void test_lossless_voids(void)
         p.morph_q8 = 256;
         CHECK(extract(&b, &p, 20000, &o) == 0);
         CHECK(o.m.ntri > 0);
-        CHECK(judge(&f, &o, 1, 0, &r, &sr) || r.uncovered > 0);
+        {
+            /* a triangle left over a void has extent <= tau d / f, d at most the
+             * distance to the grid's far corner */
+            double W = f.w * ((double)f.dx_um * 1e-6), H = f.h * ((double)f.dy_um * 1e-6), Z = 1800.0;
+            double dmax = sqrt(W * W + H * H + Z * Z), fpx = (double)c.f_q16 / 65536.0;
+            double step = (double)(f.dx_um > f.dy_um ? f.dx_um : f.dy_um) * 1e-6;
+            int32_t reach = (int32_t)(0.5 * dmax / fpx / step) + 1;
+            CHECK(judge_reach(&f, &o, 1, 0, reach, &r, &sr) || r.uncovered > 0);
+        }
         CHECK_EQ(r.tjunctions, 0);
         CHECK_EQ(r.void_covered, 0);
         p.mode = BT_BUDGET;
         for (p.budget = 20; p.budget <= 2000; p.budget = p.budget * 3 + 7) {   /* small budgets too */
             CHECK(bt_extract(&b.t, &p, &o.m) == BR_OK);
             CHECK(o.m.ntri <= p.budget);
-            CHECK(judge(&f, &o, 1, 0, &r, &sr) || r.uncovered > 0);
+            CHECK(judge_reach(&f, &o, 1, 0, f.w + f.h, &r, &sr) || r.uncovered > 0);
             CHECK_EQ(r.tjunctions, 0);
-            CHECK_EQ(r.void_covered, 0);       /* never drawn over a void */
-            CHECK_EQ(r.bad_vertex, 0);
+            CHECK_EQ(r.bad_vertex, 0);         /* drawn over voids from valid corners only */
         }
+        free(o.mem);
+    }
+    unbuild(&b);
+    dem_free(&f);
+}
+
+/* SRTM voids (N50E008: 50 samples): a void's extent is its error ("Voids",
+ * core/bt_err.c), so a coarse mesh no longer refines every void to the sample; it
+ * draws over a void or widens its hole by at most the error, and below the extent
+ * of a unit triangle (2 x 92.7 m) the voids are holes exactly. */
+static void test_void_extent(void)
+{
+    static const struct { int64_t e; int64_t max_tri; } cases[] = {
+        { 100000, 600 }, { 2000, 800 }, { 300, 1500 }, { 150, 0 }
+    };
+    hf f;
+    built b;
+    omesh o;
+    bt_params p;
+    mc_report r;
+    mc_strip_report sr;
+    size_t i;
+    int64_t nvoid = 0;
+    if (btc_load("hgt/N50E008.hgt", &f)) { CHECK(0); return; }
+    for (i = 0; i < (size_t)f.w * (size_t)f.h; i++) nvoid += f.z[i] == HF_NODATA;
+    CHECK_EQ(nvoid, 50);
+    CHECK(build(&b, &f, BT_METRIC_EXACT) == 0);
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        memset(&p, 0, sizeof p);
+        p.mode = BT_FIDELITY;
+        p.max_err = cases[i].e;            /* metres: HGT units */
+        CHECK(extract(&b, &p, 0, &o) == 0);
+        CHECK(judge_reach(&f, &o, 1, 0, reach_of(&f, p.max_err), &r, &sr));
+        CHECK(!mc_err_exceeds(&r, p.max_err, 1));
+        if (cases[i].max_tri) {
+            CHECK(o.m.ntri <= cases[i].max_tri);   /* refined to the sample: 1537+ */
+            CHECK(r.void_covered_near > 0);
+        } else CHECK_EQ(r.void_covered_near, 0);
         free(o.mem);
     }
     unbuild(&b);
@@ -280,7 +345,12 @@ static void test_extremes(void)
     CHECK(build(&b, &f, BT_METRIC_EXACT) == 0);
     memset(&p, 0, sizeof p);
     p.mode = BT_FIDELITY;
-    p.max_err = 5000000;   /* 5 km */
+    p.max_err = 5000000;   /* 5 km: above the blob's extent, so it may be drawn over */
+    CHECK(extract(&b, &p, 0, &o) == 0);
+    CHECK(judge_reach(&f, &o, 1, 0, reach_of(&f, p.max_err), &r, &sr));
+    CHECK(!mc_err_exceeds(&r, p.max_err, 1));
+    free(o.mem);
+    p.max_err = 1000;      /* 1 m, below a unit triangle's extent (2 m): holes exactly */
     CHECK(extract(&b, &p, 0, &o) == 0);
     CHECK(judge(&f, &o, 1, btc_exact_area2(&f), &r, &sr));
     CHECK(!mc_err_exceeds(&r, p.max_err, 1));
@@ -547,6 +617,7 @@ int main(void)
     T_RUN(test_fuji_10m);
     T_RUN(test_lossless_voids);
     T_RUN(test_extremes);
+    T_RUN(test_void_extent);
     T_RUN(test_big_extremes);
     T_RUN(test_curvature);
     T_RUN(test_view);

@@ -527,7 +527,7 @@ static void test_narrow(void)
 static void test_voids(void)
 {
     static const spec sp = { "wide + voids 4097", 4097, 4097, -11000LL * 24403, 9000LL * 24403, 1, 24403, 1, 1600,
-                             V_VIEW | V_BUDGET | V_UTIL, 5, 6302807257746900743ull,
+                             V_VIEW | V_BUDGET | V_UTIL, 5, 7285385905997376582ull,
                              { 3468057854738258561ull, 6225004864825018302ull, 8399453991655754528ull }, 558247 };
     variant(&sp);
 }

@@ -391,7 +391,7 @@ static void test_void(void)
     CHECK_EQ(r.bad_boundary_edges, 0);
     /* expecting the full-possible area flags the missing halves */
     {
-        mc_opts o = { 124, 0, 0, 0 };
+        mc_opts o = { 124, 0, 0, 0, 0 };
         CHECK_EQ(mc_check(&mm, 9, 9, zv, &o, &r), 0);
     }
     /* a triangle over the void */
@@ -412,10 +412,58 @@ static void test_void(void)
     CHECK_EQ(r.uncovered, 1);          /* (0,0) was only in that triangle */
     CHECK_EQ(r.uncovered_far, 1);
     {
-        mc_opts o = { 0, 1, 0, 0 };    /* allowing uncovered samples does not excuse this one */
+        mc_opts o = { 0, 1, 0, 0, 0 }; /* allowing uncovered samples does not excuse this one */
         CHECK_EQ(mc_check(&mm, 9, 9, zv, &o, &r), 0);
         CHECK_EQ(r.uncovered_far, 1);
     }
+}
+
+/* opts.void_reach: a mesher that counts a void's extent as error (core/bt_err.c
+ * "Voids") may draw over a void, or widen its hole, by at most the reach. */
+static void test_void_reach(void)
+{
+    static int32_t zv[9 * 9];
+    mc_mesh mm;
+    mc_report r;
+    mc_opts o;
+    int x, y;
+    memcpy(zv, g_crop9, sizeof zv);
+    zv[3 * 9 + 3] = MC_VOID;
+    memset(&o, 0, sizeof o);
+    verts_all(&g_m, 9, zv, 0);
+    blocks_uniform(&g_m, 9, 2);          /* block (2,2)'s two triangles hold (3,3) */
+    mm = as_mesh(&g_m, 0);
+    CHECK_EQ(mc_check(&mm, 9, 9, zv, &o, &r), 0);
+    CHECK(r.void_covered >= 1);
+    o.void_reach = 2;
+    CHECK_EQ(mc_check(&mm, 9, 9, zv, &o, &r), 1);
+    CHECK_EQ(r.void_covered, 0);
+    CHECK(r.void_covered_near >= 1);
+    o.void_reach = 1;                    /* the blocks are 2 wide */
+    CHECK_EQ(mc_check(&mm, 9, 9, zv, &o, &r), 0);
+    CHECK(r.void_covered >= 1);
+    /* the hole widened: blocks (2,2) and (4,2) left out; (5,3) is 2 from the void,
+     * the edge x = 6 is 3 from it */
+    verts_all(&g_m, 9, zv, 0);
+    for (y = 0; y < 8; y += 2)
+        for (x = 0; x < 8; x += 2)
+            if (!(y == 2 && (x == 2 || x == 4))) add_block(&g_m, 9, x, y, 2);
+    mm = as_mesh(&g_m, 0);
+    o.void_reach = 0;
+    CHECK_EQ(mc_check(&mm, 9, 9, zv, &o, &r), 0);
+    CHECK(r.uncovered_far >= 1 && r.bad_boundary_edges >= 1);
+    o.void_reach = 1;
+    CHECK_EQ(mc_check(&mm, 9, 9, zv, &o, &r), 0);
+    CHECK_EQ(r.uncovered_far, 1);        /* (5,3) */
+    o.void_reach = 2;
+    CHECK_EQ(mc_check(&mm, 9, 9, zv, &o, &r), 0);
+    CHECK_EQ(r.uncovered_far, 0);
+    CHECK_EQ(r.bad_boundary_edges, 1);
+    o.void_reach = 3;
+    CHECK_EQ(mc_check(&mm, 9, 9, zv, &o, &r), 1);
+    if (!r.ok) mc_report_print(stderr, &r);
+    CHECK_EQ(r.uncovered_far, 0);
+    CHECK_EQ(r.bad_boundary_edges, 0);
 }
 
 /* A frustum-culled mesh covers part of the grid on purpose: with opts.partial
@@ -465,7 +513,7 @@ static void test_uncovered_beside_void(void)
     static int32_t z3[9];
     mc_mesh mm;
     mc_report r;
-    mc_opts o = { 0, 1, 0, 0 };
+    mc_opts o = { 0, 1, 0, 0, 0 };
     int x, y;
     for (y = 0; y < 3; y++) for (x = 0; x < 3; x++) z3[y * 3 + x] = g_crop9[y * 9 + x];
     z3[4] = MC_VOID;
@@ -736,6 +784,7 @@ int main(void)
     T_RUN(test_void);
     T_RUN(test_uncovered_beside_void);
     T_RUN(test_partial);
+    T_RUN(test_void_reach);
     T_RUN(test_strip);
     T_RUN(test_martini_fuji);
     T_RUN(test_rqt);

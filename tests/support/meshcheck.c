@@ -83,7 +83,7 @@ static void set_bad(mc_report *r, int32_t x, int32_t y, const char *what)
  * ok_tri[t] = 0 skips triangle t (bad vertex). */
 static void raster_pass(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z,
                         const unsigned char *ok_tri, unsigned char *cover,
-                        unsigned char *inner, mc_report *r)
+                        unsigned char *inner, int32_t reach, mc_report *r)
 {
     uint64_t best_n = 0, best_d = 1;
     int64_t t;
@@ -93,7 +93,7 @@ static void raster_pass(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z
     r->err_tri = -1;
     for (t = 0; t < m->nt; t++) {
         const mc_vert *p0, *p1, *p2, *tmp;
-        int64_t D, Dz, zmax, lim, x, y, x0, x1, y0, y1;
+        int64_t D, Dz, zmax, lim, x, y, x0, x1, y0, y1, ext;
         if (ok_tri && !ok_tri[t]) continue;
         p0 = &m->v[m->tri[3 * t]];
         p1 = &m->v[m->tri[3 * t + 1]];
@@ -108,6 +108,8 @@ static void raster_pass(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z
         lim = INT64_MAX / 4 / D;
         if (zb > 30 || D > (INT64_MAX >> (zb + 2)) || zmax > lim) { r->range_errors++; continue; }
         Dz = D << zb;
+        ext = max64(max64(p0->x, max64(p1->x, p2->x)) - min64(p0->x, min64(p1->x, p2->x)),
+                    max64(p0->y, max64(p1->y, p2->y)) - min64(p0->y, min64(p1->y, p2->y)));
         x0 = max64(0, min64(p0->x, min64(p1->x, p2->x)));
         x1 = min64(w - 1, max64(p0->x, max64(p1->x, p2->x)));
         y0 = max64(0, min64(p0->y, min64(p1->y, p2->y)));
@@ -123,7 +125,14 @@ static void raster_pass(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z
                 if (cover && cover[i] < 255) cover[i]++;
                 if (inner && b0 > 0 && b1 > 0 && b2 > 0) inner[i] = 1;
                 zs = z[i];
-                if (zs == MC_VOID) { if (!cover) r->void_covered++; continue; }
+                if (zs == MC_VOID) {
+                    if (reach > 0 && ext <= reach) r->void_covered_near++;
+                    else if (reach > 0 || !cover) {
+                        r->void_covered++;
+                        set_bad(r, (int32_t)x, (int32_t)y, "void sample covered");
+                    }
+                    continue;
+                }
                 num = b0 * p0->zq + b1 * p1->zq + b2 * p2->zq - Dz * (int64_t)zs;
                 num = abs64(num);
                 if (cmp_frac((uint64_t)num, (uint64_t)Dz, best_n, best_d) > 0) {
@@ -186,6 +195,28 @@ static int void_next_to(int32_t w, int32_t h, const int32_t *z,
     return 0;
 }
 
+/* Summed-area table of the voids: t[(y + 1)(w + 1) + x + 1] = voids in [0,x] x [0,y]. */
+static int32_t *void_table(int32_t w, int32_t h, const int32_t *z)
+{
+    int32_t *t = calloc((size_t)(w + 1) * (size_t)(h + 1), sizeof *t), x, y;
+    if (!t) return NULL;
+    for (y = 0; y < h; y++)
+        for (x = 0; x < w; x++)
+            t[(int64_t)(y + 1) * (w + 1) + x + 1] = (z[(int64_t)y * w + x] == MC_VOID) +
+                t[(int64_t)y * (w + 1) + x + 1] + t[(int64_t)(y + 1) * (w + 1) + x] - t[(int64_t)y * (w + 1) + x];
+    return t;
+}
+
+/* voids in the box [x0,x1] x [y0,y1] clipped to the grid */
+static int32_t voids_in(const int32_t *t, int32_t w, int32_t h, int32_t x0, int32_t y0, int32_t x1, int32_t y1)
+{
+    x0 = x0 < 0 ? 0 : x0; y0 = y0 < 0 ? 0 : y0;
+    x1 = x1 > w - 1 ? w - 1 : x1; y1 = y1 > h - 1 ? h - 1 : y1;
+    if (x0 > x1 || y0 > y1) return 0;
+    return t[(int64_t)(y1 + 1) * (w + 1) + x1 + 1] - t[(int64_t)y0 * (w + 1) + x1 + 1] -
+           t[(int64_t)(y1 + 1) * (w + 1) + x0] + t[(int64_t)y0 * (w + 1) + x0];
+}
+
 static int on_border(int32_t w, int32_t h, int32_t ax, int32_t ay, int32_t bx, int32_t by)
 {
     return (ax == 0 && bx == 0) || (ax == w - 1 && bx == w - 1) ||
@@ -208,6 +239,7 @@ int mc_check(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z,
     int64_t n = (int64_t)w * h, i, t, pos = 0, neg = 0, *start = NULL;
     int32_t *vid = NULL;
     unsigned char *ok_tri = NULL, *cover = NULL, *inner = NULL;
+    int32_t *sat = NULL;
     edge_rec *e = NULL;
     int32_t x, y;
     if (!o) o = &defaults;
@@ -223,6 +255,10 @@ int mc_check(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z,
         return -1;
     }
     for (i = 0; i < n; i++) vid[i] = -1;
+    if (o->void_reach > 0) {
+        sat = void_table(w, h, z);
+        if (!sat) { free(vid); free(cover); free(inner); free(ok_tri); free(e); return -1; }
+    }
 
     /* voids and the area the valid samples allow */
     for (y = 0; y < h; y++)
@@ -270,7 +306,7 @@ int mc_check(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z,
     /* edges: bucket every directed use by its lower end (two passes over the
      * triangles), sort each small bucket, then walk the groups */
     start = calloc((size_t)n + 1, sizeof *start);
-    if (!start) { free(vid); free(cover); free(inner); free(ok_tri); free(e); return -1; }
+    if (!start) { free(vid); free(cover); free(inner); free(ok_tri); free(e); free(sat); return -1; }
     for (t = 0; t < m->nt; t++) {
         int k;
         if (!ok_tri[t]) continue;
@@ -315,8 +351,11 @@ int mc_check(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z,
             } else if (j - u == 1) {
                 int32_t third = e[u].td >> 1;
                 r->boundary_edges++;
+                int32_t R = o->void_reach;
                 if (!on_border(w, h, ax, ay, bx, by) &&
-                    !void_next_to(w, h, z, ax, ay, bx, by, third % w, third / w)) {
+                    !void_next_to(w, h, z, ax, ay, bx, by, third % w, third / w) &&
+                    !(sat && voids_in(sat, w, h, (ax < bx ? ax : bx) - R, (ay < by ? ay : by) - R,
+                                      (ax > bx ? ax : bx) + R, (ay > by ? ay : by) + R) > 0)) {
                     r->bad_boundary_edges++;
                     set_bad(r, ax, ay, "boundary edge inside the domain (crack)");
                 }
@@ -340,11 +379,11 @@ int mc_check(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z,
     /* raster pass: error and coverage */
     memset(inner, 0, (size_t)n);
     if (!o->skip_error) {
-        raster_pass(m, w, h, z, ok_tri, cover, inner, r);
+        raster_pass(m, w, h, z, ok_tri, cover, inner, o->void_reach, r);
         for (i = 0; i < n; i++) {
             int32_t xx = (int32_t)(i % w), yy = (int32_t)(i / w);
             if (z[i] == MC_VOID) {
-                if (cover[i]) { r->void_covered++; set_bad(r, xx, yy, "void sample covered"); }
+                if (cover[i] && o->void_reach <= 0) { r->void_covered++; set_bad(r, xx, yy, "void sample covered"); }
             } else if (!cover[i]) {
                 int near = 0, dx, dy;
                 r->uncovered++;
@@ -353,8 +392,10 @@ int mc_check(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z,
                         int32_t nx = xx + dx, ny = yy + dy;
                         if (nx >= 0 && ny >= 0 && nx < w && ny < h && z[(int64_t)ny * w + nx] == MC_VOID) near = 1;
                     }
+                if (!near && sat) near = voids_in(sat, w, h, xx - o->void_reach, yy - o->void_reach,
+                                                  xx + o->void_reach, yy + o->void_reach) > 0;
                 if (!near) { r->uncovered_far++; set_bad(r, xx, yy, "valid sample far from voids not covered"); }
-                else if (!o->allow_uncovered) set_bad(r, xx, yy, "valid sample not covered");
+                else if (!o->allow_uncovered && o->void_reach <= 0) set_bad(r, xx, yy, "valid sample not covered");
             }
             if (inner[i] && cover[i] >= 2) { r->overlap_samples++; set_bad(r, xx, yy, "overlap"); }
         }
@@ -364,14 +405,15 @@ int mc_check(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z,
               r->nonmanifold_edges || r->same_dir_edges ||
               r->tjunctions || r->overlap_samples || r->void_covered || r->range_errors);
     if (!o->partial && (r->bad_boundary_edges || r->uncovered_far ||
-                        (r->uncovered && !o->allow_uncovered))) r->ok = 0;
-    if ((r->voids == 0 && !o->partial) ? r->area2 != r->area2_max : r->area2 > r->area2_max) {
+                        (r->uncovered && !o->allow_uncovered && o->void_reach <= 0))) r->ok = 0;
+    if ((r->voids == 0 && !o->partial) ? r->area2 != r->area2_max
+        : r->area2 > (o->void_reach > 0 ? 2 * (int64_t)(w - 1) * (h - 1) : r->area2_max)) {
         r->ok = 0; set_bad(r, -1, -1, "area differs from the domain's");
     }
     if (o->expect_area2 > 0 && r->area2 != o->expect_area2) {
         r->ok = 0; set_bad(r, -1, -1, "area differs from the expected one");
     }
-    free(vid); free(cover); free(inner); free(ok_tri); free(e);
+    free(vid); free(cover); free(inner); free(ok_tri); free(e); free(sat);
     return r->ok;
 }
 
@@ -393,7 +435,7 @@ int mc_max_error(const mc_mesh *m, int32_t w, int32_t h, const int32_t *z, mc_re
         ok_tri[t] = (unsigned char)good;
         if (!good) r->bad_vertex++;
     }
-    raster_pass(m, w, h, z, ok_tri, cover, NULL, r);
+    raster_pass(m, w, h, z, ok_tri, cover, NULL, 0, r);
     for (i = 0; i < n; i++) {
         if (z[i] == MC_VOID) { if (cover[i]) r->void_covered++; }
         else if (!cover[i]) r->uncovered++;
@@ -417,6 +459,8 @@ void mc_report_print(FILE *f, const mc_report *r)
             (long long)r->overlap_samples, (long long)r->uncovered, (long long)r->uncovered_far,
             (long long)r->void_covered,
             (long long)r->range_errors);
+    if (r->void_covered_near)
+        fprintf(f, "  void samples covered within void_reach %lld\n", (long long)r->void_covered_near);
     fprintf(f, "  max error %lld/%lld (<= %lld/1024) at (%d,%d) triangle %lld\n",
             (long long)r->err_num, (long long)r->err_den, (long long)r->err_q10,
             (int)r->err_x, (int)r->err_y, (long long)r->err_tri);

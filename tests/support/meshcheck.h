@@ -58,7 +58,7 @@
  * area2_max       doubled area the valid samples allow: per cell, 2 if all four
  *                 corners are valid, 1 if exactly three are (one half cell), else 0.
  *                 With no voids area2 must EQUAL area2_max = 2(w-1)(h-1); with voids
- *                 area2 <= area2_max is required and, when the caller passes
+ *                 area2 <= area2_max is required (2(w-1)(h-1) with void_reach) and, when the caller passes
  *                 expect_area2 > 0 in mc_check's options, area2 == expect_area2.
  * overlap_samples samples strictly inside one triangle and covered (closed) by
  *                 another one as well.
@@ -68,7 +68,14 @@
  *                 mesher's diagonal pattern, touches the void).
  * uncovered_far   those of them with no void among their 8 neighbours: ALWAYS an
  *                 error (a hole), whatever allow_uncovered says.
- * void_covered    void samples inside (closed) some triangle.
+ * void_covered    void samples inside (closed) some triangle.  With opts.void_reach
+ *                 = R > 0 (a mesher that treats a void's extent as error, core/bt_err.c
+ *                 "Voids"): (void sample, triangle) pairs whose triangle's bounding box
+ *                 is wider or higher than R samples; those within R are counted in
+ *                 void_covered_near and are no error.  R also widens "near a void"
+ *                 for uncovered_far and bad_boundary_edges from the 8 neighbours and
+ *                 the edge's square to every sample within R (Chebyshev) of the sample
+ *                 or of the edge.
  * range_errors    triangles whose |vertex height| or |sample height| times their
  *                 doubled area would overflow int64 (then their error is not
  *                 evaluated; cannot happen with zbits <= 2 up to 16385^2 grids).
@@ -135,6 +142,10 @@ typedef struct mc_opts {        /* zero = defaults */
                                    not errors, and area2 <= area2_max is the only area
                                    rule; T-junctions, overlaps, edges used thrice or
                                    twice the same way, flips etc. still are errors */
+    int32_t void_reach;         /* > 0: the mesher may draw over voids and leave holes
+                                   wider than them, within this many samples (see
+                                   void_covered; implies allow_uncovered); 0: voids
+                                   are holes exactly */
 } mc_opts;
 
 typedef struct mc_report {
@@ -143,7 +154,7 @@ typedef struct mc_report {
     int64_t edges, boundary_edges, nonmanifold_edges, same_dir_edges, bad_boundary_edges;
     int64_t tjunctions;
     int64_t area2, area2_max, voids;
-    int64_t overlap_samples, uncovered, uncovered_far, void_covered, range_errors;
+    int64_t overlap_samples, uncovered, uncovered_far, void_covered, void_covered_near, range_errors;
     int64_t err_num, err_den, err_q10;
     int32_t err_x, err_y;
     int64_t err_tri;
