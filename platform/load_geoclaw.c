@@ -44,9 +44,12 @@ static int gkey(const uint8_t *t, size_t len, int *corner)
     return -1;
 }
 
+/* Past the white space before the next token of the line: every isspace byte but the
+ * newline.  The token loops stop a token at any isspace byte, so this must skip all of
+ * them, or a vertical tab or form feed would leave them where they stand (a hang). */
 static size_t skip_blank(const uint8_t *p, size_t n, size_t i)
 {
-    while (i < n && (p[i] == ' ' || p[i] == '\t' || p[i] == '\r')) i++;
+    while (i < n && p[i] != '\n' && isspace(p[i])) i++;
     return i;
 }
 

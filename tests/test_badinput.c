@@ -3,6 +3,7 @@
  * names the file, never crash or read out of bounds (the suite runs this
  * under ASan+UBSan too). */
 #include <math.h>
+#include <unistd.h>
 #include "tests/test.h"
 #include "tests/zipmk.h"
 #include "platform/load.h"
@@ -191,6 +192,9 @@ static void test_asc(void)
     static const char huge[] = "ncols 2\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 1e300\n";
     static const char nohead[] = "ncols 2\nnrows 1\n";
     static const char ok[] = "NCOLS 2\nNROWS 1\nXLLCENTER 0\nYLLCENTER 0\nCELLSIZE 1\nNODATA_VALUE -1\n-1 2.5\n";
+    /* GeoClaw (value-first header) with a vertical tab after a token: the token loops
+     * stopped at it and the blank skip did not pass it, a hang (fuzz_asc, fuzz_file) */
+    static const char vtab[] = "5 ncols\n3\vz nrows\n0 xll\n0 yll\n1 cellsize\n1 2 3 4 5\n";
     unsigned char *q;
     size_t i;
     BAD("hugo_site.asc", asc, asc_n / 2, NULL, BR_E_TRUNCATED);
@@ -211,6 +215,9 @@ static void test_asc(void)
     BAD("x.asc", huge, sizeof huge - 1, NULL, BR_E_VALUE);
     BAD("x.asc", nohead, sizeof nohead - 1, NULL, BR_E_TRUNCATED);
     BAD("x.asc", "", 0, NULL, BR_E_TRUNCATED);
+    alarm(20);                  /* a hang is a failure (SIGALRM ends the program) */
+    BAD("x.asc", vtab, sizeof vtab - 1, NULL, BR_E_VALUE);
+    alarm(0);
     {
         hf f;
         br_err e;
