@@ -460,10 +460,8 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
     }
     if (sp < 0) return;
     if (!sp) {
-        /* a triangle over padding voids (BT_CODE_SPLIT) that a budget left
-         * unsplit is dropped, never drawn over them (its corners may all be
-         * valid); over the grid's own voids its code is its extent (bt_err.c) and
-         * it is drawn like any other */
+        /* one over padding voids (BT_CODE_SPLIT) that a budget left unsplit is
+         * dropped, even with 3 valid corners (the grid's own: bt_err.c "Voids") */
         if (!e->nonvoid && BT_NODE_ERR(e->t->node[id]) == BT_CODE_SPLIT) return;
         if (tri_valid(e, a, c, b))
             leaf(e, a, c, b, in_hyp, out_hyp);
