@@ -4,7 +4,7 @@
  * column 0 the WEST edge (the order of SRTM, PNG, ASC and GeoTIFF rows).
  * Heights: int32 in units of z_num/z_den metres (HGT 1/1, terrain-RGB 1/10,
  * Terrarium 1/256, files with decimal heights a power of ten chosen to keep at least 1 mm),
- * |z| <= BR_Z_LIMIT; HF_NODATA marks a void (never triangulated, never shaded).
+ * |z| <= BR_Z_LIMIT; HF_NODATA marks a void (never a vertex, never shaded).
  * Ground spacing: dx_um between columns, dy_um between rows, in micrometres
  * (for geographic grids: metres per degree at the grid's centre latitude),
  * 1 .. HF_MAX_SPACING_UM.

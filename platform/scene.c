@@ -429,8 +429,8 @@ br_status scene_grid(scene *s, int32_t step, br_err *err)
             rt_vertex(&s->rt, x * step, y * step, z == HF_NODATA ? 0 : z, &s->grid_v[y * gw + x]);
         }
     /* row strips, south-west first vertex: CCW seen from +z (row y is north of y+1),
-     * one per run of columns whose two samples are valid: a void is a hole, as in the
-     * bitree's meshes (no triangle touches a void sample) */
+     * one per run of columns whose two samples are valid: a void is a hole (no
+     * triangle touches a void sample; the bitree's meshes place one within their error) */
     for (y = 0; y + 1 < gh; y++) {
         const int32_t *zr = s->f.z + (size_t)y * (size_t)step * (size_t)s->f.w;
         const int32_t *zn = s->f.z + (size_t)(y + 1) * (size_t)step * (size_t)s->f.w;

@@ -37,7 +37,7 @@
  * mc_check: WHAT IS CHECKED (each count is 0 in a correct mesh unless noted)
  * ---------------------------------------------------------------------------
  * bad_vertex      triangle index out of range, vertex outside the grid, or vertex
- *                 on a void sample (voids are never triangulated).
+ *                 on a void sample (no vertex lies on a void).
  * split_vertex    two referenced vertices at one position with different heights.
  * degenerate      triangles with zero 2D area.
  * flipped         non-degenerate triangles whose orientation is not the majority's.
