@@ -176,7 +176,7 @@ static int tri_small(const bti_build_ctx *c, const int32_t a[2], const int32_t c
     for (i = 0; i < np; i++) { ok[i] = samp(c, px[i], py[i], &z[i]); nv += ok[i]; }
     r->err = 0; r->zlo = 0; r->zhi = 0; r->vc = 0;
     r->cls = nv == np ? 0 : nv > 0 ? 1 : 2;
-    if (r->cls != 0 && !(r->cls == 1 && c->ext_den && ok[0] && ok[1] && ok[2])) return 1;
+    if (r->cls != 0 && !(r->cls == 1 && ok[0] && ok[1] && ok[2])) return 1;   /* (exact metric only) */
     r->vc = r->cls == 1;
     /* the samples off the plane: the hypotenuse's midpoint, and the legs' on a
      * diagonal hypotenuse; a mixed triangle's valid ones only */
@@ -235,39 +235,59 @@ static void tab_build(bti_build_ctx *c, const int32_t a[2], const int32_t cc[2],
     c->tabn[ti] = n;
 }
 
-/* A mixed triangle (a, cc, b) whose three corners are valid (so it lies inside w x h):
- * the exact error over its valid samples, with the plane of tri_eval's wide path and
- * a void test per sample (c->vp), into r (vc = 1).  Rows in c->ry/rx0/rx1 (nr). */
-static void mixed_err(const bti_build_ctx *c, const int32_t a[2], const int32_t cc[2], const int32_t b[2],
-                      int32_t nr, tri_res *r)
+/* The plane of triangle (a, cc, b), apex cc, times D: P(x, y) = D zc + (x - cx) A +
+ * (y - cy) B, D = cross(u, v) / m, u = a - c, v = b - c, m = max |u component| (so
+ * u/m, v/m are in {-1, 0, 1}: the signs of the components); normalised to D > 0, a
+ * power of two, D = 2^k. */
+typedef struct tri_plane {
+    int64_t D, A, B;
+    int32_t k;
+} tri_plane;
+
+static void plane_of(const int32_t a[2], const int32_t cc[2], const int32_t b[2], int32_t za, int32_t zb,
+                     int32_t zc, tri_plane *pl)
 {
-    int32_t za = c->z[(size_t)a[1] * c->w + a[0]], zb = c->z[(size_t)b[1] * c->w + b[0]];
-    int32_t zc = c->z[(size_t)cc[1] * c->w + cc[0]], i, k = 0, zl, zh;
     int32_t ux = a[0] - cc[0], uy = a[1] - cc[1], vx = b[0] - cc[0], vy = b[1] - cc[1];
-    int64_t D, A, B, dza = (int64_t)za - zc, dzb = (int64_t)zb - zc, mx = 0, mn = 0;
-    D = (int64_t)ux * sgn32(vy) - (int64_t)uy * sgn32(vx);
-    A = (int64_t)sgn32(vy) * dza - (int64_t)sgn32(uy) * dzb;
-    B = -(int64_t)sgn32(vx) * dza + (int64_t)sgn32(ux) * dzb;
-    if (D < 0) { D = -D; A = -A; B = -B; }
-    while (((int64_t)1 << k) < D) k++;
+    int64_t dza = (int64_t)za - zc, dzb = (int64_t)zb - zc;
+    pl->D = (int64_t)ux * sgn32(vy) - (int64_t)uy * sgn32(vx);
+    pl->A = (int64_t)sgn32(vy) * dza - (int64_t)sgn32(uy) * dzb;
+    pl->B = -(int64_t)sgn32(vx) * dza + (int64_t)sgn32(ux) * dzb;
+    if (pl->D < 0) { pl->D = -pl->D; pl->A = -pl->A; pl->B = -pl->B; }
+    pl->k = 0;
+    while (((int64_t)1 << pl->k) < pl->D) pl->k++;
+}
+
+/* max |P - (z << k)| over the rows c->ry/rx0/rx1 (nr) in int64, one sample at a time;
+ * with skip_voids the void samples (c->vp) are left out */
+static int64_t scan_wide(const bti_build_ctx *c, const tri_plane *pl, const int32_t cc[2], int32_t zc, int32_t nr,
+                         int skip_voids)
+{
+    int64_t mx = 0, mn = 0;
+    int32_t i;
     for (i = 0; i < nr; i++) {
         int32_t y = c->ry[i], x;
         const int32_t *zr = c->z + (size_t)y * c->w;
-        const uint16_t *pr = c->vp + (size_t)y * (size_t)(c->w + 1);
-        int64_t p = D * zc + (int64_t)(c->rx0[i] - cc[0]) * A + (int64_t)(y - cc[1]) * B;
-        for (x = c->rx0[i]; x <= c->rx1[i]; x++, p += A) {
+        const uint16_t *pr = skip_voids ? c->vp + (size_t)y * (size_t)(c->w + 1) : NULL;
+        int64_t p = pl->D * zc + (int64_t)(c->rx0[i] - cc[0]) * pl->A + (int64_t)(y - cc[1]) * pl->B;
+        for (x = c->rx0[i]; x <= c->rx1[i]; x++, p += pl->A) {
             int64_t d;
-            if (pr[x + 1] != pr[x]) continue;
-            d = p - ((int64_t)zr[x] << k);
+            if (pr && pr[x + 1] != pr[x]) continue;
+            d = p - ((int64_t)zr[x] << pl->k);
             mx = d > mx ? d : mx;
             mn = d < mn ? d : mn;
         }
     }
-    r->vc = 1;
-    r->err = (max64(mx, -mn) + D - 1) >> k;
-    zl = za < zb ? za : zb; zh = za > zb ? za : zb;
+    return max64(mx, -mn);
+}
+
+/* r's error from e = max |P - (z << k)| (rounded up) and its volume: the corners'
+ * heights +- the error */
+static void set_err(tri_res *r, int64_t e, const tri_plane *pl, int32_t za, int32_t zb, int32_t zc)
+{
+    int32_t zl = za < zb ? za : zb, zh = za > zb ? za : zb;
     if (zc < zl) zl = zc;
     if (zc > zh) zh = zc;
+    r->err = (e + pl->D - 1) >> pl->k;
     r->zlo = (int32_t)max64((int64_t)zl - r->err, 0);
     r->zhi = (int32_t)min64((int64_t)zh + r->err, INT32_MAX);
 }
@@ -336,21 +356,25 @@ static void tri_eval(const bti_build_ctx *c, const int32_t a[2], const int32_t c
     if (voids > 0) {
         int32_t za, zb, zc;
         r->cls = valid > 0 ? 1 : 2;
-        if (r->cls == 1 && c->ext_den && samp(c, a[0], a[1], &za) && samp(c, b[0], b[1], &zb) &&
-            samp(c, cc[0], cc[1], &zc))
-            mixed_err(c, a, cc, b, nr, r);
+        /* mixed with three valid corners (so inside w x h): its valid samples' error */
+        if (r->cls == 1 && c->metric == BT_METRIC_EXACT && samp(c, a[0], a[1], &za) && samp(c, b[0], b[1], &zb)
+            && samp(c, cc[0], cc[1], &zc)) {
+            tri_plane pl;
+            plane_of(a, cc, b, za, zb, zc, &pl);
+            set_err(r, scan_wide(c, &pl, cc, zc, nr, 1), &pl, za, zb, zc);
+            r->vc = 1;
+        }
         return;
     }
     {
         int32_t za = c->z[(size_t)a[1] * c->w + a[0]];
         int32_t zb = c->z[(size_t)b[1] * c->w + b[0]];
         int32_t zc = c->z[(size_t)cc[1] * c->w + cc[0]];
-        int32_t zl = za < zb ? za : zb, zh = za > zb ? za : zb;
-        if (zc < zl) zl = zc;
-        if (zc > zh) zh = zc;
         if (c->metric == BT_METRIC_CURVATURE) {
             int64_t sum = 0;
-            int32_t lo = zl, hi = zh;
+            int32_t lo = za < zb ? za : zb, hi = za > zb ? za : zb;
+            if (zc < lo) lo = zc;
+            if (zc > hi) hi = zc;
             for (i = 0; i < nr; i++) {
                 const int32_t *kr = c->kap + (size_t)c->ry[i] * c->w;
                 const int32_t *zr = c->z + (size_t)c->ry[i] * c->w;
@@ -365,47 +389,21 @@ static void tri_eval(const bti_build_ctx *c, const int32_t a[2], const int32_t c
             return;
         }
         {
-            /* plane * D: P(x, y) = D zc + (x - cx) A + (y - cy) B, D = cross(u, v) / m,
-             * u = a - c, v = b - c, m = max |u component| (so u/m, v/m are in
-             * {-1, 0, 1}); normalised to D > 0 (D is then a power of two, 2^k). */
-            int32_t ux = a[0] - cc[0], uy = a[1] - cc[1], vx = b[0] - cc[0], vy = b[1] - cc[1];
-            int32_t k = 0;
-            int64_t D, A, B, dza = (int64_t)za - zc, dzb = (int64_t)zb - zc, e;
-            /* u/m and v/m are the signs of the components (each is 0 or +-m) */
-            D = (int64_t)ux * sgn32(vy) - (int64_t)uy * sgn32(vx);
-            A = (int64_t)sgn32(vy) * dza - (int64_t)sgn32(uy) * dzb;
-            B = -(int64_t)sgn32(vx) * dza + (int64_t)sgn32(ux) * dzb;
-            if (D < 0) { D = -D; A = -A; B = -B; }
-            while (((int64_t)1 << k) < D) k++;
+            tri_plane pl;
+            int64_t e;
+            plane_of(a, cc, b, za, zb, zc, &pl);
             if (c->narrow) {
-                int32_t mx = 0, mn = 0, vmx[8], vmn[8], ramp[8], l;
-                for (l = 0; l < 8; l++) { vmx[l] = 0; vmn[l] = 0; ramp[l] = (int32_t)A * l; }
+                int32_t mx = 0, mn = 0, vmx[8], vmn[8], ramp[8], l, A = (int32_t)pl.A;
+                for (l = 0; l < 8; l++) { vmx[l] = 0; vmn[l] = 0; ramp[l] = A * l; }
                 for (i = 0; i < nr; i++) {
                     int32_t y = c->ry[i], x0 = c->rx0[i];
-                    int32_t p = (int32_t)(D * zc + (int64_t)(x0 - cc[0]) * A + (int64_t)(y - cc[1]) * B);
-                    row32(c->z + (size_t)y * c->w + x0, c->rx1[i] - x0 + 1, p, 8 * (int32_t)A, ramp, k,
-                          vmx, vmn);
+                    int32_t p = (int32_t)(pl.D * zc + (int64_t)(x0 - cc[0]) * pl.A + (int64_t)(y - cc[1]) * pl.B);
+                    row32(c->z + (size_t)y * c->w + x0, c->rx1[i] - x0 + 1, p, 8 * A, ramp, pl.k, vmx, vmn);
                 }
                 for (l = 0; l < 8; l++) { mx = vmx[l] > mx ? vmx[l] : mx; mn = vmn[l] < mn ? vmn[l] : mn; }
                 e = max64(mx, -(int64_t)mn);
-            } else {
-                int64_t mx = 0, mn = 0;
-                for (i = 0; i < nr; i++) {
-                    int32_t y = c->ry[i], x0 = c->rx0[i], x;
-                    const int32_t *zr = c->z + (size_t)y * c->w;
-                    int64_t p = D * zc + (int64_t)(x0 - cc[0]) * A + (int64_t)(y - cc[1]) * B;
-                    for (x = x0; x <= c->rx1[i]; x++) {
-                        int64_t d = p - ((int64_t)zr[x] << k);
-                        mx = d > mx ? d : mx;
-                        mn = d < mn ? d : mn;
-                        p += A;
-                    }
-                }
-                e = max64(mx, -mn);
-            }
-            r->err = (e + D - 1) >> k;
-            r->zlo = (int32_t)max64((int64_t)zl - r->err, 0);
-            r->zhi = (int32_t)min64((int64_t)zh + r->err, INT32_MAX);
+            } else e = scan_wide(c, &pl, cc, zc, nr, 0);
+            set_err(r, e, &pl, za, zb, zc);
         }
     }
 }
@@ -426,7 +424,7 @@ void bte_extent_init(bti_build_ctx *c, const hf *f)
     } else dg = dx + dy;                   /* at least the diagonal (steps above 2 km) */
     c->step_um[0] = dx > dy ? dx : dy;
     c->step_um[1] = dg;
-    c->ext_den = c->metric == BT_METRIC_EXACT ? (int64_t)f->z_num * 1000000 : 0;
+    c->ext_den = (int64_t)f->z_num * 1000000;
     c->ext_zden = f->z_den;
 }
 
@@ -597,7 +595,7 @@ void bte_diamond(bt_tree *t, const bti_build_ctx *c, int32_t x, int32_t y, int32
             const int32_t px[4] = { a[0], b[0], ap[i][0], x }, py[4] = { a[1], b[1], ap[i][1], y };
             if (ap[i][0] > mxx) mxx = ap[i][0];
             if (ap[i][1] > myy) myy = ap[i][1];
-            code = c->ext_den && mxx < c->w && myy < c->h ? code_max(code, void_extent(c, h, typeD))
+            code = c->metric == BT_METRIC_EXACT && mxx < c->w && myy < c->h ? code_max(code, void_extent(c, h, typeD))
                                                           : (uint16_t)BT_CODE_SPLIT;
             for (k = 0; k < 4; k++)
                 if (samp(c, px[k], py[k], &zv)) {

@@ -36,7 +36,7 @@ typedef struct bti_build_ctx {
                               diagonal step (rounded up), micrometres (bt_err.c
                               void_extent) */
     int64_t ext_den;       /* z_num * 10^6 (micrometres to heightfield units, times
-                              z_den); 0: voids always split (curvature metric) */
+                              z_den) */
     int32_t ext_zden;      /* z_den */
     int32_t tabn[16];
 } bti_build_ctx;
