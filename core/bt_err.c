@@ -595,8 +595,9 @@ void bte_diamond(bt_tree *t, const bti_build_ctx *c, int32_t x, int32_t y, int32
             const int32_t px[4] = { a[0], b[0], ap[i][0], x }, py[4] = { a[1], b[1], ap[i][1], y };
             if (ap[i][0] > mxx) mxx = ap[i][0];
             if (ap[i][1] > myy) myy = ap[i][1];
-            code = c->metric == BT_METRIC_EXACT && mxx < c->w && myy < c->h ? code_max(code, void_extent(c, h, typeD))
-                                                          : (uint16_t)BT_CODE_SPLIT;
+            if (c->metric == BT_METRIC_EXACT && mxx < c->w && myy < c->h)
+                code = code_max(code, void_extent(c, h, typeD));
+            else code = BT_CODE_SPLIT;
             for (k = 0; k < 4; k++)
                 if (samp(c, px[k], py[k], &zv)) {
                     uint8_t l = bti_q_lo(c, zv), u = bti_q_hi(c, zv);
