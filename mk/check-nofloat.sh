@@ -3,7 +3,8 @@
 # -mgeneral-regs-only (x86-64, AArch64), which makes any float/double an error,
 # and also check that they include only freestanding headers.  Every C file of the
 # project stays C99: GCC and clang accept C11 keywords such as _Static_assert under
-# -std=c99 -pedantic-errors without a word, so they are searched for by name.
+# -std=c99 -pedantic-errors without a word, so they are searched for by name
+# (outside comment lines).
 # Usage: mk/check-nofloat.sh CC file.c...
 cc=$1; shift
 fail=0
@@ -37,7 +38,7 @@ for h in $(ls core/*.h raster/*.h 2>/dev/null); do
 done
 c11=$(grep -nE '\<_(Static_assert|Generic|Alignas|Alignof|Noreturn|Thread_local|Atomic)\>' \
       $(ls core/*.[ch] raster/*.[ch] platform/*.[ch] platform/*/*.[ch] tests/*.[ch] tests/*/*.[ch] \
-         benchmarks/*.[ch] tools/*.[ch] 2>/dev/null) | grep -v 'C11' | head -5)
+         benchmarks/*.[ch] tools/*.[ch] 2>/dev/null) | grep -vE '^[^:]*:[0-9]+:[[:space:]]*(/\*|\*|//)' | head -5)
 if [ -n "$c11" ]; then echo "nofloat: C11 keyword in a C99 project:"; echo "$c11"; fail=1; fi
 # On x86-64 the normal build (SSE2 for raster.c's vector pre-pass) is also scanned:
 # no floating-point arithmetic, comparison, conversion or x87 instruction may appear
