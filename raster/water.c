@@ -1,5 +1,6 @@
-/* raster/water.c — reflection pass, water pass, and the post hook that composites water,
- * sky and fog (see water.h; the per-frame set-up is raster/water_setup.c).  Right shifts
+/* raster/water.c — reflection pass and the post hook that composites water, sky and fog
+ * (see water.h; the water pass is raster/water_pass.c, the per-frame set-up
+ * raster/water_setup.c).  Right shifts
  * of negative values are arithmetic (checked once in core/fx.h's users; gcc and clang on
  * every target we build). */
 #include <string.h>
@@ -59,15 +60,16 @@ static inline uint32_t get_id(int32_t fmt, const void *row, int32_t x);
  * body's pixels only). */
 static int refl_body_in_row(const rw_frame *r, const rs_band *b, int32_t y)
 {
-    const int32_t i = r->water_pass, w = b->w;
+    const int32_t i = r->water_pass, x0 = r->wx0[y / RW_COL_ROWS], xe = r->wx1[y / RW_COL_ROWS] + 1;
     const uint32_t id = (uint32_t)r->p.refl_body;
     const uint8_t *row = (const uint8_t *)b->scratch[i] + (size_t)(y - b->scratch_y0[i]) * b->scratch_stride[i];
     int32_t x;
+    /* (the pass wrote and cleared only columns x0 .. xe - 1) */
     if (r->fmt == RS_FMT_RGB565) {
-        for (x = next_water(row, 0, w, RS_FMT_RGB565); x < w; x = next_water(row, x + 1, w, RS_FMT_RGB565))
+        for (x = next_water(row, x0, xe, RS_FMT_RGB565); x < xe; x = next_water(row, x + 1, xe, RS_FMT_RGB565))
             if (get_id(RS_FMT_RGB565, row, x) == id) return 1;
     } else {
-        for (x = next_water(row, 0, w, RS_FMT_XRGB8888); x < w; x = next_water(row, x + 1, w, RS_FMT_XRGB8888))
+        for (x = next_water(row, x0, xe, RS_FMT_XRGB8888); x < xe; x = next_water(row, x + 1, xe, RS_FMT_XRGB8888))
             if (get_id(RS_FMT_XRGB8888, row, x) == id) return 1;
     }
     return 0;
@@ -117,140 +119,6 @@ br_status rw_pass_reflection(rs_pass *pass, const rw_frame *r)
     pass->scratch = 1;
     pass->rows_touched = refl_touched;
     pass->run = refl_run;
-    pass->user = r;
-    return BR_OK;
-}
-
-static int water_touched(const void *user, int32_t y0, int32_t rows)
-{
-    const rw_frame *r = (const rw_frame *)user;
-    return r->water && r->wlo <= r->whi && y0 <= r->whi && y0 + rows > r->wlo;
-}
-
-/* One row of the water pass's scratch: depth o = max(t - bias, dfar) from the terrain's
- * row t, colour c = 0 (no id), n pixels (buffers that do not overlap).  t - bias > dfar
- * exactly when t > bias + dfar (all three below 2^30 for 30-bit depths, 2^16 for 16-bit
- * ones: no overflow).  With GCC's vector extension (gcc, clang) 16 bytes a step; the
- * colour is cleared in the same loop (one store per vector of depths, no second pass
- * over the row). */
-#if defined(__GNUC__)
-typedef uint32_t seed_u32x4 __attribute__((vector_size(16)));
-typedef uint16_t seed_u16x8 __attribute__((vector_size(16)));
-#endif
-static inline void seed32(uint32_t *restrict o, uint32_t *restrict c, const uint32_t *restrict t, int32_t n,
-                          uint32_t bias, uint32_t dfar, const int clear)
-{
-    const uint32_t thr = bias + dfar;
-    int32_t i = 0;
-#if defined(__GNUC__)
-    const seed_u32x4 vb = { bias, bias, bias, bias }, vf = { dfar, dfar, dfar, dfar }, vt = { thr, thr, thr, thr };
-    uint32_t zero = 0;
-    seed_u32x4 z;
-    __asm__("" : "+r"(zero));   /* opaque: GCC would split the zero stores into a memset,
-                                   a second pass over the row */
-    z = (seed_u32x4){ zero, zero, zero, zero };
-    for (; i + 8 <= n; i += 8) {
-        seed_u32x4 v, u, m, k;
-        memcpy(&v, t + i, sizeof v);
-        memcpy(&u, t + i + 4, sizeof u);
-        m = (seed_u32x4)(v > vt);
-        k = (seed_u32x4)(u > vt);
-        v = ((v - vb) & m) | (vf & ~m);
-        u = ((u - vb) & k) | (vf & ~k);
-        memcpy(o + i, &v, sizeof v);
-        memcpy(o + i + 4, &u, sizeof u);
-        if (clear) { memcpy(c + i, &z, sizeof z); memcpy(c + i + 4, &z, sizeof z); }
-    }
-#endif
-    for (; i < n; i++) {
-        o[i] = t[i] > thr ? t[i] - bias : dfar;
-        if (clear) c[i] = 0;
-    }
-}
-
-static inline void seed16(uint16_t *restrict o, uint16_t *restrict c, const uint16_t *restrict t, int32_t n,
-                          uint32_t bias, uint32_t dfar, const int clear)
-{
-    int32_t i = 0;
-    if (bias + dfar >= 65535u) {    /* no terrain depth passes: every pixel is dfar */
-        for (; i < n; i++) {
-            o[i] = (uint16_t)dfar;
-            if (clear) c[i] = 0;
-        }
-        return;
-    }
-    {
-        const uint16_t thr = (uint16_t)(bias + dfar), b16 = (uint16_t)bias, f16 = (uint16_t)dfar;
-#if defined(__GNUC__)
-        const seed_u16x8 vb = { b16, b16, b16, b16, b16, b16, b16, b16 };
-        const seed_u16x8 vf = { f16, f16, f16, f16, f16, f16, f16, f16 };
-        const seed_u16x8 vt = { thr, thr, thr, thr, thr, thr, thr, thr };
-        uint16_t zero = 0;
-        seed_u16x8 z;
-        __asm__("" : "+r"(zero));   /* as in seed32 */
-        z = (seed_u16x8){ zero, zero, zero, zero, zero, zero, zero, zero };
-        for (; i + 8 <= n; i += 8) {
-            seed_u16x8 v, m;
-            memcpy(&v, t + i, sizeof v);
-            m = (seed_u16x8)(v > vt);
-            v = ((v - vb) & m) | (vf & ~m);
-            memcpy(o + i, &v, sizeof v);
-            if (clear) memcpy(c + i, &z, sizeof z);
-        }
-#endif
-        for (; i < n; i++) {
-            o[i] = t[i] > thr ? (uint16_t)(t[i] - b16) : f16;
-            if (clear) c[i] = 0;
-        }
-    }
-}
-
-/* The water pass's scratch, seeded from the terrain pass's depth of the same rows (the
- * pass has no margin): depth max(dfar, terrain - water_bias), so a water pixel is drawn
- * only where it is nearer than the terrain, or farther by no more than the shore bound of
- * the bodies on screen allows (rw_post tests each body's own); colour 0 (no id).  The
- * water frame is drawn with no_clear. */
-static br_status water_run(const void *user, rs_band *b, int32_t self, rs_band_stats *st)
-{
-    const rw_frame *r = (const rw_frame *)user;
-    const uint32_t bias = r->water_bias, dfar = r->dfar;
-    const int32_t w = b->w;
-    const int32_t lo = r->wlo > b->y0 ? r->wlo : b->y0;
-    const int32_t hi = r->whi < b->y0 + b->rows - 1 ? r->whi : b->y0 + b->rows - 1;
-    int32_t y;
-    if (b->scratch_y0[self] != b->y0 || b->scratch_rows[self] != b->rows) return BR_E_ARG;
-    /* only the water rows wlo .. whi: no water triangle reaches the others, and rw_post
-     * reads no other row of this scratch */
-    for (y = lo; y <= hi; y++) {
-        const size_t row = (size_t)(y - b->y0);
-        uint8_t *c = (uint8_t *)b->scratch[self] + row * b->scratch_stride[self];
-        uint8_t *o = (uint8_t *)b->scratch_depth[self] + row * (size_t)w * (r->depth == RS_DEPTH16 ? 2u : 4u);
-        const uint8_t *t = (const uint8_t *)b->depth + row * (size_t)w * (r->depth == RS_DEPTH16 ? 2u : 4u);
-        /* the colour is cleared with the depths where both have the same pixel size */
-        if (r->depth == RS_DEPTH16 && r->fmt == RS_FMT_RGB565)
-            seed16((uint16_t *)(void *)o, (uint16_t *)(void *)c, (const uint16_t *)(const void *)t, w, bias, dfar, 1);
-        else if (r->depth != RS_DEPTH16 && r->fmt != RS_FMT_RGB565)
-            seed32((uint32_t *)(void *)o, (uint32_t *)(void *)c, (const uint32_t *)(const void *)t, w, bias, dfar, 1);
-        else {
-            memset(c, 0, (size_t)w * (r->fmt == RS_FMT_RGB565 ? 2u : 4u));
-            if (r->depth == RS_DEPTH16)
-                seed16((uint16_t *)(void *)o, NULL, (const uint16_t *)(const void *)t, w, bias, dfar, 0);
-            else
-                seed32((uint32_t *)(void *)o, NULL, (const uint32_t *)(const void *)t, w, bias, dfar, 0);
-        }
-    }
-    return rs_draw_band(r->water, b->scratch_y0[self], b->scratch_rows[self], b->scratch[self],
-                        b->scratch_stride[self], b->scratch_depth[self], st);
-}
-
-br_status rw_pass_water(rs_pass *pass, const rw_frame *r)
-{
-    if (!pass || !r || !r->water) return BR_E_ARG;
-    memset(pass, 0, sizeof *pass);
-    pass->name = "water";
-    pass->scratch = 1;
-    pass->rows_touched = water_touched;
-    pass->run = water_run;
     pass->user = r;
     return BR_OK;
 }
@@ -590,12 +458,17 @@ static inline int32_t next_water(const uint8_t *wc, int32_t x, int32_t w, const 
     return x;
 }
 
-/* Row y's water-pass scratch in the band: colour (returned) and depth (*wd); NULL where
- * the pass drew nothing there (water_run seeds only the water rows wlo .. whi). */
+/* Row y's water-pass scratch in the band: colour (returned) and depth (*wd), valid in
+ * columns *x0 .. *xe - 1; NULL where the pass drew nothing there (water_run seeds only
+ * the water rows wlo .. whi, and in them the columns water_cols found). */
 static inline const uint8_t *water_row(const rw_frame *r, const rs_band *b, const uint8_t *wcol, const uint8_t *wdep,
-                                       int32_t wy0, int32_t wrows, int32_t y, size_t dbp, const uint8_t **wd)
+                                       int32_t wy0, int32_t wrows, int32_t y, size_t dbp, const uint8_t **wd,
+                                       int32_t *x0, int32_t *xe)
 {
     if (!wcol || y < wy0 || y >= wy0 + wrows || y < r->wlo || y > r->whi) return NULL;
+    *x0 = r->wx0[y / RW_COL_ROWS];
+    *xe = r->wx1[y / RW_COL_ROWS] + 1;
+    if (*x0 >= *xe) return NULL;
     *wd = wdep + (size_t)(y - wy0) * (size_t)b->w * dbp;
     return wcol + (size_t)(y - wy0) * b->stride;
 }
@@ -627,7 +500,7 @@ static inline void put_px(uint8_t *crow, int32_t x, int32_t y, uint32_t rgb, con
 /* water_rows_only's pixels of one row; trows (a constant at each call): the row may hold
  * a tested triangle's pixels (rw_frame.trow), whose flag is read only then. */
 static RW_INLINE void water_row_px(const rw_frame *r, const refl_view *rv, const rw_rowk *k, uint8_t *crow,
-                                   const uint8_t *drow, const uint8_t *wc, const uint8_t *wd, int32_t w,
+                                   const uint8_t *drow, const uint8_t *wc, const uint8_t *wd, int32_t x0, int32_t xe,
                                    const int32_t fmt, const int32_t depth, const int common, const int trows)
 {
     const int32_t dsh = depth == RS_DEPTH16 ? 14 : 0, y = k->y;
@@ -635,7 +508,7 @@ static RW_INLINE void water_row_px(const rw_frame *r, const refl_view *rv, const
     uint32_t qdw = 0;           /* the depth q8 was made for (0: none; a water depth is > 0) */
     int64_t q8 = 0;
     int32_t x;
-    for (x = next_water(wc, 0, w, fmt); x < w; x = next_water(wc, x + 1, w, fmt)) {
+    for (x = next_water(wc, x0, xe, fmt); x < xe; x = next_water(wc, x + 1, xe, fmt)) {
         const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
         uint32_t rgb, d, fw;
         if (!water_shows(r, k, x, id, wc, dt, dw, dsh, fmt, trows)) continue;
@@ -660,12 +533,13 @@ static RW_INLINE void water_rows_only(const rw_frame *r, rs_band *b, const refl_
         const int32_t y = b->y0 + row;
         uint8_t *crow = (uint8_t *)b->color + (size_t)row * b->stride;
         const uint8_t *drow = (const uint8_t *)b->depth + (size_t)row * (size_t)w * dbp, *wd = NULL;
-        const uint8_t *wc = water_row(r, b, wcol, wdep, wy0, wrows, y, dbp, &wd);
+        int32_t x0, xe;
+        const uint8_t *wc = water_row(r, b, wcol, wdep, wy0, wrows, y, dbp, &wd, &x0, &xe);
         rw_rowk k;
         if (!wc) continue;
         row_k(r, rv, y, &k, fmt, depth);
-        if (r->trow[y]) water_row_px(r, rv, &k, crow, drow, wc, wd, w, fmt, depth, common, 1);
-        else water_row_px(r, rv, &k, crow, drow, wc, wd, w, fmt, depth, common, 0);
+        if (r->trow[y]) water_row_px(r, rv, &k, crow, drow, wc, wd, x0, xe, fmt, depth, common, 1);
+        else water_row_px(r, rv, &k, crow, drow, wc, wd, x0, xe, fmt, depth, common, 0);
     }
 }
 
@@ -682,7 +556,8 @@ static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *
         const int32_t y = b->y0 + row;
         uint8_t *crow = (uint8_t *)b->color + (size_t)row * b->stride;
         const uint8_t *drow = (const uint8_t *)b->depth + (size_t)row * (size_t)b->w * dbp;
-        const uint8_t *wd = NULL, *wc = water_row(r, b, wcol, wdep, wy0, wrows, y, dbp, &wd);
+        int32_t x0 = 0, xe = 0;
+        const uint8_t *wd = NULL, *wc = water_row(r, b, wcol, wdep, wy0, wrows, y, dbp, &wd, &x0, &xe);
         const uint32_t sky = r->sky[y];
         rw_rowk k;
         row_k(r, rv, y, &k, fmt, depth);
@@ -699,7 +574,7 @@ static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *
             } else {
                 rgb = 0;
                 d = dt << dsh;
-                if (wc) {
+                if (wc && x >= x0 && x < xe) {
                     const uint32_t id = get_id(fmt, wc, x), dw = get_depth(depth, wd, x);
                     if (id && water_shows(r, &k, x, id, wc, dt, dw, dsh, fmt, r->trow[y])) {
                         rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id,

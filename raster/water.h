@@ -70,6 +70,7 @@
 #include "core/cam.h"
 #include "raster/frame.h"
 
+#define RW_COL_ROWS 8           /* rows that share one column range of the water pass's seed */
 #define RW_WAVE_PX 4            /* largest wave displacement of the reflection lookup, pixels */
 #define RW_WAVES 4              /* travelling sines summed (water_setup.c wave_set) */
 #define RW_MAX_ID 31            /* body ids 1 .. 31 survive RGB565 in the water pass's red bits */
@@ -139,6 +140,10 @@ typedef struct rw_frame {
     int32_t rz[RS_MAX_DIM];     /* per row: world z of the ray (a = 0), Q12 */
     uint32_t sky[RS_MAX_DIM];   /* per row: sky colour */
     uint8_t trow[RS_MAX_DIM];   /* per row: 1 when a tested water triangle may cover it */
+    int16_t wx0[RS_MAX_DIM / RW_COL_ROWS], wx1[RS_MAX_DIM / RW_COL_ROWS];
+                                /* per RW_COL_ROWS rows (y / RW_COL_ROWS), in rows wlo .. whi: the
+                                   columns the water frame's triangles may read or write there
+                                   (wx0 > wx1: none); the pass seeds only those (water_cols) */
     int64_t wrel[RS_MAX_DIM][2], wstep[RS_MAX_DIM][2];  /* per row: plane point = eye + rel + a step
                                                            (Q12 a, world units) */
     int64_t kx[RW_WAVES], ky[RW_WAVES]; /* wave phase per world unit (x, y), 2^-32 turns (mod 2^32) */

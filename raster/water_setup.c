@@ -206,6 +206,61 @@ static void tested_rows(rw_frame *r)
     }
 }
 
+/* Pixels beyond a water triangle's vertices' columns that the pass's seed covers: the
+ * rasteriser reads and writes depth only at pixel centres inside a triangle, so within
+ * the columns of its vertices; the margin keeps any wider access of the drawing code
+ * and the seed's 8-pixel vector steps inside seeded pixels. */
+#define RW_SEED_REACH 16
+
+/* wx0, wx1 of the row groups of rows wlo .. whi (RW_COL_ROWS rows a group, groups touched
+ * by those rows): the columns of the water triangles that may cover a row of the group
+ * (their vertices' rows and columns, from the pixel that holds the leftmost vertex to the
+ * one that holds the rightmost, RW_SEED_REACH wider), every column when a triangle needs
+ * the clipper (its vertices' positions are not valid). */
+static void water_cols(rw_frame *r)
+{
+    const rs_frame *wf = r->water;
+    const int32_t g0 = r->wlo / RW_COL_ROWS, g1 = r->whi / RW_COL_ROWS;
+    int32_t p, g;
+    if (r->wlo > r->whi) return;
+    for (g = g0; g <= g1; g++) { r->wx0[g] = (int16_t)r->w; r->wx1[g] = -1; }
+    for (p = 0; p < wf->nprims; p++) {
+        const rs_prim *pr = &wf->prims[p];
+        const uint32_t step = pr->kind == RS_LIST ? 3u : 1u;
+        uint32_t t;
+        for (t = 0; t + 2 < pr->n; t += step) {
+            const rs_cvert *a = &wf->cache[pr->idx[t]], *b = &wf->cache[pr->idx[t + 1]], *c = &wf->cache[pr->idx[t + 2]];
+            int32_t ylo, yhi, xlo, xhi, lo, hi;
+            if ((a->c & b->c & c->c) >> 24 & 0x3fu) continue;      /* off screen: not drawn */
+            if ((a->c | b->c | c->c) >> 24 & (RS_OUT_NEAR | RS_OUT_GUARD)) {
+                for (g = g0; g <= g1; g++) { r->wx0[g] = 0; r->wx1[g] = (int16_t)(r->w - 1); }
+                return;
+            }
+            ylo = a->y < b->y ? a->y : b->y;
+            ylo = c->y < ylo ? c->y : ylo;
+            yhi = a->y > b->y ? a->y : b->y;
+            yhi = c->y > yhi ? c->y : yhi;
+            rows_of(r, ylo, yhi, 0, &lo, &hi);
+            if (lo < r->wlo) lo = r->wlo;
+            if (hi > r->whi) hi = r->whi;
+            if (lo > hi) continue;
+            xlo = a->x < b->x ? a->x : b->x;
+            xlo = c->x < xlo ? c->x : xlo;
+            xhi = a->x > b->x ? a->x : b->x;
+            xhi = c->x > xhi ? c->x : xhi;
+            /* (inside the guard band: |x| < 2^22 sub-pixels, no overflow) */
+            xlo = ((xlo >> RS_SUBPIX_BITS) - RW_SEED_REACH) & ~7;         /* whole vector steps */
+            xhi = ((xhi >> RS_SUBPIX_BITS) + RW_SEED_REACH) | 7;
+            if (xlo < 0) xlo = 0;
+            if (xhi > r->w - 1) xhi = r->w - 1;
+            for (g = lo / RW_COL_ROWS; g <= hi / RW_COL_ROWS; g++) {
+                if (xlo < r->wx0[g]) r->wx0[g] = (int16_t)xlo;
+                if (xhi > r->wx1[g]) r->wx1[g] = (int16_t)xhi;
+            }
+        }
+    }
+}
+
 /* Water below the eye shows only below the horizon: a point of a water triangle lies at
  * most `top` (the highest water vertex) high, so with top < eye z its view ray goes down,
  * and with no roll (right z = 0: cam_look_at's up hint is +z) the ray of row y's pixel
@@ -397,6 +452,7 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         water_rows(r, &top);
         water_horizon(r, c, f16, top);
         tested_rows(r);
+        water_cols(r);
     }
     return BR_OK;
 }

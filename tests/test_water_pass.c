@@ -1,0 +1,96 @@
+/* tests/test_water_pass.c — the water pass (raster/water_pass.c) seeds its depth and
+ * clears its body ids only where a water triangle can draw: checked against the water
+ * frame drawn alone on N47E009. */
+#include <string.h>
+#include "tests/test.h"
+#include "platform/scene.h"
+#include "platform/water_scene.h"
+#include "raster/raster.h"
+
+/* N47E009 opened with so, its water with wo, the camera eye -> tgt (fov 50) at w x h, a
+ * view mesh at 1 px and the terrain frame fr (its format and depth the caller's), as
+ * the viewer makes them.  s, ws are zeroed first, so ws_close and scene_close may
+ * follow whatever failed. */
+static void view_frame(scene *s, const scene_opts *so, water_scene *ws, const ws_opts *wo, const double eye[3],
+                       const double tgt[3], int32_t w, int32_t h, cam *c, bt_params *bp, rs_frame *fr)
+{
+    const char *in[1];
+    br_err err;
+    memset(s, 0, sizeof *s); memset(ws, 0, sizeof *ws); memset(&err, 0, sizeof err);
+    in[0] = t_data("hgt/N47E009.hgt");
+    CHECK_EQ(scene_open(s, in, 1, so, &err), BR_OK);
+    CHECK_EQ(ws_open(ws, s, wo, &err), BR_OK);
+    CHECK_EQ(scene_camera(s, eye, tgt, 50, w, h, c), BR_OK);
+    CHECK_EQ(scene_tree(s, &err), BR_OK);
+    CHECK_EQ(scene_reserve(s, 2000000, &err), BR_OK);
+    bp->mode = BT_VIEW; bp->c = c; bp->fr = s->rt.fr; bp->pixel_err_q8 = 256;
+    CHECK_EQ(scene_mesh(s, c, bp), BR_OK);
+    CHECK_EQ(scene_terrain(s, c, fr, NULL), BR_OK);
+}
+
+/* The water pass seeds its depth and clears its ids only in the columns water_cols
+ * (raster/water_setup.c) gives each group of RW_COL_ROWS rows, and the reflection pass
+ * and the post hook read only those: every pixel a water triangle can cover must lie in
+ * them.  The water frame is drawn alone over the far depth, so that every pixel of every
+ * triangle passes, from the default path's first camera (Lake Constance far off and the
+ * Walensee below it: the groups are narrower than the frame, or the test would not see
+ * a column left out) and from the water (test_goldens' camera). */
+static void test_seed_columns(void)
+{
+    enum { W = 640, H = 480 };
+    static const double cams[2][6] = { { -20683.0, -2764.5, 59448.4, 37671.8, 55590.3, 1662.5 },
+                                       { 40000, 66000, 420, 60000, 50000, 500 } };
+    static uint32_t col[W * H], dep[W * H];
+    int k;
+    for (k = 0; k < 2; k++) {
+        scene s;
+        scene_opts so;
+        ws_opts wo;
+        water_scene ws;
+        br_err err;
+        cam c;
+        bt_params bp;
+        rs_frame fr;
+        rs_band_stats st;
+        const rw_frame *r;
+        int32_t x, y, g;
+        uint32_t drawn = 0, outside = 0, narrow = 0, groups = 0;
+        memset(&so, 0, sizeof so); memset(&wo, 0, sizeof wo);
+        memset(&fr, 0, sizeof fr); memset(&bp, 0, sizeof bp); memset(&err, 0, sizeof err);
+        so.quiet = 1;
+        wo.quiet = 1; wo.view_px = 1;
+        fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32;
+        view_frame(&s, &so, &ws, &wo, cams[k], cams[k] + 3, W, H, &c, &bp, &fr);
+        CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
+        r = ws.rw;
+        CHECK(r != NULL && r->water != NULL && r->wlo <= r->whi);
+        if (!r || !r->water || r->wlo > r->whi) { ws_close(&ws); scene_close(&s); continue; }
+        memset(col, 0, sizeof col);
+        for (x = 0; x < W * H; x++) dep[x] = r->dfar;
+        CHECK_EQ(rs_draw_band(r->water, 0, H, col, (size_t)W * 4, dep, &st), BR_OK);
+        for (y = 0; y < H; y++)
+            for (x = 0; x < W; x++) {
+                if (!((col[(size_t)y * W + x] >> 19) & 31u)) continue;     /* no body id */
+                drawn++;
+                g = y / RW_COL_ROWS;
+                outside += y < r->wlo || y > r->whi || x < r->wx0[g] || x > r->wx1[g];
+            }
+        for (g = r->wlo / RW_COL_ROWS; g <= r->whi / RW_COL_ROWS; g++) {
+            groups++;
+            narrow += r->wx1[g] - r->wx0[g] + 1 < W;
+        }
+        printf("seed columns, camera %d: %u water pixels, %u outside their group's columns; %u of %u groups "
+               "narrower than the frame\n", k, drawn, outside, narrow, groups);
+        CHECK(drawn > 1000);
+        CHECK_EQ(outside, 0);
+        if (k == 0) CHECK(narrow * 2 > groups);
+        ws_close(&ws);
+        scene_close(&s);
+    }
+}
+
+int main(void)
+{
+    T_RUN(test_seed_columns);
+    return t_finish();
+}
