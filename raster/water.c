@@ -157,10 +157,15 @@ typedef struct refl_view {
 /* Row y's values for the per-pixel functions below, read once a row (the hook's pixel
  * stores may alias the frame's 32-bit tables, so the compiler would reload them, and
  * redo their products, at every pixel). */
+/* sdd of a row with no plane point: a pixel whose terrain is nearer is land (dt - dw > 0) */
+static const uint32_t no_shore[RW_MAX_ID + 1];
+
 typedef struct rw_rowk {
     int32_t y;
     int shore;                  /* the shore test has a plane point in this row: wet and tkr >= 0 */
     int wbound;                 /* the shore bound has a world term (shore_bound and shore_w) */
+    const uint32_t *sdd;        /* per body: the largest dt - dw worth a shore test in this row,
+                                   shore_tdd, or no_shore where the row has no plane point */
     uint32_t cnum;              /* (rz^2 >> 8) << 10 as 32 bits: cos^2 t's numerator */
     int64_t bb;                 /* bq^2 + Q12^2: the row's part of cos^2 t's denominator */
     int64_t ws0, ws1, wrel0, wrel1, tkr;        /* wstep[y], wrel[y], tkr[y] */
@@ -214,6 +219,7 @@ static RW_INLINE void row_k(const rw_frame *r, const refl_view *rv, int32_t y, r
     k->s = s;
     k->tkr = r->tkr[y];
     k->shore = r->p.wet && k->tkr >= 0;
+    k->sdd = k->shore ? r->shore_tdd : no_shore;
     k->wbound = r->p.shore_bound && r->p.shore_w;
     k->cnum = (uint32_t)(((uint64_t)((int64_t)rz * rz) >> 8) << 10);
     k->bb = b * b + (int64_t)Q12 * Q12;
@@ -343,17 +349,15 @@ static RW_INLINE void grid_pos(const rw_frame *r, const rw_rowk *k, int32_t x, i
 }
 
 /* 1 when the grid sample nearest that point is wet with body id; 0 otherwise, or when the
- * point lies off the grid or the row has no plane point. */
+ * point lies off the grid.  For a row with a plane point for the shore test (k->shore). */
 static RW_INLINE int wet_at(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, int64_t f)
 {
     int64_t gx, gy;
     size_t ix, iy;
-    if (!k->shore) return 0;
     grid_pos(r, k, x, f, &gx, &gy);
     if ((uint64_t)gx >= r->gxmax || (uint64_t)gy >= r->gymax) return 0;       /* negative: huge */
-    ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);
-    iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);
-    if (ix >= (size_t)r->p.wet_w || iy >= (size_t)r->p.wet_h) return 0;
+    ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);       /* < wet_w, as gx < gxmax (grid_max) */
+    iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);       /* < wet_h */
     return r->p.wet[iy * (size_t)r->p.wet_w + ix] == id;
 }
 
@@ -361,16 +365,13 @@ static RW_INLINE int wet_at(const rw_frame *r, const rw_rowk *k, int32_t x, uint
  * when the terrain's point on the pixel's ray lies on a sample wet with that body (the
  * terrain LOD over flattened water), 0 otherwise (land, or no plane point for the row).
  * P_t = E + (P_0 - E) bratio dw / dt, P_0 the reflected plane's point; dw / dt from the
- * depths brought to 16 bits (a 32-bit division); the grid sample nearest P_t. */
+ * depths brought to 16 bits (a 32-bit division); the grid sample nearest P_t.  Called
+ * only where k->sdd[id] is not 0 (water_shows), so with k->shore and bratio[id] set, and
+ * with dt > dw >= 1, so t16 >= 1. */
 static RW_INLINE int shore_wet(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, uint32_t dt, uint32_t dw)
 {
-    uint32_t q, t16;
-    int32_t sh;
-    if (!k->shore || !r->bratio[id]) return 0;
-    sh = dt >= 65536u ? 16 - fx_clz32(dt) : 0;      /* the smallest sh with dt >> sh < 2^16 */
-    t16 = dt >> sh;
-    if (!t16) return 0;
-    q = ((dw >> sh) << 16) / t16;
+    const int32_t sh = dt >= 65536u ? 16 - fx_clz32(dt) : 0;      /* the smallest sh with dt >> sh < 2^16 */
+    const uint32_t t16 = dt >> sh, q = ((dw >> sh) << 16) / t16;
     return wet_at(r, k, x, id, ((int64_t)r->bratio[id] * q) >> 16);
 }
 
@@ -378,7 +379,7 @@ static RW_INLINE int shore_wet(const rw_frame *r, const rw_rowk *k, int32_t x, u
  * then 2^16 (f = bratio) for any nonzero dw. */
 static RW_INLINE int plane_wet(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id)
 {
-    return r->bratio[id] && wet_at(r, k, x, id, r->bratio[id]);
+    return k->shore && r->bratio[id] && wet_at(r, k, x, id, r->bratio[id]);
 }
 
 /* A cell corner of sample j, wet with v, passes the split mesh's rule (emit_cell) for body
@@ -484,7 +485,7 @@ static RW_INLINE int water_shows(const rw_frame *r, const rw_rowk *k, int32_t x,
     /* (dw >= 1: the pass drew the pixel over a seed of at least dfar >= 0) */
     if (dw + RW_DEPTH_TIE > dt)
         return dw > dt ? !(trows && get_tested(fmt, wc, x)) || plane_cell(r, k, x, id) : plane_wet(r, k, x, id);
-    if (((dt - dw) << dsh) > r->shore_dd[id]) return 0;
+    if (((dt - dw) << dsh) > k->sdd[id]) return 0;     /* (dt - dw >= RW_DEPTH_TIE > 0) */
     if (k->wbound
         && r->ebody[id] * (int64_t)((dt - dw) << dsh) > r->p.shore_w * (int64_t)(dt << dsh) + r->p.shore_c) return 0;
     return shore_wet(r, k, x, id, dt << dsh, dw << dsh);

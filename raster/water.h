@@ -160,10 +160,13 @@ typedef struct rw_frame {
                                    units), the largest shore_dd of the bodies on screen */
     uint32_t shore_dd[RW_MAX_ID + 1];   /* shore_c / ebody: the largest dt - dw (30-bit) worth a shore
                                            test when shore_w is 0 (0xffffffff: any) */
+    uint32_t shore_tdd[RW_MAX_ID + 1];  /* shore_dd of a body with a plane point ratio (bratio), 0 for
+                                           the others (their shore test finds no water) */
     uint64_t inv_sx, inv_sy;    /* 2^32 / grid step, rounded up */
     int64_t gx0, gy0;           /* the eye's grid position plus half a step, world units:
                                    eye x - grid_ox + grid_sx / 2, grid_oy - eye y + grid_sy / 2 */
-    uint64_t gxmax, gymax;      /* wet_w grid_sx, wet_h grid_sy */
+    uint64_t gxmax, gymax;      /* at most wet_w grid_sx, wet_h grid_sy: positions below index
+                                   samples of the grid (water_setup.c grid_max) */
     int32_t fog_sh;             /* fog table index: depth >> fog_sh */
     uint32_t dquiet;            /* buffer depth from which terrain gets no fog (> dfar) */
     uint32_t fog_d30;           /* 30-bit depth from which nothing gets fog: fog[d >> fog_sh] is 0

@@ -206,6 +206,17 @@ static void tested_rows(rw_frame *r)
     }
 }
 
+/* The bound gxmax (gymax) of grid positions for n samples of step sx, inv = ceil(2^32 /
+ * sx): n sx, or less where the rounded-up reciprocal would index sample n below it.
+ * Every g < gxmax then has (g inv) >> 32 < n, as g inv < n 2^32 for g < ceil(n 2^32 /
+ * inv); a g between the two bounds indexed sample n or more, off the grid either way. */
+static uint64_t grid_max(int32_t n, int64_t sx, uint64_t inv)
+{
+    const uint64_t whole = (uint64_t)((int64_t)n * sx);
+    const uint64_t lim = udiv64(((uint64_t)n << 32) + inv - 1, inv);
+    return lim < whole ? lim : whole;
+}
+
 /* Pixels beyond a water triangle's vertices' columns that the pass's seed covers: the
  * rasteriser reads and writes depth only at pixel centres inside a triangle, so within
  * the columns of its vertices; the margin keeps any wider access of the drawing code
@@ -419,13 +430,14 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
             int64_t qd = sfloor64(p->shore_c, eb);
             r->shore_dd[k] = qd >= 0xffffffffLL ? 0xffffffffu : (uint32_t)qd;
         }
+        r->shore_tdd[k] = r->bratio[k] ? r->shore_dd[k] : 0;
     }
     r->inv_sx = p->grid_sx > 0 ? udiv64(((uint64_t)1 << 32) + (uint64_t)p->grid_sx - 1, (uint64_t)p->grid_sx) : 0;
     r->inv_sy = p->grid_sy > 0 ? udiv64(((uint64_t)1 << 32) + (uint64_t)p->grid_sy - 1, (uint64_t)p->grid_sy) : 0;
     r->gx0 = r->eye[0] - p->grid_ox + p->grid_sx / 2;
     r->gy0 = p->grid_oy - r->eye[1] + p->grid_sy / 2;
-    r->gxmax = p->grid_sx > 0 && p->wet_w > 0 ? (uint64_t)((int64_t)p->wet_w * p->grid_sx) : 0;
-    r->gymax = p->grid_sy > 0 && p->wet_h > 0 ? (uint64_t)((int64_t)p->wet_h * p->grid_sy) : 0;
+    r->gxmax = p->grid_sx > 0 && p->wet_w > 0 ? grid_max(p->wet_w, p->grid_sx, r->inv_sx) : 0;
+    r->gymax = p->grid_sy > 0 && p->wet_h > 0 ? grid_max(p->wet_h, p->grid_sy, r->inv_sy) : 0;
     if (p->fog_on) fog_table(r, K);
     {   /* dquiet: terrain pixels at least this near (buffer units) get no fog */
         uint64_t d30 = 0;

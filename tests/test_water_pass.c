@@ -1,6 +1,7 @@
 /* tests/test_water_pass.c — the water pass (raster/water_pass.c) seeds its depth and
  * clears its body ids only where a water triangle can draw: checked against the water
- * frame drawn alone on N47E009. */
+ * frame drawn alone on N47E009; and the post hook's unchecked grid look-ups stay on the
+ * grid. */
 #include <string.h>
 #include "tests/test.h"
 #include "platform/scene.h"
@@ -26,6 +27,27 @@ static void view_frame(scene *s, const scene_opts *so, water_scene *ws, const ws
     bp->mode = BT_VIEW; bp->c = c; bp->fr = s->rt.fr; bp->pixel_err_q8 = 256;
     CHECK_EQ(scene_mesh(s, c, bp), BR_OK);
     CHECK_EQ(scene_terrain(s, c, fr, NULL), BR_OK);
+}
+
+/* The hook's grid look-up indexes wet[iy w + ix] with ix = (gx inv_sx) >> 32 for every
+ * 0 <= gx < gxmax, unchecked (raster/water_setup.c grid_max): below gxmax ix < wet_w,
+ * and from gxmax up to wet_w grid_sx (where it is less) ix >= wet_w, so the bound drops
+ * no position the grid holds.  Checked over the 2^17 positions on each side, both axes. */
+static void grid_bound_check(const rw_frame *r)
+{
+    int axis;
+    for (axis = 0; axis < 2; axis++) {
+        const uint64_t max = axis ? r->gymax : r->gxmax, inv = axis ? r->inv_sy : r->inv_sx;
+        const uint64_t n = (uint64_t)(axis ? r->p.wet_h : r->p.wet_w);
+        const uint64_t whole = n * (uint64_t)(axis ? r->p.grid_sy : r->p.grid_sx);
+        uint64_t g, below = 0, above = 0;
+        CHECK(max > 0 && max <= whole);
+        for (g = max > (1u << 17) ? max - (1u << 17) : 0; g < max; g++) below += ((g * inv) >> 32) >= n;
+        for (g = max; g < whole && g < max + (1u << 17); g++) above += ((g * inv) >> 32) < n;
+        CHECK_MSG(below == 0 && above == 0, "axis %d: bound %llu of %llu, %llu below it off the grid, %llu above on it",
+                  axis, (unsigned long long)max, (unsigned long long)whole, (unsigned long long)below,
+                  (unsigned long long)above);
+    }
 }
 
 /* The water pass seeds its depth and clears its ids only in the columns water_cols
@@ -84,6 +106,7 @@ static void test_seed_columns(void)
         CHECK(drawn > 1000);
         CHECK_EQ(outside, 0);
         if (k == 0) CHECK(narrow * 2 > groups);
+        grid_bound_check(r);
         ws_close(&ws);
         scene_close(&s);
     }
