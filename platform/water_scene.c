@@ -355,7 +355,7 @@ br_status ws_reserve(water_scene *w, scene *s)
  * copied (the clipper then does it all); else *below says whether a vertex is left
  * under the plane. */
 static const rs_vertex *refl_bed_level(water_scene *w, const scene *s, const bt_mesh *m, const rs_vertex *src,
-                                       uint32_t nv, int32_t body, int32_t plane_z, int tex, int *below)
+                                       uint32_t nv, int32_t body, int32_t plane_z, int *below)
 {
     const uint32_t gw = (uint32_t)s->f.w, gh = (uint32_t)s->f.h;
     uint32_t i;
@@ -367,14 +367,13 @@ static const rs_vertex *refl_bed_level(water_scene *w, const scene *s, const bt_
         if (!w->rbed) { w->rbed_cap = 0; return NULL; }
     }
     *below = 0;
-    for (i = 0; i < nv; i++) {
+    for (i = 0; i < nv; i++) {      /* (whole structures: a vector copy; memcpy's `rep movsb`
+                                       counts a byte an instruction under callgrind) */
         const rs_vertex *a = &src[i];
         rs_vertex *o = &w->rbed[i];
-        const bt_vert *g = &m->v[i];
-        o->p[0] = a->p[0]; o->p[1] = a->p[1]; o->p[2] = a->p[2];
-        o->rgb = a->rgb;
-        if (tex) { o->uv[0] = a->uv[0]; o->uv[1] = a->uv[1]; }     /* else nothing reads them */
+        *o = *a;
         if (a->p[2] < plane_z) {
+            const bt_vert *g = &m->v[i];
             if ((uint32_t)g->x < gw && (uint32_t)g->y < gh && w->id[(size_t)g->y * gw + (size_t)g->x] == body)
                 o->p[2] = plane_z;
             else *below = 1;
@@ -424,8 +423,8 @@ static br_status refl_frame(water_scene *w, scene *s, const cam *c, const rs_fra
     w->rfr = *tf;
     w->rfr.w = tf->w >> res; w->rfr.h = tf->h >> res;
     if (own) { w->rfr.v = w->rverts; w->rfr.nv = nv; }
-    bed = own ? refl_bed_level(w, s, &w->rmesh, w->rverts, nv, body, plane_z, tf->tex != NULL, &below)
-              : tf->v == s->verts ? refl_bed_level(w, s, &s->mesh, tf->v, nv, body, plane_z, tf->tex != NULL, &below)
+    bed = own ? refl_bed_level(w, s, &w->rmesh, w->rverts, nv, body, plane_z, &below)
+              : tf->v == s->verts ? refl_bed_level(w, s, &s->mesh, tf->v, nv, body, plane_z, &below)
                                   : NULL;
     if (bed) w->rfr.v = bed;
     w->rfr.cache = w->rcache;
