@@ -11,6 +11,7 @@
 #include "platform/png_io.h"
 #include "raster/raster.h"
 #include "platform/water_scene.h"
+#include "tests/support/waterview.h"
 
 #define RUN(a) run(a, (int)(sizeof a / sizeof a[0]))
 static int run(const char *const *args, int n)
@@ -284,28 +285,6 @@ static br_status to_img(void *user, int32_t y0, int32_t rows, const void *px, si
     return BR_OK;
 }
 
-/* What the lake tests start from: N47E009 opened with so, its water with wo, the camera
- * eye -> tgt (fov 50) at w x h, the tree, a view mesh at 1 px (bp's other fields, such
- * as hysteresis, the caller's) and the terrain frame fr (its format, depth and clear
- * colour the caller's).  s, ws are zeroed first, so ws_close and scene_close may follow
- * whatever failed. */
-static void lake_frame(scene *s, const scene_opts *so, water_scene *ws, const ws_opts *wo, const double eye[3],
-                       const double tgt[3], int32_t w, int32_t h, cam *c, bt_params *bp, rs_frame *fr)
-{
-    const char *in[1];
-    br_err err;
-    memset(s, 0, sizeof *s); memset(ws, 0, sizeof *ws); memset(&err, 0, sizeof err);
-    in[0] = t_data("hgt/N47E009.hgt");
-    CHECK_EQ(scene_open(s, in, 1, so, &err), BR_OK);
-    CHECK_EQ(ws_open(ws, s, wo, &err), BR_OK);
-    CHECK_EQ(scene_camera(s, eye, tgt, 50, w, h, c), BR_OK);
-    CHECK_EQ(scene_tree(s, &err), BR_OK);
-    CHECK_EQ(scene_reserve(s, 2000000, &err), BR_OK);
-    bp->mode = BT_VIEW; bp->c = c; bp->fr = s->rt.fr; bp->pixel_err_q8 = 256;
-    CHECK_EQ(scene_mesh(s, c, bp), BR_OK);
-    CHECK_EQ(scene_terrain(s, c, fr, NULL), BR_OK);
-}
-
 /* The reflection's own LOD: the lake from the water at 320x192, 1 px.  At
  * --reflection-error 4 the mirrored camera's selection has fewer triangles than at 1 and
  * the reflection frame sets up fewer (drawn whole, full resolution); by default (0) it
@@ -358,7 +337,7 @@ static void test_refl_lod(void)
     wo.reflection = 1; wo.no_fog = 1; wo.quiet = 1; wo.view_px = 1;
     bp.hyst_q8 = 64;
     fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32;
-    lake_frame(&s, &so, &ws, &wo, eye, tgt, W, H, &c, &bp, &fr);
+    wv_lake_frame(&s, &so, &ws, &wo, eye, tgt, W, H, &c, &bp, &fr);
     tns = s.mesh.ns;
     tstrip = malloc(sizeof *tstrip * (tns ? tns : 1));
     CHECK(tstrip != NULL);
@@ -443,7 +422,7 @@ static void test_refl_body_rows(void)
         wo.reflection = k ? 4 : 0;          /* none; the default, half */
         wo.quiet = 1; wo.view_px = 1;
         fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32;
-        lake_frame(&s, &so, &ws, &wo, eye, tgt, W, H, &c, &bp, &fr);
+        wv_lake_frame(&s, &so, &ws, &wo, eye, tgt, W, H, &c, &bp, &fr);
         CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
         if (k == 0) CHECK_MSG(ws.rw->refl != NULL && ws.rw->p.refl_body == 1, "mirror on body %d", (int)ws.rw->p.refl_body);
         mb = rs_pipe_mem_size(&ws.pipe, BR);
@@ -507,7 +486,7 @@ static void test_still_mirror(void)
     wo.reflection = 1; wo.no_waves = 1; wo.fresnel_one = 1; wo.no_fog = 1; wo.quiet = 1;
     wo.view_px = 1; wo.refl_err = 1;    /* the reflection's own selection at the terrain's error */
     fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32; fr.clear_rgb = 0x99ccffu;
-    lake_frame(&s, &so, &ws, &wo, eye, tgt, W, H, &c, &bp, &fr);
+    wv_lake_frame(&s, &so, &ws, &wo, eye, tgt, W, H, &c, &bp, &fr);
     CHECK_EQ(rs_draw_band(&fr, 0, H, dry, W * 4, dep, NULL), BR_OK);      /* the terrain alone */
     CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
     CHECK(ws.rfr.nv > 0 && ws.rfr.w == W && ws.rown == 1);

@@ -7,27 +7,7 @@
 #include "platform/scene.h"
 #include "platform/water_scene.h"
 #include "raster/raster.h"
-
-/* N47E009 opened with so, its water with wo, the camera eye -> tgt (fov 50) at w x h, a
- * view mesh at 1 px and the terrain frame fr (its format and depth the caller's), as
- * the viewer makes them.  s, ws are zeroed first, so ws_close and scene_close may
- * follow whatever failed. */
-static void view_frame(scene *s, const scene_opts *so, water_scene *ws, const ws_opts *wo, const double eye[3],
-                       const double tgt[3], int32_t w, int32_t h, cam *c, bt_params *bp, rs_frame *fr)
-{
-    const char *in[1];
-    br_err err;
-    memset(s, 0, sizeof *s); memset(ws, 0, sizeof *ws); memset(&err, 0, sizeof err);
-    in[0] = t_data("hgt/N47E009.hgt");
-    CHECK_EQ(scene_open(s, in, 1, so, &err), BR_OK);
-    CHECK_EQ(ws_open(ws, s, wo, &err), BR_OK);
-    CHECK_EQ(scene_camera(s, eye, tgt, 50, w, h, c), BR_OK);
-    CHECK_EQ(scene_tree(s, &err), BR_OK);
-    CHECK_EQ(scene_reserve(s, 2000000, &err), BR_OK);
-    bp->mode = BT_VIEW; bp->c = c; bp->fr = s->rt.fr; bp->pixel_err_q8 = 256;
-    CHECK_EQ(scene_mesh(s, c, bp), BR_OK);
-    CHECK_EQ(scene_terrain(s, c, fr, NULL), BR_OK);
-}
+#include "tests/support/waterview.h"
 
 /* The hook's grid look-up indexes wet[iy w + ix] with ix = (gx inv_sx) >> 32 for every
  * 0 <= gx < gxmax, unchecked (raster/water_setup.c grid_max): below gxmax ix < wet_w,
@@ -82,7 +62,7 @@ static void test_seed_columns(void)
         so.quiet = 1;
         wo.quiet = 1; wo.view_px = 1;
         fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32;
-        view_frame(&s, &so, &ws, &wo, cams[k], cams[k] + 3, W, H, &c, &bp, &fr);
+        wv_lake_frame(&s, &so, &ws, &wo, cams[k], cams[k] + 3, W, H, &c, &bp, &fr);
         CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
         r = ws.rw;
         CHECK(r != NULL && r->water != NULL && r->wlo <= r->whi);

@@ -1,0 +1,21 @@
+/* tests/support/waterview.c — see waterview.h. */
+#include <string.h>
+#include "tests/test.h"
+#include "tests/support/waterview.h"
+
+void wv_lake_frame(scene *s, const scene_opts *so, water_scene *ws, const ws_opts *wo, const double eye[3],
+                   const double tgt[3], int32_t w, int32_t h, cam *c, bt_params *bp, rs_frame *fr)
+{
+    const char *in[1];
+    br_err err;
+    memset(s, 0, sizeof *s); memset(ws, 0, sizeof *ws); memset(&err, 0, sizeof err);
+    in[0] = t_data("hgt/N47E009.hgt");
+    CHECK_EQ(scene_open(s, in, 1, so, &err), BR_OK);
+    CHECK_EQ(ws_open(ws, s, wo, &err), BR_OK);
+    CHECK_EQ(scene_camera(s, eye, tgt, 50, w, h, c), BR_OK);
+    CHECK_EQ(scene_tree(s, &err), BR_OK);
+    CHECK_EQ(scene_reserve(s, 2000000, &err), BR_OK);
+    bp->mode = BT_VIEW; bp->c = c; bp->fr = s->rt.fr; bp->pixel_err_q8 = 256;
+    CHECK_EQ(scene_mesh(s, c, bp), BR_OK);
+    CHECK_EQ(scene_terrain(s, c, fr, NULL), BR_OK);
+}

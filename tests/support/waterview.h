@@ -1,0 +1,18 @@
+/* tests/support/waterview.h — what the water tests (tests/test_water.c,
+ * tests/test_water_pass.c) start from: N47E009 with its water, a camera, a view mesh
+ * and its terrain frame, as the viewer makes them.  Test support only. */
+#ifndef BR_WATERVIEW_H
+#define BR_WATERVIEW_H
+#include <stdint.h>
+#include "platform/scene.h"
+#include "platform/water_scene.h"
+
+/* N47E009 opened with so, its water with wo, the camera eye -> tgt (metres, fov 50) at
+ * w x h, the tree, a view mesh at 1 px (bp's other fields, such as hysteresis, the
+ * caller's) and the terrain frame fr (its format, depth and clear colour the caller's).
+ * s, ws are zeroed first, so ws_close and scene_close may follow whatever failed; a step
+ * that fails is a failed CHECK. */
+void wv_lake_frame(scene *s, const scene_opts *so, water_scene *ws, const ws_opts *wo, const double eye[3],
+                   const double tgt[3], int32_t w, int32_t h, cam *c, bt_params *bp, rs_frame *fr);
+
+#endif
