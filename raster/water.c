@@ -1,8 +1,7 @@
 /* raster/water.c — reflection pass and the post hook that composites water, sky and fog
  * (see water.h; the water pass is raster/water_pass.c, the per-frame set-up
- * raster/water_setup.c).  Right shifts
- * of negative values are arithmetic (checked once in core/fx.h's users; gcc and clang on
- * every target we build). */
+ * raster/water_setup.c).  Right shifts of negative values are arithmetic (checked once
+ * in core/fx.h's users; gcc and clang on every target we build). */
 #include <string.h>
 #include "core/fx.h"
 #include "raster/water.h"
@@ -60,11 +59,11 @@ static inline uint32_t get_id(int32_t fmt, const void *row, int32_t x);
  * body's pixels only). */
 static int refl_body_in_row(const rw_frame *r, const rs_band *b, int32_t y)
 {
-    const int32_t i = r->water_pass, x0 = r->wx0[y / RW_COL_ROWS], xe = r->wx1[y / RW_COL_ROWS] + 1;
+    const int32_t i = r->water_pass;
     const uint32_t id = (uint32_t)r->p.refl_body;
     const uint8_t *row = (const uint8_t *)b->scratch[i] + (size_t)(y - b->scratch_y0[i]) * b->scratch_stride[i];
-    int32_t x;
-    /* (the pass wrote and cleared only columns x0 .. xe - 1) */
+    int32_t x, x0, xe;
+    rw_row_cols(r, y, &x0, &xe);        /* (the pass wrote and cleared no other column) */
     if (r->fmt == RS_FMT_RGB565) {
         for (x = next_water(row, x0, xe, RS_FMT_RGB565); x < xe; x = next_water(row, x + 1, xe, RS_FMT_RGB565))
             if (get_id(RS_FMT_RGB565, row, x) == id) return 1;
@@ -154,12 +153,12 @@ typedef struct refl_view {
     int32_t h0, h1, rw;
 } refl_view;
 
-/* Row y's values for the per-pixel functions below, read once a row (the hook's pixel
- * stores may alias the frame's 32-bit tables, so the compiler would reload them, and
- * redo their products, at every pixel). */
 /* sdd of a row with no plane point: a pixel whose terrain is nearer is land (dt - dw > 0) */
 static const uint32_t no_shore[RW_MAX_ID + 1];
 
+/* Row y's values for the per-pixel functions below, read once a row (the hook's pixel
+ * stores may alias the frame's 32-bit tables, so the compiler would reload them, and
+ * redo their products, at every pixel). */
 typedef struct rw_rowk {
     int32_t y;
     int shore;                  /* the shore test has a plane point in this row: wet and tkr >= 0 */
@@ -467,8 +466,7 @@ static inline const uint8_t *water_row(const rw_frame *r, const rs_band *b, cons
                                        int32_t *x0, int32_t *xe)
 {
     if (!wcol || y < wy0 || y >= wy0 + wrows || y < r->wlo || y > r->whi) return NULL;
-    *x0 = r->wx0[y / RW_COL_ROWS];
-    *xe = r->wx1[y / RW_COL_ROWS] + 1;
+    rw_row_cols(r, y, x0, xe);
     if (*x0 >= *xe) return NULL;
     *wd = wdep + (size_t)(y - wy0) * (size_t)b->w * dbp;
     return wcol + (size_t)(y - wy0) * b->stride;

@@ -1,9 +1,11 @@
-/* raster/water_int.h — what raster/water.c (the passes and the post hook) and
- * raster/water_setup.c (the per-frame set-up) share: colour mixing and the RGB565
- * dither.  Private to those two files. */
+/* raster/water_int.h — what raster/water.c (the reflection pass and the post hook),
+ * raster/water_pass.c (the water pass) and raster/water_setup.c (the per-frame set-up)
+ * share: colour mixing, the RGB565 dither, the water pass's columns.  Private to those
+ * files. */
 #ifndef BR_RWATER_INT_H
 #define BR_RWATER_INT_H
 #include <stdint.h>
+#include "raster/water.h"
 
 #define Q12 4096
 
@@ -58,6 +60,14 @@ static inline uint32_t unpack565(uint32_t v)
 static inline uint32_t dither888(uint32_t rgb, int32_t x, int32_t y)
 {
     return unpack565(pack565_dither(rgb, x, y));
+}
+
+/* The columns x0 .. *xe - 1 of row y (wlo <= y <= whi) that the water pass seeded and
+ * cleared, its row group's (rw_frame.wx0, wx1; none when *x0 >= *xe). */
+static inline void rw_row_cols(const rw_frame *r, int32_t y, int32_t *x0, int32_t *xe)
+{
+    *x0 = r->wx0[y / RW_COL_ROWS];
+    *xe = r->wx1[y / RW_COL_ROWS] + 1;
 }
 
 #endif

@@ -4,6 +4,7 @@
  * terrain's. */
 #include <string.h>
 #include "raster/water.h"
+#include "raster/water_int.h"
 
 static int water_touched(const void *user, int32_t y0, int32_t rows)
 {
@@ -109,18 +110,18 @@ static void clear_span(uint8_t *c, size_t n)
 }
 
 /* Depth o = max(t - bias, dfar) for n pixels from column x0 of a row of the water pass's
- * scratch (o) and the terrain's depth (t); with clear, the colour row c from x0 too (c's
- * pixels are the depth's size). */
-static inline void seed_span(const rw_frame *r, uint8_t *o, uint8_t *c, const uint8_t *t, int32_t x0, int32_t n, int clear)
+ * scratch (o) and the terrain's depth (t); unless c is NULL, the colour row c from x0 too
+ * (c's pixels are the depth's size). */
+static inline void seed_span(const rw_frame *r, uint8_t *o, uint8_t *c, const uint8_t *t, int32_t x0, int32_t n)
 {
     const uint32_t bias = r->water_bias, dfar = r->dfar;
     const size_t at = (size_t)x0 * (r->depth == RS_DEPTH16 ? 2u : 4u);
     if (r->depth == RS_DEPTH16)
-        seed16((uint16_t *)(void *)(o + at), clear ? (uint16_t *)(void *)(c + at) : NULL,
-               (const uint16_t *)(const void *)(t + at), n, bias, dfar, clear);
+        seed16((uint16_t *)(void *)(o + at), c ? (uint16_t *)(void *)(c + at) : NULL,
+               (const uint16_t *)(const void *)(t + at), n, bias, dfar, c != NULL);
     else
-        seed32((uint32_t *)(void *)(o + at), clear ? (uint32_t *)(void *)(c + at) : NULL,
-               (const uint32_t *)(const void *)(t + at), n, bias, dfar, clear);
+        seed32((uint32_t *)(void *)(o + at), c ? (uint32_t *)(void *)(c + at) : NULL,
+               (const uint32_t *)(const void *)(t + at), n, bias, dfar, c != NULL);
 }
 
 /* The water pass's scratch, seeded from the terrain pass's depth of the same rows (the
@@ -137,21 +138,22 @@ static br_status water_run(const void *user, rs_band *b, int32_t self, rs_band_s
     const size_t dbp = r->depth == RS_DEPTH16 ? 2u : 4u, cbp = r->fmt == RS_FMT_RGB565 ? 2u : 4u;
     int32_t y;
     if (b->scratch_y0[self] != b->y0 || b->scratch_rows[self] != b->rows) return BR_E_ARG;
-    /* only the water rows wlo .. whi, and in them the columns wx0 .. wx1 of the row's
-     * group (water_cols): no water triangle reaches the others, and the reflection pass
-     * and rw_post read no others of this scratch */
+    /* only the water rows wlo .. whi, and in them the columns of the row's group
+     * (rw_row_cols): no water triangle reaches the others, and the reflection pass and
+     * rw_post read no others of this scratch */
     for (y = lo; y <= hi; y++) {
         const size_t row = (size_t)(y - b->y0);
-        const int32_t x0 = r->wx0[y / RW_COL_ROWS], x1 = r->wx1[y / RW_COL_ROWS];
         uint8_t *c = (uint8_t *)b->scratch[self] + row * b->scratch_stride[self];
         uint8_t *o = (uint8_t *)b->scratch_depth[self] + row * (size_t)w * dbp;
         const uint8_t *t = (const uint8_t *)b->depth + row * (size_t)w * dbp;
-        if (x0 > x1) continue;
+        int32_t x0, xe;
+        rw_row_cols(r, y, &x0, &xe);
+        if (x0 >= xe) continue;
         /* the colour is cleared with the depths where both have the same pixel size */
-        if (dbp == cbp) seed_span(r, o, c, t, x0, x1 - x0 + 1, 1);
+        if (dbp == cbp) seed_span(r, o, c, t, x0, xe - x0);
         else {
-            clear_span(c + (size_t)x0 * cbp, (size_t)(x1 - x0 + 1) * cbp);
-            seed_span(r, o, NULL, t, x0, x1 - x0 + 1, 0);
+            clear_span(c + (size_t)x0 * cbp, (size_t)(xe - x0) * cbp);
+            seed_span(r, o, NULL, t, x0, xe - x0);
         }
     }
     return rs_draw_band(r->water, b->scratch_y0[self], b->scratch_rows[self], b->scratch[self],
