@@ -267,8 +267,9 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
                          const int common)
 {
     const int32_t a = r->aq[x], y = k->y, s = k->s;
-    uint32_t den = (uint32_t)(((int64_t)a * a + k->bb) >> 8);
-    uint32_t ci = k->cnum / (den ? den : 1);
+    /* den >= Q12^2 >> 8 = 2^16 (k->bb includes Q12^2), so never 0 */
+    const uint32_t den = (uint32_t)(((int64_t)a * a + k->bb) >> 8);
+    uint32_t ci = k->cnum / den;
     int32_t dx = 0, dy = 0;
     uint32_t refl, refr, fr, x32;
     if (ci > RW_TAB) ci = RW_TAB;
@@ -279,7 +280,7 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
         const uint64_t p01 = k->ph[0] + u * k->dph[0], p23 = k->ph[1] + u * k->dph[1];
         const int32_t c0 = r->wsine[0][(p01 >> 24) & 255u], c1 = r->wsine[1][p01 >> 56];
         const int32_t c2 = r->wsine[2][(p23 >> 24) & 255u], c3 = r->wsine[3][p23 >> 56];
-        const int32_t sx = c0 + c1 + c2 + c3, sy = c0 - c1 + c2 - c3;
+        const int32_t ce = c0 + c2, co = c1 + c3, sx = ce + co, sy = ce - co;
         int32_t ti;
         dx = (int32_t)((q8 * sx) >> 15);
         dy = (int32_t)((q8 * sy) >> 15);
