@@ -261,12 +261,13 @@ static RW_INLINE int64_t wave_q8(const rw_frame *r, uint32_t dw)
 /* The colour of water pixel (x, k->y): terrain colour ct and depth dt under it, water
  * depth dw (30-bit units), body id, q8 = wave_q8(dw) (0 with the waves off); fmt and
  * depth are the frame's (constants at each call, as in post_rows); common (a constant
- * too) promises what rw_post checked: waves on, the fixed tint, Schlick's Fresnel term. */
+ * too) promises what rw_post checked: waves on, the fixed tint, Schlick's Fresnel term, the
+ * half-resolution reflection (res_shift 1: k->s is 1). */
 static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const rw_rowk *k, int32_t x, uint32_t ct,
                          uint32_t dt, uint32_t dw, uint32_t id, int64_t q8, const int32_t fmt, const int32_t depth,
                          const int common)
 {
-    const int32_t a = r->aq[x], y = k->y, s = k->s;
+    const int32_t a = r->aq[x], y = k->y, s = common ? 1 : k->s;
     /* den >= Q12^2 >> 8 = 2^16 (k->bb includes Q12^2), so never 0 */
     const uint32_t den = (uint32_t)(((int64_t)a * a + k->bb) >> 8);
     uint32_t ci = k->cnum / den;
@@ -292,7 +293,7 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
     if (id == (uint32_t)r->p.refl_body) {     /* only the mirror's body reads the mirror */
         if (x >= k->rx0 && x <= k->rx1) {      /* (rx0 <= rx1 only with rv->col) */
             /* the lookup below without its clamps, which change nothing here */
-            const int32_t rx = (x + dx) >> k->s;
+            const int32_t rx = (x + dx) >> s;
             if (get_depth(depth, k->rdep[dy + RW_WAVE_PX], rx) != r->rdfar)
                 refl = get_rgb(fmt, k->rcol[dy + RW_WAVE_PX], rx);
         } else if (rv->col) {
@@ -617,10 +618,11 @@ br_status rw_post(const void *user, rs_band *b, rs_band_stats *st)
         wrows = b->scratch_rows[i];
     }
     if (!r->pixel_fog) {
-        /* the common case (waves, the fixed tint of detected water, Schlick's Fresnel) in
-         * the two pixel layouts of the benchmarks and boards with its three tests
-         * settled at compile time: fewer values live in the pixel loop */
-        const int common = r->p.waves_on && r->p.tint_fixed && !r->p.fresnel_one;
+        /* the common case (waves, the fixed tint of detected water, Schlick's Fresnel,
+         * the default half-resolution reflection) in the two pixel layouts of the
+         * benchmarks and boards with its four tests settled at compile time: fewer
+         * values live in the pixel loop */
+        const int common = r->p.waves_on && r->p.tint_fixed && !r->p.fresnel_one && r->p.res_shift == 1;
         if (r->fmt == RS_FMT_RGB565) {
             if (r->depth == RS_DEPTH16) {
                 if (common) water_rows_only(r, b, &rv, wcol, wdep, wy0, wrows, RS_FMT_RGB565, RS_DEPTH16, 1);
