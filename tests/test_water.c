@@ -175,20 +175,6 @@ static int monai_water(const char *path)
     return fclose(o) == 0;
 }
 
-static void golden(const char *name, const char *out)
-{
-    char gpath[256];
-    uint8_t *a = NULL, *g = NULL;
-    int aw = 0, ah = 0, gw = 0, gh = 0;
-    br_err err;
-    snprintf(gpath, sizeof gpath, "tests/golden/%s.png", name);
-    if (png_read_rgb(out, &aw, &ah, &a, &err) != BR_OK) { CHECK_MSG(0, "cannot read %s", out); return; }
-    if (getenv("BITRAIN_UPDATE_GOLDEN")) CHECK_EQ(png_write_rgb(gpath, aw, ah, a, (size_t)aw * 3, &err), BR_OK);
-    if (png_read_rgb(gpath, &gw, &gh, &g, &err) != BR_OK) CHECK_MSG(0, "cannot read %s (BITRAIN_UPDATE_GOLDEN=1 writes it)", gpath);
-    else CHECK_MSG(aw == gw && ah == gh && !memcmp(a, g, (size_t)aw * (size_t)ah * 3), "%s differs from %s", out, gpath);
-    free(a); free(g);
-}
-
 /* Golden images: lake, sea, Monai, RGB888 and RGB565, --time 1.5. */
 static void test_goldens(void)
 {
@@ -213,7 +199,7 @@ static void test_goldens(void)
             snprintf(name, sizeof name, "water_%s_%s", names[k], fmts[f]);
             snprintf(out, sizeof out, "%s/%s.png", t_outdir(), name);
             CHECK_EQ(k == 0 ? RUN(lake) : k == 1 ? RUN(sea) : RUN(monai), 0);
-            golden(name, out);
+            wv_golden(name, out);
         }
 }
 

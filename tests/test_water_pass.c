@@ -1,9 +1,11 @@
 /* tests/test_water_pass.c — the water pass (raster/water_pass.c) seeds its depth and
  * clears its body ids only where a water triangle can draw: checked against the water
- * frame drawn alone on N47E009; and the post hook's unchecked grid look-ups stay on the
- * grid. */
+ * frame drawn alone on N47E009; the post hook's unchecked grid look-ups stay on the
+ * grid; and its pixel loops at every reflection resolution are pinned by goldens. */
+#include <stdio.h>
 #include <string.h>
 #include "tests/test.h"
+#include "platform/cmd.h"
 #include "platform/scene.h"
 #include "platform/water_scene.h"
 #include "raster/raster.h"
@@ -92,8 +94,37 @@ static void test_seed_columns(void)
     }
 }
 
+/* The post hook compiles its pixel loop once more for the common case (raster/water.c
+ * rw_post: waves, the fixed tint, Schlick's Fresnel term and the default half-resolution
+ * reflection) in the two layouts of the benchmarks and boards; the goldens of
+ * tests/test_water.c pin it at half resolution.  Here the same lake view at full and
+ * quarter resolution in those layouts (XRGB8888 with 32-bit depth, RGB565 with 16-bit
+ * depth), which take the general loop: goldens made before the common loop fixed its
+ * resolution, so a loop that read the wrong resolution fails. */
+static void test_reflection_res(void)
+{
+    static const char *const res[2] = { "full", "quarter" };
+    static const char *const fmt[2][3] = { { "rgb888", "32", "rgb888" }, { "rgb565", "16", "rgb565_z16" } };
+    int i, f;
+    for (i = 0; i < 2; i++)
+        for (f = 0; f < 2; f++) {
+            char out[256], name[64];
+            const char *a[] = { t_data("hgt/N47E009.hgt"), "-o", out, "--size", "160x96", "--format", fmt[f][0],
+                                "--depth", fmt[f][1], "--time", "1.5", "--reflection", res[i],
+                                "--camera", "40000,66000,420,60000,50000,500" };
+            snprintf(name, sizeof name, "water_refl_%s_%s", res[i], fmt[f][2]);
+            snprintf(out, sizeof out, "%s/%s.png", t_outdir(), name);
+            char *argv[sizeof a / sizeof a[0]];
+            int k;
+            for (k = 0; k < (int)(sizeof a / sizeof a[0]); k++) argv[k] = (char *)a[k];
+            CHECK_EQ(cmd_render((int)(sizeof a / sizeof a[0]), argv), 0);
+            wv_golden(name, out);
+        }
+}
+
 int main(void)
 {
     T_RUN(test_seed_columns);
+    T_RUN(test_reflection_res);
     return t_finish();
 }

@@ -1,6 +1,9 @@
 /* tests/support/waterview.c — see waterview.h. */
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include "tests/test.h"
+#include "platform/png_io.h"
 #include "tests/support/waterview.h"
 
 void wv_lake_frame(scene *s, const scene_opts *so, water_scene *ws, const ws_opts *wo, const double eye[3],
@@ -18,4 +21,18 @@ void wv_lake_frame(scene *s, const scene_opts *so, water_scene *ws, const ws_opt
     bp->mode = BT_VIEW; bp->c = c; bp->fr = s->rt.fr; bp->pixel_err_q8 = 256;
     CHECK_EQ(scene_mesh(s, c, bp), BR_OK);
     CHECK_EQ(scene_terrain(s, c, fr, NULL), BR_OK);
+}
+
+void wv_golden(const char *name, const char *out)
+{
+    char gpath[256];
+    uint8_t *a = NULL, *g = NULL;
+    int aw = 0, ah = 0, gw = 0, gh = 0;
+    br_err err;
+    snprintf(gpath, sizeof gpath, "tests/golden/%s.png", name);
+    if (png_read_rgb(out, &aw, &ah, &a, &err) != BR_OK) { CHECK_MSG(0, "cannot read %s", out); return; }
+    if (getenv("BITRAIN_UPDATE_GOLDEN")) CHECK_EQ(png_write_rgb(gpath, aw, ah, a, (size_t)aw * 3, &err), BR_OK);
+    if (png_read_rgb(gpath, &gw, &gh, &g, &err) != BR_OK) CHECK_MSG(0, "cannot read %s (BITRAIN_UPDATE_GOLDEN=1 writes it)", gpath);
+    else CHECK_MSG(aw == gw && ah == gh && !memcmp(a, g, (size_t)aw * (size_t)ah * 3), "%s differs from %s", out, gpath);
+    free(a); free(g);
 }

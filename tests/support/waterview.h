@@ -15,4 +15,9 @@
 void wv_lake_frame(scene *s, const scene_opts *so, water_scene *ws, const ws_opts *wo, const double eye[3],
                    const double tgt[3], int32_t w, int32_t h, cam *c, bt_params *bp, rs_frame *fr);
 
+/* The frame written at out (PNG) against tests/golden/NAME.png, byte for byte in RGB; with
+ * BITRAIN_UPDATE_GOLDEN set in the environment it writes the golden first.  A mismatch or
+ * a file that cannot be read is a failed CHECK. */
+void wv_golden(const char *name, const char *out);
+
 #endif
