@@ -112,11 +112,11 @@ static void test_reflection_res(void)
             const char *a[] = { t_data("hgt/N47E009.hgt"), "-o", out, "--size", "160x96", "--format", fmt[f][0],
                                 "--depth", fmt[f][1], "--time", "1.5", "--reflection", res[i],
                                 "--camera", "40000,66000,420,60000,50000,500" };
-            snprintf(name, sizeof name, "water_refl_%s_%s", res[i], fmt[f][2]);
-            snprintf(out, sizeof out, "%s/%s.png", t_outdir(), name);
             char *argv[sizeof a / sizeof a[0]];
             int k;
             for (k = 0; k < (int)(sizeof a / sizeof a[0]); k++) argv[k] = (char *)a[k];
+            snprintf(name, sizeof name, "water_refl_%s_%s", res[i], fmt[f][2]);
+            snprintf(out, sizeof out, "%s/%s.png", t_outdir(), name);
             CHECK_EQ(cmd_render((int)(sizeof a / sizeof a[0]), argv), 0);
             wv_golden(name, out);
         }
