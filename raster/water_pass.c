@@ -21,6 +21,16 @@ static int water_touched(const void *user, int32_t y0, int32_t rows)
 #if defined(__GNUC__)
 typedef uint32_t seed_u32x4 __attribute__((vector_size(16)));
 typedef uint16_t seed_u16x8 __attribute__((vector_size(16)));
+
+/* A zero vector that GCC cannot see is zero: stores of a known zero in a loop become a
+ * memset, a second pass over the row (and glibc's `rep stosb`, which callgrind counts a
+ * byte an instruction). */
+static inline void opaque_zero(seed_u32x4 *z)
+{
+    uint32_t zero = 0;
+    __asm__("" : "+r"(zero));
+    *z = (seed_u32x4){ zero, zero, zero, zero };
+}
 #endif
 static inline void seed32(uint32_t *restrict o, uint32_t *restrict c, const uint32_t *restrict t, int32_t n,
                           uint32_t bias, uint32_t dfar, const int clear)
@@ -29,11 +39,8 @@ static inline void seed32(uint32_t *restrict o, uint32_t *restrict c, const uint
     int32_t i = 0;
 #if defined(__GNUC__)
     const seed_u32x4 vb = { bias, bias, bias, bias }, vf = { dfar, dfar, dfar, dfar }, vt = { thr, thr, thr, thr };
-    uint32_t zero = 0;
     seed_u32x4 z;
-    __asm__("" : "+r"(zero));   /* opaque: GCC would split the zero stores into a memset,
-                                   a second pass over the row */
-    z = (seed_u32x4){ zero, zero, zero, zero };
+    opaque_zero(&z);
     for (; i + 8 <= n; i += 8) {
         seed_u32x4 v, u, m, k;
         memcpy(&v, t + i, sizeof v);
@@ -70,10 +77,10 @@ static inline void seed16(uint16_t *restrict o, uint16_t *restrict c, const uint
         const seed_u16x8 vb = { b16, b16, b16, b16, b16, b16, b16, b16 };
         const seed_u16x8 vf = { f16, f16, f16, f16, f16, f16, f16, f16 };
         const seed_u16x8 vt = { thr, thr, thr, thr, thr, thr, thr, thr };
-        uint16_t zero = 0;
+        seed_u32x4 z32;
         seed_u16x8 z;
-        __asm__("" : "+r"(zero));   /* as in seed32 */
-        z = (seed_u16x8){ zero, zero, zero, zero, zero, zero, zero, zero };
+        opaque_zero(&z32);
+        z = (seed_u16x8)z32;
         for (; i + 8 <= n; i += 8) {
             seed_u16x8 v, m;
             memcpy(&v, t + i, sizeof v);
@@ -90,17 +97,14 @@ static inline void seed16(uint16_t *restrict o, uint16_t *restrict c, const uint
     }
 }
 
-/* Zeroes the n bytes at c (whole pixels, so n is even) in 16-byte stores.  Not memset:
- * glibc's clears a span of kilobytes with `rep stosb`, which the instruction counts
- * of `make bench` (callgrind) count a byte at a time. */
+/* Zeroes the n bytes at c (whole pixels, so n is even) in 16-byte stores, not memset
+ * (opaque_zero). */
 static void clear_span(uint8_t *c, size_t n)
 {
     size_t i = 0;
 #if defined(__GNUC__)
-    uint32_t zero = 0;
     seed_u32x4 z;
-    __asm__("" : "+r"(zero));   /* as in seed32: else GCC makes the loop a memset */
-    z = (seed_u32x4){ zero, zero, zero, zero };
+    opaque_zero(&z);
     for (; i + 32 <= n; i += 32) {
         memcpy(c + i, &z, sizeof z);
         memcpy(c + i + 16, &z, sizeof z);
