@@ -316,13 +316,10 @@ static void test_refl_lod(void)
     uint32_t ntri[2] = { 0, 0 }, tris[2] = { 0, 0 }, tns, i;
     uint32_t *tstrip = NULL;
     int k;
-    memset(&so, 0, sizeof so); memset(&wo, 0, sizeof wo);
-    memset(&fr, 0, sizeof fr); memset(&bp, 0, sizeof bp); memset(&err, 0, sizeof err);
+    wv_defaults(&so, &wo, &bp, &fr, &err);
     so.ramp_abs = 1;
-    so.quiet = 1;
-    wo.reflection = 1; wo.no_fog = 1; wo.quiet = 1; wo.view_px = 1;
+    wo.reflection = 1; wo.no_fog = 1;
     bp.hyst_q8 = 64;
-    fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32;
     wv_lake_frame(&s, &so, &ws, &wo, eye, tgt, W, H, &c, &bp, &fr);
     tns = s.mesh.ns;
     tstrip = malloc(sizeof *tstrip * (tns ? tns : 1));
@@ -402,12 +399,8 @@ static void test_refl_body_rows(void)
         size_t mb;
         void *mem = NULL;
         int32_t y0;
-        memset(&so, 0, sizeof so); memset(&wo, 0, sizeof wo);
-        memset(&fr, 0, sizeof fr); memset(&bp, 0, sizeof bp); memset(&err, 0, sizeof err);
-        so.quiet = 1;
+        wv_defaults(&so, &wo, &bp, &fr, &err);
         wo.reflection = k ? 4 : 0;          /* none; the default, half */
-        wo.quiet = 1; wo.view_px = 1;
-        fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32;
         wv_lake_frame(&s, &so, &ws, &wo, eye, tgt, W, H, &c, &bp, &fr);
         CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
         if (k == 0) CHECK_MSG(ws.rw->refl != NULL && ws.rw->p.refl_body == 1, "mirror on body %d", (int)ws.rw->p.refl_body);
@@ -465,13 +458,11 @@ static void test_still_mirror(void)
     void *mem = NULL;
     size_t ms;
     int32_t x, y, k, n = 0, same = 0, near = 0;
-    memset(&so, 0, sizeof so); memset(&wo, 0, sizeof wo);
-    memset(&fr, 0, sizeof fr); memset(&bp, 0, sizeof bp); memset(&err, 0, sizeof err);
+    wv_defaults(&so, &wo, &bp, &fr, &err);
     so.ramp_abs = 1;
-    so.quiet = 1;
-    wo.reflection = 1; wo.no_waves = 1; wo.fresnel_one = 1; wo.no_fog = 1; wo.quiet = 1;
-    wo.view_px = 1; wo.refl_err = 1;    /* the reflection's own selection at the terrain's error */
-    fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32; fr.clear_rgb = 0x99ccffu;
+    wo.reflection = 1; wo.no_waves = 1; wo.fresnel_one = 1; wo.no_fog = 1;
+    wo.refl_err = 1;                    /* the reflection's own selection at the terrain's error */
+    fr.clear_rgb = 0x99ccffu;
     wv_lake_frame(&s, &so, &ws, &wo, eye, tgt, W, H, &c, &bp, &fr);
     CHECK_EQ(rs_draw_band(&fr, 0, H, dry, W * 4, dep, NULL), BR_OK);      /* the terrain alone */
     CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);

@@ -59,11 +59,7 @@ static void test_seed_columns(void)
         const rw_frame *r;
         int32_t x, y, g;
         uint32_t drawn = 0, outside = 0, narrow = 0, groups = 0;
-        memset(&so, 0, sizeof so); memset(&wo, 0, sizeof wo);
-        memset(&fr, 0, sizeof fr); memset(&bp, 0, sizeof bp); memset(&err, 0, sizeof err);
-        so.quiet = 1;
-        wo.quiet = 1; wo.view_px = 1;
-        fr.fmt = RS_FMT_XRGB8888; fr.depth = RS_DEPTH32;
+        wv_defaults(&so, &wo, &bp, &fr, &err);
         wv_lake_frame(&s, &so, &ws, &wo, cams[k], cams[k] + 3, W, H, &c, &bp, &fr);
         CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
         r = ws.rw;

@@ -6,6 +6,15 @@
 #include "platform/png_io.h"
 #include "tests/support/waterview.h"
 
+void wv_defaults(scene_opts *so, ws_opts *wo, bt_params *bp, rs_frame *fr, br_err *err)
+{
+    memset(so, 0, sizeof *so); memset(wo, 0, sizeof *wo);
+    memset(fr, 0, sizeof *fr); memset(bp, 0, sizeof *bp); memset(err, 0, sizeof *err);
+    so->quiet = 1;
+    wo->quiet = 1; wo->view_px = 1;
+    fr->fmt = RS_FMT_XRGB8888; fr->depth = RS_DEPTH32;
+}
+
 void wv_lake_frame(scene *s, const scene_opts *so, water_scene *ws, const ws_opts *wo, const double eye[3],
                    const double tgt[3], int32_t w, int32_t h, cam *c, bt_params *bp, rs_frame *fr)
 {

@@ -7,6 +7,11 @@
 #include "platform/scene.h"
 #include "platform/water_scene.h"
 
+/* The options the water tests start from: everything zeroed (err too), then quiet
+ * scene and water, the viewer's view-dependent shore bound (view_px) and an XRGB8888
+ * frame with 32-bit depth; a test sets what it varies after. */
+void wv_defaults(scene_opts *so, ws_opts *wo, bt_params *bp, rs_frame *fr, br_err *err);
+
 /* N47E009 opened with so, its water with wo, the camera eye -> tgt (metres, fov 50) at
  * w x h, the tree, a view mesh at 1 px (bp's other fields, such as hysteresis, the
  * caller's) and the terrain frame fr (its format, depth and clear colour the caller's).
