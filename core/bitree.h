@@ -79,7 +79,9 @@
  *         diamond's nested bounding volume (its triangles' vertex range +- error,
  *         union with its children): one load per diamond.  zlo > zhi: VOID, no
  *         valid sample below it (BT_NODE_VOID: code 0, culled, never split).
- *   st    uint8 per-vertex frame state (hysteresis / budget marks).
+ *   st    the frame state (hysteresis, budget marks): four bit planes of
+ *         (nslot + 7) / 8 bytes, bt_state_size; bits, not bytes, so that a board's
+ *         RAM holds it (docs/mcu.md).
  *
  * LAYOUT (core/bt_util.c bti_slot_pad; docs/bitree.md "Layout").  The padding is
  * not stored: a diamond (x, y) has a SLOT, its index in node[] and st[]:
@@ -96,8 +98,8 @@
  *             below the data (x < w).  Slots w*h onwards, level by level (bt_layout).
  *   void      every other padding diamond: VOID by the reach argument; all share
  *             the last slot, which holds BT_NODE_VOID and whose st is never written.
- * So a tree holds nslot = w*h + O((n + w) * 3) slots: 5 bytes per slot (4 node + 1
- * st), 5.00-5.62 bytes per sample of the grid as read on the DEMs in the project
+ * So a tree holds nslot = w*h + O((n + w) * 3) slots: 4.5 bytes per slot (4 node
+ * + 4 bits of st), 4.50-5.06 bytes per sample of the grid as read on the DEMs in the project
  * (tests/test_bitree_layout.c prints them), against 5 per PADDED sample before
  * (14.6 on a 1201^2 SRTM tile).  The values are bit for bit the padded
  * hierarchy's (bt_node_at reads any (x, y); tests/test_bitree_big.c hashes the
@@ -170,8 +172,10 @@ uint32_t bt_slot_count(int32_t w, int32_t h);
  * the stored value, or BT_NODE_VOID for a padding diamond with no slot. */
 uint32_t bt_node_at(const bt_tree *t, int32_t x, int32_t y);
 
-/* Bytes of mem for bt_build (5 per slot); 0 if w, h are invalid. */
+/* Bytes of mem for bt_build (4 per slot and bt_state_size); 0 if w, h are invalid. */
 size_t bt_mem_size(int32_t w, int32_t h);
+/* Bytes of frame state (bt_tree.st) for a tree of nslot slots: 4 bits a slot. */
+size_t bt_state_size(uint32_t nslot);
 /* Bytes of build scratch (freed by the caller after bt_build). */
 size_t bt_scratch_size(int32_t w, int32_t h);
 /* Builds the error hierarchy of f with metric (BT_METRIC_*).  BR_E_ARG on a bad
@@ -192,8 +196,8 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
  * big-endian host call bt_blob_to_host on it first (it turns the node words around
  * in place; nothing on a little-endian host).  The blob must be 4-byte aligned
  * and outlive t; attach reads f once (fingerprint), nothing is written to the blob.
- * st: the caller's memory for the frame state, st_bytes >= t->nslot
- * (bt_slot_count), zeroed by attach; or NULL: no frame state, so view mode
+ * st: the caller's memory for the frame state, st_bytes >= bt_state_size(nslot)
+ * (nslot: bt_slot_count), zeroed by attach; or NULL: no frame state, so view mode
  * without hysteresis (hyst_q8 must be 0) and no budget rule: BT_BUDGET gives
  * BR_E_ARG, and a selection larger than the mesh gives BR_E_NOMEM (mesh empty)
  * instead of the budget fallback.  Attaching gives the tree bt_build gave: the

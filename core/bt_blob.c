@@ -149,7 +149,7 @@ br_status bt_attach(bt_tree *t, const hf *f, const void *blob, size_t bytes, uin
         return BR_E_ARG;
     nt.metric = (int32_t)rd32(p + 24);
     if (nt.metric != BT_METRIC_EXACT && nt.metric != BT_METRIC_CURVATURE) return BR_E_ARG;
-    if (st && st_bytes < nt.nslot) return BR_E_ARG;
+    if (st && st_bytes < bt_state_size(nt.nslot)) return BR_E_ARG;
     /* the heightfield: fingerprint and statistics; then the node array's checksum;
      * finally the whole header as this tree would write it */
     {
@@ -164,7 +164,7 @@ br_status bt_attach(bt_tree *t, const hf *f, const void *blob, size_t bytes, uin
     nt.node = (const uint32_t *)(const void *)(p + HDR_BYTES);
     nt.sum = bti_node_sum(nt.node, nt.nslot);
     nt.st = st;
-    if (st) memset(st, 0, nt.nslot);
+    if (st) memset(st, 0, bt_state_size(nt.nslot));
     *t = nt;
     return BR_OK;
 }

@@ -73,7 +73,7 @@ uint32_t bti_budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid)
     {
         uint32_t root = (uint32_t)((S / 2) * n + S / 2), rs = bti_slot(t, S / 2, S / 2);
         int64_t k = prio(e, S / 2, S / 2);
-        if (k >= 0 && rs != t->nslot - 1) { hpush(hp, &nh, k, root); t->st[rs] |= ST_PUSHED; ids[ni++] = rs; }
+        if (k >= 0 && rs != t->nslot - 1) { hpush(hp, &nh, k, root); bti_bit_set(bti_st(t, ST_PUSHED), rs); ids[ni++] = rs; }
     }
     while (nh > 0) {
         bti_heap_ent he = hpop(hp, &nh);
@@ -90,7 +90,7 @@ uint32_t bti_budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid)
         if (count + (uint64_t)add > budget) break;
         if (ni + 4 > cap) break;
         count += (uint64_t)add;
-        t->st[bti_slot(t, x, y)] |= ST_SPLIT;
+        bti_bit_set(bti_st(t, ST_SPLIT), bti_slot(t, x, y));
         last = he.key >> 8;
         if (typeD) {
             cx[0] = x - h; cy[0] = y; cx[1] = x + h; cy[1] = y;
@@ -106,9 +106,9 @@ uint32_t bti_budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid)
             if (cx[i] < 0 || cy[i] < 0 || cx[i] > S || cy[i] > S) continue;
             cid = (uint32_t)(cy[i] * n + cx[i]);
             cs = bti_slot(t, cx[i], cy[i]);
-            if (cs == t->nslot - 1 || (t->st[cs] & ST_PUSHED)) continue;
+            if (cs == t->nslot - 1 || bti_bit(bti_st(t, ST_PUSHED), cs)) continue;
             k = prio(e, cx[i], cy[i]);
-            t->st[cs] |= ST_PUSHED;
+            bti_bit_set(bti_st(t, ST_PUSHED), cs);
             ids[ni++] = cs;
             if (k >= 0) hpush(hp, &nh, k, cid);
         }

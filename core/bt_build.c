@@ -28,9 +28,15 @@ uint32_t bt_slot_count(int32_t w, int32_t h)
     return ns;
 }
 
+size_t bt_state_size(uint32_t nslot)
+{
+    return (((size_t)nslot + 7) >> 3) * 4;
+}
+
 size_t bt_mem_size(int32_t w, int32_t h)
 {
-    return (size_t)bt_slot_count(w, h) * 5;
+    const uint32_t ns = bt_slot_count(w, h);
+    return ns ? (size_t)ns * 4 + bt_state_size(ns) : 0;
 }
 
 /* the region shared by the exact metric's half bounds (2 x int32 per slot) and the
@@ -104,7 +110,7 @@ br_status bt_build(bt_tree *t, const hf *f, int32_t metric,
     node = (uint32_t *)mem;
     nt.node = node;
     nt.st = (uint8_t *)mem + (size_t)ns * 4;
-    memset(nt.st, 0, ns);
+    memset(nt.st, 0, bt_state_size(ns));
     /* every diamond's slot is written below; the corners (never read) are 0 so that
      * the tree's bytes are a function of the input alone; the void slot is VOID */
     memset(node, 0, (size_t)ns * 4);

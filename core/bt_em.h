@@ -9,10 +9,37 @@
 #include "core/bt_int.h"
 #include "core/config.h"
 
-/* per-sample frame state bits (bt_tree.st): ST_PREV split in the previous view
- * frame (hysteresis), ST_SPLIT / ST_PUSHED the budget rule's marks, ST_CUR the
- * serial walk's "already recorded this frame" */
-enum { ST_PREV = 1, ST_SPLIT = 2, ST_PUSHED = 4, ST_CUR = 8 };
+/* The frame state (bt_tree.st, bt_state_size bytes): one bit per slot in each of
+ * four planes of (nslot + 7) / 8 bytes, slot i at byte i >> 3, bit i & 7.  ST_PREV:
+ * split in the previous view frame (hysteresis); ST_SPLIT, ST_PUSHED: the budget
+ * rule's marks; ST_CUR: the serial walk's "already recorded this frame".  Only serial
+ * code writes a plane (a part's walk reads ST_PREV only), so sharing a byte between
+ * eight slots races with nothing. */
+enum { ST_PREV = 0, ST_SPLIT = 1, ST_PUSHED = 2, ST_CUR = 3 };
+
+static inline uint8_t *bti_st(const bt_tree *t, int plane)
+{
+    return t->st + (((size_t)t->nslot + 7) >> 3) * (size_t)plane;
+}
+
+static inline int bti_bit(const uint8_t *plane, uint32_t i)
+{
+    return (plane[i >> 3] >> (i & 7u)) & 1;
+}
+
+static inline void bti_bit_set(uint8_t *plane, uint32_t i)
+{
+    plane[i >> 3] = (uint8_t)(plane[i >> 3] | (1u << (i & 7u)));
+}
+
+/* Clears slot i's bit and its seven neighbours': for a plane whose set bits are all
+ * listed (ST_PREV: the previous frame's split list; ST_CUR: this frame's; ST_SPLIT,
+ * ST_PUSHED: the budget rule's ids), clearing every listed slot this way clears the
+ * plane, in one store a slot. */
+static inline void bti_byte_clear(uint8_t *plane, uint32_t i)
+{
+    plane[i >> 3] = 0;
+}
 
 /* Words of a decision memo entry: the decision, and with BR_COHERENCE its expiry
  * (core/bt_mesh.c decide_memo) */
@@ -114,7 +141,8 @@ typedef struct bti_extract {
     int64_t fq8;            /* f in Q8 pixels (f_q16 >> 8) */
     int64_t tau;            /* q8 pixels */
     int64_t tau_lo;         /* with hysteresis */
-    const uint8_t *prev;    /* where decide reads ST_PREV: t->st (see bti_setup) */
+    const uint8_t *prev;    /* where decide reads ST_PREV: its plane of t->st (see bti_setup) */
+    uint8_t *cur;           /* the ST_CUR plane (NULL without frame state) */
     int64_t morph_span;     /* q8 pixels: tau * morph/256 */
     int full;               /* mesh full: stop emitting */
     int rec_splits;         /* record this frame's splits (view mode, hysteresis): 1 marking
@@ -371,7 +399,7 @@ static inline int bti_coh_proves(const bti_extract *e, uint64_t w, int sp, uint3
 {
     const unsigned m_in = (unsigned)(w >> BTI_COH_BITS) & 63u;
     if (*mask != m_in || (m_in ? e->coh_x : e->coh_acc) > (w & BTI_COH_EXP)
-        || (sp > 0) != ((e->prev[idx] & ST_PREV) != 0))
+        || (sp > 0) != bti_bit(e->prev, idx))
         return 0;
     *mask = (unsigned)(w >> (BTI_COH_BITS + 6));
     return 1;

@@ -236,10 +236,10 @@ static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *
     *exp = 0;
     if (e->fid) return BT_NODE_ERR(e->t->node[idx]) > e->cthr;
     if (e->p->mode == BT_BUDGET || e->tau < 0) {
-        if (e->p->mode == BT_FIDELITY) return (t->st[idx] & ST_SPLIT) != 0;
+        if (e->p->mode == BT_FIDELITY) return bti_bit(bti_st(t, ST_SPLIT), idx);
         r = view_err(e, x, y, idx, mask, &ew, &d, &cm);
         if (r < 0) return -1;
-        if (!(t->st[idx] & ST_SPLIT)) return 0;
+        if (!bti_bit(bti_st(t, ST_SPLIT), idx)) return 0;
         if (e->morph_span > 0 && r == 0 && d > 0) *morph = morph_at(e, isat_mul(ew, e->fq8), d);
         return 1;
     }
@@ -255,7 +255,7 @@ static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *
         /* rho = ew * f / d > tau  <=>  ew * f > tau * d (no division) */
         int64_t lhs = isat_mul(ew, e->fq8);
         int sp = lhs > isat_mul(e->tau, d) ||
-                 ((e->prev[idx] & ST_PREV) && lhs > isat_mul(e->tau_lo, d));
+                 (bti_bit(e->prev, idx) && lhs > isat_mul(e->tau_lo, d));
         if (sp && e->morph_span > 0) *morph = d > 0 ? morph_at(e, lhs, d) : BT_MORPH_ONE;
         if (e->coh) *exp = bti_coh_entry(e, sp, lhs, d, *morph, m_in, *mask, cm);
         return sp;
@@ -472,9 +472,9 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
          * the serial walk marks ST_CUR so each is listed once; a part's walk
          * (rec_splits 2) reads t->st only and lists it from both halves, the
          * serial end (bt_part.c) sets ST_PREV, which is idempotent */
-        if (e->rec_splits == 2 || !(e->t->st[id] & ST_CUR)) {
+        if (e->rec_splits == 2 || !bti_bit(e->cur, id)) {
             if (e->m->nsplits < bti_heap_cap(e->m)) {
-                if (e->rec_splits == 1) e->t->st[id] |= ST_CUR;
+                if (e->rec_splits == 1) bti_bit_set(e->cur, id);
                 bti_ids_of(e->m)[e->m->nsplits++] = id;
             } else e->lost = 1;
         }
@@ -667,8 +667,9 @@ br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p)
     if (!t->st && (p->hyst_q8 > 0 || p->mode == BT_BUDGET)) return BR_E_ARG;
     /* decide reads ST_PREV through e->prev; without frame state tau_lo = tau, and
      * then the bit never changes an answer (lhs > tau_lo d is false where it is
-     * read), so any nslot readable bytes do: the node array's */
-    e->prev = t->st ? t->st : (const uint8_t *)(const void *)t->node;
+     * read), so any nslot / 8 readable bytes do: the node array's */
+    e->prev = t->st ? bti_st(t, ST_PREV) : (const uint8_t *)(const void *)t->node;
+    e->cur = t->st ? bti_st(t, ST_CUR) : NULL;
     /* morph_of multiplies (rho - tau) < morph_span by 2^15: morph_span < 2^31 * 2^16 / 2^8
      * = 2^39 keeps it below 2^54 (a range of 256 thresholds is already absurd) */
     if (p->morph_q8 < 0 || p->morph_q8 > 65536) return BR_E_ARG;
@@ -716,12 +717,20 @@ uint32_t bti_reset_mesh(bt_mesh *m)
     return *base;
 }
 
+/* Every slot's ST_CUR and ST_PREV cleared (a split list that overflowed) */
+static void clear_cur_prev(bt_tree *t)
+{
+    memset(bti_st(t, ST_CUR), 0, ((size_t)t->nslot + 7) >> 3);
+    memset(bti_st(t, ST_PREV), 0, ((size_t)t->nslot + 7) >> 3);
+}
+
 br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
 {
     bti_extract e;
     br_status s = bti_setup(&e, t, p);
     uint32_t i, nid = 0, nprev, *ids;
     uint32_t *old;
+    uint8_t *prev, *cur;
     if (s != BR_OK) return s;
     if (!m || !m->v) return BR_E_ARG;
     e.m = m;
@@ -738,8 +747,11 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
     nprev = t->st ? m->nsplits : 0;
     memmove(old, ids, (size_t)nprev * 4);
     m->nsplits = 0;
+    /* (planes in locals: a byte store may alias t) */
+    prev = t->st ? bti_st(t, ST_PREV) : NULL;
+    cur = t->st ? bti_st(t, ST_CUR) : NULL;
     if (p->mode != BT_VIEW) {
-        for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
+        for (i = 0; i < nprev; i++) bti_byte_clear(prev, old[i]);
         nprev = 0;
     }
     e.hbase = bti_reset_mesh(m);
@@ -762,14 +774,15 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         if (!e.full) {
             if (e.rec_splits) {
                 /* previous frame's marks go; this frame's ST_CUR become ST_PREV */
-                for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
+                for (i = 0; i < nprev; i++) bti_byte_clear(prev, old[i]);
                 if (e.lost) {
-                    size_t nn = t->nslot, k;
-                    for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_PREV);
+                    clear_cur_prev(t);
                     m->nsplits = 0;
                 } else {
-                    for (i = 0; i < m->nsplits; i++)
-                        t->st[ids[i]] = (uint8_t)((t->st[ids[i]] & ~ST_CUR) | ST_PREV);
+                    for (i = 0; i < m->nsplits; i++) {
+                        bti_byte_clear(cur, ids[i]);
+                        bti_bit_set(prev, ids[i]);
+                    }
                 }
             }
             btw_reorder(&e);
@@ -777,12 +790,12 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         }
         /* defined downgrade: the selection needs more than m holds; spend the
          * capacity by priority (the budget rule) instead */
-        for (i = 0; i < nprev; i++) t->st[old[i]] &= (uint8_t)~ST_PREV;
-        for (i = 0; i < m->nsplits; i++) t->st[ids[i]] &= (uint8_t)~(ST_CUR | ST_PREV);
-        if (e.lost) {
-            size_t nn = t->nslot, k;
-            for (k = 0; k < nn; k++) t->st[k] &= (uint8_t)~(ST_CUR | ST_PREV);
+        for (i = 0; i < nprev; i++) bti_byte_clear(prev, old[i]);
+        for (i = 0; i < m->nsplits; i++) {
+            bti_byte_clear(cur, ids[i]);
+            bti_byte_clear(prev, ids[i]);
         }
+        if (e.lost) clear_cur_prev(t);
         m->nsplits = 0;
         e.hbase = bti_reset_mesh(m);
         e.full = 0; e.rec_splits = 0; e.lost = 0;
@@ -792,7 +805,13 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         m->overflow = 1;
     }
     run(&e);
-    for (i = 0; i < nid; i++) t->st[ids[i]] &= (uint8_t)~(ST_SPLIT | ST_PUSHED);
+    if (nid) {
+        uint8_t *split = bti_st(t, ST_SPLIT), *pushed = bti_st(t, ST_PUSHED);
+        for (i = 0; i < nid; i++) {
+            bti_byte_clear(split, ids[i]);
+            bti_byte_clear(pushed, ids[i]);
+        }
+    }
     btw_reorder(&e);
     return e.full ? BR_E_NOMEM : BR_OK;
 }

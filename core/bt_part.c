@@ -302,12 +302,12 @@ static void hysteresis(bt_parts *ps, uint64_t nsp)
     bt_mesh *m = ps->m;
     bt_tree *t = ps->t;
     uint32_t *ids = bti_ids_of(m), i, k, n = 0, nold = m->nsplits;
-    uint8_t *st = t->st;        /* a local: a byte store may alias anything */
-    for (i = 0; i < nold; i++) st[ids[i]] &= (uint8_t)~ST_PREV;
+    uint8_t *prev = bti_st(t, ST_PREV);     /* a local: a byte store may alias anything */
+    for (i = 0; i < nold; i++) bti_byte_clear(prev, ids[i]);
     m->nsplits = 0;
     if (nsp > bti_heap_cap(m)) {
-        size_t nn = t->nslot, j;
-        for (j = 0; j < nn; j++) t->st[j] &= (uint8_t)~(ST_CUR | ST_PREV);
+        memset(bti_st(t, ST_CUR), 0, ((size_t)t->nslot + 7) >> 3);
+        memset(prev, 0, ((size_t)t->nslot + 7) >> 3);
         return;
     }
     for (i = 0; i < ps->ntop; i++) ids[n++] = ps->top_ids[i];
@@ -316,7 +316,7 @@ static void hysteresis(bt_parts *ps, uint64_t nsp)
         memcpy(ids + n, bti_ids_of(pm), (size_t)pm->nsplits * 4);
         n += pm->nsplits;
     }
-    for (i = 0; i < n; i++) st[ids[i]] |= ST_PREV;
+    for (i = 0; i < n; i++) bti_bit_set(prev, ids[i]);
     m->nsplits = n;
 }
 

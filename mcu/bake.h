@@ -33,7 +33,7 @@ typedef struct bake_info {
     /* the hierarchy (core/bitree.h bt_tree) */
     int32_t n, k, metric, zmin, zmax;
     int64_t nvalid;
-    uint32_t nslot;             /* frame state bytes bt_attach needs (bt_tree.nslot) */
+    uint32_t nslot;             /* the tree's slots (bt_tree.nslot; frame state: bt_state_size) */
     int32_t nz;                 /* entries of bake_ztab (rt_scene.nz) */
     /* shading: the default ramp over [ramp_zmin_mm, ramp_zmax_mm], sun, ambient */
     int64_t ramp_zmin_mm, ramp_zmax_mm;

@@ -3,7 +3,7 @@
 
 size_t board_tree_ram_size(const bake_info *b)
 {
-    return (size_t)b->nslot;
+    return bt_state_size(b->nslot);
 }
 
 br_status board_tree_attach(bt_tree *t, const hf *f, const bake_info *b, const uint32_t *blob, size_t bytes,

@@ -1,6 +1,6 @@
 /* mcu/board_tree.h — the board's bt_tree: the hierarchy baked into flash (mcu/bake.h
  * bake_tree, saved by bt_tree_save) attached in place with bt_attach; only the frame
- * state (bt_tree.st, bake.nslot bytes) is in RAM. */
+ * state (bt_tree.st, bt_state_size(bake.nslot) bytes) is in RAM. */
 #ifndef BR_MCU_BOARD_TREE_H
 #define BR_MCU_BOARD_TREE_H
 #include <stddef.h>

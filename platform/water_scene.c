@@ -335,7 +335,7 @@ br_status ws_reserve(water_scene *w, scene *s)
     mb = bt_mesh_mem_size(cap);
     w->rmesh_mem = mb ? malloc(mb) : NULL;
     w->rverts = malloc(sizeof *w->rverts * (size_t)(3 * cap + 3));
-    w->rst = calloc(s->tree.nslot ? s->tree.nslot : 1, 1);
+    w->rst = calloc(bt_state_size(s->tree.nslot) + 1, 1);
     if (!w->rmesh_mem || !w->rverts || !w->rst || bt_mesh_init(&w->rmesh, cap, w->rmesh_mem, mb) != BR_OK) {
         free(w->rmesh_mem); free(w->rverts); free(w->rst);
         w->rmesh_mem = NULL; w->rverts = NULL; w->rst = NULL;

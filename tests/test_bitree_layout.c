@@ -179,13 +179,13 @@ static void test_attach_same(void)
     n = bt_tree_blob_size(&t);
     CHECK_EQ(n, 64 + (size_t)t.nslot * 4);
     blob = malloc(n);
-    st = malloc(t.nslot);
+    st = malloc(bt_state_size(t.nslot));
     CHECK_EQ(bt_tree_save(&t, blob, n), BR_OK);
     CHECK_EQ(bt_tree_save(&t, blob, n - 1), BR_E_ARG);
     bt_blob_to_host(blob, n);         /* big-endian hosts: the node words turned around */
     ro = ro_copy(blob, n);
     CHECK(ro != NULL);
-    CHECK_EQ(bt_attach(&a, &f, ro, n, st, t.nslot), BR_OK);
+    CHECK_EQ(bt_attach(&a, &f, ro, n, st, bt_state_size(t.nslot)), BR_OK);
     CHECK(!memcmp(a.node, t.node, (size_t)t.nslot * 4));
     memset(&p, 0, sizeof p);
     p.mode = BT_FIDELITY;
@@ -207,7 +207,7 @@ static void test_attach_same(void)
     free(mm1); free(mm2);
     /* no frame state */
     CHECK_EQ(bt_attach(&z, &f, blob, n, NULL, 0), BR_OK);
-    CHECK_EQ(bt_attach(&z, &f, blob, n, st, t.nslot - 1), BR_E_ARG);
+    CHECK_EQ(bt_attach(&z, &f, blob, n, st, bt_state_size(t.nslot) - 1), BR_E_ARG);
     view_params(&f, &p, &c, 0);
     CHECK_EQ(btc_extract(&t, &p, 300000, &m1, &mm1), 0);
     CHECK_EQ(btc_extract(&z, &p, 300000, &m2, &mm2), 0);

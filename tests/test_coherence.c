@@ -42,7 +42,7 @@ static int side_open(side *s)
     size_t mb = bt_mesh_mem_size(MAX_TRI), pb = bt_parts_mem_size(part_tri);
     memset(s, 0, sizeof *s);
     s->t = sc.tree;
-    s->t.st = calloc(sc.tree.nslot, 1);
+    s->t.st = calloc(bt_state_size(sc.tree.nslot), 1);
     s->mm = malloc(mb);
     s->pm = malloc(pb);
     if (!s->t.st || !s->mm || !s->pm) return 0;
@@ -101,7 +101,7 @@ static int same(void)
     return a->nv == b->nv && a->ns == b->ns && a->ntri == b->ntri && a->nline == b->nline && a->nfict == b->nfict
         && a->overflow == b->overflow && a->nsplits == b->nsplits
         && !memcmp(a->v, b->v, (size_t)a->nv * sizeof *a->v) && !memcmp(a->strip, b->strip, (size_t)a->ns * 4)
-        && !memcmp(A.t.st, B.t.st, sc.tree.nslot);
+        && !memcmp(A.t.st, B.t.st, bt_state_size(sc.tree.nslot));
 }
 
 static uint64_t fnv_mesh(const bt_mesh *m)

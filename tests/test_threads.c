@@ -269,7 +269,7 @@ static int fly(pt_pool *pool, int serial, sel_frame *out)
     static int cp_ok;
     br_err err;
     bt_parts *keep = sc.parts;
-    size_t nn = (size_t)sc.tree.nslot;
+    size_t nn = bt_state_size(sc.tree.nslot);
     uint32_t *px = malloc((size_t)W * H * 4);
     void *mem = NULL;
     int i, ok = px != NULL;
@@ -380,7 +380,7 @@ static void test_threads_voids(void)
         scene_default_view(&s, 60, eye, tgt);
         keep = s.parts;
         for (pass = 0; pass < 2; pass++) {
-            memset(s.tree.st, 0, (size_t)s.tree.nslot);
+            memset(s.tree.st, 0, bt_state_size(s.tree.nslot));
             s.mesh.nsplits = 0;
             s.parts = pass ? keep : NULL;
             s.pool = pass ? pool : NULL;
@@ -395,7 +395,7 @@ static void test_threads_voids(void)
                 CHECK_EQ(scene_camera(&s, e, tgt, 60, W, H, &c), BR_OK);
                 CHECK_EQ(scene_mesh(&s, &c, &bp), BR_OK);
                 w[pass][i] = walk_hash(&s.mesh);
-                st[pass][i] = fnv(0xcbf29ce484222325ull, s.tree.st, (size_t)s.tree.nslot);
+                st[pass][i] = fnv(0xcbf29ce484222325ull, s.tree.st, bt_state_size(s.tree.nslot));
                 nt[pass][i] = s.mesh.ntri;
             }
         }
@@ -439,10 +439,10 @@ static void test_threads_parts_core(void)
         CHECK_EQ(bt_parts_init(&ps, pt, pm, bt_parts_mem_size(pt)), BR_OK);
         memset(&bp, 0, sizeof bp);
         bp.mode = BT_VIEW; bp.c = &c; bp.fr = sc.rt.fr; bp.pixel_err_q8 = 256; bp.hyst_q8 = 64;
-        memset(sc.tree.st, 0, (size_t)sc.tree.nslot);
+        memset(sc.tree.st, 0, bt_state_size(sc.tree.nslot));
         CHECK_EQ(bt_extract(&sc.tree, &bp, &ma), BR_OK);
         CHECK_EQ(ma.overflow, round);
-        memset(sc.tree.st, 0, (size_t)sc.tree.nslot);
+        memset(sc.tree.st, 0, bt_state_size(sc.tree.nslot));
         CHECK_EQ(bt_extract_begin(ps, &sc.tree, &bp, &mb, &n), BR_OK);
         CHECK(n > 8 && n <= BT_PARTS);
         for (k = n; k-- > 0;) bt_extract_part(ps, k);     /* backwards */
@@ -481,7 +481,7 @@ static void test_threads_parts_core(void)
     free(a); free(b); free(pm);
     CHECK_EQ(bt_parts_init(&ps, 1, NULL, 0), BR_E_ARG);
     CHECK_EQ(bt_parts_mem_size(1), 0);
-    memset(sc.tree.st, 0, (size_t)sc.tree.nslot);
+    memset(sc.tree.st, 0, bt_state_size(sc.tree.nslot));
     sc.mesh.nsplits = 0;
 }
 
