@@ -41,6 +41,25 @@ static inline void bti_byte_clear(uint8_t *plane, uint32_t i)
     plane[i >> 3] = 0;
 }
 
+/* Every slot's ST_CUR and ST_PREV cleared (a split list that overflowed) */
+static inline void bti_st_wipe(bt_tree *t)
+{
+    memset(bti_st(t, ST_CUR), 0, ((size_t)t->nslot + 7) >> 3);
+    memset(bti_st(t, ST_PREV), 0, ((size_t)t->nslot + 7) >> 3);
+}
+
+/* The budget rule's marks cleared: ids[0 .. n) are the slots it pushed, which hold
+ * every ST_SPLIT and ST_PUSHED bit (bti_budget_mark) */
+static inline void bti_st_unmark(bt_tree *t, const uint32_t *ids, uint32_t n)
+{
+    uint8_t *split = bti_st(t, ST_SPLIT), *pushed = bti_st(t, ST_PUSHED);
+    uint32_t i;
+    for (i = 0; i < n; i++) {
+        bti_byte_clear(split, ids[i]);
+        bti_byte_clear(pushed, ids[i]);
+    }
+}
+
 /* Words of a decision memo entry: the decision, and with BR_COHERENCE its expiry
  * (core/bt_mesh.c decide_memo) */
 #if BR_COHERENCE

@@ -717,13 +717,6 @@ uint32_t bti_reset_mesh(bt_mesh *m)
     return *base;
 }
 
-/* Every slot's ST_CUR and ST_PREV cleared (a split list that overflowed) */
-static void clear_cur_prev(bt_tree *t)
-{
-    memset(bti_st(t, ST_CUR), 0, ((size_t)t->nslot + 7) >> 3);
-    memset(bti_st(t, ST_PREV), 0, ((size_t)t->nslot + 7) >> 3);
-}
-
 br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
 {
     bti_extract e;
@@ -776,13 +769,10 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
                 /* previous frame's marks go; this frame's ST_CUR become ST_PREV */
                 for (i = 0; i < nprev; i++) bti_byte_clear(prev, old[i]);
                 if (e.lost) {
-                    clear_cur_prev(t);
+                    bti_st_wipe(t);
                     m->nsplits = 0;
                 } else {
-                    for (i = 0; i < m->nsplits; i++) {
-                        bti_byte_clear(cur, ids[i]);
-                        bti_bit_set(prev, ids[i]);
-                    }
+                    for (i = 0; i < m->nsplits; i++) { bti_byte_clear(cur, ids[i]); bti_bit_set(prev, ids[i]); }
                 }
             }
             btw_reorder(&e);
@@ -791,11 +781,8 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         /* defined downgrade: the selection needs more than m holds; spend the
          * capacity by priority (the budget rule) instead */
         for (i = 0; i < nprev; i++) bti_byte_clear(prev, old[i]);
-        for (i = 0; i < m->nsplits; i++) {
-            bti_byte_clear(cur, ids[i]);
-            bti_byte_clear(prev, ids[i]);
-        }
-        if (e.lost) clear_cur_prev(t);
+        for (i = 0; i < m->nsplits; i++) { bti_byte_clear(cur, ids[i]); bti_byte_clear(prev, ids[i]); }
+        if (e.lost) bti_st_wipe(t);
         m->nsplits = 0;
         e.hbase = bti_reset_mesh(m);
         e.full = 0; e.rec_splits = 0; e.lost = 0;
@@ -805,13 +792,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         m->overflow = 1;
     }
     run(&e);
-    if (nid) {
-        uint8_t *split = bti_st(t, ST_SPLIT), *pushed = bti_st(t, ST_PUSHED);
-        for (i = 0; i < nid; i++) {
-            bti_byte_clear(split, ids[i]);
-            bti_byte_clear(pushed, ids[i]);
-        }
-    }
+    bti_st_unmark(t, ids, nid);
     btw_reorder(&e);
     return e.full ? BR_E_NOMEM : BR_OK;
 }

@@ -306,8 +306,7 @@ static void hysteresis(bt_parts *ps, uint64_t nsp)
     for (i = 0; i < nold; i++) bti_byte_clear(prev, ids[i]);
     m->nsplits = 0;
     if (nsp > bti_heap_cap(m)) {
-        memset(bti_st(t, ST_CUR), 0, ((size_t)t->nslot + 7) >> 3);
-        memset(prev, 0, ((size_t)t->nslot + 7) >> 3);
+        bti_st_wipe(t);
         return;
     }
     for (i = 0; i < ps->ntop; i++) ids[n++] = ps->top_ids[i];
