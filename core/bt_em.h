@@ -119,6 +119,7 @@ typedef struct bti_rec {
     int8_t sp;
     uint8_t terms;          /* lo, hi, lhs hold bti_morph_terms (a moving weight's) */
     uint8_t moved;          /* a replay changed z or morph (its children's ends moved) */
+    uint8_t pbit;           /* 1 << (idx & 7): idx's bit in its byte of the ST_PREV plane */
     int32_t lo[3], hi[3];
     int64_t lhs;
     uint32_t wdlo, wdhi;    /* a moving weight: morph0 holds while the box distance stays
@@ -412,13 +413,15 @@ void bti_coh_weight_run(const bti_wtab *wt, int64_t L, uint16_t morph, uint32_t 
 
 /* Whether memo word w (bti_coh_entry) proves answer sp of diamond idx now, under plane
  * mask *mask (then *mask is the mask it handed on): the same incoming mask, the travel
- * since within its margin, and the ST_PREV the margin assumed (set iff split).  An
- * entry is a proof wherever it is kept: decide_memo's memo, a part's records. */
-static inline int bti_coh_proves(const bti_extract *e, uint64_t w, int sp, uint32_t idx, unsigned *mask)
+ * since within its margin, and the ST_PREV the margin assumed (set iff split): idx's
+ * bit is bit pbit (1 << (idx & 7)) of the plane's byte idx >> 3.  An entry is a proof
+ * wherever it is kept: decide_memo's memo, a part's records (which keep pbit). */
+static inline int bti_coh_proves(const bti_extract *e, uint64_t w, int sp, uint32_t idx, unsigned pbit,
+                                 unsigned *mask)
 {
     const unsigned m_in = (unsigned)(w >> BTI_COH_BITS) & 63u;
     if (*mask != m_in || (m_in ? e->coh_x : e->coh_acc) > (w & BTI_COH_EXP)
-        || (sp > 0) != bti_bit(e->prev, idx))
+        || (sp > 0) != ((e->prev[idx >> 3] & pbit) != 0))
         return 0;
     *mask = (unsigned)(w >> (BTI_COH_BITS + 6));
     return 1;

@@ -329,7 +329,7 @@ int decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *ma
 #if BR_COHERENCE
         {
             const uint64_t w = slot[1];
-            if (bti_coh_proves(e, w, sp, idx, mask)) {
+            if (bti_coh_proves(e, w, sp, idx, 1u << (idx & 7u), mask)) {
                 if (!(w & BTI_COH_MOVING)) {
                     *morph = (uint16_t)(v >> 30);
                     return sp;
@@ -448,7 +448,7 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
         sp = decide_memo(e, mm.x, mm.y, id, &mask, &mm.morph);
         if (BR_COHERENCE && e->recs && (mm.ri = e->nrec++) < e->cap_rec) {     /* a part's walk: bti_rec */
             bti_rec *r = &e->recs[mm.ri];
-            r->idx = id; r->x = (uint16_t)mm.x; r->y = (uint16_t)mm.y;
+            r->idx = id; r->pbit = (uint8_t)(1u << (id & 7u)); r->x = (uint16_t)mm.x; r->y = (uint16_t)mm.y;
             r->m_out = (uint8_t)mask; r->sp = (int8_t)sp; r->morph0 = mm.morph;
             r->aref = a->ri; r->bref = b->ri; r->cref = c->ri; r->vidx = NO_IDX; r->terms = 0;
             r->w = bti_memo_w(e->m, id);

@@ -36,7 +36,7 @@ static inline int replay_decide(bti_extract *e, const bti_wtab *wt, bti_rec *r, 
     *same = 0;
     (void)wt;               /* (BR_COHERENCE 0: no weight is kept) */
 #if BR_COHERENCE
-    if (bti_coh_proves(e, r->w, r->sp, r->idx, mask)) {
+    if (bti_coh_proves(e, r->w, r->sp, r->idx, r->pbit, mask)) {
         /* a split whose weight moves with the distance: the weight again when the
          * distance has left the run that gives the last one (bti_coh_weight_run) */
         *same = 1;

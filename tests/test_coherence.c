@@ -116,6 +116,19 @@ static uint64_t fnv_mesh(const bt_mesh *m)
 typedef struct knobs { int32_t mode, pix_q8, hyst_q8, morph_q8, w, h, parts; uint32_t budget; } knobs;
 
 /* One frame on both sides; counts frames whose meshes differ (differ). */
+/* Every record of a part keeps its slot's bit of the ST_PREV plane (bti_rec.pbit): a
+ * replay's proof reads that bit, and a wrong one would change a mesh only where the
+ * neighbouring slot's bit differs from the record's own */
+static int recs_keep_pbit(const bt_parts *ps)
+{
+    uint32_t k, i;
+    if (!ps) return 1;
+    for (k = 0; k < BT_PARTS; k++)
+        for (i = 0; i < ps->slot[k].nrec && i < ps->cap_rec; i++)
+            if (ps->slot[k].rec[i].pbit != 1u << (ps->slot[k].rec[i].idx & 7u)) return 0;
+    return 1;
+}
+
 static int frame(const double eye[6], const knobs *k)
 {
     cam c;
@@ -131,7 +144,7 @@ static int frame(const double eye[6], const knobs *k)
     pb.no_coherence = 1;
     if (extract(&A, &pa, k->parts) != BR_OK || extract(&B, &pb, k->parts) != BR_OK) return 0;
     frames++;
-    if (!same()) differ++;
+    if (!same() || !recs_keep_pbit(A.ps)) differ++;
     return A.m.ntri > 100;
 }
 
