@@ -10,12 +10,12 @@
 #include "core/config.h"
 
 /* The frame state (bt_tree.st, bt_state_size bytes): one bit per slot in each of
- * four planes of (nslot + 7) / 8 bytes, slot i at byte i >> 3, bit i & 7.  ST_PREV:
+ * three planes of (nslot + 7) / 8 bytes, slot i at byte i >> 3, bit i & 7.  ST_PREV:
  * split in the previous view frame (hysteresis); ST_SPLIT, ST_PUSHED: the budget
- * rule's marks; ST_CUR: the serial walk's "already recorded this frame".  Only serial
- * code writes a plane (a part's walk reads ST_PREV only), so sharing a byte between
- * eight slots races with nothing. */
-enum { ST_PREV = 0, ST_SPLIT = 1, ST_PUSHED = 2, ST_CUR = 3 };
+ * rule's marks.  Only serial code writes a plane (the walks read ST_PREV only; the end
+ * of an extraction sets it from the listed splits), so sharing a byte between eight
+ * slots races with nothing. */
+enum { ST_PREV = 0, ST_SPLIT = 1, ST_PUSHED = 2, ST_PLANES = 3 };
 
 static inline uint8_t *bti_st(const bt_tree *t, int plane)
 {
@@ -33,18 +33,17 @@ static inline void bti_bit_set(uint8_t *plane, uint32_t i)
 }
 
 /* Clears slot i's bit and its seven neighbours': for a plane whose set bits are all
- * listed (ST_PREV: the previous frame's split list; ST_CUR: this frame's; ST_SPLIT,
- * ST_PUSHED: the budget rule's ids), clearing every listed slot this way clears the
- * plane, in one store a slot. */
+ * listed (ST_PREV: the previous frame's split list; ST_SPLIT, ST_PUSHED: the budget
+ * rule's ids), clearing every listed slot this way clears the plane, in one store a
+ * slot. */
 static inline void bti_byte_clear(uint8_t *plane, uint32_t i)
 {
     plane[i >> 3] = 0;
 }
 
-/* Every slot's ST_CUR and ST_PREV cleared (a split list that overflowed) */
+/* Every slot's ST_PREV cleared (a split list that overflowed) */
 static inline void bti_st_wipe(bt_tree *t)
 {
-    memset(bti_st(t, ST_CUR), 0, ((size_t)t->nslot + 7) >> 3);
     memset(bti_st(t, ST_PREV), 0, ((size_t)t->nslot + 7) >> 3);
 }
 
@@ -162,11 +161,10 @@ typedef struct bti_extract {
     int64_t tau;            /* q8 pixels */
     int64_t tau_lo;         /* with hysteresis */
     const uint8_t *prev;    /* where decide reads ST_PREV: its plane of t->st (see bti_setup) */
-    uint8_t *cur;           /* the ST_CUR plane (NULL without frame state) */
     int64_t morph_span;     /* q8 pixels: tau * morph/256 */
     int full;               /* mesh full: stop emitting */
-    int rec_splits;         /* record this frame's splits (view mode, hysteresis): 1 marking
-                               ST_CUR (serial), 2 without writing t->st (a part) */
+    int rec_splits;         /* 1: list this frame's splits in the mesh's id list (view mode,
+                               hysteresis), serial walk and parts alike */
     int lost;               /* the split list overflowed */
     int nonvoid;            /* the padded grid has no void sample: skip the checks */
     int nodata_free;        /* the grid as read has none: a sample is valid iff in it */

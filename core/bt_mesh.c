@@ -468,16 +468,12 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
         return;
     }
     if (e->rec_splits) {
-        /* record for the next frame's hysteresis (a diamond is reached twice):
-         * the serial walk marks ST_CUR so each is listed once; a part's walk
-         * (rec_splits 2) reads t->st only and lists it from both halves, the
-         * serial end (bt_part.c) sets ST_PREV, which is idempotent */
-        if (e->rec_splits == 2 || !bti_bit(e->cur, id)) {
-            if (e->m->nsplits < bti_heap_cap(e->m)) {
-                if (e->rec_splits == 1) bti_bit_set(e->cur, id);
-                bti_ids_of(e->m)[e->m->nsplits++] = id;
-            } else e->lost = 1;
-        }
+        /* record for the next frame's hysteresis; the walk reads t->st only.  A
+         * diamond reached from both halves is listed twice: the end of the extraction
+         * sets its ST_PREV twice, which is idempotent, and the list holds 4 entries a
+         * triangle of capacity, a split making 2 */
+        if (e->m->nsplits < bti_heap_cap(e->m)) bti_ids_of(e->m)[e->m->nsplits++] = id;
+        else e->lost = 1;
     }
     mm.z = bti_mid_z(e, a->z, b->z, mm.x, mm.y, &mm.morph);
     rec(e, a, &mm, c, !in_hyp, 0, mask);
@@ -669,7 +665,6 @@ br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p)
      * then the bit never changes an answer (lhs > tau_lo d is false where it is
      * read), so any nslot / 8 readable bytes do: the node array's */
     e->prev = t->st ? bti_st(t, ST_PREV) : (const uint8_t *)(const void *)t->node;
-    e->cur = t->st ? bti_st(t, ST_CUR) : NULL;
     /* morph_of multiplies (rho - tau) < morph_span by 2^15: morph_span < 2^31 * 2^16 / 2^8
      * = 2^39 keeps it below 2^54 (a range of 256 thresholds is already absurd) */
     if (p->morph_q8 < 0 || p->morph_q8 > 65536) return BR_E_ARG;
@@ -723,7 +718,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
     br_status s = bti_setup(&e, t, p);
     uint32_t i, nid = 0, nprev, *ids;
     uint32_t *old;
-    uint8_t *prev, *cur;
+    uint8_t *prev;
     if (s != BR_OK) return s;
     if (!m || !m->v) return BR_E_ARG;
     e.m = m;
@@ -740,9 +735,7 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
     nprev = t->st ? m->nsplits : 0;
     memmove(old, ids, (size_t)nprev * 4);
     m->nsplits = 0;
-    /* (planes in locals: a byte store may alias t) */
-    prev = t->st ? bti_st(t, ST_PREV) : NULL;
-    cur = t->st ? bti_st(t, ST_CUR) : NULL;
+    prev = t->st ? bti_st(t, ST_PREV) : NULL;   /* (a local: a byte store may alias t) */
     if (p->mode != BT_VIEW) {
         for (i = 0; i < nprev; i++) bti_byte_clear(prev, old[i]);
         nprev = 0;
@@ -766,13 +759,13 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         run(&e);
         if (!e.full) {
             if (e.rec_splits) {
-                /* previous frame's marks go; this frame's ST_CUR become ST_PREV */
+                /* previous frame's marks go; this frame's splits get them */
                 for (i = 0; i < nprev; i++) bti_byte_clear(prev, old[i]);
                 if (e.lost) {
                     bti_st_wipe(t);
                     m->nsplits = 0;
                 } else {
-                    for (i = 0; i < m->nsplits; i++) { bti_byte_clear(cur, ids[i]); bti_bit_set(prev, ids[i]); }
+                    for (i = 0; i < m->nsplits; i++) bti_bit_set(prev, ids[i]);
                 }
             }
             btw_reorder(&e);
@@ -781,8 +774,6 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)
         /* defined downgrade: the selection needs more than m holds; spend the
          * capacity by priority (the budget rule) instead */
         for (i = 0; i < nprev; i++) bti_byte_clear(prev, old[i]);
-        for (i = 0; i < m->nsplits; i++) { bti_byte_clear(cur, ids[i]); bti_byte_clear(prev, ids[i]); }
-        if (e.lost) bti_st_wipe(t);
         m->nsplits = 0;
         e.hbase = bti_reset_mesh(m);
         e.full = 0; e.rec_splits = 0; e.lost = 0;

@@ -207,7 +207,7 @@ br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh
         return bt_extract(t, p, m);
     }
     ps->serial = 0;
-    ps->e0.rec_splits = 2;
+    ps->e0.rec_splits = 1;
     if (bti_coh_frame(&ps->e0, &ps->coh)) {
         uint32_t k;
         for (k = 0; k < BT_PARTS; k++) bti_memo_clear(ps->slot[k].m.memo, ps->slot[k].mclean);
