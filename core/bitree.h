@@ -79,7 +79,7 @@
  *         diamond's nested bounding volume (its triangles' vertex range +- error,
  *         union with its children): one load per diamond.  zlo > zhi: VOID, no
  *         valid sample below it (BT_NODE_VOID: code 0, culled, never split).
- *   st    the frame state (hysteresis, budget marks): three bit planes of
+ *   st    the frame state (hysteresis, budget marks): two bit planes of
  *         (nslot + 7) / 8 bytes, bt_state_size; bits, not bytes, so that a board's
  *         RAM holds it (docs/mcu.md).
  *
@@ -98,8 +98,8 @@
  *             below the data (x < w).  Slots w*h onwards, level by level (bt_layout).
  *   void      every other padding diamond: VOID by the reach argument; all share
  *             the last slot, which holds BT_NODE_VOID and whose st is never written.
- * So a tree holds nslot = w*h + O((n + w) * 3) slots: 4.375 bytes per slot (4 node
- * + 3 bits of st), 4.38-4.92 bytes per sample of the grid as read on the DEMs in the project
+ * So a tree holds nslot = w*h + O((n + w) * 3) slots: 4.25 bytes per slot (4 node
+ * + 2 bits of st), 4.38-4.92 bytes per sample of the grid as read on the DEMs in the project
  * (tests/test_bitree_layout.c prints them), against 5 per PADDED sample before
  * (14.6 on a 1201^2 SRTM tile).  The values are bit for bit the padded
  * hierarchy's (bt_node_at reads any (x, y); tests/test_bitree_big.c hashes the
@@ -174,7 +174,7 @@ uint32_t bt_node_at(const bt_tree *t, int32_t x, int32_t y);
 
 /* Bytes of mem for bt_build (4 per slot and bt_state_size); 0 if w, h are invalid. */
 size_t bt_mem_size(int32_t w, int32_t h);
-/* Bytes of frame state (bt_tree.st) for a tree of nslot slots: 3 bits a slot. */
+/* Bytes of frame state (bt_tree.st) for a tree of nslot slots: 2 bits a slot. */
 size_t bt_state_size(uint32_t nslot);
 /* Bytes of build scratch (freed by the caller after bt_build). */
 size_t bt_scratch_size(int32_t w, int32_t h);

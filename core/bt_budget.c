@@ -1,13 +1,16 @@
 /* core/bt_budget.c — the budget rule of the bitree's selection (003; ROAM's split
- * queue, Duchaineau et al. 1997): diamonds are marked ST_SPLIT in decreasing
- * priority order (a heap; ties coarser first) while the nominal triangle count
- * stays within the budget; the recursive walk (core/bt_mesh.c) then follows the
+ * queue, Duchaineau et al. 1997): diamonds are split in decreasing priority order (a
+ * heap; ties coarser first) while the nominal triangle count stays within the
+ * budget, and marked ST_MARK; the recursive walk (core/bt_mesh.c) then follows the
  * marks.  Contract: core/bitree.h; shared state: core/bt_em.h. */
 #include "core/bitree.h"
 #include "core/bt_int.h"
 #include "core/bt_em.h"
 
 /* ------------------------------------------------------------ budget */
+
+/* An ids entry's flag: the diamond was split (slots are below 2^31: bt_slot_count) */
+#define SPLIT_FLAG 0x80000000u
 static int64_t prio(bti_extract *e, int32_t x, int32_t y)
 {
     int typeD;
@@ -26,7 +29,7 @@ static int64_t prio(bti_extract *e, int32_t x, int32_t y)
     return (r << 8) | (int64_t)(2 * j + typeD);
 }
 
-static void hpush(bti_heap_ent *hp, uint32_t *n, int64_t key, uint32_t id)
+static void hpush(bti_heap_ent *hp, uint32_t *n, int64_t key, uint32_t id, uint32_t pos)
 {
     uint32_t i = (*n)++;
     while (i > 0) {
@@ -35,7 +38,7 @@ static void hpush(bti_heap_ent *hp, uint32_t *n, int64_t key, uint32_t id)
         hp[i] = hp[par];
         i = par;
     }
-    hp[i].key = key; hp[i].id = id; hp[i].pad_ = 0;
+    hp[i].key = key; hp[i].id = id; hp[i].pos = pos;
 }
 
 static bti_heap_ent hpop(bti_heap_ent *hp, uint32_t *n)
@@ -55,8 +58,11 @@ static bti_heap_ent hpop(bti_heap_ent *hp, uint32_t *n)
     return top;
 }
 
-/* Marks ST_SPLIT on the diamonds a budget of `budget` nominal triangles buys.
- * Returns the number of slots recorded (to clear afterwards) in ids. Sets e->tau
+/* Marks ST_MARK on the diamonds a budget of `budget` nominal triangles buys.
+ * Returns the number of slots recorded (to clear afterwards) in ids.  While the heap
+ * runs, ST_MARK says "pushed" (each diamond is pushed once) and a split diamond's ids
+ * entry carries SPLIT_FLAG (its heap entry keeps where); at the end only the split
+ * keep their mark. Sets e->tau
  * to the last split's rho (for geomorph).  The heap orders ties by the padded
  * grid index y*n + x.  Padding diamonds without a slot are VOID: never pushed (in
  * the view rules their priority is -1, in the fidelity rule their code 0 is never
@@ -66,14 +72,15 @@ uint32_t bti_budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid)
     bt_tree *t = e->t;
     bti_heap_ent *hp = bti_heap_of(e->m);
     uint32_t *ids = bti_ids_of(e->m);
-    uint32_t nh = 0, ni = 0, cap = bti_heap_cap(e->m);
+    uint8_t *mark = bti_st(t, ST_MARK);
+    uint32_t nh = 0, ni = 0, cap = bti_heap_cap(e->m), j;
     uint64_t count = 2;
     int32_t S = e->S, n = e->n;
     int64_t last = 0;
     {
         uint32_t root = (uint32_t)((S / 2) * n + S / 2), rs = bti_slot(t, S / 2, S / 2);
         int64_t k = prio(e, S / 2, S / 2);
-        if (k >= 0 && rs != t->nslot - 1) { hpush(hp, &nh, k, root); bti_bit_set(bti_st(t, ST_PUSHED), rs); ids[ni++] = rs; }
+        if (k >= 0 && rs != t->nslot - 1) { hpush(hp, &nh, k, root, ni); bti_bit_set(mark, rs); ids[ni++] = rs; }
     }
     while (nh > 0) {
         bti_heap_ent he = hpop(hp, &nh);
@@ -90,7 +97,7 @@ uint32_t bti_budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid)
         if (count + (uint64_t)add > budget) break;
         if (ni + 4 > cap) break;
         count += (uint64_t)add;
-        bti_bit_set(bti_st(t, ST_SPLIT), bti_slot(t, x, y));
+        ids[he.pos] |= SPLIT_FLAG;
         last = he.key >> 8;
         if (typeD) {
             cx[0] = x - h; cy[0] = y; cx[1] = x + h; cy[1] = y;
@@ -106,12 +113,16 @@ uint32_t bti_budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid)
             if (cx[i] < 0 || cy[i] < 0 || cx[i] > S || cy[i] > S) continue;
             cid = (uint32_t)(cy[i] * n + cx[i]);
             cs = bti_slot(t, cx[i], cy[i]);
-            if (cs == t->nslot - 1 || bti_bit(bti_st(t, ST_PUSHED), cs)) continue;
+            if (cs == t->nslot - 1 || bti_bit(mark, cs)) continue;
             k = prio(e, cx[i], cy[i]);
-            bti_bit_set(bti_st(t, ST_PUSHED), cs);
+            bti_bit_set(mark, cs);
+            if (k >= 0) hpush(hp, &nh, k, cid, ni);
             ids[ni++] = cs;
-            if (k >= 0) hpush(hp, &nh, k, cid);
         }
+    }
+    for (j = 0; j < ni; j++) {          /* pushed, not split: unmarked */
+        if (ids[j] & SPLIT_FLAG) ids[j] &= ~SPLIT_FLAG;
+        else bti_bit_clear(mark, ids[j]);
     }
     if (e->p->mode != BT_FIDELITY) e->tau = last;
     *nid = ni;

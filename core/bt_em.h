@@ -10,12 +10,13 @@
 #include "core/config.h"
 
 /* The frame state (bt_tree.st, bt_state_size bytes): one bit per slot in each of
- * three planes of (nslot + 7) / 8 bytes, slot i at byte i >> 3, bit i & 7.  ST_PREV:
- * split in the previous view frame (hysteresis); ST_SPLIT, ST_PUSHED: the budget
- * rule's marks.  Only serial code writes a plane (the walks read ST_PREV only; the end
- * of an extraction sets it from the listed splits), so sharing a byte between eight
- * slots races with nothing. */
-enum { ST_PREV = 0, ST_SPLIT = 1, ST_PUSHED = 2, ST_PLANES = 3 };
+ * two planes of (nslot + 7) / 8 bytes, slot i at byte i >> 3, bit i & 7.  ST_PREV:
+ * split in the previous view frame (hysteresis); ST_MARK: split by the budget rule
+ * (core/bt_budget.c, which also uses it for "pushed" while its heap runs).  Only
+ * serial code writes a plane (the walks read ST_PREV only; the end of an extraction
+ * sets it from the listed splits), so sharing a byte between eight slots races with
+ * nothing. */
+enum { ST_PREV = 0, ST_MARK = 1, ST_PLANES = 2 };
 
 static inline uint8_t *bti_st(const bt_tree *t, int plane)
 {
@@ -32,9 +33,14 @@ static inline void bti_bit_set(uint8_t *plane, uint32_t i)
     plane[i >> 3] = (uint8_t)(plane[i >> 3] | (1u << (i & 7u)));
 }
 
+static inline void bti_bit_clear(uint8_t *plane, uint32_t i)
+{
+    plane[i >> 3] = (uint8_t)(plane[i >> 3] & ~(1u << (i & 7u)));
+}
+
 /* Clears slot i's bit and its seven neighbours': for a plane whose set bits are all
- * listed (ST_PREV: the previous frame's split list; ST_SPLIT, ST_PUSHED: the budget
- * rule's ids), clearing every listed slot this way clears the plane, in one store a
+ * listed (ST_PREV: the previous frame's split list; ST_MARK: the budget rule's
+ * ids), clearing every listed slot this way clears the plane, in one store a
  * slot. */
 static inline void bti_byte_clear(uint8_t *plane, uint32_t i)
 {
@@ -48,15 +54,12 @@ static inline void bti_st_wipe(bt_tree *t)
 }
 
 /* The budget rule's marks cleared: ids[0 .. n) are the slots it pushed, which hold
- * every ST_SPLIT and ST_PUSHED bit (bti_budget_mark) */
+ * every ST_MARK bit (bti_budget_mark) */
 static inline void bti_st_unmark(bt_tree *t, const uint32_t *ids, uint32_t n)
 {
-    uint8_t *split = bti_st(t, ST_SPLIT), *pushed = bti_st(t, ST_PUSHED);
+    uint8_t *mark = bti_st(t, ST_MARK);
     uint32_t i;
-    for (i = 0; i < n; i++) {
-        bti_byte_clear(split, ids[i]);
-        bti_byte_clear(pushed, ids[i]);
-    }
+    for (i = 0; i < n; i++) bti_byte_clear(mark, ids[i]);
 }
 
 /* Words of a decision memo entry: the decision, and with BR_COHERENCE its expiry
@@ -145,7 +148,8 @@ static inline int bti_zlog(bt_mesh *m, int kind, uint32_t a, uint32_t b, uint32_
 #define BTI_REF_C 0xFFFFFFFEu
 #define BTI_REF_B 0xFFFFFFFFu
 
-typedef struct bti_heap_ent { int64_t key; uint32_t id; uint32_t pad_; } bti_heap_ent;
+/* A budget heap entry: priority, padded grid index, its slot's place in the ids list */
+typedef struct bti_heap_ent { int64_t key; uint32_t id; uint32_t pos; } bti_heap_ent;
 
 typedef struct bti_extract {
     bt_tree *t;
@@ -439,7 +443,7 @@ static inline int32_t bti_dscale(int32_t x, int32_t y, int32_t S, int *typeD)
     return h;
 }
 
-/* core/bt_budget.c: marks ST_SPLIT (and ST_PUSHED) on the diamonds a budget of
+/* core/bt_budget.c: marks ST_MARK on the diamonds a budget of
  * `budget` nominal triangles buys; the ids it marked go to the mesh's id list
  * (*nid of them, to clear afterwards); sets e->tau to the last split's rho. */
 uint32_t bti_budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid);

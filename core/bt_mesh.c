@@ -236,10 +236,10 @@ static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *
     *exp = 0;
     if (e->fid) return BT_NODE_ERR(e->t->node[idx]) > e->cthr;
     if (e->p->mode == BT_BUDGET || e->tau < 0) {
-        if (e->p->mode == BT_FIDELITY) return bti_bit(bti_st(t, ST_SPLIT), idx);
+        if (e->p->mode == BT_FIDELITY) return bti_bit(bti_st(t, ST_MARK), idx);
         r = view_err(e, x, y, idx, mask, &ew, &d, &cm);
         if (r < 0) return -1;
-        if (!bti_bit(bti_st(t, ST_SPLIT), idx)) return 0;
+        if (!bti_bit(bti_st(t, ST_MARK), idx)) return 0;
         if (e->morph_span > 0 && r == 0 && d > 0) *morph = morph_at(e, isat_mul(ew, e->fq8), d);
         return 1;
     }
