@@ -99,7 +99,7 @@
  *   void      every other padding diamond: VOID by the reach argument; all share
  *             the last slot, which holds BT_NODE_VOID and whose st is never written.
  * So a tree holds nslot = w*h + O((n + w) * 3) slots: 4.25 bytes per slot (4 node
- * + 2 bits of st), 4.38-4.92 bytes per sample of the grid as read on the DEMs in the project
+ * + 2 bits of st), 4.25-4.78 bytes per sample of the grid as read on the DEMs in the project
  * (tests/test_bitree_layout.c prints them), against 5 per PADDED sample before
  * (14.6 on a 1201^2 SRTM tile).  The values are bit for bit the padded
  * hierarchy's (bt_node_at reads any (x, y); tests/test_bitree_big.c hashes the
