@@ -8,7 +8,7 @@
 #include <string.h>
 #include "core/bitree.h"
 #include "core/fx.h"
-#include "core/bt_em.h"
+#include "core/bt_int.h"
 
 /* ------------------------------------------------------------ sizes */
 
@@ -30,7 +30,7 @@ uint32_t bt_slot_count(int32_t w, int32_t h)
 
 size_t bt_state_size(uint32_t nslot)
 {
-    return (((size_t)nslot + 7) >> 3) * ST_PLANES;
+    return bti_plane_bytes(nslot) * ST_PLANES;
 }
 
 size_t bt_mem_size(int32_t w, int32_t h)

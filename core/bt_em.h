@@ -9,48 +9,10 @@
 #include "core/bt_int.h"
 #include "core/config.h"
 
-/* The frame state (bt_tree.st, bt_state_size bytes): one bit per slot in each of
- * two planes of (nslot + 7) / 8 bytes, slot i at byte i >> 3, bit i & 7.  ST_PREV:
- * split in the previous view frame (hysteresis); ST_MARK: split by the budget rule
- * (core/bt_budget.c, which also uses it for "pushed" while its heap runs).  Only
- * serial code writes a plane (the walks read ST_PREV only; the end of an extraction
- * sets it from the listed splits), so sharing a byte between eight slots races with
- * nothing. */
-enum { ST_PREV = 0, ST_MARK = 1, ST_PLANES = 2 };
-
-static inline uint8_t *bti_st(const bt_tree *t, int plane)
-{
-    return t->st + (((size_t)t->nslot + 7) >> 3) * (size_t)plane;
-}
-
-static inline int bti_bit(const uint8_t *plane, uint32_t i)
-{
-    return (plane[i >> 3] >> (i & 7u)) & 1;
-}
-
-static inline void bti_bit_set(uint8_t *plane, uint32_t i)
-{
-    plane[i >> 3] = (uint8_t)(plane[i >> 3] | (1u << (i & 7u)));
-}
-
-static inline void bti_bit_clear(uint8_t *plane, uint32_t i)
-{
-    plane[i >> 3] = (uint8_t)(plane[i >> 3] & ~(1u << (i & 7u)));
-}
-
-/* Clears slot i's bit and its seven neighbours': for a plane whose set bits are all
- * listed (ST_PREV: the previous frame's split list; ST_MARK: the budget rule's
- * ids), clearing every listed slot this way clears the plane, in one store a
- * slot. */
-static inline void bti_byte_clear(uint8_t *plane, uint32_t i)
-{
-    plane[i >> 3] = 0;
-}
-
 /* Every slot's ST_PREV cleared (a split list that overflowed) */
 static inline void bti_st_wipe(bt_tree *t)
 {
-    memset(bti_st(t, ST_PREV), 0, ((size_t)t->nslot + 7) >> 3);
+    memset(bti_st(t, ST_PREV), 0, bti_plane_bytes(t->nslot));
 }
 
 /* The budget rule's marks cleared: ids[0 .. n) are the slots it pushed, which hold

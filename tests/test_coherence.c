@@ -115,7 +115,6 @@ static uint64_t fnv_mesh(const bt_mesh *m)
 
 typedef struct knobs { int32_t mode, pix_q8, hyst_q8, morph_q8, w, h, parts; uint32_t budget; } knobs;
 
-/* One frame on both sides; counts frames whose meshes differ (differ). */
 /* Every record of a part keeps its slot's bit of the ST_PREV plane (bti_rec.pbit): a
  * replay's proof reads that bit, and a wrong one would change a mesh only where the
  * neighbouring slot's bit differs from the record's own */
@@ -129,6 +128,8 @@ static int recs_keep_pbit(const bt_parts *ps)
     return 1;
 }
 
+/* One frame on both sides; counts frames whose meshes differ, or whose records'
+ * masks are wrong (differ). */
 static int frame(const double eye[6], const knobs *k)
 {
     cam c;
