@@ -219,7 +219,7 @@ static int render_frame(render_job *j, const double *cv, const char *name, const
         if (out_close(ro, err) != BR_OK) { fprintf(stderr, "bitrain: %s\n", err->msg); return 0; }
     }
     t2 = br_now_ms();
-    fprintf(j->ro.raw && name && !strcmp(name, "-") ? stderr : stdout,
+    fprintf(name && !strcmp(name, "-") ? stderr : stdout,
             "%s: %dx%d, %u vertices, %s, %u triangles drawn (%u clipped), load+mesh %.1f ms, "
             "render+write %.1f ms, world unit 2^%d m, band %d rows (%zu bytes + %zu bytes vertex cache), %d threads\n",
             name ? name : (j->spi.capture ? j->spi.capture : j->spi.dev), j->w, j->h, fr.nv,
@@ -247,7 +247,7 @@ int cmd_render(int argc, char **argv)
     static render_job job;          /* the scene and its buffers: large, one per process */
     render_job *j = &job;
     const opt_spec own[] = {
-        { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT.png", "the image to write", NULL },
+        { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT.png", "the image to write (-: standard output)", NULL },
         { "--size", OPT_SIZE, size, 1, RS_MAX_DIM, 0, NULL, "WxH", "image size (default 800x600)", NULL },
         { "--camera", OPT_NUMS, camv, -1e7, 1e7, 6, NULL, "EX,EY,EZ,TX,TY,TZ", "eye and target, metres",
           &have_cam },
@@ -263,7 +263,7 @@ int cmd_render(int argc, char **argv)
         { "--depth", OPT_CHOICE, &depth_choice, 0, 0, 0, "32|16", "BITS", "depth buffer bits", NULL },
         { "--no-cull", OPT_FLAG, &j->no_cull, 0, 0, 0, NULL, NULL, "draw back faces too", NULL },
         { "--output-format", OPT_CHOICE, &j->ro.raw, 0, 0, 0, "png|rgb565", "F",
-          "png, or rgb565: raw big-endian RGB565 rows as an SPI display takes them (-o -: stdout)", NULL },
+          "png, or rgb565: raw big-endian RGB565 rows as an SPI display takes them", NULL },
         { "--path", OPT_STR, &path, 0, 0, 0, NULL, "FILE",
           "a camera path (one --camera line a frame, assets/*.cam): one image a line, -o a pattern such as frame%04d.png "
           "(%d: 1 for the first line)", NULL },
@@ -307,7 +307,7 @@ int cmd_render(int argc, char **argv)
     }
     if (j->bands == 0) j->bands = j->threads > 1 ? 64 : j->h;
     if (j->bands > j->h) j->bands = j->h;
-    if (j->ro.raw && out && !strcmp(out, "-")) so.quiet = 1;   /* stdout carries the pixels only */
+    if (out && !strcmp(out, "-")) so.quiet = wo.quiet = 1;   /* stdout carries the image only */
 
     if (path && campath_read(path, &cp, &err) != BR_OK) { fprintf(stderr, "bitrain render: %s\n", err.msg); return 1; }
     if (cp.n) nframes = cp.n;

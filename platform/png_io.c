@@ -32,7 +32,7 @@ br_status png_out_open(png_out **out, const char *path, int w, int h, br_err *er
         return br_err_set(err, BR_E_ARG, path, "bad image size %dx%d", w, h);
     o = calloc(1, sizeof *o);
     if (!o) return br_err_set(err, BR_E_NOMEM, path, "out of memory");
-    o->f = fopen(path, "wb");
+    o->f = strcmp(path, "-") ? fopen(path, "wb") : stdout;      /* "-": standard output */
     if (!o->f) { free(o); return br_err_set(err, BR_E_IO, path, "cannot create file"); }
     e->code = BR_OK;
     o->png = png_create_write_struct(PNG_LIBPNG_VER_STRING, e, on_png_error, on_png_warning);
@@ -78,7 +78,7 @@ br_status png_out_close(png_out *o, br_err *err)
     }
     png_write_end(o->png, NULL);
     png_destroy_write_struct(&o->png, &o->info);
-    closed_ok = fclose(o->f) == 0;
+    closed_ok = (o->f == stdout ? fflush(o->f) == 0 && !ferror(o->f) : fclose(o->f) == 0);
     if (!closed_ok) br_err_set(err, BR_E_IO, o->path, "write failed (disk full?)");
     free(o);
     return closed_ok ? BR_OK : BR_E_IO;
@@ -88,7 +88,7 @@ void png_out_abort(png_out *o)
 {
     if (!o) return;
     if (o->png) png_destroy_write_struct(&o->png, o->info ? &o->info : NULL);
-    if (o->f) fclose(o->f);
+    if (o->f && o->f != stdout) fclose(o->f);
     free(o);
 }
 

@@ -11,6 +11,7 @@
 
 typedef struct png_out png_out;
 
+/* path "-" writes to standard output. */
 br_status png_out_open(png_out **out, const char *path, int w, int h, br_err *err);
 /* rows: nrows rows of w RGB888 pixels, stride bytes apart. */
 br_status png_out_rows(png_out *o, const uint8_t *rows, int nrows, size_t stride, br_err *err);

@@ -9,8 +9,11 @@
  * [y0 - margin, y0 + rows + margin) clipped to the frame, a later pass reads them, and
  * rows_touched skips a pass for the bands it cannot touch.  The raw RGB565 sink writes
  * big-endian RGB565, the same bytes from an XRGB8888 frame as from an RGB565 one, and
- * `bitrain render --output-format rgb565` writes the frame its PNG shows; the SDL sink
- * fills a streaming texture with the frame. */
+ * `bitrain render --output-format rgb565` writes the frame its PNG shows, and `-o -`
+ * puts the image alone on standard output; the SDL sink fills a streaming texture with
+ * the frame. */
+#include <fcntl.h>
+#include <unistd.h>
 #include "raster/frame.h"
 #include "raster/raster.h"
 #include "platform/cmd.h"
@@ -425,6 +428,51 @@ static void test_render_raw(void)
     free(r1); free(r2); free(rgb);
 }
 
+/* cmd_render(argc, argv) with stdout sent to file `path`; its exit code. */
+static int render_to_stdout(int argc, const char **argv, const char *path)
+{
+    int saved, fd, rc;
+    fflush(stdout);
+    saved = dup(1);
+    fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (saved < 0 || fd < 0) return -100;
+    dup2(fd, 1);
+    close(fd);
+    rc = cmd_render(argc, (char **)(uintptr_t)argv);
+    fflush(stdout);
+    dup2(saved, 1);
+    close(saved);
+    return rc;
+}
+
+/* `render -o -`, with water (whose lake lines the command prints otherwise): standard
+ * output carries the image and nothing else, the same bytes as `-o FILE`, in both
+ * output formats. */
+static void test_render_stdout(void)
+{
+    static const char *const fmts[2] = { "png", "rgb565" };
+    const char *dem = t_data("hgt/N47E009.hgt");
+    int k;
+    for (k = 0; k < 2; k++) {
+        char file[512], piped[512];
+        const char *to_file[] = { dem, "-o", file, "--size", "40x30", "--output-format", fmts[k] };
+        const char *to_out[] = { dem, "-o", "-", "--size", "40x30", "--output-format", fmts[k] };
+        unsigned char *a, *b;
+        size_t na = 0, nb = 0;
+        snprintf(file, sizeof file, "%s/render_file.%s", t_outdir(), fmts[k]);
+        snprintf(piped, sizeof piped, "%s/render_stdout.%s", t_outdir(), fmts[k]);
+        CHECK_EQ(cmd_render(7, (char **)(uintptr_t)to_file), 0);
+        CHECK_EQ(render_to_stdout(7, to_out, piped), 0);
+        a = t_read_file(file, &na);
+        b = t_read_file(piped, &nb);
+        CHECK_MSG(a && b && na == nb && !memcmp(a, b, na), "-o - with %s: %zu bytes on stdout, %zu in the file",
+                  fmts[k], nb, na);
+        if (k == 1) CHECK_EQ(nb, (size_t)40 * 30 * 2);
+        else CHECK(nb > 8 && b && !memcmp(b, "\x89PNG", 4));
+        free(a); free(b);
+    }
+}
+
 /* The SDL sink into a streaming texture (SDL's dummy video driver, software renderer):
  * the texture, read back, and the keep buffer hold the whole frame, in bands of 64 rows. */
 static void test_sdl_sink(void)
@@ -486,6 +534,7 @@ int main(void)
     T_RUN(test_chunk_table_required);
     T_RUN(test_rgb565_sink);
     T_RUN(test_render_raw);
+    T_RUN(test_render_stdout);
     T_RUN(test_sdl_sink);
     free(g_ps);
     return t_finish();
