@@ -77,6 +77,17 @@
 #ifndef RS_WITH_COUNT
 #define RS_WITH_COUNT 0
 #endif
+/* RS_TEX_FIELDS 0 drops the texture coordinates from the vertex layouts (raster/raster.h
+ * rs_vertex 24 -> 16 bytes, rs_cvert 32 -> 24): RAM a board without textures spends on
+ * every vertex of the frame.  A layout, not a variant: everything linked together must
+ * agree on it (tests/test_raster_variants.c keeps 1 beside the full library), and it
+ * needs RS_WITH_TEX 0.  Pixels: unchanged. */
+#ifndef RS_TEX_FIELDS
+#define RS_TEX_FIELDS 1
+#endif
+#if !RS_TEX_FIELDS && RS_WITH_TEX
+#error "core/config.h: RS_TEX_FIELDS 0 leaves no texture coordinates: it needs RS_WITH_TEX 0"
+#endif
 #if !((RS_WITH_888 || RS_WITH_565) && (RS_WITH_Z32 || RS_WITH_Z16))
 #error "core/config.h: RS_WITH_* leave no pixel format x depth variant to compile"
 #endif

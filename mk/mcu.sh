@@ -38,6 +38,9 @@ MCU_MAX_V=${MCU_MAX_V:-2560}
 XCC=arm-none-eabi-gcc
 WARN="-Wall -Wextra -Wshadow -Wundef -Wwrite-strings -Wdouble-promotion -Wmissing-prototypes -Wstrict-prototypes -Wconversion -Wno-sign-conversion"
 SIZES="-DBOARD_MAX_TRI=$MCU_MAX_TRI -DBOARD_MAX_V=$MCU_MAX_V"
+# the board's variants and vertex layout (core/config.h): the desktop build compiles
+# core/ and raster/ with them too, so that both lay out the same RAM
+LAYOUT="-DRS_WITH_888=0 -DRS_WITH_Z32=0 -DRS_WITH_TEX=0 -DRS_TEX_FIELDS=0 -DBR_COHERENCE=0"
 BOARD_SRC="platform/board/board.c platform/board/spi_band.c mcu/board_tree.c"
 mkdir -p "$O" || exit 1
 
@@ -55,8 +58,9 @@ cmp -s "$O/bake_data.c.new" "$O/bake_data.c" 2>/dev/null && rm -f "$O/bake_data.
 
 # ---- 2. desktop
 # shellcheck disable=SC2086
-$CC -std=c99 -O2 -g $WARN $SIZES -I. $(pkg-config --cflags libpng zlib) -o "$O/bitrain-board-desktop" \
-  platform/board/desktop_main.c $BOARD_SRC "$O/bake_data.c" "$B/libbitrain.a" $(pkg-config --libs sdl2 libpng zlib) -lm \
+$CC -std=c99 -O2 -g $WARN $SIZES $LAYOUT -I. $(pkg-config --cflags libpng zlib) -o "$O/bitrain-board-desktop" \
+  platform/board/desktop_main.c $BOARD_SRC "$O/bake_data.c" core/*.c raster/*.c "$B/libbitrain.a" \
+  $(pkg-config --libs sdl2 libpng zlib) -lm \
   || { echo "mcu: cannot build the desktop board main"; exit 1; }
 "$O/bitrain-board-desktop" --mem > "$O/desktop.txt" || { cat "$O/desktop.txt"; echo "mcu: the desktop board main failed"; exit 1; }
 arena=$(awk '/arena total/ { print $(NF - 1) }' "$O/desktop.txt")
@@ -104,7 +108,7 @@ for core in m0plus m3; do
   # core/config.h).  The widths are each core's fastest on the board path.
   XFLAGS="-std=c99 $WARN -O2 -g -mthumb -mcpu=$cpu -mfloat-abi=soft -ffreestanding -fbuiltin -ffunction-sections -fdata-sections \
     -isystem platform/board/include \
-    -DRS_WITH_888=0 -DRS_WITH_Z32=0 -DRS_WITH_TEX=0 -DBR_COHERENCE=0 -DRS_NARROW=$narrow $SIZES -I."
+    $LAYOUT -DRS_NARROW=$narrow $SIZES -I."
   objs="" ok=1
   for f in core/*.c raster/*.c; do
     o=$d/obj/$(echo "$f" | tr / _ | sed 's/\.c$/.o/')

@@ -282,8 +282,12 @@ static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf)
         uint32_t rgb = f->v[idx[i]].rgb;
         rsi_to_camera(vp, f->v[idx[i]].p, buf[0][i].c);
         for (k = 0; k < 3; k++) buf[0][i].col[k] = (int32_t)((rgb >> (16 - 8 * k)) & 255);
+#if RS_TEX_FIELDS
         buf[0][i].uv[0] = f->v[idx[i]].uv[0];
         buf[0][i].uv[1] = f->v[idx[i]].uv[1];
+#else
+        buf[0][i].uv[0] = buf[0][i].uv[1] = 0;
+#endif
         buf[0][i].pz = (int64_t)f->v[idx[i]].p[2] - f->clip_z;
     }
     for (; p < nplanes; p++) {
@@ -314,7 +318,9 @@ static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf)
         rsi_project(vp, f8, v->c, f->w, f->h, &sv[i]);
         sv[i].c = ((uint32_t)v->col[0] << 16) | ((uint32_t)v->col[1] << 8) | (uint32_t)v->col[2];
         sv[i].cp = rsi_pack_rgb(sv[i].c);
+#if RS_TEX_FIELDS
         sv[i].u = v->uv[0]; sv[i].v = v->uv[1];
+#endif
     }
     for (i = 1; i + 1 < n; i++) tri_raster(bd, &sv[0], &sv[i], &sv[i + 1], vf);
 }

@@ -63,6 +63,7 @@
 #include <stdint.h>
 #include "core/cam.h"
 #include "core/status.h"
+#include "core/config.h"
 
 #define RS_SUBPIX_BITS 4
 #define RS_GUARD_PX (1 << 14)
@@ -81,7 +82,9 @@ enum { RS_STRIP = 0, RS_LIST = 1 };
 typedef struct rs_vertex {
     int32_t p[3];
     uint32_t rgb;
+#if RS_TEX_FIELDS
     int32_t uv[2];
+#endif
 } rs_vertex;
 
 /* A texture (colour map, orthophoto): w x h XRGB8888 texels, row 0 at the top,
@@ -106,17 +109,19 @@ typedef struct rs_prim {
     const uint32_t *idx;
 } rs_prim;
 
-/* Vertex cache entry (32 bytes): screen position in sub-pixels, depth, colour with
- * the outcode in the top byte of c, the colour in the rasteriser's packed
- * interpolation form (8-bit R, G, B at bits 42, 21, 0, see raster.c), texture
- * coordinates. */
+/* Vertex cache entry (32 bytes; 24 without RS_TEX_FIELDS): screen position in
+ * sub-pixels, depth, colour with the outcode in the top byte of c, the colour in the
+ * rasteriser's packed interpolation form (8-bit R, G, B at bits 42, 21, 0, see
+ * raster.c), texture coordinates. */
 typedef struct rs_cvert {
     int32_t x, y;
     uint32_t d;
     uint32_t c;
     uint64_t cp;
+#if RS_TEX_FIELDS
     int32_t u, v;       /* texture coordinates, texels Q8 (rs_frame_prepare writes them
                            for textured frames only; untextured drawing never reads them) */
+#endif
 } rs_cvert;
 
 /* Outcode bits (in rs_cvert.c >> 24). */

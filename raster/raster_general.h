@@ -525,8 +525,10 @@ RSI_INLINE static void gen_tri(band *bd, const rs_cvert *a, const rs_cvert *b, c
             const int32_t tsh = tex_shift(a->d, b->d, c->d);
             tx.tx = bd->f->tex;
             tx.qa = a->d >> tsh; tx.qb = b->d >> tsh; tx.qc = c->d >> tsh;
+#if RS_TEX_FIELDS
             tx.qua = tx.qa * a->u; tx.qub = tx.qb * b->u; tx.quc = tx.qc * c->u;
             tx.qva = tx.qa * a->v; tx.qvb = tx.qb * b->v; tx.qvc = tx.qc * c->v;
+#endif
             while ((area2 >> tx.esh) >= ((int64_t)1 << 20)) tx.esh++;
         }
         /* wide boxes: the row spans' divisors |16 A|; a zero step is never divided by,

@@ -82,8 +82,10 @@ RSI_INLINE static void tiny_setup(tiny_tri *t, const band *bd, const rs_cvert *a
         const int32_t tsh = tex_shift(a->d, b->d, c->d);
         t->tx = bd->f->tex;
         t->qa = a->d >> tsh; t->qb = b->d >> tsh; t->qc = c->d >> tsh;
+#if RS_TEX_FIELDS
         t->ua = t->qa * a->u; t->ub = t->qb * b->u; t->uc = t->qc * c->u;
         t->va = t->qa * a->v; t->vb = t->qb * b->v; t->vc = t->qc * c->v;
+#endif
     }
 }
 

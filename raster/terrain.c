@@ -168,6 +168,7 @@ static inline uint32_t ramp_at(const rt_scene *s, int32_t z)
  * 2^24 texels a side; the same quotients as `/`). */
 static void vertex_uv(const rt_scene *s, int32_t x, int32_t y, rs_vertex *out)
 {
+#if RS_TEX_FIELDS
     const hf *f = s->f;
     fx_divisor d;
     out->uv[0] = out->uv[1] = 0;
@@ -179,6 +180,9 @@ static void vertex_uv(const rt_scene *s, int32_t x, int32_t y, rs_vertex *out)
         fx_divisor_make(&d, f->h - 1);
         out->uv[1] = (int32_t)fx_divisor_trunc(&d, (int64_t)y * s->tex_h * 256);
     }
+#else
+    (void)s; (void)x; (void)y; (void)out;
+#endif
 }
 
 /* Position, texture coordinates and, for a void, the colour; 1 when the sample is
@@ -189,7 +193,9 @@ static inline int vertex_base(const rt_scene *s, int32_t x, int32_t y, int32_t z
     out->p[0] = s->fr.ox + x * s->fr.sx;
     out->p[1] = s->fr.oy - y * s->fr.sy;
     out->p[2] = s->fr.oz + (int32_t)(((int64_t)z * s->fr.sz_q16) >> 16);
+#if RS_TEX_FIELDS
     out->uv[0] = out->uv[1] = 0;
+#endif
     if (s->tex_w > 0 && s->tex_h > 0) vertex_uv(s, x, y, out);
     if (f->z[(size_t)y * (size_t)f->w + (size_t)x] != HF_NODATA) return 0;
     out->rgb = s->ramp->has_nv ? s->ramp->nv_rgb : 0;

@@ -104,7 +104,9 @@ void rs_cvert_set(rs_cvert *o, int32_t w, int32_t h, int32_t x, int32_t y, uint3
     o->x = x; o->y = y; o->d = d;
     o->c = (rgb & 0xffffffu) | (screen_oc(x, y, w, h) << 24);
     o->cp = rsi_pack_rgb(rgb);
+#if RS_TEX_FIELDS
     o->u = o->v = 0;
+#endif
 }
 
 void rs_cvert_recolour(rs_cvert *o, uint32_t rgb)
@@ -125,7 +127,9 @@ static RSI_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cv
     int64_t c[3], lim, ax, ay;
     uint32_t oc = 0;
     o->cp = rsi_pack_rgb(v->rgb);
+#if RS_TEX_FIELDS
     o->u = v->uv[0]; o->v = v->uv[1];
+#endif
     rsi_to_camera(vp, v->p, c);
     if (c[2] < vp->znear) {
         o->x = o->y = 0; o->d = 0;
@@ -263,6 +267,13 @@ static RSI_INLINE int xform_div(const fx_divisor *dz, uint32_t f8, int64_t c, ui
  * products and the add are multiply-accumulates, the 64-bit key compare and steps
  * cost more than they save, and three 64-bit sums held across the divides take six
  * registers. */
+/* a textured frame's coordinates into the cache entry (no fields without RS_TEX_FIELDS) */
+#if RS_TEX_FIELDS
+#define XFORM_UV(tex, o, v) do { if (tex) { (o)->u = (v)->uv[0]; (o)->v = (v)->uv[1]; } } while (0)
+#else
+#define XFORM_UV(tex, o, v) ((void)(tex))
+#endif
+
 #define XFORM_STEP RSI_REG64
 /* xform_k's fields in registers: a local copy of *k in xform_loop, whose address never
  * leaves it, so gcc keeps its fields in registers (k itself may alias the cache
@@ -342,7 +353,7 @@ static RSI_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex
             o->x = o->y = 0; o->d = 0;
             o->c = rgb + ((uint32_t)RS_OUT_NEAR << 24);      /* = rgb | bit (rgb < 2^24), one lea */
             o->cp = xform_pack(k, rgb);
-            if (tex) { o->u = v->uv[0]; o->v = v->uv[1]; }
+            XFORM_UV(tex, o, v);
             return;
         }
         goto slow;
@@ -414,7 +425,7 @@ static RSI_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex
     o->d = fx_udiv_rn(k->kds[dz.r.s], &dz.r);
 #endif
     o->cp = xform_pack(k, rgb);
-    if (tex) { o->u = v->uv[0]; o->v = v->uv[1]; }
+    XFORM_UV(tex, o, v);
     return;
 slow:
     xform_slow(f, v, o);
