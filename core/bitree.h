@@ -281,8 +281,9 @@ typedef struct bt_mesh {
     uint64_t *memo;        /* decisions (internal), memo_mask + 1 entries of BTI_MEMO_W words */
     uint32_t memo_mask, memo_gen;
     int32_t overflow;      /* 1 if the last extraction had to fall back to the budget */
-    uint32_t heap_cap;     /* entries of the budget heap and of the split list (internal;
-                              0 reads as 4 max_tri + 8) */
+    uint32_t heap_cap;     /* entries of the split list, and of the budget heap unless
+                              heap_n says otherwise (internal; 0 reads as 4 max_tri + 8) */
+    uint32_t heap_n;       /* entries of the budget heap (internal; 0 reads as heap_cap) */
     bt_coh coh;            /* frame coherence of memo (internal) */
     int32_t lent;          /* 1: the scratch was lent out since the last extraction
                               (bt_mesh_lend_scratch; internal) */
@@ -306,6 +307,15 @@ br_status bt_mesh_init(bt_mesh *m, uint32_t max_tri, void *mem, size_t mem_bytes
  * bad size. */
 size_t bt_mesh_mem_size_v(uint32_t max_tri, uint32_t max_v);
 br_status bt_mesh_init_v(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem, size_t mem_bytes);
+/* The same with the budget fallback's heap sized for max_budget triangles (0: as
+ * bt_mesh_init_v; else 4 entries of 16 bytes a triangle, no more than bt_mesh_init_v's
+ * and no fewer than a quarter of them, whose bytes hold the previous frame's split list
+ * while a frame is selected): a board whose selections fit never runs the fallback, and
+ * when one does not fit it gets a coarser mesh (the budget rule stops when its heap is
+ * full; the mesh stays conforming).  The views that fit give the same meshes. */
+size_t bt_mesh_mem_size_vb(uint32_t max_tri, uint32_t max_v, uint32_t max_budget);
+br_status bt_mesh_init_vb(bt_mesh *m, uint32_t max_tri, uint32_t max_v, uint32_t max_budget, void *mem,
+                          size_t mem_bytes);
 /* The mesh's scratch: the bytes of its memory that only an extraction reads (the budget
  * heap, the vertex hash, the decision memo; core/bt_mesh_mem.c), one 8-byte aligned
  * block, free from the end of one extraction to the start of the next.  A caller short
@@ -316,6 +326,7 @@ br_status bt_mesh_init_v(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem
  * size, which bt_mesh_scratch_size_v gives before init for the same max_tri, max_v. */
 void *bt_mesh_lend_scratch(bt_mesh *m, size_t *bytes);
 size_t bt_mesh_scratch_size_v(uint32_t max_tri, uint32_t max_v);
+size_t bt_mesh_scratch_size_vb(uint32_t max_tri, uint32_t max_v, uint32_t max_budget);
 
 /* ---------------------------------------------------------------- selection */
 enum { BT_FIDELITY = 0, BT_VIEW = 1, BT_BUDGET = 2 };

@@ -73,7 +73,7 @@ uint32_t bti_budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid)
     bti_heap_ent *hp = bti_heap_of(e->m);
     uint32_t *ids = bti_ids_of(e->m);
     uint8_t *mark = bti_st(t, ST_MARK);
-    uint32_t nh = 0, ni = 0, cap = bti_heap_cap(e->m), j;
+    uint32_t nh = 0, ni = 0, cap = bti_heap_cap(e->m), hcap = bti_heap_n(e->m), j;
     uint64_t count = 2;
     int32_t S = e->S, n = e->n;
     int64_t last = 0;
@@ -95,7 +95,7 @@ uint32_t bti_budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid)
         else if (x & h) add = (y - h >= 0) + (y + h <= S);
         else add = (x - h >= 0) + (x + h <= S);
         if (count + (uint64_t)add > budget) break;
-        if (ni + 4 > cap) break;
+        if (ni + 4 > cap || nh + 4 > hcap) break;     /* (nh <= ni: the second only for a smaller heap) */
         count += (uint64_t)add;
         ids[he.pos] |= SPLIT_FLAG;
         last = he.key >> 8;

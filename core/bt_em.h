@@ -52,7 +52,8 @@ static inline uint64_t bti_memo_w(const bt_mesh *m, uint32_t idx)
 
 /* bt_mesh_init_v's layout of m in mem without clearing its hash and memo, which the
  * caller clears before use (core/bt_part.c clears what each part uses). */
-br_status bti_mesh_layout(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem, size_t mem_bytes);
+br_status bti_mesh_layout(bt_mesh *m, uint32_t max_tri, uint32_t max_v, uint32_t max_budget, void *mem,
+                          size_t mem_bytes);
 
 /* Forgets every decision of a memo of `entries` entries (no generation matches 0) */
 static inline void bti_memo_clear(uint64_t *memo, uint32_t entries)
@@ -166,13 +167,16 @@ typedef struct bti_extract {
  * third vertex */
 typedef struct bti_leaf bti_leaf;
 
-/* The mesh's tail area (core/bt_mesh_mem.c): the split id list, then the budget heap
- * (heap_cap entries each; heap_cap is even, so the heap stays 8-byte aligned); the
+/* The mesh's tail area (core/bt_mesh_mem.c): the split id list (heap_cap entries), then
+ * the budget heap (bti_heap_n entries; heap_cap is even, so the heap stays 8-byte aligned); the
  * reorder pass borrows the heap as scratch.  The heap is the first of the scratch
  * bytes a caller may borrow between extractions (bt_mesh_lend_scratch). */
 static inline uint32_t bti_heap_cap(const bt_mesh *m) { return m->heap_cap ? m->heap_cap : 4 * m->max_tri + 8; }
 static inline uint32_t *bti_ids_of(const bt_mesh *m) { return m->splits; }
 static inline bti_heap_ent *bti_heap_of(const bt_mesh *m) { return (bti_heap_ent *)(void *)(m->splits + bti_heap_cap(m)); }
+/* entries of the budget heap: bti_heap_cap unless bt_mesh_init_vb gave fewer (at least
+ * a quarter: bt_extract moves the split list into the heap's bytes) */
+static inline uint32_t bti_heap_n(const bt_mesh *m) { return m->heap_n ? m->heap_n : bti_heap_cap(m); }
 
 /* core/bt_emit.c: writes leaf L (N: the next leaf, or NULL), 1 when N was
  * written too; writes the pending leaf; after a complete extraction whose walk

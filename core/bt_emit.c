@@ -291,7 +291,7 @@ void btw_reorder(bti_extract *e)
     ro r;
     /* only where the walk broke, the mode asks for it and the mesh is complete */
     if (e->nbreak == 0 || !e->reorder || e->full || m->ns < 3 || m->ntri < 2) return;
-    if ((size_t)m->ntri * 36 + (size_t)m->nv * 4 > (size_t)bti_heap_cap(m) * sizeof(bti_heap_ent)) return;
+    if ((size_t)m->ntri * 36 + (size_t)m->nv * 4 > (size_t)bti_heap_n(m) * sizeof(bti_heap_ent)) return;
     tv = (uint32_t *)(void *)bti_heap_of(m);
     nb = tv + 3 * (size_t)m->ntri;
     nx = nb + 3 * (size_t)m->ntri;

@@ -66,6 +66,17 @@ static uint32_t heap_for(uint32_t max_tri, uint32_t max_v)
     return 4 * (max_v != 0 && max_v / 2 < max_tri ? max_v / 2 : max_tri) + 8;
 }
 
+/* Entries of the budget heap for a fallback of max_budget triangles (0: heap_for's): 4
+ * a triangle and 8, at most the split list's heap_for and at least a quarter of it + 2
+ * (16-byte entries: the list's 4-byte ids fit in the heap's bytes, where bt_extract
+ * moves the previous frame's while it selects). */
+static uint32_t heap_n_for(uint32_t max_tri, uint32_t max_v, uint32_t max_budget)
+{
+    const uint32_t ids = heap_for(max_tri, max_v), least = ids / 4 + 2;
+    const uint64_t n = 4 * (uint64_t)max_budget + 8;
+    return max_budget == 0 || n >= ids ? ids : n < least ? least : (uint32_t)n;
+}
+
 size_t bt_mesh_mem_size(uint32_t max_tri)
 {
     return bt_mesh_mem_size_v(max_tri, 0);
@@ -73,13 +84,19 @@ size_t bt_mesh_mem_size(uint32_t max_tri)
 
 size_t bt_mesh_mem_size_v(uint32_t max_tri, uint32_t max_v)
 {
+    return bt_mesh_mem_size_vb(max_tri, max_v, 0);
+}
+
+size_t bt_mesh_mem_size_vb(uint32_t max_tri, uint32_t max_v, uint32_t max_budget)
+{
     uint64_t cap_v, cap_s, hs, heap, sz;
     if (max_tri < 2 || max_tri > 0x10000000u || (max_v != 0 && max_v < 16)) return 0;
     cap_v = cap_v_of(max_tri, max_v);
     cap_s = strip_for(max_tri, max_v);
     hs = hash_size(hash_for(max_tri, max_v));
     heap = heap_for(max_tri, max_v);
-    sz = cap_v * sizeof(bt_vert) + cap_s * 4 + hs * 4 + 4 + heap * sizeof(bti_heap_ent) + heap * 4 + 8
+    sz = cap_v * sizeof(bt_vert) + cap_s * 4 + hs * 4 + 4 + heap_n_for(max_tri, max_v, max_budget) * sizeof(bti_heap_ent)
+         + heap * 4 + 8
          + (uint64_t)memo_size(memo_for(max_tri, max_v)) * 8 + 64;
     if (sz > (uint64_t)SIZE_MAX) return 0;      /* 32-bit hosts */
     return (size_t)sz;
@@ -92,19 +109,26 @@ br_status bt_mesh_init(bt_mesh *m, uint32_t max_tri, void *mem, size_t mem_bytes
 
 br_status bt_mesh_init_v(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem, size_t mem_bytes)
 {
-    br_status s = bti_mesh_layout(m, max_tri, max_v, mem, mem_bytes);
+    return bt_mesh_init_vb(m, max_tri, max_v, 0, mem, mem_bytes);
+}
+
+br_status bt_mesh_init_vb(bt_mesh *m, uint32_t max_tri, uint32_t max_v, uint32_t max_budget, void *mem,
+                          size_t mem_bytes)
+{
+    br_status s = bti_mesh_layout(m, max_tri, max_v, max_budget, mem, mem_bytes);
     if (s != BR_OK) return s;
     memset(m->hash, 0, ((size_t)m->hmask + 1) * 4 + 4);   /* + the generation word, see reset_mesh */
     bti_memo_clear(m->memo, m->memo_mask + 1);
     return BR_OK;
 }
 
-br_status bti_mesh_layout(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *mem, size_t mem_bytes)
+br_status bti_mesh_layout(bt_mesh *m, uint32_t max_tri, uint32_t max_v, uint32_t max_budget, void *mem,
+                          size_t mem_bytes)
 {
     uint8_t *p = (uint8_t *)mem;
     uint32_t cap_v, cap_s, hs;
     if (!m || !mem || max_tri < 2 || max_tri > 0x10000000u || (max_v != 0 && max_v < 16)) return BR_E_ARG;
-    if (mem_bytes < bt_mesh_mem_size_v(max_tri, max_v)) return BR_E_ARG;
+    if (mem_bytes < bt_mesh_mem_size_vb(max_tri, max_v, max_budget)) return BR_E_ARG;
     if (((uintptr_t)mem & 7) != 0) return BR_E_ARG;
     memset(m, 0, sizeof *m);
     cap_v = cap_v_of(max_tri, max_v);
@@ -112,13 +136,14 @@ br_status bti_mesh_layout(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *me
     hs = hash_size(hash_for(max_tri, max_v));
     m->max_tri = max_tri;
     m->heap_cap = heap_for(max_tri, max_v);
+    m->heap_n = heap_n_for(max_tri, max_v, max_budget);
     m->v = (bt_vert *)(void *)p; p += (size_t)cap_v * sizeof(bt_vert);
     m->cap_v = cap_v;
     m->strip = (uint32_t *)(void *)p; p += (size_t)cap_s * 4;
     m->cap_s = cap_s;
     p += (8 - ((uintptr_t)p & 7)) & 7;
     m->splits = (uint32_t *)(void *)p;   /* the id list, then the heap (bti_heap_of) */
-    p = (uint8_t *)(void *)(bti_heap_of(m) + bti_heap_cap(m));
+    p = (uint8_t *)(void *)(bti_heap_of(m) + bti_heap_n(m));
     m->hash = (uint32_t *)(void *)p; p += (size_t)hs * 4 + 4;
     m->hmask = hs - 1;
     p += (8 - ((uintptr_t)p & 7)) & 7;
@@ -133,9 +158,15 @@ br_status bti_mesh_layout(bt_mesh *m, uint32_t max_tri, uint32_t max_v, void *me
  * to the memo's 8-byte alignment, the memo: what bt_mesh_init_v lays out. */
 size_t bt_mesh_scratch_size_v(uint32_t max_tri, uint32_t max_v)
 {
+    return bt_mesh_scratch_size_vb(max_tri, max_v, 0);
+}
+
+size_t bt_mesh_scratch_size_vb(uint32_t max_tri, uint32_t max_v, uint32_t max_budget)
+{
     uint64_t sz;
-    if (bt_mesh_mem_size_v(max_tri, max_v) == 0) return 0;
-    sz = (uint64_t)heap_for(max_tri, max_v) * sizeof(bti_heap_ent) + (uint64_t)hash_size(hash_for(max_tri, max_v)) * 4 + 8
+    if (bt_mesh_mem_size_vb(max_tri, max_v, max_budget) == 0) return 0;
+    sz = (uint64_t)heap_n_for(max_tri, max_v, max_budget) * sizeof(bti_heap_ent)
+         + (uint64_t)hash_size(hash_for(max_tri, max_v)) * 4 + 8
          + (uint64_t)memo_size(memo_for(max_tri, max_v)) * 8;
     return (size_t)sz;
 }

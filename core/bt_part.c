@@ -87,7 +87,7 @@ br_status bt_parts_init(bt_parts **out, uint32_t part_tri, void *mem, size_t mem
     ps->part_tri = part_tri;
     q += round8(sizeof(bt_parts));
     for (k = 0; k < BT_PARTS; k++, q += round8(mb))
-        if (bti_mesh_layout(&ps->slot[k].m, part_tri, 0, q, mb) != BR_OK) return BR_E_ARG;
+        if (bti_mesh_layout(&ps->slot[k].m, part_tri, 0, 0, q, mb) != BR_OK) return BR_E_ARG;
     ps->cap_rec = rec_cap(part_tri);
     for (k = 0; k < BT_PARTS; k++, q += (size_t)ps->cap_rec * sizeof(bti_rec)) ps->slot[k].rec = (bti_rec *)(void *)q;
     for (k = 0; k < BT_PARTS; k++, q += round8(ztest_cap(part_tri) * sizeof(bti_ztest))) {

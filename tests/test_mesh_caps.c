@@ -4,7 +4,9 @@
  * Raetikon: the board's terrain) it gives exactly the meshes of bt_mesh_init while they
  * fit, takes less memory, falls back to the budget rule when they do not (a budget
  * its smaller heap buys, which then fits the vertices; the memory is allocated to the
- * byte, ASan run), and refuses capacities below 16. */
+ * byte, ASan run), and refuses capacities below 16.  With the budget heap sized on its
+ * own (bt_mesh_init_vb, as the board sizes it): the same meshes where they fit, 16 bytes
+ * less a heap entry, and a coarser fallback where they do not. */
 #include "tests/test.h"
 #include "tests/support/btcheck.h"
 #include "core/bitree.h"
@@ -47,16 +49,30 @@ static void test_same_meshes_less_memory(void)
     bt_params p;
     bt_frame fr;
     cam c;
-    void *tm1 = NULL, *tm2 = NULL, *mem1, *mem2;
+    hf g3;
+    bt_tree t3;
+    bt_mesh m3;
+    void *tm1 = NULL, *tm2 = NULL, *tm3 = NULL, *mem1, *mem2, *mem3;
     int32_t k, us;
     const uint32_t max_v = 3072;
     size_t s1 = bt_mesh_mem_size(MAX_TRI), s2 = bt_mesh_mem_size_v(MAX_TRI, max_v);
+    /* a heap for 600 triangles: 4 x 600 + 8 entries instead of 4 x 1536 + 8 */
+    size_t s3 = bt_mesh_mem_size_vb(MAX_TRI, max_v, 600);
     if (btc_load("hgt/N47E009.hgt", &f)) { CHECK(0); return; }
-    if (crop_tree(&f, &g1, &t1, &tm1) || crop_tree(&f, &g2, &t2, &tm2)) { CHECK(0); return; }
+    if (crop_tree(&f, &g1, &t1, &tm1) || crop_tree(&f, &g2, &t2, &tm2) || crop_tree(&f, &g3, &t3, &tm3)) {
+        CHECK(0);
+        return;
+    }
     CHECK(s2 > 0 && s2 + 500000 < s1);   /* vertices and hash: 344 KB + 229 KB less */
     CHECK_EQ(bt_mesh_mem_size_v(MAX_TRI, 0), s1);
     CHECK_EQ(bt_mesh_mem_size_v(MAX_TRI, 10 * MAX_TRI), s1);
-    mem1 = malloc(s1); mem2 = malloc(s2);
+    CHECK_EQ(s3 + (size_t)16 * 4 * (1536 - 600), s2);
+    CHECK_EQ(bt_mesh_mem_size_vb(MAX_TRI, max_v, 0), s2);
+    CHECK_EQ(bt_mesh_scratch_size_vb(MAX_TRI, max_v, 600) + (size_t)16 * 4 * (1536 - 600),
+             bt_mesh_scratch_size_v(MAX_TRI, max_v));
+    mem1 = malloc(s1); mem2 = malloc(s2); mem3 = malloc(s3);
+    CHECK_EQ(bt_mesh_init_vb(&m3, MAX_TRI, max_v, 600, mem3, s3 - 1), BR_E_ARG);
+    CHECK_EQ(bt_mesh_init_vb(&m3, MAX_TRI, max_v, 600, mem3, s3), BR_OK);
     CHECK_EQ(bt_mesh_init(&m1, MAX_TRI, mem1, s1), BR_OK);
     CHECK_EQ(bt_mesh_init_v(&m2, MAX_TRI, max_v, mem2, s2), BR_OK);
     CHECK_EQ(m2.cap_v, max_v);
@@ -72,8 +88,13 @@ static void test_same_meshes_less_memory(void)
         CHECK_EQ(m2.nv, m1.nv); CHECK_EQ(m2.ns, m1.ns); CHECK_EQ(m2.ntri, m1.ntri);
         CHECK(m1.nv == m2.nv && !memcmp(m1.v, m2.v, sizeof *m1.v * m1.nv));
         CHECK(m1.ns == m2.ns && !memcmp(m1.strip, m2.strip, 4 * (size_t)m1.ns));
+        CHECK_EQ(bt_extract(&t3, &p, &m3), BR_OK);
+        CHECK_EQ(m3.overflow, 0);
+        CHECK(m3.nv == m2.nv && !memcmp(m3.v, m2.v, sizeof *m2.v * m2.nv));
+        CHECK(m3.ns == m2.ns && !memcmp(m3.strip, m2.strip, 4 * (size_t)m2.ns));
     }
-    free(mem1); free(mem2); free(tm1); free(tm2); free(g1.z); free(g2.z); free(f.z);
+    free(mem1); free(mem2); free(mem3); free(tm1); free(tm2); free(tm3);
+    free(g1.z); free(g2.z); free(g3.z); free(f.z);
 }
 
 static void test_too_few_vertices_fall_back(void)
@@ -103,6 +124,24 @@ static void test_too_few_vertices_fall_back(void)
     CHECK(m.nv <= 256 && m.ntri >= 64);
     /* its heap and id list: 20 bytes an entry, 4 entries a triangle, 128 triangles */
     CHECK(bt_mesh_mem_size_v(MAX_TRI, 256) + (size_t)20 * 4 * (MAX_TRI - 128) <= bt_mesh_mem_size(MAX_TRI));
+    {   /* a heap for 40 triangles (168 entries; the least is 520 / 4 + 2 = 132): the
+         * fallback stops when the heap is full, with fewer triangles, still a mesh (the
+         * fallback above left t's hysteresis clear: mb starts where m did) */
+        const uint32_t full = m.ntri;
+        size_t s40 = bt_mesh_mem_size_vb(MAX_TRI, 256, 40);
+        void *m40 = malloc(s40);
+        bt_mesh mb;
+        CHECK_EQ(s40 + (size_t)16 * (520 - 168), s);
+        CHECK_EQ(bt_mesh_mem_size_vb(MAX_TRI, 256, 1) + (size_t)16 * (520 - 132), s);   /* the least */
+        CHECK_EQ(bt_mesh_init_vb(&mb, MAX_TRI, 256, 40, m40, s40), BR_OK);
+        st = bt_extract(&t, &p, &mb);
+        CHECK_EQ(st, BR_OK);
+        CHECK_EQ(mb.overflow, 1);
+        CHECK_MSG(mb.ntri >= 40 && mb.ntri < full, "%u triangles with the small heap, %u with the full one", mb.ntri,
+                  full);
+        CHECK(mb.ns >= mb.ntri + 2);
+        free(m40);
+    }
     free(mem); free(tm); free(g.z); free(f.z);
 }
 
