@@ -23,8 +23,10 @@ struct board_state {
     size_t band_bytes;
     uint8_t *row;               /* the SPI row buffer, 2 w bytes */
     uint32_t vcap;
+    uint32_t budget;            /* triangles the mesh's budget fallback is sized for (budget_for) */
     int lend;                   /* 1: the raster's parts lie in the mesh's scratch */
     int reuse_v;                /* 1: the band and the row lie in the mesh's vertex array */
+    int in_place;               /* 1: the raster vertices lie in the mesh's vertex array */
     size_t borrowed[BP_N];      /* bytes each part takes in the mesh's memory */
 };
 
@@ -50,7 +52,8 @@ const char *board_part_name(int part)
 size_t board_part_borrowed(int part, const char **from)
 {
     if (part < 0 || part >= BP_N || !B.borrowed[part]) return 0;
-    if (from) *from = part >= BP_BAND ? "the mesh's vertices" : "the mesh's scratch";
+    if (from) *from = (part == BP_VERTS && B.in_place) || (part >= BP_BAND && B.reuse_v) ? "the mesh's vertices"
+                                                                                         : "the mesh's scratch";
     return B.borrowed[part];
 }
 
@@ -89,14 +92,29 @@ static uint32_t mesh_cap_v(void)
     return BOARD_MAX_V == 0 || BOARD_MAX_V > most ? most : BOARD_MAX_V;
 }
 
+/* The smallest budget fallback (bt_mesh_init_vb) whose mesh scratch still holds `parts`
+ * bytes, 0 (the fallback bt_mesh_init_v sizes) when none does: the heap is the one part
+ * of the scratch a fitting view never uses. */
+static uint32_t budget_for(size_t parts)
+{
+    uint32_t lo = 1, hi = BOARD_MAX_TRI;
+    if (bt_mesh_scratch_size_vb(BOARD_MAX_TRI, BOARD_MAX_V, hi) < parts) return 0;
+    while (lo < hi) {       /* the scratch grows with the budget */
+        const uint32_t mid = lo + (hi - lo) / 2;
+        if (bt_mesh_scratch_size_vb(BOARD_MAX_TRI, BOARD_MAX_V, mid) >= parts) hi = mid;
+        else lo = mid + 1;
+    }
+    return lo;
+}
+
 br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
 {
-    size_t sz[BP_N], total = 0;
+    size_t sz[BP_N], total = 0, parts = 0;
     uint8_t *p = (uint8_t *)arena;
     fx_q14 sun[3];
     rs_pipe pipe;
     rs_prim longest;
-    int i;
+    int i, first, last;
     memset(&B, 0, sizeof B);
     B.f.w = bake.w; B.f.h = bake.h;
     B.f.z = (int32_t *)(uintptr_t)bake_z;     /* read only: no path writes hf.z */
@@ -116,26 +134,37 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
     pipe.w = bake.fb_w; pipe.h = bake.fb_h; pipe.fmt = RS_FMT_RGB565; pipe.depth = RS_DEPTH16;
     longest.kind = RS_STRIP; longest.n = 5u * BOARD_MAX_TRI + 8u; longest.idx = NULL;
     sz[BP_STATE] = up8(board_tree_ram_size(&bake));
-    sz[BP_MESH] = up8(bt_mesh_mem_size_v(BOARD_MAX_TRI, BOARD_MAX_V));
     sz[BP_VERTS] = up8(sizeof(rs_vertex) * B.vcap);
     sz[BP_CACHE] = up8(rs_cache_mem_size(B.vcap));
     sz[BP_CHUNKS] = up8(rs_chunk_mem_size(&longest, 1));
     sz[BP_BAND] = up8(rs_pipe_mem_size(&pipe, BOARD_BAND_ROWS));
     sz[BP_ROW] = up8((size_t)bake.fb_w * 2);
     /* The raster's per-frame parts are written after the selection and read before the
-     * next one: they fit in the mesh's scratch (bt_mesh_lend_scratch) when it is large
-     * enough, and then take no arena bytes of their own. */
-    if (sz[BP_VERTS] + sz[BP_CACHE] + sz[BP_CHUNKS] <= bt_mesh_scratch_size_v(BOARD_MAX_TRI, BOARD_MAX_V)) {
+     * next one, so they may take mesh memory that only an extraction reads (core/bitree.h):
+     * - the raster vertices the mesh's vertex array itself when the two layouts have one
+     *   size (RS_TEX_FIELDS 0): rt_from_mesh reads vertex i before it writes raster
+     *   vertex i, and the next extraction writes the array anew without reading it;
+     * - the parts from `first` to `last` the mesh's scratch (bt_mesh_lend_scratch), whose
+     *   budget heap is sized to hold them (budget_for);
+     * - else the band and the SPI row the vertex array, once rt_from_mesh has read it. */
+    B.in_place = sizeof(rs_vertex) == sizeof(bt_vert) && mesh_cap_v() >= B.vcap;
+    first = B.in_place ? BP_CACHE : BP_VERTS;
+    last = B.in_place ? BP_ROW : BP_CHUNKS;
+    for (i = first; i <= last; i++) parts += sz[i];
+    B.budget = budget_for(parts);
+    sz[BP_MESH] = up8(bt_mesh_mem_size_vb(BOARD_MAX_TRI, BOARD_MAX_V, B.budget));
+    if (B.in_place) {
+        B.borrowed[BP_VERTS] = sz[BP_VERTS];
+        sz[BP_VERTS] = 0;
+    }
+    if (parts <= bt_mesh_scratch_size_vb(BOARD_MAX_TRI, BOARD_MAX_V, B.budget)) {
         B.lend = 1;
-        for (i = BP_VERTS; i <= BP_CHUNKS; i++) {
+        for (i = first; i <= last; i++) {
             B.borrowed[i] = sz[i];
             sz[i] = 0;
         }
     }
-    /* The band and the SPI row are written after rt_from_mesh has read the mesh's
-     * vertices, which the next extraction writes anew without reading the old ones
-     * (core/bitree.h bt_mesh.v): they fit in the vertex array when it is large enough. */
-    if (sz[BP_BAND] + sz[BP_ROW] <= (size_t)mesh_cap_v() * sizeof(bt_vert)) {
+    if (!B.in_place && sz[BP_BAND] + sz[BP_ROW] <= (size_t)mesh_cap_v() * sizeof(bt_vert)) {
         B.reuse_v = 1;
         for (i = BP_BAND; i <= BP_ROW; i++) {
             B.borrowed[i] = sz[i];
@@ -149,25 +178,21 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
     if (!arena || ((uintptr_t)arena & 7) != 0 || total > arena_bytes) return BR_E_NOMEM;
     if (board_tree_attach(&B.tree, &B.f, &bake, bake_tree, bake_tree_bytes, p, sz[BP_STATE]) != BR_OK) return BR_E_ARG;
     p += sz[BP_STATE];
-    if (bt_mesh_init_v(&B.mesh, BOARD_MAX_TRI, BOARD_MAX_V, p, sz[BP_MESH]) != BR_OK) return BR_E_ARG;
+    if (bt_mesh_init_vb(&B.mesh, BOARD_MAX_TRI, BOARD_MAX_V, B.budget, p, sz[BP_MESH]) != BR_OK) return BR_E_ARG;
     p += sz[BP_MESH];
-    if (B.lend) {
-        size_t n;
-        uint8_t *q = (uint8_t *)bt_mesh_lend_scratch(&B.mesh, &n);
-        B.verts = (rs_vertex *)(void *)q; q += B.borrowed[BP_VERTS];
-        B.cache = (rs_cvert *)(void *)q; q += B.borrowed[BP_CACHE];
-        B.chunks = (int16_t *)(void *)q;
-    } else {
-        B.verts = (rs_vertex *)(void *)p; p += sz[BP_VERTS];
-        B.cache = (rs_cvert *)(void *)p; p += sz[BP_CACHE];
-        B.chunks = (int16_t *)(void *)p; p += sz[BP_CHUNKS];
-    }
-    if (B.reuse_v) {
-        B.band = B.mesh.v; B.band_bytes = B.borrowed[BP_BAND];
-        B.row = (uint8_t *)B.band + B.band_bytes;
-    } else {
-        B.band = p; B.band_bytes = sz[BP_BAND]; p += sz[BP_BAND];
-        B.row = p;
+    {   /* each part at its place: the arena (p), the scratch (q) or the vertex array (v) */
+        uint8_t *q = B.lend ? (uint8_t *)bt_mesh_lend_scratch(&B.mesh, NULL) : NULL, *v = (uint8_t *)B.mesh.v;
+        uint8_t *at[BP_N];
+        for (i = BP_VERTS; i < BP_N; i++) {
+            uint8_t **from = !B.borrowed[i] ? &p : (i == BP_VERTS && B.in_place) || (i >= BP_BAND && B.reuse_v) ? &v : &q;
+            at[i] = *from;
+            *from += B.borrowed[i] ? B.borrowed[i] : sz[i];
+        }
+        B.verts = (rs_vertex *)(void *)at[BP_VERTS];
+        B.cache = (rs_cvert *)(void *)at[BP_CACHE];
+        B.chunks = (int16_t *)(void *)at[BP_CHUNKS];
+        B.band = at[BP_BAND]; B.band_bytes = B.borrowed[BP_BAND] ? B.borrowed[BP_BAND] : sz[BP_BAND];
+        B.row = at[BP_ROW];
     }
     return BR_OK;
 }
