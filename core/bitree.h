@@ -268,7 +268,7 @@ typedef struct bt_mesh {
                               none it did not write, so a caller may reuse the bytes once
                               it has read them; the board draws its bands there) */
     uint32_t nv, cap_v;
-    uint32_t *strip;       /* strip indices into v, capacity cap_s */
+    br_index *strip;       /* strip indices into v, capacity cap_s (core/config.h br_index) */
     uint32_t ns, cap_s;
     uint32_t ntri;         /* real (non-degenerate) triangles */
     uint32_t nline;        /* line (degenerate) triangles in the strip */

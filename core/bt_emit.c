@@ -8,7 +8,7 @@
 #include <string.h>
 #include "core/bt_em.h"
 
-static void push(bt_mesh *m, uint32_t i) { m->strip[m->ns++] = i; }
+static void push(bt_mesh *m, uint32_t i) { m->strip[m->ns++] = (br_index)i; }   /* i < cap_v <= BR_INDEX_MAX + 1 */
 
 static int collinear(const bt_mesh *m, uint32_t a, uint32_t b, uint32_t c)
 {

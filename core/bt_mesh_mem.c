@@ -92,10 +92,11 @@ size_t bt_mesh_mem_size_vb(uint32_t max_tri, uint32_t max_v, uint32_t max_budget
     uint64_t cap_v, cap_s, hs, heap, sz;
     if (max_tri < 2 || max_tri > 0x10000000u || (max_v != 0 && max_v < 16)) return 0;
     cap_v = cap_v_of(max_tri, max_v);
+    if (cap_v - 1 > BR_INDEX_MAX) return 0;     /* (16-bit strip indices, BR_INDEX16) */
     cap_s = strip_for(max_tri, max_v);
     hs = hash_size(hash_for(max_tri, max_v));
     heap = heap_for(max_tri, max_v);
-    sz = cap_v * sizeof(bt_vert) + cap_s * 4 + hs * 4 + 4 + heap_n_for(max_tri, max_v, max_budget) * sizeof(bti_heap_ent)
+    sz = cap_v * sizeof(bt_vert) + cap_s * sizeof(br_index) + hs * 4 + 4 + heap_n_for(max_tri, max_v, max_budget) * sizeof(bti_heap_ent)
          + heap * 4 + 8
          + (uint64_t)memo_size(memo_for(max_tri, max_v)) * 8 + 64;
     if (sz > (uint64_t)SIZE_MAX) return 0;      /* 32-bit hosts */
@@ -132,6 +133,7 @@ br_status bti_mesh_layout(bt_mesh *m, uint32_t max_tri, uint32_t max_v, uint32_t
     if (((uintptr_t)mem & 7) != 0) return BR_E_ARG;
     memset(m, 0, sizeof *m);
     cap_v = cap_v_of(max_tri, max_v);
+    if ((uint64_t)cap_v - 1 > BR_INDEX_MAX) return BR_E_ARG;      /* (BR_INDEX16) */
     cap_s = strip_for(max_tri, max_v);
     hs = hash_size(hash_for(max_tri, max_v));
     m->max_tri = max_tri;
@@ -139,7 +141,7 @@ br_status bti_mesh_layout(bt_mesh *m, uint32_t max_tri, uint32_t max_v, uint32_t
     m->heap_n = heap_n_for(max_tri, max_v, max_budget);
     m->v = (bt_vert *)(void *)p; p += (size_t)cap_v * sizeof(bt_vert);
     m->cap_v = cap_v;
-    m->strip = (uint32_t *)(void *)p; p += (size_t)cap_s * 4;
+    m->strip = (br_index *)(void *)p; p += (size_t)cap_s * sizeof(br_index);
     m->cap_s = cap_s;
     p += (8 - ((uintptr_t)p & 7)) & 7;
     m->splits = (uint32_t *)(void *)p;   /* the id list, then the heap (bti_heap_of) */

@@ -396,10 +396,13 @@ static int seam(bt_parts *ps, uint32_t k)
             && same_xy(m, m->strip[m->ns - 2], sn->t0 + off) && same_xy(m, m->strip[m->ns - 1], sn->t1 + off)) {
             ps->soff[k] = m->ns;
             ps->skip[k] = sn->ns;
-            m->strip[m->ns - 2] = sn->t0 + off;    /* the part's own indices from here on */
-            m->strip[m->ns - 1] = sn->t1 + off;
+            m->strip[m->ns - 2] = (br_index)(sn->t0 + off);    /* the part's own indices from here on */
+            m->strip[m->ns - 1] = (br_index)(sn->t1 + off);
             m->ns += pm->ns - sn->ns;
-            if (pm->ns >= 2) { m->strip[m->ns - 2] = pm->strip[pm->ns - 2] + off; m->strip[m->ns - 1] = pm->strip[pm->ns - 1] + off; }
+            if (pm->ns >= 2) {
+                m->strip[m->ns - 2] = (br_index)(pm->strip[pm->ns - 2] + off);
+                m->strip[m->ns - 1] = (br_index)(pm->strip[pm->ns - 1] + off);
+            }
             take_end(ps, k);
             return 0;
         }
@@ -664,7 +667,8 @@ br_status bt_extract_end(bt_parts *ps, uint32_t *njoin)
 void bt_extract_join(bt_parts *ps, uint32_t k, uint32_t *v0, uint32_t *nv)
 {
     const bt_mesh *pm;
-    uint32_t *out, off, i;
+    br_index *out;
+    uint32_t off, i;
     *v0 = 0;
     *nv = 0;
     if (!ps || ps->serial || k >= ps->nroot) return;
@@ -673,9 +677,9 @@ void bt_extract_join(bt_parts *ps, uint32_t k, uint32_t *v0, uint32_t *nv)
     {
         /* locals: the stores could alias ps and pm as far as C knows (no vector loop) */
         const uint32_t sk = ps->skip[k], n = pm->ns > sk ? pm->ns - sk : 0;
-        const uint32_t *in = pm->strip + sk;
+        const br_index *in = pm->strip + sk;
         out = ps->m->strip + ps->soff[k];
-        for (i = 0; i < n; i++) out[i] = in[i] + off;
+        for (i = 0; i < n; i++) out[i] = (br_index)(in[i] + off);
     }
     *v0 = off;
     *nv = pm->nv;

@@ -120,7 +120,7 @@ int bts_follow(bt_mesh *m, const uint32_t plan[BTS_PLAN], int *nplan, uint32_t o
     e2 = plan[k - 1];
     if (!((e1 == o0 && e2 == o1) || (e1 == o1 && e2 == o0))) return 0;
     if (N && !((N[0] == o0 || N[1] == o0 || N[2] == o0) && (N[0] == o1 || N[1] == o1 || N[2] == o1))) return 0;
-    for (i = 0; i < k; i++) m->strip[m->ns++] = plan[i];
+    for (i = 0; i < k; i++) m->strip[m->ns++] = (br_index)plan[i];
     m->nline += k - 1;
     return 1;
 }
@@ -217,7 +217,7 @@ int bts_bridge(bt_mesh *m, const uint32_t L[3], const uint32_t *N, uint32_t ne0,
         for (j = np - 1; j >= 0; j--)
             if ((path[j] >> 7) >= 1) { first_l = j; break; }
         if (first_l < 0 || m->ns + (uint32_t)(np - first_l) > m->cap_s) return -1;
-        for (j = np - 1; j >= first_l; j--) m->strip[m->ns++] = cand[(int)via[path[j]]];
+        for (j = np - 1; j >= first_l; j--) m->strip[m->ns++] = (br_index)cand[(int)via[path[j]]];
         m->nline += (uint32_t)(np - 1 - first_l);
         *nplan = 0;    /* the rest: the way on to N (the next call may follow it) */
         for (j = first_l - 1; j >= 0; j--) plan[(*nplan)++] = cand[(int)via[path[j]]];

@@ -82,6 +82,20 @@
  * every vertex of the frame.  A layout, not a variant: everything linked together must
  * agree on it (tests/test_raster_variants.c keeps 1 beside the full library), and it
  * needs RS_WITH_TEX 0.  Pixels: unchanged. */
+/* BR_INDEX16 1 makes strip indices 16 bits (br_index: core/bitree.h bt_mesh.strip,
+ * raster/raster.h rs_prim.idx): half the strip's RAM on a board, for meshes of at most
+ * 65,535 vertices (bt_mesh_init refuses a larger vertex capacity).  A layout, as
+ * RS_TEX_FIELDS below: everything linked together must agree.  Pixels: unchanged. */
+#ifndef BR_INDEX16
+#define BR_INDEX16 0
+#endif
+#if BR_INDEX16
+typedef uint16_t br_index;
+#define BR_INDEX_MAX 65535u
+#else
+typedef uint32_t br_index;
+#define BR_INDEX_MAX 4294967295u
+#endif
 #ifndef RS_TEX_FIELDS
 #define RS_TEX_FIELDS 1
 #endif

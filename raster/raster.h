@@ -106,7 +106,7 @@ typedef struct rs_texture {
 typedef struct rs_prim {
     int32_t kind;               /* RS_STRIP or RS_LIST */
     uint32_t n;                 /* number of indices */
-    const uint32_t *idx;
+    const br_index *idx;        /* (core/config.h: 32 bits, or 16 with BR_INDEX16) */
 } rs_prim;
 
 /* Vertex cache entry (32 bytes; 24 without RS_TEX_FIELDS): screen position in

@@ -466,7 +466,7 @@ RSI_INLINE static const rs_cvert *pp_v(const pp_soa *q, size_t off, size_t st)
 /* The steps of a pre-pass chunk q after pp_prepass (sp: its first step's two new
  * indices): the work list's steps in order, by kind; ctight as in draw_strips, a
  * constant (draw_strips has a copy for each case: no test per step). */
-RSI_INLINE static void pp_steps(band *bd, const pp_soa *q, const uint32_t *sp, const size_t *coff,
+RSI_INLINE static void pp_steps(band *bd, const pp_soa *q, const br_index *sp, const size_t *coff,
                                const size_t *zoff, const uintptr_t cdiff, const int ctight, const int vf)
 {
     /* the address of frame row 0's depth, were the band's buffer the whole frame's
@@ -504,7 +504,7 @@ RSI_INLINE static void pp_steps(band *bd, const pp_soa *q, const uint32_t *sp, c
                       pp_i16(q, PP_FIELD(px0), st), pp_i16(q, PP_FIELD(nx), st), vf);
         } else if (kind == PK_SLOW) {
             /* (pairs whose two triangles the outcodes reject are PK_NONE) */
-            const uint32_t *const ip = sp + 2 * st;
+            const br_index *const ip = sp + 2 * st;
             strip_tri(bd, pp_v(q, PP_FIELD(ve), st), pp_v(q, PP_FIELD(vo), st), pp_v(q, PP_FIELD(ve), st + 1),
                       ip[-2], ip[-1], ip[0], vf);
             strip_tri(bd, pp_v(q, PP_FIELD(ve), st + 1), pp_v(q, PP_FIELD(vo), st), pp_v(q, PP_FIELD(vo), st + 1),
@@ -541,7 +541,7 @@ RSI_INLINE static void draw_strips(band *bd, const int vf)
 #endif
     for (p = 0; p < f->nprims; p++) {
         const rs_prim *pr = &f->prims[p];
-        const uint32_t *s = pr->idx;
+        const br_index *s = pr->idx;
         uint32_t k, nt = rsi_prim_tris(pr), t0;
         if (nt == 0) continue;
         for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch = ch ? ch + 2 : ch) {
@@ -561,7 +561,7 @@ RSI_INLINE static void draw_strips(band *bd, const int vf)
                      * already made such chunks miss every band, once per frame, and the
                      * others stop here at once (testing for the table first costs the
                      * whole-frame loop more). */
-                    const uint32_t *ip = s + t0 + 1, *const ie = s + t1 + 2;
+                    const br_index *ip = s + t0 + 1, *const ie = s + t1 + 2;
                     uint32_t am = cache[s[t0]].c & REJECT;
                     /* (at least three vertices) */
                     for (; am && ip + 1 < ie; ip += 2) am &= cache[ip[0]].c & cache[ip[1]].c;
@@ -571,8 +571,8 @@ RSI_INLINE static void draw_strips(band *bd, const int vf)
                 const rs_cvert *v0 = &cache[s[t0]], *v1 = &cache[s[t0 + 1]];
                 /* two triangles per step (even, then odd with its first two swapped):
                  * chunks start at even t0; sp points at the step's two new indices */
-                const uint32_t *sp = s + t0 + 2;
-                const uint32_t *const se = s + t1 + 1;     /* steps while sp < se */
+                const br_index *sp = s + t0 + 2;
+                const br_index *const se = s + t1 + 1;     /* steps while sp < se */
 #if RS_PREPASS
                 /* The chunk's steps set up by the pre-pass (the vertices gathered first:
                  * the low 16 bits of x and y, the outcode), then masks and shading here,

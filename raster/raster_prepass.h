@@ -154,7 +154,7 @@ RSI_INLINE static void pp_t8(const rs_cvert *const p[8], int16_t *x, int16_t *y,
 /* Vertex slot k + j of one parity (odd: 0 even, 1 odd) of the gather below: the cache
  * entry of strip index 2 s + odd, s = k + j, or n for slots past n when clamp; kept in
  * *slot for the strip loop and returned for the transposition. */
-RSI_INLINE static const rs_cvert *pp_g1(const rs_cvert **slot, const rs_cvert *cache, const uint32_t *ip,
+RSI_INLINE static const rs_cvert *pp_g1(const rs_cvert **slot, const rs_cvert *cache, const br_index *ip,
                                         int32_t k, int32_t j, int32_t n, int clamp, int odd)
 {
     const int32_t s = clamp && k + j > n ? n : k + j;
@@ -163,7 +163,7 @@ RSI_INLINE static const rs_cvert *pp_g1(const rs_cvert **slot, const rs_cvert *c
 
 /* Slots k .. k + 7 of both parities: their pointers, then their first 16 bytes
  * transposed (pp_t8).  clamp: some of the slots are past n. */
-RSI_INLINE static void pp_g8(pp_soa *q, const rs_cvert *cache, const uint32_t *ip, int32_t k, int32_t n,
+RSI_INLINE static void pp_g8(pp_soa *q, const rs_cvert *cache, const br_index *ip, int32_t k, int32_t n,
                              int clamp, pp_h8 fl)
 {
     const rs_cvert *pe[8], *po[8];
@@ -190,7 +190,7 @@ RSI_INLINE static void pp_g8(pp_soa *q, const rs_cvert *cache, const uint32_t *i
 /* The gather: vertex slot k holds ip[2 k] (even) and ip[2 k + 1] (odd) for k <= n, the
  * slots past n repeat slot n (their lanes are ignored); eight slots at a time (pp_g8);
  * slots 0 .. nv - 1 (nv: n rounded up to PP_L). */
-RSI_INLINE static void pp_gather(pp_soa *q, const rs_cvert *cache, const uint32_t *ip, int32_t n, int32_t nv)
+RSI_INLINE static void pp_gather(pp_soa *q, const rs_cvert *cache, const br_index *ip, int32_t n, int32_t nv)
 {
     /* x - PP_OFF modulo 2^16 is the low 16 bits with the top one flipped */
     const pp_h8 fl = { -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF, -PP_OFF };
@@ -259,7 +259,7 @@ RSI_INLINE static void pp_row(pp_soa *q, int32_t k, pp_row_edges *g, int32_t j, 
  * of them.
  * Steps whose values overflow (wide boxes, vertices off screen) are classified from
  * exact quantities only (outcodes, lo, hi, xl, xh) before any of the rest is read. */
-PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache, const uint32_t *ip, int32_t n)
+PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache, const br_index *ip, int32_t n)
 {
     static const int16_t iota_a[16] = { 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15 };
     const pp_v8 zero = { 0 }, one = zero + 1;

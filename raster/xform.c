@@ -41,7 +41,7 @@ static void chunk_rows(rs_frame *f)
              * reassociate them into a min of the pair (a copy each) */
             int32_t lo = INT32_MAX, hi = INT32_MIN, lo2 = INT32_MAX, hi2 = INT32_MIN;
             uint32_t any = 0, common = reject, any2 = 0, common2 = reject;
-            const uint32_t *ix, *ie;
+            const br_index *ix, *ie;
             if (pr->kind == RS_STRIP) { i0 = t0; i1 = t1 + 2; } else { i0 = 3 * t0; i1 = 3 * t1; }
             ix = pr->idx + i0; ie = pr->idx + i1;
             if ((i1 - i0) & 1) {

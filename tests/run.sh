@@ -3,6 +3,7 @@
 # every test program, the raster
 # tests again with the 32-bit boards' divide-free quotients (BR_DIV64_NATIVE=0), and
 # every test program again under AddressSanitizer + UndefinedBehaviorSanitizer.
+# The board build (make mcu: both cores under QEMU against the desktop build).
 # Then the cross-architecture probe (tests/cross/run.sh), the armhf check that a frame
 # calls no 64-bit division helper (tests/cross/div64.sh), and the whole suite under
 # qemu-user on the targets of TEST_CROSS (default s390x armhf; tests/cross/suite.sh).
@@ -53,6 +54,12 @@ for t in "$B"/san-tests/test_*; do
     BITRAIN_SANITIZED=1 "$t" >$log 2>&1; rc=$?; count "$(basename "$t") [asan+ubsan]" $log $rc
 done
 sh tests/cross/run.sh >$log 2>&1; rc=$?; count "cross-architecture determinism (tests/cross)" $log $rc
+# the board build (docs/mcu.md): both cores under QEMU, each frame's checksum against the
+# desktop build of the same code with the board's layouts (make mcu)
+${MAKE:-make} -s mcu B="$B" >$log 2>&1; rc=$?
+grep -a '^mcu: ' $log | sed 's/^/  /'
+sed -n 's/^mcu: \([0-9]* passed, [0-9]* failed, [0-9]* skipped\)$/\1/p' $log >>$log.n; cat $log.n >>$log; rm -f $log.n
+count "the board build under QEMU against the desktop build (make mcu)" $log $rc
 sh tests/cross/div64.sh >$log 2>&1; rc=$?
 grep -a ' path, ' $log | sed 's/^/  /'
 count "no 64-bit division in a frame on armhf (tests/cross/div64.sh)" $log $rc
