@@ -85,6 +85,6 @@ int cmd_hillshade(int argc, char **argv)
         return 1;
     }
     dem_free(&f);
-    printf("%s\n", out);
+    if (strcmp(out, "-")) printf("%s\n", out);     /* "-": stdout carries the image only */
     return 0;
 }

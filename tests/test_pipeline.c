@@ -428,8 +428,8 @@ static void test_render_raw(void)
     free(r1); free(r2); free(rgb);
 }
 
-/* cmd_render(argc, argv) with stdout sent to file `path`; its exit code. */
-static int render_to_stdout(int argc, const char **argv, const char *path)
+/* fn(argc, argv) (a command) with stdout sent to file `path`; its exit code. */
+static int cmd_to_file(int (*fn)(int, char **), int argc, const char **argv, const char *path)
 {
     int saved, fd, rc;
     fflush(stdout);
@@ -438,7 +438,7 @@ static int render_to_stdout(int argc, const char **argv, const char *path)
     if (saved < 0 || fd < 0) return -100;
     dup2(fd, 1);
     close(fd);
-    rc = cmd_render(argc, (char **)(uintptr_t)argv);
+    rc = fn(argc, (char **)(uintptr_t)argv);
     fflush(stdout);
     dup2(saved, 1);
     close(saved);
@@ -447,7 +447,7 @@ static int render_to_stdout(int argc, const char **argv, const char *path)
 
 /* `render -o -`, with water (whose lake lines the command prints otherwise): standard
  * output carries the image and nothing else, the same bytes as `-o FILE`, in both
- * output formats. */
+ * output formats; `hillshade -o -` the same. */
 static void test_render_stdout(void)
 {
     static const char *const fmts[2] = { "png", "rgb565" };
@@ -462,13 +462,27 @@ static void test_render_stdout(void)
         snprintf(file, sizeof file, "%s/render_file.%s", t_outdir(), fmts[k]);
         snprintf(piped, sizeof piped, "%s/render_stdout.%s", t_outdir(), fmts[k]);
         CHECK_EQ(cmd_render(7, (char **)(uintptr_t)to_file), 0);
-        CHECK_EQ(render_to_stdout(7, to_out, piped), 0);
+        CHECK_EQ(cmd_to_file(cmd_render, 7, to_out, piped), 0);
         a = t_read_file(file, &na);
         b = t_read_file(piped, &nb);
         CHECK_MSG(a && b && na == nb && !memcmp(a, b, na), "-o - with %s: %zu bytes on stdout, %zu in the file",
                   fmts[k], nb, na);
         if (k == 1) CHECK_EQ(nb, (size_t)40 * 30 * 2);
         else CHECK(nb > 8 && b && !memcmp(b, "\x89PNG", 4));
+        free(a); free(b);
+    }
+    {   /* hillshade -o -: the PNG alone too (it names the file it wrote otherwise) */
+        char file[512], piped[512];
+        const char *to_file[] = { dem, "-o", file }, *to_out[] = { dem, "-o", "-" };
+        unsigned char *a, *b;
+        size_t na = 0, nb = 0;
+        snprintf(file, sizeof file, "%s/hillshade_file.png", t_outdir());
+        snprintf(piped, sizeof piped, "%s/hillshade_stdout.png", t_outdir());
+        CHECK_EQ(cmd_hillshade(3, (char **)(uintptr_t)to_file), 0);
+        CHECK_EQ(cmd_to_file(cmd_hillshade, 3, to_out, piped), 0);
+        a = t_read_file(file, &na);
+        b = t_read_file(piped, &nb);
+        CHECK_MSG(a && b && na == nb && !memcmp(a, b, na), "hillshade -o -: %zu bytes on stdout, %zu in the file", nb, na);
         free(a); free(b);
     }
 }
