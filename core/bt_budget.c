@@ -11,7 +11,6 @@
 
 /* An ids entry's flag: the diamond was split (slots are below 2^31: bt_slot_count) */
 #define SPLIT_FLAG 0x80000000u
-
 static int64_t prio(bti_extract *e, int32_t x, int32_t y)
 {
     int typeD;
@@ -64,9 +63,9 @@ static bti_heap_ent hpop(bti_heap_ent *hp, uint32_t *n)
  * runs, ST_MARK says "pushed" (each diamond is pushed once) and a split diamond's ids
  * entry carries SPLIT_FLAG (its heap entry keeps where); at the end only the split
  * keep their mark.  Sets e->tau to the last split's rho (for geomorph).  The heap
- * orders ties by the padded grid index y*n + x.  Padding diamonds without a slot are VOID: never pushed (in
- * the view rules their priority is -1, in the fidelity rule their code 0 is never
- * split, and the loop stops at the first such key). */
+ * orders ties by the padded grid index y*n + x.  Padding diamonds without a slot are
+ * VOID: never pushed (in the view rules their priority is -1, in the fidelity rule
+ * their code 0 is never split, and the loop stops at the first such key). */
 uint32_t bti_budget_mark(bti_extract *e, uint32_t budget, uint32_t *nid)
 {
     bt_tree *t = e->t;

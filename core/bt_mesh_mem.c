@@ -96,8 +96,8 @@ size_t bt_mesh_mem_size_vb(uint32_t max_tri, uint32_t max_v, uint32_t max_budget
     cap_s = strip_for(max_tri, max_v);
     hs = hash_size(hash_for(max_tri, max_v));
     heap = heap_for(max_tri, max_v);
-    sz = cap_v * sizeof(bt_vert) + cap_s * sizeof(br_index) + hs * 4 + 4 + heap_n_for(max_tri, max_v, max_budget) * sizeof(bti_heap_ent)
-         + heap * 4 + 8
+    sz = cap_v * sizeof(bt_vert) + cap_s * sizeof(br_index) + hs * 4 + 4
+         + heap_n_for(max_tri, max_v, max_budget) * sizeof(bti_heap_ent) + heap * 4 + 8
          + (uint64_t)memo_size(memo_for(max_tri, max_v)) * 8 + 64;
     if (sz > (uint64_t)SIZE_MAX) return 0;      /* 32-bit hosts */
     return (size_t)sz;

@@ -77,14 +77,9 @@
 #ifndef RS_WITH_COUNT
 #define RS_WITH_COUNT 0
 #endif
-/* RS_TEX_FIELDS 0 drops the texture coordinates from the vertex layouts (raster/raster.h
- * rs_vertex 24 -> 16 bytes, rs_cvert 32 -> 24): RAM a board without textures spends on
- * every vertex of the frame.  A layout, not a variant: everything linked together must
- * agree on it (tests/test_raster_variants.c keeps 1 beside the full library), and it
- * needs RS_WITH_TEX 0.  Pixels: unchanged. */
 /* BR_INDEX16 1 makes strip indices 16 bits (br_index: core/bitree.h bt_mesh.strip,
  * raster/raster.h rs_prim.idx): half the strip's RAM on a board, for meshes of at most
- * 65,535 vertices (bt_mesh_init refuses a larger vertex capacity).  A layout, as
+ * 65,536 vertices (bt_mesh_init refuses a larger vertex capacity).  A layout, as
  * RS_TEX_FIELDS below: everything linked together must agree.  Pixels: unchanged. */
 #ifndef BR_INDEX16
 #define BR_INDEX16 0
@@ -96,6 +91,11 @@ typedef uint16_t br_index;
 typedef uint32_t br_index;
 #define BR_INDEX_MAX 4294967295u
 #endif
+/* RS_TEX_FIELDS 0 drops the texture coordinates from the vertex layouts (raster/raster.h
+ * rs_vertex 24 -> 16 bytes, rs_cvert 32 -> 24): RAM a board without textures spends on
+ * every vertex of the frame.  A layout, not a variant: everything linked together must
+ * agree on it (tests/test_raster_variants.c keeps 1 beside the full library), and it
+ * needs RS_WITH_TEX 0.  Pixels: unchanged. */
 #ifndef RS_TEX_FIELDS
 #define RS_TEX_FIELDS 1
 #endif

@@ -263,10 +263,6 @@ static RSI_INLINE int xform_div(const fx_divisor *dz, uint32_t f8, int64_t c, ui
 }
 #endif
 
-/* The stepping along rows (see above) on 64-bit targets only: on 32-bit ones the two
- * products and the add are multiply-accumulates, the 64-bit key compare and steps
- * cost more than they save, and three 64-bit sums held across the divides take six
- * registers. */
 /* a textured frame's coordinates into the cache entry (no fields without RS_TEX_FIELDS) */
 #if RS_TEX_FIELDS
 #define XFORM_UV(tex, o, v) do { if (tex) { (o)->u = (v)->uv[0]; (o)->v = (v)->uv[1]; } } while (0)
@@ -274,6 +270,10 @@ static RSI_INLINE int xform_div(const fx_divisor *dz, uint32_t f8, int64_t c, ui
 #define XFORM_UV(tex, o, v) ((void)(tex))
 #endif
 
+/* The stepping along rows (see above) on 64-bit targets only: on 32-bit ones the two
+ * products and the add are multiply-accumulates, the 64-bit key compare and steps
+ * cost more than they save, and three 64-bit sums held across the divides take six
+ * registers. */
 #define XFORM_STEP RSI_REG64
 /* xform_k's fields in registers: a local copy of *k in xform_loop, whose address never
  * leaves it, so gcc keeps its fields in registers (k itself may alias the cache

@@ -58,7 +58,7 @@ sh tests/cross/run.sh >$log 2>&1; rc=$?; count "cross-architecture determinism (
 # desktop build of the same code with the board's layouts (make mcu)
 ${MAKE:-make} -s mcu B="$B" >$log 2>&1; rc=$?
 grep -a '^mcu: ' $log | sed 's/^/  /'
-sed -n 's/^mcu: \([0-9]* passed, [0-9]* failed, [0-9]* skipped\)$/\1/p' $log >>$log.n; cat $log.n >>$log; rm -f $log.n
+line=$(sed -n 's/^mcu: \([0-9]* passed, [0-9]* failed, [0-9]* skipped\)$/\1/p' $log); echo "$line" >>$log
 count "the board build under QEMU against the desktop build (make mcu)" $log $rc
 sh tests/cross/div64.sh >$log 2>&1; rc=$?
 grep -a ' path, ' $log | sed 's/^/  /'

@@ -49,11 +49,16 @@ const char *board_part_name(int part)
     return part >= 0 && part < BP_N ? part_name[part] : "?";
 }
 
+/* 1 when a borrowed part lies in the mesh's vertex array, 0 in its scratch */
+static int in_mesh_v(int part)
+{
+    return (part == BP_VERTS && B.in_place) || (part >= BP_BAND && B.reuse_v);
+}
+
 size_t board_part_borrowed(int part, const char **from)
 {
     if (part < 0 || part >= BP_N || !B.borrowed[part]) return 0;
-    if (from) *from = (part == BP_VERTS && B.in_place) || (part >= BP_BAND && B.reuse_v) ? "the mesh's vertices"
-                                                                                         : "the mesh's scratch";
+    if (from) *from = in_mesh_v(part) ? "the mesh's vertices" : "the mesh's scratch";
     return B.borrowed[part];
 }
 
@@ -184,7 +189,7 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
         uint8_t *q = B.lend ? (uint8_t *)bt_mesh_lend_scratch(&B.mesh, NULL) : NULL, *v = (uint8_t *)B.mesh.v;
         uint8_t *at[BP_N];
         for (i = BP_VERTS; i < BP_N; i++) {
-            uint8_t **from = !B.borrowed[i] ? &p : (i == BP_VERTS && B.in_place) || (i >= BP_BAND && B.reuse_v) ? &v : &q;
+            uint8_t **from = !B.borrowed[i] ? &p : in_mesh_v(i) ? &v : &q;
             at[i] = *from;
             *from += B.borrowed[i] ? B.borrowed[i] : sz[i];
         }
