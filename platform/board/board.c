@@ -250,3 +250,11 @@ br_status board_frame(int32_t i, rs_sink tap, void *tap_user, board_frame_info *
     out->pixels = total.pixels;
     return BR_OK;
 }
+
+void board_last_frame(const rs_cvert **cache, uint32_t *nv, const br_index **strip, uint32_t *ns)
+{
+    *cache = B.cache;
+    *nv = B.mesh.nv;
+    *strip = B.mesh.strip;
+    *ns = B.mesh.ns;
+}

@@ -59,5 +59,8 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N]);
 int32_t board_frames(void);
 /* Draws frame i; each finished band also goes to tap (NULL: none) after the stream. */
 br_status board_frame(int32_t i, rs_sink tap, void *tap_user, board_frame_info *out);
+/* The last frame's transformed vertices (*nv of them) and strip (*ns indices), valid until
+ * the next board_frame: what its bands drew, for the desktop build's --band-load. */
+void board_last_frame(const rs_cvert **cache, uint32_t *nv, const br_index **strip, uint32_t *ns);
 
 #endif

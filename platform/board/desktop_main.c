@@ -7,9 +7,11 @@
  * from the Linux sink's is an error, and so is one whose checksum is not the one baked
  * from the product's frame path (mcu/bake.h scene_sum).
  *
- *   bitrain-board-desktop [-o DIR] [--mem] [--bare]
+ *   bitrain-board-desktop [-o DIR] [--mem] [--bare] [--band-load]
  *   -o DIR  also writes each frame as DIR/board-N.png (RGB565 expanded)
  *   --mem   prints the RAM each part of the board's arena takes
+ *   --band-load  prints how each frame's triangles and vertices fall into bands of
+ *           4, 8, 16 and 60 rows (band_load)
  *   --bare  no second sink (no check, no -o): board_frame does what the board does, so
  *           valgrind --tool=callgrind --toggle-collect=board_frame counts the same work */
 #include <stdio.h>
@@ -48,10 +50,66 @@ static br_status tap_band(void *user, int32_t y0, int32_t rows, const void *px, 
     return BR_OK;
 }
 
+/* One frame's triangles and vertices in bands of `rows` rows: a triangle counts in
+ * every band that the rows of its vertices meet (one with a vertex behind the near plane
+ * or outside the guard band in every band, one wholly off one side of the screen in
+ * none), a vertex in every band one of its triangles counts in.  Prints the most any
+ * band holds and the sums over the bands against the frame's own counts: what a frame
+ * path that keeps only one band's vertices and triangles at a time would hold, and how
+ * often it would set each up. */
+static int band_load(int frame, int32_t h, int32_t rows)
+{
+    const rs_cvert *cv;
+    const br_index *idx;
+    uint32_t nv, ns, t, tris = 0, used = 0, most_t = 0, most_v = 0, sum_t = 0, sum_v = 0;
+    uint8_t *seen;
+    int32_t y0;
+    board_last_frame(&cv, &nv, &idx, &ns);
+    if (!(seen = calloc(nv ? nv : 1, 1))) return 1;
+    for (t = 0; t + 2 < ns; t++) {
+        const uint32_t a = idx[t], b = idx[t + 1], c = idx[t + 2];
+        if (a == b || b == c || a == c) continue;       /* the strip's joins */
+        tris++;
+        seen[a] = seen[b] = seen[c] = 1;
+    }
+    for (t = 0; t < nv; t++) used += seen[t];
+    for (y0 = 0; y0 < h; y0 += rows) {
+        const int32_t lo_y = y0 << RS_SUBPIX_BITS, hi_y = (y0 + rows) << RS_SUBPIX_BITS;
+        uint32_t nt = 0, nvb = 0;
+        memset(seen, 0, nv);
+        for (t = 0; t + 2 < ns; t++) {
+            const uint32_t a = idx[t], b = idx[t + 1], c = idx[t + 2];
+            const uint32_t all = cv[a].c & cv[b].c & cv[c].c, any = cv[a].c | cv[b].c | cv[c].c;
+            if (a == b || b == c || a == c || (all >> 24 & 0x3fu)) continue;
+            if (!(any >> 24 & (RS_OUT_NEAR | RS_OUT_GUARD))) {
+                int32_t lo = cv[a].y, hi = cv[a].y;
+                if (cv[b].y < lo) lo = cv[b].y;
+                if (cv[b].y > hi) hi = cv[b].y;
+                if (cv[c].y < lo) lo = cv[c].y;
+                if (cv[c].y > hi) hi = cv[c].y;
+                if (hi < lo_y || lo >= hi_y) continue;
+            }
+            nt++;
+            nvb += !seen[a] + !seen[b] + !seen[c];
+            seen[a] = seen[b] = seen[c] = 1;
+        }
+        if (nt > most_t) most_t = nt;
+        if (nvb > most_v) most_v = nvb;
+        sum_t += nt;
+        sum_v += nvb;
+    }
+    printf("desktop frame %d band load, %2ld-row bands: at most %lu of %lu strip triangles and %lu of %lu vertices"
+           " in one band; %.2f bands a triangle, %.2f a vertex\n", frame, (long)rows, (unsigned long)most_t,
+           (unsigned long)tris, (unsigned long)most_v, (unsigned long)used, tris ? (double)sum_t / tris : 0.0,
+           used ? (double)sum_v / used : 0.0);
+    free(seen);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     const char *dir = NULL;
-    int mem = 0, bare = 0, i, rc = 0;
+    int mem = 0, bare = 0, load = 0, i, rc = 0;
     size_t size[BP_N], total = 0;
     void *arena;
     tap t;
@@ -61,7 +119,8 @@ int main(int argc, char **argv)
         if (!strcmp(argv[i], "-o") && i + 1 < argc) dir = argv[++i];
         else if (!strcmp(argv[i], "--mem")) mem = 1;
         else if (!strcmp(argv[i], "--bare")) bare = 1;
-        else { fprintf(stderr, "usage: %s [-o DIR] [--mem] [--bare]\n", argv[0]); return 2; }
+        else if (!strcmp(argv[i], "--band-load")) load = 1;
+        else { fprintf(stderr, "usage: %s [-o DIR] [--mem] [--bare] [--band-load]\n", argv[0]); return 2; }
     }
     board_init(NULL, 0, size);
     for (i = 0; i < BP_N; i++) total += size[i];
@@ -95,6 +154,12 @@ int main(int argc, char **argv)
         printf("desktop frame %d: %lu triangles, %lu vertices, %lu strip indices, %lu pixels%s\n", i,
                (unsigned long)fi.ntri, (unsigned long)fi.nv, (unsigned long)fi.ns, (unsigned long)fi.pixels,
                fi.overflow ? ", budget fallback" : "");
+        if (load) {
+            static const int32_t rows[] = { 4, 8, BOARD_BAND_ROWS, 60 };
+            size_t k;
+            for (k = 0; k < sizeof rows / sizeof rows[0]; k++)
+                if (band_load(i, 240, rows[k])) { rc = 1; break; }
+        }
         if (fi.sum != fi.expect) {
             fprintf(stderr, "board: frame %d: %08lx differs from the scene path's %08lx (mcu/bake.h scene_sum)\n", i,
                     (unsigned long)fi.sum, (unsigned long)fi.expect);
