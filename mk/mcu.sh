@@ -9,7 +9,8 @@
 #      product's own frame path (platform/scene.h scene_frame);
 #   3. builds core/ and raster/ (an archive: only what the board main calls is linked)
 #      with the board main for each core, soft float, -ffreestanding, no C library (nor
-#      its headers: platform/board/include/string.h), into
+#      its headers: platform/board/include/string.h; the M0+'s 64-bit multiply is
+#      platform/board/mul64.c's, not libgcc's), into
 #      build/mcu/bitrain-CORE.elf with platform/board/mps2.ld (RAM MCU_RAM, flash
 #      MCU_FLASH, stack MCU_STACK: the link fails when they do not fit), and fails when a
 #      floating-point helper of libgcc is linked;
@@ -124,9 +125,11 @@ for core in m0plus m3; do
   # shellcheck disable=SC2086
   $XCC $XFLAGS -fno-builtin -fno-tree-loop-distribute-patterns -c -o "$d/libc_min.o" platform/board/libc_min.c || { fail=$((fail + 1)); continue; }
   # shellcheck disable=SC2086
+  $XCC $XFLAGS -c -o "$d/mul64.o" platform/board/mul64.c || { fail=$((fail + 1)); continue; }
+  # shellcheck disable=SC2086
   if ! $XCC $XFLAGS -DBOARD_ARENA="$arena" -nostdlib -nostartfiles -T platform/board/mps2.ld \
        -Wl,--defsym=BOARD_RAM="$MCU_RAM" -Wl,--defsym=BOARD_FLASH="$MCU_FLASH" -Wl,--defsym=BOARD_STACK="$MCU_STACK" \
-       -Wl,--gc-sections -Wl,-Map="$d/map.txt" -o "$elf" platform/board/mcu_main.c "$d/libc_min.o" $BOARD_SRC \
+       -Wl,--gc-sections -Wl,-Map="$d/map.txt" -o "$elf" platform/board/mcu_main.c "$d/libc_min.o" "$d/mul64.o" $BOARD_SRC \
        "$O/bake_data.c" "$d/libbitrain.a" -lgcc; then
     echo "mcu: $core: link failed (RAM $MCU_RAM, flash $MCU_FLASH, stack $MCU_STACK)"; fail=$((fail + 1)); continue
   fi
