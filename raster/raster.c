@@ -358,6 +358,34 @@ int rs_variant_built(int32_t fmt, int32_t depth, int textured)
  * per 32 bytes. */
 #if RS_PREPASS
 typedef uint32_t fill_v8 __attribute__((vector_size(32), aligned(1)));
+#else
+#if defined(__GNUC__)
+typedef uint64_t fill_u64 __attribute__((may_alias, aligned(4)));
+#endif
+/* One 8-byte store of fill32's: a plain one where p is 4-byte aligned (w4), which cores
+ * without unaligned access (ARMv6-M) do not get from an 8-byte memcpy to an unknown
+ * address (a call to memcpy there). */
+static inline void st8(uint8_t *p, uint64_t vv, const int w4)
+{
+#if defined(__GNUC__)
+    if (w4) { *(fill_u64 *)(void *)p = vv; return; }
+#else
+    (void)w4;
+#endif
+    memcpy(p, &vv, 8);
+}
+
+/* fill32's 8-byte loop, n >= 8 bytes (w4: p and n multiples of 4, so every store's
+ * address is too) */
+static inline void fill64(uint8_t *p, size_t n, uint64_t vv, const int w4)
+{
+    uint8_t *const last = p + n - 8;
+    for (; p + 24 < last; p += 32) {
+        st8(p, vv, w4); st8(p + 8, vv, w4); st8(p + 16, vv, w4); st8(p + 24, vv, w4);
+    }
+    for (; p < last; p += 8) st8(p, vv, w4);
+    st8(last, vv, w4);
+}
 #endif
 static void fill32(uint8_t *p, size_t n, uint32_t v)
 {
@@ -377,13 +405,9 @@ static void fill32(uint8_t *p, size_t n, uint32_t v)
     }
 #else
     if (n >= 8) {       /* the same with 8-byte words (v in both halves) */
-        const uint64_t vv = (uint64_t)v * 0x100000001u;
-        uint8_t *const last = p + n - 8;
-        for (; p + 24 < last; p += 32) {
-            memcpy(p, &vv, 8); memcpy(p + 8, &vv, 8); memcpy(p + 16, &vv, 8); memcpy(p + 24, &vv, 8);
-        }
-        for (; p < last; p += 8) memcpy(p, &vv, 8);
-        memcpy(last, &vv, 8);
+        const uint64_t vv = (uint64_t)v << 32 | v;
+        if ((((uintptr_t)p | n) & 3) == 0) fill64(p, n, vv, 1);
+        else fill64(p, n, vv, 0);
         return;
     }
 #endif
