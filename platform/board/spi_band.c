@@ -13,19 +13,25 @@ static void window(spib_put_fn *put, void *user, uint8_t c, int32_t a, int32_t b
 
 uint32_t spib_sum(uint32_t h, int *dc_last, int dc, const uint8_t *p, size_t n)
 {
+    uint32_t prime = 16777619u;     /* FNV's 32-bit prime */
     size_t i;
+#if defined(__GNUC__) && defined(__ARM_ARCH_6M__)
+    /* a value GCC cannot see, so that it multiplies: for ARMv6-M it turns a multiply by
+     * this constant into ten shifts and adds a byte */
+    __asm__("" : "+r"(prime));
+#endif
     if (dc != *dc_last) {
-        h = (h ^ (uint32_t)(0x100 + dc)) * 16777619u;
+        h = (h ^ (uint32_t)(0x100 + dc)) * prime;
         *dc_last = dc;
     }
     /* four bytes a step: one loop test for four (the same sum) */
     for (i = 0; i + 4 <= n; i += 4) {
-        h = (h ^ p[i]) * 16777619u;
-        h = (h ^ p[i + 1]) * 16777619u;
-        h = (h ^ p[i + 2]) * 16777619u;
-        h = (h ^ p[i + 3]) * 16777619u;
+        h = (h ^ p[i]) * prime;
+        h = (h ^ p[i + 1]) * prime;
+        h = (h ^ p[i + 2]) * prime;
+        h = (h ^ p[i + 3]) * prime;
     }
-    for (; i < n; i++) h = (h ^ p[i]) * 16777619u;
+    for (; i < n; i++) h = (h ^ p[i]) * prime;
     return h;
 }
 
