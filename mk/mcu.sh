@@ -93,7 +93,7 @@ top() {  # elf dir frames: instructions a frame by function (full run - set-up r
     sort -rn | head -n "$MCU_TOP" | sed "s/^/mcu:   /"
 }
 for core in m0plus m3; do
-  case $core in m0plus) cpu=cortex-m0plus narrow=24 ;; m3) cpu=cortex-m3 narrow=4 ;; esac
+  case $core in m0plus) cpu=cortex-m0plus narrow=48 ;; m3) cpu=cortex-m3 narrow=4 ;; esac
   d=$O/$core
   mkdir -p "$d/obj"
   # -fbuiltin after -ffreestanding: fixed-size memcpy/memset (raster.c's 8-byte stores)

@@ -41,7 +41,7 @@ prepass0-spanv1 -DRS_PREPASS=0 -DRS_SPANV=1
 div64-0 -DBR_DIV64_NATIVE=0
 div64-1 -DBR_DIV64_NATIVE=1
 rgb565-only -DRS_WITH_888=0 -DRS_WITH_Z32=0 -DRS_WITH_TEX=0 -DRS_TEX_FIELDS=0 -DRS_WITH_COUNT=0
-narrow24 -DRS_NARROW=24"
+narrow48 -DRS_NARROW=48"
 target_line() { # target -> its line of COMPILERS ("native": cc -O2)
   if [ "$1" = native ]; then echo "native cc -O2"; else echo "$COMPILERS" | grep "^$1 "; fi
 }
