@@ -1,8 +1,8 @@
 /* platform/board/mul64.c — the 64-bit multiply GCC calls for every 64-bit product on
  * ARMv6-M (the Cortex-M0+: MULS keeps only the low 32 bits of a 32 x 32 product), the
  * run-time ABI's __aeabi_lmul (RTABI 4.2): the low 64 bits of a b, which signed and
- * unsigned operands share.  libgcc's version is C that keeps r4 to r9 (44 instructions
- * a call); this one is 27 instructions of Thumb-1 with r4 and r5, and board_mul64 is the
+ * unsigned operands share.  libgcc's version is C that keeps r4 to r9; this one is
+ * Thumb-1 that needs only r4 and r5 (its cost: docs/perf-history.md).  board_mul64 is the
  * same product in C, which the board checks it against at start-up (mcu_main.c) and the
  * host against its own 64-bit multiply (tests/test_board_mul64.c).
  *
