@@ -158,7 +158,7 @@ int main(int argc, char **argv)
             static const int32_t rows[] = { 4, 8, BOARD_BAND_ROWS, 60 };
             size_t k;
             for (k = 0; k < sizeof rows / sizeof rows[0]; k++)
-                if (band_load(i, 240, rows[k])) { rc = 1; break; }
+                if (band_load(i, 240, rows[k])) { rc = 1; break; }     /* 240: bake.fb_h */
         }
         if (fi.sum != fi.expect) {
             fprintf(stderr, "board: frame %d: %08lx differs from the scene path's %08lx (mcu/bake.h scene_sum)\n", i,

@@ -99,16 +99,25 @@ static int init_only(void)
  * own multiply) on 4,096 products of pseudo-random operands, half of them 32-bit; 1 on
  * cores that multiply in hardware.  Both runs of `make mcu` do it, so it is not counted
  * in a frame's instructions. */
+#if defined(__ARM_ARCH_6M__)
+static uint64_t xorshift64(uint64_t *x)
+{
+    *x ^= *x << 13;
+    *x ^= *x >> 7;
+    *x ^= *x << 17;
+    return *x;
+}
+#endif
+
 static int lmul_ok(void)
 {
 #if defined(__ARM_ARCH_6M__)
     uint64_t x = 0x9e3779b97f4a7c15ull, a, b;
     int i;
     for (i = 0; i < 4096; i++) {
-        x ^= x << 13; x ^= x >> 7; x ^= x << 17;
-        a = x;
-        x ^= x << 13; x ^= x >> 7; x ^= x << 17;
-        b = i & 1 ? x >> 32 : x;
+        a = xorshift64(&x);
+        b = xorshift64(&x);
+        if (i & 1) b >>= 32;
         if (a * b != board_mul64(a, b)) return 0;
     }
 #endif
