@@ -1,13 +1,14 @@
 #!/bin/sh
 # tests/fuzz.sh [SECONDS] — `make fuzz`: build one libFuzzer harness per reader, one for the
-# whole path from files on disk to a rendered band (fuzz_file) and one for the rasteriser
-# (tests/fuzz_*.c) with clang -fsanitize=fuzzer,address,undefined, seed each corpus from
-# the real data (small crops: tests/data, heads of ../shared/data/dem files), and print
+# whole path from files on disk to a rendered band (fuzz_file), one for a saved bitree
+# attached and drawn (fuzz_tree) and one for the rasteriser (tests/fuzz_*.c) with clang
+# -fsanitize=fuzzer,address,undefined, seed each corpus from the real data (small crops:
+# tests/data, heads of ../shared/data/dem files), and print
 # one summary line per harness.  Exit 1 if any harness found a crash, a leak, a timeout
 # or an out-of-memory (artifacts under $B/fuzz/artifacts).
 # Time: SECONDS (default 30; make passes FUZZ_SECONDS) is the total.  The harnesses run
 # one after another and each gets SECONDS / N of it (N = the number run, rounded down,
-# at least 1 s), so 30 s over 9 harnesses is 3 s each; FUZZ_ONLY="file zip" runs only
+# at least 1 s), so 30 s over 10 harnesses is 3 s each; FUZZ_ONLY="file zip" runs only
 # those harnesses and divides the same total among them.
 # Build directory: $B, else the B=... given to make, else build.
 set -u
@@ -74,6 +75,14 @@ sel 8 tests/data/zip/N47E009_61x61.hgt.zip hgtzip
 { printf '%s\n' '3 ncols' '2 nrows' '0 xlower' '0 ylower' '0.014 cellsize' '-9999 nodata_value'
   head -n 6 "$DATA/xyz/monai_valley_bathymetry.txt" | awk '{ print $3 }'; } >"$S/file/tt2.raw"   # GeoClaw topotype 2
 sel 10 "$S/file/tt2.raw" tt2; rm -f "$S/file/tt2.raw"
+
+# fuzz_tree: byte 0 asks for right checksums (bit 0) and header patches (bit 1), then the
+# camera and three-byte patches (tests/fuzz_tree.c); the patches' bytes from a real tile
+mkdir -p "$S/tree" "$D/corpus/tree"
+for m in 0 1 3; do
+  printf "\\$(printf '%03o' $m)\\200\\200" | cat - "$S/hgt/n50e008_31x31.hgt" | head -c 603 >"$S/tree/patch200_$m"
+  printf "\\$(printf '%03o' $m)\\100\\300" | cat - "$S/hgt/n47e009_61x61.hgt" | head -c 30 >"$S/tree/patch9_$m"
+done
 
 harnesses=${FUZZ_ONLY:-$(ls tests/fuzz_*.c | sed 's/.*fuzz_\(.*\)\.c/\1/')}
 n=$(echo $harnesses | wc -w)

@@ -286,11 +286,97 @@ static void test_corrupt_blobs(void)
     dem_free(&f);
 }
 
+/* Node values made wrong under right checksums (a blob forged, or corrupted where
+ * FNV-1a cannot tell): core/bt_blob.c says the walk needs no check of them for memory
+ * safety, indexing only 256-entry tables with their bytes.  Random errors and height
+ * ranges (not nested), every diamond split (BT_CODE_SPLIT), and one in sixteen of the
+ * diamonds void among random ones, each attached and drawn
+ * in the view rule frame after frame (hysteresis, geomorph), the budget rule and the
+ * fidelity rule: every extraction returns a status, every mesh index names one of
+ * its vertices, and the sanitized run reads nothing out of bounds. */
+static uint32_t fnv_bytes(uint32_t h, const uint8_t *p, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; i++) h = (h ^ p[i]) * 16777619u;
+    return h;
+}
+
+static void put_le32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)v; p[1] = (uint8_t)(v >> 8); p[2] = (uint8_t)(v >> 16); p[3] = (uint8_t)(v >> 24);
+}
+
+static void test_forged_nodes(void)
+{
+    hf f;
+    bt_tree t, a;
+    void *mem = NULL, *mm = NULL;
+    uint8_t *blob, *forged, *st;
+    size_t n, i;
+    uint32_t rs = 2463534242u;
+    int kind;
+    if (btc_load("asc/hugo_site.asc", &f) || build(&t, &f, &mem)) { CHECK(0); return; }
+    n = bt_tree_blob_size(&t);
+    blob = malloc(n);
+    forged = malloc(n);
+    st = malloc(bt_state_size(t.nslot));
+    CHECK_EQ(bt_tree_save(&t, blob, n), BR_OK);
+    for (kind = 0; kind < 3; kind++) {
+        bt_params p;
+        cam c;
+        bt_mesh m;
+        int k, r;
+        memcpy(forged, blob, n);
+        for (i = 64; i + 4 <= n; i += 4) {      /* the saved node words, little-endian */
+            uint32_t lo, hi, v;
+            rs ^= rs << 13; rs ^= rs >> 17; rs ^= rs << 5;
+            lo = (rs >> 16) & 255u;
+            hi = lo + ((rs >> 24) & 255u) > 255u ? 255u : lo + ((rs >> 24) & 255u);
+            v = BT_NODE(rs & 0xffffu, lo, hi);      /* kind 0: any error, any height range */
+            if (kind == 1) v = BT_NODE(BT_CODE_SPLIT, 0, 255);
+            if (kind == 2 && (rs & 15u) == 0) v = BT_NODE_VOID;
+            put_le32(forged + i, v);
+        }
+        put_le32(forged + 48, fnv_bytes(2166136261u, forged + 64, n - 64));    /* node checksum */
+        put_le32(forged + 52, fnv_bytes(2166136261u, forged, 52));             /* header checksum */
+        bt_blob_to_host(forged, n);
+        CHECK_EQ(bt_attach(&a, &f, forged, n, st, bt_state_size(t.nslot)), BR_OK);
+        view_params(&f, &p, &c, 1);
+        r = btc_extract(&a, &p, 20000, &m, &mm);
+        CHECK_MSG(r == 0, "kind %d: view rule", kind);
+        CHECK_MSG(r != 0 || m.ntri > 1000, "kind %d: %u triangles (the forgery must reach the walk)", kind,
+                  r == 0 ? m.ntri : 0);
+        for (k = 0; r == 0 && k < 4; k++) {
+            uint32_t j, bad = 0;
+            c.eye[0] += 40 << 10;
+            c.eye[2] -= 900 << 10;
+            if (bt_extract(&a, &p, &m) != BR_OK) continue;      /* a refusal is a status */
+            for (j = 0; j < m.ns; j++) bad += m.strip[j] >= m.nv;
+            CHECK_MSG(bad == 0, "kind %d frame %d: %u indices past %u vertices", kind, k, bad, m.nv);
+        }
+        free(mm); mm = NULL;
+        memset(&p, 0, sizeof p);
+        view_params(&f, &p, &c, 0);
+        p.mode = BT_BUDGET;
+        p.budget = 3000;
+        CHECK_MSG(btc_extract(&a, &p, 4000, &m, &mm) == 0, "kind %d: budget rule", kind);
+        free(mm); mm = NULL;
+        memset(&p, 0, sizeof p);
+        p.mode = BT_FIDELITY;
+        p.max_err = 10;
+        (void)btc_extract(&a, &p, 0, &m, &mm);      /* sized by bt_count: any status */
+        free(mm); mm = NULL;
+    }
+    free(st); free(forged); free(blob); free(mem);
+    dem_free(&f);
+}
+
 int main(void)
 {
     T_RUN(test_bytes_per_sample);
     T_RUN(test_thin_grid);
     T_RUN(test_attach_same);
     T_RUN(test_corrupt_blobs);
+    T_RUN(test_forged_nodes);
     return t_finish();
 }
