@@ -35,7 +35,15 @@ br_status campath_read(const char *path, campath *p, br_err *err)
     while (fgets(line, sizeof line, fp)) {
         char *c, *q;
         double v[6];
+        size_t len = strlen(line);
+        int i;
         lineno++;
+        if (len + 1 < sizeof line && !feof(fp) && line[len] == 0 && !strchr(line, '\n')) {
+            /* fgets stopped before the buffer's end without a newline or the file's end:
+             * a NUL byte ended the string */
+            fclose(fp); campath_free(p);
+            return br_err_set(err, BR_E_FORMAT, path, "line %d: a NUL byte (not a text file?)", lineno);
+        }
         if (!strchr(line, '\n') && !feof(fp)) {
             fclose(fp); campath_free(p);
             return br_err_set(err, BR_E_FORMAT, path, "line %d: longer than %d characters", lineno, (int)sizeof line - 2);
@@ -47,6 +55,12 @@ br_status campath_read(const char *path, campath *p, br_err *err)
             fclose(fp); campath_free(p);
             return br_err_set(err, BR_E_FORMAT, path, "line %d: expected EX,EY,EZ,TX,TY,TZ (six numbers in metres)", lineno);
         }
+        for (i = 0; i < 6; i++)
+            if (fabs(v[i]) > CAMPATH_COORD_MAX) {
+                fclose(fp); campath_free(p);
+                return br_err_set(err, BR_E_VALUE, path, "line %d: %g is out of range (accepted: %g..%g)", lineno, v[i],
+                                  -CAMPATH_COORD_MAX, CAMPATH_COORD_MAX);
+            }
         if (v[0] == v[3] && v[1] == v[4] && v[2] == v[5]) {
             fclose(fp); campath_free(p);
             return br_err_set(err, BR_E_VALUE, path, "line %d: the eye is the target", lineno);

@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "platform/campath.h"
 #include "platform/cmd.h"
 #include "platform/load.h"
 #include "platform/dem_args.h"
@@ -124,7 +125,7 @@ int cmd_mesh(int argc, char **argv)
         { "--metric", OPT_CHOICE, &metric_choice, 0, 0, 0, "exact|curvature", "K",
           "exact (a true bound, default) or curvature (001's indicator)", NULL },
         { "--no-line-triangles", OPT_FLAG, &nolines, 0, 0, 0, NULL, NULL, "count the strip as a list without line triangles (004)", NULL },
-        { "--camera", OPT_NUMS, camv, -1e7, 1e7, 6, NULL, "EX,EY,EZ,TX,TY,TZ",
+        { "--camera", OPT_NUMS, camv, -CAMPATH_COORD_MAX, CAMPATH_COORD_MAX, 6, NULL, "EX,EY,EZ,TX,TY,TZ",
           "view-dependent mesh: eye and target in metres (x east, y north, z up)", &have_cam },
         { "--fov", OPT_NUM, &fov, 1, 170, 0, NULL, "DEG", "vertical field of view (default 60)", NULL },
         { "--pixel-error", OPT_NUM, &pixerr, 0.01, 1000, 0, NULL, "P", "screen-space error threshold, pixels (default 1)", NULL },

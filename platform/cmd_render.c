@@ -249,8 +249,8 @@ int cmd_render(int argc, char **argv)
     const opt_spec own[] = {
         { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT.png", "the image to write (-: standard output)", NULL },
         { "--size", OPT_SIZE, size, 1, RS_MAX_DIM, 0, NULL, "WxH", "image size (default 800x600)", NULL },
-        { "--camera", OPT_NUMS, camv, -1e7, 1e7, 6, NULL, "EX,EY,EZ,TX,TY,TZ", "eye and target, metres",
-          &have_cam },
+        { "--camera", OPT_NUMS, camv, -CAMPATH_COORD_MAX, CAMPATH_COORD_MAX, 6, NULL, "EX,EY,EZ,TX,TY,TZ",
+          "eye and target, metres", &have_cam },
         { "--fov", OPT_NUM, &j->fov, 1, 170, 0, NULL, "DEG", "vertical field of view (default 50)", NULL },
         { "--max-error", OPT_NUM, &j->max_err, 0, 100000, 0, NULL, "M",
           "fidelity mesh: true vertical error at most M metres", &have_max },

@@ -66,6 +66,21 @@ static void test_campath(void)
     fclose(fp);
     CHECK_EQ(campath_read(path, &p, &err), BR_E_VALUE);
     CHECK_EQ(campath_read("tests/out/no_such_path.txt", &p, &err), BR_E_IO);
+    /* beyond --camera's range: refused with the file, the line and the range */
+    fp = fopen(path, "w");
+    if (!fp) { CHECK(0); return; }
+    fputs("1,2,3,4,5,6\n1e300,0,1000,10,10,0\n", fp);
+    fclose(fp);
+    CHECK_EQ(campath_read(path, &p, &err), BR_E_VALUE);
+    CHECK(strstr(err.msg, path) != NULL && strstr(err.msg, "line 2") && strstr(err.msg, "out of range"));
+    CHECK_EQ(p.n, 0);
+    /* a NUL byte: said as such, not as a long line */
+    fp = fopen(path, "wb");
+    if (!fp) { CHECK(0); return; }
+    fwrite("1,2,3,4,5,6\n\0garbage\n", 1, 22, fp);
+    fclose(fp);
+    CHECK_EQ(campath_read(path, &p, &err), BR_E_FORMAT);
+    CHECK(strstr(err.msg, "line 2: a NUL byte") != NULL);
 }
 
 /* the geomorph weight as core/bt_mesh.c's morph_of computes it with `/` */
