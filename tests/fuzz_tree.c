@@ -17,23 +17,12 @@
 #include <unistd.h>
 #include "platform/load.h"
 #include "platform/scene.h"
+#include "tests/support/blob_sums.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 #define DEM "tests/data/zip/N47E009_61x61.hgt.zip"
 #define HDR 64              /* core/bt_blob.c: header bytes */
-
-static uint32_t fnv(uint32_t h, const uint8_t *p, size_t n)
-{
-    size_t i;
-    for (i = 0; i < n; i++) h = (h ^ p[i]) * 16777619u;
-    return h;
-}
-
-static void wr32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)v; p[1] = (uint8_t)(v >> 8); p[2] = (uint8_t)(v >> 16); p[3] = (uint8_t)(v >> 24);
-}
 
 /* The saved tree of the crop, made on the first call. */
 static const uint8_t *pristine(size_t *n)
@@ -118,10 +107,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (!(data[0] & 2)) at = HDR + at % (n - HDR);
         blob[at] ^= data[i + 2];
     }
-    if (data[0] & 1) {      /* the node checksum (word 12), then the header's (word 13) */
-        wr32(blob + 48, fnv(2166136261u, blob + HDR, n - HDR));
-        wr32(blob + 52, fnv(2166136261u, blob, 52));
-    }
+    if (data[0] & 1) blob_fix_sums(blob, n);
     f = fopen(path, "wb");
     if (!f || fwrite(blob, 1, n, f) != n || fclose(f) != 0) abort();
     free(blob);

@@ -11,6 +11,7 @@
 #include "tests/test.h"
 #include "tests/support/meshcheck.h"
 #include "tests/support/btcheck.h"
+#include "tests/support/blob_sums.h"
 #include "core/bitree.h"
 #include "platform/load.h"
 
@@ -290,22 +291,10 @@ static void test_corrupt_blobs(void)
  * FNV-1a cannot tell): core/bt_blob.c says the walk needs no check of them for memory
  * safety, indexing only 256-entry tables with their bytes.  Random errors and height
  * ranges (not nested), every diamond split (BT_CODE_SPLIT), and one in sixteen of the
- * diamonds void among random ones, each attached and drawn
- * in the view rule frame after frame (hysteresis, geomorph), the budget rule and the
- * fidelity rule: every extraction returns a status, every mesh index names one of
- * its vertices, and the sanitized run reads nothing out of bounds. */
-static uint32_t fnv_bytes(uint32_t h, const uint8_t *p, size_t n)
-{
-    size_t i;
-    for (i = 0; i < n; i++) h = (h ^ p[i]) * 16777619u;
-    return h;
-}
-
-static void put_le32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)v; p[1] = (uint8_t)(v >> 8); p[2] = (uint8_t)(v >> 16); p[3] = (uint8_t)(v >> 24);
-}
-
+ * diamonds void among random ones, each attached and drawn in the view rule frame
+ * after frame (hysteresis, geomorph), the budget rule and the fidelity rule: every
+ * extraction returns a status, every mesh index names one of its vertices, and the
+ * sanitized run reads nothing out of bounds. */
 static void test_forged_nodes(void)
 {
     hf f;
@@ -335,10 +324,9 @@ static void test_forged_nodes(void)
             v = BT_NODE(rs & 0xffffu, lo, hi);      /* kind 0: any error, any height range */
             if (kind == 1) v = BT_NODE(BT_CODE_SPLIT, 0, 255);
             if (kind == 2 && (rs & 15u) == 0) v = BT_NODE_VOID;
-            put_le32(forged + i, v);
+            blob_put_le32(forged + i, v);
         }
-        put_le32(forged + 48, fnv_bytes(2166136261u, forged + 64, n - 64));    /* node checksum */
-        put_le32(forged + 52, fnv_bytes(2166136261u, forged, 52));             /* header checksum */
+        blob_fix_sums(forged, n);
         bt_blob_to_host(forged, n);
         CHECK_EQ(bt_attach(&a, &f, forged, n, st, bt_state_size(t.nslot)), BR_OK);
         view_params(&f, &p, &c, 1);
