@@ -38,9 +38,9 @@ br_status campath_read(const char *path, campath *p, br_err *err)
         size_t len = strlen(line);
         int i;
         lineno++;
-        if (len + 1 < sizeof line && !feof(fp) && line[len] == 0 && !strchr(line, '\n')) {
-            /* fgets stopped before the buffer's end without a newline or the file's end:
-             * a NUL byte ended the string */
+        if (len + 1 < sizeof line && !feof(fp) && !strchr(line, '\n')) {
+            /* the string ends before the buffer's end with no newline, yet fgets stopped
+             * neither at the file's end nor with a full buffer: a NUL byte ended it */
             fclose(fp); campath_free(p);
             return br_err_set(err, BR_E_FORMAT, path, "line %d: a NUL byte (not a text file?)", lineno);
         }
