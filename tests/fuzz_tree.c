@@ -22,7 +22,6 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 #define DEM "tests/data/zip/N47E009_61x61.hgt.zip"
-#define HDR 64              /* core/bt_blob.c: header bytes */
 
 /* The saved tree of the crop, made on the first call. */
 static const uint8_t *pristine(size_t *n)
@@ -104,7 +103,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     memcpy(blob, orig, n);
     for (i = 3; i + 3 <= size; i += 3) {
         size_t at = ((size_t)data[i] << 8 | data[i + 1]) % n;
-        if (!(data[0] & 2)) at = HDR + at % (n - HDR);
+        if (!(data[0] & 2)) at = BLOB_HDR + at % (n - BLOB_HDR);
         blob[at] ^= data[i + 2];
     }
     if (data[0] & 1) blob_fix_sums(blob, n);

@@ -316,7 +316,7 @@ static void test_forged_nodes(void)
         bt_mesh m;
         int k, r;
         memcpy(forged, blob, n);
-        for (i = 64; i + 4 <= n; i += 4) {      /* the saved node words, little-endian */
+        for (i = BLOB_HDR; i + 4 <= n; i += 4) {        /* the saved node words, little-endian */
             uint32_t lo, hi, v;
             rs ^= rs << 13; rs ^= rs >> 17; rs ^= rs << 5;
             lo = (rs >> 16) & 255u;
@@ -343,7 +343,6 @@ static void test_forged_nodes(void)
             CHECK_MSG(bad == 0, "kind %d frame %d: %u indices past %u vertices", kind, k, bad, m.nv);
         }
         free(mm); mm = NULL;
-        memset(&p, 0, sizeof p);
         view_params(&f, &p, &c, 0);
         p.mode = BT_BUDGET;
         p.budget = 3000;
