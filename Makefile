@@ -185,19 +185,24 @@ mcu: deps $(B)/libbitrain.a
 
 # make install [PREFIX=/usr/local] [DESTDIR=]: the program, libbitrain.a, the public
 # headers under include/bitrain/ (so that "core/hf.h" etc. resolve with the .pc's
-# -I), and bitrain.pc.  Internal headers (*_int.h, *_internal.h, core/bt_em.h, the
+# -I), bitrain.pc, and assets/ as share/bitrain/ (the program finds it there from
+# its own bin/, platform/assets.h; with another BINDIR, set BITRAIN_ASSETS).  Internal headers (*_int.h, *_internal.h, core/bt_em.h, the
 # raster's own raster_*.h, platform/cmd.h) stay out.
 VERSION ?= 0.1
 PREFIX  ?= /usr/local
 BINDIR  ?= $(PREFIX)/bin
 LIBDIR  ?= $(PREFIX)/lib
 INCDIR  ?= $(PREFIX)/include
+DATADIR ?= $(PREFIX)/share/bitrain
+ASSET_FILES = $(wildcard assets/*.gz assets/*.cam) assets/README.md
 PUB_HDR  = $(sort $(filter-out %_int.h %_internal.h core/bt_em.h raster/raster_%.h platform/cmd.h platform/peer_scene.h,\
              $(wildcard core/*.h raster/*.h platform/*.h)))
 install: bitrain $(B)/libbitrain.a
 	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(LIBDIR)/pkgconfig $(addprefix $(DESTDIR)$(INCDIR)/bitrain/,core raster platform)
 	install -m 755 bitrain $(DESTDIR)$(BINDIR)/bitrain
 	install -m 644 $(B)/libbitrain.a $(DESTDIR)$(LIBDIR)/libbitrain.a
+	install -d $(DESTDIR)$(DATADIR)
+	install -m 644 $(ASSET_FILES) $(DESTDIR)$(DATADIR)/
 	for h in $(PUB_HDR); do install -m 644 $$h $(DESTDIR)$(INCDIR)/bitrain/$$h || exit 1; done
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(LIBDIR)|' -e 's|@INCDIR@|$(INCDIR)|' \
 	    -e 's|@VERSION@|$(VERSION)|' mk/bitrain.pc.in > $(DESTDIR)$(LIBDIR)/pkgconfig/bitrain.pc

@@ -22,6 +22,7 @@
 #include <time.h>
 #include "platform/clock.h"
 #include "platform/bench_default.h"
+#include "platform/assets.h"
 #include "platform/campath.h"
 #include "platform/opt.h"
 #include "platform/cmd.h"
@@ -117,7 +118,7 @@ bd_run *bd_open(const char *dem, double pix_err, br_err *err)
 {
     scene_opts so;
     bd_run *r = calloc(1, sizeof *r);
-    if (!dem) dem = "assets/N47E009.hgt.gz";
+    if (!dem) dem = ASSET_DEFAULT_DEM;
     if (!r) { br_err_set(err, BR_E_NOMEM, NULL, "out of memory"); return NULL; }
     r->fmt = RS_FMT_XRGB8888; r->depth = RS_DEPTH32; r->bands = 64; r->pix_err = pix_err;
     memset(&so, 0, sizeof so);
@@ -220,7 +221,7 @@ int cmd_bench_default(int argc, char **argv)
         r->depth = depth ? RS_DEPTH16 : RS_DEPTH32;
         ndem = dem_list.n;
     }
-    if (!ndem) dems[ndem++] = "assets/N47E009.hgt.gz";
+    if (!ndem) dems[ndem++] = ASSET_DEFAULT_DEM;
     if (path && campath_read(path, &cp, &err) != BR_OK) { fprintf(stderr, "bitrain bench: %s\n", err.msg); goto done; }
     memset(&so, 0, sizeof so);
     so.quiet = 1;

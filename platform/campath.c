@@ -1,5 +1,6 @@
 /* platform/campath.c — see campath.h. */
 #include "platform/campath.h"
+#include "platform/assets.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -26,11 +27,13 @@ int campath_parse_line(const char *s, double out[6])
 
 br_status campath_read(const char *path, campath *p, br_err *err)
 {
-    FILE *fp = fopen(path, "r");
-    char line[1024];
+    FILE *fp;
+    char line[1024], where[ASSET_PATH_MAX];
     int lineno = 0, cap = 0;
     p->cam = NULL;
     p->n = 0;
+    if (asset_resolve(path, where, sizeof where, &path, err) != BR_OK) return BR_E_IO;
+    fp = fopen(path, "r");
     if (!fp) return br_err_set(err, BR_E_IO, path, "cannot open camera path");
     while (fgets(line, sizeof line, fp)) {
         char *c, *q;

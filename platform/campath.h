@@ -20,7 +20,8 @@ typedef struct campath {
 
 /* Parses one line (no comment handling): 0 ok, -1 not six finite numbers. */
 int campath_parse_line(const char *s, double out[6]);
-/* Reads path into p (p->cam allocated; campath_free releases it).  BR_E_IO when
+/* Reads path into p (p->cam allocated; campath_free releases it); a name under
+ * assets/ is found as platform/assets.h says.  BR_E_IO when
  * the file cannot be read, BR_E_FORMAT naming the line, BR_E_VALUE for an empty
  * path; p is left empty on error. */
 br_status campath_read(const char *path, campath *p, br_err *err);

@@ -8,9 +8,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include "platform/assets.h"
 #include "platform/cmd.h"
 
-#define RUN_DEFAULT_DEM "assets/N47E009.hgt.gz"
+#define RUN_DEFAULT_DEM ASSET_DEFAULT_DEM
 #define RUN_PNG "out/terrain.png"
 
 static int have_display(void)

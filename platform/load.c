@@ -17,6 +17,7 @@
 #include <zlib.h>
 #include "platform/load.h"
 #include "platform/load_internal.h"
+#include "platform/assets.h"
 
 /* ---- helpers shared by the readers ---- */
 
@@ -494,7 +495,10 @@ br_status dem_load(const char *path, const dem_opts *o, hf *out, br_err *err)
 {
     uint8_t *data = NULL;
     size_t n = 0;
-    br_status s = dem_read_file(path, &data, &n, err);
+    char where[ASSET_PATH_MAX];
+    br_status s = asset_resolve(path, where, sizeof where, &path, err);
+    if (s != BR_OK) return s;
+    s = dem_read_file(path, &data, &n, err);
     if (s != BR_OK) return s;
     s = dem_load_mem(path, data, n, o, out, err);
     free(data);

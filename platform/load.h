@@ -40,6 +40,8 @@ enum { DEM_MERGE_REFUSE = 0, DEM_MERGE_FIRST, DEM_MERGE_LAST };
 typedef void dem_note_fn(const char *name, const char *msg);
 void dem_set_note(dem_note_fn *fn);
 
+/* Reads and decodes the file path (a name under assets/ is found as platform/assets.h
+ * says, so the bundled terrain opens from any directory). */
 br_status dem_load(const char *path, const dem_opts *o, hf *out, br_err *err);
 /* The same from bytes in memory (fuzzers, tests, archives): name is used for
  * messages, the extension and SRTM tile names; bytes are not modified or kept. */

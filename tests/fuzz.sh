@@ -42,7 +42,7 @@ PKG_LIBS=$(pkg-config --libs libpng zlib)
 FLAGS="-std=c99 -g -O1 -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all -I. $PKG_CFLAGS"
 # decompressed archives capped at 64 MB so a zip bomb is a quick refusal, not an OOM
 DEFS="-DDEM_MAX_INFLATE=((size_t)64<<20)"
-SRC="$(ls core/*.c raster/*.c) platform/clock.c platform/err.c platform/fill.c platform/merge.c platform/pipe_threads.c platform/scene.c platform/tree_file.c platform/png_io.c $(ls platform/load*.c)"
+SRC="$(ls core/*.c raster/*.c) platform/assets.c platform/clock.c platform/err.c platform/fill.c platform/merge.c platform/pipe_threads.c platform/scene.c platform/tree_file.c platform/png_io.c $(ls platform/load*.c)"
 OBJ=""
 for s in $SRC; do
   o="$D/obj/$(echo "$s" | tr / _ | sed 's/\.c$/.o/')"
