@@ -251,6 +251,17 @@ static int set_size(view_app *a, int w, int h)
     return a->tex != NULL;
 }
 
+/* 0 when SDL fell back to a video driver that shows nothing ("offscreen", "dummy")
+ * without the user asking for it by SDL_VIDEODRIVER: with no X11 or Wayland display
+ * SDL 2.26 picks "offscreen", and the viewer would run unseen until killed.  (A Linux
+ * console's "kmsdrm" shows.) */
+static int window_shows(void)
+{
+    const char *drv = SDL_GetCurrentVideoDriver(), *asked = getenv("SDL_VIDEODRIVER");
+    if (!drv || (strcmp(drv, "offscreen") != 0 && strcmp(drv, "dummy") != 0)) return 1;
+    return asked && *asked;
+}
+
 static int open_window(view_app *a, const int win[2], int fullscreen)
 {
     Uint32 flags = SDL_WINDOW_RESIZABLE | (fullscreen ? SDL_WINDOW_FULLSCREEN_DESKTOP : 0);
@@ -260,6 +271,13 @@ static int open_window(view_app *a, const int win[2], int fullscreen)
         return 0;
     }
     a->sdl_on = 1;
+    if (!window_shows()) {
+        fprintf(stderr, "bitrain view: no display to open (SDL fell back to its invisible \"%s\" video driver); "
+                        "`bitrain render IN -o OUT.png` draws a frame to a file, and SDL_VIDEODRIVER=%s runs the "
+                        "viewer unseen all the same\n",
+                SDL_GetCurrentVideoDriver(), SDL_GetCurrentVideoDriver());
+        return 0;
+    }
     SDL_SetHint(SDL_HINT_RENDER_SCALE_QUALITY, "0");     /* nearest: crisp when --size scales up */
     a->win = SDL_CreateWindow("bitrain", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, win[0], win[1], flags);
     a->ren = a->win ? SDL_CreateRenderer(a->win, -1, 0) : NULL;

@@ -50,6 +50,21 @@ static void test_view_bad_input(void)
     CHECK_EQ(cmd_view(3, a2), 2);
 }
 
+/* Without X11 or Wayland, SDL falls back to its invisible "offscreen" driver: the viewer
+ * refuses (status 1) instead of drawing unseen (here 2 frames, else until killed), unless
+ * SDL_VIDEODRIVER asks for that driver. */
+static void test_view_no_display(void)
+{
+    char dem[] = "assets/N47E009.hgt.gz", size[] = "--size", wh[] = "64x48", fr[] = "--frames", two[] = "2";
+    char *argv[6];
+    argv[0] = dem; argv[1] = size; argv[2] = wh; argv[3] = fr; argv[4] = two; argv[5] = NULL;
+    unsetenv("SDL_VIDEODRIVER");
+    unsetenv("DISPLAY");
+    unsetenv("WAYLAND_DISPLAY");
+    CHECK_EQ(cmd_view(5, argv), 1);
+    setenv("SDL_VIDEODRIVER", "offscreen", 1);
+    CHECK_EQ(cmd_view(5, argv), 0);
+}
 
 /* Runs `bitrain view` with argv (a NULL-terminated list after the input file) on the
  * dummy video driver. */
@@ -375,6 +390,7 @@ int main(void)
 {
     T_RUN(test_viewer_frames);
     T_RUN(test_view_bad_input);
+    T_RUN(test_view_no_display);
     T_RUN(test_view_record);
     T_RUN(test_view_idle);
     T_RUN(test_view_threads_same);
