@@ -212,7 +212,7 @@ br_status scene_tree(scene *s, br_err *err)
     br_status st;
     if (s->tree_file) {
         br_status a = tree_file_attach(&s->tree, &s->f, s->tree_file, &s->tree_mem, err);
-        if (a == BR_E_FORMAT && s->beds_lowered)
+        if (a == BR_E_VALUE && s->beds_lowered)
             return br_err_set(err, a, s->tree_file, "not a bitree for these heights: the water found lowers the "
                               "flattened lakes' and sea's samples to a bottom before the tree is built, which a tree "
                               "saved by `bitrain mesh --save-tree` does not know; add --no-water");

@@ -18,6 +18,21 @@ br_status tree_file_save(const bt_tree *t, const char *path, br_err *err)
     return ok ? BR_OK : br_err_set(err, BR_E_IO, path, "write failed");
 }
 
+/* A little-endian 32-bit word of a blob's header (core/bt_blob.c: the header is
+ * little-endian on every host; bt_blob_to_host turns only the node words around). */
+static uint32_t rd_le32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+/* 1 when a blob that bt_attach refused still starts as a saved tree of f's width and
+ * height (header words 0, 3, 4: the magic "BTRE", w, h): saved from other heights of
+ * that size, or its nodes corrupt, rather than some other file. */
+static int blob_for_grid(const uint8_t *b, size_t n, const hf *f)
+{
+    return n >= 20 && rd_le32(b) == 0x45525442u && rd_le32(b + 12) == (uint32_t)f->w && rd_le32(b + 16) == (uint32_t)f->h;
+}
+
 br_status tree_file_attach(bt_tree *t, const hf *f, const char *path, void **mem, br_err *err)
 {
     FILE *fp = fopen(path, "rb");
@@ -45,7 +60,11 @@ br_status tree_file_attach(bt_tree *t, const hf *f, const char *path, void **mem
     bt_blob_to_host(buf, n);
     s = bt_attach(t, f, buf, n, buf + stoff, ns);
     if (s != BR_OK) {
+        const int same_grid = blob_for_grid(buf, n, f);
         free(buf);
+        if (same_grid)
+            return br_err_set(err, BR_E_VALUE, path, "a bitree for a %dx%d grid, but not for these heights (saved from "
+                              "another file of that size) or with corrupt nodes", f->w, f->h);
         return br_err_set(err, BR_E_FORMAT, path, "not a bitree saved for this heightfield (%dx%d): truncated, corrupt, "
                           "another version or another grid", f->w, f->h);
     }

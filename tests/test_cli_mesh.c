@@ -275,7 +275,8 @@ static void test_saved_tree(void)
 
 /* A tree saved by `mesh --save-tree` holds the file's heights; render with its water
  * found lowers the flattened lakes to a bottom first, so the tree is refused with a
- * message that says why and what to add; with --no-water it attaches. */
+ * message that says why and what to add; with --no-water it attaches.  A file that is
+ * not a tree is refused as such, without that advice. */
 static void test_saved_tree_water(void)
 {
     char dem[] = "assets/N47E009.hgt.gz", cm[] = "--save-tree", o[] = "-o", tr[] = "--tree", sz[] = "--size",
@@ -302,6 +303,17 @@ static void test_saved_tree_water(void)
     CHECK_MSG(strstr(line, "cli_tree_lakes.bt") && strstr(line, "add --no-water"), "%s", line);
     argv[7] = nw;
     CHECK_EQ(run_render(8, argv, out), 0);
+    /* a file that is no tree at all (the DEM itself) gets no water hint */
+    argv[2] = dem;
+    fflush(stderr);
+    if ((saved = redirect(2, err)) < 0) { CHECK(0); return; }
+    rc = run_render(7, argv, out);
+    fflush(stderr);
+    restore(2, saved);
+    CHECK_EQ(rc, 1);
+    line[0] = 0;
+    if ((fp = fopen(err, "r"))) { if (!fgets(line, sizeof line, fp)) line[0] = 0; fclose(fp); }
+    CHECK_MSG(strstr(line, "N47E009.hgt.gz: not a bitree") && !strstr(line, "--no-water"), "%s", line);
 }
 
 int main(void)
