@@ -41,7 +41,6 @@ PLAT_SRC   = $(sort $(filter-out $(PROG_SRC),$(wildcard platform/*.c)))
 LIB_SRC    = $(CORE_SRC) $(RASTER_SRC) $(PLAT_SRC)
 TEST_SRC   = $(sort $(wildcard tests/test_*.c))
 BENCH_SRC  = $(sort $(wildcard benchmarks/bench_*.c))
-FUZZ_SRC   = $(sort $(wildcard tests/fuzz_*.c))
 SUPPORT_SRC= $(sort $(wildcard tests/support/*.c)) benchmarks/peer_scene.c
 
 LIB_OBJ    = $(LIB_SRC:%.c=$(B)/obj/%.o)

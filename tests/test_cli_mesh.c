@@ -273,6 +273,23 @@ static void test_saved_tree(void)
     CHECK_EQ(run_mesh(9, argv, out), 1);
 }
 
+/* `bitrain render` with argv, its stdout to out and its stderr's first line to line
+ * (size bytes, through the file err); returns its exit status, or -1 when stderr could
+ * not be redirected. */
+static int render_first_err(int argc, char **argv, const char *out, const char *err, char *line, int size)
+{
+    FILE *fp;
+    int saved, rc;
+    line[0] = 0;
+    fflush(stderr);
+    if ((saved = redirect(2, err)) < 0) return -1;
+    rc = run_render(argc, argv, out);
+    fflush(stderr);
+    restore(2, saved);
+    if ((fp = fopen(err, "r"))) { if (!fgets(line, size, fp)) line[0] = 0; fclose(fp); }
+    return rc;
+}
+
 /* A tree saved by `mesh --save-tree` holds the file's heights; render with its water
  * found lowers the flattened lakes to a bottom first, so the tree is refused with a
  * message that says why and what to add; with --no-water it attaches.  A file that is
@@ -282,9 +299,7 @@ static void test_saved_tree_water(void)
     char dem[] = "assets/N47E009.hgt.gz", cm[] = "--save-tree", o[] = "-o", tr[] = "--tree", sz[] = "--size",
          szv[] = "64x48", nw[] = "--no-water";
     char tree[256], obj[256], png[256], out[256], err[256], *argv[8];
-    int saved, rc;
-    FILE *fp;
-    char line[512] = "";
+    char line[512];
     snprintf(tree, sizeof tree, "%s/cli_tree_lakes.bt", t_outdir());
     snprintf(obj, sizeof obj, "%s/cli_tree_lakes.obj", t_outdir());
     snprintf(png, sizeof png, "%s/cli_tree_lakes.png", t_outdir());
@@ -293,26 +308,13 @@ static void test_saved_tree_water(void)
     argv[0] = dem; argv[1] = cm; argv[2] = tree; argv[3] = o; argv[4] = obj;
     CHECK_EQ(run_mesh(5, argv, out), 0);
     argv[0] = dem; argv[1] = tr; argv[2] = tree; argv[3] = sz; argv[4] = szv; argv[5] = o; argv[6] = png;
-    fflush(stderr);
-    if ((saved = redirect(2, err)) < 0) { CHECK(0); return; }
-    rc = run_render(7, argv, out);
-    fflush(stderr);
-    restore(2, saved);
-    CHECK_EQ(rc, 1);
-    if ((fp = fopen(err, "r"))) { if (!fgets(line, sizeof line, fp)) line[0] = 0; fclose(fp); }
+    CHECK_EQ(render_first_err(7, argv, out, err, line, sizeof line), 1);
     CHECK_MSG(strstr(line, "cli_tree_lakes.bt") && strstr(line, "add --no-water"), "%s", line);
     argv[7] = nw;
     CHECK_EQ(run_render(8, argv, out), 0);
     /* a file that is no tree at all (the DEM itself) gets no water hint */
     argv[2] = dem;
-    fflush(stderr);
-    if ((saved = redirect(2, err)) < 0) { CHECK(0); return; }
-    rc = run_render(7, argv, out);
-    fflush(stderr);
-    restore(2, saved);
-    CHECK_EQ(rc, 1);
-    line[0] = 0;
-    if ((fp = fopen(err, "r"))) { if (!fgets(line, sizeof line, fp)) line[0] = 0; fclose(fp); }
+    CHECK_EQ(render_first_err(7, argv, out, err, line, sizeof line), 1);
     CHECK_MSG(strstr(line, "N47E009.hgt.gz: not a bitree") && !strstr(line, "--no-water"), "%s", line);
 }
 
