@@ -159,8 +159,8 @@ TEST_PKGS = clang qemu-user dpkg-dev gcc-arm-linux-gnueabihf gcc-aarch64-linux-g
 TEST_CROSS ?= s390x armhf
 test: deps
 	@sh mk/deps.sh --optional $(TEST_PKGS)
-	@$(MAKE) --no-print-directory bitrain $(TEST_BIN) $(SAN_TEST_BIN) $(DIV32_TEST_BIN)
-	@TEST_CROSS="$(TEST_CROSS)" sh tests/run.sh $(B)
+	@t0=$$(date +%s); $(MAKE) --no-print-directory bitrain $(TEST_BIN) $(SAN_TEST_BIN) $(DIV32_TEST_BIN) && \
+	 TEST_T0=$$t0 TEST_CROSS="$(TEST_CROSS)" sh tests/run.sh $(B)
 
 # The whole suite (every test program without a display) on five foreign targets
 # under qemu-user, and the determinism probe with every knob setting on each of them
