@@ -185,8 +185,9 @@ mcu: deps $(B)/libbitrain.a
 # make install [PREFIX=/usr/local] [DESTDIR=]: the program, libbitrain.a, the public
 # headers under include/bitrain/ (so that "core/hf.h" etc. resolve with the .pc's
 # -I), bitrain.pc, and assets/ as share/bitrain/ (the program finds it there from
-# its own bin/, platform/assets.h; with another BINDIR, set BITRAIN_ASSETS).  Internal headers (*_int.h, *_internal.h, core/bt_em.h, the
-# raster's own raster_*.h, platform/cmd.h) stay out.
+# its own bin/, platform/assets.h; with another BINDIR, set BITRAIN_ASSETS).
+# Internal headers (*_int.h, *_internal.h, core/bt_em.h, the raster's own raster_*.h,
+# platform/cmd.h) stay out.
 VERSION ?= 0.1
 PREFIX  ?= /usr/local
 BINDIR  ?= $(PREFIX)/bin

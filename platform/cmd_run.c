@@ -11,7 +11,6 @@
 #include "platform/assets.h"
 #include "platform/cmd.h"
 
-#define RUN_DEFAULT_DEM ASSET_DEFAULT_DEM
 #define RUN_PNG "out/terrain.png"
 
 static int have_display(void)
@@ -27,7 +26,7 @@ static int have_display(void)
 int cmd_run(int argc, char **argv)
 {
     char *args[80];
-    char def[] = RUN_DEFAULT_DEM, o[] = "-o", png[] = RUN_PNG, size[] = "--size", wh[] = "1280x720";
+    char def[] = ASSET_DEFAULT_DEM, o[] = "-o", png[] = RUN_PNG, size[] = "--size", wh[] = "1280x720";
     int n = 0, i;
     if (argc > 64) { fprintf(stderr, "bitrain run: too many files\n"); return 2; }
     if (argc == 0) args[n++] = def;
