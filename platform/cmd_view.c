@@ -251,31 +251,31 @@ static int set_size(view_app *a, int w, int h)
     return a->tex != NULL;
 }
 
-/* 0 when SDL fell back to a video driver that shows nothing ("offscreen", "dummy")
- * without the user asking for it by SDL_VIDEODRIVER: with no X11 or Wayland display
- * SDL 2.26 picks "offscreen", and the viewer would run unseen until killed.  (A Linux
- * console's "kmsdrm" shows.) */
-static int window_shows(void)
+/* The name of the video driver SDL fell back to when it shows nothing ("offscreen",
+ * "dummy") and the user did not ask for it by SDL_VIDEODRIVER, else NULL: with no X11
+ * or Wayland display SDL 2.26 picks "offscreen", and the viewer would run unseen until
+ * killed.  (A Linux console's "kmsdrm" shows.) */
+static const char *unseen_driver(void)
 {
     const char *drv = SDL_GetCurrentVideoDriver(), *asked = getenv("SDL_VIDEODRIVER");
-    if (!drv || (strcmp(drv, "offscreen") != 0 && strcmp(drv, "dummy") != 0)) return 1;
-    return asked && *asked;
+    if (!drv || (strcmp(drv, "offscreen") != 0 && strcmp(drv, "dummy") != 0) || (asked && *asked)) return NULL;
+    return drv;
 }
 
 static int open_window(view_app *a, const int win[2], int fullscreen)
 {
     Uint32 flags = SDL_WINDOW_RESIZABLE | (fullscreen ? SDL_WINDOW_FULLSCREEN_DESKTOP : 0);
+    const char *unseen;
     int ow, oh;
     if (SDL_Init(SDL_INIT_VIDEO) != 0) {
         fprintf(stderr, "bitrain view: cannot open a display: %s\n", SDL_GetError());
         return 0;
     }
     a->sdl_on = 1;
-    if (!window_shows()) {
+    if ((unseen = unseen_driver()) != NULL) {
         fprintf(stderr, "bitrain view: no display to open (SDL fell back to its invisible \"%s\" video driver); "
                         "`bitrain render IN -o OUT.png` draws a frame to a file, and SDL_VIDEODRIVER=%s runs the "
-                        "viewer unseen all the same\n",
-                SDL_GetCurrentVideoDriver(), SDL_GetCurrentVideoDriver());
+                        "viewer unseen all the same\n", unseen, unseen);
         return 0;
     }
     SDL_SetHint(SDL_HINT_RENDER_SCALE_QUALITY, "0");     /* nearest: crisp when --size scales up */

@@ -20,6 +20,7 @@
 #include <unistd.h>
 #include "platform/load.h"
 #include "platform/scene.h"
+#include "tests/support/fuzz_frame.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -38,29 +39,16 @@ static int put(const char *path, const uint8_t *p, size_t n)
 static void frame(scene *s)
 {
     double eye[3], tgt[3];
-    cam c;
     bt_params p;
-    rs_frame fr;
-    rs_prim prim;
     br_err e;
     static uint32_t px[64 * 16];
-    void *mem;
     if (s->f.w > 512 || s->f.h > 512) return;
     if (scene_tree(s, &e) != BR_OK) return;      /* said in e; meshing is not this harness's finding */
     if (scene_reserve(s, 20000, &e) != BR_OK) return;
     scene_default_view(s, 60, eye, tgt);
-    if (scene_camera(s, eye, tgt, 60, 64, 48, &c) != BR_OK) return;   /* a view it cannot place: said */
     memset(&p, 0, sizeof p);
-    memset(&fr, 0, sizeof fr);
     p.pixel_err_q8 = 256;
-    fr.fmt = RS_FMT_XRGB8888;
-    fr.depth = RS_DEPTH32;
-    fr.clear_rgb = 0x99ccffu;
-    if (scene_frame(s, &c, &p, &fr, &prim) != BR_OK) abort();
-    mem = malloc(rs_band_mem_size(64, 16, fr.fmt, fr.depth));
-    if (!mem) abort();
-    if (rs_draw_band(&fr, 16, 16, px, 64 * 4, mem, NULL) != BR_OK) abort();
-    free(mem);
+    (void)fuzz_frame(s, eye, tgt, &p, 16, 16, px);      /* 0: a view it cannot place, said */
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

@@ -18,6 +18,7 @@
 #include "platform/load.h"
 #include "platform/scene.h"
 #include "tests/support/blob_sums.h"
+#include "tests/support/fuzz_frame.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -53,34 +54,21 @@ static const uint8_t *pristine(size_t *n)
 static void frames(scene *s, int mx, int my)
 {
     static uint32_t px[64 * 48];
+    bt_params p;
     br_err e;
     int i;
     if (scene_reserve(s, 1024, &e) != BR_OK) return;       /* (small: parts are reserved per run) */
+    memset(&p, 0, sizeof p);
+    p.pixel_err_q8 = 256;
+    p.hyst_q8 = 64;
+    p.morph_q8 = 128;
     for (i = 0; i < 3; i++) {
         double eye[3], tgt[3];
-        cam c;
-        bt_params p;
-        rs_frame fr;
-        rs_prim prim;
-        void *mem;
         scene_default_view(s, 60, eye, tgt);
         eye[0] += (mx - 128) * 40.0 * (i + 1);
         eye[1] += (my - 128) * 40.0 * (i + 1);
         eye[2] *= 1.0 - 0.3 * i;
-        if (scene_camera(s, eye, tgt, 60, 64, 48, &c) != BR_OK) return;     /* a view it cannot place */
-        memset(&p, 0, sizeof p);
-        memset(&fr, 0, sizeof fr);
-        p.pixel_err_q8 = 256;
-        p.hyst_q8 = 64;
-        p.morph_q8 = 128;
-        fr.fmt = RS_FMT_XRGB8888;
-        fr.depth = RS_DEPTH32;
-        fr.clear_rgb = 0x99ccffu;
-        if (scene_frame(s, &c, &p, &fr, &prim) != BR_OK) abort();
-        mem = malloc(rs_band_mem_size(64, 48, fr.fmt, fr.depth));
-        if (!mem) abort();
-        if (rs_draw_band(&fr, 0, 48, px, 64 * 4, mem, NULL) != BR_OK) abort();
-        free(mem);
+        if (!fuzz_frame(s, eye, tgt, &p, 0, 48, px)) return;     /* a view it cannot place */
     }
 }
 
