@@ -184,8 +184,10 @@ mcu: deps $(B)/libbitrain.a
 
 # make install [PREFIX=/usr/local] [DESTDIR=]: the program, libbitrain.a, the public
 # headers under include/bitrain/ (so that "core/hf.h" etc. resolve with the .pc's
-# -I), bitrain.pc, and assets/ as share/bitrain/ (the program finds it there from
-# its own bin/, platform/assets.h; with another BINDIR, set BITRAIN_ASSETS).
+# -I), bitrain.pc, and assets/ as DATADIR (PREFIX/share/bitrain).  The installed
+# program and library have platform/assets.c compiled again with that DATADIR
+# (ASSET_DATADIR; build/install/), so both find the data there from any directory and
+# any BINDIR (platform/assets.h).
 # Internal headers (*_int.h, *_internal.h, core/bt_em.h, the raster's own raster_*.h,
 # platform/cmd.h) stay out.
 VERSION ?= 0.1
@@ -197,10 +199,16 @@ DATADIR ?= $(PREFIX)/share/bitrain
 ASSET_FILES = $(wildcard assets/*.gz assets/*.cam) assets/README.md
 PUB_HDR  = $(sort $(filter-out %_int.h %_internal.h core/bt_em.h raster/raster_%.h platform/cmd.h platform/peer_scene.h,\
              $(wildcard core/*.h raster/*.h platform/*.h)))
+INST = $(B)/install
 install: bitrain $(B)/libbitrain.a
+	@mkdir -p $(INST)
+	$(CC) $(ALL_CFLAGS) $(ISA_FLAGS) $(shell pkg-config --cflags $(PKGS)) -DASSET_DATADIR='"$(DATADIR)"' -c -o $(INST)/assets.o platform/assets.c
+	cp $(B)/libbitrain.a $(INST)/libbitrain.a && ar rs $(INST)/libbitrain.a $(INST)/assets.o
+	$(CC) $(ALL_CFLAGS) -o $(INST)/bitrain $(PROG_SRC:%.c=$(B)/obj/%.o) $(INST)/libbitrain.a \
+	    $(shell pkg-config --libs $(PKGS)) -lm
 	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(LIBDIR)/pkgconfig $(addprefix $(DESTDIR)$(INCDIR)/bitrain/,core raster platform)
-	install -m 755 bitrain $(DESTDIR)$(BINDIR)/bitrain
-	install -m 644 $(B)/libbitrain.a $(DESTDIR)$(LIBDIR)/libbitrain.a
+	install -m 755 $(INST)/bitrain $(DESTDIR)$(BINDIR)/bitrain
+	install -m 644 $(INST)/libbitrain.a $(DESTDIR)$(LIBDIR)/libbitrain.a
 	install -d $(DESTDIR)$(DATADIR)
 	install -m 644 $(ASSET_FILES) $(DESTDIR)$(DATADIR)/
 	for h in $(PUB_HDR); do install -m 644 $$h $(DESTDIR)$(INCDIR)/bitrain/$$h || exit 1; done

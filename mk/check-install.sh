@@ -1,7 +1,8 @@
 #!/bin/sh
 # `make install` into a scratch DESTDIR, then a tiny program (tests/install_example.c)
 # compiled and linked against the installed bitrain.pc, and run; then the installed
-# program run on its bundled terrain from another directory.  Ends with
+# program run on its bundled terrain from another directory; then an install with no
+# DESTDIR and another BINDIR, whose program and library find the terrain in DATADIR.  Ends with
 # "N passed, N failed" like the test programs.  Usage: mk/check-install.sh [make]
 MAKE=${1:-make}
 tmp=${TMPDIR:-/tmp}/bitrain-install.$$
@@ -33,6 +34,18 @@ mv "$tmp/root/usr/share/bitrain" "$tmp/moved"
   || { cat "$tmp/bench.log"; fail "BITRAIN_ASSETS does not point the installed bitrain at its assets"; }
 (cd "$tmp/elsewhere" && "$bin" bench --scene default --frames 1 --size 64x48 >"$tmp/bench.log" 2>&1) \
   && fail "the installed bitrain ran without its assets"
-grep -q "assets/N47E009.hgt.gz: cannot open (looked in ./assets, .*/usr/bin/assets and .*/usr/share/bitrain)" "$tmp/bench.log" \
+grep -q "assets/N47E009.hgt.gz: cannot open (looked in ./assets, .*/usr/bin/assets, .*/usr/share/bitrain and /usr/share/bitrain)" "$tmp/bench.log" \
   || { cat "$tmp/bench.log"; fail "without its assets the installed bitrain does not say where it looked"; }
-echo "2 passed, 0 failed"
+# Installed for real (no DESTDIR) with the program in another BINDIR: the program and a
+# program linked against the installed library find the data in the DATADIR they were
+# built for (ASSET_DATADIR), from any directory, with no BITRAIN_ASSETS.
+unset PKG_CONFIG_SYSROOT_DIR
+$MAKE --no-print-directory -s install PREFIX="$tmp/p" BINDIR="$tmp/bin2" >"$tmp/log" 2>&1 || { cat "$tmp/log"; fail "make install PREFIX=$tmp/p failed"; }
+(cd "$tmp/elsewhere" && env -u BITRAIN_ASSETS "$tmp/bin2/bitrain" bench --scene default --frames 1 --size 64x48 >"$tmp/bench.log" 2>&1) \
+  || { cat "$tmp/bench.log"; fail "bitrain installed in another BINDIR does not find its DATADIR"; }
+PKG_CONFIG_PATH="$tmp/p/lib/pkgconfig"
+flags=$(pkg-config --cflags --static --libs bitrain) || fail "pkg-config does not read $tmp/p's bitrain.pc"
+${CC:-cc} -std=c99 -o "$tmp/example2" tests/install_example.c $flags || fail "tests/install_example.c does not build against $tmp/p"
+(cd "$tmp/elsewhere" && env -u BITRAIN_ASSETS "$tmp/example2" >"$tmp/example.log" 2>&1) \
+  || { cat "$tmp/example.log"; fail "a program linked against the installed library does not find the bundled terrain"; }
+echo "3 passed, 0 failed"

@@ -10,6 +10,11 @@
 #define ASSET_PREFIX "assets/"
 #define ASSET_PREFIX_LEN (sizeof ASSET_PREFIX - 1)
 #define ASSET_DIR_MAX 1024
+/* The installed data directory (`make install` compiles this file again with its
+ * DATADIR); the default is the Makefile's for PREFIX=/usr/local. */
+#ifndef ASSET_DATADIR
+#define ASSET_DATADIR "/usr/local/share/bitrain"
+#endif
 
 /* 1 when path names a regular file this process can read. */
 static int readable_file(const char *path)
@@ -58,9 +63,15 @@ br_status asset_resolve(const char *name, char *buf, size_t size, const char **o
     known = program_dirs(dir, parent);
     if (known && (try_place(buf, size, dir, ASSET_PREFIX, rest)
                   || try_place(buf, size, parent, "share/bitrain/", rest))) { *out = buf; return BR_OK; }
+    if (try_place(buf, size, ASSET_DATADIR, "", rest)) { *out = buf; return BR_OK; }
     if (!known)
-        return br_err_set(err, BR_E_IO, name, "cannot open (looked in %s./assets; the program's own directory is unknown)",
-                          env && *env ? "$BITRAIN_ASSETS, " : "");
-    return br_err_set(err, BR_E_IO, name, "cannot open (looked in %s./assets, %s/assets and %s%sshare/bitrain)",
-                      env && *env ? "$BITRAIN_ASSETS, " : "", dir, parent, parent[1] ? "/" : "");
+        return br_err_set(err, BR_E_IO, name, "cannot open (looked in %s./assets and %s; the program's own directory is unknown)",
+                          env && *env ? "$BITRAIN_ASSETS, " : "", ASSET_DATADIR);
+    /* (the data directory once: an installed program's share/bitrain is that directory) */
+    snprintf(buf, size, "%s%sshare/bitrain", parent, parent[1] ? "/" : "");
+    if (strcmp(buf, ASSET_DATADIR) == 0)
+        return br_err_set(err, BR_E_IO, name, "cannot open (looked in %s./assets, %s/assets and %s)",
+                          env && *env ? "$BITRAIN_ASSETS, " : "", dir, ASSET_DATADIR);
+    return br_err_set(err, BR_E_IO, name, "cannot open (looked in %s./assets, %s/assets, %s%sshare/bitrain and %s)",
+                      env && *env ? "$BITRAIN_ASSETS, " : "", dir, parent, parent[1] ? "/" : "", ASSET_DATADIR);
 }

@@ -7,9 +7,13 @@
  *   3. DIR/assets/N47E009.hgt.gz, DIR the running program's directory (the
  *      source tree's ./bitrain run from elsewhere);
  *   4. PARENT/share/bitrain/N47E009.hgt.gz, PARENT the directory above DIR (where
- *      `make install` puts assets/: PREFIX/bin/bitrain, PREFIX/share/bitrain/).
- * 3 and 4 read the program's path from /proc/self/exe (Linux); elsewhere only 1
- * and 2 are tried.  dem_load and campath_read resolve their names this way, so
+ *      `make install` puts assets/: PREFIX/bin/bitrain, PREFIX/share/bitrain/);
+ *   5. ASSET_DATADIR/N47E009.hgt.gz, the data directory the installed library and
+ *      program were built for (`make install` compiles platform/assets.c with its
+ *      DATADIR: a program linked against the installed library, or bitrain in
+ *      another BINDIR, finds the data there).
+ * 3 and 4 read the program's path from /proc/self/exe (Linux); elsewhere they are
+ * skipped.  dem_load and campath_read resolve their names this way, so
  * the defaults and a user's "assets/lake-path.cam" work from any directory. */
 #ifndef BR_ASSETS_H
 #define BR_ASSETS_H
