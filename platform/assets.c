@@ -54,7 +54,7 @@ br_status asset_resolve(const char *name, char *buf, size_t size, const char **o
 {
     const char *rest, *env = getenv("BITRAIN_ASSETS");
     char dir[ASSET_DIR_MAX], parent[ASSET_DIR_MAX];
-    int known;
+    int known, other_share;
     *out = name;
     if (!name || strncmp(name, ASSET_PREFIX, ASSET_PREFIX_LEN) != 0) return BR_OK;
     rest = name + ASSET_PREFIX_LEN;
@@ -67,11 +67,10 @@ br_status asset_resolve(const char *name, char *buf, size_t size, const char **o
     if (!known)
         return br_err_set(err, BR_E_IO, name, "cannot open (looked in %s./assets and %s; the program's own directory is unknown)",
                           env && *env ? "$BITRAIN_ASSETS, " : "", ASSET_DATADIR);
-    /* (the data directory once: an installed program's share/bitrain is that directory) */
+    /* the data directory named once: an installed program's share/bitrain is that directory */
     snprintf(buf, size, "%s%sshare/bitrain", parent, parent[1] ? "/" : "");
-    if (strcmp(buf, ASSET_DATADIR) == 0)
-        return br_err_set(err, BR_E_IO, name, "cannot open (looked in %s./assets, %s/assets and %s)",
-                          env && *env ? "$BITRAIN_ASSETS, " : "", dir, ASSET_DATADIR);
-    return br_err_set(err, BR_E_IO, name, "cannot open (looked in %s./assets, %s/assets, %s%sshare/bitrain and %s)",
-                      env && *env ? "$BITRAIN_ASSETS, " : "", dir, parent, parent[1] ? "/" : "", ASSET_DATADIR);
+    other_share = strcmp(buf, ASSET_DATADIR) != 0;
+    return br_err_set(err, BR_E_IO, name, "cannot open (looked in %s./assets, %s/assets%s%s and %s)",
+                      env && *env ? "$BITRAIN_ASSETS, " : "", dir, other_share ? ", " : "", other_share ? buf : "",
+                      ASSET_DATADIR);
 }
