@@ -256,7 +256,8 @@ typedef struct bt_coh {
     cam_plane pl[CAM_NPLANES];  /* the last frame's frustum */
     uint64_t acc;          /* 1 .. 2^51: grows by the eye's L1 travel, and past every
                               expiry at a key change */
-    uint64_t x;            /* the same plus the frustum planes' travel (core/bt_coh.c) */
+    uint64_t x;            /* the same, or the frustum planes' travel where that is larger
+                              (core/bt_coh.c) */
     uint64_t r[3];         /* floor(2^sh / c) for c = tau_lo, tau, tau + span; 0: none */
     int32_t sh[3];
     int64_t slack;         /* test hook: added to every margin (too generous: other meshes);

@@ -237,8 +237,12 @@ int bti_coh_frame(bti_extract *e, bt_coh *c)
             int64_t dv = (int64_t)eye[i] - c->eye[i];
             t += (uint64_t)(dv < 0 ? -dv : dv);
         }
+        /* x grows by the larger of the two travels: its growth since an entry's frame
+         * bounds each sum of travels (a sum of maxima is at least either sum), and an
+         * entry holds while both are within its margin */
+        if (pt > COH_JUMP) pt = COH_JUMP;
         c->acc += t;
-        c->x += t + (pt < COH_JUMP ? pt : COH_JUMP);
+        c->x += t > pt ? t : pt;
     }
     c->valid = 1;
     c->fresh = fresh;

@@ -157,7 +157,7 @@ typedef struct bti_extract {
                                BTI_SNAPS leaves (core/bt_part.c), else NULL */
     uint32_t nsnap;
     const bt_coh *coh;      /* frame coherence (bti_coh_frame): expiries are computed; NULL: not */
-    uint64_t coh_acc, coh_x; /* its accumulated travels now (eye; eye and planes); UINT64_MAX:
+    uint64_t coh_acc, coh_x; /* its accumulated travels now (eye; eye or planes); UINT64_MAX:
                                no entry of an earlier frame is reused */
     bti_rec *recs;          /* a part's walk: its decisions (bti_rec), else NULL */
     uint32_t nrec, cap_rec; /* recorded, room; nrec > cap_rec: some were not */
@@ -365,9 +365,10 @@ int bti_coh_frame(bti_extract *e, bt_coh *c);
  * sp (-1 culled, 0, 1) with morph, L = ew f and distance d (d < 0: the answer holds
  * at every distance), made under plane mask m_in, which left m_out, with cull margin
  * cm (Q30 world units, culled()): m_out << 58 | m_in << 52 | moving << 51 | expiry,
- * the expiry (< 2^51) an accumulated travel (the eye's for m_in = 0, else the eye's
- * and the planes') up to which the answer holds, moving: a split whose geomorph
- * weight moves with the distance (to be computed again); 0: this frame only. */
+ * the expiry (< 2^51) an accumulated travel (the eye's for m_in = 0, else each
+ * frame's larger of the eye's and the planes') up to which the answer holds, moving:
+ * a split whose geomorph weight moves with the distance (to be computed again); 0:
+ * this frame only. */
 #define BTI_COH_BITS 52
 #define BTI_COH_MOVING ((uint64_t)1 << 51)
 #define BTI_COH_EXP (BTI_COH_MOVING - 1)

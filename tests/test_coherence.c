@@ -36,6 +36,7 @@ static long parts_run, parts_reused;   /* A's parts, and those its last mesh ser
 static uint32_t parts_most;            /* A's most parts in a frame */
 static long serial_frames;             /* A's frames extracted serially after all */
 static uint32_t part_tri = 4096;       /* triangles a part holds (side_open; the scene's) */
+static double fovy = 60;               /* the cameras' vertical field of view, degrees */
 
 static int side_open(side *s)
 {
@@ -134,7 +135,7 @@ static int frame(const double eye[6], const knobs *k)
 {
     cam c;
     bt_params pa, pb;
-    if (scene_camera(&sc, eye, eye + 3, 60, k->w, k->h, &c) != BR_OK) return 0;
+    if (scene_camera(&sc, eye, eye + 3, fovy, k->w, k->h, &c) != BR_OK) return 0;
     memset(&pa, 0, sizeof pa);
     pa.mode = k->mode;
     pa.c = &c;
@@ -394,6 +395,34 @@ static void test_coherence_margin_matters(void)
     close_dem();
 }
 
+/* A wide-angle camera sliding sideways: its frustum planes, nearly parallel to the
+ * slide, move a tenth of the eye's travel, so an entry with planes to test is kept by
+ * the eye's travel (its distance margin) as much as by the planes' (core/bt_coh.c:
+ * x grows by the larger of the two, not by the planes' alone). */
+static void test_coherence_slide(void)
+{
+    int i, parts;
+    if (!open_dem("assets/N47E009.hgt.gz")) { CHECK(0); return; }
+    fovy = 170;
+    for (parts = 0; parts < 2; parts++) {
+        knobs k = VIEWER;
+        k.parts = parts;
+        frames = differ = 0;
+        for (i = 0; i < 120; i++) {
+            const double a = 0.5, s = 25.0 * i;
+            double e[6];
+            e[0] = 0.3 * sc.width_m + s * sin(a);
+            e[1] = 0.3 * sc.depth_m - s * cos(a);
+            e[2] = sc.zmax_m + 800.0;
+            e[3] = e[0] + 3000 * cos(a); e[4] = e[1] + 3000 * sin(a); e[5] = e[2] - 1500;
+            (void)frame(e, &k);
+        }
+        CHECK_MSG(frames == 120 && differ == 0, "parts %d: %ld of %ld frames differ", parts, differ, frames);
+    }
+    fovy = 60;
+    close_dem();
+}
+
 /* A tree built again into the same memory from other heights (same size, node
  * pointer and height range) is another tree to the memo: the node hash (bt_tree.sum)
  * is part of its key, so the coherent side still matches. */
@@ -536,6 +565,7 @@ int main(void)
     T_RUN(test_coherence_root_corners);
     T_RUN(test_coherence_flights);
     T_RUN(test_coherence_margin_matters);
+    T_RUN(test_coherence_slide);
     T_RUN(test_coherence_rebuilt_tree);
     T_RUN(test_coherence_lent_scratch);
     return t_finish();
