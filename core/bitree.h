@@ -248,6 +248,8 @@ typedef struct bt_coh_key {
     bt_frame fr;
     int64_t fq8, tau, tau_lo, span;
 } bt_coh_key;
+/* bt_coh's plane accumulators: one per frustum plane, one for two or more planes */
+#define BT_COH_NX (CAM_NPLANES + 1)
 typedef struct bt_coh {
     bt_coh_key key;
     int32_t eye[3], valid;
@@ -256,8 +258,8 @@ typedef struct bt_coh {
     cam_plane pl[CAM_NPLANES];  /* the last frame's frustum */
     uint64_t acc;          /* 1 .. 2^51: grows by the eye's L1 travel, and past every
                               expiry at a key change */
-    uint64_t x;            /* the same, or the frustum planes' travel where that is larger
-                              (core/bt_coh.c) */
+    uint64_t x[BT_COH_NX]; /* the travels of entries with planes to test: per plane, and
+                              for two or more planes (core/bt_coh.c) */
     uint64_t r[3];         /* floor(2^sh / c) for c = tau_lo, tau, tau + span; 0: none */
     int32_t sh[3];
     int64_t slack;         /* test hook: added to every margin (too generous: other meshes);

@@ -40,6 +40,23 @@
 
 #define sat_mul bti_isat_mul   /* the rule's own saturated product */
 
+/* The plane accumulators count a quarter of the eye's travel (COH_EYE_SH): the entries
+ * near a plane have distance margins many times their room to it (16 to 64 times on
+ * N50E009, docs/perf-history.md), so a quarter seldom ends one first, while the room
+ * lasts as long as the plane moves slower than a quarter of the eye (the side planes of
+ * a camera moving forward move a third to a half of its travel) */
+#define COH_EYE_SH 2
+
+typedef char bti_coh_six_planes[CAM_NPLANES == 6 ? 1 : -1];     /* (the table below) */
+
+/* 0 for mask 0, 1 + i for the mask of plane i alone, 1 + CAM_NPLANES for two or more */
+const uint8_t bti_coh_ctr_of[64] = {
+    0, 1, 2, 7, 3, 7, 7, 7, 4, 7, 7, 7, 7, 7, 7, 7,
+    5, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7,
+    6, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7,
+    7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7
+};
+
 /* <= floor(L / c) for r = floor(2^sh / c), c < 2^32 (sh = 31 + bits(c)): with s =
  * max(0, bits(L) - 32), (L >> s) r 2^s / 2^sh <= L / c, and the product < 2^64. */
 static int64_t quot_lo(uint64_t L, uint64_t r, int32_t sh)
@@ -115,15 +132,18 @@ uint64_t bti_coh_entry(const bti_extract *e, int sp, int64_t L, int64_t d, uint1
     int64_t m = sp < 0 || d < 0 ? (int64_t)COH_JUMP - 1 : margin(e, sp, L, d, morph, &moving);
     if (m < 0) return 0;
     if (m_in) {
-        /* a plane's value at the box moves by at most the planes' travel (Q30 world
-         * units over 2^30, bti_coh_frame); cm / 2^30 rounded down */
-        int64_t mc = cm >> 30;
+        /* on m_in's plane accumulator (bti_coh_frame), which grows by at least a quarter
+         * of the eye's travel and by at least the travel of m_in's planes: the distance
+         * margin over four, rounded down, and the room to the planes, cm / 2^30 rounded
+         * down (a plane's value at the box moves by at most the plane's travel) */
+        const int64_t mc = cm >> 30;
+        m >>= COH_EYE_SH;
         if (mc < m) m = mc;
     }
     m += c->slack;
     if (m < 0) return 0;
     return (uint64_t)m_out << (BTI_COH_BITS + 6) | (uint64_t)m_in << BTI_COH_BITS
-         | (moving ? BTI_COH_MOVING : 0) | ((m_in ? c->x : c->acc) + (uint64_t)m);
+         | (moving ? BTI_COH_MOVING : 0) | ((m_in ? c->x[bti_coh_ctr_of[m_in] - 1] : c->acc) + (uint64_t)m);
 }
 
 /* *r = floor(2^sh / v), *sh = 31 + bits(v) (quot_lo's); *r = 0 (none) unless 0 < v < 2^32 */
@@ -185,64 +205,69 @@ void bti_coh_weight_run(const bti_wtab *wt, int64_t L, uint16_t morph, uint32_t 
     *dhi = (uint32_t)hi;
 }
 
-/* How far the planes' values may have moved at any point within +-CAM_COORD_MAX,
- * over 2^30, rounded up: d + n . p moves by at most |d' - d| + sum |n'_k - n_k|
+/* How far a plane's value may have moved at any point within +-CAM_COORD_MAX, over
+ * 2^30, rounded up: d + n . p moves by at most |d' - d| + sum |n'_k - n_k|
  * CAM_COORD_MAX, and the volumes' corners lie in that cube (bti_setup).  |d| < 2^63
- * (core/cam.h), so the difference fits 64 bits unsigned. */
+ * (core/cam.h), so the difference fits 64 bits unsigned; at most COH_JUMP. */
 static uint64_t plane_travel(const cam_plane *a, const cam_plane *b)
 {
-    uint64_t mx = 0;
-    int i, k;
-    for (i = 0; i < CAM_NPLANES; i++) {
-        uint64_t dd = a[i].d >= b[i].d ? (uint64_t)a[i].d - (uint64_t)b[i].d : (uint64_t)b[i].d - (uint64_t)a[i].d;
-        uint64_t t = (dd >> 30) + 1;
-        for (k = 0; k < 3; k++) {
-            int64_t dn = (int64_t)a[i].n[k] - b[i].n[k];
-            t += (uint64_t)(dn < 0 ? -dn : dn);
-        }
-        if (t > mx) mx = t;
+    const uint64_t dd = a->d >= b->d ? (uint64_t)a->d - (uint64_t)b->d : (uint64_t)b->d - (uint64_t)a->d;
+    uint64_t t = (dd >> 30) + 1;
+    int k;
+    for (k = 0; k < 3; k++) {
+        const int64_t dn = (int64_t)a->n[k] - b->n[k];
+        t += (uint64_t)(dn < 0 ? -dn : dn);
     }
-    return mx;
+    return t < COH_JUMP ? t : COH_JUMP;
 }
 
 int bti_coh_frame(bti_extract *e, bt_coh *c)
 {
     bt_coh_key k;
     const int32_t *eye = e->p->c->eye;
-    int wrap = 0, fresh = 0;
+    int wrap = 0, fresh = 0, j;
     memset(&k, 0, sizeof k);
     k.node = e->t->node; k.sum = e->t->sum; k.n = e->t->n; k.w = e->t->w; k.h = e->t->h;
     k.zmin = e->t->zmin; k.zmax = e->t->zmax; k.no_cull = e->p->no_cull != 0;
     k.fr = e->p->fr; k.fq8 = e->fq8; k.tau = e->tau; k.tau_lo = e->tau_lo; k.span = e->morph_span;
-    if (!c->valid || c->acc >= COH_LIMIT || c->x >= COH_LIMIT) {
+    /* x[CAM_NPLANES] grows at least as fast as every other x[j] */
+    if (!c->valid || c->acc >= COH_LIMIT || c->x[CAM_NPLANES] >= COH_LIMIT) {
         int64_t slack = c->slack;
         wrap = c->valid;                              /* entries may hold any expiry */
         fresh = 1;
         memset(c, 0, sizeof *c);
         c->slack = slack;
-        c->acc = c->x = 1;
+        c->acc = 1;
+        for (j = 0; j < BT_COH_NX; j++) c->x[j] = 1;
     }
     if (memcmp(&k, &c->key, sizeof k) != 0) {
         memcpy(&c->key, &k, sizeof k);   /* padding too: memcmp compares it */
         fresh = 1;
         c->acc += c->valid ? COH_JUMP : 0;            /* every earlier expiry has passed */
-        c->x += c->valid ? COH_JUMP : 0;
+        for (j = 0; j < BT_COH_NX; j++) c->x[j] += c->valid ? COH_JUMP : 0;
         recip(c, 0, k.tau_lo);
         recip(c, 1, k.tau);
         recip(c, 2, k.tau + k.span);
     } else {
-        uint64_t t = 0, pt = plane_travel(e->pl, c->pl);
+        /* acc grows by the eye's L1 travel t; x[j] by the larger of t / 4 (rounded up)
+         * and plane j's travel, x[CAM_NPLANES] by the larger of t / 4 and every plane's.
+         * A sum of maxima is at least each sum, so an entry on x[j] whose margin (the
+         * distance margin over four, the room to the planes) is at least x[j]'s growth
+         * since its frame is within both */
+        uint64_t t = 0, ts, pmax = 0;
         int i;
         for (i = 0; i < 3; i++) {
             int64_t dv = (int64_t)eye[i] - c->eye[i];
             t += (uint64_t)(dv < 0 ? -dv : dv);
         }
-        /* x grows by the larger of the two travels: its growth since an entry's frame
-         * bounds each sum of travels (a sum of maxima is at least either sum), and an
-         * entry holds while both are within its margin */
-        if (pt > COH_JUMP) pt = COH_JUMP;
+        ts = (t + ((uint64_t)1 << COH_EYE_SH) - 1) >> COH_EYE_SH;
+        for (j = 0; j < CAM_NPLANES; j++) {
+            const uint64_t pt = plane_travel(&e->pl[j], &c->pl[j]);
+            c->x[j] += pt > ts ? pt : ts;
+            if (pt > pmax) pmax = pt;
+        }
+        c->x[CAM_NPLANES] += pmax > ts ? pmax : ts;
         c->acc += t;
-        c->x += t > pt ? t : pt;
     }
     c->valid = 1;
     c->fresh = fresh;
@@ -250,6 +275,7 @@ int bti_coh_frame(bti_extract *e, bt_coh *c)
     memcpy(c->pl, e->pl, sizeof c->pl);
     e->coh = BR_COHERENCE ? c : NULL;
     e->coh_acc = BR_COHERENCE && !e->p->no_coherence ? c->acc : UINT64_MAX;
-    e->coh_x = BR_COHERENCE && !e->p->no_coherence ? c->x : UINT64_MAX;
+    e->coh_ctr[0] = e->coh_acc;
+    for (j = 0; j < BT_COH_NX; j++) e->coh_ctr[1 + j] = BR_COHERENCE && !e->p->no_coherence ? c->x[j] : UINT64_MAX;
     return wrap;
 }

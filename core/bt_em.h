@@ -157,8 +157,10 @@ typedef struct bti_extract {
                                BTI_SNAPS leaves (core/bt_part.c), else NULL */
     uint32_t nsnap;
     const bt_coh *coh;      /* frame coherence (bti_coh_frame): expiries are computed; NULL: not */
-    uint64_t coh_acc, coh_x; /* its accumulated travels now (eye; eye or planes); UINT64_MAX:
-                               no entry of an earlier frame is reused */
+    uint64_t coh_acc;       /* its eye's accumulated travel now; UINT64_MAX: no entry of
+                               an earlier frame is reused */
+    uint64_t coh_ctr[1 + BT_COH_NX];    /* the accumulators an entry's expiry is on: bt_coh
+                               acc, then x[] (UINT64_MAX where coh_acc is) */
     bti_rec *recs;          /* a part's walk: its decisions (bti_rec), else NULL */
     uint32_t nrec, cap_rec; /* recorded, room; nrec > cap_rec: some were not */
 } bti_extract;
@@ -365,8 +367,9 @@ int bti_coh_frame(bti_extract *e, bt_coh *c);
  * sp (-1 culled, 0, 1) with morph, L = ew f and distance d (d < 0: the answer holds
  * at every distance), made under plane mask m_in, which left m_out, with cull margin
  * cm (Q30 world units, culled()): m_out << 58 | m_in << 52 | moving << 51 | expiry,
- * the expiry (< 2^51) an accumulated travel (the eye's for m_in = 0, else each
- * frame's larger of the eye's and the planes') up to which the answer holds, moving:
+ * the expiry (< 2^51) a value of accumulator coh_ctr[bti_coh_ctr_of[m_in]] (the eye's
+ * travel for m_in = 0, else that of m_in's plane, or of its planes, each frame's
+ * larger of theirs and a quarter of the eye's) up to which the answer holds, moving:
  * a split whose geomorph weight moves with the distance (to be computed again); 0:
  * this frame only. */
 #define BTI_COH_BITS 52
@@ -374,6 +377,9 @@ int bti_coh_frame(bti_extract *e, bt_coh *c);
 #define BTI_COH_EXP (BTI_COH_MOVING - 1)
 uint64_t bti_coh_entry(const bti_extract *e, int sp, int64_t L, int64_t d, uint16_t morph, unsigned m_in,
                        unsigned m_out, int64_t cm);
+/* The accumulator (index into coh_ctr) of an entry made under plane mask m_in: 0 for
+ * none, 1 + i for plane i alone, 1 + CAM_NPLANES for two or more (core/bt_coh.c) */
+extern const uint8_t bti_coh_ctr_of[64];
 /* The weights' reciprocals for threshold tau and span (made again only when they change) */
 void bti_wtab_set(bti_wtab *wt, int64_t tau, int64_t span);
 /* The box distances [*dlo, *dhi] (empty: *dlo > *dhi) at which morph_at gives weight
@@ -389,7 +395,7 @@ static inline int bti_coh_proves(const bti_extract *e, uint64_t w, int sp, uint3
                                  unsigned *mask)
 {
     const unsigned m_in = (unsigned)(w >> BTI_COH_BITS) & 63u;
-    if (*mask != m_in || (m_in ? e->coh_x : e->coh_acc) > (w & BTI_COH_EXP)
+    if (*mask != m_in || e->coh_ctr[bti_coh_ctr_of[m_in]] > (w & BTI_COH_EXP)
         || (sp > 0) != ((e->prev[idx >> 3] & pbit) != 0))
         return 0;
     *mask = (unsigned)(w >> (BTI_COH_BITS + 6));

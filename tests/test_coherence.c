@@ -395,30 +395,34 @@ static void test_coherence_margin_matters(void)
     close_dem();
 }
 
-/* A wide-angle camera sliding sideways: its frustum planes, nearly parallel to the
- * slide, move a tenth of the eye's travel, so an entry with planes to test is kept by
- * the eye's travel (its distance margin) as much as by the planes' (core/bt_coh.c:
- * x grows by the larger of the two, not by the planes' alone). */
+/* Cameras whose frustum planes move much less than the eye, so that an entry with
+ * planes to test is kept by the eye's travel (its distance margin) as much as by the
+ * planes' (core/bt_coh.c: each plane accumulator grows by the larger of its planes'
+ * travel and a quarter of the eye's, not by the planes' alone): a 170-degree camera
+ * sliding sideways (every plane nearly parallel to the slide), and a level camera
+ * rising (its left and right planes contain the vertical). */
 static void test_coherence_slide(void)
 {
-    int i, parts;
+    int i, parts, lift;
     if (!open_dem("assets/N47E009.hgt.gz")) { CHECK(0); return; }
-    fovy = 170;
-    for (parts = 0; parts < 2; parts++) {
-        knobs k = VIEWER;
-        k.parts = parts;
-        frames = differ = 0;
-        for (i = 0; i < 120; i++) {
-            const double a = 0.5, s = 25.0 * i;
-            double e[6];
-            e[0] = 0.3 * sc.width_m + s * sin(a);
-            e[1] = 0.3 * sc.depth_m - s * cos(a);
-            e[2] = sc.zmax_m + 800.0;
-            e[3] = e[0] + 3000 * cos(a); e[4] = e[1] + 3000 * sin(a); e[5] = e[2] - 1500;
-            (void)frame(e, &k);
+    for (lift = 0; lift < 2; lift++)
+        for (parts = 0; parts < 2; parts++) {
+            knobs k = VIEWER;
+            k.parts = parts;
+            fovy = lift ? 60 : 170;
+            frames = differ = 0;
+            for (i = 0; i < 120; i++) {
+                const double a = 0.5, s = 25.0 * i;
+                double e[6];
+                e[0] = 0.3 * sc.width_m + (lift ? 0 : s * sin(a));
+                e[1] = 0.3 * sc.depth_m - (lift ? 0 : s * cos(a));
+                e[2] = sc.zmax_m + (lift ? 200.0 + s : 800.0);
+                e[3] = e[0] + 3000 * cos(a); e[4] = e[1] + 3000 * sin(a); e[5] = e[2] - (lift ? 0 : 1500);
+                (void)frame(e, &k);
+            }
+            CHECK_MSG(frames == 120 && differ == 0, "%s, parts %d: %ld of %ld frames differ",
+                      lift ? "rising" : "sliding", parts, differ, frames);
         }
-        CHECK_MSG(frames == 120 && differ == 0, "parts %d: %ld of %ld frames differ", parts, differ, frames);
-    }
     fovy = 60;
     close_dem();
 }
