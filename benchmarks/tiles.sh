@@ -17,14 +17,15 @@ for dem in ../shared/data/dem/hgt/*.hgt; do
   t=$(basename "$dem" .hgt)
   for p in n50-steep n50-horizon; do
     for size in 320x240 640x480; do
-      tris=$(./bitrain bench --scene default --dem "$dem" --path benchmarks/$p.cam --size $size --frames "$FRAMES" \
-             | sed -n 's/.*tris\/frame=\([0-9]*\).*/\1/p')
+      # one run: under callgrind where valgrind is, else plain (its line gives the triangles)
+      out=benchmarks/out/callgrind.tile.$t.$p.$size
+      set -- ./bitrain bench --scene default --dem "$dem" --path benchmarks/$p.cam --size $size --frames "$FRAMES"
+      if command -v valgrind >/dev/null 2>&1; then
+        set -- valgrind --tool=callgrind --toggle-collect=bench_default_frame --callgrind-out-file=$out "$@"
+      fi
+      tris=$("$@" 2>/dev/null | sed -n 's/.*tris\/frame=\([0-9]*\).*/\1/p')
       line="  $t $p $size: $tris triangles a frame"
       if command -v valgrind >/dev/null 2>&1; then
-        out=benchmarks/out/callgrind.tile.$t.$p.$size
-        valgrind --tool=callgrind --toggle-collect=bench_default_frame --callgrind-out-file=$out \
-          ./bitrain bench --scene default --dem "$dem" --path benchmarks/$p.cam --size $size --frames "$FRAMES" \
-          >/dev/null 2>&1
         tot=$(callgrind_annotate $out 2>/dev/null | awk '/PROGRAM TOTALS/ {gsub(",", "", $1); print $1}')
         sel=$(callgrind_annotate --inclusive=yes $out 2>/dev/null | awk '/bd_select/ {gsub(",", "", $1); print $1; exit}')
         [ -n "$tot" ] && [ -n "$sel" ] && line=$(awk -v t="$tot" -v s="$sel" -v n="$FRAMES" -v l="$line" \

@@ -225,6 +225,7 @@ int bti_coh_frame(bti_extract *e, bt_coh *c)
 {
     bt_coh_key k;
     const int32_t *eye = e->p->c->eye;
+    const int on = BR_COHERENCE && !e->p->no_coherence;
     int wrap = 0, fresh = 0, j;
     memset(&k, 0, sizeof k);
     k.node = e->t->node; k.sum = e->t->sum; k.n = e->t->n; k.w = e->t->w; k.h = e->t->h;
@@ -274,8 +275,10 @@ int bti_coh_frame(bti_extract *e, bt_coh *c)
     memcpy(c->eye, eye, sizeof c->eye);
     memcpy(c->pl, e->pl, sizeof c->pl);
     e->coh = BR_COHERENCE ? c : NULL;
-    e->coh_acc = BR_COHERENCE && !e->p->no_coherence ? c->acc : UINT64_MAX;
+    /* coh_ctr[0] mirrors coh_acc, so that bti_coh_proves picks an entry's accumulator
+     * by its plane mask alone (bti_coh_ctr_of), with no branch */
+    e->coh_acc = on ? c->acc : UINT64_MAX;
     e->coh_ctr[0] = e->coh_acc;
-    for (j = 0; j < BT_COH_NX; j++) e->coh_ctr[1 + j] = BR_COHERENCE && !e->p->no_coherence ? c->x[j] : UINT64_MAX;
+    for (j = 0; j < BT_COH_NX; j++) e->coh_ctr[1 + j] = on ? c->x[j] : UINT64_MAX;
     return wrap;
 }
