@@ -339,7 +339,7 @@ RSI_INLINE static void tri_pair_body(band *bd, const rs_cvert *v0, const rs_cver
         t = v0->y < v1->y ? v0->y : v1->y; u = v2->y < v3->y ? v2->y : v3->y; ymin = t < u ? t : u;
         t = v0->y > v1->y ? v0->y : v1->y; u = v2->y > v3->y ? v2->y : v3->y; ymax = t > u ? t : u;
         lo = (ymin + RSI_HALF - 1) >> RSI_SUB; hi = (ymax - RSI_HALF) >> RSI_SUB;
-        /* no row of centres (a quarter of camera B's pairs: slivers near the horizon):
+        /* no row of centres (common: slivers near the horizon):
          * done before the columns are looked at */
         if (hi < lo) return;
         t = v0->x < v1->x ? v0->x : v1->x; u = v2->x < v3->x ? v2->x : v3->x; xmin = t < u ? t : u;

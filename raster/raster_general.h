@@ -71,9 +71,8 @@ typedef uint16_t gs_v8hn __attribute__((vector_size(16), aligned(2)));
  * each value from the span start plus (j + l) times its step, so the lanes start at
  * {0, 1, 2, 3} steps (the *off) and step by 4 (the *step). */
 typedef struct gs_lanes { gs_v4u zoff, roff, goff, boff, zstep, rstep, gstep, bstep; } gs_lanes;
-/* Made at a triangle's first span of eight or more pixels (a call draws 2.5 rows on
- * average; on B 640x480 0.9 K of the 4.3 K calls per frame draw such a span), out of
- * line and into memory: inline, GCC may hoist it out of the row loop (it is loop
+/* Made at a triangle's first span of eight or more pixels (most calls draw a few short
+ * rows and no such span), out of line and into memory: inline, GCC may hoist it out of the row loop (it is loop
  * invariant), making it for every call.  The signed colour gradients G_k from the packed
  * gc = G_R 2^42 + G_G 2^21 + G_B (mod 2^64): on a span of n >= 8 pixels the fields at
  * pixels 0 and 3 both lie in [0, 2^21), so 3 |G_k| < 2^21 and |G_k| < 2^20, which the

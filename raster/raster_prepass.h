@@ -293,8 +293,8 @@ PP_SCHED static void pp_prepass(const band *bd, pp_soa *q, const rs_cvert *cache
         const pp_v8 py0 = PP_MAX(lo, by0), py1 = PP_MIN(hi, by1);
         const pp_v8 bempty = (py0 > py1) | (xl > xh);
         {
-            /* PP_L steps that all draw nothing here (camera B: strips off screen, slivers
-             * near the horizon): kinds from the quantities above, nothing else is read */
+            /* PP_L steps that all draw nothing here (strips off screen, slivers near the
+             * horizon): kinds from the quantities above, nothing else is read */
             const pp_v8 skip = slow | empty | bempty | (iota >= (int16_t)(n - k));
             uint64_t w[PP_L / 4];
             memcpy(w, &skip, sizeof w);

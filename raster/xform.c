@@ -117,9 +117,9 @@ void rs_cvert_recolour(rs_cvert *o, uint32_t rgb)
 
 /* The reference transform of one vertex (camera space, near/far, guard band, divide,
  * screen outcodes), for the vertices the fast loop below does not finish: beyond the
- * far plane, or not provably inside the guard band.  Rare (peer camera B 640x480: 103
- * of 66,049 per frame; camera A: none), so it recomputes everything from the frame
- * instead of holding constants. */
+ * far plane, or not provably inside the guard band.  Rare (terrain beyond the far plane
+ * or far outside the screen), so it recomputes everything from the frame instead of
+ * holding constants. */
 static RSI_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cvert *o)
 {
     const cam_vp *vp = &f->vp;
@@ -176,11 +176,11 @@ static RSI_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cv
  *   then beyond it too.)  Any dx keeps the sums exact (s is r[i][0] times the same dx;
  *   the step is only a prediction), so a larger one is replaced by 0.  On a grid mesh
  *   only the row starts and the first step compute the sums; s lives in xform_k for
- *   the memory operands (gcc 12 spills a local copy and reloads it into a register);
+ *   the memory operands (a local copy would be spilled and reloaded into a register);
  * - near and far in one unsigned compare: tzn = t2 - znear 2^30 makes the shifted sum
  *   zc - znear exactly (a multiple of 2^30 passes through the floor shift); the sum
  *   still fits int64, as |r p| < 3 2^60, |t2| < 3 2^60 and znear 2^30 < 2^61.  A
- *   vertex behind the near plane (peer camera B: 2,637 per frame) only needs its
+ *   vertex behind the near plane (common when the camera flies low) only needs its
  *   colour, so it is done here too;
  * - the screen position folds the centre and the rounding into one constant:
  *   cx + ((q + 8) >> 4) = (q + 8 + 16 cx) >> 4 for q = f8 c0 / zc, and for y the
@@ -193,8 +193,8 @@ static RSI_NOINLINE void xform_slow(const rs_frame *f, const rs_vertex *v, rs_cv
  *   (sx - cx = floor((q + 8) / 16), so -2^22 + 16 <= q + 8 <= 2^22 - 1; for y the same
  *   with q' + 7, q' = -q), hence |f8 c0| < g8 zc, strictly inside, and the side bits
  *   follow from sx, sy as in xform_slow.  Only the side a coordinate is off needs the
- *   bound (peer camera B: 15,700 vertices per frame off screen, nearly all inside the
- *   guard band).  Anything else goes to xform_slow, which decides exactly.
+ *   bound (a strip that leaves the screen has many vertices off it, nearly all inside
+ *   the guard band).  Anything else goes to xform_slow, which decides exactly.
  *   (GUARD_S = 2^18 would be wrong: test_raster's test_transform fails on it);
  * - the packed colour: rgb (< 2^24) times 1 + 2^26 is rgb + (rgb << 26) without
  *   overlap, which holds B at bit 0 and R at bit 42 where rsi_pack_rgb puts them; G
@@ -298,11 +298,11 @@ typedef struct xform_st {
  * The next ek is key + dk for every vertex: a stepped vertex's key is ek, so one add
  * after the join serves both paths (the other sets ek = key); dk lives in xform_k
  * (one register fewer across the unrolled loop; the compiler reloads it after the
- * path that writes it).  Written as ek += dk on the stepped path and ek = key + dk on
- * the other, gcc 12 moved ek between registers in two of the four copies.
+ * path that writes it; written as ek += dk on the stepped path and ek = key + dk on
+ * the other, the compiler may move ek between registers in the unrolled copies).
  * Every exit to xform_slow goes through the one call at `slow`, so the compiler forms
- * the call's v and o there only (with several call sites gcc 12 kept v + i and o + i
- * of the unrolled copies in registers or on the stack, 3 instructions per vertex). */
+ * the call's v and o there only (with several call sites it may keep v + i and o + i
+ * of the unrolled copies in registers or on the stack for every vertex). */
 static RSI_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex *v, rs_cvert *o, int tex,
                                  int first, xform_st *st)
 {
@@ -371,9 +371,8 @@ static RSI_INLINE void xform_vert(const rs_frame *f, xform_k *k, const rs_vertex
      * band when |s - c| <= GUARD_S, which needs a test only on the side the
      * coordinate is off; else the exact test in xform_slow (which rewrites the
      * whole entry).  The side bits are added, not or-ed: rgb < 2^24 and c holds no
-     * side bit yet, so + sets the bit exactly as |, and gcc 12 forms rgb + bit with
-     * one lea (rgb | bit took a copy and an or: peer camera B has 15,700 vertices
-     * off screen in x per frame) */
+     * side bit yet, so + sets the bit exactly as |, and the compiler can form rgb +
+     * bit with one lea (rgb | bit takes a copy and an or) */
     o->c = rgb;
     /* without a 64-bit divide, |q| >= 2^30 (far beyond the guard band) is left to
      * xform_slow (xform_div), where the native path ends too */
@@ -476,7 +475,7 @@ static RSI_INLINE void xform_loop(const rs_frame *f, xform_k *k, int tex)
 /* Called through a pointer (see rs_frame_prepare), so the compiler cannot propagate
  * xform_k's values into the loop: it would then expand the multiply by pmul into a
  * copy, shift and add and rebuild the 64-bit pmask every vertex, where a memory
- * operand costs nothing (2 instructions per vertex). */
+ * operand costs nothing. */
 static RSI_NOINLINE void xform_plain(const rs_frame *f, xform_k *k) { xform_loop(f, k, 0); }
 static RSI_NOINLINE void xform_tex(const rs_frame *f, xform_k *k) { xform_loop(f, k, 1); }
 
