@@ -7,7 +7,6 @@
 #include "tests/test.h"
 #include "tests/zipmk.h"
 #include "platform/load.h"
-#include "platform/campath.h"
 
 static unsigned char *hgt, *png, *asc, *bt, *tif, *xyz, *tifz, *fuji;
 static size_t hgt_n, png_n, asc_n, bt_n, tif_n, xyz_n, tifz_n, fuji_n;
@@ -488,70 +487,6 @@ static void test_dispatch(void)
     }
 }
 
-/* Camera path files (--path): each broken file refused with the status and the line
- * it names, in a message that names the file; a valid one with comments, blanks and
- * CRLF read whole.  (A path of more than CAMPATH_MAX_FRAMES lines, 12 MB, is left out.) */
-static void bad_cam_(const char *text, size_t n, br_status want, const char *says, int line)
-{
-    char path[512];
-    campath cp;
-    br_err e;
-    br_status s;
-    FILE *f;
-    snprintf(path, sizeof path, "%s/bad.cam", t_outdir());
-    f = fopen(path, "wb");
-    CHECK(f != NULL);
-    if (!f) return;
-    CHECK_EQ(fwrite(text, 1, n, f), n);
-    fclose(f);
-    memset(&e, 0, sizeof e);
-    s = campath_read(path, &cp, &e);
-    CHECK_MSG(s == want, "line %d: got %s, want %s: %s", line, br_status_name(s), br_status_name(want), e.msg);
-    CHECK_MSG(cp.cam == NULL && cp.n == 0, "line %d: the path is not left empty", line);
-    CHECK_MSG(strstr(e.msg, path) != NULL, "line %d: message '%s' lacks the file name", line, e.msg);
-    CHECK_MSG(strstr(e.msg, says) != NULL, "line %d: message '%s' lacks '%s'", line, e.msg, says);
-}
-#define BAD_CAM(text, want, says) bad_cam_(text, sizeof text - 1, want, says, __LINE__)
-
-static void test_campath(void)
-{
-    static char longline[1100];
-    char path[512];
-    campath cp;
-    br_err e;
-    FILE *f;
-    BAD_CAM("1,2,3,4,5\n", BR_E_FORMAT, "line 1:");                       /* five numbers */
-    BAD_CAM("# eye, target\n\n1,2,3,4,5,6\n1,2,3,4,5,x\n", BR_E_FORMAT, "line 4:");
-    BAD_CAM("1,2,3,4,5,6,7\n", BR_E_FORMAT, "line 1:");                   /* seven */
-    BAD_CAM("1 2 3 4 5 6\n", BR_E_FORMAT, "line 1:");                     /* no commas */
-    BAD_CAM("nan,0,0,1,1,1\n", BR_E_FORMAT, "line 1:");
-    BAD_CAM("0,0,inf,1,1,1\n", BR_E_FORMAT, "line 1:");
-    BAD_CAM("1,2,3,4,5,6\n1e30,0,0,1,1,1\n", BR_E_VALUE, "line 2:");      /* beyond CAMPATH_COORD_MAX */
-    BAD_CAM("100,200,300,100,200,300\n", BR_E_VALUE, "the eye is the target");
-    BAD_CAM("1,2,3\0,4,5,6\n", BR_E_FORMAT, "NUL byte");
-    BAD_CAM("", BR_E_VALUE, "no camera lines");
-    BAD_CAM("# only a comment\n\n   \n", BR_E_VALUE, "no camera lines");
-    memset(longline, '1', sizeof longline - 2);
-    longline[sizeof longline - 2] = '\n';
-    bad_cam_(longline, sizeof longline - 1, BR_E_FORMAT, "longer than", __LINE__);
-    /* valid: blanks around numbers, a trailing comment, CRLF, no final newline */
-    snprintf(path, sizeof path, "%s/good.cam", t_outdir());
-    f = fopen(path, "wb");
-    CHECK(f != NULL);
-    if (!f) return;
-    fputs("# a path\r\n 10 , 20,30 ,40,50, -60 # first\r\n\r\n1.5e3,2,3,4,5,6", f);
-    fclose(f);
-    CHECK_EQ(campath_read(path, &cp, &e), BR_OK);
-    CHECK_EQ(cp.n, 2);
-    if (cp.n == 2) {
-        CHECK(cp.cam[0][1] == 20.0 && cp.cam[0][5] == -60.0);
-        CHECK(cp.cam[1][0] == 1500.0 && cp.cam[1][5] == 6.0);
-    }
-    campath_free(&cp);
-    CHECK_EQ(campath_read("no/such/path.cam", &cp, &e), BR_E_IO);
-    CHECK(strstr(e.msg, "no/such/path.cam") != NULL);
-}
-
 int main(void)
 {
     hgt = t_read_file(t_data("hgt/N47E009.hgt"), &hgt_n);
@@ -575,7 +510,6 @@ int main(void)
     T_RUN(test_tif);
     T_RUN(test_xyz);
     T_RUN(test_dispatch);
-    T_RUN(test_campath);
     free(hgt); free(png); free(fuji); free(asc); free(bt); free(tif); free(xyz); free(tifz);
     return t_finish();
 }

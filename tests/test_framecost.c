@@ -81,6 +81,31 @@ static void test_campath(void)
     fclose(fp);
     CHECK_EQ(campath_read(path, &p, &err), BR_E_FORMAT);
     CHECK(strstr(err.msg, "line 2: a NUL byte") != NULL);
+    /* no commas, an infinity, a line too long for the reader: each named by its line */
+    CHECK_EQ(campath_parse_line("1 2 3 4 5 6", v), -1);
+    CHECK_EQ(campath_parse_line("0,0,inf,1,1,1", v), -1);
+    {
+        static char longline[1100];
+        memset(longline, '1', sizeof longline - 2);
+        longline[sizeof longline - 2] = '\n';
+        fp = fopen(path, "wb");
+        if (!fp) { CHECK(0); return; }
+        fputs("1,2,3,4,5,6\n", fp);
+        fwrite(longline, 1, sizeof longline - 1, fp);
+        fclose(fp);
+        CHECK_EQ(campath_read(path, &p, &err), BR_E_FORMAT);
+        CHECK(strstr(err.msg, path) != NULL && strstr(err.msg, "line 2: longer than") != NULL);
+        CHECK_EQ(p.n, 0);
+    }
+    /* CRLF line ends, blank lines of spaces, no newline after the last line */
+    fp = fopen(path, "wb");
+    if (!fp) { CHECK(0); return; }
+    fputs("# a path\r\n   \r\n 10 , 20,30 ,40,50, -60 # first\r\n\r\n1.5e3,2,3,4,5,6", fp);
+    fclose(fp);
+    CHECK_EQ(campath_read(path, &p, &err), BR_OK);
+    CHECK_EQ(p.n, 2);
+    if (p.n == 2) CHECK(p.cam[0][5] == -60 && p.cam[1][0] == 1500);
+    campath_free(&p);
 }
 
 /* the geomorph weight as core/bt_mesh.c's morph_of computes it with `/` */
