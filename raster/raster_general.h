@@ -72,12 +72,12 @@ typedef uint16_t gs_v8hn __attribute__((vector_size(16), aligned(2)));
  * {0, 1, 2, 3} steps (the *off) and step by 4 (the *step). */
 typedef struct gs_lanes { gs_v4u zoff, roff, goff, boff, zstep, rstep, gstep, bstep; } gs_lanes;
 /* Made at a triangle's first span of eight or more pixels (most calls draw a few short
- * rows and no such span), out of line and into memory: inline, GCC may hoist it out of the row loop (it is loop
- * invariant), making it for every call.  The signed colour gradients G_k from the packed
- * gc = G_R 2^42 + G_G 2^21 + G_B (mod 2^64): on a span of n >= 8 pixels the fields at
- * pixels 0 and 3 both lie in [0, 2^21), so 3 |G_k| < 2^21 and |G_k| < 2^20, which the
- * 21-bit sign extensions recover exactly, field by field from the bottom.  rl: R's
- * shift (see GS_PX). */
+ * rows and no such span), out of line and into memory: inline, GCC may hoist it out of
+ * the row loop (it is loop invariant), making it for every call.  The signed colour
+ * gradients G_k from the packed gc = G_R 2^42 + G_G 2^21 + G_B (mod 2^64): on a span of
+ * n >= 8 pixels the fields at pixels 0 and 3 both lie in [0, 2^21), so 3 |G_k| < 2^21
+ * and |G_k| < 2^20, which the 21-bit sign extensions recover exactly, field by field
+ * from the bottom.  rl: R's shift (see GS_PX). */
 RSI_NOINLINE static void gs_lanes_make(gs_lanes *L, uint32_t gzu, uint64_t gc, int rl)
 {
     const uint32_t g_b = (uint32_t)((int64_t)(gc << 43) >> 43);
