@@ -55,7 +55,7 @@ static br_status lattice(double *v, size_t n, const char *axis, double *vmin, do
 br_status dem_read_xyz(const char *name, const uint8_t *p, size_t n, const dem_opts *o,
                        hf *out, br_err *err)
 {
-    double *pt = NULL, *tmp = NULL, xmin, ymin, sx, sy, maxabs = 0, sgn;
+    double *pt = NULL, *tmp = NULL, xmin, ymin, sx, sy, gx, gy, maxabs = 0, sgn;
     size_t cap = 0, np = 0, pos = 0, line = 0, i;
     int64_t nx, ny;
     int32_t den;
@@ -123,9 +123,13 @@ br_status dem_read_xyz(const char *name, const uint8_t *p, size_t n, const dem_o
     }
     free(tmp);
     if (s != BR_OK) { free(pt); return s; }
-    if (sx == 0) sx = sy;
-    if (sy == 0) sy = sx;
-    if (sx == 0) {
+    /* An axis of one grid line (its values within text rounding of each other, possibly
+     * not equal) has step 0: its points all take index 0 there, and it borrows the other
+     * axis's step only for the georeference below. */
+    gx = sx; gy = sy;
+    if (gx == 0) gx = sy;
+    if (gy == 0) gy = sx;
+    if (gx == 0) {
         free(pt);
         return br_err_set(err, BR_E_FORMAT, name, "XYZ points do not span a grid (one distinct x and y)");
     }
@@ -144,9 +148,15 @@ br_status dem_read_xyz(const char *name, const uint8_t *p, size_t n, const dem_o
     f.z_den = den;
     for (i = 0; i < (size_t)nx * (size_t)ny; i++) f.z[i] = HF_NODATA;
     for (i = 0; i < np; i++) {
-        int64_t c = (int64_t)floor((pt[i * 3] - xmin) / sx + 0.5);
-        int64_t r = ny - 1 - (int64_t)floor((pt[i * 3 + 1] - ymin) / sy + 0.5);
-        size_t k = (size_t)r * (size_t)nx + (size_t)c;
+        /* lattice() put every value within 0.01 step of a line 0 .. count - 1 */
+        const int64_t c = sx > 0 ? (int64_t)floor((pt[i * 3] - xmin) / sx + 0.5) : 0;
+        const int64_t r = ny - 1 - (sy > 0 ? (int64_t)floor((pt[i * 3 + 1] - ymin) / sy + 0.5) : 0);
+        size_t k;
+        if (c < 0 || c >= nx || r < 0 || r >= ny) {     /* (not reached: a guard, not a rule) */
+            s = br_err_set(err, BR_E_FORMAT, name, "XYZ point (%g, %g) is off the grid", pt[i * 3], pt[i * 3 + 1]);
+            break;
+        }
+        k = (size_t)r * (size_t)nx + (size_t)c;
         if (seen[k]) {
             s = br_err_set(err, BR_E_FORMAT, name, "XYZ point (%g, %g) is given twice", pt[i * 3], pt[i * 3 + 1]);
             break;
@@ -157,11 +167,11 @@ br_status dem_read_xyz(const char *name, const uint8_t *p, size_t n, const dem_o
     free(seen);
     free(pt);
     if (s == BR_OK) {
-        double xmax = xmin + sx * (double)(nx - 1), ymax = ymin + sy * (double)(ny - 1);
-        if (dem_looks_degrees(xmin, ymin, xmax, ymax, sx, sy))
-            s = dem_geo_degrees(&f, xmin, ymax, sx, sy, name, err);
+        double xmax = xmin + gx * (double)(nx - 1), ymax = ymin + gy * (double)(ny - 1);
+        if (dem_looks_degrees(xmin, ymin, xmax, ymax, gx, gy))
+            s = dem_geo_degrees(&f, xmin, ymax, gx, gy, name, err);
         else
-            s = dem_geo_projected(&f, xmin, ymax, sx, sy, name, err);
+            s = dem_geo_projected(&f, xmin, ymax, gx, gy, name, err);
     }
     if (s != BR_OK) { dem_free(&f); return s; }
     *out = f;

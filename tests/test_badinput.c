@@ -462,6 +462,23 @@ static void test_xyz(void)
         CHECK_EQ(f.z[2], 1500000);              /* (0,0) is the south-west: row 1 */
         dem_free(&f);
     }
+    /* x values within text rounding of each other are one grid line (load_xyz.c lattice),
+     * though not equal: every point of that axis is in column 0.  They once took the y
+     * axis's step for their column, so 1000008 fell in column 1 of a one-column grid
+     * (past the end in the last row; found by fuzz_xyz); and the fuzzer's own file
+     * (x 2.786e10 and 2.78599e10) is refused for its georeference, not read out of bounds */
+    {
+        static const char one_line[] = "1000008 0 5\n1000000 10 6\n1000000 20 7\n";
+        static const char fuzzed[] = "2.78600e+10\t\t\t\t-02  0.3535000e-01\r\n2.78599e+10\t\t\t\t\t\t\t\t0 0 ";
+        hf f;
+        br_err e;
+        CHECK_EQ(dem_load_mem("one_line.xyz", (const uint8_t *)one_line, sizeof one_line - 1, NULL, &f, &e), BR_OK);
+        CHECK_EQ(f.w, 1);
+        CHECK_EQ(f.h, 3);
+        if (f.w == 1 && f.h == 3) CHECK(f.z[0] == 7000000 && f.z[1] == 6000000 && f.z[2] == 5000000);
+        dem_free(&f);
+        BAD("fuzzed.xyz", fuzzed, sizeof fuzzed - 1, NULL, BR_E_VALUE);
+    }
     /* the real file cut in the middle of a line */
     {
         size_t i, lines = 0;
