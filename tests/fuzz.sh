@@ -59,6 +59,9 @@ head -c 1922 "$DATA/hgt/N50E008.hgt" >"$S/hgt/n50e008_31x31.hgt"         # 31x31
 cp tests/data/png/*.png "$S/png/"
 cp "$DATA/asc/hugo_site.asc" "$S/asc/"
 head -c 6000 "$DATA/asc/colorado_front_range.asc" >"$S/asc/colorado_head.asc"   # header + some rows
+# the same grid with GeoClaw's value-first header (topotype 3): the loaders pick the
+# GeoClaw reader by content, so this harness reaches it too
+awk 'NR <= 6 { print $2, $1; next } { print }' "$DATA/asc/hugo_site.asc" >"$S/asc/hugo_site.tt3"
 cp tests/data/bt/*.bt "$S/bt/"
 cp tests/data/tif/*.tif "$S/tif/"
 head -n 488 "$DATA/xyz/monai_valley_bathymetry.txt" >"$S/xyz/monai_2cols.txt"   # two whole x columns
