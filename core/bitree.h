@@ -250,16 +250,18 @@ typedef struct bt_coh_key {
 } bt_coh_key;
 /* bt_coh's plane accumulators: one per frustum plane, one for two or more planes */
 #define BT_COH_NX (CAM_NPLANES + 1)
+/* bt_coh's accumulators: the eye's, then the planes' */
+#define BT_COH_NCTR (1 + BT_COH_NX)
 typedef struct bt_coh {
     bt_coh_key key;
     int32_t eye[3], valid;
     int32_t fresh;         /* this frame started afresh (a key change, a restart): no
                               earlier frame's answer holds */
     cam_plane pl[CAM_NPLANES];  /* the last frame's frustum */
-    uint64_t acc;          /* 1 .. 2^51: grows by the eye's L1 travel, and past every
-                              expiry at a key change */
-    uint64_t x[BT_COH_NX]; /* the travels of entries with planes to test: per plane, and
-                              for two or more planes (core/bt_coh.c) */
+    uint64_t ctr[BT_COH_NCTR];  /* accumulated travels, 1 .. 2^51, each past every expiry
+                              at a key change: [0] the eye's L1 travel; [1 + j] that of
+                              entries with plane j alone to test, [1 + CAM_NPLANES] with two
+                              or more (core/bt_coh.c) */
     uint64_t r[3];         /* floor(2^sh / c) for c = tau_lo, tau, tau + span; 0: none */
     int32_t sh[3];
     int64_t slack;         /* test hook: added to every margin (too generous: other meshes);

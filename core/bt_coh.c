@@ -17,8 +17,8 @@
  * ST_PREV next frame (tau_lo), an unsplit one has not (tau).  The memo checks that
  * bit on reuse, so a diamond whose state was lost (budget fallback, split list
  * overflow, not reached for a frame) is evaluated again.  The travel is summed
- * frame to frame into c->acc (triangle inequality: the sum bounds the travel since
- * any earlier frame), and an entry holds acc + margin, its expiry.
+ * frame to frame into c->ctr[0] (triangle inequality: the sum bounds the travel since
+ * any earlier frame), and an entry holds ctr[0] + margin, its expiry.
  *
  * The bounds lo, hi need quotients L / c; they come from reciprocals computed when
  * the key changes (no 64-bit divide per frame), rounded towards the smaller
@@ -143,7 +143,7 @@ uint64_t bti_coh_entry(const bti_extract *e, int sp, int64_t L, int64_t d, uint1
     m += c->slack;
     if (m < 0) return 0;
     return (uint64_t)m_out << (BTI_COH_BITS + 6) | (uint64_t)m_in << BTI_COH_BITS
-         | (moving ? BTI_COH_MOVING : 0) | ((m_in ? c->x[bti_coh_ctr_of[m_in] - 1] : c->acc) + (uint64_t)m);
+         | (moving ? BTI_COH_MOVING : 0) | (c->ctr[bti_coh_ctr_of[m_in]] + (uint64_t)m);
 }
 
 /* *r = floor(2^sh / v), *sh = 31 + bits(v) (quot_lo's); *r = 0 (none) unless 0 < v < 2^32 */
@@ -231,30 +231,29 @@ int bti_coh_frame(bti_extract *e, bt_coh *c)
     k.node = e->t->node; k.sum = e->t->sum; k.n = e->t->n; k.w = e->t->w; k.h = e->t->h;
     k.zmin = e->t->zmin; k.zmax = e->t->zmax; k.no_cull = e->p->no_cull != 0;
     k.fr = e->p->fr; k.fq8 = e->fq8; k.tau = e->tau; k.tau_lo = e->tau_lo; k.span = e->morph_span;
-    /* x[CAM_NPLANES] grows at least as fast as every other x[j] */
-    if (!c->valid || c->acc >= COH_LIMIT || c->x[CAM_NPLANES] >= COH_LIMIT) {
+    /* ctr[1 + CAM_NPLANES] grows at least as fast as every plane's */
+    if (!c->valid || c->ctr[0] >= COH_LIMIT || c->ctr[1 + CAM_NPLANES] >= COH_LIMIT) {
         int64_t slack = c->slack;
         wrap = c->valid;                              /* entries may hold any expiry */
         fresh = 1;
         memset(c, 0, sizeof *c);
         c->slack = slack;
-        c->acc = 1;
-        for (j = 0; j < BT_COH_NX; j++) c->x[j] = 1;
+        for (j = 0; j < BT_COH_NCTR; j++) c->ctr[j] = 1;
     }
     if (memcmp(&k, &c->key, sizeof k) != 0) {
         memcpy(&c->key, &k, sizeof k);   /* padding too: memcmp compares it */
         fresh = 1;
-        c->acc += c->valid ? COH_JUMP : 0;            /* every earlier expiry has passed */
-        for (j = 0; j < BT_COH_NX; j++) c->x[j] += c->valid ? COH_JUMP : 0;
+        for (j = 0; j < BT_COH_NCTR; j++)            /* every earlier expiry has passed */
+            c->ctr[j] += c->valid ? COH_JUMP : 0;
         recip(c, 0, k.tau_lo);
         recip(c, 1, k.tau);
         recip(c, 2, k.tau + k.span);
     } else {
-        /* acc grows by the eye's L1 travel t; x[j] by the larger of t / 4 (rounded up)
-         * and plane j's travel, x[CAM_NPLANES] by the larger of t / 4 and every plane's.
-         * A sum of maxima is at least each sum, so an entry on x[j] whose margin (the
-         * distance margin over four, the room to the planes) is at least x[j]'s growth
-         * since its frame is within both */
+        /* ctr[0] grows by the eye's L1 travel t; ctr[1 + j] by the larger of t / 4
+         * (rounded up) and plane j's travel, ctr[1 + CAM_NPLANES] by the larger of t / 4
+         * and every plane's.  A sum of maxima is at least each sum, so an entry on
+         * ctr[1 + j] whose margin (the distance margin over four, the room to the planes)
+         * is at least that accumulator's growth since its frame is within both */
         uint64_t t = 0, ts, pmax = 0;
         int i;
         for (i = 0; i < 3; i++) {
@@ -264,21 +263,20 @@ int bti_coh_frame(bti_extract *e, bt_coh *c)
         ts = (t + ((uint64_t)1 << COH_EYE_SH) - 1) >> COH_EYE_SH;
         for (j = 0; j < CAM_NPLANES; j++) {
             const uint64_t pt = plane_travel(&e->pl[j], &c->pl[j]);
-            c->x[j] += pt > ts ? pt : ts;
+            c->ctr[1 + j] += pt > ts ? pt : ts;
             if (pt > pmax) pmax = pt;
         }
-        c->x[CAM_NPLANES] += pmax > ts ? pmax : ts;
-        c->acc += t;
+        c->ctr[1 + CAM_NPLANES] += pmax > ts ? pmax : ts;
+        c->ctr[0] += t;
     }
     c->valid = 1;
     c->fresh = fresh;
     memcpy(c->eye, eye, sizeof c->eye);
     memcpy(c->pl, e->pl, sizeof c->pl);
     e->coh = BR_COHERENCE ? c : NULL;
-    /* coh_ctr[0] mirrors coh_acc, so that bti_coh_proves picks an entry's accumulator
-     * by its plane mask alone (bti_coh_ctr_of), with no branch */
-    e->coh_acc = on ? c->acc : UINT64_MAX;
-    e->coh_ctr[0] = e->coh_acc;
-    for (j = 0; j < BT_COH_NX; j++) e->coh_ctr[1 + j] = on ? c->x[j] : UINT64_MAX;
+    /* coh_acc is coh_ctr[0] again, in its own field for the replay's weight runs
+     * (bti_coh_proves picks an entry's accumulator by its plane mask, with no branch) */
+    for (j = 0; j < BT_COH_NCTR; j++) e->coh_ctr[j] = on ? c->ctr[j] : UINT64_MAX;
+    e->coh_acc = e->coh_ctr[0];
     return wrap;
 }

@@ -159,8 +159,9 @@ typedef struct bti_extract {
     const bt_coh *coh;      /* frame coherence (bti_coh_frame): expiries are computed; NULL: not */
     uint64_t coh_acc;       /* its eye's accumulated travel now; UINT64_MAX: no entry of
                                an earlier frame is reused */
-    uint64_t coh_ctr[1 + BT_COH_NX];    /* the accumulators an entry's expiry is on: bt_coh
-                               acc, then x[] (UINT64_MAX where coh_acc is) */
+    uint64_t coh_ctr[BT_COH_NCTR];      /* bt_coh's ctr, an entry's expiry on
+                               coh_ctr[bti_coh_ctr_of[its plane mask]] (UINT64_MAX where
+                               coh_acc is) */
     bti_rec *recs;          /* a part's walk: its decisions (bti_rec), else NULL */
     uint32_t nrec, cap_rec; /* recorded, room; nrec > cap_rec: some were not */
 } bti_extract;
