@@ -23,10 +23,21 @@ static uint64_t rnd(void)
     return rnd_state;
 }
 
+/* Writes n bytes of text to path; 0 (a failed check) when it cannot. */
+static int put_text(const char *path, const char *text, size_t n)
+{
+    FILE *fp = fopen(path, "wb");
+    CHECK(fp != NULL);
+    if (!fp) return 0;
+    CHECK_EQ(fwrite(text, 1, n, fp), n);
+    fclose(fp);
+    return 1;
+}
+#define PUT_TEXT(path, lit) put_text(path, lit, sizeof lit - 1)
+
 static void test_campath(void)
 {
     char path[256];
-    FILE *fp;
     campath p;
     br_err err;
     double v[6];
@@ -39,69 +50,43 @@ static void test_campath(void)
     CHECK_EQ(campath_parse_line("1,2,3,4,5,6,7", v), -1);
     CHECK_EQ(campath_parse_line("1,2,3,4,5,x", v), -1);
     CHECK_EQ(campath_parse_line("1,2,3,4,5,nan", v), -1);
-    fp = fopen(path, "w");
-    CHECK(fp != NULL);
-    if (!fp) return;
-    fputs("# a path\n\n100,200,3000,5000,5000,500  # first\n110,200,3000,5000,5000,500\n", fp);
-    fclose(fp);
+    if (!PUT_TEXT(path, "# a path\n\n100,200,3000,5000,5000,500  # first\n110,200,3000,5000,5000,500\n")) return;
     CHECK_EQ(campath_read(path, &p, &err), BR_OK);
     CHECK_EQ(p.n, 2);
     if (p.n == 2) CHECK(p.cam[1][0] == 110 && p.cam[1][5] == 500);
     campath_free(&p);
-    fp = fopen(path, "w");
-    if (!fp) { CHECK(0); return; }
-    fputs("1,2,3,4,5,6\n1,2,3,4,5\n", fp);
-    fclose(fp);
+    if (!PUT_TEXT(path, "1,2,3,4,5,6\n1,2,3,4,5\n")) return;
     CHECK_EQ(campath_read(path, &p, &err), BR_E_FORMAT);
     CHECK(strstr(err.msg, path) != NULL);
     CHECK_EQ(p.n, 0);
-    fp = fopen(path, "w");
-    if (!fp) { CHECK(0); return; }
-    fputs("1,2,3,1,2,3\n", fp);
-    fclose(fp);
+    if (!PUT_TEXT(path, "1,2,3,1,2,3\n")) return;
     CHECK_EQ(campath_read(path, &p, &err), BR_E_VALUE);
-    fp = fopen(path, "w");
-    if (!fp) { CHECK(0); return; }
-    fputs("# nothing\n", fp);
-    fclose(fp);
+    if (!PUT_TEXT(path, "# nothing\n")) return;
     CHECK_EQ(campath_read(path, &p, &err), BR_E_VALUE);
     CHECK_EQ(campath_read("tests/out/no_such_path.txt", &p, &err), BR_E_IO);
     /* beyond --camera's range: refused with the file, the line and the range */
-    fp = fopen(path, "w");
-    if (!fp) { CHECK(0); return; }
-    fputs("1,2,3,4,5,6\n1e300,0,1000,10,10,0\n", fp);
-    fclose(fp);
+    if (!PUT_TEXT(path, "1,2,3,4,5,6\n1e300,0,1000,10,10,0\n")) return;
     CHECK_EQ(campath_read(path, &p, &err), BR_E_VALUE);
     CHECK(strstr(err.msg, path) != NULL && strstr(err.msg, "line 2") && strstr(err.msg, "out of range"));
     CHECK_EQ(p.n, 0);
     /* a NUL byte: said as such, not as a long line */
-    fp = fopen(path, "wb");
-    if (!fp) { CHECK(0); return; }
-    fwrite("1,2,3,4,5,6\n\0garbage\n", 1, 22, fp);
-    fclose(fp);
+    if (!PUT_TEXT(path, "1,2,3,4,5,6\n\0garbage\n")) return;
     CHECK_EQ(campath_read(path, &p, &err), BR_E_FORMAT);
     CHECK(strstr(err.msg, "line 2: a NUL byte") != NULL);
     /* no commas, an infinity, a line too long for the reader: each named by its line */
     CHECK_EQ(campath_parse_line("1 2 3 4 5 6", v), -1);
     CHECK_EQ(campath_parse_line("0,0,inf,1,1,1", v), -1);
     {
-        static char longline[1100];
-        memset(longline, '1', sizeof longline - 2);
+        static char longline[1100] = "1,2,3,4,5,6\n";      /* then 1,086 digits and a newline */
+        memset(longline + 12, '1', sizeof longline - 14);
         longline[sizeof longline - 2] = '\n';
-        fp = fopen(path, "wb");
-        if (!fp) { CHECK(0); return; }
-        fputs("1,2,3,4,5,6\n", fp);
-        fwrite(longline, 1, sizeof longline - 1, fp);
-        fclose(fp);
+        if (!put_text(path, longline, sizeof longline - 1)) return;
         CHECK_EQ(campath_read(path, &p, &err), BR_E_FORMAT);
         CHECK(strstr(err.msg, path) != NULL && strstr(err.msg, "line 2: longer than") != NULL);
         CHECK_EQ(p.n, 0);
     }
     /* CRLF line ends, blank lines of spaces, no newline after the last line */
-    fp = fopen(path, "wb");
-    if (!fp) { CHECK(0); return; }
-    fputs("# a path\r\n   \r\n 10 , 20,30 ,40,50, -60 # first\r\n\r\n1.5e3,2,3,4,5,6", fp);
-    fclose(fp);
+    if (!PUT_TEXT(path, "# a path\r\n   \r\n 10 , 20,30 ,40,50, -60 # first\r\n\r\n1.5e3,2,3,4,5,6")) return;
     CHECK_EQ(campath_read(path, &p, &err), BR_OK);
     CHECK_EQ(p.n, 2);
     if (p.n == 2) CHECK(p.cam[0][5] == -60 && p.cam[1][0] == 1500);
