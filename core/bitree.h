@@ -394,8 +394,8 @@ br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m);
 /* Partitioned view extraction, for several threads (the caller schedules; core/
  * has none).  The walk is cut into at most BT_PARTS subtrees of the tree (those
  * at depth 4 below the two root triangles, or 5 or 6 for the first frame on a large
- * screen, a part that had more than 256 triangles cut from the next frame on where
- * its triangles are, two halves with fewer than 128 between them joined again),
+ * screen, a part that had more than 160 triangles cut from the next frame on where
+ * its triangles are, two halves with fewer than 80 between them joined again),
  * each extracted into its own part mesh, then joined in walk order into m as one
  * strip: part k's strip is appended after line triangles that repeat the previous
  * part's last index and its first (parity kept).  The real triangles are the serial

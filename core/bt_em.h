@@ -199,8 +199,8 @@ void btw_reorder(bti_extract *e);
  * two halves with fewer than BTI_PART_MERGE between them are one again (bt_part.c
  * regroup).  A triangle of the part walk is named by its code: 2 and 3 for the two
  * roots, 2 code and 2 code + 1 for the halves of code (so depth + 1 bits). */
-#define BTI_PART_SPLIT 256
-#define BTI_PART_MERGE 128
+#define BTI_PART_SPLIT 160
+#define BTI_PART_MERGE 80
 #define BTI_PART_DEPTH_MAX 24
 #define BTI_PART_DEEP (BT_PARTS - (2 << BTI_PART_DEPTH))
 #define BTI_TOP_MEMO 512
