@@ -250,7 +250,10 @@ typedef struct bt_coh_key {
 } bt_coh_key;
 /* bt_coh's plane accumulators: one per frustum plane, one for two or more planes */
 #define BT_COH_NX (CAM_NPLANES + 1)
-/* bt_coh's accumulators: the eye's, then the planes' */
+/* bt_coh's accumulators, by index: the eye's, plane j's alone, two or more planes' */
+#define BT_COH_EYE 0
+#define BT_COH_PLANE(j) (1 + (j))
+#define BT_COH_MANY BT_COH_PLANE(CAM_NPLANES)
 #define BT_COH_NCTR (1 + BT_COH_NX)
 typedef struct bt_coh {
     bt_coh_key key;
@@ -259,9 +262,9 @@ typedef struct bt_coh {
                               earlier frame's answer holds */
     cam_plane pl[CAM_NPLANES];  /* the last frame's frustum */
     uint64_t ctr[BT_COH_NCTR];  /* accumulated travels, 1 .. 2^51, each past every expiry
-                              at a key change: [0] the eye's L1 travel; [1 + j] that of
-                              entries with plane j alone to test, [1 + CAM_NPLANES] with two
-                              or more (core/bt_coh.c) */
+                              at a key change: [BT_COH_EYE] the eye's L1 travel;
+                              [BT_COH_PLANE(j)] that of entries with plane j alone to test,
+                              [BT_COH_MANY] with two or more (core/bt_coh.c) */
     uint64_t r[3];         /* floor(2^sh / c) for c = tau_lo, tau, tau + span; 0: none */
     int32_t sh[3];
     int64_t slack;         /* test hook: added to every margin (too generous: other meshes);

@@ -17,8 +17,8 @@
  * ST_PREV next frame (tau_lo), an unsplit one has not (tau).  The memo checks that
  * bit on reuse, so a diamond whose state was lost (budget fallback, split list
  * overflow, not reached for a frame) is evaluated again.  The travel is summed
- * frame to frame into c->ctr[0] (triangle inequality: the sum bounds the travel since
- * any earlier frame), and an entry holds ctr[0] + margin, its expiry.
+ * frame to frame into c->ctr[BT_COH_EYE] (triangle inequality: the sum bounds the travel
+ * since any earlier frame), and an entry holds that sum + margin, its expiry.
  *
  * The bounds lo, hi need quotients L / c; they come from reciprocals computed when
  * the key changes (no 64-bit divide per frame), rounded towards the smaller
@@ -49,7 +49,8 @@
 
 typedef char bti_coh_six_planes[CAM_NPLANES == 6 ? 1 : -1];     /* (the table below) */
 
-/* 0 for mask 0, 1 + i for the mask of plane i alone, 1 + CAM_NPLANES for two or more */
+/* BT_COH_EYE (0) for mask 0, BT_COH_PLANE(i) (1 + i) for the mask of plane i alone,
+ * BT_COH_MANY (7) for two or more */
 const uint8_t bti_coh_ctr_of[64] = {
     0, 1, 2, 7, 3, 7, 7, 7, 4, 7, 7, 7, 7, 7, 7, 7,
     5, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7,
@@ -231,8 +232,8 @@ int bti_coh_frame(bti_extract *e, bt_coh *c)
     k.node = e->t->node; k.sum = e->t->sum; k.n = e->t->n; k.w = e->t->w; k.h = e->t->h;
     k.zmin = e->t->zmin; k.zmax = e->t->zmax; k.no_cull = e->p->no_cull != 0;
     k.fr = e->p->fr; k.fq8 = e->fq8; k.tau = e->tau; k.tau_lo = e->tau_lo; k.span = e->morph_span;
-    /* ctr[1 + CAM_NPLANES] grows at least as fast as every plane's */
-    if (!c->valid || c->ctr[0] >= COH_LIMIT || c->ctr[1 + CAM_NPLANES] >= COH_LIMIT) {
+    /* ctr[BT_COH_MANY] grows at least as fast as every plane's */
+    if (!c->valid || c->ctr[BT_COH_EYE] >= COH_LIMIT || c->ctr[BT_COH_MANY] >= COH_LIMIT) {
         int64_t slack = c->slack;
         wrap = c->valid;                              /* entries may hold any expiry */
         fresh = 1;
@@ -249,11 +250,11 @@ int bti_coh_frame(bti_extract *e, bt_coh *c)
         recip(c, 1, k.tau);
         recip(c, 2, k.tau + k.span);
     } else {
-        /* ctr[0] grows by the eye's L1 travel t; ctr[1 + j] by the larger of t / 4
-         * (rounded up) and plane j's travel, ctr[1 + CAM_NPLANES] by the larger of t / 4
-         * and every plane's.  A sum of maxima is at least each sum, so an entry on
-         * ctr[1 + j] whose margin (the distance margin over four, the room to the planes)
-         * is at least that accumulator's growth since its frame is within both */
+        /* ctr[BT_COH_EYE] grows by the eye's L1 travel t; ctr[BT_COH_PLANE(j)] by the
+         * larger of t / 4 (rounded up) and plane j's travel, ctr[BT_COH_MANY] by the larger
+         * of t / 4 and every plane's.  A sum of maxima is at least each sum, so an entry on
+         * a plane's accumulator whose margin (the distance margin over four, the room to
+         * the planes) is at least that accumulator's growth since its frame is within both */
         uint64_t t = 0, ts, pmax = 0;
         int i;
         for (i = 0; i < 3; i++) {
@@ -263,20 +264,20 @@ int bti_coh_frame(bti_extract *e, bt_coh *c)
         ts = (t + ((uint64_t)1 << COH_EYE_SH) - 1) >> COH_EYE_SH;
         for (j = 0; j < CAM_NPLANES; j++) {
             const uint64_t pt = plane_travel(&e->pl[j], &c->pl[j]);
-            c->ctr[1 + j] += pt > ts ? pt : ts;
+            c->ctr[BT_COH_PLANE(j)] += pt > ts ? pt : ts;
             if (pt > pmax) pmax = pt;
         }
-        c->ctr[1 + CAM_NPLANES] += pmax > ts ? pmax : ts;
-        c->ctr[0] += t;
+        c->ctr[BT_COH_MANY] += pmax > ts ? pmax : ts;
+        c->ctr[BT_COH_EYE] += t;
     }
     c->valid = 1;
     c->fresh = fresh;
     memcpy(c->eye, eye, sizeof c->eye);
     memcpy(c->pl, e->pl, sizeof c->pl);
     e->coh = BR_COHERENCE ? c : NULL;
-    /* coh_acc is coh_ctr[0] again, in its own field for the replay's weight runs
+    /* coh_acc is coh_ctr[BT_COH_EYE] again, in its own field for the replay's weight runs
      * (bti_coh_proves picks an entry's accumulator by its plane mask, with no branch) */
     for (j = 0; j < BT_COH_NCTR; j++) e->coh_ctr[j] = on ? c->ctr[j] : UINT64_MAX;
-    e->coh_acc = e->coh_ctr[0];
+    e->coh_acc = e->coh_ctr[BT_COH_EYE];
     return wrap;
 }
