@@ -6,9 +6,11 @@
  *
  * The plain span (no texture, no counting) is drawn GS_N pixels at a time in 32-bit
  * vector lanes (GCC's generic vectors: SSE2 on x86-64, NEON on AArch64) for spans of
- * eight or more pixels; shorter spans and targets without such vectors keep the scalar
- * loop (a span's two end groups cost about as many instructions as eight scalar
- * pixels).  Same pixels: see gen_span_plain.  RS_SPANV (core/config.h) chooses. */
+ * eight or more pixels (from four, with masked loads and stores, in the x86-64-v3 copy's
+ * XRGB8888 with 32-bit depth: GS_MASKED); shorter spans and targets without such
+ * vectors keep the scalar loop (a span's two end groups cost about as many instructions
+ * as eight scalar pixels).  Same pixels: see gen_span_plain.  RS_SPANV (core/config.h)
+ * chooses. */
 #ifndef BR_RASTER_GENERAL_H
 #define BR_RASTER_GENERAL_H
 
@@ -25,6 +27,15 @@
  * and gs_lanes_make's bound (the fields at pixels 0 and GS_N - 1 of such a span both in
  * [0, 2^21)) only gets tighter. */
 #define GS_N (RS_VBYTES / 4)
+/* GS_MASKED: the x86-64-v3 copy (eight lanes) draws the XRGB8888 spans with 32-bit depth
+ * through AVX2's masked loads and stores (gen_span_plain), from GS_MASK_MIN pixels on;
+ * GCC's builtin names, as raster_prepass.h's, so not with clang */
+#if GS_N == 8 && !defined(__clang__)
+#define GS_MASKED 1
+#define GS_MASK_MIN 4
+#else
+#define GS_MASKED 0
+#endif
 typedef uint32_t gs_v4u __attribute__((vector_size(4 * GS_N)));
 typedef int32_t gs_v4i __attribute__((vector_size(4 * GS_N)));
 typedef uint32_t gs_v4un __attribute__((vector_size(4 * GS_N), aligned(2)));  /* at any 16-bit boundary */
@@ -70,12 +81,20 @@ typedef uint16_t gs_v8hn __attribute__((vector_size(16), aligned(2)));
 /* The lanes of a triangle's plain spans: lane l of a group at pixel j holds pixel j + l,
  * each value from the span start plus (j + l) times its step, so the lanes start at
  * {0, 1, 2, 3} steps (the *off) and step by 4 (the *step). */
-typedef struct gs_lanes { gs_v4u zoff, roff, goff, boff, zstep, rstep, gstep, bstep; } gs_lanes;
-/* Made at a triangle's first span of eight or more pixels (most calls draw a few short
- * rows and no such span), out of line and into memory: inline, GCC may hoist it out of
- * the row loop (it is loop invariant), making it for every call.  The signed colour
- * gradients G_k from the packed gc = G_R 2^42 + G_G 2^21 + G_B (mod 2^64): on a span of
- * n >= 8 pixels the fields at pixels 0 and 3 both lie in [0, 2^21), so 3 |G_k| < 2^21
+typedef struct gs_lanes {
+    gs_v4u zoff, roff, goff, boff, zstep, rstep, gstep, bstep;
+#if GS_MASKED
+    /* the masked spans' constants (XRGB8888's GS_PX masks, the depth's flipped top bit):
+     * loaded from here, one instruction each; as literals GCC makes each again at every
+     * span (three instructions) */
+    gs_v4u k80, kr, kg;
+#endif
+} gs_lanes;
+/* Made at a triangle's first span of eight (GS_MASKED: four) or more pixels (most calls
+ * draw a few short rows and no such span), out of line and into memory: inline, GCC may
+ * hoist it out of the row loop (it is loop invariant), making it for every call.  The
+ * signed colour gradients G_k from the packed gc = G_R 2^42 + G_G 2^21 + G_B (mod 2^64):
+ * on a span of n >= 4 pixels the fields at pixels 0 and 3 both lie in [0, 2^21), so 3 |G_k| < 2^21
  * and |G_k| < 2^20, which the 21-bit sign extensions recover exactly, field by field
  * from the bottom.  rl: R's shift (see GS_PX). */
 RSI_NOINLINE static void gs_lanes_make(gs_lanes *L, uint32_t gzu, uint64_t gc, int rl)
@@ -92,6 +111,9 @@ RSI_NOINLINE static void gs_lanes_make(gs_lanes *L, uint32_t gzu, uint64_t gc, i
     L->roff = io * g_r; L->rstep = io - io + GS_N * g_r;
     L->goff = io * g_g; L->gstep = io - io + GS_N * g_g;
     L->boff = io * g_b; L->bstep = io - io + GS_N * g_b;
+#if GS_MASKED
+    L->k80 = io - io + 0x80000000u; L->kr = io - io + 0xff0000u; L->kg = io - io + 0xff00u;
+#endif
 }
 #endif
 
@@ -326,6 +348,7 @@ RSI_INLINE static int gen_edge32(int32_t s, int32_t K, int32_t *l, int32_t *r)
                                  : (((RV) >> 5) & 0xf800u) | (((GV) >> 10) & 0x07e0u) | ((BV) >> 16))
 #else
 typedef struct gs_lanes { int unused; } gs_lanes;      /* (no vector spans) */
+#define GS_MASKED 0
 #endif
 
 /* The plain span (no texture, no counting): n >= 1 pixels ending at ze / ce (depth and
@@ -345,11 +368,51 @@ typedef struct gs_lanes { int unused; } gs_lanes;      /* (no vector spans) */
  * before the others are stored: where it overlaps the group before it, both start from
  * the same bytes and so store the same ones (loading it after that store would give the
  * same bytes too, but a load partly overlapping a just-made store waits for it).
+ * GS_MASKED (x86-64-v3), XRGB8888 with 32-bit depth and n >= GS_MASK_MIN: groups at
+ * pixels 0, 8, .. and, where 8 does not divide n, a last group of the n mod 8 pixels
+ * left, through AVX2's masked load and stores (vpmaskmovd), which neither read nor
+ * write a lane outside the span nor fault on one; so no overlapping group with lanes of
+ * its own, and spans of four to seven pixels in one group, not the scalar loop.  The
+ * same pixels: each lane inside the span is the scalar loop's pixel, as above, and the
+ * write mask is the depth test's and the span's.  (The 16-bit layouts keep the
+ * overlapping group: AVX2 has no 16-bit masked store.)
  * L / lanes: the triangle's lane constants, made at its first such span. */
 RSI_INLINE static void gen_span_plain(void *const ze, void *const ce, int32_t n, uint32_t z, uint64_t col,
                                      uint32_t gzu, uint64_t gc, gs_lanes *L, int *lanes, const int vf)
 {
     ptrdiff_t j = -(ptrdiff_t)n;      /* n >= 1; one counter to 0 */
+#if GS_MASKED
+    if (!(vf & (VF_565 | VF_Z16)) && n >= GS_MASK_MIN) {
+        const gs_v4u io = { 0, 1, 2, 3, 4, 5, 6, 7 };
+        gs_v4u zv, rv, gv, bv, m, k80, kr, kg;
+        if (!*lanes) { gs_lanes_make(L, gzu, gc, 3); *lanes = 1; }
+        GS_LANES(zv, rv, gv, bv, *L, 3, z, col);
+        k80 = L->k80; kr = L->kr; kg = L->kg;
+        /* GS_PX's XRGB8888 pixel with the masks from L */
+#define GS_PX888(RV, GV, BV) (((RV) & kr) | (((GV) >> 5) & kg) | ((BV) >> 13))
+        if (j <= -GS_N) {
+            const gs_v4u zstep = L->zstep, rstep = L->rstep, gstep = L->gstep, bstep = L->bstep;
+            do {
+                gs_v4u od, op, odb;
+                GS_LD(od, z_at(ze, j, vf), 4); GS_LD(op, px_at(ce, j, vf), 4);
+                odb = od ^ k80;
+                m = (gs_v4u)((gs_v4i)zv > (gs_v4i)odb);
+                GS_ST(z_at(ze, j, vf), od ^ ((odb ^ zv) & m), 4);
+                GS_ST(px_at(ce, j, vf), op ^ ((op ^ GS_PX888(rv, gv, bv)) & m), 4);
+                zv += zstep; rv += rstep; gv += gstep; bv += bstep;
+            } while ((j += GS_N) <= -GS_N);
+        }
+        if (j < 0) {        /* 1 <= -j < GS_N pixels left: lane mask lm */
+            const gs_v4i lm = (gs_v4i)io < (int32_t)-j;
+            const gs_v4u od = (gs_v4u)__builtin_ia32_maskloadd256((const gs_v4i *)z_at(ze, j, vf), lm);
+            m = (gs_v4u)((gs_v4i)zv > (gs_v4i)(od ^ k80)) & (gs_v4u)lm;
+            __builtin_ia32_maskstored256((gs_v4i *)z_at(ze, j, vf), (gs_v4i)m, (gs_v4i)(zv ^ k80));
+            __builtin_ia32_maskstored256((gs_v4i *)px_at(ce, j, vf), (gs_v4i)m, (gs_v4i)GS_PX888(rv, gv, bv));
+        }
+#undef GS_PX888
+        return;
+    }
+#endif
 #if RS_SPANV
     if (n >= 8) {       /* (>= GS_N: the groups need GS_N pixels) */
         const size_t zb = z_bytes(vf), cb = px_bytes(vf);
