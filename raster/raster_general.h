@@ -23,9 +23,9 @@
 #endif
 #if RS_SPANV
 /* GS_N pixels a group: 4 in 128-bit vectors, 8 in the 256-bit ones of x86-64-v3 (AVX2;
- * raster/isa.c's second copy).  Everything below holds for either: the spans take groups from GS_N pixels on,
- * and gs_lanes_make's bound (the fields at pixels 0 and GS_N - 1 of such a span both in
- * [0, 2^21)) only gets tighter. */
+ * raster/isa.c's second copy).  Everything below holds for either: gs_lanes_make's bound
+ * takes the fields at pixels 0 and 3 of a span, and every span that makes the lanes has
+ * four pixels or more (eight, or GS_MASK_MIN). */
 #define GS_N (RS_VBYTES / 4)
 /* GS_MASKED: the x86-64-v3 copy (eight lanes) draws the XRGB8888 spans with 32-bit depth
  * through AVX2's masked loads and stores (gen_span_plain), from GS_MASK_MIN pixels on;
