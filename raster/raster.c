@@ -203,10 +203,11 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
 typedef void (*draw_fn)(band *bd);
 
 /* The per-triangle code, specialised per variant (raster_pixel.h says how): the tiny
- * path, the general path, then the strip pairs and the strip loop with its named
- * copies draw_888_z32 .. draw_count. */
+ * path, the general path (its spans, then its triangles), then the strip pairs and the
+ * strip loop with its named copies draw_888_z32 .. draw_count. */
 #include "raster/raster_pixel.h"
 #include "raster/raster_tiny.h"
+#include "raster/raster_span.h"
 #include "raster/raster_general.h"
 #include "raster/raster_draw.h"
 

@@ -1,7 +1,7 @@
 /* raster/raster_pixel.h — the state sets (variants) the per-triangle code is
  * specialised for, and the pixel and depth accesses that depend on them.  raster.c's
- * own: included by it once, before the triangle code (raster_tiny.h, raster_general.h,
- * raster_draw.h).
+ * own: included by it once, before the triangle code (raster_tiny.h, raster_span.h,
+ * raster_general.h, raster_draw.h).
  *
  * SPECIALISATION
  * A variant is a constant `vf`, an OR of the VF_ flags below.  Every function of the
