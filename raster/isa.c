@@ -3,14 +3,15 @@
  * With RS_ISA_DISPATCH=1 (the Makefile sets it on x86-64 when the compiler takes
  * -march=x86-64-v3 and __builtin_cpu_supports("x86-64-v3")), raster.c and xform.c are
  * in the library twice (raster_int.h names the copies): the baseline one and the v3
- * one.  This file defines the public rs_frame_prepare and rs_draw_band,
+ * one; so is raster/water.c, whose post hook rw_post calls rw_post_v3 when rs_isa()
+ * says V3.  This file defines the public rs_frame_prepare and rs_draw_band,
  * which call the copy chosen here.  Why a second copy: the strip pre-pass and the
  * spans are written with 128-bit generic vectors, and at baseline x86-64 (SSE2, two
  * operands) a third of the pre-pass's per-group instructions are register copies; the
  * same source compiled for x86-64-v3 (three-operand AVX forms, BMI2 shifts) draws the
  * peer scene with fewer instructions (docs/perf-history.md).  Every CPU sold since
  * 2015 takes the v3 copy; the copies compute the same integers, so the bytes are the
- * same (make test draws the peer scene with both and compares).
+ * same (make test draws the peer scene and water frames with both and compares).
  *
  * The choice is made once, at the first call (a plain int: racing threads compute the
  * same value). */

@@ -3,7 +3,15 @@
  * raster/water_setup.c).  Right shifts of negative values are arithmetic (checked once
  * in core/fx.h's users; gcc and clang on every target we build). */
 #include <string.h>
+#if defined(RS_BUILD_V3)
+/* the x86-64-v3 copy (the Makefile compiles this file twice, as raster.c; raster/isa.c):
+ * its external functions end in _v3, and rw_post calls rw_post_v3 when raster/isa.c
+ * chose that copy */
+#define rw_pass_reflection rw_pass_reflection_v3
+#define rw_post rw_post_v3
+#endif
 #include "core/fx.h"
+#include "raster/raster.h"
 #include "raster/water.h"
 #include "raster/water_int.h"
 
@@ -11,6 +19,17 @@
 #define RW_INLINE inline __attribute__((always_inline))   /* inner loops' helpers */
 #else
 #define RW_INLINE inline
+#endif
+
+/* RW_VEC: the x86-64-v3 copy draws the common water pixels eight at a time in AVX2 lanes
+ * (raster/water_vec.h; GCC's builtin names, as raster_span.h's GS_MASKED) */
+#if defined(RS_BUILD_V3) && defined(__AVX2__) && defined(__GNUC__) && !defined(__clang__)
+#define RW_VEC 1
+#else
+#define RW_VEC 0
+#endif
+#if defined(RS_ISA_DISPATCH) && RS_ISA_DISPATCH
+br_status rw_post_v3(const void *user, rs_band *b, rs_band_stats *st);
 #endif
 
 /* ---------------------------------------------------------------- passes */
@@ -498,27 +517,48 @@ static inline void put_px(uint8_t *crow, int32_t x, int32_t y, uint32_t rgb, con
     else ((uint32_t *)(void *)crow)[x] = rgb;
 }
 
-/* water_rows_only's pixels of one row; trows (a constant at each call): the row may hold
- * a tested triangle's pixels (rw_frame.trow), whose flag is read only then. */
+/* Water-pass pixel x (its id set) of row k->y for water_rows_only: its colour when the
+ * water shows there, fogged by the water's depth towards the row's sky colour.  *qdw and
+ * *q8: the water depth the last wave displacement was made for (0: none; a water depth is
+ * > 0) and it, kept along the row (a plane's pixels along a row mostly share their
+ * depth); trows (a constant at each call): the row may hold a tested triangle's pixels
+ * (rw_frame.trow), whose flag is read only then. */
+static RW_INLINE void water_one(const rw_frame *r, const refl_view *rv, const rw_rowk *k, uint8_t *crow,
+                                const uint8_t *drow, const uint8_t *wc, const uint8_t *wd, int32_t x, uint32_t sky,
+                                uint32_t *qdw, int64_t *q8, const int32_t fmt, const int32_t depth, const int common,
+                                const int trows)
+{
+    const int32_t dsh = depth == RS_DEPTH16 ? 14 : 0;
+    const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
+    uint32_t rgb, d, fw;
+    if (!water_shows(r, k, x, id, wc, dt, dw, dsh, fmt, trows)) return;
+    if ((common || r->p.waves_on) && dw != *qdw) { *qdw = dw; *q8 = wave_q8(r, dw << dsh); }
+    rgb = water_px(r, rv, k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, *q8, fmt, depth, common);
+    d = dw << dsh;
+    if ((fw = fog_weight(r->fog, (uint32_t)r->fog_sh, r->fog_d30, d)) != 0) rgb = mix_rgb(rgb, sky, fw);
+    put_px(crow, x, k->y, rgb, fmt);
+}
+
+#if RW_VEC
+#include "raster/water_vec.h"
+#endif
+
+/* water_rows_only's pixels of one row (water_one's, from x0 to xe - 1): in the x86-64-v3
+ * copy's common case eight at a time first (water_vec.h). */
 static RW_INLINE void water_row_px(const rw_frame *r, const refl_view *rv, const rw_rowk *k, uint8_t *crow,
                                    const uint8_t *drow, const uint8_t *wc, const uint8_t *wd, int32_t x0, int32_t xe,
                                    const int32_t fmt, const int32_t depth, const int common, const int trows)
 {
-    const int32_t dsh = depth == RS_DEPTH16 ? 14 : 0, y = k->y;
-    const uint32_t sky = r->sky[y];
-    uint32_t qdw = 0;           /* the depth q8 was made for (0: none; a water depth is > 0) */
+    const uint32_t sky = r->sky[k->y];
+    uint32_t qdw = 0;
     int64_t q8 = 0;
     int32_t x;
-    for (x = next_water(wc, x0, xe, fmt); x < xe; x = next_water(wc, x + 1, xe, fmt)) {
-        const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
-        uint32_t rgb, d, fw;
-        if (!water_shows(r, k, x, id, wc, dt, dw, dsh, fmt, trows)) continue;
-        if ((common || r->p.waves_on) && dw != qdw) { qdw = dw; q8 = wave_q8(r, dw << dsh); }
-        rgb = water_px(r, rv, k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, q8, fmt, depth, common);
-        d = dw << dsh;
-        if ((fw = fog_weight(r->fog, (uint32_t)r->fog_sh, r->fog_d30, d)) != 0) rgb = mix_rgb(rgb, sky, fw);
-        put_px(crow, x, y, rgb, fmt);
-    }
+#if RW_VEC
+    if (common && fmt == RS_FMT_XRGB8888 && depth == RS_DEPTH32 && wv_frame_ok(r))
+        x0 = water_row_vec(r, rv, k, crow, drow, wc, wd, x0, xe, sky, trows);
+#endif
+    for (x = next_water(wc, x0, xe, fmt); x < xe; x = next_water(wc, x + 1, xe, fmt))
+        water_one(r, rv, k, crow, drow, wc, wd, x, sky, &qdw, &q8, fmt, depth, common, trows);
 }
 
 /* The hook when the terrain frame carries its own fog and sky (rw_fog_vertices): only
@@ -601,6 +641,9 @@ br_status rw_post(const void *user, rs_band *b, rs_band_stats *st)
     refl_view rv;
     const uint8_t *wcol = NULL, *wdep = NULL;
     int32_t wy0 = 0, wrows = 0;
+#if defined(RS_ISA_DISPATCH) && RS_ISA_DISPATCH
+    if (rs_isa() == RS_ISA_V3) return rw_post_v3(user, b, st);
+#endif
     (void)st;
     memset(&rv, 0, sizeof rv);
     if (r->refl_pass >= 0 && r->refl_pass < RS_PIPE_MAX_PASSES && b->scratch[r->refl_pass] && r->refl) {

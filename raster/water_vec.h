@@ -1,0 +1,203 @@
+/* raster/water_vec.h — water_row_px's common case eight pixels at a time, in the x86-64-v3
+ * copy of raster/water.c (RW_VEC): XRGB8888 with 32-bit depth, waves, the fixed tint,
+ * Schlick's Fresnel term and the half-resolution reflection (rw_post's `common`), the
+ * viewer's and the benchmark's water.  raster/water.c's own, included once, after
+ * water_one.
+ *
+ * Same pixels: each lane makes water_one's integers for its pixel with the same
+ * operations in 32- and 64-bit lanes (the bounds are stated where a lane is narrower
+ * than the scalar code's type), so the bytes are the scalar loop's (tests/test_water.c
+ * draws water frames with both copies and compares them).  A lane takes the water pixels
+ * that water_shows accepts without a test of its own: the water nearer than the terrain
+ * (dw > dt), not a tested triangle's pixel in a row that may hold them; a lane whose
+ * terrain is nearer by more than the row's shore reach (sdd) is dry, as water_shows
+ * says.  The other water pixels (a tie, the shore test, plane_cell) are tested one by
+ * one with water_shows, then drawn in the lanes.
+ *
+ * Table lookups are AVX2 gathers.  A byte table (fres, fog, wsine) is read as the 32-bit
+ * word at the entry's byte and masked or sign-extended: the three bytes past an entry
+ * lie inside rw_frame (each of those tables is followed by another member). */
+#ifndef BR_RWATER_VEC_H
+#define BR_RWATER_VEC_H
+
+typedef int32_t wv_i __attribute__((vector_size(32)));
+typedef uint32_t wv_u __attribute__((vector_size(32)));
+typedef int32_t wv_iun __attribute__((vector_size(32), aligned(4)));   /* at any 32-bit boundary */
+typedef int64_t wv_q __attribute__((vector_size(32)));
+typedef uint64_t wv_uq __attribute__((vector_size(32)));
+typedef char wv_c __attribute__((vector_size(32)));
+typedef long long wv_ll __attribute__((vector_size(32)));     /* GCC's 64-bit lanes (permdi256) */
+
+#define WV_LD(P) (*(const wv_iun *)(const void *)(P))
+#define WV_SET(S) ((wv_i){ (S), (S), (S), (S), (S), (S), (S), (S) })
+/* one bit a lane (bit 4i: lane i) of a lane mask (-1 or 0) */
+#define WV_BITS(M) ((uint32_t)__builtin_ia32_pmovmskb256((wv_c)(M)) & 0x11111111u)
+/* the 32-bit words at BASE + SCALE IDX (SCALE 1 or 4) in the lanes MASK sets, 0 in the others */
+#define WV_GATHER(BASE, IDX, MASK, SCALE) \
+    __builtin_ia32_gathersiv8si(WV_SET(0), (const int *)(const void *)(BASE), (IDX), (MASK), (SCALE))
+#define WV_MIN_U(A, B) ((wv_i)__builtin_ia32_pminud256((A), (B)))
+#define WV_MIN(A, B) ((wv_i)__builtin_ia32_pminsd256((A), (B)))
+#define WV_MAX(A, B) ((wv_i)__builtin_ia32_pmaxsd256((A), (B)))
+
+/* The high 32 bits of each lane's product a b (unsigned, b < 2^32). */
+static inline wv_i wv_mulhi(wv_i a, uint32_t b)
+{
+    const wv_i bv = WV_SET((int32_t)b);
+    const wv_uq ev = (wv_uq)__builtin_ia32_pmuludq256(a, bv) >> 32;                    /* lanes 0, 2, .. */
+    const wv_uq od = (wv_uq)__builtin_ia32_pmuludq256((wv_i)((wv_uq)a >> 32), bv);       /* lanes 1, 3, .. */
+    return (wv_i)(ev | (od & 0xffffffff00000000ull));
+}
+
+/* Lane i = (uint32_t)((a_i^2 + bb) >> 8), water_px's den, for a_i^2 + bb >= 0 (bb >= 0). */
+static inline wv_i wv_den(wv_i a, int64_t bb)
+{
+    const wv_q ev = (wv_q)__builtin_ia32_pmuldq256(a, a) + bb;
+    const wv_i ao = (wv_i)((wv_uq)a >> 32);                                             /* (pmuldq: low words, signed) */
+    const wv_q od = (wv_q)__builtin_ia32_pmuldq256(ao, ao) + bb;
+    return (wv_i)((((wv_uq)ev >> 8) & 0xffffffffull) | ((wv_uq)od >> 8) << 32);
+}
+
+/* mix_pre and mix_rgb in lanes (the same sums: each field's below 2^16, so 32-bit lanes
+ * hold them) */
+static inline wv_i wv_mix_pre(wv_i a, uint32_t u, uint32_t brb, uint32_t bg)
+{
+    const wv_u au = (wv_u)a;
+    const wv_u rb = ((au & 0xff00ffu) * u + brb) >> 8, g = ((au & 0xff00u) * u + bg) >> 8;
+    return (wv_i)((rb & 0xff00ffu) | (g & 0xff00u));
+}
+
+static inline wv_i wv_mix(wv_i a, wv_i b, wv_i t)
+{
+    const wv_u au = (wv_u)a, bu = (wv_u)b, tu = (wv_u)t, uu = 256u - tu;
+    const wv_u rb = ((au & 0xff00ffu) * uu + (bu & 0xff00ffu) * tu + 0x800080u) >> 8;
+    const wv_u g = ((au & 0xff00u) * uu + (bu & 0xff00u) * tu + 0x8000u) >> 8;
+    return (wv_i)((rb & 0xff00ffu) | (g & 0xff00u));
+}
+
+/* 1 when the frame's wave constants fit the lanes: wave_q8's amp_m (at most 2^33 by
+ * rw_setup) split as 2^32 hi + lo, and inv_fade below 2^32 (it is 2^32 only when
+ * wave_fade_d < 2^15, waves fading from under a unit of depth). */
+static inline int wv_frame_ok(const rw_frame *r)
+{
+    return r->amp_m >= 0 && r->amp_m <= ((int64_t)1 << 33) && r->inv_fade <= 0xffffffffu;
+}
+
+/* Water_one's pixels of row k->y for x from x0 while x + 8 <= xe, eight at a time;
+ * returns the first column not done (water_row_px does the rest).  The common case:
+ * XRGB8888, 32-bit depth (dsh 0; depths below 2^30, RS_DEPTH_ONE, so signed lanes
+ * compare them), waves on, the fixed tint, res_shift 1. */
+static inline int32_t water_row_vec(const rw_frame *r, const refl_view *rv, const rw_rowk *k, uint8_t *crow,
+                                    const uint8_t *drow, const uint8_t *wc, const uint8_t *wd, int32_t x0,
+                                    int32_t xe, uint32_t sky, const int trows)
+{
+    const wv_i lane = { 0, 1, 2, 3, 4, 5, 6, 7 }, ones = WV_SET(-1);
+    /* a pixel's step of u = 2x + 1 - w is 2: lane i's phases are the group's plus i 2 dph
+     * (mod 2^64, as row_k's products) */
+    const wv_uq l03 = { 0, 1, 2, 3 }, l47 = { 4, 5, 6, 7 };
+    const wv_uq s01a = l03 * (2 * k->dph[0]), s01b = l47 * (2 * k->dph[0]);
+    const wv_uq s23a = l03 * (2 * k->dph[1]), s23b = l47 * (2 * k->dph[1]);
+    /* a phase pair's words index waves 2j (even words) and 2j + 1 (odd): the next table */
+    const wv_i toff = { 0, 256, 0, 256, 0, 256, 0, 256 };
+    const uint32_t amp_lo = (uint32_t)r->amp_m, amp_hi = (uint32_t)(r->amp_m >> 32);
+    const uint32_t inv_fade = (uint32_t)r->inv_fade;
+    const int32_t y = k->y;
+    /* the reflection rows: row_k's rcol[j] and rdep[j] lie (j + par) >> 1 rows of the
+     * reflection below rcol[0] and rdep[0], with par = (y - RW_WAVE_PX + 1) & 1
+     * (refl_row(y + j - RW_WAVE_PX, 1) = (y - RW_WAVE_PX + 1 + j) >> 1, y >= RW_WAVE_PX) */
+    const int32_t par = (y - RW_WAVE_PX + 1) & 1, rw = rv->rw;
+    int32_t x;
+    for (x = x0; x + 8 <= xe; x += 8) {
+        const wv_u wcv = (wv_u)WV_LD(wc + 4 * (size_t)x);
+        const wv_i id = (wv_i)((wcv >> 19) & 31u), nz = id != 0;
+        wv_i dt, dw, gap, cand, show, mirror, xv;
+        uint32_t test;
+        if (!WV_BITS(nz)) continue;
+        dt = WV_LD(drow + 4 * (size_t)x);
+        dw = WV_LD(wd + 4 * (size_t)x);
+        xv = lane + x;
+        /* the terrain nearer by more than the row's shore reach: dry (water_shows) */
+        gap = dt - dw;
+        cand = nz & ~((gap >= (int32_t)RW_DEPTH_TIE) & ((wv_u)gap > (wv_u)WV_GATHER(k->sdd, id, nz, 4)));
+        show = cand & (dw > dt);
+        if (trows) show &= (wv_i)((wcv & RW_TESTED_RGB) == 0);
+        /* the candidates with a test of their own: water_shows, one by one */
+        for (test = WV_BITS(cand & ~show); test; test &= test - 1) {
+            const int32_t i = __builtin_ctz(test) >> 2;
+            if (water_shows(r, k, x + i, (uint32_t)id[i], wc, (uint32_t)dt[i], (uint32_t)dw[i], 0, RS_FMT_XRGB8888,
+                            trows))
+                show[i] = -1;
+        }
+        /* (without rv->col water_px reads the sky alone) */
+        mirror = rv->col ? show & (id == r->p.refl_body) : WV_SET(0);
+        if (WV_BITS(show)) {
+            const wv_i a = WV_LD(&r->aq[x]);
+            const uint64_t u = (uint64_t)(int64_t)(2 * x + 1 - r->w);
+            const uint64_t b01 = k->ph[0] + u * k->dph[0], b23 = k->ph[1] + u * k->dph[1];
+            const wv_uq p01a = s01a + b01, p01b = s01b + b01, p23a = s23a + b23, p23b = s23b + b23;
+            wv_i q8, fade, den, ci, g01a, g01b, g23a, g23b, ea, eb, sx, sy, dx, dy, fr, refl, rgb;
+            uint32_t dn[8];
+            int i;
+            /* wave_q8: dw amp_m >> 32 = dw hi + (dw lo >> 32) below 2^31 + 2^30 (dw < 2^30,
+             * hi <= 2), at most RW_WAVE_PX 128; the fade's q8 (dw >> 14) < 2^9 2^16 */
+            q8 = WV_MIN_U(wv_mulhi(dw, amp_lo) + dw * (int32_t)amp_hi, WV_SET(RW_WAVE_PX * 128));
+            fade = (wv_u)dw < r->wave_fade_d;
+            q8 = (wv_mulhi(q8 * (wv_i)((wv_u)dw >> 14), inv_fade) & fade) | (q8 & ~fade);
+            /* cos^2 t: den >= 2^16 (water_px); 32-bit quotients, one a lane */
+            den = wv_den(a, k->bb);
+            *(wv_iun *)(void *)dn = den;
+#pragma GCC unroll 8
+            for (i = 0; i < 8; i++) dn[i] = k->cnum / dn[i];
+            ci = WV_MIN_U(WV_LD(dn), WV_SET(RW_TAB));
+            /* the four slopes (the high byte of each phase word), wave 2j + 1 beside 2j */
+            g01a = WV_GATHER(r->wsine[0], (wv_i)((wv_u)p01a >> 24) + toff, ones, 1);
+            g01b = WV_GATHER(r->wsine[0], (wv_i)((wv_u)p01b >> 24) + toff, ones, 1);
+            g23a = WV_GATHER(r->wsine[2], (wv_i)((wv_u)p23a >> 24) + toff, ones, 1);
+            g23b = WV_GATHER(r->wsine[2], (wv_i)((wv_u)p23b >> 24) + toff, ones, 1);
+            /* pixel k's words 2k, 2k + 1: ce = c0 + c2, co = c1 + c3 */
+            ea = ((wv_i)((wv_u)g01a << 24) >> 24) + ((wv_i)((wv_u)g23a << 24) >> 24);
+            eb = ((wv_i)((wv_u)g01b << 24) >> 24) + ((wv_i)((wv_u)g23b << 24) >> 24);
+            /* sx = ce + co, sy = ce - co: the pair sums come as pixels 0 1 4 5 2 3 6 7 */
+            sx = (wv_i)__builtin_ia32_permdi256((wv_ll)__builtin_ia32_phaddd256(ea, eb), 0xd8);
+            sy = (wv_i)__builtin_ia32_permdi256((wv_ll)__builtin_ia32_phsubd256(ea, eb), 0xd8);
+            /* |q8 sx| <= 512 508 < 2^31 */
+            dx = (q8 * sx) >> 15;
+            dy = (q8 * sy) >> 15;
+            ci = WV_MAX(WV_MIN(ci + ((sx * q8) >> 10), WV_SET(RW_TAB)), WV_SET(0));
+            fr = WV_GATHER(r->fres, ci, show, 1) & 255;
+            refl = WV_GATHER(r->skyrefl, ci, show, 4);
+            if (WV_BITS(mirror)) {
+                /* water_px's lookup: column x + dx clamped to the frame's, (x + dx) >> 1 to
+                 * rw - 1; row y + dy, whose reflection row row_k found where rx0 <= rx1 (its
+                 * rows need no clamp there), clamped to the frame's rows and refl_row's to
+                 * the last otherwise, and read only in the stored rows h0 .. h1 - 1 */
+                const wv_i xx = WV_MAX(WV_MIN(xv + dx, WV_SET(r->w - 1)), WV_SET(0));
+                const wv_i rx = WV_MIN(xx >> 1, WV_SET(rw - 1));
+                const uint8_t *dep = rv->dep, *col = rv->col;
+                wv_i off, hit;
+                if (k->rx0 <= k->rx1) {
+                    off = ((dy + (RW_WAVE_PX + par)) >> 1) * rw + rx;
+                    dep = k->rdep[0];
+                    col = k->rcol[0];
+                } else {
+                    const wv_i yy = WV_MAX(WV_MIN(dy + y, WV_SET(r->h - 1)), WV_SET(0));
+                    const wv_i ry = WV_MIN((yy + 1) >> 1, WV_SET((r->h >> 1) - 1));
+                    mirror &= (ry >= rv->h0) & (ry < rv->h1);
+                    off = (ry - rv->h0) * rw + rx;
+                }
+                hit = mirror & (WV_GATHER(dep, off, mirror, 4) != (int32_t)r->rdfar);
+                refl = (WV_GATHER(col, off, hit, 4) & 0xffffff & hit) | (refl & ~hit);
+            }
+            rgb = wv_mix(wv_mix_pre(WV_LD(crow + 4 * (size_t)x) & 0xffffff, r->tint_u, r->tint_rb, r->tint_g),
+                         refl, fr);
+            if (r->fog_d30) {
+                const wv_i fm = show & (wv_i)((wv_u)dw < r->fog_d30);
+                const wv_i fw = WV_GATHER(r->fog, (wv_i)((wv_u)dw >> r->fog_sh), fm, 1) & 255;
+                rgb = wv_mix(rgb, WV_SET((int32_t)sky), fw);     /* (a weight of 0 keeps rgb) */
+            }
+            __builtin_ia32_maskstored256((wv_i *)(void *)(crow + 4 * (size_t)x), show, rgb);
+        }
+    }
+    return x;
+}
+
+#endif
