@@ -57,21 +57,35 @@ static inline wv_i wv_den(wv_i a, int64_t bb)
     return (wv_i)((((wv_uq)ev >> 8) & 0xffffffffull) | ((wv_uq)od >> 8) << 32);
 }
 
+/* The lanes' constants and a row's values, made once a row and opaque to the compiler
+ * (WV_OPAQUE: an empty asm), so that the loop keeps them in registers or reads them from
+ * the stack instead of building each again at every group (mov, vmovd, vpbroadcastd) or
+ * reading the frame again after each store (which may alias it). */
+#define WV_OPAQUE(V) __asm__("" : "+x"(V))
+typedef struct wv_row {
+    wv_i lane, toff, m255, m888, mrb, mg, k256, hrb, hg, tab, wmax, zero;
+    wv_i tint_u, tint_rb, tint_g, body, rdfar, sky, fade_d, fog_d30, xmax, rwmax, rsel, rw;
+    wv_uq s01a, s01b, s23a, s23b;     /* lane i's phase step from the group's first pixel */
+} wv_row;
+
+/* v < c (unsigned lanes) */
+#define WV_LT_U(V, C) ((wv_i)((wv_u)(V) < (wv_u)(C)))
+
 /* mix_pre and mix_rgb in lanes (the same sums: each field's below 2^16, so 32-bit lanes
  * hold them) */
-static inline wv_i wv_mix_pre(wv_i a, uint32_t u, uint32_t brb, uint32_t bg)
+static inline wv_i wv_mix_pre(const wv_row *c, wv_i a)
 {
-    const wv_u au = (wv_u)a;
-    const wv_u rb = ((au & 0xff00ffu) * u + brb) >> 8, g = ((au & 0xff00u) * u + bg) >> 8;
-    return (wv_i)((rb & 0xff00ffu) | (g & 0xff00u));
+    const wv_u rb = ((wv_u)(a & c->mrb) * (wv_u)c->tint_u + (wv_u)c->tint_rb) >> 8;
+    const wv_u g = ((wv_u)(a & c->mg) * (wv_u)c->tint_u + (wv_u)c->tint_g) >> 8;
+    return ((wv_i)rb & c->mrb) | ((wv_i)g & c->mg);
 }
 
-static inline wv_i wv_mix(wv_i a, wv_i b, wv_i t)
+static inline wv_i wv_mix(const wv_row *c, wv_i a, wv_i b, wv_i t)
 {
-    const wv_u au = (wv_u)a, bu = (wv_u)b, tu = (wv_u)t, uu = 256u - tu;
-    const wv_u rb = ((au & 0xff00ffu) * uu + (bu & 0xff00ffu) * tu + 0x800080u) >> 8;
-    const wv_u g = ((au & 0xff00u) * uu + (bu & 0xff00u) * tu + 0x8000u) >> 8;
-    return (wv_i)((rb & 0xff00ffu) | (g & 0xff00u));
+    const wv_i u = c->k256 - t;
+    const wv_u rb = ((wv_u)((a & c->mrb) * u) + (wv_u)((b & c->mrb) * t) + (wv_u)c->hrb) >> 8;
+    const wv_u g = ((wv_u)((a & c->mg) * u) + (wv_u)((b & c->mg) * t) + (wv_u)c->hg) >> 8;
+    return ((wv_i)rb & c->mrb) | ((wv_i)g & c->mg);
 }
 
 /* 1 when the frame's wave constants fit the lanes: wave_q8's amp_m (at most 2^33 by
@@ -82,6 +96,103 @@ static inline int wv_frame_ok(const rw_frame *r)
     return r->amp_m >= 0 && r->amp_m <= ((int64_t)1 << 33) && r->inv_fade <= 0xffffffffu;
 }
 
+static inline void wv_row_make(wv_row *c, const rw_frame *r, const refl_view *rv, const rw_rowk *k, uint32_t sky)
+{
+    /* a pixel's step of u = 2x + 1 - w is 2: lane i's phases are the group's plus i 2 dph
+     * (mod 2^64, as row_k's products) */
+    const wv_uq l03 = { 0, 1, 2, 3 }, l47 = { 4, 5, 6, 7 };
+    const wv_i lane = { 0, 1, 2, 3, 4, 5, 6, 7 };
+    /* a phase pair's words index waves 2j (even words) and 2j + 1 (odd): the next table */
+    const wv_i toff = { 0, 256, 0, 256, 0, 256, 0, 256 };
+    c->lane = lane; c->toff = toff;
+    c->m255 = WV_SET(255); c->m888 = WV_SET(0xffffff); c->mrb = WV_SET(0xff00ff); c->mg = WV_SET(0xff00);
+    c->k256 = WV_SET(256); c->hrb = WV_SET(0x800080); c->hg = WV_SET(0x8000);
+    c->tab = WV_SET(RW_TAB); c->wmax = WV_SET(RW_WAVE_PX * 128); c->zero = WV_SET(0);
+    c->tint_u = WV_SET((int32_t)r->tint_u); c->tint_rb = WV_SET((int32_t)r->tint_rb);
+    c->tint_g = WV_SET((int32_t)r->tint_g); c->body = WV_SET(r->p.refl_body);
+    c->rdfar = WV_SET((int32_t)r->rdfar); c->sky = WV_SET((int32_t)sky);
+    c->fade_d = WV_SET((int32_t)r->wave_fade_d); c->fog_d30 = WV_SET((int32_t)r->fog_d30);
+    c->xmax = WV_SET(r->w - 1); c->rwmax = WV_SET(rv->rw - 1); c->rw = WV_SET(rv->rw);
+    /* row_k's rcol[j] and rdep[j] lie (j + par) >> 1 rows of the reflection below
+     * rcol[0] and rdep[0], par = (y - RW_WAVE_PX + 1) & 1 (refl_row(y + j - RW_WAVE_PX,
+     * 1) = (y - RW_WAVE_PX + 1 + j) >> 1, y >= RW_WAVE_PX): j = dy + RW_WAVE_PX */
+    c->rsel = WV_SET(RW_WAVE_PX + ((k->y - RW_WAVE_PX + 1) & 1));
+    c->s01a = l03 * (2 * k->dph[0]); c->s01b = l47 * (2 * k->dph[0]);
+    c->s23a = l03 * (2 * k->dph[1]); c->s23b = l47 * (2 * k->dph[1]);
+    WV_OPAQUE(c->lane); WV_OPAQUE(c->toff); WV_OPAQUE(c->m255); WV_OPAQUE(c->m888); WV_OPAQUE(c->mrb);
+    WV_OPAQUE(c->mg); WV_OPAQUE(c->k256); WV_OPAQUE(c->hrb); WV_OPAQUE(c->hg); WV_OPAQUE(c->tab);
+    WV_OPAQUE(c->wmax); WV_OPAQUE(c->zero);
+}
+
+/* The colour of the lanes in show (water_px's common case and water_one's fog): the
+ * water pixels of the group at x, water depths dw, body ids id. */
+static inline wv_i wv_water(const wv_row *c, const rw_frame *r, const refl_view *rv, const rw_rowk *k,
+                            const uint8_t *crow, int32_t x, wv_i dw, wv_i show, wv_i mirror)
+{
+    const wv_i a = WV_LD(&r->aq[x]), ones = WV_SET(-1), xv = c->lane + x;
+    const uint64_t u = (uint64_t)(int64_t)(2 * x + 1 - r->w);
+    const uint64_t b01 = k->ph[0] + u * k->dph[0], b23 = k->ph[1] + u * k->dph[1];
+    const wv_uq p01a = c->s01a + b01, p01b = c->s01b + b01, p23a = c->s23a + b23, p23b = c->s23b + b23;
+    const uint32_t amp_lo = (uint32_t)r->amp_m, amp_hi = (uint32_t)(r->amp_m >> 32);
+    wv_i q8, fade, ci, g01a, g01b, g23a, g23b, ea, eb, sx, sy, dx, dy, fr, refl, rgb;
+    uint32_t dn[8];
+    int i;
+    /* wave_q8: dw amp_m >> 32 = dw hi + (dw lo >> 32) below 2^31 + 2^30 (dw < 2^30,
+     * hi <= 2), at most RW_WAVE_PX 128; the fade's q8 (dw >> 14) < 2^9 2^16 */
+    q8 = WV_MIN_U(wv_mulhi(dw, amp_lo) + dw * (int32_t)amp_hi, c->wmax);
+    fade = WV_LT_U(dw, c->fade_d);
+    q8 = (wv_mulhi(q8 * (wv_i)((wv_u)dw >> 14), (uint32_t)r->inv_fade) & fade) | (q8 & ~fade);
+    /* cos^2 t: den >= 2^16 (water_px); 32-bit quotients, one a lane */
+    *(wv_iun *)(void *)dn = wv_den(a, k->bb);
+#pragma GCC unroll 8
+    for (i = 0; i < 8; i++) dn[i] = k->cnum / dn[i];
+    ci = WV_MIN_U(WV_LD(dn), c->tab);
+    /* the four slopes (the high byte of each phase word), wave 2j + 1 beside 2j */
+    g01a = WV_GATHER(r->wsine[0], (wv_i)((wv_u)p01a >> 24) + c->toff, ones, 1);
+    g01b = WV_GATHER(r->wsine[0], (wv_i)((wv_u)p01b >> 24) + c->toff, ones, 1);
+    g23a = WV_GATHER(r->wsine[2], (wv_i)((wv_u)p23a >> 24) + c->toff, ones, 1);
+    g23b = WV_GATHER(r->wsine[2], (wv_i)((wv_u)p23b >> 24) + c->toff, ones, 1);
+    /* pixel k's words 2k, 2k + 1: ce = c0 + c2, co = c1 + c3 */
+    ea = ((wv_i)((wv_u)g01a << 24) >> 24) + ((wv_i)((wv_u)g23a << 24) >> 24);
+    eb = ((wv_i)((wv_u)g01b << 24) >> 24) + ((wv_i)((wv_u)g23b << 24) >> 24);
+    /* sx = ce + co, sy = ce - co: the pair sums come as pixels 0 1 4 5 2 3 6 7 */
+    sx = (wv_i)__builtin_ia32_permdi256((wv_ll)__builtin_ia32_phaddd256(ea, eb), 0xd8);
+    sy = (wv_i)__builtin_ia32_permdi256((wv_ll)__builtin_ia32_phsubd256(ea, eb), 0xd8);
+    /* |q8 sx| <= 512 508 < 2^31 */
+    dx = (q8 * sx) >> 15;
+    dy = (q8 * sy) >> 15;
+    ci = WV_MAX(WV_MIN(ci + ((sx * q8) >> 10), c->tab), c->zero);
+    fr = WV_GATHER(r->fres, ci, show, 1) & c->m255;
+    refl = WV_GATHER(r->skyrefl, ci, show, 4);
+    if (WV_BITS(mirror)) {
+        /* water_px's lookup: column x + dx clamped to the frame's, (x + dx) >> 1 to rw - 1;
+         * row y + dy, whose reflection row row_k found where rx0 <= rx1 (its rows need no
+         * clamp there), clamped to the frame's rows and refl_row's to the last otherwise,
+         * and read only in the stored rows h0 .. h1 - 1 */
+        const wv_i rx = WV_MIN(WV_MAX(WV_MIN(xv + dx, c->xmax), c->zero) >> 1, c->rwmax);
+        const uint8_t *dep = rv->dep, *col = rv->col;
+        wv_i off, hit;
+        if (k->rx0 <= k->rx1) {
+            off = ((dy + c->rsel) >> 1) * c->rw + rx;
+            dep = k->rdep[0];
+            col = k->rcol[0];
+        } else {
+            const wv_i yy = WV_MAX(WV_MIN(dy + k->y, WV_SET(r->h - 1)), c->zero);
+            const wv_i ry = WV_MIN((yy + 1) >> 1, WV_SET((r->h >> 1) - 1));
+            mirror &= (ry >= rv->h0) & (ry < rv->h1);
+            off = (ry - rv->h0) * c->rw + rx;
+        }
+        hit = mirror & (WV_GATHER(dep, off, mirror, 4) != c->rdfar);
+        refl = (WV_GATHER(col, off, hit, 4) & c->m888 & hit) | (refl & ~hit);
+    }
+    rgb = wv_mix(c, wv_mix_pre(c, WV_LD(crow + 4 * (size_t)x) & c->m888), refl, fr);
+    if (r->fog_d30) {
+        const wv_i fw = WV_GATHER(r->fog, (wv_i)((wv_u)dw >> r->fog_sh), show & WV_LT_U(dw, c->fog_d30), 1) & c->m255;
+        rgb = wv_mix(c, rgb, c->sky, fw);       /* (a weight of 0 keeps rgb) */
+    }
+    return rgb;
+}
+
 /* Water_one's pixels of row k->y for x from x0 while x + 8 <= xe, eight at a time;
  * returns the first column not done (water_row_px does the rest).  The common case:
  * XRGB8888, 32-bit depth (dsh 0; depths below 2^30, RS_DEPTH_ONE, so signed lanes
@@ -90,31 +201,17 @@ static inline int32_t water_row_vec(const rw_frame *r, const refl_view *rv, cons
                                     const uint8_t *drow, const uint8_t *wc, const uint8_t *wd, int32_t x0,
                                     int32_t xe, uint32_t sky, const int trows)
 {
-    const wv_i lane = { 0, 1, 2, 3, 4, 5, 6, 7 }, ones = WV_SET(-1);
-    /* a pixel's step of u = 2x + 1 - w is 2: lane i's phases are the group's plus i 2 dph
-     * (mod 2^64, as row_k's products) */
-    const wv_uq l03 = { 0, 1, 2, 3 }, l47 = { 4, 5, 6, 7 };
-    const wv_uq s01a = l03 * (2 * k->dph[0]), s01b = l47 * (2 * k->dph[0]);
-    const wv_uq s23a = l03 * (2 * k->dph[1]), s23b = l47 * (2 * k->dph[1]);
-    /* a phase pair's words index waves 2j (even words) and 2j + 1 (odd): the next table */
-    const wv_i toff = { 0, 256, 0, 256, 0, 256, 0, 256 };
-    const uint32_t amp_lo = (uint32_t)r->amp_m, amp_hi = (uint32_t)(r->amp_m >> 32);
-    const uint32_t inv_fade = (uint32_t)r->inv_fade;
-    const int32_t y = k->y;
-    /* the reflection rows: row_k's rcol[j] and rdep[j] lie (j + par) >> 1 rows of the
-     * reflection below rcol[0] and rdep[0], with par = (y - RW_WAVE_PX + 1) & 1
-     * (refl_row(y + j - RW_WAVE_PX, 1) = (y - RW_WAVE_PX + 1 + j) >> 1, y >= RW_WAVE_PX) */
-    const int32_t par = (y - RW_WAVE_PX + 1) & 1, rw = rv->rw;
+    wv_row c;
     int32_t x;
+    wv_row_make(&c, r, rv, k, sky);
     for (x = x0; x + 8 <= xe; x += 8) {
         const wv_u wcv = (wv_u)WV_LD(wc + 4 * (size_t)x);
         const wv_i id = (wv_i)((wcv >> 19) & 31u), nz = id != 0;
-        wv_i dt, dw, gap, cand, show, mirror, xv;
+        wv_i dt, dw, gap, cand, show;
         uint32_t test;
         if (!WV_BITS(nz)) continue;
         dt = WV_LD(drow + 4 * (size_t)x);
         dw = WV_LD(wd + 4 * (size_t)x);
-        xv = lane + x;
         /* the terrain nearer by more than the row's shore reach: dry (water_shows) */
         gap = dt - dw;
         cand = nz & ~((gap >= (int32_t)RW_DEPTH_TIE) & ((wv_u)gap > (wv_u)WV_GATHER(k->sdd, id, nz, 4)));
@@ -127,75 +224,10 @@ static inline int32_t water_row_vec(const rw_frame *r, const refl_view *rv, cons
                             trows))
                 show[i] = -1;
         }
-        /* (without rv->col water_px reads the sky alone) */
-        mirror = rv->col ? show & (id == r->p.refl_body) : WV_SET(0);
-        if (WV_BITS(show)) {
-            const wv_i a = WV_LD(&r->aq[x]);
-            const uint64_t u = (uint64_t)(int64_t)(2 * x + 1 - r->w);
-            const uint64_t b01 = k->ph[0] + u * k->dph[0], b23 = k->ph[1] + u * k->dph[1];
-            const wv_uq p01a = s01a + b01, p01b = s01b + b01, p23a = s23a + b23, p23b = s23b + b23;
-            wv_i q8, fade, den, ci, g01a, g01b, g23a, g23b, ea, eb, sx, sy, dx, dy, fr, refl, rgb;
-            uint32_t dn[8];
-            int i;
-            /* wave_q8: dw amp_m >> 32 = dw hi + (dw lo >> 32) below 2^31 + 2^30 (dw < 2^30,
-             * hi <= 2), at most RW_WAVE_PX 128; the fade's q8 (dw >> 14) < 2^9 2^16 */
-            q8 = WV_MIN_U(wv_mulhi(dw, amp_lo) + dw * (int32_t)amp_hi, WV_SET(RW_WAVE_PX * 128));
-            fade = (wv_u)dw < r->wave_fade_d;
-            q8 = (wv_mulhi(q8 * (wv_i)((wv_u)dw >> 14), inv_fade) & fade) | (q8 & ~fade);
-            /* cos^2 t: den >= 2^16 (water_px); 32-bit quotients, one a lane */
-            den = wv_den(a, k->bb);
-            *(wv_iun *)(void *)dn = den;
-#pragma GCC unroll 8
-            for (i = 0; i < 8; i++) dn[i] = k->cnum / dn[i];
-            ci = WV_MIN_U(WV_LD(dn), WV_SET(RW_TAB));
-            /* the four slopes (the high byte of each phase word), wave 2j + 1 beside 2j */
-            g01a = WV_GATHER(r->wsine[0], (wv_i)((wv_u)p01a >> 24) + toff, ones, 1);
-            g01b = WV_GATHER(r->wsine[0], (wv_i)((wv_u)p01b >> 24) + toff, ones, 1);
-            g23a = WV_GATHER(r->wsine[2], (wv_i)((wv_u)p23a >> 24) + toff, ones, 1);
-            g23b = WV_GATHER(r->wsine[2], (wv_i)((wv_u)p23b >> 24) + toff, ones, 1);
-            /* pixel k's words 2k, 2k + 1: ce = c0 + c2, co = c1 + c3 */
-            ea = ((wv_i)((wv_u)g01a << 24) >> 24) + ((wv_i)((wv_u)g23a << 24) >> 24);
-            eb = ((wv_i)((wv_u)g01b << 24) >> 24) + ((wv_i)((wv_u)g23b << 24) >> 24);
-            /* sx = ce + co, sy = ce - co: the pair sums come as pixels 0 1 4 5 2 3 6 7 */
-            sx = (wv_i)__builtin_ia32_permdi256((wv_ll)__builtin_ia32_phaddd256(ea, eb), 0xd8);
-            sy = (wv_i)__builtin_ia32_permdi256((wv_ll)__builtin_ia32_phsubd256(ea, eb), 0xd8);
-            /* |q8 sx| <= 512 508 < 2^31 */
-            dx = (q8 * sx) >> 15;
-            dy = (q8 * sy) >> 15;
-            ci = WV_MAX(WV_MIN(ci + ((sx * q8) >> 10), WV_SET(RW_TAB)), WV_SET(0));
-            fr = WV_GATHER(r->fres, ci, show, 1) & 255;
-            refl = WV_GATHER(r->skyrefl, ci, show, 4);
-            if (WV_BITS(mirror)) {
-                /* water_px's lookup: column x + dx clamped to the frame's, (x + dx) >> 1 to
-                 * rw - 1; row y + dy, whose reflection row row_k found where rx0 <= rx1 (its
-                 * rows need no clamp there), clamped to the frame's rows and refl_row's to
-                 * the last otherwise, and read only in the stored rows h0 .. h1 - 1 */
-                const wv_i xx = WV_MAX(WV_MIN(xv + dx, WV_SET(r->w - 1)), WV_SET(0));
-                const wv_i rx = WV_MIN(xx >> 1, WV_SET(rw - 1));
-                const uint8_t *dep = rv->dep, *col = rv->col;
-                wv_i off, hit;
-                if (k->rx0 <= k->rx1) {
-                    off = ((dy + (RW_WAVE_PX + par)) >> 1) * rw + rx;
-                    dep = k->rdep[0];
-                    col = k->rcol[0];
-                } else {
-                    const wv_i yy = WV_MAX(WV_MIN(dy + y, WV_SET(r->h - 1)), WV_SET(0));
-                    const wv_i ry = WV_MIN((yy + 1) >> 1, WV_SET((r->h >> 1) - 1));
-                    mirror &= (ry >= rv->h0) & (ry < rv->h1);
-                    off = (ry - rv->h0) * rw + rx;
-                }
-                hit = mirror & (WV_GATHER(dep, off, mirror, 4) != (int32_t)r->rdfar);
-                refl = (WV_GATHER(col, off, hit, 4) & 0xffffff & hit) | (refl & ~hit);
-            }
-            rgb = wv_mix(wv_mix_pre(WV_LD(crow + 4 * (size_t)x) & 0xffffff, r->tint_u, r->tint_rb, r->tint_g),
-                         refl, fr);
-            if (r->fog_d30) {
-                const wv_i fm = show & (wv_i)((wv_u)dw < r->fog_d30);
-                const wv_i fw = WV_GATHER(r->fog, (wv_i)((wv_u)dw >> r->fog_sh), fm, 1) & 255;
-                rgb = wv_mix(rgb, WV_SET((int32_t)sky), fw);     /* (a weight of 0 keeps rgb) */
-            }
-            __builtin_ia32_maskstored256((wv_i *)(void *)(crow + 4 * (size_t)x), show, rgb);
-        }
+        if (WV_BITS(show))      /* (without rv->col water_px reads the sky alone) */
+            __builtin_ia32_maskstored256((wv_i *)(void *)(crow + 4 * (size_t)x), show,
+                                         wv_water(&c, r, rv, k, crow, x, dw, show,
+                                                  rv->col ? show & (id == c.body) : c.zero));
     }
     return x;
 }
