@@ -44,18 +44,22 @@ BENCH_SRC  = $(sort $(wildcard benchmarks/bench_*.c))
 SUPPORT_SRC= $(sort $(wildcard tests/support/*.c)) benchmarks/peer_scene.c
 
 LIB_OBJ    = $(LIB_SRC:%.c=$(B)/obj/%.o)
-# x86-64: the drawing code (raster.c, xform.c) and the water's post hook (water.c) a
-# second time for x86-64-v3 CPUs (AVX2, BMI2), chosen at run time by raster/isa.c (the
-# hook: rw_post, by rs_isa); when the compiler can (gcc >= 12: the
-# -march level and __builtin_cpu_supports("x86-64-v3")).  ISA_V3=0 leaves it out.
+# x86-64: the drawing code (raster.c, xform.c) and the water's passes and post hook
+# (water.c, water_pass.c) a second time for x86-64-v3 CPUs (AVX2, BMI2), chosen at run
+# time by raster/isa.c (the water's: rw_post and water_run, by rs_isa); when the
+# compiler can (gcc >= 12: the -march level and __builtin_cpu_supports("x86-64-v3")).
+# ISA_V3=0 leaves it out.
 ISA_V3    ?= $(shell $(CC) -dumpmachine 2>/dev/null | grep -q '^x86_64' && printf 'int main(void){__builtin_cpu_init();return __builtin_cpu_supports("x86-64-v3");}\n' | $(CC) -march=x86-64-v3 -x c -o /dev/null - 2>/dev/null && echo 1)
 ifeq ($(ISA_V3),1)
-LIB_OBJ   += $(B)/obj/raster/raster_v3.o $(B)/obj/raster/xform_v3.o $(B)/obj/raster/water_v3.o
-$(B)/obj/raster/raster.o $(B)/obj/raster/xform.o $(B)/obj/raster/water.o $(B)/obj/raster/isa.o: ISA_FLAGS = -DRS_ISA_DISPATCH=1
+LIB_OBJ   += $(B)/obj/raster/raster_v3.o $(B)/obj/raster/xform_v3.o $(B)/obj/raster/water_v3.o \
+             $(B)/obj/raster/water_pass_v3.o
+$(B)/obj/raster/raster.o $(B)/obj/raster/xform.o $(B)/obj/raster/water.o $(B)/obj/raster/water_pass.o \
+$(B)/obj/raster/isa.o: ISA_FLAGS = -DRS_ISA_DISPATCH=1
 endif
 # the objects whose symbols depend on ISA_V3 are rebuilt when it changes (the file
 # is rewritten only then)
-$(B)/obj/raster/raster.o $(B)/obj/raster/xform.o $(B)/obj/raster/water.o $(B)/obj/raster/isa.o: $(B)/isa_v3.flag
+$(B)/obj/raster/raster.o $(B)/obj/raster/xform.o $(B)/obj/raster/water.o $(B)/obj/raster/water_pass.o \
+$(B)/obj/raster/isa.o: $(B)/isa_v3.flag
 $(B)/isa_v3.flag: FORCE
 	@mkdir -p $(@D); echo '$(ISA_V3)' | cmp -s - $@ || echo '$(ISA_V3)' > $@
 TEST_BIN   = $(TEST_SRC:tests/%.c=$(B)/tests/%)

@@ -3,6 +3,12 @@
  * hook (raster/water.c) finds each water pixel's body id and depth beside the
  * terrain's. */
 #include <string.h>
+#if defined(RS_BUILD_V3)
+/* the x86-64-v3 copy (the Makefile compiles this file twice, as water.c): the baseline
+ * copy's water_run calls its rw_water_run_v3 when raster/isa.c chose that copy */
+#define rw_pass_water rw_pass_water_v3
+#endif
+#include "raster/raster.h"
 #include "raster/water.h"
 #include "raster/water_int.h"
 
@@ -15,12 +21,21 @@ static int water_touched(const void *user, int32_t y0, int32_t rows)
 /* One row of the water pass's scratch: depth o = max(t - bias, dfar) from the terrain's
  * row t, colour c = 0 (no id), n pixels (buffers that do not overlap).  t - bias > dfar
  * exactly when t > bias + dfar (all three below 2^30 for 30-bit depths, 2^16 for 16-bit
- * ones: no overflow).  With GCC's vector extension (gcc, clang) 16 bytes a step; the
- * colour is cleared in the same loop (one store per vector of depths, no second pass
- * over the row). */
+ * ones: no overflow, and signed lanes compare them).  With GCC's vector extension (gcc,
+ * clang) 16 bytes a step, 32 in the x86-64-v3 copy (AVX2) for 32-bit depths; the colour
+ * is cleared in the same loop (one store per vector of depths, no second pass over the
+ * row). */
 #if defined(__GNUC__)
 typedef uint32_t seed_u32x4 __attribute__((vector_size(16)));
 typedef uint16_t seed_u16x8 __attribute__((vector_size(16)));
+#if defined(__AVX2__)
+#define SEED_VB 32
+#else
+#define SEED_VB 16
+#endif
+#define SEED_N (SEED_VB / 4)    /* 32-bit depths a vector */
+typedef uint32_t seed_u32v __attribute__((vector_size(SEED_VB)));
+typedef int32_t seed_i32v __attribute__((vector_size(SEED_VB)));
 
 /* A zero vector that GCC cannot see is zero: stores of a known zero in a loop become a
  * memset, a second pass over the row (and glibc's `rep stosb`, which callgrind counts a
@@ -38,20 +53,24 @@ static inline void seed32(uint32_t *restrict o, uint32_t *restrict c, const uint
     const uint32_t thr = bias + dfar;
     int32_t i = 0;
 #if defined(__GNUC__)
-    const seed_u32x4 vb = { bias, bias, bias, bias }, vf = { dfar, dfar, dfar, dfar }, vt = { thr, thr, thr, thr };
-    seed_u32x4 z;
-    opaque_zero(&z);
-    for (; i + 8 <= n; i += 8) {
-        seed_u32x4 v, u, m, k;
+    const seed_u32v zero = { 0 }, vb = zero + bias, vf = zero + dfar;
+    const seed_i32v vt = (seed_i32v)zero + (int32_t)thr;
+    seed_u32x4 z4;
+    seed_u32v z;
+    opaque_zero(&z4);
+    memcpy(&z, &z4, sizeof z4);
+    if (SEED_VB > 16) memcpy((uint8_t *)&z + 16, &z4, sizeof z4);
+    for (; i + 2 * SEED_N <= n; i += 2 * SEED_N) {
+        seed_u32v v, u, m, k;
         memcpy(&v, t + i, sizeof v);
-        memcpy(&u, t + i + 4, sizeof u);
-        m = (seed_u32x4)(v > vt);
-        k = (seed_u32x4)(u > vt);
+        memcpy(&u, t + i + SEED_N, sizeof u);
+        m = (seed_u32v)((seed_i32v)v > vt);
+        k = (seed_u32v)((seed_i32v)u > vt);
         v = ((v - vb) & m) | (vf & ~m);
         u = ((u - vb) & k) | (vf & ~k);
         memcpy(o + i, &v, sizeof v);
-        memcpy(o + i + 4, &u, sizeof u);
-        if (clear) { memcpy(c + i, &z, sizeof z); memcpy(c + i + 4, &z, sizeof z); }
+        memcpy(o + i + SEED_N, &u, sizeof u);
+        if (clear) { memcpy(c + i, &z, sizeof z); memcpy(c + i + SEED_N, &z, sizeof z); }
     }
 #endif
     for (; i < n; i++) {
@@ -133,6 +152,9 @@ static inline void seed_span(const rw_frame *r, uint8_t *o, uint8_t *c, const ui
  * only where it is nearer than the terrain, or farther by no more than the shore bound of
  * the bodies on screen allows (rw_post tests each body's own); colour 0 (no id).  The
  * water frame is drawn with no_clear. */
+#if defined(RS_ISA_DISPATCH) && RS_ISA_DISPATCH
+br_status rw_water_run_v3(const void *user, rs_band *b, int32_t self, rs_band_stats *st);
+#endif
 static br_status water_run(const void *user, rs_band *b, int32_t self, rs_band_stats *st)
 {
     const rw_frame *r = (const rw_frame *)user;
@@ -141,6 +163,9 @@ static br_status water_run(const void *user, rs_band *b, int32_t self, rs_band_s
     const int32_t hi = r->whi < b->y0 + b->rows - 1 ? r->whi : b->y0 + b->rows - 1;
     const size_t dbp = r->depth == RS_DEPTH16 ? 2u : 4u, cbp = r->fmt == RS_FMT_RGB565 ? 2u : 4u;
     int32_t y;
+#if defined(RS_ISA_DISPATCH) && RS_ISA_DISPATCH
+    if (rs_isa() == RS_ISA_V3) return rw_water_run_v3(user, b, self, st);
+#endif
     if (b->scratch_y0[self] != b->y0 || b->scratch_rows[self] != b->rows) return BR_E_ARG;
     /* only the water rows wlo .. whi, and in them the columns of the row's group
      * (rw_row_cols): no water triangle reaches the others, and the reflection pass and
@@ -163,6 +188,14 @@ static br_status water_run(const void *user, rs_band *b, int32_t self, rs_band_s
     return rs_draw_band(r->water, b->scratch_y0[self], b->scratch_rows[self], b->scratch[self],
                         b->scratch_stride[self], b->scratch_depth[self], st);
 }
+
+#if defined(RS_BUILD_V3)
+br_status rw_water_run_v3(const void *user, rs_band *b, int32_t self, rs_band_stats *st);
+br_status rw_water_run_v3(const void *user, rs_band *b, int32_t self, rs_band_stats *st)
+{
+    return water_run(user, b, self, st);
+}
+#endif
 
 br_status rw_pass_water(rs_pass *pass, const rw_frame *r)
 {
