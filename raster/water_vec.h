@@ -66,6 +66,14 @@ typedef struct wv_row {
     wv_i lane, toff, m255, m888, mrb, mg, k256, hrb, hg, tab, wmax, zero;
     wv_i tint_u, tint_rb, tint_g, body, rdfar, sky, fade_d, fog_d30, xmax, rwmax, rsel, rw;
     wv_uq s01a, s01b, s23a, s23b;     /* lane i's phase step from the group's first pixel */
+    /* wet_at's values (wv_wet), when wet_lanes: ws0, ws1 in the low words (|ws| < 2^31),
+     * inv_sx and inv_sy as low and high words, the grid's width, and the grid as the
+     * aligned words that hold it (wet = wet_al + wet_mis) */
+    int wet_lanes;
+    wv_q ws0, ws1, wrel0, wrel1, gx0, gy0;
+    wv_uq gxmax, gymax, isxl, isxh, isyl, isyh, wetw;
+    const uint8_t *wet_al;
+    int32_t wet_mis;
 } wv_row;
 
 /* v < c (unsigned lanes) */
@@ -119,9 +127,98 @@ static inline void wv_row_make(wv_row *c, const rw_frame *r, const refl_view *rv
     c->rsel = WV_SET(RW_WAVE_PX + ((k->y - RW_WAVE_PX + 1) & 1));
     c->s01a = l03 * (2 * k->dph[0]); c->s01b = l47 * (2 * k->dph[0]);
     c->s23a = l03 * (2 * k->dph[1]); c->s23b = l47 * (2 * k->dph[1]);
+    c->wet_lanes = k->shore && !k->wbound && r->p.wet && k->ws0 > INT32_MIN && k->ws0 <= INT32_MAX
+                   && k->ws1 > INT32_MIN && k->ws1 <= INT32_MAX;
+    if (c->wet_lanes) {
+        const wv_q one = { 1, 1, 1, 1 };
+        const wv_uq uone = { 1, 1, 1, 1 };
+        c->ws0 = one * k->ws0; c->ws1 = one * k->ws1; c->wrel0 = one * k->wrel0; c->wrel1 = one * k->wrel1;
+        c->gx0 = one * r->gx0; c->gy0 = one * r->gy0;
+        c->gxmax = uone * r->gxmax; c->gymax = uone * r->gymax;
+        c->isxl = uone * (r->inv_sx & 0xffffffffu); c->isxh = uone * (r->inv_sx >> 32);
+        c->isyl = uone * (r->inv_sy & 0xffffffffu); c->isyh = uone * (r->inv_sy >> 32);
+        c->wetw = uone * (uint64_t)r->p.wet_w;
+        c->wet_al = (const uint8_t *)((uintptr_t)r->p.wet & ~(uintptr_t)3);
+        c->wet_mis = (int32_t)((uintptr_t)r->p.wet & 3u);
+    }
     WV_OPAQUE(c->lane); WV_OPAQUE(c->toff); WV_OPAQUE(c->m255); WV_OPAQUE(c->m888); WV_OPAQUE(c->mrb);
     WV_OPAQUE(c->mg); WV_OPAQUE(c->k256); WV_OPAQUE(c->hrb); WV_OPAQUE(c->hg); WV_OPAQUE(c->tab);
     WV_OPAQUE(c->wmax); WV_OPAQUE(c->zero);
+}
+
+/* v >> n in 64-bit lanes, arithmetic (AVX2 has none): with s = -1 where v < 0, 0 elsewhere,
+ * ((v ^ s) >>> n) ^ s = floor(v / 2^n) */
+static inline wv_q wv_sra64(wv_q v, int n)
+{
+    const wv_q s = v < 0;
+    return (wv_q)((wv_uq)(v ^ s) >> n) ^ s;
+}
+
+/* ((wrel + ((a ws) >> 12)) f) >> 16, grid_pos's offset along one axis: a (sign-extended
+ * 32 bits) times ws (|ws| < 2^31, low words) is vpmuldq's exact product; p f for f below
+ * 2^21 as p's low word times f plus its high word (signed) times f, shifted (mod 2^64,
+ * as the 64-bit product). */
+static inline wv_q wv_grid(wv_q a, wv_q ws, wv_q wrel, wv_q f)
+{
+    const wv_q p = wv_sra64((wv_q)__builtin_ia32_pmuldq256((wv_i)a, (wv_i)ws), 12) + wrel;
+    const wv_q lo = (wv_q)__builtin_ia32_pmuludq256((wv_i)p, (wv_i)f);
+    const wv_q hi = (wv_q)__builtin_ia32_pmuldq256((wv_i)((wv_uq)p >> 32), (wv_i)f);
+    return wv_sra64(lo + (wv_q)((wv_uq)hi << 32), 16);
+}
+
+/* ((uint64_t)g inv) >> 32 in the low words (mod 2^32), inv = h 2^32 + l: the low word of
+ * g_lo l >> 32 + g_hi l + g_lo h (the rest of the product lies above bit 63). */
+static inline wv_uq wv_cell(wv_uq g, wv_uq l, wv_uq h)
+{
+    return ((wv_uq)__builtin_ia32_pmuludq256((wv_i)g, (wv_i)l) >> 32)
+           + (wv_uq)__builtin_ia32_pmuludq256((wv_i)(g >> 32), (wv_i)l) + (wv_uq)__builtin_ia32_pmuludq256((wv_i)g, (wv_i)h);
+}
+
+typedef int32_t wv_i4un __attribute__((vector_size(16), aligned(4)));
+
+/* wet_at for the four lanes at aq and f: the grid index (low words) and -1 where the
+ * point lies on the grid */
+static inline void wv_wet_half(const wv_row *c, const int32_t *aq, const int32_t *f, wv_q *idx, wv_q *in)
+{
+    const wv_q a = __builtin_convertvector(*(const wv_i4un *)(const void *)aq, wv_q);
+    const wv_q fq = __builtin_convertvector(*(const wv_i4un *)(const void *)f, wv_q);
+    const wv_q gx = c->gx0 + wv_grid(a, c->ws0, c->wrel0, fq), gy = c->gy0 - wv_grid(a, c->ws1, c->wrel1, fq);
+    *in = ((wv_uq)gx < c->gxmax) & ((wv_uq)gy < c->gymax);
+    *idx = (wv_q)((wv_uq)__builtin_ia32_pmuludq256((wv_i)wv_cell((wv_uq)gy, c->isyl, c->isyh), (wv_i)c->wetw)
+                  + wv_cell((wv_uq)gx, c->isxl, c->isxh));
+}
+
+/* wet_at in the lanes of m, f[i] lane i's point along its ray (Q16, below 2^21): -1 where
+ * the grid sample nearest the point is wet with id (the index below wet_w wet_h there,
+ * as wet_at's), 0 elsewhere.  The sample's byte is read as the aligned word that holds
+ * it, which never reaches past the grid's last word. */
+static inline wv_i wv_wet(const wv_row *c, const rw_frame *r, int32_t x, wv_i id, const int32_t *f, wv_i m)
+{
+    wv_q i0, n0, i1, n1;
+    wv_i idx, ok, w;
+    wv_wet_half(c, &r->aq[x], f, &i0, &n0);
+    wv_wet_half(c, &r->aq[x + 4], f + 4, &i1, &n1);
+    idx = __builtin_shufflevector((wv_i)i0, (wv_i)i1, 0, 2, 4, 6, 8, 10, 12, 14) + c->wet_mis;
+    ok = m & __builtin_shufflevector((wv_i)n0, (wv_i)n1, 0, 2, 4, 6, 8, 10, 12, 14);
+    w = WV_GATHER(c->wet_al, (wv_i)((wv_u)idx >> 2), ok, 4);
+    return ok & ((wv_i)(((wv_u)w >> (((wv_u)idx & 3u) << 3)) & 255u) == id);
+}
+
+/* The tie and shore lanes of l (water_shows: the plane's point, plane_wet, or the
+ * terrain's, shore_wet) of a row with wet_lanes: -1 where the water shows. */
+static inline wv_i wv_shore(const wv_row *c, const rw_frame *r, int32_t x, wv_i id, wv_i dt, wv_i dw, wv_i l)
+{
+    const wv_i br = WV_GATHER(r->bratio, id, l, 4), tie = dt - dw < (int32_t)RW_DEPTH_TIE;
+    int32_t f[8];
+    uint32_t sh;
+    *(wv_iun *)(void *)f = br;
+    for (sh = WV_BITS(l & ~tie); sh; sh &= sh - 1) {     /* shore_wet's point, one a lane */
+        const int32_t i = __builtin_ctz(sh) >> 2;
+        const uint32_t t = (uint32_t)dt[i], d = (uint32_t)dw[i];
+        const int32_t s = t >= 65536u ? 16 - fx_clz32(t) : 0;
+        f[i] = (int32_t)(((int64_t)br[i] * (((d >> s) << 16) / (t >> s))) >> 16);
+    }
+    return wv_wet(c, r, x, id, f, l & (br != 0));
 }
 
 /* The colour of the lanes in show (water_px's common case and water_one's fog): the
@@ -217,8 +314,19 @@ static inline int32_t water_row_vec(const rw_frame *r, const refl_view *rv, cons
         cand = nz & ~((gap >= (int32_t)RW_DEPTH_TIE) & ((wv_u)gap > (wv_u)WV_GATHER(k->sdd, id, nz, 4)));
         show = cand & (dw > dt);
         if (trows) show &= (wv_i)((wcv & RW_TESTED_RGB) == 0);
+        test = WV_BITS(cand & ~show);
+        if (test && c.wet_lanes) {
+            /* the ties and shore tests in lanes where three or more wait (the gap's
+             * sign: the others are tested triangles' pixels, plane_cell) */
+            const wv_i l = cand & ~show & (gap >= 0);
+            const uint32_t lb = WV_BITS(l);
+            if (__builtin_popcount(lb) >= 3) {
+                show |= wv_shore(&c, r, x, id, dt, dw, l);
+                test &= ~lb;
+            }
+        }
         /* the candidates with a test of their own: water_shows, one by one */
-        for (test = WV_BITS(cand & ~show); test; test &= test - 1) {
+        for (; test; test &= test - 1) {
             const int32_t i = __builtin_ctz(test) >> 2;
             if (water_shows(r, k, x + i, (uint32_t)id[i], wc, (uint32_t)dt[i], (uint32_t)dw[i], 0, RS_FMT_XRGB8888,
                             trows))
