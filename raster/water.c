@@ -554,7 +554,7 @@ static RW_INLINE void water_row_px(const rw_frame *r, const refl_view *rv, const
     int64_t q8 = 0;
     int32_t x;
 #if RW_VEC
-    if (common && fmt == RS_FMT_XRGB8888 && depth == RS_DEPTH32 && wv_frame_ok(r))
+    if (fmt == RS_FMT_XRGB8888 && depth == RS_DEPTH32 && wv_case(r))
         x0 = water_row_vec(r, rv, k, crow, drow, wc, wd, x0, xe, sky, trows);
 #endif
     for (x = next_water(wc, x0, xe, fmt); x < xe; x = next_water(wc, x + 1, xe, fmt))

@@ -1,6 +1,6 @@
-/* raster/water_vec.h — water_row_px's common case eight pixels at a time, in the x86-64-v3
- * copy of raster/water.c (RW_VEC): XRGB8888 with 32-bit depth, waves, the fixed tint,
- * Schlick's Fresnel term and the half-resolution reflection (rw_post's `common`), the
+/* raster/water_vec.h — water_row_px's usual case eight pixels at a time, in the x86-64-v3
+ * copy of raster/water.c (RW_VEC): XRGB8888 with 32-bit depth, waves, the fixed tint and
+ * Schlick's Fresnel term (rw_post's `common` at any reflection resolution: wv_case), the
  * viewer's and the benchmark's water.  raster/water.c's own, included once, after
  * water_one.
  *
@@ -65,6 +65,7 @@ static inline wv_i wv_den(wv_i a, int64_t bb)
 typedef struct wv_row {
     wv_i lane, toff, m255, m888, mrb, mg, k256, hrb, hg, tab, wmax, zero;
     wv_i tint_u, tint_rb, tint_g, body, rdfar, sky, fade_d, fog_d30, xmax, rwmax, rsel, rw;
+    int32_t s;                        /* the reflection's resolution shift (res_shift) */
     wv_uq s01a, s01b, s23a, s23b;     /* lane i's phase step from the group's first pixel */
     /* wet_at's values (wv_wet), when wet_lanes: ws0, ws1 in the low words (|ws| < 2^31),
      * inv_sx and inv_sy as low and high words, the grid's width, and the grid as the
@@ -96,12 +97,14 @@ static inline wv_i wv_mix(const wv_row *c, wv_i a, wv_i b, wv_i t)
     return ((wv_i)rb & c->mrb) | ((wv_i)g & c->mg);
 }
 
-/* 1 when the frame's wave constants fit the lanes: wave_q8's amp_m (at most 2^33 by
- * rw_setup) split as 2^32 hi + lo, and inv_fade below 2^32 (it is 2^32 only when
+/* 1 when the lanes draw the frame's water: the usual case (waves on, the fixed tint,
+ * Schlick's Fresnel term) and wave constants that fit them: wave_q8's amp_m (at most
+ * 2^33 by rw_setup) split as 2^32 hi + lo, and inv_fade below 2^32 (it is 2^32 only when
  * wave_fade_d < 2^15, waves fading from under a unit of depth). */
-static inline int wv_frame_ok(const rw_frame *r)
+static inline int wv_case(const rw_frame *r)
 {
-    return r->amp_m >= 0 && r->amp_m <= ((int64_t)1 << 33) && r->inv_fade <= 0xffffffffu;
+    return r->p.waves_on && r->p.tint_fixed && !r->p.fresnel_one && r->amp_m >= 0
+           && r->amp_m <= ((int64_t)1 << 33) && r->inv_fade <= 0xffffffffu;
 }
 
 static inline void wv_row_make(wv_row *c, const rw_frame *r, const refl_view *rv, const rw_rowk *k, uint32_t sky)
@@ -121,10 +124,12 @@ static inline void wv_row_make(wv_row *c, const rw_frame *r, const refl_view *rv
     c->rdfar = WV_SET((int32_t)r->rdfar); c->sky = WV_SET((int32_t)sky);
     c->fade_d = WV_SET((int32_t)r->wave_fade_d); c->fog_d30 = WV_SET((int32_t)r->fog_d30);
     c->xmax = WV_SET(r->w - 1); c->rwmax = WV_SET(rv->rw - 1); c->rw = WV_SET(rv->rw);
-    /* row_k's rcol[j] and rdep[j] lie (j + par) >> 1 rows of the reflection below
-     * rcol[0] and rdep[0], par = (y - RW_WAVE_PX + 1) & 1 (refl_row(y + j - RW_WAVE_PX,
-     * 1) = (y - RW_WAVE_PX + 1 + j) >> 1, y >= RW_WAVE_PX): j = dy + RW_WAVE_PX */
-    c->rsel = WV_SET(RW_WAVE_PX + ((k->y - RW_WAVE_PX + 1) & 1));
+    /* row_k's rcol[j] and rdep[j] lie (j + par) >> s rows of the reflection below
+     * rcol[0] and rdep[0], par = m mod 2^s for m = y - RW_WAVE_PX + 2^(s-1) >= 0
+     * (refl_row(y + j - RW_WAVE_PX, s) = (m + j) >> s, y >= RW_WAVE_PX; 2^(s-1) is 0 at
+     * s = 0): j = dy + RW_WAVE_PX */
+    c->s = k->s;
+    c->rsel = WV_SET(RW_WAVE_PX + ((k->y - RW_WAVE_PX + ((1 << k->s) >> 1)) & ((1 << k->s) - 1)));
     c->s01a = l03 * (2 * k->dph[0]); c->s01b = l47 * (2 * k->dph[0]);
     c->s23a = l03 * (2 * k->dph[1]); c->s23b = l47 * (2 * k->dph[1]);
     c->wet_lanes = k->shore && !k->wbound && r->p.wet && k->ws0 > INT32_MIN && k->ws0 <= INT32_MAX
@@ -262,20 +267,20 @@ static inline wv_i wv_water(const wv_row *c, const rw_frame *r, const refl_view 
     fr = WV_GATHER(r->fres, ci, show, 1) & c->m255;
     refl = WV_GATHER(r->skyrefl, ci, show, 4);
     if (WV_BITS(mirror)) {
-        /* water_px's lookup: column x + dx clamped to the frame's, (x + dx) >> 1 to rw - 1;
+        /* water_px's lookup: column x + dx clamped to the frame's, (x + dx) >> s to rw - 1;
          * row y + dy, whose reflection row row_k found where rx0 <= rx1 (its rows need no
          * clamp there), clamped to the frame's rows and refl_row's to the last otherwise,
          * and read only in the stored rows h0 .. h1 - 1 */
-        const wv_i rx = WV_MIN(WV_MAX(WV_MIN(xv + dx, c->xmax), c->zero) >> 1, c->rwmax);
+        const wv_i rx = WV_MIN(WV_MAX(WV_MIN(xv + dx, c->xmax), c->zero) >> c->s, c->rwmax);
         const uint8_t *dep = rv->dep, *col = rv->col;
         wv_i off, hit;
         if (k->rx0 <= k->rx1) {
-            off = ((dy + c->rsel) >> 1) * c->rw + rx;
+            off = ((dy + c->rsel) >> c->s) * c->rw + rx;
             dep = k->rdep[0];
             col = k->rcol[0];
         } else {
             const wv_i yy = WV_MAX(WV_MIN(dy + k->y, WV_SET(r->h - 1)), c->zero);
-            const wv_i ry = WV_MIN((yy + 1) >> 1, WV_SET((r->h >> 1) - 1));
+            const wv_i ry = WV_MIN((yy + ((1 << c->s) >> 1)) >> c->s, WV_SET((r->h >> c->s) - 1));
             mirror &= (ry >= rv->h0) & (ry < rv->h1);
             off = (ry - rv->h0) * c->rw + rx;
         }
@@ -293,7 +298,7 @@ static inline wv_i wv_water(const wv_row *c, const rw_frame *r, const refl_view 
 /* Water_one's pixels of row k->y for x from x0 while x + 8 <= xe, eight at a time;
  * returns the first column not done (water_row_px does the rest).  The common case:
  * XRGB8888, 32-bit depth (dsh 0; depths below 2^30, RS_DEPTH_ONE, so signed lanes
- * compare them), waves on, the fixed tint, res_shift 1. */
+ * compare them), wv_case. */
 static inline int32_t water_row_vec(const rw_frame *r, const refl_view *rv, const rw_rowk *k, uint8_t *crow,
                                     const uint8_t *drow, const uint8_t *wc, const uint8_t *wd, int32_t x0,
                                     int32_t xe, uint32_t sky, const int trows)

@@ -115,11 +115,12 @@ static unsigned char *render_with(int isa, const char *const *args, int n, const
 
 /* Water, sky and fog: the lake from the water (the golden camera) and low over it (the
  * lake path's frame 250, where the water fills the frame's last rows), the default view
- * (its lake seen from afar: shore tests), with waves at --time, in RGB888 at two sizes
- * and band heights and in RGB565; the Kattegat from high and Monai Valley's water layer. */
+ * (its lake seen from afar: shore tests), with waves at --time, in RGB888 at three sizes,
+ * two band heights and three reflection resolutions and in RGB565; the Kattegat from
+ * high and Monai Valley's water. */
 static void test_water_same_bytes(void)
 {
-    enum { N = 8 };
+    enum { N = 10 };
     char lake[256], sea[256], out[256];
     const char *const lo = "40000,66000,420,60000,50000,500", *const low = "25243.8,73994.4,450.0,27752.4,72349.2,150.0";
     const char *const scenes[N][12] = {
@@ -127,6 +128,8 @@ static void test_water_same_bytes(void)
         { lake, "--size", "640x480", "--time", "2.25", "--camera", low, NULL },
         { lake, "--size", "640x480", "--time", "7", "--camera", low, "--bands", "7", NULL },
         { lake, "--size", "320x240", "--time", "0.5", "--camera", low, "--format", "rgb565", NULL },
+        { lake, "--size", "320x240", "--time", "4", "--camera", low, "--reflection", "full", NULL },
+        { lake, "--size", "640x480", "--time", "5", "--camera", lo, "--reflection", "quarter", NULL },
         { lake, "--size", "320x240", "--time", "3", NULL },
         { lake, "--size", "1280x720", "--time", "3", "--bands", "16", NULL },
         { sea, "--size", "320x240", "--time", "1.5", "--camera", "10000,20000,3000,40000,60000,0", NULL },
