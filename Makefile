@@ -154,13 +154,13 @@ run: all
 	./bitrain run $(RUN_DEM)
 
 # What the suite adds beyond the build: clang (second compiler), and the cross
-# compilers + qemu-user that run the determinism probe on 32-bit ARM, AArch64, s390x
-# and big-endian PowerPC, and the whole suite on TEST_CROSS (s390x: 64-bit big-endian,
-# armhf: 32-bit; tests/cross/suite.sh, with zlib and libpng built from Debian's source
-# packages: dpkg-dev unpacks them).  Optional: without them those checks are counted
-# as skipped.  TEST_CROSS= leaves the cross suites out.
+# compilers + qemu-user that run the determinism probe on 32-bit ARM, AArch64, riscv64,
+# i686, s390x and big-endian PowerPC, and the whole suite on TEST_CROSS (s390x: 64-bit
+# big-endian, armhf: 32-bit; tests/cross/suite.sh, with zlib and libpng built from
+# Debian's source packages: dpkg-dev unpacks them).  Optional: without them those checks
+# are counted as skipped.  TEST_CROSS= leaves the cross suites out.
 TEST_PKGS = clang qemu-user dpkg-dev gcc-arm-linux-gnueabihf gcc-aarch64-linux-gnu gcc-powerpc-linux-gnu \
-            gcc-s390x-linux-gnu
+            gcc-s390x-linux-gnu gcc-riscv64-linux-gnu gcc-i686-linux-gnu
 TEST_CROSS ?= s390x armhf
 test: deps
 	@sh mk/deps.sh --optional $(TEST_PKGS)

@@ -3,8 +3,9 @@
  * With RS_ISA_DISPATCH=1 (the Makefile sets it on x86-64 when the compiler takes
  * -march=x86-64-v3 and __builtin_cpu_supports("x86-64-v3")), raster.c and xform.c are
  * in the library twice (raster_int.h names the copies): the baseline one and the v3
- * one; so is raster/water.c, whose post hook rw_post calls rw_post_v3 when rs_isa()
- * says V3.  This file defines the public rs_frame_prepare and rs_draw_band,
+ * one; so are raster/water.c and water_pass.c, whose post hook (rw_post) and water
+ * pass (water_run) call their v3 copies when rs_isa() says V3.  This file defines the
+ * public rs_frame_prepare and rs_draw_band,
  * which call the copy chosen here.  Why a second copy: the strip pre-pass and the
  * spans are written with 128-bit generic vectors, and at baseline x86-64 (SSE2, two
  * operands) a third of the pre-pass's per-group instructions are register copies; the
