@@ -59,7 +59,9 @@ static inline void seed32(uint32_t *restrict o, uint32_t *restrict c, const uint
     seed_u32v z;
     opaque_zero(&z4);
     memcpy(&z, &z4, sizeof z4);
-    if (SEED_VB > 16) memcpy((uint8_t *)&z + 16, &z4, sizeof z4);
+#if SEED_VB > 16
+    memcpy((uint8_t *)&z + 16, &z4, sizeof z4);
+#endif
     for (; i + 2 * SEED_N <= n; i += 2 * SEED_N) {
         seed_u32v v, u, m, k;
         memcpy(&v, t + i, sizeof v);
