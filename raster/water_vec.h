@@ -6,17 +6,19 @@
  *
  * Same pixels: each lane makes water_one's integers for its pixel with the same
  * operations in 32- and 64-bit lanes (the bounds are stated where a lane is narrower
- * than the scalar code's type), so the bytes are the scalar loop's (tests/test_water.c
+ * than the scalar code's type), so the bytes are the scalar loop's (tests/test_isa.c
  * draws water frames with both copies and compares them).  A lane takes the water pixels
  * that water_shows accepts without a test of its own: the water nearer than the terrain
  * (dw > dt), not a tested triangle's pixel in a row that may hold them; a lane whose
  * terrain is nearer by more than the row's shore reach (sdd) is dry, as water_shows
- * says.  The other water pixels (a tie, the shore test, plane_cell) are tested one by
- * one with water_shows, then drawn in the lanes.
+ * says.  The ties and shore tests are made in lanes where three or more of a group wait
+ * (wv_shore), the rest of them and the tested triangles' pixels (plane_cell) one by one
+ * with water_shows; all are then drawn in the lanes.
  *
  * Table lookups are AVX2 gathers.  A byte table (fres, fog, wsine) is read as the 32-bit
  * word at the entry's byte and masked or sign-extended: the three bytes past an entry
- * lie inside rw_frame (each of those tables is followed by another member). */
+ * lie inside rw_frame (each of those tables is followed by another member); the wet
+ * grid's byte as the aligned word that holds it (wv_wet). */
 #ifndef BR_RWATER_VEC_H
 #define BR_RWATER_VEC_H
 
