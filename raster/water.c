@@ -2,18 +2,9 @@
  * (see water.h; the water pass is raster/water_pass.c, the per-frame set-up
  * raster/water_setup.c).  Right shifts of negative values are arithmetic (checked once
  * in core/fx.h's users; gcc and clang on every target we build). */
+#include "raster/water_int.h"     /* first: the v3 copy's names (water_int.h) */
 #include <string.h>
-#if defined(RS_BUILD_V3)
-/* the x86-64-v3 copy (the Makefile compiles this file twice, as raster.c; raster/isa.c):
- * its external functions end in _v3, and rw_post calls rw_post_v3 when raster/isa.c
- * chose that copy */
-#define rw_pass_reflection rw_pass_reflection_v3
-#define rw_post rw_post_v3
-#endif
 #include "core/fx.h"
-#include "raster/raster.h"
-#include "raster/water.h"
-#include "raster/water_int.h"
 
 #if defined(__GNUC__)
 #define RW_INLINE inline __attribute__((always_inline))   /* inner loops' helpers */
@@ -28,10 +19,6 @@
 #else
 #define RW_VEC 0
 #endif
-#if defined(RS_ISA_DISPATCH) && RS_ISA_DISPATCH
-br_status rw_post_v3(const void *user, rs_band *b, rs_band_stats *st);
-#endif
-
 /* ---------------------------------------------------------------- passes */
 
 /* The reduced reflection row that full-resolution row y reads: the first whose sample
@@ -381,18 +368,24 @@ static RW_INLINE int wet_at(const rw_frame *r, const rw_rowk *k, int32_t x, uint
     return r->p.wet[iy * (size_t)r->p.wet_w + ix] == id;
 }
 
+/* The terrain's point on the ray for shore_wet: bratio dw / dt (Q16, below 2^21 as
+ * bratio is), dw / dt from the depths brought to 16 bits (sh the smallest with
+ * dt >> sh < 2^16; a 32-bit division), for dt > dw >= 1 (so dt >> sh >= 1). */
+static inline int64_t shore_point(int32_t bratio, uint32_t dt, uint32_t dw)
+{
+    const int32_t sh = dt >= 65536u ? 16 - fx_clz32(dt) : 0;
+    return ((int64_t)bratio * (((dw >> sh) << 16) / (dt >> sh))) >> 16;
+}
+
 /* The shore test for water pixel (x, y) of body id whose terrain is nearer (dt > dw): 1
  * when the terrain's point on the pixel's ray lies on a sample wet with that body (the
  * terrain LOD over flattened water), 0 otherwise (land, or no plane point for the row).
- * P_t = E + (P_0 - E) bratio dw / dt, P_0 the reflected plane's point; dw / dt from the
- * depths brought to 16 bits (a 32-bit division); the grid sample nearest P_t.  Called
- * only where k->sdd[id] is not 0 (water_shows), so with k->shore and bratio[id] set, and
- * with dt > dw >= 1, so t16 >= 1. */
+ * P_t = E + (P_0 - E) bratio dw / dt, P_0 the reflected plane's point (shore_point); the
+ * grid sample nearest P_t.  Called only where k->sdd[id] is not 0 (water_shows), so with
+ * k->shore and bratio[id] set, and with dt > dw >= 1. */
 static RW_INLINE int shore_wet(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, uint32_t dt, uint32_t dw)
 {
-    const int32_t sh = dt >= 65536u ? 16 - fx_clz32(dt) : 0;      /* the smallest sh with dt >> sh < 2^16 */
-    const uint32_t t16 = dt >> sh, q = ((dw >> sh) << 16) / t16;
-    return wet_at(r, k, x, id, ((int64_t)r->bratio[id] * q) >> 16);
+    return wet_at(r, k, x, id, shore_point(r->bratio[id], dt, dw));
 }
 
 /* The shore test at the plane's own point: shore_wet with dt = dw, whose quotient q is

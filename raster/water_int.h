@@ -4,8 +4,23 @@
  * files. */
 #ifndef BR_RWATER_INT_H
 #define BR_RWATER_INT_H
+/* Run-time instruction-set choice (raster/isa.c), as raster_int.h's for raster.c: on
+ * x86-64 the Makefile compiles water.c and water_pass.c twice, the second time with
+ * -march=x86-64-v3 -DRS_BUILD_V3, whose external functions end in _v3 (set before
+ * water.h declares them), and the first with -DRS_ISA_DISPATCH=1, whose post hook and
+ * water pass call the v3 copy's rw_post_v3 and rw_water_run_v3 when rs_isa() says V3.
+ * water.c and water_pass.c include this header first. */
+#if defined(RS_BUILD_V3)
+#define rw_pass_reflection rw_pass_reflection_v3
+#define rw_pass_water rw_pass_water_v3
+#define rw_post rw_post_v3
+#endif
 #include <stdint.h>
 #include "raster/water.h"
+#if defined(RS_BUILD_V3) || (defined(RS_ISA_DISPATCH) && RS_ISA_DISPATCH)
+br_status rw_post_v3(const void *user, rs_band *b, rs_band_stats *st);
+br_status rw_water_run_v3(const void *user, rs_band *b, int32_t self, rs_band_stats *st);
+#endif
 
 #define Q12 4096
 

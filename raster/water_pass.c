@@ -2,15 +2,8 @@
  * into a scratch band whose depth is seeded from the terrain pass's, so that the post
  * hook (raster/water.c) finds each water pixel's body id and depth beside the
  * terrain's. */
+#include "raster/water_int.h"     /* first: the v3 copy's names (water_int.h) */
 #include <string.h>
-#if defined(RS_BUILD_V3)
-/* the x86-64-v3 copy (the Makefile compiles this file twice, as water.c): the baseline
- * copy's water_run calls its rw_water_run_v3 when raster/isa.c chose that copy */
-#define rw_pass_water rw_pass_water_v3
-#endif
-#include "raster/raster.h"
-#include "raster/water.h"
-#include "raster/water_int.h"
 
 static int water_touched(const void *user, int32_t y0, int32_t rows)
 {
@@ -154,9 +147,6 @@ static inline void seed_span(const rw_frame *r, uint8_t *o, uint8_t *c, const ui
  * only where it is nearer than the terrain, or farther by no more than the shore bound of
  * the bodies on screen allows (rw_post tests each body's own); colour 0 (no id).  The
  * water frame is drawn with no_clear. */
-#if defined(RS_ISA_DISPATCH) && RS_ISA_DISPATCH
-br_status rw_water_run_v3(const void *user, rs_band *b, int32_t self, rs_band_stats *st);
-#endif
 static br_status water_run(const void *user, rs_band *b, int32_t self, rs_band_stats *st)
 {
     const rw_frame *r = (const rw_frame *)user;
@@ -192,7 +182,6 @@ static br_status water_run(const void *user, rs_band *b, int32_t self, rs_band_s
 }
 
 #if defined(RS_BUILD_V3)
-br_status rw_water_run_v3(const void *user, rs_band *b, int32_t self, rs_band_stats *st);
 br_status rw_water_run_v3(const void *user, rs_band *b, int32_t self, rs_band_stats *st)
 {
     return water_run(user, b, self, st);

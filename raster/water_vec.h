@@ -221,9 +221,7 @@ static inline wv_i wv_shore(const wv_row *c, const rw_frame *r, int32_t x, wv_i 
     *(wv_iun *)(void *)f = br;
     for (sh = WV_BITS(l & ~tie); sh; sh &= sh - 1) {     /* shore_wet's point, one a lane */
         const int32_t i = __builtin_ctz(sh) >> 2;
-        const uint32_t t = (uint32_t)dt[i], d = (uint32_t)dw[i];
-        const int32_t s = t >= 65536u ? 16 - fx_clz32(t) : 0;
-        f[i] = (int32_t)(((int64_t)br[i] * (((d >> s) << 16) / (t >> s))) >> 16);
+        f[i] = (int32_t)shore_point(br[i], (uint32_t)dt[i], (uint32_t)dw[i]);
     }
     return wv_wet(c, r, x, id, f, l & (br != 0));
 }
