@@ -167,6 +167,26 @@ static void test_divisor(void)
         if (fx_divisor_trunc32(&q, n, &t)) CHECK_EQ(t, n / d);
         else CHECK(t == 777 && !BR_DIV64_NATIVE && (d > 0xffffffff || n / d >= ((int64_t)1 << 32) || n / d <= -((int64_t)1 << 32)));
     }
+    /* the wide quotients' edges (core/fx.c fx_divisor_trunc_wide): divisors whose top 32
+     * bits are all ones or a power of two, numerators one below, at and one above a
+     * multiple of the divisor, and the largest */
+    for (i = 0; i < 200000; i++) {
+        static const int64_t top[4] = { 0xffffffffLL, 0x80000000LL, 0xfffffffeLL, 0x80000001LL };
+        const uint64_t r = t_xs64();
+        const int sh = (int)(r % 32);
+        const int64_t d = i & 1 ? (top[(r >> 5) & 3] << sh) + (int64_t)((r >> 7) & ((1u << sh) - 1u))
+                                : (int64_t)((r >> 7) & 0xffffffff) + 1;
+        const int64_t qmax = INT64_MAX / d, k = (int64_t)(t_xs64() % (uint64_t)qmax) + (i & 2 ? 0 : qmax - 3 > 0 ? qmax - 3 : 0);
+        fx_divisor q;
+        int j;
+        fx_divisor_make(&q, d);
+        for (j = -1; j <= 1; j++) {
+            const uint64_t un = k > qmax ? (uint64_t)INT64_MAX : (uint64_t)k * (uint64_t)d + (uint64_t)(int64_t)j;
+            const int64_t n = (int64_t)(un > (uint64_t)INT64_MAX ? (uint64_t)INT64_MAX : un);
+            CHECK_EQ(fx_divisor_trunc(&q, n), n / d);
+            CHECK_EQ(fx_divisor_trunc(&q, -n), -n / d);
+        }
+    }
     for (i = 1; i < 100000; i++) CHECK_EQ(fx_div40((uint32_t)i), ((int64_t)1 << 40) / i);
 }
 
