@@ -114,6 +114,12 @@ br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err)
     w->rw = calloc(1, sizeof *w->rw);
     if (!w->rw) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
     rw_tables(w->rw);                   /* here, not in the first frame */
+    {   /* the refraction tint's length, once: a quarter of the relief, at most WS_TINT_MM
+         * (hf_z_to_mm and rt_mm_to_world divide in 64 bits) */
+        int64_t relief_mm = hf_z_to_mm(f, s->st.zmax) - hf_z_to_mm(f, s->st.zmin);
+        w->tint_len = rt_mm_to_world(&s->rt, relief_mm / 4 < WS_TINT_MM ? relief_mm / 4 : WS_TINT_MM);
+        if (w->tint_len < 1) w->tint_len = 1;
+    }
     if (w->o.no_water) return BR_OK;
     w->id = malloc(n);
     wz = malloc(n * sizeof *wz);
@@ -466,7 +472,6 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err 
     rw_frame *r = w->rw;
     int32_t body = 0, res = res_of[w->o.reflection >= 0 && w->o.reflection < 5 ? w->o.reflection : 0];
     const rs_frame *wfr = NULL, *rfr = NULL;
-    int64_t relief_mm = hf_z_to_mm(&s->f, s->st.zmax) - hf_z_to_mm(&s->f, s->st.zmin);
     rs_pass pass;
     int32_t k;
     memset(&p, 0, sizeof p);
@@ -484,8 +489,7 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err 
         p.plane_z = body ? world_z(s, w->bodies.level[body - 1]) : 0;
         hgt = c->eye[2] - p.plane_z;
         if (hgt < 1) hgt = 1;
-        p.tint_len = rt_mm_to_world(&s->rt, relief_mm / 4 < WS_TINT_MM ? relief_mm / 4 : WS_TINT_MM);
-        if (p.tint_len < 1) p.tint_len = 1;
+        p.tint_len = w->tint_len;
         p.waves_on = !w->o.no_waves;
         p.time_ms = (int32_t)llround(w->o.time_s * 1000);
         p.wave_len = hgt / 4 > 1 ? hgt / 4 : 1;

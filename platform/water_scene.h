@@ -72,6 +72,7 @@ typedef struct water_scene {
     ws_opts o;
     wt_bodies bodies;
     int nbodies;
+    int64_t tint_len;           /* the refraction tint's length in world units (ws_open) */
     uint8_t *id;                /* per sample: body id (wet, or dry land the body's surface
                                    goes on under), 0 where no water is drawn */
     hf wf;                      /* water surface heights (terrain units), nodata where none */
