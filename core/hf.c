@@ -39,8 +39,8 @@ int64_t hf_z_to_mm(const hf *f, int32_t z)
     if (z == HF_NODATA) return HF_NODATA;
     num = (int64_t)z * f->z_num * 1000;
     den = f->z_den;
-    if (den == 1) return num;      /* whole units (HGT): no 64-bit divide, as the camera's
-                                      ground height asks each frame (platform/scene.c) */
+    if (den == 1) return num;      /* whole units (HGT): the product, with no 64-bit divide
+                                      (scene_camera asks for the ground height each frame) */
     /* round half away from zero; den > 0 */
     return num >= 0 ? (num + den / 2) / den : -((-num + den / 2) / den);
 }
