@@ -46,13 +46,17 @@ arm-linux-gnueabihf-gcc -std=c99 -O2 $WARN -static -I. -o "$OUT/frame_div" tests
   || { echo "div64: cannot build tests/cross/frame_div.c for armhf"; echo "0 passed, 1 failed"; exit 1; }
 probe=$(qemu-arm -plugin "$OUT/qemu_insn.so,out=$OUT/probe.txt" "$OUT/frame_div" 2>&1 </dev/null)
 [ -f "$OUT/probe.txt" ] || skip "this qemu-arm cannot load the TCG plugin: $probe"
-# helper name -> entry address as the plugin prints it (hex, no 0x, Thumb bit cleared)
-arm-linux-gnueabihf-nm "$OUT/frame_div" >"$OUT/nm.txt"
-addrs=""
-for h in $HELPERS; do
-  a=$(awk -v n="$h" '$3 == n && ($2 == "T" || $2 == "t") { print $1; exit }' "$OUT/nm.txt")
-  [ -n "$a" ] && addrs="$addrs $h:$(printf '%x' $((0x$a & ~1)))"
-done
+# helper_addrs BINARY: $addrs, each helper linked into it as NAME:ADDRESS, the entry
+# address as the plugin prints it (hex, no 0x, Thumb bit cleared)
+helper_addrs() {
+  arm-linux-gnueabihf-nm "$1" >"$OUT/nm.txt"
+  addrs=""
+  for h in $HELPERS; do
+    a=$(awk -v n="$h" '$3 == n && ($2 == "T" || $2 == "t") { print $1; exit }' "$OUT/nm.txt")
+    [ -n "$a" ] && addrs="$addrs $h:$(printf '%x' $((0x$a & ~1)))"
+  done
+}
+helper_addrs "$OUT/frame_div"
 [ -n "$addrs" ] || { echo "div64: no libgcc division helper in the armhf binary (nothing to count)"; echo "0 passed, 1 failed"; exit 1; }
 calls() { # plugin output, address -> executions of the blocks that start there
   awk -v A="$2" '$1 == A { s += $3 } END { print s + 0 }' "$1"
@@ -92,12 +96,7 @@ elif ! make --no-print-directory -f mk/cross.mk -j"${JOBS:-2}" XCC=arm-linux-gnu
        "$xb/libbitrain.a" -L"$xb/deps/lib" -lpng -lz -lm -lpthread >>"$OUT/lib.log" 2>&1; then
   echo "FAIL div64 water: cannot build tests/cross/bench_main.c for armhf"; tail -n 15 "$OUT/lib.log"; failed=$((failed + 1))
 else
-  arm-linux-gnueabihf-nm "$OUT/bench_main" >"$OUT/nm.txt"
-  addrs=""
-  for h in $HELPERS; do
-    a=$(awk -v n="$h" '$3 == n && ($2 == "T" || $2 == "t") { print $1; exit }' "$OUT/nm.txt")
-    [ -n "$a" ] && addrs="$addrs $h:$(printf '%x' $((0x$a & ~1)))"
-  done
+  helper_addrs "$OUT/bench_main"
   bench() { # tag frames args... -> $OUT/tag-frames.txt; 1 on failure
     t=$1; n=$2; shift 2
     qemu-arm -cpu cortex-a7 -plugin "$OUT/qemu_insn.so,out=$OUT/$t-$n.txt" "$OUT/bench_main" --scene default \
