@@ -129,7 +129,6 @@ int fx_normalize3(const int64_t v[3], fx_q30 out[3])
     return 1;
 }
 
-#if !BR_DIV64_NATIVE
 /* fx_divisor_trunc's quotients beyond fx_divisor_trunc32, m = |n| < 2^63:
  * - d < 2^32 (r made), a quotient of 2^32 or more: long division in base 2^32, the
  *   high word's quotient hi = floor((m >> 32) / d), then that of the remainder's word
@@ -162,4 +161,3 @@ int64_t fx_divisor_trunc_wide(int64_t n, int64_t dd, fx_recip r)
     }
     return n < 0 ? -(int64_t)u : (int64_t)u;
 }
-#endif

@@ -246,16 +246,16 @@ static inline int fx_divisor_trunc32(const fx_divisor *q, int64_t n, int64_t *ou
 #endif
 }
 
-#if !BR_DIV64_NATIVE
-/* n / d truncated toward zero for the quotients fx_divisor_trunc32 refuses (core/fx.c:
- * no divide wider than 32 bits), |n| < 2^63, r the divisor's fx_recip (r.dn = 0 for d >=
- * 2^32).  By value, so that a caller's divisor need not live in memory. */
+/* n / d truncated toward zero for the quotients fx_divisor_trunc32 refuses without a
+ * 64-bit divide (core/fx.c: no divide wider than 32 bits), |n| < 2^63, r the fx_recip of
+ * d (r.dn = 0 for d >= 2^32).  By value, so that a caller's divisor need not live in
+ * memory.  In every build: a file built with BR_DIV64_NATIVE 0 may link against a
+ * native library (tests/test_raster_variants.c). */
 #if defined(__GNUC__)
 __attribute__((const))      /* reads nothing but its arguments: callers keep their values
                                in registers across it, as across libgcc's divide */
 #endif
 int64_t fx_divisor_trunc_wide(int64_t n, int64_t d, fx_recip r);
-#endif
 
 /* n / d truncated toward zero, as C's `/`; |n| < 2^63. */
 static inline int64_t fx_divisor_trunc(const fx_divisor *q, int64_t n)
