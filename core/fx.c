@@ -129,35 +129,40 @@ int fx_normalize3(const int64_t v[3], fx_q30 out[3])
     return 1;
 }
 
-/* fx_divisor_trunc's quotients beyond fx_divisor_trunc32, m = |n| < 2^63:
- * - d < 2^32 (r made), a quotient of 2^32 or more: long division in base 2^32, the
- *   high word's quotient hi = floor((m >> 32) / d), then that of the remainder's word
- *   and the low word, (m >> 32) - hi d < d, so both are fx_udiv_r's (n < d 2^32);
- * - d >= 2^32: the quotient Q = floor(m / d) is below 2^31.  With s the shift that
- *   leaves d's top 32 bits, dh = d >> s (2^31 <= dh < 2^32, 1 <= s <= 31), and
- *   M = m >> s < 2^(63 - s), the estimate e = floor(M / (dh + 1)) is at most Q (dh + 1
- *   > d / 2^s and M <= m / 2^s) and short of it by at most 2: m / d - M / (dh + 1) <=
- *   (M + 1) / (d / 2^s) - M / (dh + 1) < M / (dh (dh + 1)) + 1 / dh < 2^(1 - s) + 2^-31
- *   <= 1 + 2^-31, and the floor of e loses less than 1 more.  So the remainder
- *   m - e d (e d <= m: no overflow) takes at most two subtractions of d. */
-int64_t fx_divisor_trunc_wide(int64_t n, int64_t dd, fx_recip r)
+/* d < 2^32: long division in base 2^32, the high word's quotient hi = floor((n >> 32) /
+ * d), then that of the remainder's word and the low word, ((n >> 32) - hi d) 2^32 + (n mod
+ * 2^32) < d 2^32, both fx_udiv_r's (n < d 2^32).
+ * d >= 2^32: the quotient Q = floor(n / d) is below 2^32.  With s the shift that leaves
+ * d's top 32 bits, dh = d >> s (2^31 <= dh < 2^32, 1 <= s <= 32), and M = n >> s <
+ * 2^(64 - s), the estimate e = floor(M / (dh + 1)) is at most Q (dh + 1 > d / 2^s and M
+ * <= n / 2^s) and short of it by less than 4: n / d - M / (dh + 1) <= (M + 1) / (d / 2^s)
+ * - M / (dh + 1) < M / (dh (dh + 1)) + 1 / dh < 2^(2 - s) + 2^-31 <= 2 + 2^-31, and the
+ * floor of e loses less than 1 more.  So the remainder n - e d (e d <= n: no overflow)
+ * takes at most three subtractions of d (fx_udiv_bits' 32 steps cost more on 32-bit
+ * targets). */
+uint64_t fx_udiv_wide(uint64_t n, uint64_t d, fx_recip r)
 {
-    const uint64_t m = n < 0 ? 0 - (uint64_t)n : (uint64_t)n, d = (uint64_t)dd;
-    uint64_t u;
+    uint64_t u, rem;
     if (d <= 0xffffffffu) {
-        const uint32_t hi = fx_udiv_r(m >> 32, &r);
-        u = (uint64_t)hi << 32 | fx_udiv_r(((m >> 32) - (uint64_t)hi * d) << 32 | (uint32_t)m, &r);
-    } else {
+        const uint32_t hi = fx_udiv_r(n >> 32, &r);
+        return (uint64_t)hi << 32 | fx_udiv_r(((n >> 32) - (uint64_t)hi * d) << 32 | (uint32_t)n, &r);
+    }
+    {
         const int32_t s = 32 - fx_clz32((uint32_t)(d >> 32));
-        const uint64_t dh1 = (d >> s) + 1, mm = m >> s;
-        uint64_t rem;
+        const uint64_t dh1 = (d >> s) + 1, mm = n >> s;
         if (dh1 > 0xffffffffu) u = mm >> 32;             /* dh + 1 = 2^32 */
         else {
             const fx_recip rh = fx_recip_make((uint32_t)dh1);
-            u = fx_udiv_r(mm, &rh);                       /* mm < 2^62 < (dh + 1) 2^32 */
+            u = fx_udiv_r(mm, &rh);                       /* mm < 2^63 < (dh + 1) 2^32 */
         }
-        rem = m - u * d;
-        while (rem >= d) { rem -= d; u++; }              /* at most twice (above) */
     }
-    return n < 0 ? -(int64_t)u : (int64_t)u;
+    rem = n - u * d;
+    while (rem >= d) { rem -= d; u++; }                  /* at most three times (above) */
+    return u;
+}
+
+int64_t fx_divisor_trunc_wide(int64_t n, int64_t d, fx_recip r)
+{
+    const int64_t u = (int64_t)fx_udiv_wide(n < 0 ? 0 - (uint64_t)n : (uint64_t)n, (uint64_t)d, r);
+    return n < 0 ? -u : u;
 }

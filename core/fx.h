@@ -246,14 +246,21 @@ static inline int fx_divisor_trunc32(const fx_divisor *q, int64_t n, int64_t *ou
 #endif
 }
 
-/* n / d truncated toward zero for the quotients fx_divisor_trunc32 refuses without a
- * 64-bit divide (core/fx.c: no divide wider than 32 bits), |n| < 2^63, r the fx_recip of
- * d (r.dn = 0 for d >= 2^32).  By value, so that a caller's divisor need not live in
- * memory.  In every build: a file built with BR_DIV64_NATIVE 0 may link against a
- * native library (tests/test_raster_variants.c). */
+/* floor(n / d) for any n and d >= 1 with no divide wider than 32 bits (core/fx.c), r the
+ * fx_recip of d when d < 2^32 (unused otherwise): fx_divisor_trunc's quotients beyond
+ * fx_divisor_trunc32 where BR_DIV64_NATIVE is 0, and raster/water_setup.c's.  By value,
+ * so that a caller's divisor need not live in memory.  In every build: a file built
+ * with BR_DIV64_NATIVE 0 may link against a native library (tests/test_raster_variants.c). */
 #if defined(__GNUC__)
 __attribute__((const))      /* reads nothing but its arguments: callers keep their values
                                in registers across it, as across libgcc's divide */
+#endif
+uint64_t fx_udiv_wide(uint64_t n, uint64_t d, fx_recip r);
+/* n / d truncated toward zero by fx_udiv_wide, |n| < 2^63: fx_divisor_trunc's call, with
+ * the sign handled out of line, as in the libgcc call it replaces (inline, it grows every
+ * caller's code) */
+#if defined(__GNUC__)
+__attribute__((const))
 #endif
 int64_t fx_divisor_trunc_wide(int64_t n, int64_t d, fx_recip r);
 

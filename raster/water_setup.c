@@ -47,11 +47,8 @@ static const struct { int32_t dir[2]; int32_t len_q8; uint32_t kt; int32_t amp; 
 
 /* Quotients of the per-frame set-up with no 64-bit divide where the target has none
  * (core/config.h BR_DIV64_NATIVE = 0, 32-bit boards: each int64 `/` would be a libgcc
- * call): a divisor below 2^32 divides the high word by a 32-bit divide and the rest,
- * (nh mod d) 2^32 + nl < d 2^32, through one fx_recip of d (exact: fx_udiv_r's bound);
- * a divisor of 2^32 or more leaves a quotient below 2^32, by fx_udiv_bits' 32
- * compare-and-subtract steps.  The quotients equal C's `/` (BR_DIV64_NATIVE = 1 uses
- * it), so the pixels do not depend on the build. */
+ * call): core/fx.h's fx_udiv_wide with one fx_recip of d.  The quotients equal C's `/`
+ * (BR_DIV64_NATIVE = 1 uses it), so the pixels do not depend on the build. */
 typedef struct wdiv {
     uint64_t d;                 /* >= 1 */
     fx_recip rc;                /* of d when d < 2^32 (BR_DIV64_NATIVE = 0) */
@@ -71,11 +68,7 @@ static uint64_t wdiv_u(const wdiv *q, uint64_t n)    /* floor(n / d) */
 #if BR_DIV64_NATIVE
     return n / q->d;
 #else
-    const uint32_t d = (uint32_t)q->d, nh = (uint32_t)(n >> 32);
-    uint32_t qh;
-    if (q->d > 0xffffffffu) return fx_udiv_bits(n, q->d, 32);
-    qh = nh / d;
-    return ((uint64_t)qh << 32) | fx_udiv_r(((uint64_t)(nh - qh * d) << 32) | (uint32_t)n, &q->rc);
+    return fx_udiv_wide(n, q->d, q->rc);
 #endif
 }
 

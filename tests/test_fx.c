@@ -167,7 +167,7 @@ static void test_divisor(void)
         if (fx_divisor_trunc32(&q, n, &t)) CHECK_EQ(t, n / d);
         else CHECK(t == 777 && !BR_DIV64_NATIVE && (d > 0xffffffff || n / d >= ((int64_t)1 << 32) || n / d <= -((int64_t)1 << 32)));
     }
-    /* the wide quotients' edges (core/fx.c fx_divisor_trunc_wide): divisors whose top 32
+    /* the wide quotients' edges (core/fx.c fx_udiv_wide): divisors whose top 32
      * bits are all ones or a power of two, numerators one below, at and one above a
      * multiple of the divisor, and the largest */
     for (i = 0; i < 200000; i++) {
@@ -186,6 +186,13 @@ static void test_divisor(void)
             CHECK_EQ(fx_divisor_trunc(&q, n), n / d);
             CHECK_EQ(fx_divisor_trunc(&q, -n), -n / d);
         }
+    }
+    /* fx_udiv_wide itself over the whole unsigned range (raster/water_setup.c's n reach 2^64) */
+    for (i = 0; i < 400000; i++) {
+        const uint64_t r = t_xs64(), n = t_xs64() >> (r % 64);
+        const uint64_t dr = t_xs64() >> ((r >> 6) % 64), d = dr ? dr : 1u;
+        CHECK_EQ(fx_udiv_wide(n, d, fx_recip_make(d <= 0xffffffffu ? (uint32_t)d : 1u)), n / d);
+        CHECK_EQ(fx_udiv_wide(~(uint64_t)0, d, fx_recip_make(d <= 0xffffffffu ? (uint32_t)d : 1u)), ~(uint64_t)0 / d);
     }
     for (i = 1; i < 100000; i++) CHECK_EQ(fx_div40((uint32_t)i), ((int64_t)1 << 40) / i);
 }
