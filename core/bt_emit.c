@@ -21,7 +21,11 @@ static int collinear(const bt_mesh *m, uint32_t a, uint32_t b, uint32_t c)
  * the mesh covers both sides of the rim (no void in the grid, the rim not on its
  * edge).  Then the sliver (q, z, r2) lies in the vertical plane of the rim, below
  * the polyline q-z-r2 that is the surface there, so any ray from above the surface
- * to a point of it crosses the surface first: the depth test hides it.  Any other
+ * to a point of it crosses the surface first: the depth test hides it, up to the
+ * rounding of the depths it compares (where the sliver's depth at a pixel rounds to
+ * the surface's, the one drawn first keeps the pixel, and where it rounds nearer the
+ * sliver does: its colour there is interpolated from the rim's own vertices, a few
+ * bytes a frame that tests/test_terrain.c counts).  Any other
  * grid-collinear triple is a vertical sliver standing out of the surface (or
  * hanging off an edge), drawn by the rasteriser. */
 int bti_rim_line(const bti_extract *e, uint32_t q, uint32_t z, uint32_t r2)

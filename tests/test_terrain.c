@@ -4,8 +4,8 @@
  * real heights) get the same vertex bytes with the cache as without it, whether set
  * up serially (rt_from_mesh) or in ranges plus the serial pending pass (the threads'
  * form, with ranges cut anywhere); once a sample's level is cached no vertex on it is
- * left pending, whatever its height; heights outside the table and void samples; and
- * the cache's stated size. */
+ * left pending, whatever its height; heights outside the table and void samples; the
+ * cache's stated size; and the strip of such meshes drawn as a list of its triangles. */
 #include <stdint.h>
 #include <string.h>
 #include "tests/test.h"
@@ -108,6 +108,104 @@ static void test_cache_same_bytes(void)
     free(mesh_mem); free(want); free(got); free(cache);
 }
 
+/* Draws frame f whole, one band of f->h rows, into fresh buffers; returns the colour. */
+static uint8_t *draw_whole(rs_frame *f)
+{
+    const size_t bpp = f->fmt == RS_FMT_RGB565 ? 2 : 4;
+    uint8_t *col = calloc((size_t)f->w * (size_t)f->h, bpp);
+    void *dep = calloc((size_t)f->w * (size_t)f->h, 4);
+    CHECK(col && dep);
+    CHECK_EQ(rs_frame_prepare(f), BR_OK);
+    CHECK_EQ(rs_draw_band(f, 0, f->h, col, (size_t)f->w * bpp, dep, NULL), BR_OK);
+    free(dep);
+    return col;
+}
+
+/* A view mesh's strip drawn as a list of its triangles, in the strip's order and with
+ * each triangle's vertices in the order the strip gives them (odd ones with their first
+ * two swapped), degenerate ones left out: the same bytes as the strip, in both pixel
+ * layouts.  A renderer that draws the mesh without its strip (a board drawing band by
+ * band from the tree, issue 19) relies on it.  The strip's line triangles (a straight
+ * rim, three vertices in one column or row of the grid, core/bt_emit.c) are part of
+ * it: without them the frames differ where such a sliver wins a depth tie (counted and
+ * printed, not required). */
+static void test_strip_as_list(void)
+{
+    rt_scene sc, unused;
+    rs_ramp ramp;
+    bt_params p;
+    bt_mesh m;
+    cam c;
+    void *mesh_mem = NULL;
+    rs_vertex *v = malloc(sizeof *v * 200000);
+    rs_cvert *cache = malloc(sizeof *cache * 200000);
+    int16_t *chunks = malloc(rs_chunk_mem_size(&(rs_prim){ RS_LIST, 3u * 400000u, NULL }, 1));
+    br_index *list = malloc(sizeof *list * 3 * 400000), *leaves = malloc(sizeof *leaves * 3 * 400000);
+    uint32_t k, nline = 0, ntri = 0;
+    long leaf_bytes = 0;
+    int lay;
+    if (!load()) { CHECK(0); return; }
+    scene_pair(&sc, &unused, &ramp);
+    memset(&p, 0, sizeof p);
+    p.mode = BT_VIEW; p.fr = sc.fr; p.c = &c; p.hyst_q8 = 64; p.morph_q8 = 128; p.pixel_err_q8 = 256;
+    for (k = 0; k < 4; k++) {
+        /* low over the south shore looking across the crop, 20 m a frame */
+        int32_t eye[3], tgt[3], us = sc.shift;
+        uint32_t t, nl = 0, nf = 0;
+        rs_prim strip, lp;
+        eye[0] = (3000 + 20 * (int32_t)k) << us; eye[1] = 500 << us; eye[2] = 1200 << us;
+        tgt[0] = (9000 + 20 * (int32_t)k) << us; tgt[1] = 12000 << us; tgt[2] = 700 << us;
+        CHECK_EQ(cam_look_at(&c, eye, tgt, 60000, 320, 240, 1 << us, 60000 << us), BR_OK);
+        if (k == 0) CHECK_EQ(btc_extract(&tree, &p, 200000, &m, &mesh_mem), 0);
+        else CHECK_EQ(bt_extract(&tree, &p, &m), BR_OK);
+        if (m.nv > 200000 || m.ns > 3 * 400000) { CHECK(0); break; }
+        rt_from_mesh(&sc, &m, v);
+        for (t = 0; t + 2 < m.ns; t++) {
+            br_index a = m.strip[t], b = m.strip[t + 1];
+            const br_index d = m.strip[t + 2];
+            const bt_vert *va, *vb, *vd;
+            if (t & 1) { const br_index x = a; a = b; b = x; }
+            if (a == b || b == d || a == d) continue;
+            list[nl++] = a; list[nl++] = b; list[nl++] = d;
+            va = &m.v[a]; vb = &m.v[b]; vd = &m.v[d];
+            if ((int64_t)(vb->x - va->x) * (vd->y - va->y) == (int64_t)(vd->x - va->x) * (vb->y - va->y)) {
+                nline++;
+                continue;
+            }
+            leaves[nf++] = a; leaves[nf++] = b; leaves[nf++] = d;
+        }
+        ntri += nl / 3;
+        for (lay = 0; lay < 2; lay++) {
+            rs_frame f;
+            uint8_t *want, *got;
+            const size_t n = (size_t)320 * 240 * (lay ? 2 : 4);
+            size_t i;
+            memset(&f, 0, sizeof f);
+            f.w = 320; f.h = 240;
+            f.fmt = lay ? RS_FMT_RGB565 : RS_FMT_XRGB8888; f.depth = lay ? RS_DEPTH16 : RS_DEPTH32;
+            f.v = v; f.nv = m.nv; f.cache = cache; f.chunks = chunks; f.clear_rgb = 0x99ccffu;
+            cam_viewproj(&c, &f.vp);
+            strip.kind = RS_STRIP; strip.n = m.ns; strip.idx = m.strip;
+            f.prims = &strip; f.nprims = 1;
+            want = draw_whole(&f);
+            lp.kind = RS_LIST; lp.n = nl; lp.idx = list;
+            f.prims = &lp;
+            got = draw_whole(&f);
+            CHECK_MSG(!memcmp(want, got, n), "frame %u layout %d: the strip's triangles as a list differ", k, lay);
+            free(got);
+            lp.n = nf; lp.idx = leaves;
+            got = draw_whole(&f);
+            for (i = 0; i < n; i++) leaf_bytes += want[i] != got[i];
+            free(got);
+            free(want);
+        }
+    }
+    printf("4 frames: %u triangles, %u of them line triangles; without those, %ld bytes differ\n", ntri, nline,
+           leaf_bytes);
+    CHECK(nline > 0);   /* the frames exercise them */
+    free(mesh_mem); free(v); free(cache); free(chunks); free(list); free(leaves);
+}
+
 /* Heights outside the table (a water level below the lowest sample, one above the
  * highest), a texture (white lit), a void sample, a changed sun after rt_cache_clear,
  * and the stated size. */
@@ -171,6 +269,7 @@ int main(void)
 {
     T_RUN(test_cache_same_bytes);
     T_RUN(test_cache_edges);
+    T_RUN(test_strip_as_list);
     if (have > 0) dem_free(&full);
     free(crop.z);
     free(tree_mem);
