@@ -264,22 +264,57 @@ static RW_INLINE int64_t wave_q8(const rw_frame *r, uint32_t dw)
     return q8;
 }
 
+/* RW_SOFT_DIV: 32-bit `/` is a library call (Armv7-A without the divide extension, as
+ * Debian's armhf; __aeabi_uidiv, tens of instructions), or the BR_DIV64_NATIVE=0 test
+ * build (RS_TEST_32BIT), which runs the same code on the host. */
+#if (defined(__arm__) && !defined(__ARM_FEATURE_IDIV)) || defined(RS_TEST_32BIT)
+#define RW_SOFT_DIV 1
+#else
+#define RW_SOFT_DIV 0
+#endif
+
+/* 1 when q = floor(cnum / den) (den > 0): q den <= cnum < (q + 1) den. */
+static inline int rw_is_quot(uint32_t q, uint32_t cnum, uint32_t den)
+{
+    const uint64_t p = (uint64_t)q * den;
+    return p <= cnum && cnum - p < den;
+}
+
+/* cos^2 t's table index min(cnum / den, RW_TAB) (den >= 2^16).  With RW_SOFT_DIV, *qci
+ * is the row's last index (RW_TAB + 1: none yet), which serves, or a neighbour of it,
+ * when it passes rw_is_quot (RW_TAB when RW_TAB den <= cnum): cos^2 t moves by at most
+ * one entry between most neighbouring pixels.  Else the division.  The same index
+ * either way. */
+static RW_INLINE uint32_t cos2_index(uint32_t cnum, uint32_t den, uint32_t *qci)
+{
+    uint32_t c = *qci;
+#if RW_SOFT_DIV
+    if (c == RW_TAB && (uint64_t)RW_TAB * den <= cnum) return c;
+    if (c < RW_TAB && rw_is_quot(c, cnum, den)) return c;
+    if (c < RW_TAB && rw_is_quot(c + 1, cnum, den)) return *qci = c + 1;
+    if (c - 1 < RW_TAB && rw_is_quot(c - 1, cnum, den)) return *qci = c - 1;   /* 1 <= c <= RW_TAB */
+#endif
+    c = cnum / den;
+    c = c < RW_TAB ? c : RW_TAB;
+    *qci = c;
+    return c;
+}
+
 /* The colour of water pixel (x, k->y): terrain colour ct and depth dt under it, water
  * depth dw (30-bit units), body id, q8 = wave_q8(dw) (0 with the waves off); fmt and
  * depth are the frame's (constants at each call, as in post_rows); common (a constant
  * too) promises what rw_post checked: waves on, the fixed tint, Schlick's Fresnel term, the
  * half-resolution reflection (res_shift 1: k->s is 1). */
 static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const rw_rowk *k, int32_t x, uint32_t ct,
-                         uint32_t dt, uint32_t dw, uint32_t id, int64_t q8, const int32_t fmt, const int32_t depth,
-                         const int common)
+                         uint32_t dt, uint32_t dw, uint32_t id, int64_t q8, uint32_t *qci, const int32_t fmt,
+                         const int32_t depth, const int common)
 {
     const int32_t a = r->aq[x], y = k->y, s = common ? 1 : k->s;
     /* den >= Q12^2 >> 8 = 2^16 (k->bb includes Q12^2), so never 0 */
     const uint32_t den = (uint32_t)(((int64_t)a * a + k->bb) >> 8);
-    uint32_t ci = k->cnum / den;
+    uint32_t ci = cos2_index(k->cnum, den, qci);
     int32_t dx = 0, dy = 0;
     uint32_t refl, refr, fr, x32;
-    if (ci > RW_TAB) ci = RW_TAB;
     if (q8 != 0) {      /* else dx = dy = 0 and ci untilted, whatever the phase */
         /* each wave's slope at the pixel (row_k's phases); |sx|, |sy| <= 254, the sum
          * of the amplitudes (wave_set), so |dx|, |dy| <= 512 254 >> 15 < RW_WAVE_PX */
@@ -518,7 +553,8 @@ static inline void put_px(uint8_t *crow, int32_t x, int32_t y, uint32_t rgb, con
  * (rw_frame.trow), whose flag is read only then. */
 static RW_INLINE void water_one(const rw_frame *r, const refl_view *rv, const rw_rowk *k, uint8_t *crow,
                                 const uint8_t *drow, const uint8_t *wc, const uint8_t *wd, int32_t x, uint32_t sky,
-                                uint32_t *qdw, int64_t *q8, const int32_t fmt, const int32_t depth, const int common,
+                                uint32_t *qdw, int64_t *q8, uint32_t *qci, const int32_t fmt, const int32_t depth,
+                                const int common,
                                 const int trows)
 {
     const int32_t dsh = depth == RS_DEPTH16 ? 14 : 0;
@@ -526,7 +562,7 @@ static RW_INLINE void water_one(const rw_frame *r, const refl_view *rv, const rw
     uint32_t rgb, d, fw;
     if (!water_shows(r, k, x, id, wc, dt, dw, dsh, fmt, trows)) return;
     if ((common || r->p.waves_on) && dw != *qdw) { *qdw = dw; *q8 = wave_q8(r, dw << dsh); }
-    rgb = water_px(r, rv, k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, *q8, fmt, depth, common);
+    rgb = water_px(r, rv, k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, *q8, qci, fmt, depth, common);
     d = dw << dsh;
     if ((fw = fog_weight(r->fog, (uint32_t)r->fog_sh, r->fog_d30, d)) != 0) rgb = mix_rgb(rgb, sky, fw);
     put_px(crow, x, k->y, rgb, fmt);
@@ -543,7 +579,7 @@ static RW_INLINE void water_row_px(const rw_frame *r, const refl_view *rv, const
                                    const int32_t fmt, const int32_t depth, const int common, const int trows)
 {
     const uint32_t sky = r->sky[k->y];
-    uint32_t qdw = 0;
+    uint32_t qdw = 0, qci = RW_TAB + 1;
     int64_t q8 = 0;
     int32_t x;
 #if RW_VEC
@@ -551,7 +587,7 @@ static RW_INLINE void water_row_px(const rw_frame *r, const refl_view *rv, const
         x0 = water_row_vec(r, rv, k, crow, drow, wc, wd, x0, xe, sky, trows);
 #endif
     for (x = next_water(wc, x0, xe, fmt); x < xe; x = next_water(wc, x + 1, xe, fmt))
-        water_one(r, rv, k, crow, drow, wc, wd, x, sky, &qdw, &q8, fmt, depth, common, trows);
+        water_one(r, rv, k, crow, drow, wc, wd, x, sky, &qdw, &q8, &qci, fmt, depth, common, trows);
 }
 
 /* The hook when the terrain frame carries its own fog and sky (rw_fog_vertices): only
@@ -593,6 +629,7 @@ static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *
         int32_t x0 = 0, xe = 0;
         const uint8_t *wd = NULL, *wc = water_row(r, b, wcol, wdep, wy0, wrows, y, dbp, &wd, &x0, &xe);
         const uint32_t sky = r->sky[y];
+        uint32_t qci = RW_TAB + 1;
         rw_rowk k;
         row_k(r, rv, y, &k, fmt, depth);
         for (x = 0; x < b->w; x++) {
@@ -612,7 +649,7 @@ static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *
                     const uint32_t id = get_id(fmt, wc, x), dw = get_depth(depth, wd, x);
                     if (id && water_shows(r, &k, x, id, wc, dt, dw, dsh, fmt, r->trow[y])) {
                         rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id,
-                                       r->p.waves_on ? wave_q8(r, dw << dsh) : 0, fmt, depth, 0);
+                                       r->p.waves_on ? wave_q8(r, dw << dsh) : 0, &qci, fmt, depth, 0);
                         d = dw << dsh;
                         changed = 1;
                     }
