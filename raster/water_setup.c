@@ -360,6 +360,12 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
     f16 = vp->f_q16;
     wdiv_make(&df, (uint64_t)f16);
     if (p->water_on) wdiv_make(&dtint, (uint64_t)p->tint_len);
+    {   /* the rows where water may show (wlo .. whi): the per-row water values below are
+         * read only there (row_k, for the water pass's pixels) */
+        int32_t top;        /* the highest water vertex */
+        water_rows(r, &top);
+        water_horizon(r, c, f16, top);
+    }
     for (x = 0; x < r->w; x++) r->aq[x] = (int32_t)wdiv_s(&df, (int64_t)(2 * x + 1 - r->w) * ((int64_t)1 << 27));
     for (y = 0; y < r->h; y++) {
         int64_t b = wdiv_s(&df, (int64_t)(r->h - 2 * y - 1) * ((int64_t)1 << 27)), rz, len2;
@@ -372,12 +378,13 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         s2 = rz > 0 ? (uint32_t)((fx_isqrt64(udiv64((uint64_t)((rz * rz) << 24), (uint64_t)len2)) * 3u + 16u) >> 5) : 0;
         r->sky[y] = p->sky_on ? mix_rgb(r->p.sky_horizon, r->p.sky_zenith, s2 > 256u ? 256u : s2)
                               : terrain->clear_rgb;
-        for (k = 0; k < 4; k++) r->clear4[4 * y + k] = dither ? dither888(r->sky[y], k, y) : r->sky[y];
+        if (dither) for (k = 0; k < 4; k++) r->clear4[4 * y + k] = dither888(r->sky[y], k, y);
+        else for (k = 0; k < 4; k++) r->clear4[4 * y + k] = r->sky[y];
         /* the plane point of the row's rays: E + lam ray, lam = (H - ez) / ray_z */
         r->wrel[y][0] = r->wrel[y][1] = r->wstep[y][0] = r->wstep[y][1] = 0;
         r->wsig[y][0] = r->wsig[y][1] = 0;
         r->tkr[y] = -1;
-        if (rz < 0 && r->eye[2] > p->plane_z) {
+        if (rz < 0 && r->eye[2] > p->plane_z && y >= r->wlo && y <= r->whi) {
             int64_t lam = sdiv64(((int64_t)p->plane_z - r->eye[2]) * Q12, rz);    /* world units per unit ray */
             if (lam > ((int64_t)1 << 31)) lam = (int64_t)1 << 31;
             for (k = 0; k < 2; k++) {
@@ -452,13 +459,8 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         if (r->depth == RS_DEPTH16) m = (m + (1u << 14) - 1) >> 14;
         r->water_bias = m > 0x3fffffffu ? 0x3fffffffu : (uint32_t)m;
     }
-    {
-        int32_t top;        /* the highest water vertex */
-        water_rows(r, &top);
-        water_horizon(r, c, f16, top);
-        tested_rows(r);
-        water_cols(r);
-    }
+    tested_rows(r);
+    water_cols(r);
     return BR_OK;
 }
 
