@@ -44,6 +44,7 @@ typedef struct wm_ctx {
                                    water or the grid's edge reaches (reach_low) */
     uint8_t body;
     int32_t level;
+    int32_t tested_s;           /* the largest tested block's side (WM_TESTED_S by default) */
     int32_t (*leaf)[3];         /* x0, y0, s; s negated: a cell that is not clean;
                                    s + WM_LEAF_TESTED: a tested block */
     size_t nleaf, capleaf;
@@ -175,7 +176,7 @@ static int classify(wm_ctx *c, int32_t x0, int32_t y0, int32_t s)
     if (bits == WM_WET) {
         c->nleaf = mark;
         push_leaf(c, x0, y0, 2 * s);
-    } else if (2 * s <= WM_TESTED_S && (bits & WM_WET) && !(bits & ~(WM_WET | WM_FAIL | WM_LOW))
+    } else if (2 * s <= c->tested_s && (bits & WM_WET) && !(bits & ~(WM_WET | WM_FAIL | WM_LOW))
                && low_samples(c, x0, y0, 2 * s) * WM_TESTED_LOW <= (2 * s + 1) * (2 * s + 1)) {
         c->nleaf = mark;
         push_leaf(c, x0, y0, 2 * s + WM_LEAF_TESTED);
@@ -302,7 +303,7 @@ static void step_corners(wm_out *o, const wm_ctx *c, int32_t nbodies)
 }
 
 br_status wm_build(const hf *f, const uint8_t *id, const int32_t *wz, const int32_t *level, int32_t nbodies,
-                   wm_mesh *m)
+                   int32_t tested_s, wm_mesh *m)
 {
     const size_t n = (size_t)f->w * (size_t)f->h;
     wm_ctx c;
@@ -319,6 +320,7 @@ br_status wm_build(const hf *f, const uint8_t *id, const int32_t *wz, const int3
     loop = malloc(((size_t)4 * (size_t)S + 4) * sizeof *loop);
     if (!o.vmap || !loop || !c.low) { free(o.vmap); free(loop); free(c.low); return BR_E_NOMEM; }
     c.f = f; c.id = id; c.wz = wz; c.levels = level;
+    c.tested_s = tested_s > 0 ? tested_s : WM_TESTED_S;
     for (b = 1; b <= nbodies; b++) {
         c.body = (uint8_t)b;
         c.level = level[b - 1];

@@ -73,32 +73,61 @@ static br_status find_water(water_scene *w, scene *s, int32_t *wz, br_err *err)
     return BR_OK;
 }
 
-/* The water surfaces' mesh, once per scene (platform/water_mesh.c), as world vertices
- * carrying their body's id, and its chunk table. */
-static br_status water_mesh_once(water_scene *w, scene *s, br_err *err)
+/* One water mesh (platform/water_mesh.c) with tested blocks of up to tested_s cells, as
+ * world vertices carrying their body's id, and its chunk table. */
+static br_status surf_build(water_scene *w, scene *s, int32_t tested_s, ws_surf *u, br_err *err)
 {
     uint32_t i;
-    size_t cb;
-    if (wm_build(&s->f, w->id, w->wf.z, w->bodies.level, w->nbodies, &w->mesh) != BR_OK)
+    if (wm_build(&s->f, w->id, w->wf.z, w->bodies.level, w->nbodies, tested_s, &u->mesh) != BR_OK)
         return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for the water surfaces' mesh");
-    w->wverts = malloc(sizeof *w->wverts * (w->mesh.nv ? w->mesh.nv : 1));
-    w->wcache = malloc(rs_cache_mem_size(w->mesh.nv ? w->mesh.nv : 1));
-    if (!w->wverts || !w->wcache) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
-    for (i = 0; i < w->mesh.nv; i++) {
-        const wm_vert *v = &w->mesh.v[i];
-        rt_vertex(&s->rt, v->x, v->y, v->z, &w->wverts[i]);
-        w->wverts[i].uv[0] = w->wverts[i].uv[1] = 0;
-        w->wverts[i].rgb = RW_ID_RGB(v->id) | (v->tested ? RW_TESTED_RGB : 0);
+    u->verts = malloc(sizeof *u->verts * (u->mesh.nv ? u->mesh.nv : 1));
+    u->cache = malloc(rs_cache_mem_size(u->mesh.nv ? u->mesh.nv : 1));
+    u->tid = malloc(u->mesh.nidx / 3 + 1);
+    if (!u->verts || !u->cache || !u->tid) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
+    for (i = 0; i < u->mesh.nv; i++) {
+        const wm_vert *v = &u->mesh.v[i];
+        rt_vertex(&s->rt, v->x, v->y, v->z, &u->verts[i]);
+        u->verts[i].uv[0] = u->verts[i].uv[1] = 0;
+        u->verts[i].rgb = RW_ID_RGB(v->id) | (v->tested ? RW_TESTED_RGB : 0);
     }
-    w->wprim.kind = RS_LIST; w->wprim.n = w->mesh.nidx; w->wprim.idx = w->mesh.idx;
-    w->wtid = malloc(w->mesh.nidx / 3 + 1);
-    if (!w->wtid) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
+    u->prim.kind = RS_LIST; u->prim.n = u->mesh.nidx; u->prim.idx = u->mesh.idx;
     /* each triangle's body: a surface triangle's vertices are all of its body */
-    for (i = 0; i + 2 < w->mesh.nidx; i += 3) w->wtid[i / 3] = (uint8_t)w->mesh.v[w->mesh.idx[i]].id;
-    cb = rs_chunk_mem_size(&w->wprim, 1) + 4;
-    w->wchunks = malloc(cb);
-    if (!w->wchunks) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
-    if (!w->o.quiet) printf("water surfaces: %u triangles, %u vertices\n", w->mesh.nidx / 3, w->mesh.nv);
+    for (i = 0; i + 2 < u->mesh.nidx; i += 3) u->tid[i / 3] = (uint8_t)u->mesh.v[u->mesh.idx[i]].id;
+    u->chunks = malloc(rs_chunk_mem_size(&u->prim, 1) + 4);
+    if (!u->chunks) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
+    return BR_OK;
+}
+
+/* The water surfaces' meshes, once per scene: the fine one, and the far one with larger
+ * tested blocks (ws_frame picks one a frame). */
+static br_status water_mesh_once(water_scene *w, scene *s, br_err *err)
+{
+    if (surf_build(w, s, 0, &w->surf[0], err) != BR_OK) return err->code;     /* WM_TESTED_S */
+    if (surf_build(w, s, WS_FAR_TESTED_S, &w->surf[1], err) != BR_OK) return err->code;
+    w->cur = &w->surf[0];
+    {   /* the world box of each of the far mesh's tested triangles (far_pays) */
+        const ws_surf *u = &w->surf[1];
+        uint32_t t;
+        w->tbox = malloc(sizeof *w->tbox * (u->mesh.nidx / 3 + 1));
+        if (!w->tbox) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
+        for (t = 0; t + 2 < u->mesh.nidx; t += 3) {
+            int k, j;
+            if (!u->mesh.v[u->mesh.idx[t]].tested) continue;    /* (a tested triangle's vertices all are) */
+            for (k = 0; k < 3; k++) {
+                int32_t lo = INT32_MAX, hi = INT32_MIN;
+                for (j = 0; j < 3; j++) {
+                    const int32_t q = u->verts[u->mesh.idx[t + (uint32_t)j]].p[k];
+                    lo = q < lo ? q : lo;
+                    hi = q > hi ? q : hi;
+                }
+                w->tbox[w->ntbox][k] = lo;
+                w->tbox[w->ntbox][3 + k] = hi;
+            }
+            w->ntbox++;
+        }
+    }
+    if (!w->o.quiet)
+        printf("water surfaces: %u triangles, %u vertices\n", w->surf[0].mesh.nidx / 3, w->surf[0].mesh.nv);
     return BR_OK;
 }
 
@@ -154,20 +183,27 @@ br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err)
 void ws_close(water_scene *w)
 {
     if (w->wf.z) free(w->wf.z);
-    free(w->id); wm_free(&w->mesh); free(w->wverts); free(w->wtid); free(w->wcache); free(w->wchunks);
+    {
+        int k;
+        for (k = 0; k < 2; k++) {
+            ws_surf *u = &w->surf[k];
+            wm_free(&u->mesh); free(u->verts); free(u->tid); free(u->cache); free(u->chunks);
+        }
+    }
+    free(w->id); free(w->tbox);
     free(w->rstrip); free(w->rcache); free(w->rchunks); free(w->rbed); free(w->rw);
     free(w->rmesh_mem); free(w->rverts); free(w->rst);
     memset(w, 0, sizeof *w);
 }
 
 /* This frame's water frame: the scene's water mesh seen by the terrain's camera. */
-static br_status water_frame(water_scene *w, const rs_frame *tf)
+static br_status water_frame(water_scene *w, const ws_surf *u, const rs_frame *tf)
 {
     memset(&w->wfr, 0, sizeof w->wfr);
     w->wfr.w = tf->w; w->wfr.h = tf->h; w->wfr.fmt = tf->fmt; w->wfr.depth = tf->depth;
-    w->wfr.v = w->wverts; w->wfr.nv = w->mesh.nv; w->wfr.cache = w->wcache;
-    w->wfr.prims = &w->wprim; w->wfr.nprims = 1;
-    w->wfr.chunks = w->wchunks;
+    w->wfr.v = u->verts; w->wfr.nv = u->mesh.nv; w->wfr.cache = u->cache;
+    w->wfr.prims = &u->prim; w->wfr.nprims = 1;
+    w->wfr.chunks = u->chunks;
     w->wfr.no_clear = 1;                /* rw_pass_water seeds it from the terrain's depth */
     w->wfr.vp = tf->vp;
     return rs_frame_prepare(&w->wfr);
@@ -234,14 +270,14 @@ static int64_t near_area(const cam *c, const int32_t *p[3])
  * gets its area from near_area (in the same units), which is 0 when it lies off the
  * screen: counting such a triangle as the whole screen gave the mirror to a body that
  * lay beside or behind the camera while the lake in view reflected only sky. */
-static int32_t biggest_body(const water_scene *w, const cam *c, uint32_t *seen)
+static int32_t biggest_body(const water_scene *w, const ws_surf *u, const cam *c, uint32_t *seen)
 {
     int64_t area[RW_MAX_ID + 1];
-    const uint32_t nt = w->wprim.n / 3;
-    const uint32_t *ix = w->wprim.idx;
-    const rs_cvert *const wc = w->wcache;
+    const uint32_t nt = u->prim.n / 3;
+    const uint32_t *ix = u->prim.idx;
+    const rs_cvert *const wc = u->cache;
     const rs_vertex *const wv = w->wfr.v;
-    const uint8_t *const tid = w->wtid;
+    const uint8_t *const tid = u->tid;
     const int16_t *const ch = w->wfr.chunks;
     uint32_t t;
     int32_t best = 0, i;
@@ -465,6 +501,34 @@ static void fog_range(const scene *s, const cam *c, rw_params *p)
     if (p->fog_start < 1) p->fog_start = 1;
 }
 
+/* 1 when this frame draws the far water mesh (surf[1]): while each of its tested
+ * triangles, seen from the eye, spans at most WS_FAR_TESTED_PX pixels: f side <=
+ * WS_FAR_TESTED_PX d, side the longer horizontal side of the triangle's box and d the
+ * largest of the eye's distances to the box along the three axes (at most the Euclidean
+ * distance, so the test is the stricter).  Their pixels are tested one by one in the
+ * hook, so near them the fine mesh costs less; far away the far mesh's fewer, larger
+ * triangles do.  In integers, so every target makes the same choice: world units below
+ * 2^31, so side and d below 2^32, f (pixels) below 2^18 (4096 rows, 1 degree): both
+ * products below 2^50. */
+static int far_pays(const water_scene *w, const cam *c)
+{
+    const int64_t f = (int64_t)(c->f_q16 >> 16);
+    uint32_t i;
+    for (i = 0; i < w->ntbox; i++) {
+        const int32_t *bx = w->tbox[i];
+        int64_t d = 0, side = 0;
+        int k;
+        for (k = 0; k < 3; k++) {
+            const int64_t e = c->eye[k];
+            const int64_t o = e < bx[k] ? bx[k] - e : e > bx[3 + k] ? e - bx[3 + k] : 0;
+            if (o > d) d = o;
+            if (k < 2 && (int64_t)bx[3 + k] - bx[k] > side) side = (int64_t)bx[3 + k] - bx[k];
+        }
+        if (f * side > (int64_t)WS_FAR_TESTED_PX * d) return 0;
+    }
+    return 1;
+}
+
 br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err *err)
 {
     static const int32_t res_of[5] = { 1, 0, 1, 2, -1 };
@@ -478,9 +542,10 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err 
     p.sky_on = 1;
     if (!w->o.no_fog) fog_range(s, c, &p);
     if (w->nbodies) {
-        if (water_frame(w, tf) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "cannot set up the water frame");
+        w->cur = &w->surf[far_pays(w, c) ? 1 : 0];
+        if (water_frame(w, w->cur, tf) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "cannot set up the water frame");
         wfr = &w->wfr;
-        body = biggest_body(w, c, &p.seen_mask);
+        body = biggest_body(w, w->cur, c, &p.seen_mask);
     }
     if (wfr && w->wfr.nv) {
         int64_t hgt;
@@ -500,7 +565,7 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err 
         p.tint_fixed = w->o.water_file || w->o.have_level ? 0 : WS_TINT_FIXED;
         p.res_shift = res < 0 ? 0 : res;
         p.wet = w->id;
-        p.low = w->mesh.low;
+        p.low = w->cur->mesh.low;
         p.wet_w = s->f.w; p.wet_h = s->f.h;
         p.grid_ox = s->rt.fr.ox; p.grid_oy = s->rt.fr.oy;
         p.grid_sx = s->rt.fr.sx; p.grid_sy = s->rt.fr.sy;

@@ -22,6 +22,8 @@
 #define WS_MIN_AREA_M2 1000000  /* a flat region of at least 1 km^2 is a lake */
 #define WS_JOIN_DZ_MM 5000      /* the seam rule joins flat regions within 5 m */
 #define WS_REFL_TRI 262144     /* the reflection's own mesh holds at most this many triangles */
+#define WS_FAR_TESTED_S 64      /* the far water mesh's largest tested block, cells a side */
+#define WS_FAR_TESTED_PX 48     /* ... drawn while each tested triangle spans at most this many pixels */
 
 /* The water surfaces' mesh (platform/water_mesh.c): grid vertices (x column, y row, z in
  * heightfield units, body id), triangles counter-clockwise seen from +z, watertight. */
@@ -40,9 +42,10 @@ typedef struct wm_mesh {
                                    and voids; NULL when no triangle is tested */
 } wm_mesh;
 /* Meshes the surfaces once: id per sample (0: none), wz the surface height where id is
- * set, level[b - 1] body b's level, bodies 1 .. nbodies.  BR_E_NOMEM. */
+ * set, level[b - 1] body b's level, bodies 1 .. nbodies; tested blocks of up to tested_s
+ * cells a side (0: water_mesh.c's WM_TESTED_S, 32).  BR_E_NOMEM. */
 br_status wm_build(const hf *f, const uint8_t *id, const int32_t *wz, const int32_t *level, int32_t nbodies,
-                   wm_mesh *m);
+                   int32_t tested_s, wm_mesh *m);
 void wm_free(wm_mesh *m);
 
 typedef struct ws_opts {        /* zero = defaults: water found automatically, fog on */
@@ -68,6 +71,17 @@ typedef struct ws_opts {        /* zero = defaults: water found automatically, f
     int quiet;
 } ws_opts;
 
+/* A water mesh and what draws it: world vertices carrying their body's id, its vertex
+ * cache and chunk table, the triangle list, each triangle's body id. */
+typedef struct ws_surf {
+    wm_mesh mesh;
+    rs_vertex *verts;
+    rs_cvert *cache;
+    int16_t *chunks;
+    rs_prim prim;
+    uint8_t *tid;
+} ws_surf;
+
 typedef struct water_scene {
     ws_opts o;
     wt_bodies bodies;
@@ -76,12 +90,11 @@ typedef struct water_scene {
     uint8_t *id;                /* per sample: body id (wet, or dry land the body's surface
                                    goes on under), 0 where no water is drawn */
     hf wf;                      /* water surface heights (terrain units), nodata where none */
-    wm_mesh mesh;               /* the water surfaces, meshed once by ws_open */
-    rs_vertex *wverts;
-    rs_cvert *wcache;
-    int16_t *wchunks;
-    rs_prim wprim;
-    uint8_t *wtid;              /* per water triangle: its body id */
+    ws_surf surf[2];            /* the water surfaces meshed once by ws_open: [0] tested
+                                   blocks of up to WM_TESTED_S cells, [1] of up to WS_FAR_TESTED_S */
+    ws_surf *cur;               /* this frame's (ws_frame, far_pays) */
+    int32_t (*tbox)[6];         /* the world box (min x, y, z, max x, y, z) of each of surf[1]'s */
+    uint32_t ntbox;             /* tested triangles (far_pays) */
     rs_frame wfr;
     uint32_t *rstrip;           /* the terrain strip with its first index doubled */
     uint32_t rstrip_cap;

@@ -2,8 +2,9 @@
  * Constance's seam in N47E009, the Kattegat in N57E011), the clipper's water plane, and
  * `bitrain render` with water, waves and fog giving the same frame in bands of 1, 7, 16
  * and 240 rows, in RGB888 and RGB565; golden images of the lake (from the water), the
- * sea (from high) and Monai Valley (its still-water level over its wet points as a
- * --water layer) in RGB888 and RGB565 at a fixed --time. */
+ * sea (from high), Monai Valley (its still-water level over its wet points as a --water
+ * layer) and N47E009's default view (the far water mesh) in RGB888 and RGB565 at a fixed
+ * --time. */
 #include "tests/test.h"
 #include "core/water.h"
 #include "platform/cmd.h"
@@ -175,7 +176,8 @@ static int monai_water(const char *path)
     return fclose(o) == 0;
 }
 
-/* Golden images: lake, sea, Monai, RGB888 and RGB565, --time 1.5. */
+/* Golden images: lake, sea, Monai, RGB888 and RGB565, --time 1.5; and N47E009's default
+ * view, whose water is far enough for the far water mesh (water_scene.h surf). */
 static void test_goldens(void)
 {
     static const char *const fmts[2] = { "rgb888", "rgb565" };
@@ -187,8 +189,8 @@ static void test_goldens(void)
     snprintf(dem_sea, sizeof dem_sea, "%s", t_data("hgt/N57E011.hgt"));
     snprintf(dem_monai, sizeof dem_monai, "%s", t_data("xyz/monai_valley_bathymetry.txt"));
     for (f = 0; f < 2; f++)
-        for (k = 0; k < 3; k++) {
-            static const char *const names[3] = { "lake", "sea", "monai" };
+        for (k = 0; k < 4; k++) {
+            static const char *const names[4] = { "lake", "sea", "monai", "far" };
             char out[256], name[64];
             const char *lake[] = { dem_lake, "-o", out, "--size", "160x96", "--format", fmts[f], "--time", "1.5",
                                    "--camera", "40000,66000,420,60000,50000,500" };
@@ -196,9 +198,10 @@ static void test_goldens(void)
                                   "--camera", "10000,20000,3000,40000,60000,0" };
             const char *monai[] = { dem_monai, "--xyz-depth", "--water", water, "-o", out, "--size", "160x96",
                                     "--format", fmts[f], "--time", "1.5" };
+            const char *far[] = { dem_lake, "-o", out, "--size", "160x96", "--format", fmts[f], "--time", "1.5" };
             snprintf(name, sizeof name, "water_%s_%s", names[k], fmts[f]);
             snprintf(out, sizeof out, "%s/%s.png", t_outdir(), name);
-            CHECK_EQ(k == 0 ? RUN(lake) : k == 1 ? RUN(sea) : RUN(monai), 0);
+            CHECK_EQ(k == 0 ? RUN(lake) : k == 1 ? RUN(sea) : k == 2 ? RUN(monai) : RUN(far), 0);
             wv_golden(name, out);
         }
 }
@@ -579,20 +582,22 @@ static void test_step(void)
     cov = malloc(sizeof *cov * (size_t)w * (size_t)h);
     CHECK(cov != NULL);
     if (!cov) goto done;
-    cover_cells(&ws.mesh, w, h, cov);
-    for (y = 0; y + 1 < h; y++)
-        for (x = 0; x + 1 < w; x++) {
-            const uint8_t *i0 = ws.id + (size_t)y * (size_t)w + (size_t)x, *i1 = i0 + w;
-            const uint32_t c = cov[(size_t)y * (size_t)w + (size_t)x];
-            const uint32_t set = (1u << i0[0]) | (1u << i0[1]) | (1u << i1[0]) | (1u << i1[1]);
-            if (!i0[0] || !i0[1] || !i1[0] || !i1[1]) continue;
-            wet++;
-            miss += c == 0;
-            if ((set & (set - 1)) == 0) continue;       /* one body */
-            mixed++;
-            bad += c != 1u << (lo + 1);
-        }
-    printf("step: %d all-wet cells, %d of them uncovered; %d with both bodies, %d not the lower body's alone\n",
+    for (k = 0; k < 2; k++) {   /* both meshes: the fine one and the far one */
+        cover_cells(&ws.surf[k].mesh, w, h, cov);
+        for (y = 0; y + 1 < h; y++)
+            for (x = 0; x + 1 < w; x++) {
+                const uint8_t *i0 = ws.id + (size_t)y * (size_t)w + (size_t)x, *i1 = i0 + w;
+                const uint32_t c = cov[(size_t)y * (size_t)w + (size_t)x];
+                const uint32_t set = (1u << i0[0]) | (1u << i0[1]) | (1u << i1[0]) | (1u << i1[1]);
+                if (!i0[0] || !i0[1] || !i1[0] || !i1[1]) continue;
+                wet++;
+                miss += c == 0;
+                if ((set & (set - 1)) == 0) continue;       /* one body */
+                mixed++;
+                bad += c != 1u << (lo + 1);
+            }
+    }
+    printf("step, both meshes: %d all-wet cells, %d of them uncovered; %d with both bodies, %d not the lower body's alone\n",
            wet, miss, mixed, bad);
     CHECK_MSG(mixed >= 1, "%d cells with both bodies", mixed);
     CHECK_EQ(bad, 0);
@@ -621,7 +626,7 @@ static void test_pocket(void)
     uint32_t *cov = NULL;
     uint8_t *px = NULL;
     char out[256];
-    int32_t x, y, w, h, pockets = 0, open = 0, light = 0, pw = 0, ph = 0;
+    int32_t x, y, w, h, m, pockets = 0, open = 0, light = 0, pw = 0, ph = 0;
     memset(&s, 0, sizeof s); memset(&so, 0, sizeof so); memset(&wo, 0, sizeof wo); memset(&ws, 0, sizeof ws);
     in[0] = t_data("hgt/N57E011.hgt");
     so.quiet = 1;
@@ -633,19 +638,21 @@ static void test_pocket(void)
     cov = malloc(sizeof *cov * (size_t)w * (size_t)h);
     CHECK(cov != NULL);
     if (!cov || ws.nbodies != 1) goto done;
-    cover_cells(&ws.mesh, w, h, cov);
-    for (y = 806; y <= 934; y++)
-        for (x = 0; x <= 240; x++) {
-            const size_t i = (size_t)y * (size_t)w + (size_t)x;
-            int k;
-            if (ws.id[i] || s.f.z[i] >= 0) continue;
-            pockets++;
-            for (k = 0; k < 4; k++) {   /* the four cells around the sample */
-                const int32_t cx = x - (k & 1), cy = y - (k >> 1);
-                if (cx < 0 || cy < 0 || cx + 1 >= w || cy + 1 >= h) continue;
-                open += cov[(size_t)cy * (size_t)w + (size_t)cx] != 1u << 1;
+    for (m = 0; m < 2; m++) {   /* both meshes: the fine one and the far one */
+        cover_cells(&ws.surf[m].mesh, w, h, cov);
+        for (y = 806; y <= 934; y++)
+            for (x = 0; x <= 240; x++) {
+                const size_t i = (size_t)y * (size_t)w + (size_t)x;
+                int k;
+                if (ws.id[i] || s.f.z[i] >= 0) continue;
+                pockets += m == 0;
+                for (k = 0; k < 4; k++) {   /* the four cells around the sample */
+                    const int32_t cx = x - (k & 1), cy = y - (k >> 1);
+                    if (cx < 0 || cy < 0 || cx + 1 >= w || cy + 1 >= h) continue;
+                    open += cov[(size_t)cy * (size_t)w + (size_t)cx] != 1u << 1;
+                }
             }
-        }
+    }
     CHECK_EQ(pockets, 24);
     CHECK_MSG(open == 0, "%d cells around Laesoe's pockets not covered by the sea", open);
     {
