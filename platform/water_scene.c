@@ -102,8 +102,9 @@ static br_status surf_build(water_scene *w, scene *s, int32_t tested_s, ws_surf 
  * tested blocks (ws_frame picks one a frame). */
 static br_status water_mesh_once(water_scene *w, scene *s, br_err *err)
 {
-    if (surf_build(w, s, 0, &w->surf[0], err) != BR_OK) return err->code;     /* WM_TESTED_S */
-    if (surf_build(w, s, WS_FAR_TESTED_S, &w->surf[1], err) != BR_OK) return err->code;
+    br_status st;
+    if ((st = surf_build(w, s, 0, &w->surf[0], err)) != BR_OK) return st;     /* WM_TESTED_S */
+    if ((st = surf_build(w, s, WS_FAR_TESTED_S, &w->surf[1], err)) != BR_OK) return st;
     w->cur = &w->surf[0];
     {   /* the world box of each of the far mesh's tested triangles (far_pays) */
         const ws_surf *u = &w->surf[1];
