@@ -145,7 +145,9 @@ typedef struct rw_frame {
                                    columns the water frame's triangles may read or write there
                                    (wx0 > wx1: none); the pass seeds only those (water_cols) */
     int64_t wrel[RS_MAX_DIM][2], wstep[RS_MAX_DIM][2];  /* per row: plane point = eye + rel + a step
-                                                           (Q12 a, world units) */
+                                                           (Q12 a, world units); made in rows wlo ..
+                                                           whi only (wrel, wstep, wsig, tkr: the
+                                                           hook reads no others), 0 elsewhere */
     int64_t kx[RW_WAVES], ky[RW_WAVES]; /* wave phase per world unit (x, y), 2^-32 turns (mod 2^32) */
     uint32_t kt[RW_WAVES];              /* wave phase per ms, 2^-32 turns */
     int64_t wsig[RS_MAX_DIM][2];        /* per row: the plane point's move per unit of u = 2x + 1 - w,
@@ -153,7 +155,8 @@ typedef struct rw_frame {
     int64_t amp_m;              /* displacement, Q8 pixels = (d * amp_m) >> 32 */
     uint32_t wave_fade_d;       /* depth (30-bit) beyond which the waves fade */
     int64_t tkr[RS_MAX_DIM];    /* per row: 32 zc / tint_len of the reflected plane's point,
-                                   Q16 (-1: the row does not meet the plane) */
+                                   Q16 (-1: the row does not meet the plane, or lies outside
+                                   wlo .. whi) */
     int32_t bratio[RW_MAX_ID + 1];      /* (eye z - body z) / (eye z - plane_z), Q16 (0: none) */
     int64_t ebody[RW_MAX_ID + 1];       /* eye z - body z, world units (the shore bound) */
     uint32_t water_bias;        /* the water pass's depth seed: terrain depth minus this (buffer
