@@ -9,7 +9,8 @@
  * cell with a low corner when every corner of its cell is wet or low 2 m under the level
  * (the terrain lies under the plane there, so the hook alone decides).  Cells are judged
  * from the detection's id map and the mesh's low map (itself checked against the DEM),
- * for pixels a quarter of a cell or more from the cell's edges and diagonal. */
+ * for pixels a quarter of a cell or more from the cell's edges and diagonal.  The fine
+ * water mesh's (surf[0]), which views this near draw (platform/water_scene.c far_pays). */
 #include <math.h>
 #include <stdio.h>
 #include "tests/test.h"
@@ -73,8 +74,8 @@ static int check_view(const view *v, const char *fmt)
     CHECK_EQ(ws_open(&ws, &s, &wo, &err), BR_OK);
     for (k = 0; k < ws.nbodies; k++) if (!body && ws.bodies.level[k] == v->level_m) body = (uint8_t)(k + 1);
     CHECK_MSG(body != 0, "no body at %d m", v->level_m);
-    for (i = 0; i + 2 < ws.mesh.nidx; i += 3) {
-        const wm_vert *a = &ws.mesh.v[ws.mesh.idx[i]];
+    for (i = 0; i + 2 < ws.surf[0].mesh.nidx; i += 3) {
+        const wm_vert *a = &ws.surf[0].mesh.v[ws.surf[0].mesh.idx[i]];
         tested += a->tested && a->id == body;
     }
     CHECK_MSG(tested > 0, "the body at %d m has no tested triangles", v->level_m);
@@ -118,7 +119,7 @@ static int check_view(const view *v, const char *fmt)
             /* corners nw ne sw se; 1 wet with the body, 2 low (checked against the DEM), 0 */
             for (k2 = 0; k2 < 4; k2++) {
                 const size_t j = (size_t)(row + (k2 >> 1)) * (size_t)s.f.w + (size_t)(col + (k2 & 1));
-                corner[k2] = ws.id[j] == body ? 1 : ws.mesh.low && ws.mesh.low[j] ? 2 : 0;
+                corner[k2] = ws.id[j] == body ? 1 : ws.surf[0].mesh.low && ws.surf[0].mesh.low[j] ? 2 : 0;
                 if (corner[k2] == 2)
                     bad_low += ws.id[j] || hf_z_to_mm(&s.f, s.f.z[j]) >= (int64_t)v->level_m * 1000;
                 wet += corner[k2] == 1;
@@ -147,7 +148,7 @@ static int check_view(const view *v, const char *fmt)
     printf("%s, tested quads at %d m: %d triangles; %d pixels over water (%d not water), %d over low land (%d water), "
            "%d over a low half of a shore cell (%d water)\n",
            fmt, v->level_m, tested, must_water, bad_water, must_land, bad_land, must_half, bad_half);
-    CHECK(ws.mesh.low != NULL);
+    CHECK(ws.surf[0].mesh.low != NULL);
     CHECK_MSG(must_water >= 100, "%d pixels over the body", must_water);
     CHECK_MSG(must_land >= 10, "%d pixels over low land", must_land);
     CHECK_EQ(bad_low, 0);
