@@ -98,6 +98,31 @@ static br_status surf_build(water_scene *w, scene *s, int32_t tested_s, ws_surf 
     return BR_OK;
 }
 
+/* tbox: the world box of each of the far mesh's tested triangles (far_pays). */
+static br_status tested_boxes(water_scene *w)
+{
+    const ws_surf *u = &w->surf[1];
+    uint32_t t;
+    w->tbox = malloc(sizeof *w->tbox * (u->mesh.nidx / 3 + 1));
+    if (!w->tbox) return BR_E_NOMEM;
+    for (t = 0; t + 2 < u->mesh.nidx; t += 3) {
+        int k, j;
+        if (!u->mesh.v[u->mesh.idx[t]].tested) continue;    /* (a tested triangle's vertices all are) */
+        for (k = 0; k < 3; k++) {
+            int32_t lo = INT32_MAX, hi = INT32_MIN;
+            for (j = 0; j < 3; j++) {
+                const int32_t q = u->verts[u->mesh.idx[t + (uint32_t)j]].p[k];
+                lo = q < lo ? q : lo;
+                hi = q > hi ? q : hi;
+            }
+            w->tbox[w->ntbox][k] = lo;
+            w->tbox[w->ntbox][3 + k] = hi;
+        }
+        w->ntbox++;
+    }
+    return BR_OK;
+}
+
 /* The water surfaces' meshes, once per scene: the fine one, and the far one with larger
  * tested blocks (ws_frame picks one a frame). */
 static br_status water_mesh_once(water_scene *w, scene *s, br_err *err)
@@ -105,28 +130,7 @@ static br_status water_mesh_once(water_scene *w, scene *s, br_err *err)
     br_status st;
     if ((st = surf_build(w, s, 0, &w->surf[0], err)) != BR_OK) return st;     /* WM_TESTED_S */
     if ((st = surf_build(w, s, WS_FAR_TESTED_S, &w->surf[1], err)) != BR_OK) return st;
-    w->cur = &w->surf[0];
-    {   /* the world box of each of the far mesh's tested triangles (far_pays) */
-        const ws_surf *u = &w->surf[1];
-        uint32_t t;
-        w->tbox = malloc(sizeof *w->tbox * (u->mesh.nidx / 3 + 1));
-        if (!w->tbox) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
-        for (t = 0; t + 2 < u->mesh.nidx; t += 3) {
-            int k, j;
-            if (!u->mesh.v[u->mesh.idx[t]].tested) continue;    /* (a tested triangle's vertices all are) */
-            for (k = 0; k < 3; k++) {
-                int32_t lo = INT32_MAX, hi = INT32_MIN;
-                for (j = 0; j < 3; j++) {
-                    const int32_t q = u->verts[u->mesh.idx[t + (uint32_t)j]].p[k];
-                    lo = q < lo ? q : lo;
-                    hi = q > hi ? q : hi;
-                }
-                w->tbox[w->ntbox][k] = lo;
-                w->tbox[w->ntbox][3 + k] = hi;
-            }
-            w->ntbox++;
-        }
-    }
+    if (tested_boxes(w) != BR_OK) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
     if (!w->o.quiet)
         printf("water surfaces: %u triangles, %u vertices\n", w->surf[0].mesh.nidx / 3, w->surf[0].mesh.nv);
     return BR_OK;
@@ -537,16 +541,17 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err 
     rw_frame *r = w->rw;
     int32_t body = 0, res = res_of[w->o.reflection >= 0 && w->o.reflection < 5 ? w->o.reflection : 0];
     const rs_frame *wfr = NULL, *rfr = NULL;
+    const ws_surf *u = &w->surf[0];     /* this frame's water mesh (far_pays) */
     rs_pass pass;
     int32_t k;
     memset(&p, 0, sizeof p);
     p.sky_on = 1;
     if (!w->o.no_fog) fog_range(s, c, &p);
     if (w->nbodies) {
-        w->cur = &w->surf[far_pays(w, c) ? 1 : 0];
-        if (water_frame(w, w->cur, tf) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "cannot set up the water frame");
+        if (far_pays(w, c)) u = &w->surf[1];
+        if (water_frame(w, u, tf) != BR_OK) return br_err_set(err, BR_E_ARG, NULL, "cannot set up the water frame");
         wfr = &w->wfr;
-        body = biggest_body(w, w->cur, c, &p.seen_mask);
+        body = biggest_body(w, u, c, &p.seen_mask);
     }
     if (wfr && w->wfr.nv) {
         int64_t hgt;
@@ -566,7 +571,7 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err 
         p.tint_fixed = w->o.water_file || w->o.have_level ? 0 : WS_TINT_FIXED;
         p.res_shift = res < 0 ? 0 : res;
         p.wet = w->id;
-        p.low = w->cur->mesh.low;
+        p.low = u->mesh.low;
         p.wet_w = s->f.w; p.wet_h = s->f.h;
         p.grid_ox = s->rt.fr.ox; p.grid_oy = s->rt.fr.oy;
         p.grid_sx = s->rt.fr.sx; p.grid_sy = s->rt.fr.sy;

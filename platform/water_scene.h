@@ -92,7 +92,6 @@ typedef struct water_scene {
     hf wf;                      /* water surface heights (terrain units), nodata where none */
     ws_surf surf[2];            /* the water surfaces meshed once by ws_open: [0] tested
                                    blocks of up to WM_TESTED_S cells, [1] of up to WS_FAR_TESTED_S */
-    ws_surf *cur;               /* this frame's (ws_frame, far_pays) */
     int32_t (*tbox)[6];         /* the world box (min x, y, z, max x, y, z) of each of surf[1]'s */
     uint32_t ntbox;             /* tested triangles (far_pays) */
     rs_frame wfr;

@@ -151,7 +151,7 @@ static void test_strip_as_list(void)
     for (k = 0; k < 4; k++) {
         /* low over the south shore looking across the crop, 20 m a frame */
         int32_t eye[3], tgt[3], us = sc.shift;
-        uint32_t t, nl = 0, nf = 0;
+        uint32_t t, nl = 0, nf = 0, ndeg = 0;
         rs_prim strip, lp;
         eye[0] = (3000 + 20 * (int32_t)k) << us; eye[1] = 500 << us; eye[2] = 1200 << us;
         tgt[0] = (9000 + 20 * (int32_t)k) << us; tgt[1] = 12000 << us; tgt[2] = 700 << us;
@@ -160,19 +160,21 @@ static void test_strip_as_list(void)
         else CHECK_EQ(bt_extract(&tree, &p, &m), BR_OK);
         if (m.nv > 200000 || m.ns > 3 * 400000) { CHECK(0); break; }
         rt_from_mesh(&sc, &m, v);
-        for (t = 0; t + 2 < m.ns; t++) {
+        for (t = 0; t + 2 < m.ns; t++) {       /* every triangle but the degenerate ones */
             br_index a = m.strip[t], b = m.strip[t + 1];
             const br_index d = m.strip[t + 2];
-            const bt_vert *va, *vb, *vd;
             if (t & 1) { const br_index x = a; a = b; b = x; }
-            if (a == b || b == d || a == d) continue;
+            if (a == b || b == d || a == d) { ndeg++; continue; }
             list[nl++] = a; list[nl++] = b; list[nl++] = d;
-            va = &m.v[a]; vb = &m.v[b]; vd = &m.v[d];
-            if ((int64_t)(vb->x - va->x) * (vd->y - va->y) == (int64_t)(vd->x - va->x) * (vb->y - va->y)) {
-                nline++;
-                continue;
-            }
-            leaves[nf++] = a; leaves[nf++] = b; leaves[nf++] = d;
+        }
+        {   /* the leaves: the referee's decoding, without its zero-area (line and degenerate) ones */
+            mc_vert *mv = NULL;
+            int32_t *ms = NULL, *tri = NULL;
+            int64_t nt = 0, nz = 0, i;
+            CHECK_EQ(btc_decode(&m, &mv, &ms, &tri, &nt, &nz), 0);
+            for (i = 0; i < 3 * nt; i++) leaves[nf++] = (br_index)tri[i];
+            nline += (uint32_t)nz - ndeg;
+            free(mv); free(ms); free(tri);
         }
         ntri += nl / 3;
         for (lay = 0; lay < 2; lay++) {
