@@ -197,7 +197,7 @@ void ws_close(water_scene *w)
     }
     free(w->id); free(w->tbox);
     free(w->rstrip); free(w->rcache); free(w->rchunks); free(w->rbed); free(w->rw);
-    free(w->rmesh_mem); free(w->rverts); free(w->rst);
+    free(w->rmesh_mem); free(w->rverts); free(w->rst); free(w->rparts_mem);
     memset(w, 0, sizeof *w);
 }
 
@@ -334,6 +334,38 @@ static void copy_idx(uint32_t *restrict o, const uint32_t *restrict in, uint32_t
     for (; i < n; i++) o[i] = in[i];
 }
 
+/* bt_extract of the reflection's own selection into rmesh and its vertices into rverts,
+ * by parts (core/bitree.h bt_extract_begin: the same mesh; a part whose decisions still
+ * hold is replayed, and only the vertices of its parts that moved are set up again),
+ * serially. */
+static br_status refl_select(water_scene *w, scene *s, bt_tree *t, const bt_params *bp)
+{
+    uint32_t n = 0, k;
+    br_status st;
+    if (!w->rparts) {
+        st = bt_extract(t, bp, &w->rmesh);
+        if (st == BR_OK) rt_from_mesh(&s->rt, &w->rmesh, w->rverts);
+        return st;
+    }
+    st = bt_extract_begin(w->rparts, t, bp, &w->rmesh, &n);
+    for (k = 0; st == BR_OK && k < n; k++) bt_extract_part(w->rparts, k);
+    if (st == BR_OK) st = bt_extract_end(w->rparts, &n);
+    if (st != BR_OK) return st;
+    if (!n) {
+        rt_from_mesh(&s->rt, &w->rmesh, w->rverts);
+        return BR_OK;
+    }
+    for (k = 0; k < n; k++) {
+        const uint8_t *moved = bt_part_moved(w->rparts, k);
+        uint32_t v0, nv;
+        bt_extract_join(w->rparts, k, &v0, &nv);
+        if (moved) rt_from_mesh_moved(&s->rt, &w->rmesh, v0, nv, moved, w->rverts);
+        else rt_from_mesh_range(&s->rt, &w->rmesh, v0, nv, w->rverts);
+    }
+    rt_from_mesh_pending(&s->rt, &w->rmesh, w->rverts);
+    return BR_OK;
+}
+
 /* The reflection's own selection (water_scene.h rmesh): the mirrored camera's view
  * selection at refl_err times the terrain's screen error, without geomorph, from a copy
  * of the scene's tree with its own frame state (view mode without hysteresis, so the
@@ -367,8 +399,7 @@ static int refl_own(water_scene *w, scene *s, const cam *c, const rs_frame *tf, 
     bp.c = &w->rcam;
     bp.fr = s->rt.fr;
     bp.pixel_err_q8 = (int32_t)lround(w->o.view_px * mult * 256 < 1 << 30 ? w->o.view_px * mult * 256 : 1 << 30);
-    if (bt_extract(&t, &bp, &w->rmesh) != BR_OK || w->rmesh.overflow || w->rmesh.ns < 3) return -1;
-    rt_from_mesh(&s->rt, &w->rmesh, w->rverts);
+    if (refl_select(w, s, &t, &bp) != BR_OK || w->rmesh.overflow || w->rmesh.ns < 3) return -1;
     w->rmprim.kind = RS_STRIP; w->rmprim.n = w->rmesh.ns; w->rmprim.idx = w->rmesh.strip;
     w->rown = 1;
     return 0;
@@ -383,9 +414,19 @@ br_status ws_reserve(water_scene *w, scene *s)
     w->rmesh_mem = mb ? malloc(mb) : NULL;
     w->rverts = malloc(sizeof *w->rverts * (size_t)(3 * cap + 3));
     w->rst = calloc(bt_state_size(s->tree.nslot) + 1, 1);
+    {
+        const uint32_t pt = cap < WS_REFL_PART_TRI ? cap : WS_REFL_PART_TRI;
+        const size_t pb = bt_parts_mem_size(pt);
+        w->rparts_mem = pb ? malloc(pb) : NULL;
+        if (w->rparts_mem && bt_parts_init(&w->rparts, pt, w->rparts_mem, pb) != BR_OK) {
+            free(w->rparts_mem);        /* (then refl_select extracts it whole) */
+            w->rparts_mem = NULL;
+            w->rparts = NULL;
+        }
+    }
     if (!w->rmesh_mem || !w->rverts || !w->rst || bt_mesh_init(&w->rmesh, cap, w->rmesh_mem, mb) != BR_OK) {
-        free(w->rmesh_mem); free(w->rverts); free(w->rst);
-        w->rmesh_mem = NULL; w->rverts = NULL; w->rst = NULL;
+        free(w->rmesh_mem); free(w->rverts); free(w->rst); free(w->rparts_mem);
+        w->rmesh_mem = NULL; w->rverts = NULL; w->rst = NULL; w->rparts_mem = NULL; w->rparts = NULL;
         return BR_E_NOMEM;
     }
     return BR_OK;

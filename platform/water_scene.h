@@ -22,6 +22,7 @@
 #define WS_MIN_AREA_M2 1000000  /* a flat region of at least 1 km^2 is a lake */
 #define WS_JOIN_DZ_MM 5000      /* the seam rule joins flat regions within 5 m */
 #define WS_REFL_TRI 262144     /* the reflection's own mesh holds at most this many triangles */
+#define WS_REFL_PART_TRI 1024  /* its parts' room (a part past 160 triangles is cut; core/bitree.h) */
 #define WS_FAR_TESTED_S 64      /* the far water mesh's largest tested block, cells a side */
 #define WS_FAR_TESTED_PX 48     /* ... drawn while each tested triangle spans at most this many pixels */
 
@@ -115,6 +116,9 @@ typedef struct water_scene {
      * larger than rmesh: bt_extract's budget fallback is not drawn) */
     bt_mesh rmesh;
     void *rmesh_mem;
+    bt_parts *rparts;           /* its parts (frame coherence: a part whose decisions hold
+                                   is replayed, not walked; WS_REFL_PART_TRI triangles each) */
+    void *rparts_mem;
     uint8_t *rst;
     rs_vertex *rverts;
     rs_prim rmprim;             /* rmesh's strip as it is (the mirrored camera's winding) */

@@ -1,14 +1,17 @@
 /* tests/test_water_pass.c — the water pass (raster/water_pass.c) seeds its depth and
  * clears its body ids only where a water triangle can draw: checked against the water
  * frame drawn alone on N47E009; the post hook's unchecked grid look-ups stay on the
- * grid; and its pixel loops at every reflection resolution are pinned by goldens. */
+ * grid; its pixel loops at every reflection resolution are pinned by goldens; and the
+ * reflection's own selection by parts is the whole extraction's. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include "tests/test.h"
 #include "platform/cmd.h"
 #include "platform/scene.h"
 #include "platform/water_scene.h"
 #include "raster/raster.h"
+#include "tests/support/btcheck.h"
 #include "tests/support/waterview.h"
 
 /* The hook's grid look-up indexes wet[iy w + ix] with ix = (gx inv_sx) >> 32 for every
@@ -118,9 +121,77 @@ static void test_reflection_res(void)
         }
 }
 
+/* The reflection's own selection by parts (platform/water_scene.c refl_select: the parts
+ * whose decisions still hold replayed, the vertices of the parts that moved set up again)
+ * draws what a whole extraction draws: along six steps of 20 m over the lake, its proper
+ * triangles (the strip decoded) are those of a fresh bt_extract for the mirrored camera,
+ * in order, corner by corner, and each corner's raster vertex is rt_from_mesh's. */
+static void test_refl_parts(void)
+{
+    enum { W = 320, H = 192 };
+    double eye[3] = { 40000, 66000, 420 }, tgt[3] = { 60000, 50000, 500 };
+    scene s;
+    scene_opts so;
+    ws_opts wo;
+    water_scene ws;
+    br_err err;
+    cam c;
+    bt_params bp;
+    rs_frame fr;
+    int step;
+    wv_defaults(&so, &wo, &bp, &fr, &err);
+    so.ramp_abs = 1;
+    wo.refl_err = 4;
+    wv_lake_frame(&s, &so, &ws, &wo, eye, tgt, W, H, &c, &bp, &fr);
+    for (step = 0; step < 6; step++) {
+        bt_tree t = s.tree;
+        bt_params rp;
+        bt_mesh m;
+        void *mem = NULL;
+        rs_vertex *v = NULL;
+        mc_vert *av = NULL, *bv = NULL;
+        int32_t *as = NULL, *bs = NULL, *at = NULL, *bt = NULL;
+        int64_t ant = 0, anl = 0, bnt = 0, bnl = 0, i, bad = 0;
+        if (step) {
+            eye[0] += 14; eye[1] -= 14; tgt[0] += 14; tgt[1] -= 14;
+            CHECK_EQ(scene_camera(&s, eye, tgt, 50, W, H, &c), BR_OK);
+            CHECK_EQ(scene_mesh(&s, &c, &bp), BR_OK);
+            CHECK_EQ(scene_terrain(&s, &c, &fr, NULL), BR_OK);
+        }
+        CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
+        CHECK_EQ(ws.rown, 1);
+        CHECK(ws.rparts != NULL);
+        t.st = calloc(bt_state_size(s.tree.nslot) + 1, 1);
+        memset(&rp, 0, sizeof rp);
+        rp.mode = BT_VIEW; rp.c = &ws.rcam; rp.fr = s.rt.fr; rp.pixel_err_q8 = 4 * 256;
+        CHECK(t.st != NULL && btc_extract(&t, &rp, 0, &m, &mem) == 0);
+        v = malloc(sizeof *v * (m.nv ? m.nv : 1));
+        CHECK(v != NULL);
+        if (!t.st || !mem || !v) { free(t.st); free(mem); free(v); break; }
+        rt_from_mesh(&s.rt, &m, v);
+        CHECK_EQ(btc_decode(&ws.rmesh, &av, &as, &at, &ant, &anl), 0);
+        CHECK_EQ(btc_decode(&m, &bv, &bs, &bt, &bnt, &bnl), 0);
+        CHECK_EQ(ant, bnt);
+        for (i = 0; at && bt && i < 3 * ant && i < 3 * bnt; i++) {
+            const mc_vert *a = &av[at[i]], *b = &bv[bt[i]];
+            const rs_vertex *ra = &ws.rverts[at[i]], *rb = &v[bt[i]];
+            bad += a->x != b->x || a->y != b->y || a->zq != b->zq || memcmp(ra->p, rb->p, sizeof ra->p)
+                   || ra->rgb != rb->rgb;
+        }
+        if (step == 5)
+            printf("reflection by parts: %lld triangles, %u parts replayed, as a whole extraction\n",
+                   (long long)ant, bt_parts_reused(ws.rparts));
+        CHECK_MSG(bad == 0 && ant > 100, "step %d: %lld of %lld corners differ", step, (long long)bad, (long long)ant * 3);
+        free(av); free(as); free(at); free(bv); free(bs); free(bt); free(v); free(mem); free(t.st);
+    }
+    ws_close(&ws);
+    scene_close(&s);
+}
+
 int main(void)
 {
     T_RUN(test_seed_columns);
     T_RUN(test_reflection_res);
+    T_RUN(test_refl_parts);
     return t_finish();
 }
