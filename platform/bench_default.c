@@ -212,7 +212,7 @@ int cmd_bench_default(int argc, char **argv)
                        tables, argc, argv, pos, 0, &npos);
         if (pr == OPT_OK) pr = ws_args_finish(&wa, "bench");
         if (pr == OPT_OK && !r->water && (wo.no_water || wo.have_level || wo.water_file || wo.no_fog || wa.fog
-                                          || wa.time_seen || wa.refl_seen || wo.refl_err > 0))
+                                          || wa.time_seen || wa.refl_seen || wa.refl_err_seen))
             pr = opt_fail("bench", "--no-water", "water options need --with-water");
         if (pr != OPT_OK) { free(r); return pr == OPT_HELP ? 0 : 2; }
         r->w = size[0];

@@ -17,11 +17,13 @@ void ws_args_table(ws_args *a, ws_opts *o, opt_spec t[WS_ARGS_N])
         { "--reflection", OPT_CHOICE, &a->refl, 0, 0, 0, "full|half|quarter|none", "R",
           "reflection resolution (default half)", &a->refl_seen },
         { "--reflection-error", OPT_NUM, &o->refl_err, 0, 64, 0, NULL, "F",
-          "the reflection's own LOD at F times --pixel-error, F >= 1 (default 0: the terrain's mesh)", NULL },
+          "the reflection's own LOD at F times --pixel-error, F >= 1, or 0: the terrain's mesh (default 4)",
+          &a->refl_err_seen },
         OPT_END
     };
     memset(a, 0, sizeof *a);
     a->o = o;
+    o->refl_err = WS_REFL_ERR;
     memcpy(t, src, sizeof src);
 }
 

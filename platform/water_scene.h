@@ -22,6 +22,10 @@
 #define WS_MIN_AREA_M2 1000000  /* a flat region of at least 1 km^2 is a lake */
 #define WS_JOIN_DZ_MM 5000      /* the seam rule joins flat regions within 5 m */
 #define WS_REFL_TRI 262144     /* the reflection's own mesh holds at most this many triangles */
+/* The reflection's own LOD by default (--reflection-error): four times the terrain's
+ * screen error, the reach of the waves that move its lookup (RW_WAVE_PX, 4 pixels;
+ * docs/water.md, Optics) */
+#define WS_REFL_ERR 4
 #define WS_REFL_PART_TRI 1024  /* its parts' room (a part past 160 triangles is cut; core/bitree.h) */
 #define WS_FAR_TESTED_S 64      /* the far water mesh's largest tested block, cells a side */
 #define WS_FAR_TESTED_PX 48     /* ... drawn while each tested triangle spans at most this many pixels */
@@ -66,9 +70,10 @@ typedef struct ws_opts {        /* zero = defaults: water found automatically, f
     double view_px;             /* the terrain's screen error in pixels when it is the scene's
                                    view-dependent bitree mesh (scene_mesh in BT_VIEW mode);
                                    0: another mesh, which the reflection then draws itself */
-    double refl_err;            /* --reflection-error F: 0 (default) the reflection draws the
-                                   terrain's mesh; F >= 1 its own selection at F view_px
-                                   (1: the terrain's screen error) */
+    double refl_err;            /* --reflection-error F: 0 the reflection draws the terrain's
+                                   mesh; F >= 1 its own selection at F view_px (1: the
+                                   terrain's screen error; ws_args_table's default
+                                   WS_REFL_ERR) */
     int quiet;
 } ws_opts;
 
@@ -136,7 +141,7 @@ typedef struct water_scene {
 #define WS_ARGS_N 9     /* entries of the table, OPT_END included */
 typedef struct ws_args {
     ws_opts *o;
-    int fog, refl, refl_seen;
+    int fog, refl, refl_seen, refl_err_seen;
     int time_seen;              /* --time given (the viewer's ripples then stand still) */
 } ws_args;
 void ws_args_table(ws_args *a, ws_opts *o, opt_spec t[WS_ARGS_N]);

@@ -276,8 +276,9 @@ static br_status to_img(void *user, int32_t y0, int32_t rows, const void *px, si
 
 /* The reflection's own LOD: the lake from the water at 320x192, 1 px.  At
  * --reflection-error 4 the mirrored camera's selection has fewer triangles than at 1 and
- * the reflection frame sets up fewer (drawn whole, full resolution); by default (0) it
- * draws the terrain's mesh; the terrain's mesh
+ * the reflection frame sets up fewer (drawn whole, full resolution); at 0 (the zeroed
+ * options here; the commands' default is WS_REFL_ERR, 4) it draws the terrain's mesh; the
+ * terrain's mesh
  * and its hysteresis state are untouched by it (the same strip before and after).
  * Nothing under the plane leaks: the reflection's own mesh moved under the plane draws
  * no pixel through the clipper's plane (without the plane, it does). */
@@ -329,7 +330,7 @@ static void test_refl_lod(void)
     CHECK(tstrip != NULL);
     if (!tstrip) goto done;
     memcpy(tstrip, s.mesh.strip, sizeof *tstrip * tns);
-    CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);     /* the default: the terrain's mesh */
+    CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);     /* refl_err 0: the terrain's mesh */
     CHECK(ws.rown == 0 && ws.rfr.v == ws.rbed && ws.rfr.nv == s.mesh.nv);
     bed_level_check(&ws, &s, s.verts, &s.mesh);
     for (k = 0; k < 2; k++) {
