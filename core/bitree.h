@@ -363,6 +363,12 @@ typedef struct bt_params {
                               0..65536, else BR_E_ARG */
     uint32_t budget;       /* BT_BUDGET: at most this many triangles */
     int32_t no_cull;       /* 1: no frustum culling */
+    const int32_t *window; /* BT_VIEW, BT_BUDGET: cull to this rectangle of c's screen (x0, y0,
+                              x1, y1 pixels, 0 <= x0 < x1 <= w, 0 <= y0 < y1 <= h; core/cam.h
+                              cam_frustum_window) instead of the whole viewport, else
+                              BR_E_ARG; NULL: the viewport.  The screen errors are the same;
+                              only what lies outside goes (a view that reads part of the
+                              screen, such as the reflection) */
     int32_t no_coherence;  /* BT_VIEW: 1: evaluate every diamond this frame instead of reusing
                               decisions of earlier frames that the eye's travel since cannot
                               have changed (core/config.h BR_COHERENCE; the same mesh) */

@@ -654,7 +654,12 @@ br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p)
             (int64_t)p->fr.oy > CAM_COORD_MAX || (int64_t)p->fr.oy - (int64_t)e->S * p->fr.sy < -CAM_COORD_MAX)
             return BR_E_ARG;
     }
-    cam_frustum(p->c, e->pl);
+    if (p->window) {
+        const int32_t *wn = p->window;
+        if (wn[0] < 0 || wn[0] >= wn[2] || wn[2] > p->c->w || wn[1] < 0 || wn[1] >= wn[3] || wn[3] > p->c->h)
+            return BR_E_ARG;
+        cam_frustum_window(p->c, wn, e->pl);
+    } else cam_frustum(p->c, e->pl);
     e->rho = rho_q8;
     e->fq8 = p->c->f_q16 >> 8;
     e->tau = p->pixel_err_q8 > 0 ? p->pixel_err_q8 : 256;

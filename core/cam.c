@@ -99,13 +99,22 @@ static void side_plane(const cam *c, int64_t a, int64_t b, int64_t e, cam_plane 
 
 void cam_frustum(const cam *c, cam_plane out[CAM_NPLANES])
 {
-    int64_t f = c->f_q16, cx = (int64_t)c->w * (FX_Q16_ONE / 2), cy = (int64_t)c->h * (FX_Q16_ONE / 2);
+    const int32_t all[4] = { 0, 0, c->w, c->h };
+    cam_frustum_window(c, all, out);
+}
+
+/* sx = cx + f xc / zc >= x0 is f xc + (cx - x0) zc >= 0 (zc > 0), and likewise for the
+ * other three sides (sy = cy - f yc / zc); the whole viewport gives cx - 0 = w / 2 and
+ * so the planes cam_frustum always had.  |x0 2^16| <= 2^30: the normals' terms fit. */
+void cam_frustum_window(const cam *c, const int32_t win[4], cam_plane out[CAM_NPLANES])
+{
+    const int64_t f = c->f_q16, cx = (int64_t)c->w * (FX_Q16_ONE / 2), cy = (int64_t)c->h * (FX_Q16_ONE / 2);
     int64_t fe = 0;
     int j;
-    side_plane(c, f, 0, cx, &out[CAM_LEFT]);     /* sx >= 0 */
-    side_plane(c, -f, 0, cx, &out[CAM_RIGHT]);   /* sx <= w */
-    side_plane(c, 0, f, cy, &out[CAM_BOTTOM]);   /* sy <= h */
-    side_plane(c, 0, -f, cy, &out[CAM_TOP]);     /* sy >= 0 */
+    side_plane(c, f, 0, cx - (int64_t)win[0] * FX_Q16_ONE, &out[CAM_LEFT]);     /* sx >= x0 */
+    side_plane(c, -f, 0, (int64_t)win[2] * FX_Q16_ONE - cx, &out[CAM_RIGHT]);   /* sx <= x1 */
+    side_plane(c, 0, f, (int64_t)win[3] * FX_Q16_ONE - cy, &out[CAM_BOTTOM]);   /* sy <= y1 */
+    side_plane(c, 0, -f, cy - (int64_t)win[1] * FX_Q16_ONE, &out[CAM_TOP]);     /* sy >= y0 */
     for (j = 0; j < 3; j++) fe += (int64_t)c->fwd[j] * c->eye[j];
     for (j = 0; j < 3; j++) { out[CAM_NEAR].n[j] = c->fwd[j]; out[CAM_FAR].n[j] = -c->fwd[j]; }
     out[CAM_NEAR].d = -fe - (int64_t)c->znear * FX_Q30_ONE;

@@ -82,6 +82,10 @@ void cam_viewproj(const cam *c, cam_vp *out);
 
 /* The six frustum planes (CAM_LEFT .. CAM_FAR) in world space, normals inward. */
 void cam_frustum(const cam *c, cam_plane out[CAM_NPLANES]);
+/* The same for the screen rectangle win = x0, y0, x1, y1 (pixels, 0 <= x0 < x1 <= w,
+ * 0 <= y0 < y1 <= h) instead of the whole viewport: its side planes pass through the
+ * rectangle's edges (cam_frustum is the window 0, 0, w, h). */
+void cam_frustum_window(const cam *c, const int32_t win[4], cam_plane out[CAM_NPLANES]);
 
 /* Projection scale f (pixels per world unit at distance 1), Q16; same as c->f_q16. */
 int64_t cam_proj_scale_q16(const cam *c);

@@ -366,6 +366,43 @@ static br_status refl_select(water_scene *w, scene *s, bt_tree *t, const bt_para
     return BR_OK;
 }
 
+/* The screen rectangle the reflection of body is read in, for its own selection
+ * (bt_params.window): the box of the body's vertices in this frame's water frame (the hook
+ * reads the reflection at that body's water pixels only, each at most RW_WAVE_PX pixels
+ * off by the waves, and a row of the reduced reflection covers 2^res rows), grown by
+ * RW_WAVE_PX + 2^res + 1 pixels and cut to the screen, then turned upside down for the
+ * mirrored camera (its up is -M up: row y of the reflection is its row h - y).  0 when
+ * the whole screen may be needed (a vertex of the body needs the clipper) or nothing. */
+static int refl_window(const water_scene *w, int32_t body, int32_t res, int32_t sw, int32_t sh, int32_t win[4])
+{
+    const rs_frame *wf = &w->wfr;
+    const uint32_t rid = RW_ID_RGB(body);
+    const int32_t grow = RW_WAVE_PX + (1 << res) + 1;
+    int32_t x0 = INT32_MAX, y0 = INT32_MAX, x1 = INT32_MIN, y1 = INT32_MIN;
+    uint32_t i;
+    for (i = 0; i < wf->nv; i++) {
+        const rs_cvert *v = &wf->cache[i];
+        if ((v->c & RW_ID_MASK) != rid) continue;
+        if (v->c & ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24)) return 0;
+        if (v->x < x0) x0 = v->x;
+        if (v->x > x1) x1 = v->x;
+        if (v->y < y0) y0 = v->y;
+        if (v->y > y1) y1 = v->y;
+    }
+    if (x0 > x1) return 0;
+    /* (guard-band sub-pixels: |x|, |y| < 2^30 / 2^4 pixels, so the sums below fit) */
+    x0 = (x0 >> RS_SUBPIX_BITS) - grow; x1 = (x1 >> RS_SUBPIX_BITS) + 1 + grow;
+    y0 = (y0 >> RS_SUBPIX_BITS) - grow; y1 = (y1 >> RS_SUBPIX_BITS) + 1 + grow;
+    if (x0 < 0) x0 = 0;
+    if (y0 < 0) y0 = 0;
+    if (x1 > sw) x1 = sw;
+    if (y1 > sh) y1 = sh;
+    if (x0 >= x1 || y0 >= y1) return 0;
+    win[0] = x0; win[2] = x1;
+    win[1] = sh - y1; win[3] = sh - y0;
+    return 1;
+}
+
 /* The reflection's own selection (water_scene.h rmesh): the mirrored camera's view
  * selection at refl_err times the terrain's screen error, without geomorph, from a copy
  * of the scene's tree with its own frame state (view mode without hysteresis, so the
@@ -373,10 +410,12 @@ static br_status refl_select(water_scene *w, scene *s, bt_tree *t, const bt_para
  * as the terrain's selection left it), serial, so the mesh and its vertices are the same
  * for every thread count.  0 when it is drawn; -1: the terrain's mesh is drawn instead
  * (no view-dependent terrain mesh, or the selection does not fit rmesh). */
-static int refl_own(water_scene *w, scene *s, const cam *c, const rs_frame *tf, int32_t plane_z)
+static int refl_own(water_scene *w, scene *s, const cam *c, const rs_frame *tf, int32_t body, int32_t plane_z,
+                    int32_t res)
 {
     bt_tree t;
     bt_params bp;
+    int32_t win[4];
     const double mult = w->o.refl_err;
     int k;
     w->rown = 0;
@@ -399,6 +438,7 @@ static int refl_own(water_scene *w, scene *s, const cam *c, const rs_frame *tf, 
     bp.c = &w->rcam;
     bp.fr = s->rt.fr;
     bp.pixel_err_q8 = (int32_t)lround(w->o.view_px * mult * 256 < 1 << 30 ? w->o.view_px * mult * 256 : 1 << 30);
+    if (!w->o.refl_no_window && refl_window(w, body, res, c->w, c->h, win)) bp.window = win;
     if (refl_select(w, s, &t, &bp) != BR_OK || w->rmesh.overflow || w->rmesh.ns < 3) return -1;
     w->rmprim.kind = RS_STRIP; w->rmprim.n = w->rmesh.ns; w->rmprim.idx = w->rmesh.strip;
     w->rown = 1;
@@ -476,7 +516,7 @@ static const rs_vertex *refl_bed_level(water_scene *w, const scene *s, const bt_
 static br_status refl_frame(water_scene *w, scene *s, const cam *c, const rs_frame *tf, int32_t body, int32_t plane_z,
                             int32_t res)
 {
-    const int own = refl_own(w, s, c, tf, plane_z) == 0;
+    const int own = refl_own(w, s, c, tf, body, plane_z, res) == 0;
     const rs_prim *tp = own ? &w->rmprim : &tf->prims[0];
     const uint32_t nv = own ? w->rmesh.nv : tf->nv;
     const rs_vertex *bed;

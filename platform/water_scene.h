@@ -62,6 +62,8 @@ typedef struct ws_opts {        /* zero = defaults: water found automatically, f
     int reflection;             /* 0 half (default), 1 full, 2 half, 3 quarter, 4 none */
     double time_s;              /* --time T */
     int no_waves, fresnel_one;  /* tests */
+    int refl_no_window;         /* tests: the reflection's own selection over the whole
+                                   screen, not only around its water (refl_window) */
     int shore_bound;            /* 1: the terrain mesh's error is bounded by shore_px pixels
                                    on screen (view-dependent) or shore_m metres (fidelity;
                                    both 0: the full grid), which spares the shore test on land

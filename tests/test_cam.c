@@ -1,6 +1,7 @@
 /* tests/test_cam.c — the fixed-point camera against a double-precision reference
  * (gluLookAt + gluPerspective), using camera A of the peer scene in 1/1024 units. */
 #include <math.h>
+#include <string.h>
 #include "tests/test.h"
 #include "core/cam.h"
 
@@ -45,15 +46,13 @@ static void test_project(void)
     CHECK(llabs(cam_proj_scale_q16(&c) - (int64_t)llround(240.0 / tan(27.5 * 3.14159265358979323846 / 180.0) * 65536.0)) < 64);
 }
 
-static void test_frustum(void)
+/* Every sample point is inside all six planes of cam_frustum_window(c, win) exactly
+ * when it projects into the rectangle win within near .. far. */
+static void frustum_check(const cam *c, const int32_t win[4])
 {
-    cam c;
     cam_plane pl[CAM_NPLANES];
-    int32_t eye[3] = { 110 * U, 5 * U, 1200 }, tg[3] = { 190 * U, 256 * U, -10 * U };
     int i, j, k;
-    CHECK_EQ(cam_look_at(&c, eye, tg, 75000, 640, 480, 256, 1000 * U), BR_OK);
-    cam_frustum(&c, pl);
-    /* every sample point: inside all planes <=> projects into the viewport within near..far */
+    cam_frustum_window(c, win, pl);
     for (j = -64; j <= 320; j += 16)
         for (i = -64; i <= 320; i += 16)
             for (k = -8; k <= 64; k += 8) {
@@ -67,11 +66,32 @@ static void test_frustum(void)
                     else if (s < ((int64_t)1 << 36)) in = -1;      /* too close to call */
                 }
                 if (in < 0) continue;
-                cam_to_view(&c, p, v);
-                in2 = v[2] >= c.znear && v[2] <= c.zfar && cam_project(&c, p, q)
-                      && q[0] >= 0 && q[0] <= 640 * 65536 && q[1] >= 0 && q[1] <= 480 * 65536;
-                CHECK_MSG(in == in2, "point %d %d %d: planes %d projection %d", i, j, k, in, in2);
+                cam_to_view(c, p, v);
+                in2 = v[2] >= c->znear && v[2] <= c->zfar && cam_project(c, p, q) && q[0] >= (int64_t)win[0] * 65536
+                      && q[0] <= (int64_t)win[2] * 65536 && q[1] >= (int64_t)win[1] * 65536
+                      && q[1] <= (int64_t)win[3] * 65536;
+                CHECK_MSG(in == in2, "window %d %d %d %d, point %d %d %d: planes %d projection %d", win[0], win[1],
+                          win[2], win[3], i, j, k, in, in2);
             }
+}
+
+/* The viewport's frustum, a window's (the reflection's selection reads part of the
+ * screen), and the whole viewport as a window is cam_frustum to the bit. */
+static void test_frustum(void)
+{
+    cam c;
+    cam_plane pl[CAM_NPLANES], pw[CAM_NPLANES];
+    int32_t eye[3] = { 110 * U, 5 * U, 1200 }, tg[3] = { 190 * U, 256 * U, -10 * U };
+    const int32_t all[4] = { 0, 0, 640, 480 }, part[4] = { 96, 200, 420, 300 }, corner[4] = { 0, 0, 17, 480 };
+    int i;
+    CHECK_EQ(cam_look_at(&c, eye, tg, 75000, 640, 480, 256, 1000 * U), BR_OK);
+    frustum_check(&c, all);
+    frustum_check(&c, part);
+    frustum_check(&c, corner);
+    cam_frustum(&c, pl);
+    cam_frustum_window(&c, all, pw);
+    for (i = 0; i < CAM_NPLANES; i++)
+        CHECK(pl[i].d == pw[i].d && !memcmp(pl[i].n, pw[i].n, sizeof pl[i].n));
 }
 
 static void test_args(void)

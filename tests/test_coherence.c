@@ -37,6 +37,7 @@ static uint32_t parts_most;            /* A's most parts in a frame */
 static long serial_frames;             /* A's frames extracted serially after all */
 static uint32_t part_tri = 4096;       /* triangles a part holds (side_open; the scene's) */
 static double fovy = 60;               /* the cameras' vertical field of view, degrees */
+static int windowed;                   /* 1: frame() culls to a window that moves each frame */
 
 static int side_open(side *s)
 {
@@ -142,12 +143,20 @@ static int frame(const double eye[6], const knobs *k)
     pa.fr = sc.rt.fr;
     pa.pixel_err_q8 = k->pix_q8; pa.hyst_q8 = k->hyst_q8; pa.morph_q8 = k->morph_q8;
     pa.budget = k->budget;
+    if (windowed) {     /* a third of the screen a side or more, stepping over it; 2: the middle third */
+        static int32_t win[4];
+        win[0] = windowed == 2 ? k->w / 3 : (int32_t)(frames * 7 % (k->w / 2));
+        win[1] = windowed == 2 ? k->h / 3 : (int32_t)(frames * 5 % (k->h / 2));
+        win[2] = win[0] + k->w / 3 + (windowed == 2 ? 0 : (int32_t)(frames % 40));
+        win[3] = win[1] + k->h / 3 + (windowed == 2 ? 0 : (int32_t)(frames % 30));
+        pa.window = win;
+    }
     pb = pa;
     pb.no_coherence = 1;
     if (extract(&A, &pa, k->parts) != BR_OK || extract(&B, &pb, k->parts) != BR_OK) return 0;
     frames++;
     if (!same() || !recs_keep_pbit(A.ps)) differ++;
-    return A.m.ntri > 100;
+    return A.m.ntri > (windowed ? 0u : 100u);
 }
 
 static const knobs VIEWER = { BT_VIEW, 256, 64, 128, W, H, 1, 0 };
@@ -241,6 +250,41 @@ static void test_coherence_paths(void)
     /* 64 px: a coarse mesh, other parts replayed and other splits moving */
     fly_path("assets/default-path.cam", 1, 300, 64 * 256);
     fly_path("assets/alps-path.cam", 0, 120, 256);     /* its first 120 frames: 18 k triangles each */
+    close_dem();
+}
+
+/* A selection culled to a screen window (bt_params.window, as the reflection's own LOD
+ * reads only the rows and columns around its water) that moves every frame: the planes'
+ * travel that frame coherence accounts for includes the window's, so every frame is the
+ * from-scratch mesh, serially and in parts.  The window leaves triangles out; a window
+ * outside the screen is refused. */
+static void test_coherence_window(void)
+{
+    static const int32_t bad[4][4] = { { -1, 0, 10, 10 }, { 0, 0, W + 1, 10 }, { 5, 0, 5, 10 }, { 0, 20, 10, 19 } };
+    const double eye[6] = { -20683.0, -2764.5, 59448.4, 37671.8, 55590.3, 1662.5 };
+    bt_params p;
+    cam c;
+    uint32_t whole;
+    int i;
+    if (!open_dem("assets/N47E009.hgt.gz")) { CHECK(0); return; }
+    CHECK(frame(eye, &VIEWER));
+    whole = A.m.ntri;
+    windowed = 1;
+    fly_path("assets/default-path.cam", 1, 100, 256);
+    fly_path("assets/lake-path.cam", 1, 100, 256);
+    fly_path("assets/default-path.cam", 0, 30, 256);
+    windowed = 2;
+    CHECK(frame(eye, &VIEWER));
+    printf("the middle third of %d x %d: %u triangles, %u without\n", W, H, A.m.ntri, whole);
+    CHECK_MSG(A.m.ntri * 2 < whole && A.m.ntri > 100, "%u triangles in the window, %u without", A.m.ntri, whole);
+    windowed = 0;
+    CHECK_EQ(scene_camera(&sc, eye, eye + 3, fovy, W, H, &c), BR_OK);
+    memset(&p, 0, sizeof p);
+    p.mode = BT_VIEW; p.c = &c; p.fr = sc.rt.fr; p.pixel_err_q8 = 256;
+    for (i = 0; i < 4; i++) {
+        p.window = bad[i];
+        CHECK_EQ(bt_extract(&B.t, &p, &B.m), BR_E_ARG);
+    }
     close_dem();
 }
 
@@ -565,6 +609,7 @@ int main(void)
     T_RUN(test_box_dist);
     T_RUN(test_coherence_paths);
     T_RUN(test_coherence_full_parts);
+    T_RUN(test_coherence_window);
     T_RUN(test_coherence_first_cut);
     T_RUN(test_coherence_root_corners);
     T_RUN(test_coherence_flights);

@@ -189,10 +189,98 @@ static void test_refl_parts(void)
     scene_close(&s);
 }
 
+static br_status to_rows(void *user, int32_t y0, int32_t rows, const void *px, size_t stride)
+{
+    uint32_t *img = (uint32_t *)user;
+    int32_t y;
+    for (y = 0; y < rows; y++) memcpy(img + (size_t)(y0 + y) * 320, (const uint8_t *)px + (size_t)y * stride, 320 * 4);
+    return BR_OK;
+}
+
+/* The reflection's own selection culled to the screen rectangle around its water
+ * (platform/water_scene.c refl_window: the box of the body's water vertices, grown by the
+ * waves' reach and a reduced row, upside down for the mirrored camera) draws the same
+ * frame as that selection over the whole screen, waves, fog and the half-resolution
+ * reflection on, 320x192: the default view (the lake a small part of the screen, the
+ * window leaves most triangles out, the mirror shows sky only), Crater Lake from its
+ * southern slope (crater_0513.bt: the lake at the screen's right, its cliffs mirrored; the
+ * window leaves the left half and the sky's rows out), and Lake Constance from the water
+ * (the lake reaches behind the camera: no window).  The frames, and the mirror itself
+ * under the box of the water's vertices, where the hook reads it. */
+static void test_refl_window(void)
+{
+    enum { W = 320, H = 192 };
+    static uint32_t img[2][W * H], refl[2][W * H], rdep[W * H];
+    static const double views[3][6] = { { -20683.0, -2764.5, 59448.4, 37671.8, 55590.3, 1662.5 },
+                                        { 5200, 800, 3200, 5200, 8000, 1883 },
+                                        { 40000, 66000, 420, 60000, 50000, 500 } };
+    int v, k;
+    for (v = 0; v < 3; v++) {
+        scene s;
+        scene_opts so;
+        ws_opts wo;
+        water_scene ws;
+        br_err err;
+        cam c;
+        bt_params bp;
+        rs_frame fr;
+        uint32_t ntri[2] = { 0, 0 }, i, inside = 0, terrain = 0, differ = 0;
+        int32_t box[4] = { INT32_MAX, INT32_MAX, INT32_MIN, INT32_MIN }, x, y;
+        wv_defaults(&so, &wo, &bp, &fr, &err);
+        so.ramp_abs = 1;
+        wo.refl_err = 4; wo.time_s = 1.5;
+        wv_dem_frame(v == 1 ? "bt/crater_0513.bt" : "hgt/N47E009.hgt", &s, &so, &ws, &wo, views[v], views[v] + 3, W,
+                     H, &c, &bp, &fr);
+        for (k = 0; k < 2; k++) {
+            void *mem;
+            size_t ms;
+            ws.o.refl_no_window = k;
+            memset(img[k], 0, sizeof img[k]);
+            if (k) CHECK_EQ(scene_terrain(&s, &c, &fr, NULL), BR_OK);    /* (ws_frame fogs its vertices) */
+            CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
+            CHECK_EQ(ws.rown, 1);
+            ntri[k] = ws.rmesh.ntri;
+            CHECK_EQ(rs_draw_band(&ws.rfr, 0, ws.rfr.h, refl[k], (size_t)ws.rfr.w * 4, rdep, NULL), BR_OK);
+            ms = rs_pipe_mem_size(&ws.pipe, H);
+            mem = malloc(ms);
+            CHECK(mem != NULL);
+            if (mem) CHECK_EQ(rs_pipe_run(&ws.pipe, H, mem, ms, to_rows, img[k], NULL), BR_OK);
+            free(mem);
+        }
+        /* the reflection itself, drawn whole, in the box of the body's water vertices (reduced
+         * pixels): where the hook reads it, the same with and without the window */
+        for (i = 0; i < ws.wfr.nv; i++) {
+            const rs_cvert *wv = &ws.wfr.cache[i];
+            if ((wv->c & RW_ID_MASK) != RW_ID_RGB(ws.rw->p.refl_body)) continue;
+            box[0] = wv->x < box[0] ? wv->x : box[0]; box[2] = wv->x > box[2] ? wv->x : box[2];
+            box[1] = wv->y < box[1] ? wv->y : box[1]; box[3] = wv->y > box[3] ? wv->y : box[3];
+        }
+        for (y = 0; y < ws.rfr.h; y++)
+            for (x = 0; x < ws.rfr.w; x++) {
+                const size_t j = (size_t)y * (size_t)ws.rfr.w + (size_t)x;
+                if ((x << 1 << RS_SUBPIX_BITS) < box[0] || (x << 1 << RS_SUBPIX_BITS) > box[2]
+                    || (y << 1 << RS_SUBPIX_BITS) < box[1] || (y << 1 << RS_SUBPIX_BITS) > box[3])
+                    continue;
+                inside++;
+                terrain += (refl[1][j] & 0xffffffu) != (ws.rfr.clear_rgb & 0xffffffu);
+                differ += refl[0][j] != refl[1][j];
+            }
+        printf("reflection window, view %d: %u triangles selected, %u over the whole screen; %u of %u mirror pixels "
+               "under the water's box drawn\n", v, ntri[0], ntri[1], terrain, inside);
+        CHECK_MSG(differ == 0, "view %d: %u of the mirror's pixels under the water's box differ", v, differ);
+        if (v == 1) CHECK_MSG(terrain > 50, "%u mirror pixels drawn", terrain);
+        CHECK_MSG(!memcmp(img[0], img[1], sizeof img[0]), "view %d: the window changes the frame", v);
+        if (v < 2) CHECK_MSG(ntri[0] < ntri[1], "%u triangles in the window, %u without", ntri[0], ntri[1]);
+        ws_close(&ws);
+        scene_close(&s);
+    }
+}
+
 int main(void)
 {
     T_RUN(test_seed_columns);
     T_RUN(test_reflection_res);
     T_RUN(test_refl_parts);
+    T_RUN(test_refl_window);
     return t_finish();
 }

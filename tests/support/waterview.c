@@ -18,10 +18,16 @@ void wv_defaults(scene_opts *so, ws_opts *wo, bt_params *bp, rs_frame *fr, br_er
 void wv_lake_frame(scene *s, const scene_opts *so, water_scene *ws, const ws_opts *wo, const double eye[3],
                    const double tgt[3], int32_t w, int32_t h, cam *c, bt_params *bp, rs_frame *fr)
 {
+    wv_dem_frame("hgt/N47E009.hgt", s, so, ws, wo, eye, tgt, w, h, c, bp, fr);
+}
+
+void wv_dem_frame(const char *dem, scene *s, const scene_opts *so, water_scene *ws, const ws_opts *wo,
+                  const double eye[3], const double tgt[3], int32_t w, int32_t h, cam *c, bt_params *bp, rs_frame *fr)
+{
     const char *in[1];
     br_err err;
     memset(s, 0, sizeof *s); memset(ws, 0, sizeof *ws); memset(&err, 0, sizeof err);
-    in[0] = t_data("hgt/N47E009.hgt");
+    in[0] = t_data(dem);
     CHECK_EQ(scene_open(s, in, 1, so, &err), BR_OK);
     CHECK_EQ(ws_open(ws, s, wo, &err), BR_OK);
     CHECK_EQ(scene_camera(s, eye, tgt, 50, w, h, c), BR_OK);

@@ -19,6 +19,9 @@ void wv_defaults(scene_opts *so, ws_opts *wo, bt_params *bp, rs_frame *fr, br_er
  * that fails is a failed CHECK. */
 void wv_lake_frame(scene *s, const scene_opts *so, water_scene *ws, const ws_opts *wo, const double eye[3],
                    const double tgt[3], int32_t w, int32_t h, cam *c, bt_params *bp, rs_frame *fr);
+/* The same for ../shared/data/dem/<dem>. */
+void wv_dem_frame(const char *dem, scene *s, const scene_opts *so, water_scene *ws, const ws_opts *wo,
+                  const double eye[3], const double tgt[3], int32_t w, int32_t h, cam *c, bt_params *bp, rs_frame *fr);
 
 /* The frame written at out (PNG) against tests/golden/NAME.png, byte for byte in RGB; with
  * BITRAIN_UPDATE_GOLDEN set in the environment it writes the golden first.  A mismatch or
