@@ -334,34 +334,54 @@ static void copy_idx(uint32_t *restrict o, const uint32_t *restrict in, uint32_t
     for (; i < n; i++) o[i] = in[i];
 }
 
+/* The reflection's parts on the scene's threads (refl_select): part k extracted, or
+ * joined with its vertices set up (the moved ones of a replayed part; a sample new to the
+ * lit cache waits for rt_from_mesh_pending). */
+typedef struct refl_jobs {
+    water_scene *w;
+    const rt_scene *rt;
+} refl_jobs;
+
+static void refl_job_part(void *user, uint32_t k)
+{
+    bt_extract_part(((refl_jobs *)user)->w->rparts, k);
+}
+
+static void refl_job_join(void *user, uint32_t k)
+{
+    const refl_jobs *j = (const refl_jobs *)user;
+    water_scene *w = j->w;
+    const uint8_t *moved = bt_part_moved(w->rparts, k);
+    uint32_t v0, nv;
+    bt_extract_join(w->rparts, k, &v0, &nv);
+    if (moved) rt_from_mesh_moved(j->rt, &w->rmesh, v0, nv, moved, w->rverts);
+    else rt_from_mesh_range(j->rt, &w->rmesh, v0, nv, w->rverts);
+}
+
 /* bt_extract of the reflection's own selection into rmesh and its vertices into rverts,
- * by parts (core/bitree.h bt_extract_begin: the same mesh; a part whose decisions still
- * hold is replayed, and only the vertices of its parts that moved are set up again),
- * serially. */
+ * by parts on the scene's threads (core/bitree.h bt_extract_begin: the same mesh for any
+ * schedule; a part whose decisions still hold is replayed, and only the vertices of its
+ * parts that moved are set up again). */
 static br_status refl_select(water_scene *w, scene *s, bt_tree *t, const bt_params *bp)
 {
-    uint32_t n = 0, k;
+    refl_jobs j;
+    uint32_t n = 0;
     br_status st;
     if (!w->rparts) {
         st = bt_extract(t, bp, &w->rmesh);
         if (st == BR_OK) rt_from_mesh(&s->rt, &w->rmesh, w->rverts);
         return st;
     }
+    j.w = w; j.rt = &s->rt;
     st = bt_extract_begin(w->rparts, t, bp, &w->rmesh, &n);
-    for (k = 0; st == BR_OK && k < n; k++) bt_extract_part(w->rparts, k);
+    if (st == BR_OK) pt_jobs(s->pool, n, refl_job_part, &j);
     if (st == BR_OK) st = bt_extract_end(w->rparts, &n);
     if (st != BR_OK) return st;
     if (!n) {
         rt_from_mesh(&s->rt, &w->rmesh, w->rverts);
         return BR_OK;
     }
-    for (k = 0; k < n; k++) {
-        const uint8_t *moved = bt_part_moved(w->rparts, k);
-        uint32_t v0, nv;
-        bt_extract_join(w->rparts, k, &v0, &nv);
-        if (moved) rt_from_mesh_moved(&s->rt, &w->rmesh, v0, nv, moved, w->rverts);
-        else rt_from_mesh_range(&s->rt, &w->rmesh, v0, nv, w->rverts);
-    }
+    pt_jobs(s->pool, n, refl_job_join, &j);
     rt_from_mesh_pending(&s->rt, &w->rmesh, w->rverts);
     return BR_OK;
 }
@@ -407,8 +427,8 @@ static int refl_window(const water_scene *w, int32_t body, int32_t res, int32_t 
  * selection at refl_err times the terrain's screen error, without geomorph, from a copy
  * of the scene's tree with its own frame state (view mode without hysteresis, so the
  * state only keeps the decision memo's frame coherence honest; the terrain's state stays
- * as the terrain's selection left it), serial, so the mesh and its vertices are the same
- * for every thread count.  0 when it is drawn; -1: the terrain's mesh is drawn instead
+ * as the terrain's selection left it), by parts on the scene's threads (refl_select; the
+ * mesh and its vertices are the same for every thread count).  0 when it is drawn; -1: the terrain's mesh is drawn instead
  * (no view-dependent terrain mesh, or the selection does not fit rmesh). */
 static int refl_own(water_scene *w, scene *s, const cam *c, const rs_frame *tf, int32_t body, int32_t plane_z,
                     int32_t res)

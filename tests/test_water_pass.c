@@ -122,9 +122,10 @@ static void test_reflection_res(void)
         }
 }
 
-/* The reflection's own selection by parts (platform/water_scene.c refl_select: the parts
- * whose decisions still hold replayed, the vertices of the parts that moved set up again)
- * draws what a whole extraction draws: along six steps of 20 m over the lake, its proper
+/* The reflection's own selection by parts on three threads (platform/water_scene.c
+ * refl_select: the parts whose decisions still hold replayed, the vertices of the parts
+ * that moved set up again) draws what a whole extraction draws: along six steps of 20 m
+ * over the lake, its proper
  * triangles (the strip decoded) are those of a fresh bt_extract for the mirrored camera,
  * in order, corner by corner, and each corner's raster vertex is rt_from_mesh's. */
 static void test_refl_parts(void)
@@ -139,11 +140,14 @@ static void test_refl_parts(void)
     cam c;
     bt_params bp;
     rs_frame fr;
+    pt_pool *pool = NULL;
     int step;
     wv_defaults(&so, &wo, &bp, &fr, &err);
     so.ramp_abs = 1;
     wo.refl_err = 4;
     wv_lake_frame(&s, &so, &ws, &wo, eye, tgt, W, H, &c, &bp, &fr);
+    CHECK_EQ(pt_open(&pool, 3), BR_OK);
+    s.pool = pool;                      /* the parts on three threads */
     for (step = 0; step < 6; step++) {
         bt_tree t = s.tree;
         bt_params rp;
@@ -185,6 +189,8 @@ static void test_refl_parts(void)
         CHECK_MSG(bad == 0 && ant > 100, "step %d: %lld of %lld corners differ", step, (long long)bad, (long long)ant * 3);
         free(av); free(as); free(at); free(bv); free(bs); free(bt); free(v); free(mem); free(t.st);
     }
+    s.pool = NULL;
+    pt_close(pool);
     ws_close(&ws);
     scene_close(&s);
 }
