@@ -428,8 +428,9 @@ static int refl_window(const water_scene *w, int32_t body, int32_t res, int32_t 
  * of the scene's tree with its own frame state (view mode without hysteresis, so the
  * state only keeps the decision memo's frame coherence honest; the terrain's state stays
  * as the terrain's selection left it), by parts on the scene's threads (refl_select; the
- * mesh and its vertices are the same for every thread count).  0 when it is drawn; -1: the terrain's mesh is drawn instead
- * (no view-dependent terrain mesh, or the selection does not fit rmesh). */
+ * mesh and its vertices are the same for every thread count).  0 when it is drawn; -1:
+ * the terrain's mesh is drawn instead (no view-dependent terrain mesh, or the selection
+ * does not fit rmesh). */
 static int refl_own(water_scene *w, scene *s, const cam *c, const rs_frame *tf, int32_t body, int32_t plane_z,
                     int32_t res)
 {

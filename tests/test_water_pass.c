@@ -122,34 +122,32 @@ static void test_reflection_res(void)
         }
 }
 
+/* The reflection's own LOD at 4x with the land's absolute colours (the views below) */
+static void refl_opts(wv_view *v)
+{
+    v->so.ramp_abs = 1;
+    v->wo.refl_err = 4;
+    v->wo.time_s = 1.5;
+}
+
 /* The reflection's own selection by parts on three threads (platform/water_scene.c
  * refl_select: the parts whose decisions still hold replayed, the vertices of the parts
  * that moved set up again) draws what a whole extraction draws: along six steps of 20 m
- * over the lake, its proper
- * triangles (the strip decoded) are those of a fresh bt_extract for the mirrored camera,
- * in order, corner by corner, and each corner's raster vertex is rt_from_mesh's. */
+ * over the lake, its proper triangles (the strip decoded) are those of a fresh bt_extract
+ * for the mirrored camera, in order, corner by corner, and each corner's raster vertex is
+ * rt_from_mesh's. */
 static void test_refl_parts(void)
 {
     enum { W = 320, H = 192 };
+    static wv_view w;
     double eye[3] = { 40000, 66000, 420 }, tgt[3] = { 60000, 50000, 500 };
-    scene s;
-    scene_opts so;
-    ws_opts wo;
-    water_scene ws;
-    br_err err;
-    cam c;
-    bt_params bp;
-    rs_frame fr;
     pt_pool *pool = NULL;
     int step;
-    wv_defaults(&so, &wo, &bp, &fr, &err);
-    so.ramp_abs = 1;
-    wo.refl_err = 4;
-    wv_lake_frame(&s, &so, &ws, &wo, eye, tgt, W, H, &c, &bp, &fr);
+    wv_view_open(&w, "hgt/N47E009.hgt", eye, tgt, W, H, refl_opts);
     CHECK_EQ(pt_open(&pool, 3), BR_OK);
-    s.pool = pool;                      /* the parts on three threads */
+    w.s.pool = pool;                    /* the parts on three threads */
     for (step = 0; step < 6; step++) {
-        bt_tree t = s.tree;
+        bt_tree t = w.s.tree;
         bt_params rp;
         bt_mesh m;
         void *mem = NULL;
@@ -159,40 +157,40 @@ static void test_refl_parts(void)
         int64_t ant = 0, anl = 0, bnt = 0, bnl = 0, i, bad = 0;
         if (step) {
             eye[0] += 14; eye[1] -= 14; tgt[0] += 14; tgt[1] -= 14;
-            CHECK_EQ(scene_camera(&s, eye, tgt, 50, W, H, &c), BR_OK);
-            CHECK_EQ(scene_mesh(&s, &c, &bp), BR_OK);
-            CHECK_EQ(scene_terrain(&s, &c, &fr, NULL), BR_OK);
+            CHECK_EQ(scene_camera(&w.s, eye, tgt, 50, W, H, &w.c), BR_OK);
+            CHECK_EQ(scene_mesh(&w.s, &w.c, &w.bp), BR_OK);
+            CHECK_EQ(scene_terrain(&w.s, &w.c, &w.fr, NULL), BR_OK);
         }
-        CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
-        CHECK_EQ(ws.rown, 1);
-        CHECK(ws.rparts != NULL);
-        t.st = calloc(bt_state_size(s.tree.nslot) + 1, 1);
+        CHECK_EQ(ws_frame(&w.ws, &w.s, &w.c, &w.fr, &w.err), BR_OK);
+        CHECK_EQ(w.ws.rown, 1);
+        CHECK(w.ws.rparts != NULL);
+        t.st = calloc(bt_state_size(w.s.tree.nslot) + 1, 1);
         memset(&rp, 0, sizeof rp);
-        rp.mode = BT_VIEW; rp.c = &ws.rcam; rp.fr = s.rt.fr; rp.pixel_err_q8 = 4 * 256;
+        rp.mode = BT_VIEW; rp.c = &w.ws.rcam; rp.fr = w.s.rt.fr; rp.pixel_err_q8 = 4 * 256;
         CHECK(t.st != NULL && btc_extract(&t, &rp, 0, &m, &mem) == 0);
         v = malloc(sizeof *v * (m.nv ? m.nv : 1));
         CHECK(v != NULL);
         if (!t.st || !mem || !v) { free(t.st); free(mem); free(v); break; }
-        rt_from_mesh(&s.rt, &m, v);
-        CHECK_EQ(btc_decode(&ws.rmesh, &av, &as, &at, &ant, &anl), 0);
+        rt_from_mesh(&w.s.rt, &m, v);
+        CHECK_EQ(btc_decode(&w.ws.rmesh, &av, &as, &at, &ant, &anl), 0);
         CHECK_EQ(btc_decode(&m, &bv, &bs, &bt, &bnt, &bnl), 0);
         CHECK_EQ(ant, bnt);
         for (i = 0; at && bt && i < 3 * ant && i < 3 * bnt; i++) {
             const mc_vert *a = &av[at[i]], *b = &bv[bt[i]];
-            const rs_vertex *ra = &ws.rverts[at[i]], *rb = &v[bt[i]];
+            const rs_vertex *ra = &w.ws.rverts[at[i]], *rb = &v[bt[i]];
             bad += a->x != b->x || a->y != b->y || a->zq != b->zq || memcmp(ra->p, rb->p, sizeof ra->p)
                    || ra->rgb != rb->rgb;
         }
         if (step == 5)
             printf("reflection by parts: %lld triangles, %u parts replayed, as a whole extraction\n",
-                   (long long)ant, bt_parts_reused(ws.rparts));
-        CHECK_MSG(bad == 0 && ant > 100, "step %d: %lld of %lld corners differ", step, (long long)bad, (long long)ant * 3);
+                   (long long)ant, bt_parts_reused(w.ws.rparts));
+        CHECK_MSG(bad == 0 && ant > 100, "step %d: %lld of %lld corners differ", step, (long long)bad,
+                  (long long)ant * 3);
         free(av); free(as); free(at); free(bv); free(bs); free(bt); free(v); free(mem); free(t.st);
     }
-    s.pool = NULL;
+    w.s.pool = NULL;
     pt_close(pool);
-    ws_close(&ws);
-    scene_close(&s);
+    wv_view_close(&w);
 }
 
 static br_status to_rows(void *user, int32_t y0, int32_t rows, const void *px, size_t stride)
@@ -220,55 +218,44 @@ static void test_refl_window(void)
     static const double views[3][6] = { { -20683.0, -2764.5, 59448.4, 37671.8, 55590.3, 1662.5 },
                                         { 5200, 800, 3200, 5200, 8000, 1883 },
                                         { 40000, 66000, 420, 60000, 50000, 500 } };
+    static wv_view w;
     int v, k;
     for (v = 0; v < 3; v++) {
-        scene s;
-        scene_opts so;
-        ws_opts wo;
-        water_scene ws;
-        br_err err;
-        cam c;
-        bt_params bp;
-        rs_frame fr;
         uint32_t ntri[2] = { 0, 0 }, i, inside = 0, terrain = 0, differ = 0;
         int32_t box[4] = { INT32_MAX, INT32_MAX, INT32_MIN, INT32_MIN }, x, y;
-        wv_defaults(&so, &wo, &bp, &fr, &err);
-        so.ramp_abs = 1;
-        wo.refl_err = 4; wo.time_s = 1.5;
-        wv_dem_frame(v == 1 ? "bt/crater_0513.bt" : "hgt/N47E009.hgt", &s, &so, &ws, &wo, views[v], views[v] + 3, W,
-                     H, &c, &bp, &fr);
+        wv_view_open(&w, v == 1 ? "bt/crater_0513.bt" : "hgt/N47E009.hgt", views[v], views[v] + 3, W, H, refl_opts);
         for (k = 0; k < 2; k++) {
             void *mem;
             size_t ms;
-            ws.o.refl_no_window = k;
+            w.ws.o.refl_no_window = k;
             memset(img[k], 0, sizeof img[k]);
-            if (k) CHECK_EQ(scene_terrain(&s, &c, &fr, NULL), BR_OK);    /* (ws_frame fogs its vertices) */
-            CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
-            CHECK_EQ(ws.rown, 1);
-            ntri[k] = ws.rmesh.ntri;
-            CHECK_EQ(rs_draw_band(&ws.rfr, 0, ws.rfr.h, refl[k], (size_t)ws.rfr.w * 4, rdep, NULL), BR_OK);
-            ms = rs_pipe_mem_size(&ws.pipe, H);
+            if (k) CHECK_EQ(scene_terrain(&w.s, &w.c, &w.fr, NULL), BR_OK);    /* (ws_frame fogs its vertices) */
+            CHECK_EQ(ws_frame(&w.ws, &w.s, &w.c, &w.fr, &w.err), BR_OK);
+            CHECK_EQ(w.ws.rown, 1);
+            ntri[k] = w.ws.rmesh.ntri;
+            CHECK_EQ(rs_draw_band(&w.ws.rfr, 0, w.ws.rfr.h, refl[k], (size_t)w.ws.rfr.w * 4, rdep, NULL), BR_OK);
+            ms = rs_pipe_mem_size(&w.ws.pipe, H);
             mem = malloc(ms);
             CHECK(mem != NULL);
-            if (mem) CHECK_EQ(rs_pipe_run(&ws.pipe, H, mem, ms, to_rows, img[k], NULL), BR_OK);
+            if (mem) CHECK_EQ(rs_pipe_run(&w.ws.pipe, H, mem, ms, to_rows, img[k], NULL), BR_OK);
             free(mem);
         }
         /* the reflection itself, drawn whole, in the box of the body's water vertices (reduced
          * pixels): where the hook reads it, the same with and without the window */
-        for (i = 0; i < ws.wfr.nv; i++) {
-            const rs_cvert *wv = &ws.wfr.cache[i];
-            if ((wv->c & RW_ID_MASK) != RW_ID_RGB(ws.rw->p.refl_body)) continue;
+        for (i = 0; i < w.ws.wfr.nv; i++) {
+            const rs_cvert *wv = &w.ws.wfr.cache[i];
+            if ((wv->c & RW_ID_MASK) != RW_ID_RGB(w.ws.rw->p.refl_body)) continue;
             box[0] = wv->x < box[0] ? wv->x : box[0]; box[2] = wv->x > box[2] ? wv->x : box[2];
             box[1] = wv->y < box[1] ? wv->y : box[1]; box[3] = wv->y > box[3] ? wv->y : box[3];
         }
-        for (y = 0; y < ws.rfr.h; y++)
-            for (x = 0; x < ws.rfr.w; x++) {
-                const size_t j = (size_t)y * (size_t)ws.rfr.w + (size_t)x;
+        for (y = 0; y < w.ws.rfr.h; y++)
+            for (x = 0; x < w.ws.rfr.w; x++) {
+                const size_t j = (size_t)y * (size_t)w.ws.rfr.w + (size_t)x;
                 if ((x << 1 << RS_SUBPIX_BITS) < box[0] || (x << 1 << RS_SUBPIX_BITS) > box[2]
                     || (y << 1 << RS_SUBPIX_BITS) < box[1] || (y << 1 << RS_SUBPIX_BITS) > box[3])
                     continue;
                 inside++;
-                terrain += (refl[1][j] & 0xffffffu) != (ws.rfr.clear_rgb & 0xffffffu);
+                terrain += (refl[1][j] & 0xffffffu) != (w.ws.rfr.clear_rgb & 0xffffffu);
                 differ += refl[0][j] != refl[1][j];
             }
         printf("reflection window, view %d: %u triangles selected, %u over the whole screen; %u of %u mirror pixels "
@@ -277,8 +264,7 @@ static void test_refl_window(void)
         if (v == 1) CHECK_MSG(terrain > 50, "%u mirror pixels drawn", terrain);
         CHECK_MSG(!memcmp(img[0], img[1], sizeof img[0]), "view %d: the window changes the frame", v);
         if (v < 2) CHECK_MSG(ntri[0] < ntri[1], "%u triangles in the window, %u without", ntri[0], ntri[1]);
-        ws_close(&ws);
-        scene_close(&s);
+        wv_view_close(&w);
     }
 }
 

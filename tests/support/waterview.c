@@ -51,3 +51,17 @@ void wv_golden(const char *name, const char *out)
     else CHECK_MSG(aw == gw && ah == gh && !memcmp(a, g, (size_t)aw * (size_t)ah * 3), "%s differs from %s", out, gpath);
     free(a); free(g);
 }
+
+void wv_view_open(wv_view *v, const char *dem, const double eye[3], const double tgt[3], int32_t w, int32_t h,
+                  void (*opts)(wv_view *v))
+{
+    wv_defaults(&v->so, &v->wo, &v->bp, &v->fr, &v->err);
+    if (opts) opts(v);
+    wv_dem_frame(dem, &v->s, &v->so, &v->ws, &v->wo, eye, tgt, w, h, &v->c, &v->bp, &v->fr);
+}
+
+void wv_view_close(wv_view *v)
+{
+    ws_close(&v->ws);
+    scene_close(&v->s);
+}

@@ -23,6 +23,23 @@ void wv_lake_frame(scene *s, const scene_opts *so, water_scene *ws, const ws_opt
 void wv_dem_frame(const char *dem, scene *s, const scene_opts *so, water_scene *ws, const ws_opts *wo,
                   const double eye[3], const double tgt[3], int32_t w, int32_t h, cam *c, bt_params *bp, rs_frame *fr);
 
+/* Everything one water view holds, for tests that open several: wv_view_open is
+ * wv_defaults on its options, then the caller's changes (a function that takes the
+ * view), then wv_dem_frame; wv_view_close closes both scenes. */
+typedef struct wv_view {
+    scene s;
+    scene_opts so;
+    ws_opts wo;
+    water_scene ws;
+    br_err err;
+    cam c;
+    bt_params bp;
+    rs_frame fr;
+} wv_view;
+void wv_view_open(wv_view *v, const char *dem, const double eye[3], const double tgt[3], int32_t w, int32_t h,
+                  void (*opts)(wv_view *v));
+void wv_view_close(wv_view *v);
+
 /* The frame written at out (PNG) against tests/golden/NAME.png, byte for byte in RGB; with
  * BITRAIN_UPDATE_GOLDEN set in the environment it writes the golden first.  A mismatch or
  * a file that cannot be read is a failed CHECK. */
