@@ -303,78 +303,73 @@ static void bed_level_check(const water_scene *ws, const scene *s, const rs_vert
     CHECK(raised > 10);
 }
 
+static void refl_lod_opts(wv_view *v)
+{
+    v->so.ramp_abs = 1;
+    v->wo.reflection = 1; v->wo.no_fog = 1;
+    v->bp.hyst_q8 = 64;
+}
+
 static void test_refl_lod(void)
 {
     enum { W = 320, H = 192 };
     static uint32_t col[W * H], dep[W * H];
     double eye[3] = { 40000, 66000, 420 }, tgt[3] = { 60000, 50000, 500 };
-    scene s;
-    scene_opts so;
-    ws_opts wo;
-    water_scene ws;
-    br_err err;
-    cam c;
-    bt_params bp;
-    rs_frame fr;
+    static wv_view w;
     rs_band_stats st;
     uint32_t ntri[2] = { 0, 0 }, tris[2] = { 0, 0 }, tns, i;
     uint32_t *tstrip = NULL;
     int k;
-    wv_defaults(&so, &wo, &bp, &fr, &err);
-    so.ramp_abs = 1;
-    wo.reflection = 1; wo.no_fog = 1;
-    bp.hyst_q8 = 64;
-    wv_lake_frame(&s, &so, &ws, &wo, eye, tgt, W, H, &c, &bp, &fr);
-    tns = s.mesh.ns;
+    wv_view_open(&w, "hgt/N47E009.hgt", eye, tgt, W, H, refl_lod_opts);
+    tns = w.s.mesh.ns;
     tstrip = malloc(sizeof *tstrip * (tns ? tns : 1));
     CHECK(tstrip != NULL);
     if (!tstrip) goto done;
-    memcpy(tstrip, s.mesh.strip, sizeof *tstrip * tns);
-    CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);     /* refl_err 0: the terrain's mesh */
-    CHECK(ws.rown == 0 && ws.rfr.v == ws.rbed && ws.rfr.nv == s.mesh.nv);
-    bed_level_check(&ws, &s, s.verts, &s.mesh);
+    memcpy(tstrip, w.s.mesh.strip, sizeof *tstrip * tns);
+    CHECK_EQ(ws_frame(&w.ws, &w.s, &w.c, &w.fr, &w.err), BR_OK);     /* refl_err 0: the terrain's mesh */
+    CHECK(w.ws.rown == 0 && w.ws.rfr.v == w.ws.rbed && w.ws.rfr.nv == w.s.mesh.nv);
+    bed_level_check(&w.ws, &w.s, w.s.verts, &w.s.mesh);
     for (k = 0; k < 2; k++) {
-        ws.o.refl_err = k ? 4 : 1;
-        CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
-        CHECK_EQ(ws.rown, 1);
-        if (!ws.rown) goto done;
-        CHECK(ws.rfr.v == ws.rbed && ws.rfr.nv == ws.rmesh.nv);
-        bed_level_check(&ws, &s, ws.rverts, &ws.rmesh);
-        ntri[k] = ws.rmesh.ntri;
+        w.ws.o.refl_err = k ? 4 : 1;
+        CHECK_EQ(ws_frame(&w.ws, &w.s, &w.c, &w.fr, &w.err), BR_OK);
+        CHECK_EQ(w.ws.rown, 1);
+        if (!w.ws.rown) goto done;
+        CHECK(w.ws.rfr.v == w.ws.rbed && w.ws.rfr.nv == w.ws.rmesh.nv);
+        bed_level_check(&w.ws, &w.s, w.ws.rverts, &w.ws.rmesh);
+        ntri[k] = w.ws.rmesh.ntri;
         memset(&st, 0, sizeof st);
-        CHECK_EQ(rs_draw_band(&ws.rfr, 0, H, col, W * 4, dep, &st), BR_OK);
+        CHECK_EQ(rs_draw_band(&w.ws.rfr, 0, H, col, W * 4, dep, &st), BR_OK);
         tris[k] = st.tris;
     }
     printf("reflection LOD: %u triangles selected, %u set up at the terrain's error; %u, %u at 4x; terrain %u\n",
-           ntri[0], tris[0], ntri[1], tris[1], s.mesh.ntri);
+           ntri[0], tris[0], ntri[1], tris[1], w.s.mesh.ntri);
     CHECK_MSG(ntri[1] * 2 < ntri[0], "%u triangles at 4x, %u at 1x", ntri[1], ntri[0]);
     CHECK_MSG(tris[1] * 2 < tris[0], "%u triangles set up at 4x, %u at 1x", tris[1], tris[0]);
     /* the terrain's mesh is the one its selection made: the reflection's does not touch
      * its hysteresis state (the next frame's terrain selection reads it) */
-    CHECK(s.mesh.ns == tns && !memcmp(tstrip, s.mesh.strip, sizeof *tstrip * tns));
-    bt_parts_reset(s.parts);    /* the first frame's cut of the parts, so its numbering */
-    CHECK_EQ(scene_mesh(&s, &c, &bp), BR_OK);
-    CHECK(s.mesh.ns == tns && !memcmp(tstrip, s.mesh.strip, sizeof *tstrip * tns));
+    CHECK(w.s.mesh.ns == tns && !memcmp(tstrip, w.s.mesh.strip, sizeof *tstrip * tns));
+    bt_parts_reset(w.s.parts);    /* the first frame's cut of the parts, so its numbering */
+    CHECK_EQ(scene_mesh(&w.s, &w.c, &w.bp), BR_OK);
+    CHECK(w.s.mesh.ns == tns && !memcmp(tstrip, w.s.mesh.strip, sizeof *tstrip * tns));
     /* the reflection's mesh moved down until its highest vertex is one unit under the
      * plane: nothing through the clipper's plane; without the plane it shows */
     {
         int32_t zmax = INT32_MIN;
-        for (i = 0; i < ws.rfr.nv; i++) if (ws.rverts[i].p[2] > zmax) zmax = ws.rverts[i].p[2];
-        for (i = 0; i < ws.rfr.nv; i++) ws.rverts[i].p[2] -= zmax - ws.rfr.clip_z + 1;
-        ws.rfr.v = ws.rverts;   /* as they are, no bed raised to the plane */
+        for (i = 0; i < w.ws.rfr.nv; i++) if (w.ws.rverts[i].p[2] > zmax) zmax = w.ws.rverts[i].p[2];
+        for (i = 0; i < w.ws.rfr.nv; i++) w.ws.rverts[i].p[2] -= zmax - w.ws.rfr.clip_z + 1;
+        w.ws.rfr.v = w.ws.rverts;   /* as they are, no bed raised to the plane */
     }
     for (k = 0; k < 2; k++) {
-        ws.rfr.clip_z_on = !k;
-        CHECK_EQ(rs_frame_prepare(&ws.rfr), BR_OK);
+        w.ws.rfr.clip_z_on = !k;
+        CHECK_EQ(rs_frame_prepare(&w.ws.rfr), BR_OK);
         memset(&st, 0, sizeof st);
-        CHECK_EQ(rs_draw_band(&ws.rfr, 0, H, col, W * 4, dep, &st), BR_OK);
+        CHECK_EQ(rs_draw_band(&w.ws.rfr, 0, H, col, W * 4, dep, &st), BR_OK);
         if (k == 0) CHECK_MSG(st.pixels == 0, "%u pixels under the plane", st.pixels);
         else CHECK_MSG(st.pixels > 1000, "%u pixels without the plane", st.pixels);
     }
 done:
     free(tstrip);
-    ws_close(&ws);
-    scene_close(&s);
+    wv_view_close(&w);
 }
 
 /* The mirror goes to the body whose water covers the screen.  At the lake path's first

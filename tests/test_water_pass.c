@@ -48,26 +48,18 @@ static void test_seed_columns(void)
     static const double cams[2][6] = { { -20683.0, -2764.5, 59448.4, 37671.8, 55590.3, 1662.5 },
                                        { 40000, 66000, 420, 60000, 50000, 500 } };
     static uint32_t col[W * H], dep[W * H];
+    static wv_view w;
     int k;
     for (k = 0; k < 2; k++) {
-        scene s;
-        scene_opts so;
-        ws_opts wo;
-        water_scene ws;
-        br_err err;
-        cam c;
-        bt_params bp;
-        rs_frame fr;
         rs_band_stats st;
         const rw_frame *r;
         int32_t x, y, g;
         uint32_t drawn = 0, outside = 0, narrow = 0, groups = 0;
-        wv_defaults(&so, &wo, &bp, &fr, &err);
-        wv_lake_frame(&s, &so, &ws, &wo, cams[k], cams[k] + 3, W, H, &c, &bp, &fr);
-        CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
-        r = ws.rw;
+        wv_view_open(&w, "hgt/N47E009.hgt", cams[k], cams[k] + 3, W, H, NULL);
+        CHECK_EQ(ws_frame(&w.ws, &w.s, &w.c, &w.fr, &w.err), BR_OK);
+        r = w.ws.rw;
         CHECK(r != NULL && r->water != NULL && r->wlo <= r->whi);
-        if (!r || !r->water || r->wlo > r->whi) { ws_close(&ws); scene_close(&s); continue; }
+        if (!r || !r->water || r->wlo > r->whi) { wv_view_close(&w); continue; }
         memset(col, 0, sizeof col);
         for (x = 0; x < W * H; x++) dep[x] = r->dfar;
         CHECK_EQ(rs_draw_band(r->water, 0, H, col, (size_t)W * 4, dep, &st), BR_OK);
@@ -88,8 +80,7 @@ static void test_seed_columns(void)
         CHECK_EQ(outside, 0);
         if (k == 0) CHECK(narrow * 2 > groups);
         grid_bound_check(r);
-        ws_close(&ws);
-        scene_close(&s);
+        wv_view_close(&w);
     }
 }
 
