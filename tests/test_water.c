@@ -385,25 +385,18 @@ static void test_refl_body_rows(void)
     double eye[3] = { 21096.2, 76714.6, 464.0 }, tgt[3] = { 23604.8, 75069.3, 164.0 };
     uint8_t *px[2] = { NULL, NULL };
     uint32_t tris[2] = { 0, 0 };
+    static wv_view w;
     int k;
     for (k = 0; k < 2; k++) {
-        scene s;
-        scene_opts so;
-        ws_opts wo;
-        water_scene ws;
-        br_err err;
-        cam c;
-        bt_params bp;
-        rs_frame fr;
         size_t mb;
         void *mem = NULL;
         int32_t y0;
-        wv_defaults(&so, &wo, &bp, &fr, &err);
-        wo.reflection = k ? 4 : 0;          /* none; the default, half */
-        wv_lake_frame(&s, &so, &ws, &wo, eye, tgt, W, H, &c, &bp, &fr);
-        CHECK_EQ(ws_frame(&ws, &s, &c, &fr, &err), BR_OK);
-        if (k == 0) CHECK_MSG(ws.rw->refl != NULL && ws.rw->p.refl_body == 1, "mirror on body %d", (int)ws.rw->p.refl_body);
-        mb = rs_pipe_mem_size(&ws.pipe, BR);
+        wv_view_open(&w, "hgt/N47E009.hgt", eye, tgt, W, H, NULL);
+        w.ws.o.reflection = k ? 4 : 0;      /* none; the default, half (read by each ws_frame) */
+        CHECK_EQ(ws_frame(&w.ws, &w.s, &w.c, &w.fr, &w.err), BR_OK);
+        if (k == 0)
+            CHECK_MSG(w.ws.rw->refl != NULL && w.ws.rw->p.refl_body == 1, "mirror on body %d", (int)w.ws.rw->p.refl_body);
+        mb = rs_pipe_mem_size(&w.ws.pipe, BR);
         mem = malloc(mb);
         px[k] = malloc((size_t)W * H * 4);
         CHECK(mem && px[k]);
@@ -412,14 +405,13 @@ static void test_refl_body_rows(void)
             rs_band_stats st;
             const int32_t rows = H - y0 < BR ? H - y0 : BR;
             int32_t y;
-            CHECK_EQ(rs_pipe_band(&ws.pipe, y0, rows, mem, mb, &b, &st), BR_OK);
+            CHECK_EQ(rs_pipe_band(&w.ws.pipe, y0, rows, mem, mb, &b, &st), BR_OK);
             tris[k] += st.tris;
             for (y = 0; y < rows; y++)
                 memcpy(px[k] + (size_t)(y0 + y) * W * 4, (const uint8_t *)b.color + (size_t)y * b.stride, (size_t)W * 4);
         }
         free(mem);
-        ws_close(&ws);
-        scene_close(&s);
+        wv_view_close(&w);
     }
     CHECK_MSG(tris[0] > tris[1] + 1000, "%u triangles with the reflection, %u without", tris[0], tris[1]);
     CHECK(px[0] && px[1] && memcmp(px[0], px[1], (size_t)W * H * 4) != 0);
