@@ -367,14 +367,19 @@ static void order_parts(scene *s, uint32_t n)
         }
 }
 
+void scene_join_part(bt_parts *ps, uint32_t k, const rt_scene *rt, bt_mesh *m, rs_vertex *out)
+{
+    uint32_t v0, nv;
+    const uint8_t *moved = bt_part_moved(ps, k);     /* out holds the rest */
+    bt_extract_join(ps, k, &v0, &nv);
+    if (moved) rt_from_mesh_moved(rt, m, v0, nv, moved, out);
+    else rt_from_mesh_range(rt, m, v0, nv, out);
+}
+
 static void job_join(void *user, uint32_t k)
 {
     scene *s = (scene *)user;
-    uint32_t v0, nv;
-    const uint8_t *moved = bt_part_moved(s->parts, k);   /* s->verts holds the rest */
-    bt_extract_join(s->parts, k, &v0, &nv);
-    if (moved) rt_from_mesh_moved(&s->rt, &s->mesh, v0, nv, moved, s->verts);
-    else rt_from_mesh_range(&s->rt, &s->mesh, v0, nv, s->verts);
+    scene_join_part(s->parts, k, &s->rt, &s->mesh, s->verts);
 }
 
 br_status scene_mesh(scene *s, const cam *c, bt_params *p)

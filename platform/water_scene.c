@@ -335,8 +335,7 @@ static void copy_idx(uint32_t *restrict o, const uint32_t *restrict in, uint32_t
 }
 
 /* The reflection's parts on the scene's threads (refl_select): part k extracted, or
- * joined with its vertices set up (the moved ones of a replayed part; a sample new to the
- * lit cache waits for rt_from_mesh_pending). */
+ * joined with its vertices set up (scene_join_part, as the terrain's). */
 typedef struct refl_jobs {
     water_scene *w;
     const rt_scene *rt;
@@ -350,12 +349,7 @@ static void refl_job_part(void *user, uint32_t k)
 static void refl_job_join(void *user, uint32_t k)
 {
     const refl_jobs *j = (const refl_jobs *)user;
-    water_scene *w = j->w;
-    const uint8_t *moved = bt_part_moved(w->rparts, k);
-    uint32_t v0, nv;
-    bt_extract_join(w->rparts, k, &v0, &nv);
-    if (moved) rt_from_mesh_moved(j->rt, &w->rmesh, v0, nv, moved, w->rverts);
-    else rt_from_mesh_range(j->rt, &w->rmesh, v0, nv, w->rverts);
+    scene_join_part(j->w->rparts, k, j->rt, &j->w->rmesh, j->w->rverts);
 }
 
 /* bt_extract of the reflection's own selection into rmesh and its vertices into rverts,
