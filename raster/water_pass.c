@@ -4,6 +4,7 @@
  * terrain's. */
 #include "raster/water_int.h"     /* first: the v3 copy's names (water_int.h) */
 #include <string.h>
+#include "core/config.h"      /* RS_SPANV */
 
 static int water_touched(const void *user, int32_t y0, int32_t rows)
 {
@@ -14,11 +15,13 @@ static int water_touched(const void *user, int32_t y0, int32_t rows)
 /* One row of the water pass's scratch: depth o = max(t - bias, dfar) from the terrain's
  * row t, colour c = 0 (no id), n pixels (buffers that do not overlap).  t - bias > dfar
  * exactly when t > bias + dfar (all three below 2^30 for 30-bit depths, 2^16 for 16-bit
- * ones: no overflow, and signed lanes compare them).  With GCC's vector extension (gcc,
- * clang) 16 bytes a step, 32 in the x86-64-v3 copy (AVX2) for 32-bit depths; the colour
- * is cleared in the same loop (one store per vector of depths, no second pass over the
- * row). */
-#if defined(__GNUC__)
+ * ones: no overflow, and signed lanes compare them).  Where the target has vector
+ * registers (RS_SPANV, core/config.h: GCC's vector extension on SSE2 or NEON) 16 bytes a
+ * step, 32 in the x86-64-v3 copy (AVX2) for 32-bit depths, the colour cleared in the same
+ * loop (one store per vector of depths, no second pass over the row); elsewhere (32-bit
+ * ARM without NEON) the plain loop, as GCC's lowering of the vectors to scalar code costs
+ * several times its instructions. */
+#if RS_SPANV
 typedef uint32_t seed_u32x4 __attribute__((vector_size(16)));
 typedef uint16_t seed_u16x8 __attribute__((vector_size(16)));
 #if defined(__AVX2__)
@@ -45,7 +48,7 @@ static inline void seed32(uint32_t *restrict o, uint32_t *restrict c, const uint
 {
     const uint32_t thr = bias + dfar;
     int32_t i = 0;
-#if defined(__GNUC__)
+#if RS_SPANV
     const seed_u32v zero = { 0 }, vb = zero + bias, vf = zero + dfar;
     const seed_i32v vt = (seed_i32v)zero + (int32_t)thr;
     seed_u32x4 z4;
@@ -87,7 +90,7 @@ static inline void seed16(uint16_t *restrict o, uint16_t *restrict c, const uint
     }
     {
         const uint16_t thr = (uint16_t)(bias + dfar), b16 = (uint16_t)bias, f16 = (uint16_t)dfar;
-#if defined(__GNUC__)
+#if RS_SPANV
         const seed_u16x8 vb = { b16, b16, b16, b16, b16, b16, b16, b16 };
         const seed_u16x8 vf = { f16, f16, f16, f16, f16, f16, f16, f16 };
         const seed_u16x8 vt = { thr, thr, thr, thr, thr, thr, thr, thr };
@@ -116,7 +119,7 @@ static inline void seed16(uint16_t *restrict o, uint16_t *restrict c, const uint
 static void clear_span(uint8_t *c, size_t n)
 {
     size_t i = 0;
-#if defined(__GNUC__)
+#if RS_SPANV
     seed_u32x4 z;
     opaque_zero(&z);
     for (; i + 32 <= n; i += 32) {
