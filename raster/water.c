@@ -253,15 +253,31 @@ static RW_INLINE void row_k(const rw_frame *r, const refl_view *rv, int32_t y, r
 /* The waves' displacement at water depth dw (30-bit units), Q8 pixels: A f / zc, at most
  * RW_WAVE_PX / 2 (the slopes' sums reach 2 x it, water_px), fading as 1 / zc^2 beyond
  * wave_fade_d; 0 with the waves off.  A function of dw alone: water_row_px keeps the last
- * one of the row (a plane's pixels along a row mostly share their depth). */
-static RW_INLINE int64_t wave_q8(const rw_frame *r, uint32_t dw)
+ * one of the row (a plane's pixels along a row mostly share their depth).  0 <= q8 <=
+ * RW_WAVE_PX 128: amp_m >= 0 (rw_setup refuses wave_amp < 0), and the fade's factor
+ * (dw >> 14) inv_fade is at most 2^32 below wave_fade_d. */
+static RW_INLINE int32_t wave_q8(const rw_frame *r, uint32_t dw)
 {
     int64_t q8 = ((int64_t)dw * r->amp_m) >> 32;
     if (q8 > RW_WAVE_PX * 128) q8 = RW_WAVE_PX * 128;
     /* beyond wave_fade_d (far away) the waves fade as 1/zc^2: shorter than a pixel there,
      * they would only alias */
     if (dw < r->wave_fade_d) q8 = (int64_t)(((uint64_t)q8 * (dw >> 14) * r->inv_fade) >> 32);
-    return q8;
+    return (int32_t)q8;
+}
+
+/* A row's running values for its pixels, left to right (water_row_px, post_rows): the
+ * water depth the last wave displacement was made for (qdw; 0: none, as a water depth is
+ * > 0) and that displacement (q8, wave_q8's, or 0 with the waves off); the last cos^2 t
+ * index (qci, cos2_index's; RW_TAB + 1: none yet). */
+typedef struct rw_walk {
+    uint32_t qdw, qci;
+    int32_t q8;
+} rw_walk;
+
+static inline void rw_walk_start(rw_walk *wk)
+{
+    wk->qdw = 0; wk->qci = RW_TAB + 1; wk->q8 = 0;
 }
 
 /* RW_SOFT_DIV: 32-bit `/` is a library call (Armv7-A without the divide extension, as
@@ -301,32 +317,35 @@ static RW_INLINE uint32_t cos2_index(uint32_t cnum, uint32_t den, uint32_t *qci)
 }
 
 /* The colour of water pixel (x, k->y): terrain colour ct and depth dt under it, water
- * depth dw (30-bit units), body id, q8 = wave_q8(dw) (0 with the waves off); fmt and
+ * depth dw (30-bit units), body id, the row's walk wk (wk->q8 = wave_q8(dw), 0 with the
+ * waves off; its cos^2 t index moves on to x); fmt and
  * depth are the frame's (constants at each call, as in post_rows); common (a constant
  * too) promises what rw_post checked: waves on, the fixed tint, Schlick's Fresnel term, the
  * half-resolution reflection (res_shift 1: k->s is 1). */
 static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const rw_rowk *k, int32_t x, uint32_t ct,
-                         uint32_t dt, uint32_t dw, uint32_t id, int64_t q8, uint32_t *qci, const int32_t fmt,
+                         uint32_t dt, uint32_t dw, uint32_t id, rw_walk *wk, const int32_t fmt,
                          const int32_t depth, const int common)
 {
     const int32_t a = r->aq[x], y = k->y, s = common ? 1 : k->s;
     /* den >= Q12^2 >> 8 = 2^16 (k->bb includes Q12^2), so never 0 */
     const uint32_t den = (uint32_t)(((int64_t)a * a + k->bb) >> 8);
-    uint32_t ci = cos2_index(k->cnum, den, qci);
+    uint32_t ci = cos2_index(k->cnum, den, &wk->qci);
+    const int32_t q8 = wk->q8;
     int32_t dx = 0, dy = 0;
     uint32_t refl, refr, fr, x32;
     if (q8 != 0) {      /* else dx = dy = 0 and ci untilted, whatever the phase */
         /* each wave's slope at the pixel (row_k's phases); |sx|, |sy| <= 254, the sum
-         * of the amplitudes (wave_set), so |dx|, |dy| <= 512 254 >> 15 < RW_WAVE_PX */
+         * of the amplitudes (wave_set), so |dx|, |dy| <= 512 254 >> 15 < RW_WAVE_PX;
+         * |q8 sx| <= 512 254 < 2^31 */
         const uint64_t u = (uint64_t)(int64_t)(2 * x + 1 - r->w);
         const uint64_t p01 = k->ph[0] + u * k->dph[0], p23 = k->ph[1] + u * k->dph[1];
         const int32_t c0 = r->wsine[0][(p01 >> 24) & 255u], c1 = r->wsine[1][p01 >> 56];
         const int32_t c2 = r->wsine[2][(p23 >> 24) & 255u], c3 = r->wsine[3][p23 >> 56];
         const int32_t ce = c0 + c2, co = c1 + c3, sx = ce + co, sy = ce - co;
         int32_t ti;
-        dx = (int32_t)((q8 * sx) >> 15);
-        dy = (int32_t)((q8 * sy) >> 15);
-        ti = (int32_t)ci + (int32_t)((sx * q8) >> 10);    /* the slope tilts cos t */
+        dx = (q8 * sx) >> 15;
+        dy = (q8 * sy) >> 15;
+        ti = (int32_t)ci + ((sx * q8) >> 10);    /* the slope tilts cos t */
         ci = ti < 0 ? 0u : ti > RW_TAB ? (uint32_t)RW_TAB : (uint32_t)ti;
     }
     fr = !common && r->p.fresnel_one ? 256u : r->fres[ci];
@@ -546,14 +565,14 @@ static inline void put_px(uint8_t *crow, int32_t x, int32_t y, uint32_t rgb, con
 }
 
 /* Water-pass pixel x (its id set) of row k->y for water_rows_only: its colour when the
- * water shows there, fogged by the water's depth towards the row's sky colour.  *qdw and
- * *q8: the water depth the last wave displacement was made for (0: none; a water depth is
- * > 0) and it, kept along the row (a plane's pixels along a row mostly share their
- * depth); trows (a constant at each call): the row may hold a tested triangle's pixels
- * (rw_frame.trow), whose flag is read only then. */
+ * water shows there, fogged by the water's depth towards the row's sky colour.  wk: the
+ * row's walk (a plane's pixels along a row mostly share their depth, so the wave
+ * displacement is made again only where it changes); trows (a constant at each call):
+ * the row may hold a tested triangle's pixels (rw_frame.trow), whose flag is read only
+ * then. */
 static RW_INLINE void water_one(const rw_frame *r, const refl_view *rv, const rw_rowk *k, uint8_t *crow,
                                 const uint8_t *drow, const uint8_t *wc, const uint8_t *wd, int32_t x, uint32_t sky,
-                                uint32_t *qdw, int64_t *q8, uint32_t *qci, const int32_t fmt, const int32_t depth,
+                                rw_walk *wk, const int32_t fmt, const int32_t depth,
                                 const int common,
                                 const int trows)
 {
@@ -561,8 +580,8 @@ static RW_INLINE void water_one(const rw_frame *r, const refl_view *rv, const rw
     const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
     uint32_t rgb, d, fw;
     if (!water_shows(r, k, x, id, wc, dt, dw, dsh, fmt, trows)) return;
-    if ((common || r->p.waves_on) && dw != *qdw) { *qdw = dw; *q8 = wave_q8(r, dw << dsh); }
-    rgb = water_px(r, rv, k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, *q8, qci, fmt, depth, common);
+    if ((common || r->p.waves_on) && dw != wk->qdw) { wk->qdw = dw; wk->q8 = wave_q8(r, dw << dsh); }
+    rgb = water_px(r, rv, k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, wk, fmt, depth, common);
     d = dw << dsh;
     if ((fw = fog_weight(r->fog, (uint32_t)r->fog_sh, r->fog_d30, d)) != 0) rgb = mix_rgb(rgb, sky, fw);
     put_px(crow, x, k->y, rgb, fmt);
@@ -579,15 +598,15 @@ static RW_INLINE void water_row_px(const rw_frame *r, const refl_view *rv, const
                                    const int32_t fmt, const int32_t depth, const int common, const int trows)
 {
     const uint32_t sky = r->sky[k->y];
-    uint32_t qdw = 0, qci = RW_TAB + 1;
-    int64_t q8 = 0;
+    rw_walk wk;
     int32_t x;
 #if RW_VEC
     if (fmt == RS_FMT_XRGB8888 && depth == RS_DEPTH32 && wv_case(r))
         x0 = water_row_vec(r, rv, k, crow, drow, wc, wd, x0, xe, sky, trows);
 #endif
+    rw_walk_start(&wk);
     for (x = next_water(wc, x0, xe, fmt); x < xe; x = next_water(wc, x + 1, xe, fmt))
-        water_one(r, rv, k, crow, drow, wc, wd, x, sky, &qdw, &q8, &qci, fmt, depth, common, trows);
+        water_one(r, rv, k, crow, drow, wc, wd, x, sky, &wk, fmt, depth, common, trows);
 }
 
 /* The hook when the terrain frame carries its own fog and sky (rw_fog_vertices): only
@@ -629,9 +648,10 @@ static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *
         int32_t x0 = 0, xe = 0;
         const uint8_t *wd = NULL, *wc = water_row(r, b, wcol, wdep, wy0, wrows, y, dbp, &wd, &x0, &xe);
         const uint32_t sky = r->sky[y];
-        uint32_t qci = RW_TAB + 1;
+        rw_walk wk;
         rw_rowk k;
         row_k(r, rv, y, &k, fmt, depth);
+        rw_walk_start(&wk);
         for (x = 0; x < b->w; x++) {
             const uint32_t dt = get_depth(depth, drow, x);
             uint32_t rgb, d, fw;
@@ -648,8 +668,9 @@ static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *
                 if (wc && x >= x0 && x < xe) {
                     const uint32_t id = get_id(fmt, wc, x), dw = get_depth(depth, wd, x);
                     if (id && water_shows(r, &k, x, id, wc, dt, dw, dsh, fmt, r->trow[y])) {
-                        rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id,
-                                       r->p.waves_on ? wave_q8(r, dw << dsh) : 0, &qci, fmt, depth, 0);
+                        wk.q8 = r->p.waves_on ? wave_q8(r, dw << dsh) : 0;
+                        rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, &wk, fmt,
+                                       depth, 0);
                         d = dw << dsh;
                         changed = 1;
                     }
