@@ -219,6 +219,16 @@ void rt_vertex(const rt_scene *s, int32_t x, int32_t y, int32_t z, rs_vertex *ou
     out->rgb = rs_light_apply(ramp_at(s, z), level_get(s, x, y));
 }
 
+uint32_t rt_sample_rgb(const rt_scene *s, int32_t x, int32_t y)
+{
+    const size_t i = (size_t)y * (size_t)s->f->w + (size_t)x;
+    const int32_t z = s->f->z[i];
+    int32_t lvl;
+    if (z == HF_NODATA) return s->ramp->has_nv ? s->ramp->nv_rgb : 0;
+    lvl = s->lvl && (s->lvl[i] & RT_LVL) ? (int32_t)(s->lvl[i] & ~RT_LVL) : level_at(s, x, y);
+    return rs_light_apply(ramp_at(s, z), lvl);
+}
+
 void rt_from_mesh(const rt_scene *s, const bt_mesh *m, rs_vertex *out)
 {
     uint32_t i;

@@ -89,6 +89,12 @@ void rt_cache_clear(rt_scene *s);
  * texture, uv = (x * tex_w / (w - 1), y * tex_h / (h - 1)) texels in Q8. */
 void rt_vertex(const rt_scene *s, int32_t x, int32_t y, int32_t z, rs_vertex *out);
 
+/* The lit colour of grid sample (x, y) at its own height, rt_vertex's (the void colour
+ * for a void; the lighting alone under a texture).  Reads the cache's level where it is
+ * set and computes it otherwise, storing nothing: threads may call it at once while no
+ * rt_from_mesh* runs (the water hook's land pixels, raster/water.c). */
+uint32_t rt_sample_rgb(const rt_scene *s, int32_t x, int32_t y);
+
 /* The bitree mesh's vertices (m->nv of them) into out (serial; fills the cache). */
 void rt_from_mesh(const rt_scene *s, const bt_mesh *m, rs_vertex *out);
 /* The same for m->v[first .. first + n) into out[first .. first + n), for threads

@@ -394,101 +394,7 @@ static RW_INLINE uint32_t water_px(const rw_frame *r, const refl_view *rv, const
     return mix_rgb(refr, refl, fr);
 }
 
-/* Depths (buffer units) this close are a tie: the terrain lies at the water's surface
- * within the depth buffer's resolution (a near plane far below the distance, as in the
- * viewer's fly camera, leaves metres a unit far away), and which is nearer is decided by
- * whether the water plane's point on the pixel's ray is wet, not by the rounding. */
-#define RW_DEPTH_TIE 2u
-
-/* The point P = E + (P_0 - E) f >> 16 on pixel (x, k->y)'s ray (P_0 the reflected plane's
- * point, f in Q16) as a grid position in world units plus half a step: *gx east from
- * column 0, *gy south from row 0. */
-static RW_INLINE void grid_pos(const rw_frame *r, const rw_rowk *k, int32_t x, int64_t f, int64_t *gx, int64_t *gy)
-{
-    *gx = r->gx0 + (((k->wrel0 + (((int64_t)r->aq[x] * k->ws0) >> 12)) * f) >> 16);
-    *gy = r->gy0 - (((k->wrel1 + (((int64_t)r->aq[x] * k->ws1) >> 12)) * f) >> 16);
-}
-
-/* 1 when the grid sample nearest that point is wet with body id; 0 otherwise, or when the
- * point lies off the grid.  For a row with a plane point for the shore test (k->shore). */
-static RW_INLINE int wet_at(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, int64_t f)
-{
-    int64_t gx, gy;
-    size_t ix, iy;
-    grid_pos(r, k, x, f, &gx, &gy);
-    if ((uint64_t)gx >= r->gxmax || (uint64_t)gy >= r->gymax) return 0;       /* negative: huge */
-    ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);       /* < wet_w, as gx < gxmax (grid_max) */
-    iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);       /* < wet_h */
-    return r->p.wet[iy * (size_t)r->p.wet_w + ix] == id;
-}
-
-/* The terrain's point on the ray for shore_wet: bratio dw / dt (Q16, below 2^21 as
- * bratio is), dw / dt from the depths brought to 16 bits (sh the smallest with
- * dt >> sh < 2^16; a 32-bit division), for dt > dw >= 1 (so dt >> sh >= 1). */
-static inline int64_t shore_point(int32_t bratio, uint32_t dt, uint32_t dw)
-{
-    const int32_t sh = dt >= 65536u ? 16 - fx_clz32(dt) : 0;
-    return ((int64_t)bratio * (((dw >> sh) << 16) / (dt >> sh))) >> 16;
-}
-
-/* The shore test for water pixel (x, y) of body id whose terrain is nearer (dt > dw): 1
- * when the terrain's point on the pixel's ray lies on a sample wet with that body (the
- * terrain LOD over flattened water), 0 otherwise (land, or no plane point for the row).
- * P_t = E + (P_0 - E) bratio dw / dt, P_0 the reflected plane's point (shore_point); the
- * grid sample nearest P_t.  Called only where k->sdd[id] is not 0 (water_shows), so with
- * k->shore and bratio[id] set, and with dt > dw >= 1. */
-static RW_INLINE int shore_wet(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, uint32_t dt, uint32_t dw)
-{
-    return wet_at(r, k, x, id, shore_point(r->bratio[id], dt, dw));
-}
-
-/* The shore test at the plane's own point: shore_wet with dt = dw, whose quotient q is
- * then 2^16 (f = bratio) for any nonzero dw. */
-static RW_INLINE int plane_wet(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id)
-{
-    return k->shore && r->bratio[id] && wet_at(r, k, x, id, r->bratio[id]);
-}
-
-/* A cell corner of sample j, wet with v, passes the split mesh's rule (emit_cell) for body
- * id: wet with the body, or dry and not low. */
-static inline uint32_t corner_passes(uint32_t v, uint32_t id, const uint8_t *low, size_t j)
-{
-    return v == id || (!v && !(low && low[j]));
-}
-
-/* A tested triangle's pixel (x, k->y) of body id: 1 when the plane's point on its ray lies
- * where the exact mesh would have a triangle (emit_cell, platform/water_mesh.c): in a grid
- * cell with a corner wet with the body, in that cell's half (split along its south-west /
- * north-east diagonal) whose three corners are wet with the body or dry and not low
- * (rw_params.low).  So a tested quad shows water where the cells along the shore would. */
-static RW_INLINE int plane_cell(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id)
-{
-    const int64_t sx = r->p.grid_sx, sy = r->p.grid_sy;
-    const uint8_t *wet = r->p.wet, *low = r->p.low;
-    int64_t gx, gy, fx, fy;
-    size_t ix, iy, i, w = (size_t)r->p.wet_w;
-    uint32_t nw, ne, sw, se, ok;
-    if (!k->shore || !r->bratio[id]) return 0;
-    grid_pos(r, k, x, r->bratio[id], &gx, &gy);
-    gx -= sx / 2;           /* the point's own grid position */
-    gy -= sy / 2;
-    if (gx < 0 || gy < 0 || (uint64_t)gx >= r->gxmax || (uint64_t)gy >= r->gymax) return 0;
-    ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);
-    iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);
-    if (ix + 1 >= w || iy + 1 >= (size_t)r->p.wet_h) return 0;
-    i = iy * w + ix;                    /* the cell's north-west corner (rows run south) */
-    nw = wet[i]; ne = wet[i + 1]; sw = wet[i + w]; se = wet[i + w + 1];
-    if ((nw & ne & sw & se) == id && (nw | ne | sw | se) == id) return 1;     /* inside the water */
-    if (nw != id && ne != id && sw != id && se != id) return 0;
-    /* which corners pass (4 bits: nw ne sw se) */
-    ok = corner_passes(nw, id, low, i) | corner_passes(ne, id, low, i + 1) << 1
-         | corner_passes(sw, id, low, i + w) << 2 | corner_passes(se, id, low, i + w + 1) << 3;
-    /* the south-east half (sw se ne) where fx / sx + fy / sy >= 1, fx, fy the offsets
-     * from the north-west corner, in world units (|fx| sy < 2^31 2^31: int64) */
-    fx = gx - (int64_t)ix * sx;
-    fy = gy - (int64_t)iy * sy;
-    return fx * sy + fy * sx >= sx * sy ? (ok & 14u) == 14u : (ok & 7u) == 7u;
-}
+#include "raster/water_shore.h"
 
 /* The first pixel at or after x of a water-pass row whose id is set (w if none): x itself
  * first (runs of water), then sixteen pixels a test (64-bit words, read with memcpy: rows
@@ -540,17 +446,34 @@ static inline const uint8_t *water_row(const rw_frame *r, const rs_band *b, cons
     return wcol + (size_t)(y - wy0) * b->stride;
 }
 
-/* 1 when the water of body id at pixel (x, y) shows over the terrain, depths dt (terrain)
- * and dw (water) in buffer units (<< dsh: 30-bit): the water is nearer (and, for a tested
- * triangle's pixel in a row trows allows, plane_cell says so); or the two tie
- * (RW_DEPTH_TIE) and the plane's point is wet; or the terrain is nearer within the shore
- * bound and its point on the ray is wet (the LOD over water). */
+/* water_shows's answers: not water (the terrain pass's pixel stays), water, or the land of
+ * a dry sample the terrain's LOD drew under the plane (the land test). */
+enum { RW_NOT = 0, RW_WATER = 1, RW_LAND = 2 };
+
+/* Whether the water of body id at pixel (x, y) shows over the terrain, depths dt (terrain)
+ * and dw (water) in buffer units (<< dsh: 30-bit).  RW_WATER when the water is nearer
+ * (and, for a tested triangle's pixel in a row trows allows, plane_cell says so); or the
+ * two tie (RW_DEPTH_TIE) and the plane's point is wet; or the terrain is nearer within
+ * the shore bound and its point on the ray is wet (the LOD over water).  RW_LAND, with
+ * the sample in *lx, *ly, when the water is nearer but the terrain lies under the plane by
+ * no more than the shore bound allows for land (the same bound: the LOD moves the surface
+ * by at most it, up or down) and the plane's point lies on a dry sample (land_at: the
+ * LOD sank land whose true height is at or above the level; lower, it would be wet). */
 static RW_INLINE int water_shows(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, const uint8_t *wc,
-                                 uint32_t dt, uint32_t dw, int32_t dsh, const int32_t fmt, const int trows)
+                                 uint32_t dt, uint32_t dw, int32_t dsh, const int32_t fmt, const int trows,
+                                 int32_t *lx, int32_t *ly)
 {
     /* (dw >= 1: the pass drew the pixel over a seed of at least dfar >= 0) */
-    if (dw + RW_DEPTH_TIE > dt)
-        return dw > dt ? !(trows && get_tested(fmt, wc, x)) || plane_cell(r, k, x, id) : plane_wet(r, k, x, id);
+    if (dw + RW_DEPTH_TIE > dt) {
+        if (dw <= dt) return plane_wet(r, k, x, id);
+        if (trows && get_tested(fmt, wc, x)) return plane_cell(r, k, x, id);
+        if (r->p.land && ((dw - dt) << dsh) <= k->sdd[id]
+            && !(k->wbound && r->ebody[id] * (int64_t)((dw - dt) << dsh)
+                                  > r->p.shore_w * (int64_t)(dt << dsh) + r->p.shore_c)
+            && land_at(r, k, x, id, lx, ly))
+            return RW_LAND;
+        return RW_WATER;
+    }
     if (((dt - dw) << dsh) > k->sdd[id]) return 0;     /* (dt - dw >= RW_DEPTH_TIE > 0) */
     if (k->wbound
         && r->ebody[id] * (int64_t)((dt - dw) << dsh) > r->p.shore_w * (int64_t)(dt << dsh) + r->p.shore_c) return 0;
@@ -573,18 +496,30 @@ static inline void put_px(uint8_t *crow, int32_t x, int32_t y, uint32_t rgb, con
 static RW_INLINE void water_one(const rw_frame *r, const refl_view *rv, const rw_rowk *k, uint8_t *crow,
                                 const uint8_t *drow, const uint8_t *wc, const uint8_t *wd, int32_t x, uint32_t sky,
                                 rw_walk *wk, const int32_t fmt, const int32_t depth,
-                                const int common,
-                                const int trows)
+                                const int common, const int trows)
 {
     const int32_t dsh = depth == RS_DEPTH16 ? 14 : 0;
     const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
     uint32_t rgb, d, fw;
-    if (!water_shows(r, k, x, id, wc, dt, dw, dsh, fmt, trows)) return;
-    if ((common || r->p.waves_on) && dw != wk->qdw) { wk->qdw = dw; wk->q8 = wave_q8(r, dw << dsh); }
-    rgb = water_px(r, rv, k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, wk, fmt, depth, common);
+    int32_t lx, ly;
+    const int shows = water_shows(r, k, x, id, wc, dt, dw, dsh, fmt, trows, &lx, &ly);
+    if (shows == RW_NOT) return;
+    if (shows == RW_LAND) rgb = rt_sample_rgb(r->p.land, lx, ly);
+    else {
+        if ((common || r->p.waves_on) && dw != wk->qdw) { wk->qdw = dw; wk->q8 = wave_q8(r, dw << dsh); }
+        rgb = water_px(r, rv, k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, wk, fmt, depth, common);
+    }
     d = dw << dsh;
     if ((fw = fog_weight(r->fog, (uint32_t)r->fog_sh, r->fog_d30, d)) != 0) rgb = mix_rgb(rgb, sky, fw);
     put_px(crow, x, k->y, rgb, fmt);
+}
+
+/* A land pixel's colour (RW_LAND): the sample's rgb fogged by the water's depth d
+ * (30-bit), as water_one fogs. */
+static inline uint32_t land_rgb(const rw_frame *r, uint32_t rgb, uint32_t d, uint32_t sky)
+{
+    const uint32_t fw = fog_weight(r->fog, (uint32_t)r->fog_sh, r->fog_d30, d);
+    return fw ? mix_rgb(rgb, sky, fw) : rgb;
 }
 
 #if RW_VEC
@@ -667,10 +602,14 @@ static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *
                 d = dt << dsh;
                 if (wc && x >= x0 && x < xe) {
                     const uint32_t id = get_id(fmt, wc, x), dw = get_depth(depth, wd, x);
-                    if (id && water_shows(r, &k, x, id, wc, dt, dw, dsh, fmt, r->trow[y])) {
+                    int32_t lx, ly;
+                    const int shows = id ? water_shows(r, &k, x, id, wc, dt, dw, dsh, fmt, r->trow[y], &lx, &ly)
+                                         : RW_NOT;
+                    if (shows != RW_NOT) {
                         wk.q8 = r->p.waves_on ? wave_q8(r, dw << dsh) : 0;
-                        rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, &wk, fmt,
-                                       depth, 0);
+                        rgb = shows == RW_LAND ? rt_sample_rgb(r->p.land, lx, ly)
+                                               : water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh,
+                                                          id, &wk, fmt, depth, 0);
                         d = dw << dsh;
                         changed = 1;
                     }

@@ -24,7 +24,8 @@
  *     pixel's ray, found from the plane's point by the ratio of the two depths, looked up
  *     in `wet`): the coarse terrain LOD may draw the bottom under flattened water above
  *     the surface (its screen error allows it far away), while dry land, however low,
- *     stays land and hills in front of the water stay in front;
+ *     stays land and hills in front of the water stay in front; and land where the
+ *     terrain's LOD sank dry land under the plane (the land test, rw_params.land);
  *     colour = refraction (1 - F) + reflection F,
  *     F = R0 + (1 - R0)(1 - cos t)^5 (Schlick), R0 = ((n - 1)/(n + 1))^2, n = 1.33,
  *       cos t = |ray_z| / |ray| of the pixel's view ray, from a table by cos^2 t;
@@ -69,6 +70,7 @@
 #include <stdint.h>
 #include "core/cam.h"
 #include "raster/frame.h"
+#include "raster/terrain.h"
 
 #define RW_COL_ROWS 8           /* rows that share one column range of the water pass's seed */
 #define RW_WAVE_PX 4            /* largest wave displacement of the reflection lookup, pixels */
@@ -112,6 +114,12 @@ typedef struct rw_params {      /* zero = off / defaults as stated */
      * not lie (dry land below its level that reaches water or the grid's edge, a void):
      * a tested pixel in a half cell with such a corner is not water. */
     const uint8_t *low;
+    /* The land test (NULL: none; wet set, the terrain's grid): a pixel whose water is
+     * nearer than the terrain, by no more than the shore bound below allows for dry
+     * land at or above the body's level that the LOD drew lower, is land where the plane's
+     * point on its ray lies on a valid dry sample, coloured as that sample
+     * (rt_sample_rgb; not with a texture, whose texels the hook does not have). */
+    const rt_scene *land;
     int32_t wet_w, wet_h;
     int64_t grid_ox, grid_oy, grid_sx, grid_sy;
     int32_t body_z[RW_MAX_ID + 1];

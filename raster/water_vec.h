@@ -199,7 +199,7 @@ static inline void wv_wet_half(const wv_row *c, const int32_t *aq, const int32_t
  * the grid sample nearest the point is wet with id (the index below wet_w wet_h there,
  * as wet_at's), 0 elsewhere.  The sample's byte is read as the aligned word that holds
  * it, which never reaches past the grid's last word. */
-static inline wv_i wv_wet(const wv_row *c, const rw_frame *r, int32_t x, wv_i id, const int32_t *f, wv_i m)
+static RW_INLINE wv_i wv_wet(const wv_row *c, const rw_frame *r, int32_t x, wv_i id, const int32_t *f, wv_i m)
 {
     wv_q i0, n0, i1, n1;
     wv_i idx, ok, w;
@@ -305,20 +305,38 @@ static inline int32_t water_row_vec(const rw_frame *r, const refl_view *rv, cons
 {
     wv_row c;
     int32_t x;
+    const int land = r->p.land && k->shore;
     wv_row_make(&c, r, rv, k, sky);
     for (x = x0; x + 8 <= xe; x += 8) {
         const wv_u wcv = (wv_u)WV_LD(wc + 4 * (size_t)x);
         const wv_i id = (wv_i)((wcv >> 19) & 31u), nz = id != 0;
-        wv_i dt, dw, gap, cand, show;
+        wv_i dt, dw, gap, sdd, cand, show;
         uint32_t test;
         if (!WV_BITS(nz)) continue;
         dt = WV_LD(drow + 4 * (size_t)x);
         dw = WV_LD(wd + 4 * (size_t)x);
         /* the terrain nearer by more than the row's shore reach: dry (water_shows) */
         gap = dt - dw;
-        cand = nz & ~((gap >= (int32_t)RW_DEPTH_TIE) & ((wv_u)gap > (wv_u)WV_GATHER(k->sdd, id, nz, 4)));
+        sdd = WV_GATHER(k->sdd, id, nz, 4);
+        cand = nz & ~((gap >= (int32_t)RW_DEPTH_TIE) & ((wv_u)gap > (wv_u)sdd));
         show = cand & (dw > dt);
         if (trows) show &= (wv_i)((wcv & RW_TESTED_RGB) == 0);
+        if (land) {
+            /* the land test's lanes (water_shows): the terrain under the plane within
+             * the shore bound; those whose plane point's nearest sample is dry (one of
+             * the four corners land_at wants dry), or all where the lanes cannot look
+             * (wet_lanes), go one by one */
+            wv_i lt = show & ~((wv_u)(dw - dt) > (wv_u)sdd);
+            if (WV_BITS(lt)) {
+                if (c.wet_lanes) {
+                    const wv_i br = WV_GATHER(r->bratio, id, lt, 4);
+                    int32_t f[8];
+                    *(wv_iun *)(void *)f = br;
+                    lt &= wv_wet(&c, r, x, c.zero, f, lt & (br != 0));
+                }
+                show &= ~lt;
+            }
+        }
         test = WV_BITS(cand & ~show);
         if (test && c.wet_lanes) {
             /* the ties and shore tests in lanes where three or more wait (the gap's
@@ -333,9 +351,12 @@ static inline int32_t water_row_vec(const rw_frame *r, const refl_view *rv, cons
         /* the candidates with a test of their own: water_shows, one by one */
         for (; test; test &= test - 1) {
             const int32_t i = __builtin_ctz(test) >> 2;
-            if (water_shows(r, k, x + i, (uint32_t)id[i], wc, (uint32_t)dt[i], (uint32_t)dw[i], 0, RS_FMT_XRGB8888,
-                            trows))
-                show[i] = -1;
+            int32_t lx, ly;
+            const int shows = water_shows(r, k, x + i, (uint32_t)id[i], wc, (uint32_t)dt[i], (uint32_t)dw[i], 0,
+                                          RS_FMT_XRGB8888, trows, &lx, &ly);
+            if (shows == RW_WATER) show[i] = -1;
+            else if (shows == RW_LAND)
+                ((uint32_t *)(void *)crow)[x + i] = land_rgb(r, rt_sample_rgb(r->p.land, lx, ly), (uint32_t)dw[i], sky);
         }
         if (WV_BITS(show))      /* (without rv->col water_px reads the sky alone) */
             __builtin_ia32_maskstored256((wv_i *)(void *)(crow + 4 * (size_t)x), show,

@@ -177,8 +177,68 @@ static void test_tested_quads(void)
     }
 }
 
+/* The land pixels (red: the colour file paints every height red, and the water's tint
+ * turns the lowered bottom blue) of N57E011 seen straight down from 40 km over Laesoe
+ * (columns 0 to 240, rows 806 to 934, 1 to 22 m over the sea), fog off, into land[]
+ * (W x H); returns how many.  pixel_error NULL: the full grid. */
+static int sea_land(const char *fmt, const char *pixel_error, uint8_t *land)
+{
+    const char *dem = t_data("hgt/N57E011.hgt");
+    char out[256], colors[256];
+    uint8_t *px = NULL;
+    int pw = 0, ph = 0, n = 0, i;
+    br_err err;
+    snprintf(out, sizeof out, "%s/water_land_%s_%s.png", t_outdir(), fmt, pixel_error ? pixel_error : "full");
+    snprintf(colors, sizeof colors, "%s/water_land_red.txt", t_outdir());
+    {
+        FILE *o = fopen(colors, "w");
+        CHECK(o != NULL);
+        if (!o) return -1;
+        fputs("-500 255 0 0\n9000 255 0 0\n", o);
+        CHECK_EQ(fclose(o), 0);
+    }
+    {
+        const char *a[] = { "render", dem, "-o", out, "--size", "320x192", "--no-fog", "--format", fmt,
+                            "--camera", "10000,20000,40000,10000,20001,0", "--colors", colors,
+                            pixel_error ? "--pixel-error" : "--full", pixel_error ? pixel_error : "1" };
+        CHECK_EQ(cmd_render((int)(sizeof a / sizeof a[0]) - 1, (char **)(void *)(a + 1)), 0);
+        CHECK_EQ(png_read_rgb(out, &pw, &ph, &px, &err), BR_OK);
+    }
+    if (!px || pw != W || ph != H) { free(px); return -1; }
+    for (i = 0; i < W * H; i++) {
+        const uint8_t *p = px + 3 * (size_t)i;
+        land[i] = p[0] > 16 && p[1] <= 8 && p[2] <= 8;
+        n += land[i];
+    }
+    free(px);
+    return n;
+}
+
+/* The land test (rw_params.land): from 40 km up a pixel of screen error lets the terrain's
+ * LOD sink Laesoe (22 m at most) into the lowered sea bottom, and without the test the
+ * island was not drawn at all.  Its land pixels must be the full grid's, where the LOD
+ * sinks nothing, within 8 % (the cells' edges: the full grid draws the shore where the
+ * terrain crosses the plane, the test where a cell's four corners are dry), in both the
+ * lanes (XRGB8888) and the scalar loop (RGB565). */
+static void test_sunk_island(void)
+{
+    static const char *const fmts[2] = { "rgb888", "rgb565" };
+    static uint8_t lod[W * H], full[W * H];
+    int f, i;
+    for (f = 0; f < 2; f++) {
+        const int nl = sea_land(fmts[f], "1", lod), nf = sea_land(fmts[f], NULL, full);
+        int differ = 0;
+        for (i = 0; i < W * H; i++) differ += lod[i] != full[i];
+        printf("%s, Laesoe from 40 km: %d land pixels at 1 px, %d with the full grid, %d differ\n", fmts[f], nl, nf,
+               differ);
+        CHECK_MSG(nf > 1000, "%s: %d land pixels with the full grid", fmts[f], nf);
+        CHECK_MSG(differ * 100 <= 8 * nf, "%s: %d of %d land pixels differ", fmts[f], differ, nf);
+    }
+}
+
 int main(void)
 {
     T_RUN(test_tested_quads);
+    T_RUN(test_sunk_island);
     return t_finish();
 }

@@ -1,0 +1,146 @@
+/* raster/water_shore.h — which water-pass pixels are water where the terrain and the
+ * water plane meet (raster/water.c's water_shows): the shore test (the terrain's point
+ * on a pixel's ray wet with the body: the LOD over water), the tested quads' cells
+ * (plane_cell) and the land test (the plane's point over dry land: the LOD sank land).
+ * Private to raster/water.c, included once, after rw_rowk; its per-pixel look-ups use
+ * the frame's grid position and its reciprocals (rw_frame: gx0, gy0, inv_sx, inv_sy). */
+#ifndef BR_RWATER_SHORE_H
+#define BR_RWATER_SHORE_H
+
+/* Depths (buffer units) this close are a tie: the terrain lies at the water's surface
+ * within the depth buffer's resolution (a near plane far below the distance, as in the
+ * viewer's fly camera, leaves metres a unit far away), and which is nearer is decided by
+ * whether the water plane's point on the pixel's ray is wet, not by the rounding. */
+#define RW_DEPTH_TIE 2u
+
+/* The point P = E + (P_0 - E) f >> 16 on pixel (x, k->y)'s ray (P_0 the reflected plane's
+ * point, f in Q16) as a grid position in world units plus half a step: *gx east from
+ * column 0, *gy south from row 0. */
+static RW_INLINE void grid_pos(const rw_frame *r, const rw_rowk *k, int32_t x, int64_t f, int64_t *gx, int64_t *gy)
+{
+    *gx = r->gx0 + (((k->wrel0 + (((int64_t)r->aq[x] * k->ws0) >> 12)) * f) >> 16);
+    *gy = r->gy0 - (((k->wrel1 + (((int64_t)r->aq[x] * k->ws1) >> 12)) * f) >> 16);
+}
+
+/* 1 when the grid sample nearest that point is wet with body id; 0 otherwise, or when the
+ * point lies off the grid.  For a row with a plane point for the shore test (k->shore). */
+static RW_INLINE int wet_at(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, int64_t f)
+{
+    int64_t gx, gy;
+    size_t ix, iy;
+    grid_pos(r, k, x, f, &gx, &gy);
+    if ((uint64_t)gx >= r->gxmax || (uint64_t)gy >= r->gymax) return 0;       /* negative: huge */
+    ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);       /* < wet_w, as gx < gxmax (grid_max) */
+    iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);       /* < wet_h */
+    return r->p.wet[iy * (size_t)r->p.wet_w + ix] == id;
+}
+
+/* The terrain's point on the ray for shore_wet: bratio dw / dt (Q16, below 2^21 as
+ * bratio is), dw / dt from the depths brought to 16 bits (sh the smallest with
+ * dt >> sh < 2^16; a 32-bit division), for dt > dw >= 1 (so dt >> sh >= 1). */
+static inline int64_t shore_point(int32_t bratio, uint32_t dt, uint32_t dw)
+{
+    const int32_t sh = dt >= 65536u ? 16 - fx_clz32(dt) : 0;
+    return ((int64_t)bratio * (((dw >> sh) << 16) / (dt >> sh))) >> 16;
+}
+
+/* The shore test for water pixel (x, y) of body id whose terrain is nearer (dt > dw): 1
+ * when the terrain's point on the pixel's ray lies on a sample wet with that body (the
+ * terrain LOD over flattened water), 0 otherwise (land, or no plane point for the row).
+ * P_t = E + (P_0 - E) bratio dw / dt, P_0 the reflected plane's point (shore_point); the
+ * grid sample nearest P_t.  Called only where k->sdd[id] is not 0 (water_shows), so with
+ * k->shore and bratio[id] set, and with dt > dw >= 1. */
+static RW_INLINE int shore_wet(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, uint32_t dt, uint32_t dw)
+{
+    return wet_at(r, k, x, id, shore_point(r->bratio[id], dt, dw));
+}
+
+/* The shore test at the plane's own point: shore_wet with dt = dw, whose quotient q is
+ * then 2^16 (f = bratio) for any nonzero dw. */
+static RW_INLINE int plane_wet(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id)
+{
+    return k->shore && r->bratio[id] && wet_at(r, k, x, id, r->bratio[id]);
+}
+
+/* Sample i of the land test's grid is dry land at or above the plane at world height
+ * zb: not wet, not a void, not below it (a pocket under the plane stays water, as the
+ * fine mesh draws it). */
+static inline int land_sample(const rw_frame *r, size_t i, int64_t zb)
+{
+    const bt_frame *fr = &r->p.land->fr;
+    const int32_t z = r->p.land->f->z[i];
+    return !r->p.wet[i] && z != HF_NODATA && fr->oz + (((int64_t)z * fr->sz_q16) >> 16) >= zb;
+}
+
+/* The land test (rw_params.land) at the plane's own point: 1, with the sample nearest it
+ * in *lx, *ly, when the four corners of the grid cell under the point are dry land at or
+ * above body id's plane (land_sample): there the terrain at full resolution lies above
+ * the plane, whatever the LOD drew, and a cell with another corner keeps the geometry's
+ * shore (the plane shows where the drawn terrain lies under it, as nearer).  0
+ * otherwise, or off the grid.  For a row with a plane point (k->shore) and a body with
+ * bratio[id] set, as the shore test's k->sdd promises. */
+static RW_INLINE int land_at(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, int32_t *lx, int32_t *ly)
+{
+    const int64_t sx = r->p.grid_sx, sy = r->p.grid_sy;
+    const size_t w = (size_t)r->p.wet_w;
+    const int64_t zb = r->p.body_z[id];
+    int64_t gx, gy;
+    size_t ix, iy, i;
+    grid_pos(r, k, x, r->bratio[id], &gx, &gy);
+    gx -= sx / 2;           /* the point's own grid position */
+    gy -= sy / 2;
+    if (gx < 0 || gy < 0 || (uint64_t)gx >= r->gxmax || (uint64_t)gy >= r->gymax) return 0;
+    ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);
+    iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);
+    if (ix + 1 >= w || iy + 1 >= (size_t)r->p.wet_h) return 0;
+    i = iy * w + ix;                    /* the cell's north-west corner (rows run south) */
+    if (!land_sample(r, i, zb) || !land_sample(r, i + 1, zb) || !land_sample(r, i + w, zb)
+        || !land_sample(r, i + w + 1, zb))
+        return 0;
+    *lx = (int32_t)ix + (2 * (gx - (int64_t)ix * sx) >= sx);
+    *ly = (int32_t)iy + (2 * (gy - (int64_t)iy * sy) >= sy);
+    return 1;
+}
+
+/* A cell corner of sample j, wet with v, passes the split mesh's rule (emit_cell) for body
+ * id: wet with the body, or dry and not low. */
+static inline uint32_t corner_passes(uint32_t v, uint32_t id, const uint8_t *low, size_t j)
+{
+    return v == id || (!v && !(low && low[j]));
+}
+
+/* A tested triangle's pixel (x, k->y) of body id: 1 when the plane's point on its ray lies
+ * where the exact mesh would have a triangle (emit_cell, platform/water_mesh.c): in a grid
+ * cell with a corner wet with the body, in that cell's half (split along its south-west /
+ * north-east diagonal) whose three corners are wet with the body or dry and not low
+ * (rw_params.low).  So a tested quad shows water where the cells along the shore would. */
+static RW_INLINE int plane_cell(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id)
+{
+    const int64_t sx = r->p.grid_sx, sy = r->p.grid_sy;
+    const uint8_t *wet = r->p.wet, *low = r->p.low;
+    int64_t gx, gy, fx, fy;
+    size_t ix, iy, i, w = (size_t)r->p.wet_w;
+    uint32_t nw, ne, sw, se, ok;
+    if (!k->shore || !r->bratio[id]) return 0;
+    grid_pos(r, k, x, r->bratio[id], &gx, &gy);
+    gx -= sx / 2;           /* the point's own grid position */
+    gy -= sy / 2;
+    if (gx < 0 || gy < 0 || (uint64_t)gx >= r->gxmax || (uint64_t)gy >= r->gymax) return 0;
+    ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);
+    iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);
+    if (ix + 1 >= w || iy + 1 >= (size_t)r->p.wet_h) return 0;
+    i = iy * w + ix;                    /* the cell's north-west corner (rows run south) */
+    nw = wet[i]; ne = wet[i + 1]; sw = wet[i + w]; se = wet[i + w + 1];
+    if ((nw & ne & sw & se) == id && (nw | ne | sw | se) == id) return 1;     /* inside the water */
+    if (nw != id && ne != id && sw != id && se != id) return 0;
+    /* which corners pass (4 bits: nw ne sw se) */
+    ok = corner_passes(nw, id, low, i) | corner_passes(ne, id, low, i + 1) << 1
+         | corner_passes(sw, id, low, i + w) << 2 | corner_passes(se, id, low, i + w + 1) << 3;
+    /* the south-east half (sw se ne) where fx / sx + fy / sy >= 1, fx, fy the offsets
+     * from the north-west corner, in world units (|fx| sy < 2^31 2^31: int64) */
+    fx = gx - (int64_t)ix * sx;
+    fy = gy - (int64_t)iy * sy;
+    return fx * sy + fy * sx >= sx * sy ? (ok & 14u) == 14u : (ok & 7u) == 7u;
+}
+
+#endif
