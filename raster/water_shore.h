@@ -62,6 +62,27 @@ static RW_INLINE int plane_wet(const rw_frame *r, const rw_rowk *k, int32_t x, u
     return k->shore && r->bratio[id] && wet_at(r, k, x, id, r->bratio[id]);
 }
 
+/* The grid cell under the plane's point on pixel (x, k->y)'s ray for body id (with
+ * bratio[id] set): 1, with its north-west corner (*ix, *iy) (rows run south) and the
+ * point's offsets from that corner (*fx east, *fy south, world units), when the whole
+ * cell lies on the grid; 0 otherwise. */
+static RW_INLINE int plane_cell_of(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, size_t *ix, size_t *iy,
+                                   int64_t *fx, int64_t *fy)
+{
+    const int64_t sx = r->p.grid_sx, sy = r->p.grid_sy;
+    int64_t gx, gy;
+    grid_pos(r, k, x, r->bratio[id], &gx, &gy);
+    gx -= sx / 2;           /* the point's own grid position */
+    gy -= sy / 2;
+    if (gx < 0 || gy < 0 || (uint64_t)gx >= r->gxmax || (uint64_t)gy >= r->gymax) return 0;
+    *ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);
+    *iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);
+    if (*ix + 1 >= (size_t)r->p.wet_w || *iy + 1 >= (size_t)r->p.wet_h) return 0;
+    *fx = gx - (int64_t)*ix * sx;
+    *fy = gy - (int64_t)*iy * sy;
+    return 1;
+}
+
 /* Sample i of the land test's grid is dry land at or above the plane at world height
  * zb: not wet, not a void, not below it (a pocket under the plane stays water, as the
  * fine mesh draws it). */
@@ -81,24 +102,17 @@ static inline int land_sample(const rw_frame *r, size_t i, int64_t zb)
  * bratio[id] set, as the shore test's k->sdd promises. */
 static RW_INLINE int land_at(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, int32_t *lx, int32_t *ly)
 {
-    const int64_t sx = r->p.grid_sx, sy = r->p.grid_sy;
     const size_t w = (size_t)r->p.wet_w;
     const int64_t zb = r->p.body_z[id];
-    int64_t gx, gy;
+    int64_t fx, fy;
     size_t ix, iy, i;
-    grid_pos(r, k, x, r->bratio[id], &gx, &gy);
-    gx -= sx / 2;           /* the point's own grid position */
-    gy -= sy / 2;
-    if (gx < 0 || gy < 0 || (uint64_t)gx >= r->gxmax || (uint64_t)gy >= r->gymax) return 0;
-    ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);
-    iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);
-    if (ix + 1 >= w || iy + 1 >= (size_t)r->p.wet_h) return 0;
-    i = iy * w + ix;                    /* the cell's north-west corner (rows run south) */
+    if (!plane_cell_of(r, k, x, id, &ix, &iy, &fx, &fy)) return 0;
+    i = iy * w + ix;
     if (!land_sample(r, i, zb) || !land_sample(r, i + 1, zb) || !land_sample(r, i + w, zb)
         || !land_sample(r, i + w + 1, zb))
         return 0;
-    *lx = (int32_t)ix + (2 * (gx - (int64_t)ix * sx) >= sx);
-    *ly = (int32_t)iy + (2 * (gy - (int64_t)iy * sy) >= sy);
+    *lx = (int32_t)ix + (2 * fx >= r->p.grid_sx);
+    *ly = (int32_t)iy + (2 * fy >= r->p.grid_sy);
     return 1;
 }
 
@@ -118,18 +132,11 @@ static RW_INLINE int plane_cell(const rw_frame *r, const rw_rowk *k, int32_t x, 
 {
     const int64_t sx = r->p.grid_sx, sy = r->p.grid_sy;
     const uint8_t *wet = r->p.wet, *low = r->p.low;
-    int64_t gx, gy, fx, fy;
+    int64_t fx, fy;
     size_t ix, iy, i, w = (size_t)r->p.wet_w;
     uint32_t nw, ne, sw, se, ok;
-    if (!k->shore || !r->bratio[id]) return 0;
-    grid_pos(r, k, x, r->bratio[id], &gx, &gy);
-    gx -= sx / 2;           /* the point's own grid position */
-    gy -= sy / 2;
-    if (gx < 0 || gy < 0 || (uint64_t)gx >= r->gxmax || (uint64_t)gy >= r->gymax) return 0;
-    ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);
-    iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);
-    if (ix + 1 >= w || iy + 1 >= (size_t)r->p.wet_h) return 0;
-    i = iy * w + ix;                    /* the cell's north-west corner (rows run south) */
+    if (!k->shore || !r->bratio[id] || !plane_cell_of(r, k, x, id, &ix, &iy, &fx, &fy)) return 0;
+    i = iy * w + ix;
     nw = wet[i]; ne = wet[i + 1]; sw = wet[i + w]; se = wet[i + w + 1];
     if ((nw & ne & sw & se) == id && (nw | ne | sw | se) == id) return 1;     /* inside the water */
     if (nw != id && ne != id && sw != id && se != id) return 0;
@@ -138,8 +145,6 @@ static RW_INLINE int plane_cell(const rw_frame *r, const rw_rowk *k, int32_t x, 
          | corner_passes(sw, id, low, i + w) << 2 | corner_passes(se, id, low, i + w + 1) << 3;
     /* the south-east half (sw se ne) where fx / sx + fy / sy >= 1, fx, fy the offsets
      * from the north-west corner, in world units (|fx| sy < 2^31 2^31: int64) */
-    fx = gx - (int64_t)ix * sx;
-    fy = gy - (int64_t)iy * sy;
     return fx * sy + fy * sx >= sx * sy ? (ok & 14u) == 14u : (ok & 7u) == 7u;
 }
 
