@@ -9,11 +9,13 @@
  * than the scalar code's type), so the bytes are the scalar loop's (tests/test_isa.c
  * draws water frames with both copies and compares them).  A lane takes the water pixels
  * that water_shows accepts without a test of its own: the water nearer than the terrain
- * (dw > dt), not a tested triangle's pixel in a row that may hold them; a lane whose
- * terrain is nearer by more than the row's shore reach (sdd) is dry, as water_shows
- * says.  The ties and shore tests are made in lanes where three or more of a group wait
- * (wv_shore), the rest of them and the tested triangles' pixels (plane_cell) one by one
- * with water_shows; all are then drawn in the lanes.
+ * (dw > dt), not a tested triangle's pixel in a row that may hold them, nor one the land
+ * test may make land (within the shore reach with a dry sample nearest its plane point,
+ * found in lanes); a lane whose terrain is nearer by more than the row's shore reach
+ * (sdd) is dry, as water_shows says.  The ties and shore tests are made in lanes where
+ * three or more of a group wait (wv_shore), the rest of them, the tested triangles'
+ * pixels (plane_cell) and the land test's candidates one by one with water_shows; the
+ * water is then drawn in the lanes, the land one by one.
  *
  * Table lookups are AVX2 gathers.  A byte table (fres, fog, wsine) is read as the 32-bit
  * word at the entry's byte and masked or sign-extended: the three bytes past an entry
