@@ -672,7 +672,10 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err 
         p.wet_w = s->f.w; p.wet_h = s->f.h;
         p.grid_ox = s->rt.fr.ox; p.grid_oy = s->rt.fr.oy;
         p.grid_sx = s->rt.fr.sx; p.grid_sy = s->rt.fr.sy;
-        for (k = 0; k < w->nbodies && k < RW_MAX_ID; k++) p.body_z[k + 1] = world_z(s, w->bodies.level[k]);
+        for (k = 0; k < w->nbodies && k < RW_MAX_ID; k++) {
+            p.body_z[k + 1] = world_z(s, w->bodies.level[k]);
+            p.land_z[k + 1] = w->bodies.level[k];
+        }
         if (w->o.shore_bound) {
             /* twice the screen error plus a pixel: the selection bounds the error by its
              * distance to the diamond's box, not by the depth along the view axis */

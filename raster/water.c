@@ -169,6 +169,7 @@ typedef struct rw_rowk {
     int32_t y;
     int shore;                  /* the shore test has a plane point in this row: wet and tkr >= 0 */
     int wbound;                 /* the shore bound has a world term (shore_bound and shore_w) */
+    int ws32;                   /* ws0 and ws1 fit 32 bits (grid_pos) */
     const uint32_t *sdd;        /* per body: the largest dt - dw worth a shore test in this row,
                                    shore_tdd, or no_shore where the row has no plane point */
     uint32_t cnum;              /* (rz^2 >> 8) << 10 as 32 bits: cos^2 t's numerator */
@@ -229,6 +230,7 @@ static RW_INLINE void row_k(const rw_frame *r, const refl_view *rv, int32_t y, r
     k->cnum = (uint32_t)(((uint64_t)((int64_t)rz * rz) >> 8) << 10);
     k->bb = b * b + (int64_t)Q12 * Q12;
     k->ws0 = r->wstep[y][0]; k->ws1 = r->wstep[y][1];
+    k->ws32 = k->ws0 >= INT32_MIN && k->ws0 <= INT32_MAX && k->ws1 >= INT32_MIN && k->ws1 <= INT32_MAX;
     k->wrel0 = r->wrel[y][0]; k->wrel1 = r->wrel[y][1];
     {
         const uint32_t px = (uint32_t)(r->eye[0] + k->wrel0), py = (uint32_t)(r->eye[1] + k->wrel1);
@@ -287,6 +289,15 @@ static inline void rw_walk_start(rw_walk *wk)
 #define RW_SOFT_DIV 1
 #else
 #define RW_SOFT_DIV 0
+#endif
+
+/* RW_MUL32: 64 x 64-bit products take three multiplies (32-bit targets, and the same
+ * RS_TEST_32BIT build on the host): the shore and land tests' grid positions from 32-bit
+ * ones where the operands fit (raster/water_shore.h grid_pos, grid_index). */
+#if UINTPTR_MAX <= 0xffffffffu || defined(RS_TEST_32BIT)
+#define RW_MUL32 1
+#else
+#define RW_MUL32 0
 #endif
 
 /* 1 when q = floor(cnum / den) (den > 0): q den <= cnum < (q + 1) den. */

@@ -120,6 +120,8 @@ typedef struct rw_params {      /* zero = off / defaults as stated */
      * point on its ray lies on a valid dry sample, coloured as that sample
      * (rt_sample_rgb; not with a texture, whose texels the hook does not have). */
     const rt_scene *land;
+    int32_t land_z[RW_MAX_ID + 1];      /* body id's level in the heightfield's units: a
+                                           corner lower than it is not land */
     int32_t wet_w, wet_h;
     int64_t grid_ox, grid_oy, grid_sx, grid_sy;
     int32_t body_z[RW_MAX_ID + 1];
@@ -176,6 +178,8 @@ typedef struct rw_frame {
     uint64_t inv_sx, inv_sy;    /* 2^32 / grid step, rounded up */
     int64_t gx0, gy0;           /* the eye's grid position plus half a step, world units:
                                    eye x - grid_ox + grid_sx / 2, grid_oy - eye y + grid_sy / 2 */
+    int32_t idx32;              /* gxmax, gymax <= 2^32 and inv_sx, inv_sy < 2^32: a grid
+                                   position and a reciprocal fit 32 bits (water_shore.h) */
     uint64_t gxmax, gymax;      /* at most wet_w grid_sx, wet_h grid_sy: positions below index
                                    samples of the grid (water_setup.c grid_max) */
     int32_t fog_sh;             /* fog table index: depth >> fog_sh */

@@ -18,8 +18,32 @@
  * column 0, *gy south from row 0. */
 static RW_INLINE void grid_pos(const rw_frame *r, const rw_rowk *k, int32_t x, int64_t f, int64_t *gx, int64_t *gy)
 {
+#if RW_MUL32
+    /* the same products from 32-bit multiplies (three make a 64 x 64-bit one here): aq
+     * times ws in one when ws fits 32 bits (k->ws32); p f, 0 <= f < 2^32, as p's low word
+     * times f plus its high word times f, shifted (mod 2^64, as the 64-bit product) */
+    const int32_t a = r->aq[x];
+    const int64_t p0 = k->wrel0 + ((k->ws32 ? (int64_t)a * (int32_t)k->ws0 : (int64_t)a * k->ws0) >> 12);
+    const int64_t p1 = k->wrel1 + ((k->ws32 ? (int64_t)a * (int32_t)k->ws1 : (int64_t)a * k->ws1) >> 12);
+    *gx = r->gx0 + ((int64_t)((uint64_t)(uint32_t)p0 * (uint32_t)f + ((uint64_t)((uint32_t)((uint64_t)p0 >> 32) * (uint32_t)f) << 32)) >> 16);
+    *gy = r->gy0 - ((int64_t)((uint64_t)(uint32_t)p1 * (uint32_t)f + ((uint64_t)((uint32_t)((uint64_t)p1 >> 32) * (uint32_t)f) << 32)) >> 16);
+#else
     *gx = r->gx0 + (((k->wrel0 + (((int64_t)r->aq[x] * k->ws0) >> 12)) * f) >> 16);
     *gy = r->gy0 - (((k->wrel1 + (((int64_t)r->aq[x] * k->ws1) >> 12)) * f) >> 16);
+#endif
+}
+
+/* Grid position g (0 <= g < gxmax or gymax) times the reciprocal inv of a step, >> 32: the
+ * sample or cell index.  On 32-bit targets one 32 x 32-bit multiply when both fit 32
+ * bits (r->idx32), as they do unless the world frame is beyond 2^32 units. */
+static RW_INLINE size_t grid_index(const rw_frame *r, int64_t g, uint64_t inv)
+{
+#if RW_MUL32
+    if (r->idx32) return (size_t)(((uint64_t)(uint32_t)g * (uint32_t)inv) >> 32);
+#else
+    (void)r;
+#endif
+    return (size_t)(((uint64_t)g * inv) >> 32);
 }
 
 /* 1 when the grid sample nearest that point is wet with body id; 0 otherwise, or when the
@@ -30,8 +54,8 @@ static RW_INLINE int wet_at(const rw_frame *r, const rw_rowk *k, int32_t x, uint
     size_t ix, iy;
     grid_pos(r, k, x, f, &gx, &gy);
     if ((uint64_t)gx >= r->gxmax || (uint64_t)gy >= r->gymax) return 0;       /* negative: huge */
-    ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);       /* < wet_w, as gx < gxmax (grid_max) */
-    iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);       /* < wet_h */
+    ix = grid_index(r, gx, r->inv_sx);     /* < wet_w, as gx < gxmax (grid_max) */
+    iy = grid_index(r, gy, r->inv_sy);     /* < wet_h */
     return r->p.wet[iy * (size_t)r->p.wet_w + ix] == id;
 }
 
@@ -64,33 +88,26 @@ static RW_INLINE int plane_wet(const rw_frame *r, const rw_rowk *k, int32_t x, u
 
 /* The grid cell under the plane's point on pixel (x, k->y)'s ray for body id (with
  * bratio[id] set): 1, with its north-west corner (*ix, *iy) (rows run south) and the
- * point's offsets from that corner (*fx east, *fy south, world units), when the whole
- * cell lies on the grid; 0 otherwise. */
+ * point's own grid position (*gx east, *gy south, world units), when the whole cell lies
+ * on the grid; 0 otherwise. */
 static RW_INLINE int plane_cell_of(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, size_t *ix, size_t *iy,
-                                   int64_t *fx, int64_t *fy)
+                                   int64_t *gx, int64_t *gy)
 {
-    const int64_t sx = r->p.grid_sx, sy = r->p.grid_sy;
-    int64_t gx, gy;
-    grid_pos(r, k, x, r->bratio[id], &gx, &gy);
-    gx -= sx / 2;           /* the point's own grid position */
-    gy -= sy / 2;
-    if (gx < 0 || gy < 0 || (uint64_t)gx >= r->gxmax || (uint64_t)gy >= r->gymax) return 0;
-    *ix = (size_t)(((uint64_t)gx * r->inv_sx) >> 32);
-    *iy = (size_t)(((uint64_t)gy * r->inv_sy) >> 32);
-    if (*ix + 1 >= (size_t)r->p.wet_w || *iy + 1 >= (size_t)r->p.wet_h) return 0;
-    *fx = gx - (int64_t)*ix * sx;
-    *fy = gy - (int64_t)*iy * sy;
-    return 1;
+    grid_pos(r, k, x, r->bratio[id], gx, gy);
+    *gx -= r->p.grid_sx / 2;         /* the point's own grid position */
+    *gy -= r->p.grid_sy / 2;
+    if (*gx < 0 || *gy < 0 || (uint64_t)*gx >= r->gxmax || (uint64_t)*gy >= r->gymax) return 0;
+    *ix = grid_index(r, *gx, r->inv_sx);
+    *iy = grid_index(r, *gy, r->inv_sy);
+    return *ix + 1 < (size_t)r->p.wet_w && *iy + 1 < (size_t)r->p.wet_h;
 }
 
-/* Sample i of the land test's grid is dry land at or above the plane at world height
- * zb: not wet, not a void, not below it (a pocket under the plane stays water, as the
- * fine mesh draws it). */
-static inline int land_sample(const rw_frame *r, size_t i, int64_t zb)
+/* Sample i of the land test's grid is dry land at or above level zl (the heightfield's
+ * units): not wet, not a void (HF_NODATA, below any level), not below it (a pocket
+ * under the plane stays water, as the full grid draws it). */
+static inline int land_sample(const rw_frame *r, size_t i, int32_t zl)
 {
-    const bt_frame *fr = &r->p.land->fr;
-    const int32_t z = r->p.land->f->z[i];
-    return !r->p.wet[i] && z != HF_NODATA && fr->oz + (((int64_t)z * fr->sz_q16) >> 16) >= zb;
+    return !r->p.wet[i] && r->p.land->f->z[i] >= zl;
 }
 
 /* The land test (rw_params.land) at the plane's own point: 1, with the sample nearest it
@@ -103,16 +120,16 @@ static inline int land_sample(const rw_frame *r, size_t i, int64_t zb)
 static RW_INLINE int land_at(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, int32_t *lx, int32_t *ly)
 {
     const size_t w = (size_t)r->p.wet_w;
-    const int64_t zb = r->p.body_z[id];
-    int64_t fx, fy;
+    const int32_t zl = r->p.land_z[id] > HF_NODATA ? r->p.land_z[id] : HF_NODATA + 1;
+    int64_t gx, gy;
     size_t ix, iy, i;
-    if (!plane_cell_of(r, k, x, id, &ix, &iy, &fx, &fy)) return 0;
+    if (!plane_cell_of(r, k, x, id, &ix, &iy, &gx, &gy)) return 0;
     i = iy * w + ix;
-    if (!land_sample(r, i, zb) || !land_sample(r, i + 1, zb) || !land_sample(r, i + w, zb)
-        || !land_sample(r, i + w + 1, zb))
+    if (!land_sample(r, i, zl) || !land_sample(r, i + 1, zl) || !land_sample(r, i + w, zl)
+        || !land_sample(r, i + w + 1, zl))
         return 0;
-    *lx = (int32_t)ix + (2 * fx >= r->p.grid_sx);
-    *ly = (int32_t)iy + (2 * fy >= r->p.grid_sy);
+    *lx = (int32_t)ix + (2 * (gx - (int64_t)ix * r->p.grid_sx) >= r->p.grid_sx);
+    *ly = (int32_t)iy + (2 * (gy - (int64_t)iy * r->p.grid_sy) >= r->p.grid_sy);
     return 1;
 }
 
@@ -132,10 +149,10 @@ static RW_INLINE int plane_cell(const rw_frame *r, const rw_rowk *k, int32_t x, 
 {
     const int64_t sx = r->p.grid_sx, sy = r->p.grid_sy;
     const uint8_t *wet = r->p.wet, *low = r->p.low;
-    int64_t fx, fy;
+    int64_t gx, gy, fx, fy;
     size_t ix, iy, i, w = (size_t)r->p.wet_w;
     uint32_t nw, ne, sw, se, ok;
-    if (!k->shore || !r->bratio[id] || !plane_cell_of(r, k, x, id, &ix, &iy, &fx, &fy)) return 0;
+    if (!k->shore || !r->bratio[id] || !plane_cell_of(r, k, x, id, &ix, &iy, &gx, &gy)) return 0;
     i = iy * w + ix;
     nw = wet[i]; ne = wet[i + 1]; sw = wet[i + w]; se = wet[i + w + 1];
     if ((nw & ne & sw & se) == id && (nw | ne | sw | se) == id) return 1;     /* inside the water */
@@ -145,6 +162,8 @@ static RW_INLINE int plane_cell(const rw_frame *r, const rw_rowk *k, int32_t x, 
          | corner_passes(sw, id, low, i + w) << 2 | corner_passes(se, id, low, i + w + 1) << 3;
     /* the south-east half (sw se ne) where fx / sx + fy / sy >= 1, fx, fy the offsets
      * from the north-west corner, in world units (|fx| sy < 2^31 2^31: int64) */
+    fx = gx - (int64_t)ix * sx;
+    fy = gy - (int64_t)iy * sy;
     return fx * sy + fy * sx >= sx * sy ? (ok & 14u) == 14u : (ok & 7u) == 7u;
 }
 
