@@ -169,7 +169,8 @@ typedef struct rw_rowk {
     int32_t y;
     int shore;                  /* the shore test has a plane point in this row: wet and tkr >= 0 */
     int wbound;                 /* the shore bound has a world term (shore_bound and shore_w) */
-    int ws32;                   /* ws0 and ws1 fit 32 bits (grid_pos) */
+    int ws32;                   /* ws0 and ws1 fit 32 bits, as ws0_32 and ws1_32 (grid_pos) */
+    int32_t ws0_32, ws1_32;
     const uint32_t *sdd;        /* per body: the largest dt - dw worth a shore test in this row,
                                    shore_tdd, or no_shore where the row has no plane point */
     uint32_t cnum;              /* (rz^2 >> 8) << 10 as 32 bits: cos^2 t's numerator */
@@ -231,6 +232,8 @@ static RW_INLINE void row_k(const rw_frame *r, const refl_view *rv, int32_t y, r
     k->bb = b * b + (int64_t)Q12 * Q12;
     k->ws0 = r->wstep[y][0]; k->ws1 = r->wstep[y][1];
     k->ws32 = k->ws0 >= INT32_MIN && k->ws0 <= INT32_MAX && k->ws1 >= INT32_MIN && k->ws1 <= INT32_MAX;
+    k->ws0_32 = k->ws32 ? (int32_t)k->ws0 : 0;
+    k->ws1_32 = k->ws32 ? (int32_t)k->ws1 : 0;
     k->wrel0 = r->wrel[y][0]; k->wrel1 = r->wrel[y][1];
     {
         const uint32_t px = (uint32_t)(r->eye[0] + k->wrel0), py = (uint32_t)(r->eye[1] + k->wrel1);

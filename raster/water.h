@@ -178,6 +178,7 @@ typedef struct rw_frame {
     uint64_t inv_sx, inv_sy;    /* 2^32 / grid step, rounded up */
     int64_t gx0, gy0;           /* the eye's grid position plus half a step, world units:
                                    eye x - grid_ox + grid_sx / 2, grid_oy - eye y + grid_sy / 2 */
+    int64_t half_sx, half_sy;   /* grid_sx / 2, grid_sy / 2 */
     int32_t idx32;              /* gxmax, gymax <= 2^32 and inv_sx, inv_sy < 2^32: a grid
                                    position and a reciprocal fit 32 bits (water_shore.h) */
     uint64_t gxmax, gymax;      /* at most wet_w grid_sx, wet_h grid_sy: positions below index

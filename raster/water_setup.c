@@ -438,6 +438,8 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
     r->gy0 = p->grid_oy - r->eye[1] + p->grid_sy / 2;
     r->gxmax = p->grid_sx > 0 && p->wet_w > 0 ? grid_max(p->wet_w, p->grid_sx, r->inv_sx) : 0;
     r->gymax = p->grid_sy > 0 && p->wet_h > 0 ? grid_max(p->wet_h, p->grid_sy, r->inv_sy) : 0;
+    r->half_sx = p->grid_sx / 2;
+    r->half_sy = p->grid_sy / 2;
     r->idx32 = r->gxmax <= ((uint64_t)1 << 32) && r->gymax <= ((uint64_t)1 << 32) && r->inv_sx <= 0xffffffffu
                && r->inv_sy <= 0xffffffffu;
     if (p->fog_on) fog_table(r, K);

@@ -23,8 +23,8 @@ static RW_INLINE void grid_pos(const rw_frame *r, const rw_rowk *k, int32_t x, i
      * times ws in one when ws fits 32 bits (k->ws32); p f, 0 <= f < 2^32, as p's low word
      * times f plus its high word times f, shifted (mod 2^64, as the 64-bit product) */
     const int32_t a = r->aq[x];
-    const int64_t p0 = k->wrel0 + ((k->ws32 ? (int64_t)a * (int32_t)k->ws0 : (int64_t)a * k->ws0) >> 12);
-    const int64_t p1 = k->wrel1 + ((k->ws32 ? (int64_t)a * (int32_t)k->ws1 : (int64_t)a * k->ws1) >> 12);
+    const int64_t p0 = k->wrel0 + ((k->ws32 ? (int64_t)a * k->ws0_32 : (int64_t)a * k->ws0) >> 12);
+    const int64_t p1 = k->wrel1 + ((k->ws32 ? (int64_t)a * k->ws1_32 : (int64_t)a * k->ws1) >> 12);
     *gx = r->gx0 + ((int64_t)((uint64_t)(uint32_t)p0 * (uint32_t)f + ((uint64_t)((uint32_t)((uint64_t)p0 >> 32) * (uint32_t)f) << 32)) >> 16);
     *gy = r->gy0 - ((int64_t)((uint64_t)(uint32_t)p1 * (uint32_t)f + ((uint64_t)((uint32_t)((uint64_t)p1 >> 32) * (uint32_t)f) << 32)) >> 16);
 #else
@@ -94,8 +94,8 @@ static RW_INLINE int plane_cell_of(const rw_frame *r, const rw_rowk *k, int32_t 
                                    int64_t *gx, int64_t *gy)
 {
     grid_pos(r, k, x, r->bratio[id], gx, gy);
-    *gx -= r->p.grid_sx / 2;         /* the point's own grid position */
-    *gy -= r->p.grid_sy / 2;
+    *gx -= r->half_sx;               /* the point's own grid position */
+    *gy -= r->half_sy;
     if (*gx < 0 || *gy < 0 || (uint64_t)*gx >= r->gxmax || (uint64_t)*gy >= r->gymax) return 0;
     *ix = grid_index(r, *gx, r->inv_sx);
     *iy = grid_index(r, *gy, r->inv_sy);
