@@ -13,6 +13,16 @@
  * whether the water plane's point on the pixel's ray is wet, not by the rounding. */
 #define RW_DEPTH_TIE 2u
 
+#if RW_MUL32
+/* p f mod 2^64 for 0 <= f < 2^32: p's low word times f (one 32 x 32 -> 64-bit multiply)
+ * plus its high word times f (one 32-bit multiply), shifted */
+static inline int64_t mul64_u32(int64_t p, uint32_t f)
+{
+    const uint64_t lo = (uint64_t)(uint32_t)p * f, hi = (uint32_t)((uint64_t)p >> 32) * f;
+    return (int64_t)(lo + (hi << 32));
+}
+#endif
+
 /* The point P = E + (P_0 - E) f >> 16 on pixel (x, k->y)'s ray (P_0 the reflected plane's
  * point, f in Q16) as a grid position in world units plus half a step: *gx east from
  * column 0, *gy south from row 0. */
@@ -20,13 +30,13 @@ static RW_INLINE void grid_pos(const rw_frame *r, const rw_rowk *k, int32_t x, i
 {
 #if RW_MUL32
     /* the same products from 32-bit multiplies (three make a 64 x 64-bit one here): aq
-     * times ws in one when ws fits 32 bits (k->ws32); p f, 0 <= f < 2^32, as p's low word
-     * times f plus its high word times f, shifted (mod 2^64, as the 64-bit product) */
+     * times ws in one when ws fits 32 bits (k->ws32, kept as int32 fields, which the
+     * compiler cannot fold back into the 64-bit product); p f by mul64_u32 (0 <= f < 2^21) */
     const int32_t a = r->aq[x];
     const int64_t p0 = k->wrel0 + ((k->ws32 ? (int64_t)a * k->ws0_32 : (int64_t)a * k->ws0) >> 12);
     const int64_t p1 = k->wrel1 + ((k->ws32 ? (int64_t)a * k->ws1_32 : (int64_t)a * k->ws1) >> 12);
-    *gx = r->gx0 + ((int64_t)((uint64_t)(uint32_t)p0 * (uint32_t)f + ((uint64_t)((uint32_t)((uint64_t)p0 >> 32) * (uint32_t)f) << 32)) >> 16);
-    *gy = r->gy0 - ((int64_t)((uint64_t)(uint32_t)p1 * (uint32_t)f + ((uint64_t)((uint32_t)((uint64_t)p1 >> 32) * (uint32_t)f) << 32)) >> 16);
+    *gx = r->gx0 + (mul64_u32(p0, (uint32_t)f) >> 16);
+    *gy = r->gy0 - (mul64_u32(p1, (uint32_t)f) >> 16);
 #else
     *gx = r->gx0 + (((k->wrel0 + (((int64_t)r->aq[x] * k->ws0) >> 12)) * f) >> 16);
     *gy = r->gy0 - (((k->wrel1 + (((int64_t)r->aq[x] * k->ws1) >> 12)) * f) >> 16);
