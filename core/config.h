@@ -27,6 +27,17 @@
 #define BR_Z_LIMIT (1L << 28)
 #endif
 
+/* BR_REG64: 1 on targets with 64-bit registers (pointers of 64 bits), where a 64 x 64-bit
+ * product is one instruction.  A few choices of types and helpers in raster/ differ on
+ * 32-bit targets (raster_int.h RSI_REG64, water_shore.h grid_pos), with the same results;
+ * RS_TEST_32BIT (make test's BR_DIV64_NATIVE=0 build) selects the 32-bit targets' code on
+ * a 64-bit machine. */
+#if UINTPTR_MAX > 0xffffffffu && !defined(RS_TEST_32BIT)
+#define BR_REG64 1
+#else
+#define BR_REG64 0
+#endif
+
 /* How the rasteriser's per-vertex and per-triangle 64-bit quotients are computed:
  * 1 = the compiler's `/` (one instruction on 64-bit targets), 0 = core/fx.h's
  * fx_recip / fx_udiv_r (no divide instruction; for 32-bit ARM and Cortex-M, where an

@@ -42,14 +42,8 @@
 #define RSI_SUBONE (1 << RSI_SUB)
 #define RSI_HALF (RSI_SUBONE / 2)
 
-/* 1 on targets with 64-bit registers (pointers of 64 bits).  A few choices of types and
- * helpers differ on 32-bit targets, with the same results; RS_TEST_32BIT (make test's
- * BR_DIV64_NATIVE=0 build) selects the 32-bit targets' code on a 64-bit machine. */
-#if UINTPTR_MAX > 0xffffffffu && !defined(RS_TEST_32BIT)
-#define RSI_REG64 1
-#else
-#define RSI_REG64 0
-#endif
+/* 1 on targets with 64-bit registers (core/config.h BR_REG64). */
+#define RSI_REG64 BR_REG64
 
 /* 1 on 32-bit targets with a 32-bit divide instruction (Armv7-M: Cortex-M3, M4), where
  * the general path's small triangles find their row spans by C's 32-bit `/` (exact, as

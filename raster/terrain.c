@@ -163,6 +163,12 @@ static inline uint32_t ramp_at(const rt_scene *s, int32_t z)
     return rs_ramp_rgb(s->ramp, hf_z_to_mm(s->f, z));
 }
 
+/* A void's colour: the ramp's nodata colour, or black. */
+static inline uint32_t void_rgb(const rt_scene *s)
+{
+    return s->ramp->has_nv ? s->ramp->nv_rgb : 0;
+}
+
 /* uv = (x tex_w 256 / (w - 1), y tex_h 256 / (h - 1)), truncated: quotients of at most
  * tex 2^8, through fx_divisor (no 64-bit divide on 32-bit targets for textures below
  * 2^24 texels a side; the same quotients as `/`). */
@@ -198,7 +204,7 @@ static inline int vertex_base(const rt_scene *s, int32_t x, int32_t y, int32_t z
 #endif
     if (s->tex_w > 0 && s->tex_h > 0) vertex_uv(s, x, y, out);
     if (f->z[(size_t)y * (size_t)f->w + (size_t)x] != HF_NODATA) return 0;
-    out->rgb = s->ramp->has_nv ? s->ramp->nv_rgb : 0;
+    out->rgb = void_rgb(s);
     return 1;
 }
 
@@ -224,7 +230,7 @@ uint32_t rt_sample_rgb(const rt_scene *s, int32_t x, int32_t y)
     const size_t i = (size_t)y * (size_t)s->f->w + (size_t)x;
     const int32_t z = s->f->z[i];
     int32_t lvl;
-    if (z == HF_NODATA) return s->ramp->has_nv ? s->ramp->nv_rgb : 0;
+    if (z == HF_NODATA) return void_rgb(s);
     lvl = s->lvl && (s->lvl[i] & RT_LVL) ? (int32_t)(s->lvl[i] & ~RT_LVL) : level_at(s, x, y);
     return rs_light_apply(ramp_at(s, z), lvl);
 }

@@ -294,14 +294,10 @@ static inline void rw_walk_start(rw_walk *wk)
 #define RW_SOFT_DIV 0
 #endif
 
-/* RW_MUL32: 64 x 64-bit products take three multiplies (32-bit targets, and the same
- * RS_TEST_32BIT build on the host): the shore and land tests' grid positions from 32-bit
- * ones where the operands fit (raster/water_shore.h grid_pos, grid_index). */
-#if UINTPTR_MAX <= 0xffffffffu || defined(RS_TEST_32BIT)
-#define RW_MUL32 1
-#else
-#define RW_MUL32 0
-#endif
+/* RW_MUL32: 64 x 64-bit products take three multiplies (32-bit targets: core/config.h
+ * BR_REG64): the shore and land tests' grid positions from 32-bit ones where the operands
+ * fit (raster/water_shore.h grid_pos, grid_index). */
+#define RW_MUL32 (!BR_REG64)
 
 /* 1 when q = floor(cnum / den) (den > 0): q den <= cnum < (q + 1) den. */
 static inline int rw_is_quot(uint32_t q, uint32_t cnum, uint32_t den)
@@ -460,6 +456,17 @@ static inline const uint8_t *water_row(const rw_frame *r, const rs_band *b, cons
     return wcol + (size_t)(y - wy0) * b->stride;
 }
 
+/* Whether depths gap = |dt - dw| (buffer units, << dsh 30-bit) apart lie within the LOD's
+ * reach for body id in row k (the shore bound, rw_params: the terrain drawn over a sample
+ * lies within it above or under the sample's true surface): the row's sdd, and with a
+ * world term E gap <= shore_w dt + shore_c. */
+static RW_INLINE int within_reach(const rw_frame *r, const rw_rowk *k, uint32_t id, uint32_t gap, uint32_t dt,
+                                  int32_t dsh)
+{
+    return (gap << dsh) <= k->sdd[id]
+           && !(k->wbound && r->ebody[id] * (int64_t)(gap << dsh) > r->p.shore_w * (int64_t)(dt << dsh) + r->p.shore_c);
+}
+
 /* water_shows's answers: not water (the terrain pass's pixel stays), water, or the land of
  * a dry sample the terrain's LOD drew under the plane (the land test). */
 enum { RW_NOT = 0, RW_WATER = 1, RW_LAND = 2 };
@@ -481,16 +488,10 @@ static RW_INLINE int water_shows(const rw_frame *r, const rw_rowk *k, int32_t x,
     if (dw + RW_DEPTH_TIE > dt) {
         if (dw <= dt) return plane_wet(r, k, x, id);
         if (trows && get_tested(fmt, wc, x)) return plane_cell(r, k, x, id);
-        if (r->p.land && ((dw - dt) << dsh) <= k->sdd[id]
-            && !(k->wbound && r->ebody[id] * (int64_t)((dw - dt) << dsh)
-                                  > r->p.shore_w * (int64_t)(dt << dsh) + r->p.shore_c)
-            && land_at(r, k, x, id, lx, ly))
-            return RW_LAND;
+        if (r->p.land && within_reach(r, k, id, dw - dt, dt, dsh) && land_at(r, k, x, id, lx, ly)) return RW_LAND;
         return RW_WATER;
     }
-    if (((dt - dw) << dsh) > k->sdd[id]) return 0;     /* (dt - dw >= RW_DEPTH_TIE > 0) */
-    if (k->wbound
-        && r->ebody[id] * (int64_t)((dt - dw) << dsh) > r->p.shore_w * (int64_t)(dt << dsh) + r->p.shore_c) return 0;
+    if (!within_reach(r, k, id, dt - dw, dt, dsh)) return 0;     /* (dt - dw >= RW_DEPTH_TIE > 0) */
     return shore_wet(r, k, x, id, dt << dsh, dw << dsh);
 }
 
@@ -499,6 +500,14 @@ static inline void put_px(uint8_t *crow, int32_t x, int32_t y, uint32_t rgb, con
 {
     if (fmt == RS_FMT_RGB565) ((uint16_t *)(void *)crow)[x] = pack565_dither(rgb, x, y);
     else ((uint32_t *)(void *)crow)[x] = rgb;
+}
+
+/* rgb fogged by depth d (30-bit) towards the row's sky colour: a water or land pixel's
+ * (water_one, and water_row_vec's land pixels). */
+static inline uint32_t fog_to_sky(const rw_frame *r, uint32_t rgb, uint32_t d, uint32_t sky)
+{
+    const uint32_t fw = fog_weight(r->fog, (uint32_t)r->fog_sh, r->fog_d30, d);
+    return fw ? mix_rgb(rgb, sky, fw) : rgb;
 }
 
 /* Water-pass pixel x (its id set) of row k->y for water_rows_only: its colour when the
@@ -514,7 +523,7 @@ static RW_INLINE void water_one(const rw_frame *r, const refl_view *rv, const rw
 {
     const int32_t dsh = depth == RS_DEPTH16 ? 14 : 0;
     const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
-    uint32_t rgb, d, fw;
+    uint32_t rgb;
     int32_t lx, ly;
     const int shows = water_shows(r, k, x, id, wc, dt, dw, dsh, fmt, trows, &lx, &ly);
     if (shows == RW_NOT) return;
@@ -523,17 +532,7 @@ static RW_INLINE void water_one(const rw_frame *r, const refl_view *rv, const rw
         if ((common || r->p.waves_on) && dw != wk->qdw) { wk->qdw = dw; wk->q8 = wave_q8(r, dw << dsh); }
         rgb = water_px(r, rv, k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, wk, fmt, depth, common);
     }
-    d = dw << dsh;
-    if ((fw = fog_weight(r->fog, (uint32_t)r->fog_sh, r->fog_d30, d)) != 0) rgb = mix_rgb(rgb, sky, fw);
-    put_px(crow, x, k->y, rgb, fmt);
-}
-
-/* A land pixel's colour (RW_LAND): the sample's rgb fogged by the water's depth d
- * (30-bit), as water_one fogs. */
-static inline uint32_t land_rgb(const rw_frame *r, uint32_t rgb, uint32_t d, uint32_t sky)
-{
-    const uint32_t fw = fog_weight(r->fog, (uint32_t)r->fog_sh, r->fog_d30, d);
-    return fw ? mix_rgb(rgb, sky, fw) : rgb;
+    put_px(crow, x, k->y, fog_to_sky(r, rgb, dw << dsh, sky), fmt);
 }
 
 #if RW_VEC
@@ -619,11 +618,13 @@ static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *
                     int32_t lx, ly;
                     const int shows = id ? water_shows(r, &k, x, id, wc, dt, dw, dsh, fmt, r->trow[y], &lx, &ly)
                                          : RW_NOT;
-                    if (shows != RW_NOT) {
+                    if (shows == RW_LAND) rgb = rt_sample_rgb(r->p.land, lx, ly);
+                    else if (shows == RW_WATER) {
                         wk.q8 = r->p.waves_on ? wave_q8(r, dw << dsh) : 0;
-                        rgb = shows == RW_LAND ? rt_sample_rgb(r->p.land, lx, ly)
-                                               : water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh,
-                                                          id, &wk, fmt, depth, 0);
+                        rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, &wk, fmt,
+                                       depth, 0);
+                    }
+                    if (shows != RW_NOT) {
                         d = dw << dsh;
                         changed = 1;
                     }

@@ -113,11 +113,12 @@ static RW_INLINE int plane_cell_of(const rw_frame *r, const rw_rowk *k, int32_t 
 }
 
 /* Sample i of the land test's grid is dry land at or above level zl (the heightfield's
- * units): not wet, not a void (HF_NODATA, below any level), not below it (a pocket
- * under the plane stays water, as the full grid draws it). */
+ * units): not wet, not a void, not below it (a pocket under the plane stays water, as
+ * the full grid draws it). */
 static inline int land_sample(const rw_frame *r, size_t i, int32_t zl)
 {
-    return !r->p.wet[i] && r->p.land->f->z[i] >= zl;
+    const int32_t z = r->p.land->f->z[i];
+    return !r->p.wet[i] && z != HF_NODATA && z >= zl;
 }
 
 /* The land test (rw_params.land) at the plane's own point: 1, with the sample nearest it
@@ -130,7 +131,7 @@ static inline int land_sample(const rw_frame *r, size_t i, int32_t zl)
 static RW_INLINE int land_at(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, int32_t *lx, int32_t *ly)
 {
     const size_t w = (size_t)r->p.wet_w;
-    const int32_t zl = r->p.land_z[id] > HF_NODATA ? r->p.land_z[id] : HF_NODATA + 1;
+    const int32_t zl = r->p.land_z[id];
     int64_t gx, gy;
     size_t ix, iy, i;
     if (!plane_cell_of(r, k, x, id, &ix, &iy, &gx, &gy)) return 0;

@@ -358,7 +358,7 @@ static inline int32_t water_row_vec(const rw_frame *r, const refl_view *rv, cons
                                           RS_FMT_XRGB8888, trows, &lx, &ly);
             if (shows == RW_WATER) show[i] = -1;
             else if (shows == RW_LAND)
-                ((uint32_t *)(void *)crow)[x + i] = land_rgb(r, rt_sample_rgb(r->p.land, lx, ly), (uint32_t)dw[i], sky);
+                ((uint32_t *)(void *)crow)[x + i] = fog_to_sky(r, rt_sample_rgb(r->p.land, lx, ly), (uint32_t)dw[i], sky);
         }
         if (WV_BITS(show))      /* (without rv->col water_px reads the sky alone) */
             __builtin_ia32_maskstored256((wv_i *)(void *)(crow + 4 * (size_t)x), show,
