@@ -668,7 +668,8 @@ br_status ws_frame(water_scene *w, scene *s, const cam *c, rs_frame *tf, br_err 
         p.res_shift = res < 0 ? 0 : res;
         p.wet = w->id;
         p.low = u->mesh.low;
-        p.land = w->id && s->rt.tex_w == 0 ? &s->rt : NULL;     /* the land test (rw_params) */
+        p.land = w->id ? &s->rt : NULL;     /* the land test (rw_params) */
+        p.land_tex = s->rt.tex_w > 0 ? &s->tex : NULL;
         p.wet_w = s->f.w; p.wet_h = s->f.h;
         p.grid_ox = s->rt.fr.ox; p.grid_oy = s->rt.fr.oy;
         p.grid_sx = s->rt.fr.sx; p.grid_sy = s->rt.fr.sy;

@@ -118,8 +118,10 @@ typedef struct rw_params {      /* zero = off / defaults as stated */
      * nearer than the terrain, by no more than the shore bound below allows for dry
      * land at or above the body's level that the LOD drew lower, is land where the plane's
      * point on its ray lies on a valid dry sample, coloured as that sample
-     * (rt_sample_rgb; not with a texture, whose texels the hook does not have). */
+     * (rt_sample_rgb), or under a texture (land->tex_w > 0: land_tex, the frame's
+     * texture) the texel at the plane's point times that sample's lighting. */
     const rt_scene *land;
+    const rs_texture *land_tex;
     int32_t land_z[RW_MAX_ID + 1];      /* body id's level in the heightfield's units: a
                                            corner lower than it is not land */
     int32_t wet_w, wet_h;
@@ -179,6 +181,8 @@ typedef struct rw_frame {
     int64_t gx0, gy0;           /* the eye's grid position plus half a step, world units:
                                    eye x - grid_ox + grid_sx / 2, grid_oy - eye y + grid_sy / 2 */
     int64_t half_sx, half_sy;   /* grid_sx / 2, grid_sy / 2 */
+    uint64_t inv_tu, inv_tv;    /* texels of land_tex per world unit, 2^32 times, rounded
+                                   down (0: no texture) */
     int32_t idx32;              /* gxmax, gymax <= 2^32 and inv_sx, inv_sy < 2^32: a grid
                                    position and a reciprocal fit 32 bits (water_shore.h) */
     uint64_t gxmax, gymax;      /* at most wet_w grid_sx, wet_h grid_sy: positions below index

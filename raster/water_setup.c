@@ -440,6 +440,14 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
     r->gymax = p->grid_sy > 0 && p->wet_h > 0 ? grid_max(p->wet_h, p->grid_sy, r->inv_sy) : 0;
     r->half_sx = p->grid_sx / 2;
     r->half_sy = p->grid_sy / 2;
+    /* the texture's sample (w - 1, h - 1) at texel (tex_w, tex_h) (rt_scene): a texel is
+     * (w - 1) sx / tex_w world units wide */
+    r->inv_tu = r->inv_tv = 0;
+    if (p->land && p->land->tex_w > 0 && p->land_tex && p->wet_w > 1 && p->wet_h > 1 && p->grid_sx > 0
+        && p->grid_sy > 0) {
+        r->inv_tu = udiv64((uint64_t)p->land->tex_w << 32, (uint64_t)(p->wet_w - 1) * (uint64_t)p->grid_sx);
+        r->inv_tv = udiv64((uint64_t)p->land->tex_h << 32, (uint64_t)(p->wet_h - 1) * (uint64_t)p->grid_sy);
+    }
     r->idx32 = r->gxmax <= ((uint64_t)1 << 32) && r->gymax <= ((uint64_t)1 << 32) && r->inv_sx <= 0xffffffffu
                && r->inv_sy <= 0xffffffffu;
     if (p->fog_on) fog_table(r, K);

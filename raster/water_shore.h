@@ -121,26 +121,55 @@ static inline int land_sample(const rw_frame *r, size_t i, int32_t zl)
     return !r->p.wet[i] && z != HF_NODATA && z >= zl;
 }
 
-/* The land test (rw_params.land) at the plane's own point: 1, with the sample nearest it
- * in *lx, *ly, when the four corners of the grid cell under the point are dry land at or
- * above body id's plane (land_sample): there the terrain at full resolution lies above
- * the plane, whatever the LOD drew, and a cell with another corner keeps the geometry's
- * shore (the plane shows where the drawn terrain lies under it, as nearer).  0
- * otherwise, or off the grid.  For a row with a plane point (k->shore) and a body with
- * bratio[id] set, as the shore test's k->sdd promises. */
-static RW_INLINE int land_at(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, int32_t *lx, int32_t *ly)
+/* texel t times lighting c per channel, / 255 rounded: a textured pixel's colour (raster.c
+ * tex_mod's rounding: p = t c + 128, (p + (p >> 8)) >> 8) */
+static inline uint32_t texel_lit(uint32_t t, uint32_t c)
+{
+    uint32_t out = 0, sh;
+    for (sh = 0; sh <= 16; sh += 8) {
+        const uint32_t p = ((t >> sh) & 255u) * ((c >> sh) & 255u) + 128u;
+        out |= ((p + (p >> 8)) >> 8) << sh;
+    }
+    return out;
+}
+
+/* The texel of land_tex at grid position (gx east, gy south, world units, >= 0 and below
+ * gxmax, gymax: below 2^47 after the multiply, as a position is at most w sx and inv_tu
+ * at most tex_w 2^32 / ((w - 1) sx)), nearest, clamped to the edge as the rasteriser's. */
+static inline uint32_t land_texel(const rw_frame *r, int64_t gx, int64_t gy)
+{
+    const rs_texture *t = r->p.land_tex;
+    uint64_t u = ((uint64_t)gx * r->inv_tu) >> 32, v = ((uint64_t)gy * r->inv_tv) >> 32;
+    if (u >= (uint64_t)t->w) u = (uint64_t)t->w - 1;
+    if (v >= (uint64_t)t->h) v = (uint64_t)t->h - 1;
+    return t->px[(size_t)v * (size_t)t->w + (size_t)u] & 0xffffffu;
+}
+
+/* The land test (rw_params.land) at the plane's own point: 1, with the land's colour in
+ * *rgb, when the four corners of the grid cell under the point are dry land at or above
+ * body id's plane (land_sample): there the terrain at full resolution lies above the
+ * plane, whatever the LOD drew, and a cell with another corner keeps the geometry's shore
+ * (the plane shows where the drawn terrain lies under it, as nearer).  The colour is the
+ * lit colour of the sample nearest the point (rt_sample_rgb), under a texture its
+ * lighting times the texel at the point.  0 otherwise, or off the grid.  For a row with a
+ * plane point (k->shore) and a body with bratio[id] set, as the shore test's k->sdd
+ * promises. */
+static RW_INLINE int land_at(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, uint32_t *rgb)
 {
     const size_t w = (size_t)r->p.wet_w;
     const int32_t zl = r->p.land_z[id];
     int64_t gx, gy;
     size_t ix, iy, i;
+    int32_t lx, ly;
     if (!plane_cell_of(r, k, x, id, &ix, &iy, &gx, &gy)) return 0;
     i = iy * w + ix;
     if (!land_sample(r, i, zl) || !land_sample(r, i + 1, zl) || !land_sample(r, i + w, zl)
         || !land_sample(r, i + w + 1, zl))
         return 0;
-    *lx = (int32_t)ix + (2 * (gx - (int64_t)ix * r->p.grid_sx) >= r->p.grid_sx);
-    *ly = (int32_t)iy + (2 * (gy - (int64_t)iy * r->p.grid_sy) >= r->p.grid_sy);
+    lx = (int32_t)ix + (2 * (gx - (int64_t)ix * r->p.grid_sx) >= r->p.grid_sx);
+    ly = (int32_t)iy + (2 * (gy - (int64_t)iy * r->p.grid_sy) >= r->p.grid_sy);
+    *rgb = rt_sample_rgb(r->p.land, lx, ly);
+    if (r->inv_tu) *rgb = texel_lit(land_texel(r, gx, gy), *rgb);
     return 1;
 }
 

@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include "tests/test.h"
 #include "platform/cmd.h"
+#include "platform/load.h"
 #include "platform/png_io.h"
 #include "platform/scene.h"
 #include "platform/water_scene.h"
@@ -177,19 +178,54 @@ static void test_tested_quads(void)
     }
 }
 
+/* A texture of N57E011 from its own heights, one texel a grid cell (texel (x, y) covers
+ * samples x .. x + 1, y .. y + 1, as rt_scene maps sample (w - 1, h - 1) to texel (tex_w,
+ * tex_h)): red where sample (x, y) lies above the sea, blue elsewhere, so a land pixel
+ * whose texel came from the wrong place is not red.  Written to path; 0 on success. */
+static int sea_texture(const char *dem, const char *path)
+{
+    hf f;
+    br_err err;
+    uint8_t *rgb;
+    int x, y, tw, th, rc = -1;
+    memset(&f, 0, sizeof f);
+    CHECK_EQ(dem_load(dem, NULL, &f, &err), BR_OK);
+    if (!f.z) return -1;
+    tw = f.w - 1; th = f.h - 1;
+    rgb = malloc(3 * (size_t)tw * (size_t)th);
+    CHECK(rgb != NULL);
+    if (rgb) {
+        for (y = 0; y < th; y++)
+            for (x = 0; x < tw; x++) {
+                const int32_t z = f.z[(size_t)y * (size_t)f.w + (size_t)x];
+                uint8_t *p = rgb + 3 * ((size_t)y * (size_t)tw + (size_t)x);
+                const int land = z != HF_NODATA && hf_z_to_mm(&f, z) > 0;
+                p[0] = land ? 255 : 0; p[1] = 0; p[2] = land ? 0 : 255;
+            }
+        CHECK_EQ(png_write_rgb(path, tw, th, rgb, 3 * (size_t)tw, &err), BR_OK);
+        rc = 0;
+        free(rgb);
+    }
+    dem_free(&f);
+    return rc;
+}
+
 /* The land pixels (red: the colour file paints every height red, and the water's tint
- * turns the lowered bottom blue) of N57E011 seen straight down from 40 km over Laesoe
- * (columns 0 to 240, rows 806 to 934, 1 to 22 m over the sea), fog off, into land[]
- * (W x H); returns how many.  pixel_error NULL: the full grid. */
-static int sea_land(const char *fmt, const char *pixel_error, uint8_t *land)
+ * turns the lowered bottom blue; or, textured, sea_texture's red) of N57E011 seen
+ * straight down from 40 km over Laesoe (columns 0 to 240, rows 806 to 934, 1 to 22 m
+ * over the sea), fog off, into land[] (W x H); returns how many.  pixel_error NULL: the
+ * full grid. */
+static int sea_land(const char *fmt, const char *pixel_error, int textured, uint8_t *land)
 {
     const char *dem = t_data("hgt/N57E011.hgt");
-    char out[256], colors[256];
+    char out[256], colors[256], tex[256];
     uint8_t *px = NULL;
     int pw = 0, ph = 0, n = 0, i;
     br_err err;
-    snprintf(out, sizeof out, "%s/water_land_%s_%s.png", t_outdir(), fmt, pixel_error ? pixel_error : "full");
+    snprintf(out, sizeof out, "%s/water_land_%s_%s%s.png", t_outdir(), fmt, pixel_error ? pixel_error : "full",
+             textured ? "_tex" : "");
     snprintf(colors, sizeof colors, "%s/water_land_red.txt", t_outdir());
+    snprintf(tex, sizeof tex, "%s/water_land_tex.png", t_outdir());
     {
         FILE *o = fopen(colors, "w");
         CHECK(o != NULL);
@@ -197,10 +233,12 @@ static int sea_land(const char *fmt, const char *pixel_error, uint8_t *land)
         fputs("-500 255 0 0\n9000 255 0 0\n", o);
         CHECK_EQ(fclose(o), 0);
     }
+    if (textured && sea_texture(dem, tex) != 0) return -1;
     {
         const char *a[] = { "render", dem, "-o", out, "--size", "320x192", "--no-fog", "--format", fmt,
-                            "--camera", "10000,20000,40000,10000,20001,0", "--colors", colors,
-                            pixel_error ? "--pixel-error" : "--full", pixel_error ? pixel_error : "1" };
+                            "--camera", "10000,20000,40000,10000,20001,0", textured ? "--texture" : "--colors",
+                            textured ? tex : colors, pixel_error ? "--pixel-error" : "--full",
+                            pixel_error ? pixel_error : "1" };
         CHECK_EQ(cmd_render((int)(sizeof a / sizeof a[0]) - 1, (char **)(void *)(a + 1)), 0);
         CHECK_EQ(png_read_rgb(out, &pw, &ph, &px, &err), BR_OK);
     }
@@ -219,21 +257,23 @@ static int sea_land(const char *fmt, const char *pixel_error, uint8_t *land)
  * island was not drawn at all.  Its land pixels must be the full grid's, where the LOD
  * sinks nothing, within 8 % (the cells' edges: the full grid draws the shore where the
  * terrain crosses the plane, the test where a cell's four corners are dry), in both the
- * lanes (XRGB8888) and the scalar loop (RGB565). */
+ * lanes (XRGB8888) and the scalar loop (RGB565), coloured by height and under a texture
+ * (the texel at the plane's point times the sample's lighting). */
 static void test_sunk_island(void)
 {
     static const char *const fmts[2] = { "rgb888", "rgb565" };
     static uint8_t lod[W * H], full[W * H];
-    int f, i;
-    for (f = 0; f < 2; f++) {
-        const int nl = sea_land(fmts[f], "1", lod), nf = sea_land(fmts[f], NULL, full);
-        int differ = 0;
-        for (i = 0; i < W * H; i++) differ += lod[i] != full[i];
-        printf("%s, Laesoe from 40 km: %d land pixels at 1 px, %d with the full grid, %d differ\n", fmts[f], nl, nf,
-               differ);
-        CHECK_MSG(nf > 1000, "%s: %d land pixels with the full grid", fmts[f], nf);
-        CHECK_MSG(differ * 100 <= 8 * nf, "%s: %d of %d land pixels differ", fmts[f], differ, nf);
-    }
+    int f, i, tx;
+    for (tx = 0; tx < 2; tx++)
+        for (f = 0; f < 2; f++) {
+            const int nl = sea_land(fmts[f], "1", tx, lod), nf = sea_land(fmts[f], NULL, tx, full);
+            int differ = 0;
+            for (i = 0; i < W * H; i++) differ += lod[i] != full[i];
+            printf("%s%s, Laesoe from 40 km: %d land pixels at 1 px, %d with the full grid, %d differ\n", fmts[f],
+                   tx ? " textured" : "", nl, nf, differ);
+            CHECK_MSG(nf > 1000, "%s: %d land pixels with the full grid", fmts[f], nf);
+            CHECK_MSG(differ * 100 <= 8 * nf, "%s: %d of %d land pixels differ", fmts[f], differ, nf);
+        }
 }
 
 int main(void)
