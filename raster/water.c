@@ -8,8 +8,10 @@
 
 #if defined(__GNUC__)
 #define RW_INLINE inline __attribute__((always_inline))   /* inner loops' helpers */
+#define RW_COLD __attribute__((noinline, cold))            /* their rare cases */
 #else
 #define RW_INLINE inline
+#define RW_COLD
 #endif
 
 /* RW_VEC: the x86-64-v3 copy draws the common water pixels eight at a time in AVX2 lanes
@@ -476,19 +478,19 @@ enum { RW_NOT = 0, RW_WATER = 1, RW_LAND = 2 };
  * (and, for a tested triangle's pixel in a row trows allows, plane_cell says so); or the
  * two tie (RW_DEPTH_TIE) and the plane's point is wet; or the terrain is nearer within
  * the shore bound and its point on the ray is wet (the LOD over water).  RW_LAND, with
- * the land's colour in *land_rgb, when the water is nearer but the terrain lies under the plane by
+ * the sample in *lx, *ly, when the water is nearer but the terrain lies under the plane by
  * no more than the shore bound allows for land (the same bound: the LOD moves the surface
  * by at most it, up or down) and the plane's point lies on a dry sample (land_at: the
  * LOD sank land whose true height is at or above the level; lower, it would be wet). */
 static RW_INLINE int water_shows(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, const uint8_t *wc,
                                  uint32_t dt, uint32_t dw, int32_t dsh, const int32_t fmt, const int trows,
-                                 uint32_t *land_rgb)
+                                 int32_t *lx, int32_t *ly)
 {
     /* (dw >= 1: the pass drew the pixel over a seed of at least dfar >= 0) */
     if (dw + RW_DEPTH_TIE > dt) {
         if (dw <= dt) return plane_wet(r, k, x, id);
         if (trows && get_tested(fmt, wc, x)) return plane_cell(r, k, x, id);
-        if (r->p.land && within_reach(r, k, id, dw - dt, dt, dsh) && land_at(r, k, x, id, land_rgb)) return RW_LAND;
+        if (r->p.land && within_reach(r, k, id, dw - dt, dt, dsh) && land_at(r, k, x, id, lx, ly)) return RW_LAND;
         return RW_WATER;
     }
     if (!within_reach(r, k, id, dt - dw, dt, dsh)) return 0;     /* (dt - dw >= RW_DEPTH_TIE > 0) */
@@ -524,9 +526,11 @@ static RW_INLINE void water_one(const rw_frame *r, const refl_view *rv, const rw
     const int32_t dsh = depth == RS_DEPTH16 ? 14 : 0;
     const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
     uint32_t rgb;
-    const int shows = water_shows(r, k, x, id, wc, dt, dw, dsh, fmt, trows, &rgb);
+    int32_t lx, ly;
+    const int shows = water_shows(r, k, x, id, wc, dt, dw, dsh, fmt, trows, &lx, &ly);
     if (shows == RW_NOT) return;
-    if (shows == RW_WATER) {
+    if (shows == RW_LAND) rgb = land_rgb(r, k, x, id, lx, ly);
+    else {
         if ((common || r->p.waves_on) && dw != wk->qdw) { wk->qdw = dw; wk->q8 = wave_q8(r, dw << dsh); }
         rgb = water_px(r, rv, k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, wk, fmt, depth, common);
     }
@@ -613,9 +617,11 @@ static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *
                 d = dt << dsh;
                 if (wc && x >= x0 && x < xe) {
                     const uint32_t id = get_id(fmt, wc, x), dw = get_depth(depth, wd, x);
-                    const int shows = id ? water_shows(r, &k, x, id, wc, dt, dw, dsh, fmt, r->trow[y], &rgb)
+                    int32_t lx, ly;
+                    const int shows = id ? water_shows(r, &k, x, id, wc, dt, dw, dsh, fmt, r->trow[y], &lx, &ly)
                                          : RW_NOT;
-                    if (shows == RW_WATER) {
+                    if (shows == RW_LAND) rgb = land_rgb(r, &k, x, id, lx, ly);
+                    else if (shows == RW_WATER) {
                         wk.q8 = r->p.waves_on ? wave_q8(r, dw << dsh) : 0;
                         rgb = water_px(r, rv, &k, x, get_rgb(fmt, crow, x), dt << dsh, dw << dsh, id, &wk, fmt,
                                        depth, 0);

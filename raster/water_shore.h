@@ -145,32 +145,42 @@ static inline uint32_t land_texel(const rw_frame *r, int64_t gx, int64_t gy)
     return t->px[(size_t)v * (size_t)t->w + (size_t)u] & 0xffffffu;
 }
 
-/* The land test (rw_params.land) at the plane's own point: 1, with the land's colour in
- * *rgb, when the four corners of the grid cell under the point are dry land at or above
- * body id's plane (land_sample): there the terrain at full resolution lies above the
- * plane, whatever the LOD drew, and a cell with another corner keeps the geometry's shore
- * (the plane shows where the drawn terrain lies under it, as nearer).  The colour is the
- * lit colour of the sample nearest the point (rt_sample_rgb), under a texture its
- * lighting times the texel at the point.  0 otherwise, or off the grid.  For a row with a
- * plane point (k->shore) and a body with bratio[id] set, as the shore test's k->sdd
- * promises. */
-static RW_INLINE int land_at(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, uint32_t *rgb)
+/* The land test (rw_params.land) at the plane's own point: 1, with the sample nearest it
+ * in *lx, *ly, when the four corners of the grid cell under the point are dry land at or
+ * above body id's plane (land_sample): there the terrain at full resolution lies above
+ * the plane, whatever the LOD drew, and a cell with another corner keeps the geometry's
+ * shore (the plane shows where the drawn terrain lies under it, as nearer).  0
+ * otherwise, or off the grid.  For a row with a plane point (k->shore) and a body with
+ * bratio[id] set, as the shore test's k->sdd promises. */
+static RW_INLINE int land_at(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, int32_t *lx, int32_t *ly)
 {
     const size_t w = (size_t)r->p.wet_w;
     const int32_t zl = r->p.land_z[id];
     int64_t gx, gy;
     size_t ix, iy, i;
-    int32_t lx, ly;
     if (!plane_cell_of(r, k, x, id, &ix, &iy, &gx, &gy)) return 0;
     i = iy * w + ix;
     if (!land_sample(r, i, zl) || !land_sample(r, i + 1, zl) || !land_sample(r, i + w, zl)
         || !land_sample(r, i + w + 1, zl))
         return 0;
-    lx = (int32_t)ix + (2 * (gx - (int64_t)ix * r->p.grid_sx) >= r->p.grid_sx);
-    ly = (int32_t)iy + (2 * (gy - (int64_t)iy * r->p.grid_sy) >= r->p.grid_sy);
-    *rgb = rt_sample_rgb(r->p.land, lx, ly);
-    if (r->inv_tu) *rgb = texel_lit(land_texel(r, gx, gy), *rgb);
+    *lx = (int32_t)ix + (2 * (gx - (int64_t)ix * r->p.grid_sx) >= r->p.grid_sx);
+    *ly = (int32_t)iy + (2 * (gy - (int64_t)iy * r->p.grid_sy) >= r->p.grid_sy);
     return 1;
+}
+
+/* The colour of pixel (x, k->y) that land_at made land, with its sample (lx, ly): the
+ * sample's lit colour (rt_sample_rgb), under a texture its lighting times the texel at the
+ * plane's point (found again: land pixels are few, and out of line the water pixels'
+ * loop keeps its registers). */
+static RW_COLD uint32_t land_rgb(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, int32_t lx,
+                                     int32_t ly)
+{
+    const uint32_t rgb = rt_sample_rgb(r->p.land, lx, ly);
+    int64_t gx = 0, gy = 0;
+    size_t ix, iy;
+    if (!r->inv_tu) return rgb;
+    (void)plane_cell_of(r, k, x, id, &ix, &iy, &gx, &gy);      /* 1, as land_at found */
+    return texel_lit(land_texel(r, gx, gy), rgb);
 }
 
 /* A cell corner of sample j, wet with v, passes the split mesh's rule (emit_cell) for body

@@ -353,11 +353,13 @@ static inline int32_t water_row_vec(const rw_frame *r, const refl_view *rv, cons
         /* the candidates with a test of their own: water_shows, one by one */
         for (; test; test &= test - 1) {
             const int32_t i = __builtin_ctz(test) >> 2;
-            uint32_t land_rgb;
+            int32_t lx, ly;
             const int shows = water_shows(r, k, x + i, (uint32_t)id[i], wc, (uint32_t)dt[i], (uint32_t)dw[i], 0,
-                                          RS_FMT_XRGB8888, trows, &land_rgb);
+                                          RS_FMT_XRGB8888, trows, &lx, &ly);
             if (shows == RW_WATER) show[i] = -1;
-            else if (shows == RW_LAND) ((uint32_t *)(void *)crow)[x + i] = fog_to_sky(r, land_rgb, (uint32_t)dw[i], sky);
+            else if (shows == RW_LAND)
+                ((uint32_t *)(void *)crow)[x + i] =
+                    fog_to_sky(r, land_rgb(r, k, x + i, (uint32_t)id[i], lx, ly), (uint32_t)dw[i], sky);
         }
         if (WV_BITS(show))      /* (without rv->col water_px reads the sky alone) */
             __builtin_ia32_maskstored256((wv_i *)(void *)(crow + 4 * (size_t)x), show,
