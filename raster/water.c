@@ -8,9 +8,11 @@
 
 #if defined(__GNUC__)
 #define RW_INLINE inline __attribute__((always_inline))   /* inner loops' helpers */
+#define RW_NOINLINE __attribute__((noinline))              /* their less frequent cases */
 #define RW_COLD __attribute__((noinline, cold))            /* their rare cases */
 #else
 #define RW_INLINE inline
+#define RW_NOINLINE
 #define RW_COLD
 #endif
 
@@ -276,15 +278,20 @@ static RW_INLINE int32_t wave_q8(const rw_frame *r, uint32_t dw)
 /* A row's running values for its pixels, left to right (water_row_px, post_rows): the
  * water depth the last wave displacement was made for (qdw; 0: none, as a water depth is
  * > 0) and that displacement (q8, wave_q8's, or 0 with the waves off); the last cos^2 t
- * index (qci, cos2_index's; RW_TAB + 1: none yet). */
+ * index (qci, cos2_index's; RW_TAB + 1: none yet); the land test's run (land_gate: its
+ * last column lx1, -1 for none yet, its body lid, and lskip 1 when no pixel of it passes
+ * the land test). */
 typedef struct rw_walk {
     uint32_t qdw, qci;
     int32_t q8;
+    int32_t lx1, lskip;
+    uint32_t lid;
 } rw_walk;
 
 static inline void rw_walk_start(rw_walk *wk)
 {
     wk->qdw = 0; wk->qci = RW_TAB + 1; wk->q8 = 0;
+    wk->lx1 = -1; wk->lskip = 0; wk->lid = 0;
 }
 
 /* RW_SOFT_DIV: 32-bit `/` is a library call (Armv7-A without the divide extension, as
@@ -484,13 +491,16 @@ enum { RW_NOT = 0, RW_WATER = 1, RW_LAND = 2 };
  * LOD sank land whose true height is at or above the level; lower, it would be wet). */
 static RW_INLINE int water_shows(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, const uint8_t *wc,
                                  uint32_t dt, uint32_t dw, int32_t dsh, const int32_t fmt, const int trows,
-                                 int32_t *lx, int32_t *ly)
+                                 rw_walk *wk, int32_t *lx, int32_t *ly)
 {
     /* (dw >= 1: the pass drew the pixel over a seed of at least dfar >= 0) */
     if (dw + RW_DEPTH_TIE > dt) {
         if (dw <= dt) return plane_wet(r, k, x, id);
         if (trows && get_tested(fmt, wc, x)) return plane_cell(r, k, x, id);
-        if (r->p.land && within_reach(r, k, id, dw - dt, dt, dsh) && land_at(r, k, x, id, lx, ly)) return RW_LAND;
+        if (r->p.land && within_reach(r, k, id, dw - dt, dt, dsh)) {
+            if (wk && (x > wk->lx1 || id != wk->lid)) land_gate(r, k, x, id, wk);
+            if (!(wk && wk->lskip) && land_at(r, k, x, id, lx, ly)) return RW_LAND;
+        }
         return RW_WATER;
     }
     if (!within_reach(r, k, id, dt - dw, dt, dsh)) return 0;     /* (dt - dw >= RW_DEPTH_TIE > 0) */
@@ -527,7 +537,7 @@ static RW_INLINE void water_one(const rw_frame *r, const refl_view *rv, const rw
     const uint32_t id = get_id(fmt, wc, x), dt = get_depth(depth, drow, x), dw = get_depth(depth, wd, x);
     uint32_t rgb;
     int32_t lx, ly;
-    const int shows = water_shows(r, k, x, id, wc, dt, dw, dsh, fmt, trows, &lx, &ly);
+    const int shows = water_shows(r, k, x, id, wc, dt, dw, dsh, fmt, trows, wk, &lx, &ly);
     if (shows == RW_NOT) return;
     if (shows == RW_LAND) rgb = land_rgb(r, k, x, id, lx, ly);
     else {
@@ -618,7 +628,7 @@ static RW_INLINE void post_rows(const rw_frame *r, rs_band *b, const refl_view *
                 if (wc && x >= x0 && x < xe) {
                     const uint32_t id = get_id(fmt, wc, x), dw = get_depth(depth, wd, x);
                     int32_t lx, ly;
-                    const int shows = id ? water_shows(r, &k, x, id, wc, dt, dw, dsh, fmt, r->trow[y], &lx, &ly)
+                    const int shows = id ? water_shows(r, &k, x, id, wc, dt, dw, dsh, fmt, r->trow[y], &wk, &lx, &ly)
                                          : RW_NOT;
                     if (shows == RW_LAND) rgb = land_rgb(r, &k, x, id, lx, ly);
                     else if (shows == RW_WATER) {

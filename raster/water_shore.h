@@ -2,8 +2,9 @@
  * water plane meet (raster/water.c's water_shows): the shore test (the terrain's point
  * on a pixel's ray wet with the body: the LOD over water), the tested quads' cells
  * (plane_cell) and the land test (the plane's point over dry land: the LOD sank land).
- * Private to raster/water.c, included once, after rw_rowk; its per-pixel look-ups use
- * the frame's grid position and its reciprocals (rw_frame: gx0, gy0, inv_sx, inv_sy). */
+ * Private to raster/water.c, included once, after rw_rowk and rw_walk; its per-pixel
+ * look-ups use the frame's grid position and its reciprocals (rw_frame: gx0, gy0, inv_sx,
+ * inv_sy). */
 #ifndef BR_RWATER_SHORE_H
 #define BR_RWATER_SHORE_H
 
@@ -145,6 +146,16 @@ static inline uint32_t land_texel(const rw_frame *r, int64_t gx, int64_t gy)
     return t->px[(size_t)v * (size_t)t->w + (size_t)u] & 0xffffffu;
 }
 
+/* Cell (ix, iy) passes the land test for body id: its four corners are dry land at or
+ * above the body's level (land_sample). */
+static RW_INLINE int land_cell(const rw_frame *r, size_t ix, size_t iy, uint32_t id)
+{
+    const size_t w = (size_t)r->p.wet_w, i = iy * w + ix;
+    const int32_t zl = r->p.land_z[id];
+    return land_sample(r, i, zl) && land_sample(r, i + 1, zl) && land_sample(r, i + w, zl)
+           && land_sample(r, i + w + 1, zl);
+}
+
 /* The land test (rw_params.land) at the plane's own point: 1, with the sample nearest it
  * in *lx, *ly, when the four corners of the grid cell under the point are dry land at or
  * above body id's plane (land_sample): there the terrain at full resolution lies above
@@ -154,18 +165,40 @@ static inline uint32_t land_texel(const rw_frame *r, int64_t gx, int64_t gy)
  * bratio[id] set, as the shore test's k->sdd promises. */
 static RW_INLINE int land_at(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, int32_t *lx, int32_t *ly)
 {
-    const size_t w = (size_t)r->p.wet_w;
-    const int32_t zl = r->p.land_z[id];
     int64_t gx, gy;
-    size_t ix, iy, i;
-    if (!plane_cell_of(r, k, x, id, &ix, &iy, &gx, &gy)) return 0;
-    i = iy * w + ix;
-    if (!land_sample(r, i, zl) || !land_sample(r, i + 1, zl) || !land_sample(r, i + w, zl)
-        || !land_sample(r, i + w + 1, zl))
-        return 0;
+    size_t ix, iy;
+    if (!plane_cell_of(r, k, x, id, &ix, &iy, &gx, &gy) || !land_cell(r, ix, iy, id)) return 0;
     *lx = (int32_t)ix + (2 * (gx - (int64_t)ix * r->p.grid_sx) >= r->p.grid_sx);
     *ly = (int32_t)iy + (2 * (gy - (int64_t)iy * r->p.grid_sy) >= r->p.grid_sy);
     return 1;
+}
+
+/* The land test's gate (water_shows with a row walk, water_row_vec's groups): the run of
+ * RW_LAND_RUN pixels from x (to the frame's last column) of body id into wk (its last
+ * column lx1, body lid), with lskip 1 when no pixel of it passes land_at.  Along a row the
+ * plane's point moves monotonically in both grid axes (grid_pos: aq[x] does not decrease
+ * with x, and a product with one factor fixed, a floor and grid_index keep that order),
+ * so the cell of every pixel between lies in the box of the run's two end cells; when
+ * no cell of the box passes the land test (land_cell), none of the run's pixels does.
+ * Ends off the grid, or a box of more than RW_LAND_CELLS cells (far away, where a pixel
+ * spans many cells), leave lskip 0: each pixel is tested. */
+#define RW_LAND_RUN 32
+#define RW_LAND_CELLS 64
+static RW_NOINLINE void land_gate(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, rw_walk *wk)
+{
+    const int32_t xb = x + RW_LAND_RUN - 1 < r->w - 1 ? x + RW_LAND_RUN - 1 : r->w - 1;
+    size_t ia, ja, ib, jb, x0, x1, y0, y1, cx, cy;
+    int64_t gx, gy;
+    wk->lx1 = xb; wk->lid = id; wk->lskip = 0;
+    if (!plane_cell_of(r, k, x, id, &ia, &ja, &gx, &gy) || !plane_cell_of(r, k, xb, id, &ib, &jb, &gx, &gy))
+        return;
+    x0 = ia < ib ? ia : ib; x1 = ia < ib ? ib : ia;
+    y0 = ja < jb ? ja : jb; y1 = ja < jb ? jb : ja;
+    if ((x1 - x0 + 1) * (y1 - y0 + 1) > RW_LAND_CELLS) return;
+    for (cy = y0; cy <= y1; cy++)
+        for (cx = x0; cx <= x1; cx++)
+            if (land_cell(r, cx, cy, id)) return;
+    wk->lskip = 1;
 }
 
 /* The colour of pixel (x, k->y) that land_at made land, with its sample (lx, ly): the
@@ -173,7 +206,7 @@ static RW_INLINE int land_at(const rw_frame *r, const rw_rowk *k, int32_t x, uin
  * plane's point (found again: land pixels are few, and out of line the water pixels'
  * loop keeps its registers). */
 static RW_COLD uint32_t land_rgb(const rw_frame *r, const rw_rowk *k, int32_t x, uint32_t id, int32_t lx,
-                                     int32_t ly)
+                                 int32_t ly)
 {
     const uint32_t rgb = rt_sample_rgb(r->p.land, lx, ly);
     int64_t gx = 0, gy = 0;

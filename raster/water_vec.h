@@ -297,6 +297,16 @@ static inline wv_i wv_water(const wv_row *c, const rw_frame *r, const refl_view 
     return rgb;
 }
 
+/* 1 when no lane of lt (of group x .. x + 7, body ids id) passes the land test: all of
+ * one body, in a run of land_gate's that may skip it (wk: the row's walk). */
+static inline int wv_land_skipped(const rw_frame *r, const rw_rowk *k, int32_t x, wv_i id, wv_i lt, rw_walk *wk)
+{
+    const uint32_t lid = (uint32_t)id[__builtin_ctz(WV_BITS(lt)) >> 2];
+    if (WV_BITS(lt & (id != (int32_t)lid))) return 0;
+    if (x + 7 > wk->lx1 || lid != wk->lid) land_gate(r, k, x, lid, wk);
+    return wk->lskip && x + 7 <= wk->lx1;
+}
+
 /* Water_one's pixels of row k->y for x from x0 while x + 8 <= xe, eight at a time;
  * returns the first column not done (water_row_px does the rest).  The common case:
  * XRGB8888, 32-bit depth (dsh 0; depths below 2^30, RS_DEPTH_ONE, so signed lanes
@@ -306,9 +316,11 @@ static inline int32_t water_row_vec(const rw_frame *r, const refl_view *rv, cons
                                     int32_t xe, uint32_t sky, const int trows)
 {
     wv_row c;
+    rw_walk wk;
     int32_t x;
     const int land = r->p.land && k->shore;
     wv_row_make(&c, r, rv, k, sky);
+    rw_walk_start(&wk);
     for (x = x0; x + 8 <= xe; x += 8) {
         const wv_u wcv = (wv_u)WV_LD(wc + 4 * (size_t)x);
         const wv_i id = (wv_i)((wcv >> 19) & 31u), nz = id != 0;
@@ -329,6 +341,7 @@ static inline int32_t water_row_vec(const rw_frame *r, const refl_view *rv, cons
              * the four corners land_at wants dry), or all where the lanes cannot look
              * (wet_lanes), go one by one */
             wv_i lt = show & ~((wv_u)(dw - dt) > (wv_u)sdd);
+            if (WV_BITS(lt) && wv_land_skipped(r, k, x, id, lt, &wk)) lt = c.zero;
             if (WV_BITS(lt)) {
                 if (c.wet_lanes) {
                     const wv_i br = WV_GATHER(r->bratio, id, lt, 4);
@@ -355,7 +368,7 @@ static inline int32_t water_row_vec(const rw_frame *r, const refl_view *rv, cons
             const int32_t i = __builtin_ctz(test) >> 2;
             int32_t lx, ly;
             const int shows = water_shows(r, k, x + i, (uint32_t)id[i], wc, (uint32_t)dt[i], (uint32_t)dw[i], 0,
-                                          RS_FMT_XRGB8888, trows, &lx, &ly);
+                                          RS_FMT_XRGB8888, trows, NULL, &lx, &ly);
             if (shows == RW_WATER) show[i] = -1;
             else if (shows == RW_LAND)
                 ((uint32_t *)(void *)crow)[x + i] =
