@@ -123,6 +123,14 @@ typedef struct fx_recip {
 } fx_recip;
 extern const uint16_t fx_recip_seed[256];   /* floor(2^25 / (257 + i)) - 2^16 */
 
+/* a b / 255 rounded to nearest for a, b <= 255 (p = a b + 128; (p + p / 256) / 256 is
+ * exact for p < 2^16): a colour channel times a weight, as a texel times the lighting. */
+static inline uint32_t fx_mul255(uint32_t a, uint32_t b)
+{
+    const uint32_t p = a * b + 128u;
+    return (p + (p >> 8)) >> 8;
+}
+
 static inline int32_t fx_clz32(uint32_t x)  /* x != 0 */
 {
 #if defined(__GNUC__)

@@ -152,8 +152,7 @@ static uint32_t tex_mod(uint32_t texel, uint64_t col)
     uint32_t out = 0, k;
     for (k = 0; k < 3; k++) {
         uint32_t s = (uint32_t)(col >> (55 - 21 * k)) & 255u, t = (texel >> (16 - 8 * k)) & 255u;
-        uint32_t p = t * s + 128u;
-        out |= ((p + (p >> 8)) >> 8) << (16 - 8 * k);
+        out |= fx_mul255(t, s) << (16 - 8 * k);
     }
     return out;
 }

@@ -122,15 +122,12 @@ static inline int land_sample(const rw_frame *r, size_t i, int32_t zl)
     return !r->p.wet[i] && z != HF_NODATA && z >= zl;
 }
 
-/* texel t times lighting c per channel, / 255 rounded: a textured pixel's colour (raster.c
- * tex_mod's rounding: p = t c + 128, (p + (p >> 8)) >> 8) */
+/* texel t times lighting c per channel, / 255 rounded: a textured pixel's colour, as
+ * raster.c's tex_mod makes it (fx_mul255) */
 static inline uint32_t texel_lit(uint32_t t, uint32_t c)
 {
     uint32_t out = 0, sh;
-    for (sh = 0; sh <= 16; sh += 8) {
-        const uint32_t p = ((t >> sh) & 255u) * ((c >> sh) & 255u) + 128u;
-        out |= ((p + (p >> 8)) >> 8) << sh;
-    }
+    for (sh = 0; sh <= 16; sh += 8) out |= fx_mul255((t >> sh) & 255u, (c >> sh) & 255u) << sh;
     return out;
 }
 
