@@ -127,6 +127,9 @@ enum { BT_METRIC_EXACT = 0, BT_METRIC_CURVATURE = 1 };
 enum { BT_S = 0, BT_F = 1 };
 #define BT_CODE_SPLIT 0xFFFFu
 #define BT_MORPH_ONE 32768
+/* Geomorph weights are multiples of BT_MORPH_STEP: a split vertex rises to its real
+ * height in BT_MORPH_ONE / BT_MORPH_STEP = 16 steps (docs/bitree.md, "geomorph") */
+#define BT_MORPH_STEP 2048
 
 /* The bands of the layout (see LAYOUT above): for each level l (p = 2^l) the east
  * columns x = (em0[l] + i) << l, i < enc[l], each of (S >> l) + 1 slots (rows y =

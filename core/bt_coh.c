@@ -176,12 +176,14 @@ void bti_wtab_set(bti_wtab *wt, int64_t tau, int64_t span)
 }
 
 /* A split's weight w (morph_at: floor((floor(L / d) - tau) 2^15 / span), clamped to
- * 0 .. ONE) is a function of rho = floor(L / d) that stays while rho stays in w's run
- * [tau + qa, tau + qb1 - 1]: qa = ceil(w span / 2^15) (none for w = 0: every rho <= tau
- * gives 0), qb1 = ceil((w + 1) span / 2^15) (none for ONE: every rho >= tau + span gives
- * it; 1 for w = 0, as span <= 2^15).  So it stays for every d > 0 with (tau + qa) d <= L
- * < (tau + qb1) d, whose bounds below_r and above_r give from the table's reciprocals
- * (checked with the rule's products, so the run may come out shorter, never longer). */
+ * 0 .. ONE, rounded down to a multiple s of BT_MORPH_STEP) is a function of rho =
+ * floor(L / d) that stays while rho stays in w's run [tau + qa, tau + qb1 - 1]: qa =
+ * ceil(w span / 2^15) (none for w = 0: every rho <= tau gives 0), qb1 = ceil((w + s)
+ * span / 2^15) (the rounding keeps w while (rho - tau) 2^15 / span < w + s; none for
+ * ONE: every rho >= tau + span gives it; >= 1 for w = 0, as span <= 2^15).  So it
+ * stays for every d > 0 with (tau + qa) d <= L < (tau + qb1) d, whose bounds below_r
+ * and above_r give from the table's reciprocals (checked with the rule's products, so
+ * the run may come out shorter, never longer). */
 void bti_coh_weight_run(const bti_wtab *wt, int64_t L, uint16_t morph, uint32_t *dlo, uint32_t *dhi)
 {
     const int64_t tau = wt->tau, span = wt->span;
@@ -194,7 +196,7 @@ void bti_coh_weight_run(const bti_wtab *wt, int64_t L, uint16_t morph, uint32_t 
         if ((hi = below_r(L, wt->r[qa], wt->sh[qa], tau + qa, 0)) < 0) return;
     }
     if (morph < BT_MORPH_ONE) {
-        const int64_t qb1 = (((int64_t)morph + 1) * span + 32767) >> 15; /* 1 .. span */
+        const int64_t qb1 = (((int64_t)morph + BT_MORPH_STEP) * span + 32767) >> 15; /* 1 .. span */
         if ((lo = above_r(L, wt->r[qb1], wt->sh[qb1], tau + qb1, 1)) < 0) return;
     }
     lo -= wt->slack;

@@ -201,9 +201,10 @@ static uint16_t morph_of(const bti_extract *e, int64_t rho)
     return (uint16_t)((q * BT_MORPH_ONE) / e->morph_span);
 }
 
-/* morph_of(e, lhs / d) for lhs = ew f >= 0 and d > 0: with a 64-bit divide as
- * written, without one by bti_morph_nodiv (core/bt_int.h), the same weight. */
-static uint16_t morph_at(const bti_extract *e, int64_t lhs, int64_t d)
+/* morph_of(e, lhs / d) for lhs = ew f >= 0 and d > 0: with a 64-bit divide as written,
+ * without one by bti_morph_nodiv (core/bt_int.h), the same weight (morph_exact); the
+ * rule's weight rounded down to a multiple of BT_MORPH_STEP (morph_at; ONE is one). */
+static uint16_t morph_exact(const bti_extract *e, int64_t lhs, int64_t d)
 {
 #if BR_DIV64_NATIVE
     return morph_of(e, lhs / d);
@@ -220,6 +221,8 @@ static uint16_t morph_at(const bti_extract *e, int64_t lhs, int64_t d)
     return bti_morph_nodiv(lhs, d, e->tau, e->morph_span);
 #endif
 }
+static uint16_t morph_at(const bti_extract *e, int64_t lhs, int64_t d)
+{ return (uint16_t)(morph_exact(e, lhs, d) & ~(BT_MORPH_STEP - 1u)); }
 
 /* Diamond (x, y) in slot idx: returns 1 split, 0 leaf, -1 drop (culled); *morph
  * set for split vertices; *mask: frustum planes still to test (view and budget

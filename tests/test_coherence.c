@@ -603,9 +603,64 @@ static void test_morph_nodiv(void)
     CHECK_EQ(bad, 0);
 }
 
+/* The distances at which the weight is w, from d (where it is): the first (dir -1) or
+ * last (dir 1) one, by bisection (the weight falls as the distance grows). */
+static int64_t weight_end(const bti_extract *e, int64_t L, int64_t d, uint16_t w, int dir)
+{
+    int64_t in = d, out = dir < 0 ? 0 : (int64_t)UINT32_MAX + 1;
+    if (dir > 0 && bti_morph_at(e, L, out - 1) == w) return out - 1;
+    while (out - in > 1 || in - out > 1) {
+        const int64_t mid = in + (out - in) / 2;
+        if (mid >= 1 && bti_morph_at(e, L, mid) == w) in = mid;
+        else out = mid;
+    }
+    return in;
+}
+
+/* The geomorph weight is a multiple of BT_MORPH_STEP, and the run of box distances that
+ * keeps it (core/bt_coh.c bti_coh_weight_run, for which a replayed part keeps a weight)
+ * holds it at both ends and reaches within a unit of the last distances that give it
+ * (its bounds round towards the shorter run): a whole step of the weight, not one of
+ * floor(L / d)'s values. */
+static void test_weight_run(void)
+{
+    long i, n = t_emulated() ? 20000 : 200000, runs = 0, bad = 0, level = 0;
+    bti_extract e;
+    bti_wtab wt;
+    memset(&e, 0, sizeof e);
+    memset(&wt, 0, sizeof wt);
+    for (i = 0; i < n; i++) {
+        const int64_t tau = 64 + (int64_t)(t_xs64() % 512), span = 1 + (int64_t)(t_xs64() % 256);
+        const int64_t d = 1 + (int64_t)(t_xs64() % 1000000), L = (int64_t)(t_xs64() % (uint64_t)((tau + span + 8) * d));
+        int64_t lo_x, hi_x;
+        uint16_t w;
+        uint32_t lo, hi;
+        e.tau = tau;
+        e.morph_span = span;
+        bti_wtab_set(&wt, tau, span);
+        w = bti_morph_at(&e, L, d);
+        bad += w % BT_MORPH_STEP != 0;
+        if (w == 0 || w == BT_MORPH_ONE) continue;
+        bti_coh_weight_run(&wt, L, w, &lo, &hi);
+        if (lo > hi) continue;
+        runs++;
+        lo_x = weight_end(&e, L, d, w, -1);
+        hi_x = weight_end(&e, L, d, w, 1);
+        bad += bti_morph_at(&e, L, lo) != w || bti_morph_at(&e, L, hi) != w;
+        bad += lo < lo_x || hi > hi_x || lo > lo_x + 1 || hi + 1 < hi_x;
+        /* a step of the weight spans several values of floor(L / d) */
+        level += L / lo_x - L / hi_x > 0;
+    }
+    printf("  geomorph weight runs: %ld of %ld cases, %ld over more than one value of L / d\n", runs, n, level);
+    CHECK(runs > n / 4);
+    CHECK(level > runs / 2);
+    CHECK_EQ(bad, 0);
+}
+
 int main(void)
 {
     T_RUN(test_morph_nodiv);
+    T_RUN(test_weight_run);
     T_RUN(test_box_dist);
     T_RUN(test_coherence_paths);
     T_RUN(test_coherence_full_parts);
