@@ -272,10 +272,11 @@ struct bt_parts {
         bti_rec *rec;
         uint32_t nrec;
         uint8_t *vmoved;           /* a replay's moved vertices, a bit each (vbits of them) */
-        uint8_t keep_v;            /* this frame's joined vertices are the last one's, at the same
-                                      place, but for vmoved's (bt_part_moved) */
         uint32_t last_voff;        /* where its vertices went in the last frame joined from
                                       parts (UINT32_MAX: none) */
+        uint32_t from_voff;        /* this frame's joined vertices are the ones that went to
+                                      from_voff in the frame before, but for vmoved's (UINT32_MAX:
+                                      none; bt_part_moved, bt_part_moved_from) */
         bti_root last_root;
         uint32_t ridx[3];
         uint8_t reuse;

@@ -58,7 +58,7 @@ static void forget_places(bt_parts *ps)
     uint32_t k;
     for (k = 0; k < BT_PARTS; k++) {
         ps->slot[k].last_voff = UINT32_MAX;
-        ps->slot[k].keep_v = 0;
+        ps->slot[k].from_voff = UINT32_MAX;
     }
 }
 
@@ -651,7 +651,7 @@ br_status bt_extract_end(bt_parts *ps, uint32_t *njoin)
         struct bti_slot *sl = &ps->slot[k];
         const uint32_t at = k < ps->nroot ? ps->voff[k] : UINT32_MAX;
         /* (a replay lists its moved vertices when they fit the bits, bti_part_replay) */
-        sl->keep_v = k < ps->nroot && ps->replayed[k] && sl->m.nv <= ps->vbits && sl->last_voff == at;
+        sl->from_voff = k < ps->nroot && ps->replayed[k] && sl->m.nv <= ps->vbits ? sl->last_voff : UINT32_MAX;
         sl->last_voff = at;
     }
     hysteresis(ps, nsp);
@@ -687,7 +687,15 @@ void bt_extract_join(bt_parts *ps, uint32_t k, uint32_t *v0, uint32_t *nv)
 
 const uint8_t *bt_part_moved(const bt_parts *ps, uint32_t k)
 {
-    return ps && !ps->serial && k < ps->nroot && ps->slot[k].keep_v ? ps->slot[k].vmoved : NULL;
+    return ps && !ps->serial && k < ps->nroot && ps->slot[k].from_voff != UINT32_MAX
+           && ps->slot[k].from_voff == ps->slot[k].last_voff ? ps->slot[k].vmoved : NULL;
+}
+
+const uint8_t *bt_part_moved_from(const bt_parts *ps, uint32_t k, uint32_t *v0_last)
+{
+    if (!ps || ps->serial || k >= ps->nroot || ps->slot[k].from_voff == UINT32_MAX) return NULL;
+    *v0_last = ps->slot[k].from_voff;
+    return ps->slot[k].vmoved;
 }
 
 uint32_t bt_part_tris(const bt_parts *ps, uint32_t k)

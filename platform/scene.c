@@ -261,8 +261,9 @@ br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err)
                               BT_PARTS, pt_tri);
     }
     s->verts = malloc(sizeof *s->verts * (s->mesh.cap_v ? s->mesh.cap_v : 1));
+    s->vprev = malloc(sizeof *s->vprev * (s->mesh.cap_v ? s->mesh.cap_v : 1));
     s->cache = malloc(rs_cache_mem_size(s->mesh.cap_v ? s->mesh.cap_v : 1));
-    if (!s->verts || !s->cache)
+    if (!s->verts || !s->vprev || !s->cache)
         return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for %u vertices", s->mesh.cap_v);
     if (rt_cache_mem_size(&s->rt) > 0) s->lit_mem = malloc(rt_cache_mem_size(&s->rt));
     if (s->lit_mem && rt_scene_cache(&s->rt, s->lit_mem, rt_cache_mem_size(&s->rt)) != BR_OK) {
@@ -289,6 +290,7 @@ void scene_close(scene *s)
 {
     grid_free(s);
     free(s->verts);
+    free(s->vprev);
     free(s->cache);
     free(s->chunks);
     free(s->tree_mem);
@@ -367,11 +369,13 @@ static void order_parts(scene *s, uint32_t n)
         }
 }
 
-void scene_join_part(bt_parts *ps, uint32_t k, const rt_scene *rt, bt_mesh *m, rs_vertex *out)
+void scene_join_part(bt_parts *ps, uint32_t k, const rt_scene *rt, bt_mesh *m, rs_vertex *out,
+                     const rs_vertex *prev)
 {
-    uint32_t v0, nv;
-    const uint8_t *moved = bt_part_moved(ps, k);     /* out holds the rest */
+    uint32_t v0, nv, from = 0;
+    const uint8_t *moved = prev ? bt_part_moved_from(ps, k, &from) : bt_part_moved(ps, k);
     bt_extract_join(ps, k, &v0, &nv);
+    if (moved && prev) memcpy(out + v0, prev + from, (size_t)nv * sizeof *out);
     if (moved) rt_from_mesh_moved(rt, m, v0, nv, moved, out);
     else rt_from_mesh_range(rt, m, v0, nv, out);
 }
@@ -379,7 +383,7 @@ void scene_join_part(bt_parts *ps, uint32_t k, const rt_scene *rt, bt_mesh *m, r
 static void job_join(void *user, uint32_t k)
 {
     scene *s = (scene *)user;
-    scene_join_part(s->parts, k, &s->rt, &s->mesh, s->verts);
+    scene_join_part(s->parts, k, &s->rt, &s->mesh, s->verts, s->vprev);
 }
 
 br_status scene_mesh(scene *s, const cam *c, bt_params *p)
@@ -388,6 +392,11 @@ br_status scene_mesh(scene *s, const cam *c, bt_params *p)
     uint32_t n = 0;
     p->c = c;
     p->fr = s->rt.fr;
+    {   /* this frame's vertices go to the other array; the last frame's stay for the copies */
+        rs_vertex *t = s->verts;
+        s->verts = s->vprev;
+        s->vprev = t;
+    }
     if (s->parts) {
         uint32_t k;
         st = bt_extract_begin(s->parts, &s->tree, p, &s->mesh, &n);

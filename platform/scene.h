@@ -49,6 +49,7 @@ typedef struct scene {
     bt_tree tree;
     bt_mesh mesh;
     rs_vertex *verts;                /* mesh.cap_v of them */
+    rs_vertex *vprev;                /* the last frame's verts (scene_mesh swaps the two) */
     rs_cvert *cache;                 /* vertex cache for the rasteriser */
     void *tree_mem, *mesh_mem;
     const char *tree_file;           /* scene_opts.tree: attach it instead of building */
@@ -113,11 +114,14 @@ br_status scene_camera(const scene *s, const double eye[3], const double target[
  * vertices become the scene's terrain.  Needs scene_tree and scene_reserve.  In
  * BT_VIEW mode the extraction runs in parts, and with the vertices, on s->pool. */
 br_status scene_mesh(scene *s, const cam *c, bt_params *p);
-/* Part k of ps (after bt_extract_end) joined into m, its vertices set up into out: only
- * those that moved where the part was replayed (bt_part_moved), a sample new to the lit
- * cache left for rt_from_mesh_pending.  For any k on any thread; the terrain's parts
- * (scene_mesh) and the reflection's (platform/water_scene.c). */
-void scene_join_part(bt_parts *ps, uint32_t k, const rt_scene *rt, bt_mesh *m, rs_vertex *out);
+/* Part k of ps (after bt_extract_end) joined into m, its vertices set up into out: where
+ * the part was replayed, only those that moved, the rest copied from the last frame's
+ * vertices prev (bt_part_moved_from), or, with prev NULL, left as out holds them where
+ * they landed at the same place (bt_part_moved); a sample new to the lit cache left for
+ * rt_from_mesh_pending.  For any k on any thread; the terrain's parts (scene_mesh) and
+ * the reflection's (platform/water_scene.c). */
+void scene_join_part(bt_parts *ps, uint32_t k, const rt_scene *rt, bt_mesh *m, rs_vertex *out,
+                     const rs_vertex *prev);
 /* The full grid, every step-th sample (step >= 1) as row strips, becomes the scene's
  * terrain (allocated here, once per step; scene_close frees it). */
 br_status scene_grid(scene *s, int32_t step, br_err *err);

@@ -349,7 +349,7 @@ static void refl_job_part(void *user, uint32_t k)
 static void refl_job_join(void *user, uint32_t k)
 {
     const refl_jobs *j = (const refl_jobs *)user;
-    scene_join_part(j->w->rparts, k, j->rt, &j->w->rmesh, j->w->rverts);
+    scene_join_part(j->w->rparts, k, j->rt, &j->w->rmesh, j->w->rverts, NULL);
 }
 
 /* bt_extract of the reflection's own selection into rmesh and its vertices into rverts,
