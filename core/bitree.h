@@ -444,15 +444,10 @@ br_status bt_extract_end(bt_parts *ps, uint32_t *njoin);
 /* Writes part k into m; m->v[*v0 .. *v0 + *nv) are its vertices. */
 void bt_extract_join(bt_parts *ps, uint32_t k, uint32_t *v0, uint32_t *nv);
 /* After bt_extract_end: the vertices of part k that may differ from the ones it had at
- * the same place of m->v in the last frame joined from parts, a bit each (bit i & 7 of
- * byte i >> 3 for m->v[v0 + i], v0 as bt_extract_join gives), or NULL when any may.  A
- * caller that sets up every joined part's vertices every frame into one array may set
- * up only these. */
-const uint8_t *bt_part_moved(const bt_parts *ps, uint32_t k);
-/* The same wherever the part's vertices went in the last frame joined from parts: the
- * vertices that may differ from the ones at m->v[*v0_last .. *v0_last + nv) then (nv as
- * bt_extract_join gives), or NULL when any may.  A caller that keeps the last frame's
- * set-up vertices may copy a part's from there and set up only these. */
+ * m->v[*v0_last ..] in the last frame joined from parts, a bit each (bit i & 7 of byte
+ * i >> 3 for m->v[v0 + i], v0 as bt_extract_join gives), or NULL when any may.  A caller
+ * that keeps the last frame's set-up vertices may copy the part's from there and set up
+ * only these. */
 const uint8_t *bt_part_moved_from(const bt_parts *ps, uint32_t k, uint32_t *v0_last);
 /* Triangles of part k in the last extraction (0 if none): a scheduling hint. */
 uint32_t bt_part_tris(const bt_parts *ps, uint32_t k);

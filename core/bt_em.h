@@ -276,7 +276,7 @@ struct bt_parts {
                                       parts (UINT32_MAX: none) */
         uint32_t from_voff;        /* this frame's joined vertices are the ones that went to
                                       from_voff in the frame before, but for vmoved's (UINT32_MAX:
-                                      none; bt_part_moved, bt_part_moved_from) */
+                                      none; bt_part_moved_from) */
         bti_root last_root;
         uint32_t ridx[3];
         uint8_t reuse;

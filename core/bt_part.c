@@ -51,7 +51,7 @@ static void clear_to(struct bti_slot *sl, uint32_t hs, uint32_t ms)
     }
 }
 
-/* No slot's vertices are where the caller last set them up (bt_part_moved): after a
+/* No slot's vertices are where the caller last set them up (bt_part_moved_from): after a
  * frame not joined from parts, and at the start */
 static void forget_places(bt_parts *ps)
 {
@@ -683,12 +683,6 @@ void bt_extract_join(bt_parts *ps, uint32_t k, uint32_t *v0, uint32_t *nv)
     }
     *v0 = off;
     *nv = pm->nv;
-}
-
-const uint8_t *bt_part_moved(const bt_parts *ps, uint32_t k)
-{
-    return ps && !ps->serial && k < ps->nroot && ps->slot[k].from_voff != UINT32_MAX
-           && ps->slot[k].from_voff == ps->slot[k].last_voff ? ps->slot[k].vmoved : NULL;
 }
 
 const uint8_t *bt_part_moved_from(const bt_parts *ps, uint32_t k, uint32_t *v0_last)

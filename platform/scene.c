@@ -373,9 +373,9 @@ void scene_join_part(bt_parts *ps, uint32_t k, const rt_scene *rt, bt_mesh *m, r
                      const rs_vertex *prev)
 {
     uint32_t v0, nv, from = 0;
-    const uint8_t *moved = prev ? bt_part_moved_from(ps, k, &from) : bt_part_moved(ps, k);
+    const uint8_t *moved = bt_part_moved_from(ps, k, &from);
     bt_extract_join(ps, k, &v0, &nv);
-    if (moved && prev) memcpy(out + v0, prev + from, (size_t)nv * sizeof *out);
+    if (moved) memcpy(out + v0, prev + from, (size_t)nv * sizeof *out);
     if (moved) rt_from_mesh_moved(rt, m, v0, nv, moved, out);
     else rt_from_mesh_range(rt, m, v0, nv, out);
 }

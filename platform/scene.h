@@ -116,9 +116,8 @@ br_status scene_camera(const scene *s, const double eye[3], const double target[
 br_status scene_mesh(scene *s, const cam *c, bt_params *p);
 /* Part k of ps (after bt_extract_end) joined into m, its vertices set up into out: where
  * the part was replayed, only those that moved, the rest copied from the last frame's
- * vertices prev (bt_part_moved_from), or, with prev NULL, left as out holds them where
- * they landed at the same place (bt_part_moved); a sample new to the lit cache left for
- * rt_from_mesh_pending.  For any k on any thread; the terrain's parts (scene_mesh) and
+ * vertices prev (another array: bt_part_moved_from); a sample new to the lit cache left
+ * for rt_from_mesh_pending.  For any k on any thread; the terrain's parts (scene_mesh) and
  * the reflection's (platform/water_scene.c). */
 void scene_join_part(bt_parts *ps, uint32_t k, const rt_scene *rt, bt_mesh *m, rs_vertex *out,
                      const rs_vertex *prev);

@@ -197,7 +197,7 @@ void ws_close(water_scene *w)
     }
     free(w->id); free(w->tbox);
     free(w->rstrip); free(w->rcache); free(w->rchunks); free(w->rbed); free(w->rw);
-    free(w->rmesh_mem); free(w->rverts); free(w->rst); free(w->rparts_mem);
+    free(w->rmesh_mem); free(w->rverts); free(w->rvprev); free(w->rst); free(w->rparts_mem);
     memset(w, 0, sizeof *w);
 }
 
@@ -349,7 +349,7 @@ static void refl_job_part(void *user, uint32_t k)
 static void refl_job_join(void *user, uint32_t k)
 {
     const refl_jobs *j = (const refl_jobs *)user;
-    scene_join_part(j->w->rparts, k, j->rt, &j->w->rmesh, j->w->rverts, NULL);
+    scene_join_part(j->w->rparts, k, j->rt, &j->w->rmesh, j->w->rverts, j->w->rvprev);
 }
 
 /* bt_extract of the reflection's own selection into rmesh and its vertices into rverts,
@@ -361,6 +361,11 @@ static br_status refl_select(water_scene *w, scene *s, bt_tree *t, const bt_para
     refl_jobs j;
     uint32_t n = 0;
     br_status st;
+    {   /* as scene_mesh: this frame's vertices go to the other array */
+        rs_vertex *tv = w->rverts;
+        w->rverts = w->rvprev;
+        w->rvprev = tv;
+    }
     if (!w->rparts) {
         st = bt_extract(t, bp, &w->rmesh);
         if (st == BR_OK) rt_from_mesh(&s->rt, &w->rmesh, w->rverts);
@@ -468,6 +473,7 @@ br_status ws_reserve(water_scene *w, scene *s)
     mb = bt_mesh_mem_size(cap);
     w->rmesh_mem = mb ? malloc(mb) : NULL;
     w->rverts = malloc(sizeof *w->rverts * (size_t)(3 * cap + 3));
+    w->rvprev = malloc(sizeof *w->rvprev * (size_t)(3 * cap + 3));
     w->rst = calloc(bt_state_size(s->tree.nslot) + 1, 1);
     {
         const uint32_t pt = cap < WS_REFL_PART_TRI ? cap : WS_REFL_PART_TRI;
@@ -479,9 +485,10 @@ br_status ws_reserve(water_scene *w, scene *s)
             w->rparts = NULL;
         }
     }
-    if (!w->rmesh_mem || !w->rverts || !w->rst || bt_mesh_init(&w->rmesh, cap, w->rmesh_mem, mb) != BR_OK) {
-        free(w->rmesh_mem); free(w->rverts); free(w->rst); free(w->rparts_mem);
-        w->rmesh_mem = NULL; w->rverts = NULL; w->rst = NULL; w->rparts_mem = NULL; w->rparts = NULL;
+    if (!w->rmesh_mem || !w->rverts || !w->rvprev || !w->rst || bt_mesh_init(&w->rmesh, cap, w->rmesh_mem, mb) != BR_OK) {
+        free(w->rmesh_mem); free(w->rverts); free(w->rvprev); free(w->rst); free(w->rparts_mem);
+        w->rmesh_mem = NULL; w->rverts = NULL; w->rvprev = NULL; w->rst = NULL; w->rparts_mem = NULL;
+        w->rparts = NULL;
         return BR_E_NOMEM;
     }
     return BR_OK;

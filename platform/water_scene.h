@@ -127,7 +127,7 @@ typedef struct water_scene {
                                    is replayed, not walked; WS_REFL_PART_TRI triangles each) */
     void *rparts_mem;
     uint8_t *rst;
-    rs_vertex *rverts;
+    rs_vertex *rverts, *rvprev; /* its vertices, and the last frame's (refl_select swaps them) */
     rs_prim rmprim;             /* rmesh's strip as it is (the mirrored camera's winding) */
     cam rcam;                   /* the mirrored camera */
     int rown;

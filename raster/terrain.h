@@ -106,7 +106,7 @@ void rt_from_mesh(const rt_scene *s, const bt_mesh *m, rs_vertex *out);
 void rt_from_mesh_range(const rt_scene *s, const bt_mesh *m, uint32_t first, uint32_t n, rs_vertex *out);
 void rt_from_mesh_pending(const rt_scene *s, const bt_mesh *m, rs_vertex *out);
 /* rt_from_mesh_range for the vertices of that range whose bit is set in moved (bit i & 7
- * of byte i >> 3 for m->v[first + i], core/bitree.h bt_part_moved), the others left as
+ * of byte i >> 3 for m->v[first + i], core/bitree.h bt_part_moved_from), the others left as
  * they are in out. */
 void rt_from_mesh_moved(const rt_scene *s, const bt_mesh *m, uint32_t first, uint32_t n, const uint8_t *moved,
                         rs_vertex *out);
