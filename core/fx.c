@@ -166,3 +166,9 @@ int64_t fx_divisor_trunc_wide(int64_t n, int64_t d, fx_recip r)
     const int64_t u = (int64_t)fx_udiv_wide(n < 0 ? 0 - (uint64_t)n : (uint64_t)n, (uint64_t)d, r);
     return n < 0 ? -u : u;
 }
+
+uint32_t fx_udiv_once(uint64_t n, uint32_t d)
+{
+    const fx_recip r = fx_recip_make(d);
+    return fx_udiv_r(n, &r);
+}

@@ -195,6 +195,25 @@ static inline int fx_sdiv_r(int64_t n, const fx_recip *r, int64_t *q)
     return 1;
 }
 
+/* floor(n / d) for 1 <= d < 2^16 and n < d 2^17 (quotients below 2^17), for 32-bit
+ * targets without a divide instruction: with D = d 2^s in [2^15, 2^16) and X = 2^32 / D,
+ * the seed gives R0 = 2^16 + fx_recip_seed[(D >> 7) - 256] <= X, good to 8 bits (see
+ * fx_recip_seed); one Newton step, R1 = R0 + R0 (2^32 - D R0) / 2^32, stays below X
+ * and within 3 of it (tests/test_fx.c, every D); q = N R1 / 2^32 for N = n 2^s < D 2^17
+ * is then at most N (X - R1) / 2^32 + 1 <= 7 below floor(N / D) = floor(n / d), and
+ * never above it, so the remainder's loop (below D after it) makes it exact. */
+static inline uint32_t fx_udiv_short(uint32_t n, uint32_t d)
+{
+    const int32_t s = fx_clz32(d) - 16;
+    const uint32_t dn = d << s, r0 = 65536u + fx_recip_seed[(dn >> 7) - 256u];
+    const uint32_t e = 0u - dn * r0;                /* 2^32 - D R0 (0 when D R0 = 2^32) */
+    const uint32_t r1 = r0 + (uint32_t)(((uint64_t)r0 * e) >> 32);
+    const uint64_t nn = (uint64_t)n << s;
+    uint32_t q = (uint32_t)((nn * r1) >> 32), rem = (uint32_t)nn - q * dn;  /* (the remainder < 8 D) */
+    while (rem >= dn) { q++; rem -= dn; }
+    return q;
+}
+
 /* floor(2^40 / a) for 1 <= a < 2^32, through fx_recip; with a 32-bit divide
  * instruction (__ARM_FEATURE_IDIV: Cortex-M3 and later, Cortex-A7/A15/A53... built
  * with -mcpu), a < 2^16 (every tiny triangle) takes two of those instead:
@@ -264,6 +283,10 @@ __attribute__((const))      /* reads nothing but its arguments: callers keep the
                                in registers across it, as across libgcc's divide */
 #endif
 uint64_t fx_udiv_wide(uint64_t n, uint64_t d, fx_recip r);
+/* floor(n / d) for 1 <= d < 2^32 and n < d 2^32 through one fx_recip made for it: a
+ * single quotient by a divisor of its own on a rare path (the clipper's), out of line so
+ * that it grows no caller */
+uint32_t fx_udiv_once(uint64_t n, uint32_t d);
 /* n / d truncated toward zero by fx_udiv_wide, |n| < 2^63: fx_divisor_trunc's call, with
  * the sign handled out of line, as in the libgcc call it replaces (inline, it grows every
  * caller's code) */

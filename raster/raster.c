@@ -247,7 +247,7 @@ static void intersect(const clipv *P, const clipv *Q, int64_t dp, int64_t dq, in
 #if BR_DIV64_NATIVE
     t = den ? (num << 24) / den : 0;
 #else
-    t = den ? (int64_t)fx_udiv_bits((uint64_t)num << 24, (uint64_t)den, 25) : 0;
+    t = den ? fx_udiv_once((uint64_t)num << 24, (uint32_t)den) : 0;   /* (den < 2^31) */
 #endif
     for (k = 0; k < 3; k++) o->c[k] = P->c[k] + (((Q->c[k] - P->c[k]) * t) >> 24);
     for (k = 0; k < 3; k++)

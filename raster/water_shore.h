@@ -72,11 +72,17 @@ static RW_INLINE int wet_at(const rw_frame *r, const rw_rowk *k, int32_t x, uint
 
 /* The terrain's point on the ray for shore_wet: bratio dw / dt (Q16, below 2^21 as
  * bratio is), dw / dt from the depths brought to 16 bits (sh the smallest with
- * dt >> sh < 2^16; a 32-bit division), for dt > dw >= 1 (so dt >> sh >= 1). */
+ * dt >> sh < 2^16; a 32-bit division), for dt > dw >= 1 (so dt >> sh >= 1).  With
+ * RW_SOFT_DIV by fx_udiv_short (the same floor: dw >> sh <= dt >> sh, so the quotient
+ * is at most 2^16). */
 static inline int64_t shore_point(int32_t bratio, uint32_t dt, uint32_t dw)
 {
     const int32_t sh = dt >= 65536u ? 16 - fx_clz32(dt) : 0;
+#if RW_SOFT_DIV
+    return ((int64_t)bratio * fx_udiv_short((dw >> sh) << 16, dt >> sh)) >> 16;
+#else
     return ((int64_t)bratio * (((dw >> sh) << 16) / (dt >> sh))) >> 16;
+#endif
 }
 
 /* The shore test for water pixel (x, y) of body id whose terrain is nearer (dt > dw): 1

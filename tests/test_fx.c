@@ -109,6 +109,7 @@ static void check_recip(uint32_t d, uint64_t n)
               (unsigned long)r.v, (unsigned long long)exact);
     n %= (uint64_t)d << 32;                       /* any n < d 2^32 */
     CHECK_EQ(fx_udiv_r(n, &r), n / d);
+    CHECK_EQ(fx_udiv_once(n, d), n / d);
     CHECK_EQ(fx_udiv_r(((uint64_t)d << 32) - 1u, &r), (((uint64_t)d << 32) - 1u) / d);
     CHECK_EQ(fx_udiv_r(d - 1u, &r), 0);
     CHECK_EQ(fx_udiv_r(d, &r), 1);
@@ -147,6 +148,31 @@ static void test_recip(void)
         CHECK_EQ(fx_inv40(d), ((uint64_t)1 << 40) / d);
     }
     CHECK_EQ(fx_inv40(0xffffffffu), 256);
+}
+
+/* fx_udiv_short: the reciprocal after its Newton step within 3 of 2^32 / D for every D,
+ * and C's `/` for every divisor below 2^16 at the ends of its range and between */
+static void test_udiv_short(void)
+{
+    uint32_t d, i;
+    for (d = 32768; d < 65536; d++) {
+        const uint32_t r0 = 65536u + fx_recip_seed[(d >> 7) - 256u], e = 0u - d * r0;
+        const uint32_t r1 = r0 + (uint32_t)(((uint64_t)r0 * e) >> 32);
+        const uint64_t x = ((uint64_t)1 << 32) / d;
+        CHECK_MSG(r1 <= x && r1 + 3u >= x, "D=%lu R1=%lu", (unsigned long)d, (unsigned long)r1);
+    }
+    for (d = 1; d < 65536; d++) {
+        const uint64_t lim = (uint64_t)d << 17;
+        const uint32_t top = lim > 0xffffffffu ? 0xffffffffu : (uint32_t)(lim - 1u);
+        CHECK_EQ(fx_udiv_short(top, d), top / d);
+        CHECK_EQ(fx_udiv_short(0, d), 0);
+        CHECK_EQ(fx_udiv_short(d - 1u, d), 0);
+        CHECK_EQ(fx_udiv_short(d, d), 1);
+        for (i = 0; i < 16; i++) {
+            const uint32_t n = (uint32_t)(t_xs64() % (top + (uint64_t)1));
+            CHECK_EQ(fx_udiv_short(n, d), n / d);
+        }
+    }
 }
 
 /* fx_divisor: C's `/` and floor for any divisor, large ones and large quotients included
@@ -203,6 +229,7 @@ int main(void)
     T_RUN(test_sincos);
     T_RUN(test_isqrt_div);
     T_RUN(test_recip);
+    T_RUN(test_udiv_short);
     T_RUN(test_divisor);
     return t_finish();
 }
