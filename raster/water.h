@@ -149,6 +149,7 @@ typedef struct rw_frame {
     int64_t eye[3];             /* world units */
     int32_t aq[RS_MAX_DIM];     /* per column: ray a = (x + 1/2 - cx) / f, Q12 */
     int32_t bq[RS_MAX_DIM];     /* per row: ray b = (cy - y - 1/2) / f, Q12 */
+    int64_t abq_of[3];          /* the f_q16, w and h that aq and bq were made for (0: none) */
     int32_t rz[RS_MAX_DIM];     /* per row: world z of the ray (a = 0), Q12 */
     uint32_t sky[RS_MAX_DIM];   /* per row: sky colour */
     uint8_t trow[RS_MAX_DIM];   /* per row: 1 when a tested water triangle may cover it */

@@ -292,7 +292,9 @@ static void water_horizon(rw_frame *r, const cam *c, int64_t f16, int32_t top)
 static void fog_table(rw_frame *r, int64_t K)
 {
     const int64_t zs = r->p.fog_start, ze = r->p.fog_end;
-    int64_t dstart = (int64_t)udiv64((uint64_t)K, (uint64_t)zs);
+    /* d <= dend = floor(K / ze) exactly when zc = floor(K / d) >= ze (ze is an integer):
+     * full fog, no quotient (those entries are about 55 % of the default fog's) */
+    const int64_t dstart = (int64_t)udiv64((uint64_t)K, (uint64_t)zs), dend = (int64_t)udiv64((uint64_t)K, (uint64_t)ze);
     wdiv span;
     int32_t sh = 0, i;
     while ((dstart >> sh) > RW_TAB) sh++;
@@ -301,7 +303,7 @@ static void fog_table(rw_frame *r, int64_t K)
     for (i = 0; i <= RW_TAB; i++) {
         int64_t d = ((int64_t)i << sh) + (((int64_t)1 << sh) >> 1), zc, t;
         if (d > dstart) break;      /* d >= K / zs + 1 > K / zs: zc < zs, no fog from here on */
-        zc = d > 0 ? (int64_t)udiv64((uint64_t)K, (uint64_t)d) : ze;
+        zc = d > dend ? (int64_t)udiv64((uint64_t)K, (uint64_t)d) : ze;
         t = zc <= zs ? 0 : zc >= ze ? 256 : (int64_t)wdiv_u(&span, (uint64_t)(zc - zs) << 8);
         r->fog[i] = (uint8_t)((t * t + 128) >> 8 > 255 ? 255 : (t * t + 128) >> 8);
     }
@@ -366,11 +368,15 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
         water_rows(r, &top);
         water_horizon(r, c, f16, top);
     }
-    for (x = 0; x < r->w; x++) r->aq[x] = (int32_t)wdiv_s(&df, (int64_t)(2 * x + 1 - r->w) * ((int64_t)1 << 27));
+    if (r->abq_of[0] != f16 || r->abq_of[1] != r->w || r->abq_of[2] != r->h) {
+        /* the rays' screen terms depend on the focal length and the size alone */
+        r->abq_of[0] = f16; r->abq_of[1] = r->w; r->abq_of[2] = r->h;      /* (f16 > 0) */
+        for (x = 0; x < r->w; x++) r->aq[x] = (int32_t)wdiv_s(&df, (int64_t)(2 * x + 1 - r->w) * ((int64_t)1 << 27));
+        for (y = 0; y < r->h; y++) r->bq[y] = (int32_t)wdiv_s(&df, (int64_t)(r->h - 2 * y - 1) * ((int64_t)1 << 27));
+    }
     for (y = 0; y < r->h; y++) {
-        int64_t b = wdiv_s(&df, (int64_t)(r->h - 2 * y - 1) * ((int64_t)1 << 27)), rz, len2;
+        int64_t b = r->bq[y], rz, len2;
         uint32_t s2;
-        r->bq[y] = (int32_t)b;
         rz = ((int64_t)c->up[2] * b + (int64_t)c->fwd[2] * Q12) >> 30;
         r->rz[y] = (int32_t)rz;
         len2 = b * b + (int64_t)Q12 * Q12;
