@@ -70,11 +70,16 @@ static inline void seed32(uint32_t *restrict o, uint32_t *restrict c, const uint
         memcpy(o + i + SEED_N, &u, sizeof u);
         if (clear) { memcpy(c + i, &z, sizeof z); memcpy(c + i + SEED_N, &z, sizeof z); }
     }
-#endif
     for (; i < n; i++) {
         o[i] = t[i] > thr ? t[i] - bias : dfar;
         if (clear) c[i] = 0;
     }
+#else
+    /* the colour by memset: one store a word in the loop costs more than the library's */
+    if (clear) memset(c, 0, (size_t)n * sizeof *c);
+#pragma GCC unroll 4
+    for (; i < n; i++) o[i] = t[i] > thr ? t[i] - bias : dfar;
+#endif
 }
 
 static inline void seed16(uint16_t *restrict o, uint16_t *restrict c, const uint16_t *restrict t, int32_t n,
