@@ -8,6 +8,15 @@ uint32_t fx_isqrt64(uint64_t v)
     uint64_t res = 0, bit;
     int32_t lg;
     if (!v) return 0;
+    if (!(v >> 32)) {   /* the same steps in 32 bits (r + b < 2^31): half the work on 32-bit targets */
+        uint32_t x = (uint32_t)v, r = 0, b = (uint32_t)1 << ((31 - fx_clz32(x)) & ~1);
+        while (b) {
+            if (x >= r + b) { x -= r + b; r = (r >> 1) + b; }
+            else r >>= 1;
+            b >>= 2;
+        }
+        return r;
+    }
     lg = (uint32_t)(v >> 32) ? 63 - fx_clz32((uint32_t)(v >> 32)) : 31 - fx_clz32((uint32_t)v);
     bit = (uint64_t)1 << (lg & ~1);
     while (bit) {

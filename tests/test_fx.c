@@ -46,6 +46,10 @@ static void test_isqrt_div(void)
     uint64_t v;
     CHECK_EQ(fx_isqrt64(0), 0);
     CHECK_EQ(fx_isqrt64(UINT64_MAX), 4294967295LL);
+    for (v = 1; v < ((uint64_t)1 << 24); v++) {     /* every v of the 32-bit steps' first 2^24 */
+        const uint64_t r = fx_isqrt64(v);
+        CHECK(r * r <= v && (r + 1) * (r + 1) > v);
+    }
     for (v = 1; v < 5000000000000ULL; v = v * 3 + 7) {
         uint64_t r = fx_isqrt64(v);
         CHECK(r * r <= v && (r + 1) * (r + 1) > v);
