@@ -75,7 +75,7 @@ static inline void seed32(uint32_t *restrict o, uint32_t *restrict c, const uint
         if (clear) c[i] = 0;
     }
 #else
-    /* the colour by memset: one store a word in the loop costs more than the library's */
+    /* no vectors: the id colour cleared by memset, the seed loop alone, unrolled */
     if (clear) memset(c, 0, (size_t)n * sizeof *c);
 #pragma GCC unroll 4
     for (; i < n; i++) o[i] = t[i] > thr ? t[i] - bias : dfar;

@@ -293,7 +293,7 @@ static void fog_table(rw_frame *r, int64_t K)
 {
     const int64_t zs = r->p.fog_start, ze = r->p.fog_end;
     /* d <= dend = floor(K / ze) exactly when zc = floor(K / d) >= ze (ze is an integer):
-     * full fog, no quotient (those entries are about 55 % of the default fog's) */
+     * full fog, no quotient (a share zs / ze of the entries up to dstart) */
     const int64_t dstart = (int64_t)udiv64((uint64_t)K, (uint64_t)zs), dend = (int64_t)udiv64((uint64_t)K, (uint64_t)ze);
     wdiv span;
     int32_t sh = 0, i;
