@@ -276,6 +276,8 @@ br_status scene_reserve(scene *s, uint32_t max_tri, br_err *err)
         if (chunks_reserve(s, rs_chunk_mem_size(&longest, 1)) != BR_OK)
             return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for the chunk table");
     }
+    if (!s->clips && !(s->clips = malloc(rs_clip_mem_size(SCENE_CLIPS))))
+        return br_err_set(err, BR_E_NOMEM, NULL, "out of memory for the clip table");
     return BR_OK;
 }
 
@@ -293,6 +295,7 @@ void scene_close(scene *s)
     free(s->vprev);
     free(s->cache);
     free(s->chunks);
+    free(s->clips);
     free(s->tree_mem);
     free(s->mesh_mem);
     free(s->parts_mem);
@@ -486,6 +489,8 @@ br_status scene_terrain(scene *s, const cam *c, rs_frame *fr, rs_pass *pass)
     fr->prims = s->prims;
     fr->nprims = s->nprims;
     fr->chunks = s->chunks;
+    fr->clips = s->clips;
+    fr->clip_cap = s->clips ? SCENE_CLIPS : 0;
     fr->tex = s->rt.tex_w > 0 ? &s->tex : NULL;
     cam_viewproj(c, &fr->vp);
     st = rs_frame_prepare(fr);

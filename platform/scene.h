@@ -35,6 +35,10 @@ typedef struct scene_opts {          /* zero = defaults */
                                         (rs_ramp_absolute) instead of the relative one */
 } scene_opts;
 
+/* Entries of a frame's clip table (rs_frame.clips): room for the triangles one frame
+ * clips for the near plane or the guard band; any beyond it each band clips again. */
+#define SCENE_CLIPS 128
+
 typedef struct scene {
     hf f;
     hf_stats st;
@@ -75,6 +79,7 @@ typedef struct scene {
     int32_t nprims;
     int16_t *chunks;                 /* the rasteriser's chunk table, chunks_size bytes */
     size_t chunks_size;
+    rs_clip_poly *clips;             /* the terrain frame's clip table, SCENE_CLIPS entries */
 } scene;
 
 /* Loads the files (merged when several), the ramp, texture and vertical scale.

@@ -146,7 +146,9 @@ br_status ws_open(water_scene *w, scene *s, const ws_opts *o, br_err *err)
     memset(w, 0, sizeof *w);
     if (o) w->o = *o;
     w->rw = calloc(1, sizeof *w->rw);
-    if (!w->rw) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
+    w->wclips = malloc(rs_clip_mem_size(SCENE_CLIPS));
+    w->rclips = malloc(rs_clip_mem_size(SCENE_CLIPS));
+    if (!w->rw || !w->wclips || !w->rclips) return br_err_set(err, BR_E_NOMEM, NULL, "out of memory");
     rw_tables(w->rw);                   /* here, not in the first frame */
     {   /* the refraction tint's length, once: a quarter of the relief, at most WS_TINT_MM
          * (hf_z_to_mm and rt_mm_to_world divide in 64 bits) */
@@ -197,6 +199,7 @@ void ws_close(water_scene *w)
     }
     free(w->id); free(w->tbox);
     free(w->rstrip); free(w->rcache); free(w->rchunks); free(w->rbed); free(w->rw);
+    free(w->wclips); free(w->rclips);
     free(w->rmesh_mem); free(w->rverts); free(w->rvprev); free(w->rst); free(w->rparts_mem);
     memset(w, 0, sizeof *w);
 }
@@ -209,6 +212,7 @@ static br_status water_frame(water_scene *w, const ws_surf *u, const rs_frame *t
     w->wfr.v = u->verts; w->wfr.nv = u->mesh.nv; w->wfr.cache = u->cache;
     w->wfr.prims = &u->prim; w->wfr.nprims = 1;
     w->wfr.chunks = u->chunks;
+    w->wfr.clips = w->wclips; w->wfr.clip_cap = SCENE_CLIPS;
     w->wfr.no_clear = 1;                /* rw_pass_water seeds it from the terrain's depth */
     w->wfr.vp = tf->vp;
     return rs_frame_prepare(&w->wfr);
@@ -580,6 +584,8 @@ static br_status refl_frame(water_scene *w, scene *s, const cam *c, const rs_fra
     w->rfr.cache = w->rcache;
     w->rfr.prims = &w->rprim; w->rfr.nprims = 1;
     w->rfr.chunks = w->rchunks;
+    w->rfr.clips = w->rclips;           /* (not the terrain frame's, which *tf copied) */
+    w->rfr.clip_cap = SCENE_CLIPS;
     /* the plane clips; with no vertex under it nothing is cut and no outcode is set */
     w->rfr.clip_z_on = below; w->rfr.clip_z = plane_z;
     w->rfr.clear_rows = NULL;           /* the reflection's sky comes from the hook */

@@ -103,6 +103,7 @@ typedef struct water_scene {
     int32_t (*tbox)[6];         /* the world box (min x, y, z, max x, y, z) of each of surf[1]'s */
     uint32_t ntbox;             /* tested triangles (far_pays) */
     rs_frame wfr;
+    rs_clip_poly *wclips, *rclips;      /* the water and mirror frames' clip tables (SCENE_CLIPS) */
     uint32_t *rstrip;           /* the terrain strip with its first index doubled */
     uint32_t rstrip_cap;
     rs_cvert *rcache;

@@ -133,6 +133,16 @@ enum {
     RS_OUT_CLIPZ = 128          /* rs_frame.clip_z_on: the vertex's world z < clip_z */
 };
 
+/* A polygon the clipper made, in a frame's clip table (rs_frame.clips): triangle (ia,
+ * ib, ic) in the order the draw hands it to the clipper, n projected vertices (0: none
+ * left), made by the prepare numbered gen of frame owner. */
+typedef struct rs_clip_poly {
+    const void *owner;
+    uint32_t gen, ia, ib, ic;
+    int32_t n;
+    rs_cvert v[RS_CLIP_MAX];
+} rs_clip_poly;
+
 /* One frame.  Zero-initialise, fill the inputs, call rs_frame_prepare, then render
  * (whole frame or bands).  Zero fields mean defaults. */
 typedef struct rs_frame {
@@ -168,6 +178,17 @@ typedef struct rs_frame {
                                    clear_rows[4 y + (x & 3)] in the frame's format (a sky
                                    gradient by row with a 4x4 ordered dither for RGB565,
                                    raster/water.h) */
+    rs_clip_poly *clips;        /* optional (NULL: none): clip_cap entries, a power of two,
+                                   of caller memory (rs_clip_mem_size).  rs_frame_prepare
+                                   clips each triangle of the chunks that reach the near
+                                   plane or the guard band once, into it, until it is
+                                   full; a band draws those from their polygon instead of
+                                   clipping them again (the same polygon: the same pixels
+                                   with or without it, at any band height and thread
+                                   count).  The others, the world plane's and any beyond
+                                   the table's room, are clipped by each band they meet */
+    uint32_t clip_cap;
+    uint32_t clip_gen;          /* set by rs_frame_prepare: its count for this frame */
     int32_t debug_count;        /* tests: colour must be XRGB8888; each covered pixel's
                                    32-bit value counts the writes (no depth test, no sky).
                                    Only builds with RS_WITH_COUNT = 1 draw it (the tests'
@@ -186,6 +207,8 @@ size_t rs_cache_mem_size(uint32_t nv);
 #define RS_CHUNK 64
 size_t rs_chunk_mem_size(const rs_prim *prims, int32_t nprims);
 size_t rs_band_mem_size(int32_t w, int32_t rows, int32_t fmt, int32_t depth);
+/* Bytes for a clip table of n entries (rs_frame.clips; n a power of two). */
+size_t rs_clip_mem_size(uint32_t n);
 
 /* Fills one cache entry from screen-space data (sub-pixels, depth d <= RS_DEPTH_ONE,
  * colour 0xRRGGBB), for callers that project themselves (tests, 2D overlays): such a

@@ -24,6 +24,7 @@
 #define rs_cache_mem_size rs_cache_mem_size_v3
 #define rs_chunk_mem_size rs_chunk_mem_size_v3
 #define rs_band_mem_size rs_band_mem_size_v3
+#define rs_clip_mem_size rs_clip_mem_size_v3
 #define rs_cvert_set rs_cvert_set_v3
 #define rs_cvert_recolour rs_cvert_recolour_v3
 #define rs_frame_prepare rs_frame_prepare_v3

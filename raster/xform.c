@@ -8,6 +8,7 @@
  */
 #include <string.h>
 #include "raster/raster_int.h"
+#include "raster/raster_clip.h"
 
 size_t rs_cache_mem_size(uint32_t nv) { return (size_t)nv * sizeof(rs_cvert); }
 
@@ -17,6 +18,65 @@ size_t rs_chunk_mem_size(const rs_prim *prims, int32_t nprims)
     int32_t p;
     for (p = 0; p < nprims; p++) n += (rsi_prim_tris(&prims[p]) + RS_CHUNK - 1) / RS_CHUNK;
     return (n ? n : 1) * 2 * sizeof(int16_t);    /* never 0: malloc(0) may give NULL */
+}
+
+size_t rs_clip_mem_size(uint32_t n) { return (size_t)n * sizeof(rs_clip_poly); }
+
+/* Triangle t of primitive pr in the order the draw hands it to the clipper
+ * (raster_draw.h: strip_tri's, the list loop's): a strip's even triangles s[t], s[t + 1],
+ * s[t + 2], its odd ones s[t + 1], s[t], s[t + 2]; a list's s[3t] .. s[3t + 2]. */
+static inline void clip_triple(const rs_prim *pr, uint32_t t, uint32_t *ia, uint32_t *ib, uint32_t *ic)
+{
+    const br_index *s = pr->idx;
+    if (pr->kind == RS_STRIP) {
+        *ia = s[t + (t & 1)]; *ib = s[t + 1 - (t & 1)]; *ic = s[t + 2];
+    } else {
+        *ia = s[3 * t]; *ib = s[3 * t + 1]; *ic = s[3 * t + 2];
+    }
+}
+
+/* The frame's clip table (rs_frame.clips), emptied, then filled with the polygon of every
+ * triangle the bands would clip for the near plane or the guard band (its vertices not
+ * all beyond one rejecting plane), from the chunks chunk_rows gave every row (the only
+ * ones that can hold such a triangle), until the table is full.  Not for a frame drawn
+ * as one band, which clips each triangle once anyway. */
+static void clip_table(rs_frame *f)
+{
+    const uint32_t slow = (uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24;
+    const uint32_t reject = (uint32_t)(RS_OUT_LEFT | RS_OUT_RIGHT | RS_OUT_TOP | RS_OUT_BOTTOM
+                                       | RS_OUT_FAR | RS_OUT_NEAR | RS_OUT_CLIPZ) << 24;
+    const uint32_t mask = f->clip_cap - 1;
+    const rs_cvert *const cache = f->cache;
+    const int16_t *ch = f->chunks;
+    uint32_t i, used = 0;
+    int32_t p;
+    f->clip_gen++;
+    for (i = 0; i <= mask; i++) f->clips[i].owner = NULL;
+    if (f->one_band) return;
+    for (p = 0; p < f->nprims; p++) {
+        const rs_prim *pr = &f->prims[p];
+        const uint32_t nt = rsi_prim_tris(pr);
+        uint32_t t0, t;
+        for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch += 2) {
+            const uint32_t t1 = nt - t0 < RS_CHUNK ? nt : t0 + RS_CHUNK;
+            if (ch[0] != -1 || ch[1] != f->h) continue;
+            for (t = t0; t < t1; t++) {
+                uint32_t ia, ib, ic, h, k;
+                clip_triple(pr, t, &ia, &ib, &ic);
+                if ((cache[ia].c & cache[ib].c & cache[ic].c & reject)
+                    || !((cache[ia].c | cache[ib].c | cache[ic].c) & slow))
+                    continue;
+                h = clip_slot(ia, ib, ic, mask);
+                for (k = 0; k <= mask && clip_mine(f, &f->clips[h]); k++, h = (h + 1) & mask)
+                    if (f->clips[h].ia == ia && f->clips[h].ib == ib && f->clips[h].ic == ic) break;
+                if (k > mask || clip_mine(f, &f->clips[h])) continue;      /* (full, or there) */
+                f->clips[h].owner = f; f->clips[h].gen = f->clip_gen;
+                f->clips[h].ia = ia; f->clips[h].ib = ib; f->clips[h].ic = ic;
+                f->clips[h].n = clip_polygon(f, ia, ib, ic, f->clips[h].v);
+                if (++used > mask) return;
+            }
+        }
+    }
 }
 
 /* Rows [lo, hi] that chunks' triangles can touch (conservative: the pixel-centre rows
@@ -490,7 +550,8 @@ br_status rs_frame_prepare(rs_frame *f)
         || vp->zfar <= vp->znear || vp->cx_q16 != w * (FX_Q16_ONE / 2)
         || vp->cy_q16 != h * (FX_Q16_ONE / 2) || f8 <= 0 || f8 >= ((int64_t)1 << 28)
         || (f->tex && (!f->tex->px || f->tex->w < 1 || f->tex->h < 1 || f->tex->w > RS_MAX_TEX
-                       || f->tex->h > RS_MAX_TEX)))
+                       || f->tex->h > RS_MAX_TEX))
+        || (f->clips && (f->clip_cap < 1 || (f->clip_cap & (f->clip_cap - 1)))))
         return BR_E_ARG;
     if (f->nv) {
         xform_k k;
@@ -529,5 +590,6 @@ br_status rs_frame_prepare(rs_frame *f)
     }
     if (f->one_band) chunk_all_rows(f);
     else chunk_rows(f);
+    if (f->clips) clip_table(f);
     return BR_OK;
 }

@@ -26,6 +26,7 @@
 #define rs_cache_mem_size min_cache_mem_size
 #define rs_band_mem_size min_band_mem_size
 #define rs_chunk_mem_size min_chunk_mem_size
+#define rs_clip_mem_size min_clip_mem_size
 #define rs_cvert_set min_cvert_set
 #define rs_cvert_recolour min_cvert_recolour
 #define rs_frame_prepare min_frame_prepare

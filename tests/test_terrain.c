@@ -5,7 +5,8 @@
  * up serially (rt_from_mesh) or in ranges plus the serial pending pass (the threads'
  * form, with ranges cut anywhere); once a sample's level is cached no vertex on it is
  * left pending, whatever its height; heights outside the table and void samples; the
- * cache's stated size; and the strip of such meshes drawn as a list of its triangles. */
+ * cache's stated size; the strip of such meshes drawn as a list of its triangles; and
+ * the clipper's polygons made once a frame. */
 #include <stdint.h>
 #include <string.h>
 #include "tests/test.h"
@@ -208,6 +209,111 @@ static void test_strip_as_list(void)
     free(mesh_mem); free(v); free(cache); free(chunks); free(list); free(leaves);
 }
 
+/* Frame f drawn in bands of `rows` rows (the last one shorter) into fresh buffers, the
+ * band's stats summed into *clipped; returns the colour. */
+static uint8_t *draw_bands(rs_frame *f, int32_t rows, uint32_t *clipped)
+{
+    const size_t bpp = f->fmt == RS_FMT_RGB565 ? 2 : 4, dbp = f->depth == RS_DEPTH16 ? 2 : 4;
+    uint8_t *col = calloc((size_t)f->w * (size_t)f->h, bpp), *dep = calloc((size_t)f->w * (size_t)f->h, dbp);
+    int32_t y0;
+    CHECK(col && dep);
+    CHECK_EQ(rs_frame_prepare(f), BR_OK);
+    for (y0 = 0; y0 < f->h; y0 += rows) {
+        const int32_t n = f->h - y0 < rows ? f->h - y0 : rows;
+        rs_band_stats st;
+        memset(&st, 0, sizeof st);
+        CHECK_EQ(rs_draw_band(f, y0, n, col + (size_t)y0 * (size_t)f->w * bpp, (size_t)f->w * bpp,
+                              dep + (size_t)y0 * (size_t)f->w * dbp, &st), BR_OK);
+        *clipped += st.clipped;
+    }
+    free(dep);
+    return col;
+}
+
+/* The clip table (rs_frame.clips): 15 m over the lake, looking along it, the flat
+ * lake's large triangles under the camera cross the near plane and show in every band's
+ * rows; drawn with their polygons from the table, in
+ * bands of 1, 7, 16 and 240 rows, with a table too small for them (the rest clipped per
+ * band) and with none, both pixel layouts: the same bytes, and the same count of clipped
+ * triangles per band.  The table must have held such triangles, in the order the draw
+ * hands them over (a strip's odd triangles with their first two swapped: a polygon of
+ * another first vertex draws other bytes, which this test would see). */
+static void test_clip_table(void)
+{
+    rt_scene sc, unused;
+    rs_ramp ramp;
+    bt_params p;
+    bt_mesh m;
+    cam c;
+    void *mesh_mem = NULL;
+    rs_vertex *v = malloc(sizeof *v * 200000);
+    rs_cvert *cache = malloc(sizeof *cache * 200000);
+    int16_t *chunks = malloc(rs_chunk_mem_size(&(rs_prim){ RS_STRIP, 3u * 400000u, NULL }, 1));
+    rs_clip_poly *clips = malloc(rs_clip_mem_size(128));
+    int32_t eye[3], tgt[3], us;
+    int lay;
+    if (!load()) { CHECK(0); return; }
+    scene_pair(&sc, &unused, &ramp);
+    us = sc.shift;
+    memset(&p, 0, sizeof p);
+    p.mode = BT_VIEW; p.fr = sc.fr; p.c = &c; p.hyst_q8 = 64; p.morph_q8 = 128; p.pixel_err_q8 = 256;
+    eye[0] = 1900 << us; eye[1] = 830 << us; eye[2] = 407 << us;    /* 15 m over the lake */
+    tgt[0] = 100 << us; tgt[1] = 900 << us; tgt[2] = 392 << us;
+    CHECK_EQ(cam_look_at(&c, eye, tgt, 60000, 320, 240, 1 << us, 60000 << us), BR_OK);
+    CHECK_EQ(btc_extract(&tree, &p, 200000, &m, &mesh_mem), 0);
+    if (m.nv > 200000 || m.ns > 3 * 400000) { CHECK(0); return; }
+    rt_from_mesh(&sc, &m, v);
+    for (lay = 0; lay < 2; lay++) {
+        static const int32_t rows[4] = { 1, 7, 16, 240 };
+        static const uint32_t caps[3] = { 0, 128, 2 };
+        rs_frame f;
+        rs_prim strip;
+        uint8_t *want;
+        uint32_t want_clipped = 0, k, i, held = 0;
+        const size_t n = (size_t)320 * 240 * (lay ? 2 : 4);
+        int r;
+        memset(&f, 0, sizeof f);
+        f.w = 320; f.h = 240;
+        f.fmt = lay ? RS_FMT_RGB565 : RS_FMT_XRGB8888; f.depth = lay ? RS_DEPTH16 : RS_DEPTH32;
+        f.v = v; f.nv = m.nv; f.cache = cache; f.chunks = chunks; f.clear_rgb = 0x99ccffu;
+        cam_viewproj(&c, &f.vp);
+        strip.kind = RS_STRIP; strip.n = m.ns; strip.idx = m.strip;
+        f.prims = &strip; f.nprims = 1;
+        want = draw_bands(&f, 16, &want_clipped);              /* no table */
+        for (k = 0; k < 3; k++)
+            for (r = 0; r < 4; r++) {
+                uint32_t clipped = 0, cl16 = 0;
+                uint8_t *got;
+                f.clips = caps[k] ? clips : NULL;
+                f.clip_cap = caps[k];
+                got = draw_bands(&f, rows[r], &clipped);
+                CHECK_MSG(!memcmp(want, got, n), "layout %d, table of %u, bands of %d rows: other bytes", lay,
+                          caps[k], rows[r]);
+                if (rows[r] == 16) cl16 = clipped;
+                if (rows[r] == 16) CHECK_EQ(cl16, want_clipped);
+                if (caps[k] == 128 && rows[r] == 16)
+                    for (i = 0, held = 0; i < 128; i++) {
+                        const rs_clip_poly *e = &clips[i];
+                        uint32_t t;
+                        if (e->owner != &f || e->gen != f.clip_gen) continue;
+                        held++;
+                        for (t = 0; t + 2 < m.ns; t++) {        /* a triangle in the draw's order */
+                            const br_index a = m.strip[t + (t & 1)], b = m.strip[t + 1 - (t & 1)];
+                            if (e->ia == a && e->ib == b && e->ic == m.strip[t + 2]) break;
+                        }
+                        CHECK_MSG(t + 2 < m.ns, "entry %u (%u %u %u) is no triangle in the draw's order", i, e->ia,
+                                  e->ib, e->ic);
+                    }
+                free(got);
+            }
+        printf("layout %d: %u polygons in the table, %u clipped triangles drawn in 16-row bands\n", lay, held,
+               want_clipped);
+        CHECK(held >= 8);       /* the view exercises the table */
+        free(want);
+    }
+    free(mesh_mem); free(v); free(cache); free(chunks); free(clips);
+}
+
 /* Heights outside the table (a water level below the lowest sample, one above the
  * highest), a texture (white lit), a void sample, a changed sun after rt_cache_clear,
  * and the stated size. */
@@ -272,6 +378,7 @@ int main(void)
     T_RUN(test_cache_same_bytes);
     T_RUN(test_cache_edges);
     T_RUN(test_strip_as_list);
+    T_RUN(test_clip_table);
     if (have > 0) dem_free(&full);
     free(crop.z);
     free(tree_mem);

@@ -5,6 +5,7 @@
 #define rs_cache_mem_size cnt_cache_mem_size
 #define rs_band_mem_size cnt_band_mem_size
 #define rs_chunk_mem_size cnt_chunk_mem_size
+#define rs_clip_mem_size cnt_clip_mem_size
 #define rs_cvert_set cnt_cvert_set
 #define rs_cvert_recolour cnt_cvert_recolour
 #define rs_frame_prepare cnt_frame_prepare
