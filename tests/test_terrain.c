@@ -122,6 +122,27 @@ static uint8_t *draw_whole(rs_frame *f)
     return col;
 }
 
+/* The view rule's parameters of the drawing tests below: 1 px, hysteresis and geomorph on. */
+static void view_params(bt_params *p, const rt_scene *sc, cam *c)
+{
+    memset(p, 0, sizeof *p);
+    p->mode = BT_VIEW; p->fr = sc->fr; p->c = c; p->hyst_q8 = 64; p->morph_q8 = 128; p->pixel_err_q8 = 256;
+}
+
+/* A 320x240 frame of mesh m's strip (its vertices v, camera c) in layout lay: 0 XRGB8888
+ * with 32-bit depth, 1 RGB565 with 16-bit depth. */
+static void view_frame(rs_frame *f, int lay, const bt_mesh *m, const rs_vertex *v, rs_cvert *cache, int16_t *chunks,
+                       const cam *c, rs_prim *strip)
+{
+    memset(f, 0, sizeof *f);
+    f->w = 320; f->h = 240;
+    f->fmt = lay ? RS_FMT_RGB565 : RS_FMT_XRGB8888; f->depth = lay ? RS_DEPTH16 : RS_DEPTH32;
+    f->v = v; f->nv = m->nv; f->cache = cache; f->chunks = chunks; f->clear_rgb = 0x99ccffu;
+    cam_viewproj(c, &f->vp);
+    strip->kind = RS_STRIP; strip->n = m->ns; strip->idx = m->strip;
+    f->prims = strip; f->nprims = 1;
+}
+
 /* A view mesh's strip drawn as a list of its triangles, in the strip's order and with
  * each triangle's vertices in the order the strip gives them (odd ones with their first
  * two swapped), degenerate ones left out: the same bytes as the strip, in both pixel
@@ -147,8 +168,7 @@ static void test_strip_as_list(void)
     int lay;
     if (!load()) { CHECK(0); return; }
     scene_pair(&sc, &unused, &ramp);
-    memset(&p, 0, sizeof p);
-    p.mode = BT_VIEW; p.fr = sc.fr; p.c = &c; p.hyst_q8 = 64; p.morph_q8 = 128; p.pixel_err_q8 = 256;
+    view_params(&p, &sc, &c);
     for (k = 0; k < 4; k++) {
         /* low over the south shore looking across the crop, 20 m a frame */
         int32_t eye[3], tgt[3], us = sc.shift;
@@ -183,13 +203,7 @@ static void test_strip_as_list(void)
             uint8_t *want, *got;
             const size_t n = (size_t)320 * 240 * (lay ? 2 : 4);
             size_t i;
-            memset(&f, 0, sizeof f);
-            f.w = 320; f.h = 240;
-            f.fmt = lay ? RS_FMT_RGB565 : RS_FMT_XRGB8888; f.depth = lay ? RS_DEPTH16 : RS_DEPTH32;
-            f.v = v; f.nv = m.nv; f.cache = cache; f.chunks = chunks; f.clear_rgb = 0x99ccffu;
-            cam_viewproj(&c, &f.vp);
-            strip.kind = RS_STRIP; strip.n = m.ns; strip.idx = m.strip;
-            f.prims = &strip; f.nprims = 1;
+            view_frame(&f, lay, &m, v, cache, chunks, &c, &strip);
             want = draw_whole(&f);
             lp.kind = RS_LIST; lp.n = nl; lp.idx = list;
             f.prims = &lp;
@@ -255,8 +269,7 @@ static void test_clip_table(void)
     if (!load()) { CHECK(0); return; }
     scene_pair(&sc, &unused, &ramp);
     us = sc.shift;
-    memset(&p, 0, sizeof p);
-    p.mode = BT_VIEW; p.fr = sc.fr; p.c = &c; p.hyst_q8 = 64; p.morph_q8 = 128; p.pixel_err_q8 = 256;
+    view_params(&p, &sc, &c);
     eye[0] = 1900 << us; eye[1] = 830 << us; eye[2] = 407 << us;    /* 15 m over the lake */
     tgt[0] = 100 << us; tgt[1] = 900 << us; tgt[2] = 392 << us;
     CHECK_EQ(cam_look_at(&c, eye, tgt, 60000, 320, 240, 1 << us, 60000 << us), BR_OK);
@@ -272,13 +285,7 @@ static void test_clip_table(void)
         uint32_t want_clipped = 0, k, i, held = 0;
         const size_t n = (size_t)320 * 240 * (lay ? 2 : 4);
         int r;
-        memset(&f, 0, sizeof f);
-        f.w = 320; f.h = 240;
-        f.fmt = lay ? RS_FMT_RGB565 : RS_FMT_XRGB8888; f.depth = lay ? RS_DEPTH16 : RS_DEPTH32;
-        f.v = v; f.nv = m.nv; f.cache = cache; f.chunks = chunks; f.clear_rgb = 0x99ccffu;
-        cam_viewproj(&c, &f.vp);
-        strip.kind = RS_STRIP; strip.n = m.ns; strip.idx = m.strip;
-        f.prims = &strip; f.nprims = 1;
+        view_frame(&f, lay, &m, v, cache, chunks, &c, &strip);
         want = draw_bands(&f, 16, &want_clipped);              /* no table */
         for (k = 0; k < 3; k++)
             for (r = 0; r < 4; r++) {
