@@ -103,9 +103,7 @@ static uint32_t ctz64(uint64_t m)
 
 static void tri_clip(band *bd, uint32_t ia, uint32_t ib, uint32_t ic, int vf);
 
-#define REJECT ((uint32_t)(RS_OUT_LEFT | RS_OUT_RIGHT | RS_OUT_TOP | RS_OUT_BOTTOM | RS_OUT_FAR | RS_OUT_NEAR \
-                              | RS_OUT_CLIPZ) << 24)
-#define SLOW ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD | RS_OUT_CLIPZ) << 24)
+/* (REJECT and SLOW, the draw's outcode tests: raster_clip.h) */
 
 /* Pixel packing from the 21-bit colour fields (R at bit 42, G at 21, B at 0; each
  * 8 integer + 13 fraction bits).  XRGB8888: R and B move with one multiply: the masked

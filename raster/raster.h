@@ -135,10 +135,10 @@ enum {
 
 /* A polygon the clipper made, in a frame's clip table (rs_frame.clips): triangle (ia,
  * ib, ic) in the order the draw hands it to the clipper, n projected vertices (0: none
- * left), made by the prepare numbered gen of frame owner. */
+ * left), made by the last prepare of frame owner (NULL: an empty entry). */
 typedef struct rs_clip_poly {
     const void *owner;
-    uint32_t gen, ia, ib, ic;
+    uint32_t ia, ib, ic;
     int32_t n;
     rs_cvert v[RS_CLIP_MAX];
 } rs_clip_poly;
@@ -188,7 +188,6 @@ typedef struct rs_frame {
                                    count).  The others, the world plane's and any beyond
                                    the table's room, are clipped by each band they meet */
     uint32_t clip_cap;
-    uint32_t clip_gen;          /* set by rs_frame_prepare: its count for this frame */
     int32_t debug_count;        /* tests: colour must be XRGB8888; each covered pixel's
                                    32-bit value counts the writes (no depth test, no sky).
                                    Only builds with RS_WITH_COUNT = 1 draw it (the tests'

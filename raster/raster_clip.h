@@ -6,6 +6,13 @@
 #ifndef BR_RASTER_CLIP_H
 #define BR_RASTER_CLIP_H
 
+/* The draw's outcode tests of a triangle's three vertices: all share a REJECT bit, no
+ * pixel; one has a SLOW bit, the clipper (raster_draw.h strip_tri and the list loop;
+ * xform.c clip_table picks the same triangles, less those of the world plane alone). */
+#define REJECT ((uint32_t)(RS_OUT_LEFT | RS_OUT_RIGHT | RS_OUT_TOP | RS_OUT_BOTTOM | RS_OUT_FAR | RS_OUT_NEAR \
+                              | RS_OUT_CLIPZ) << 24)
+#define SLOW ((uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD | RS_OUT_CLIPZ) << 24)
+
 typedef struct clipv {
     int64_t c[3];         /* camera space, world units */
     int32_t col[3];       /* 0..255 */
@@ -120,10 +127,9 @@ static int32_t clip_polygon(const rs_frame *f, uint32_t ia, uint32_t ib, uint32_
 }
 
 /* The clip table (rs_frame.clips, clip_cap entries, a power of two): open addressing
- * from a hash of the ordered triple.  An entry is this frame's when its owner is the
- * frame and its gen the frame's clip_gen (rs_frame_prepare counts them and empties the
- * table first), so a table that another frame filled since, or an older prepare of this
- * one, only misses. */
+ * from a hash of the ordered triple.  rs_frame_prepare empties it before it fills it, so
+ * an entry is this frame's when its owner is the frame: a table that another frame
+ * filled since only misses. */
 static inline uint32_t clip_slot(uint32_t ia, uint32_t ib, uint32_t ic, uint32_t mask)
 {
     return ((ia * 2654435761u) ^ (ib * 2246822519u) ^ (ic * 3266489917u)) >> 7 & mask;
@@ -131,7 +137,7 @@ static inline uint32_t clip_slot(uint32_t ia, uint32_t ib, uint32_t ic, uint32_t
 
 static inline int clip_mine(const rs_frame *f, const rs_clip_poly *e)
 {
-    return e->owner == f && e->gen == f->clip_gen;
+    return e->owner == f;
 }
 
 /* The polygon of (ia, ib, ic) in f's table, or NULL (not there: the band clips it) */

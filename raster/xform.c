@@ -43,14 +43,11 @@ static inline void clip_triple(const rs_prim *pr, uint32_t t, uint32_t *ia, uint
 static void clip_table(rs_frame *f)
 {
     const uint32_t slow = (uint32_t)(RS_OUT_NEAR | RS_OUT_GUARD) << 24;
-    const uint32_t reject = (uint32_t)(RS_OUT_LEFT | RS_OUT_RIGHT | RS_OUT_TOP | RS_OUT_BOTTOM
-                                       | RS_OUT_FAR | RS_OUT_NEAR | RS_OUT_CLIPZ) << 24;
     const uint32_t mask = f->clip_cap - 1;
     const rs_cvert *const cache = f->cache;
     const int16_t *ch = f->chunks;
     uint32_t i, used = 0;
     int32_t p;
-    f->clip_gen++;
     for (i = 0; i <= mask; i++) f->clips[i].owner = NULL;
     if (f->one_band) return;
     for (p = 0; p < f->nprims; p++) {
@@ -63,14 +60,14 @@ static void clip_table(rs_frame *f)
             for (t = t0; t < t1; t++) {
                 uint32_t ia, ib, ic, h, k;
                 clip_triple(pr, t, &ia, &ib, &ic);
-                if ((cache[ia].c & cache[ib].c & cache[ic].c & reject)
+                if ((cache[ia].c & cache[ib].c & cache[ic].c & REJECT)
                     || !((cache[ia].c | cache[ib].c | cache[ic].c) & slow))
                     continue;
                 h = clip_slot(ia, ib, ic, mask);
                 for (k = 0; k <= mask && clip_mine(f, &f->clips[h]); k++, h = (h + 1) & mask)
                     if (f->clips[h].ia == ia && f->clips[h].ib == ib && f->clips[h].ic == ic) break;
                 if (k > mask || clip_mine(f, &f->clips[h])) continue;      /* (full, or there) */
-                f->clips[h].owner = f; f->clips[h].gen = f->clip_gen;
+                f->clips[h].owner = f;
                 f->clips[h].ia = ia; f->clips[h].ib = ib; f->clips[h].ic = ic;
                 f->clips[h].n = clip_polygon(f, ia, ib, ic, f->clips[h].v);
                 if (++used > mask) return;
