@@ -22,6 +22,7 @@
 #include <time.h>
 #include "platform/clock.h"
 #include "platform/bench_default.h"
+#include "platform/bench_vis.h"
 #include "platform/assets.h"
 #include "platform/campath.h"
 #include "platform/opt.h"
@@ -167,7 +168,8 @@ void bd_set_pool(bd_run *r, pt_pool *pool)
 int cmd_bench_default(int argc, char **argv)
 {
     const char *dems[16], *path = NULL, *out = NULL, *tree = NULL;
-    int ndem = 0, frames = 10, warm = 0, fill_voids = 0, i, rc = 1;
+    int ndem = 0, frames = 10, warm = 0, fill_voids = 0, vis = 0, i, rc = 1;
+    bd_vis vc;
     bd_run *r = calloc(1, sizeof *r);
     campath cp = {NULL, 0};
     scene_opts so;
@@ -177,6 +179,7 @@ int cmd_bench_default(int argc, char **argv)
     br_err err;
     double *ms = NULL, *sel_ms = NULL, eye[3], tgt[3];
     if (!r) return 1;
+    memset(&vc, 0, sizeof vc);
     r->w = 320; r->h = 240; r->fmt = RS_FMT_XRGB8888; r->depth = RS_DEPTH32; r->bands = 64; r->pix_err = 1;
     memset(&wo, 0, sizeof wo);
     wo.quiet = 1;
@@ -201,6 +204,9 @@ int cmd_bench_default(int argc, char **argv)
             { "--fill-voids", OPT_FLAG, &fill_voids, 0, 0, 0, NULL, NULL,
               "fill the terrain's voids from their borders first, as render and view do with it", NULL },
             { "-o", OPT_STR, &out, 0, 0, 0, NULL, "OUT.png", "write the last frame", NULL },
+            { "--visibility", OPT_FLAG, &vis, 0, 0, 0, NULL, NULL,
+              "also count, outside the timed frames, the terrain triangles that own a pixel of the "
+              "frame and why the others own none (the frame drawn again)", NULL },
             { "--with-water", OPT_FLAG, &r->water, 0, 0, 0, NULL, NULL,
               "draw water, sky and fog as render and view do (default: the terrain frame alone); "
               "the water options below apply", NULL },
@@ -267,6 +273,10 @@ int cmd_bench_default(int argc, char **argv)
             sel_ms[i] = r->t_mid - t0;
         }
         if (st != BR_OK) { fprintf(stderr, "bitrain bench: frame %d failed (%d)\n", k + 1, (int)st); goto done; }
+        if (vis && i >= 0 && bd_visibility(&r->fr, &vc, &err) != BR_OK) {
+            fprintf(stderr, "bitrain bench: frame %d: %s\n", k + 1, err.msg);
+            goto done;
+        }
     }
     {
         double med, smed, tri = (double)r->tris / frames;
@@ -279,6 +289,14 @@ int cmd_bench_default(int argc, char **argv)
                path ? path : "-", r->w, r->h, r->pix_err, r->fmt == RS_FMT_RGB565 ? "rgb565" : "rgb888",
                r->depth == RS_DEPTH16 ? 16 : 32, r->bands, frames, med, smed, tri,
                tri / med / 1e3, med > smed ? tri / (med - smed) / 1e3 : 0.0);
+    }
+    if (vis && vc.tris) {
+        const double n = (double)vc.frames, pc = 100.0 / (double)vc.tris;
+        printf("visibility: triangles/frame=%.0f seen=%.0f (%.1f%%) tiny=%.0f (%.1f%%) edge=%.0f (%.1f%%) "
+               "back=%.0f (%.1f%%) hidden=%.0f (%.1f%%)\n", (double)vc.tris / n, (double)vc.seen / n,
+               (double)vc.seen * pc, (double)vc.tiny / n, (double)vc.tiny * pc, (double)vc.edge / n,
+               (double)vc.edge * pc, (double)vc.back / n, (double)vc.back * pc, (double)vc.hidden / n,
+               (double)vc.hidden * pc);
     }
     rc = 0;
     if (out) {
