@@ -29,6 +29,7 @@
 #include "platform/cmd.h"
 #include "platform/png_io.h"
 #include "platform/scene.h"
+#include "platform/sink_frame.h"
 #include "platform/water_scene.h"
 
 #define BD_FOV 60
@@ -65,16 +66,6 @@ __attribute__((noinline)) br_status bd_select(bd_run *r, const cam *c)
     return scene_frame(&r->s, c, &bp, &r->fr, &r->prim);
 }
 
-/* A sink that keeps the band in the frame's colour buffer (for -o). */
-static br_status keep_band(void *user, int32_t y0, int32_t rows, const void *px, size_t stride)
-{
-    bd_run *r = (bd_run *)user;
-    size_t bpp = r->fmt == RS_FMT_RGB565 ? 2u : 4u, row = (size_t)r->w * bpp;
-    int32_t y;
-    for (y = 0; y < rows; y++) memcpy(r->color + (size_t)(y0 + y) * row, (const uint8_t *)px + (size_t)y * stride, row);
-    return BR_OK;
-}
-
 /* The frame driver over the prepared frame, band by band: the terrain pass, or with
  * --with-water the water scene's passes and post hook (ws_frame, then its pipe). */
 __attribute__((noinline)) br_status bd_raster(bd_run *r, const cam *c);
@@ -99,7 +90,12 @@ __attribute__((noinline)) br_status bd_raster(bd_run *r, const cam *c)
         r->band_mem_size = r->band_mem ? need : 0;
         if (!r->band_mem) return BR_E_NOMEM;
     }
-    return rs_pipe_run(p, r->bands, r->band_mem, r->band_mem_size, keep_band, r, NULL);
+    {
+        sink_frame sf;
+        sf.px = r->color;
+        sf.row_bytes = (size_t)r->w * (r->fmt == RS_FMT_RGB565 ? 2u : 4u);
+        return rs_pipe_run(p, r->bands, r->band_mem, r->band_mem_size, sink_frame_band, &sf, NULL);
+    }
 }
 
 /* One terrain frame.  Not static and not inlined: callgrind toggles on it. */

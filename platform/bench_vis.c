@@ -2,23 +2,10 @@
 #include "platform/bench_vis.h"
 #include <stdlib.h>
 #include <string.h>
+#include "platform/sink_frame.h"
 #include "raster/frame.h"
 
 #define VIS_MAX_ID 0xffffffu
-
-typedef struct vis_sink {
-    uint32_t *px;       /* the finished frame, w x h */
-    int32_t w;
-} vis_sink;
-
-static br_status keep_rows(void *user, int32_t y0, int32_t rows, const void *px, size_t stride)
-{
-    const vis_sink *s = (const vis_sink *)user;
-    int32_t y;
-    for (y = 0; y < rows; y++)
-        memcpy(s->px + (size_t)(y0 + y) * (size_t)s->w, (const uint8_t *)px + (size_t)y * stride, (size_t)s->w * 4);
-    return BR_OK;
-}
 
 /* The frame's triangles as a list in draw order, each with its own three vertices (a
  * strip's odd triangles with their first two swapped, as the rasteriser draws them),
@@ -78,7 +65,8 @@ br_status bd_visibility(const rs_frame *f, bd_vis *acc, br_err *err)
     rs_prim list;
     rs_pipe pipe;
     rs_pass pass;
-    vis_sink sink;
+    sink_frame sink;
+    uint32_t *px = NULL;
     rs_vertex *v = NULL;
     br_index *idx = NULL;
     uint8_t *seen = NULL;
@@ -96,10 +84,11 @@ br_status bd_visibility(const rs_frame *f, bd_vis *acc, br_err *err)
     g.cache = malloc(rs_cache_mem_size(g.nv ? g.nv : 1));
     g.chunks = malloc(rs_chunk_mem_size(&list, 1));
     seen = calloc((size_t)nt + 1, 1);
-    sink.w = g.w;
-    sink.px = malloc(sizeof *sink.px * (size_t)g.w * (size_t)g.h);
+    px = malloc(sizeof *px * (size_t)g.w * (size_t)g.h);
+    sink.px = px;
+    sink.row_bytes = (size_t)g.w * 4;
     st = BR_E_NOMEM;
-    if (!g.cache || !g.chunks || !seen || !sink.px) goto out;
+    if (!g.cache || !g.chunks || !seen || !px) goto out;
     if ((st = rs_frame_prepare(&g)) != BR_OK) goto out;
     memset(&pipe, 0, sizeof pipe);
     pipe.w = g.w; pipe.h = g.h; pipe.fmt = g.fmt; pipe.depth = g.depth;
@@ -107,9 +96,9 @@ br_status bd_visibility(const rs_frame *f, bd_vis *acc, br_err *err)
     need = rs_pipe_mem_size(&pipe, g.h);
     st = BR_E_NOMEM;
     if (!(band = malloc(need))) goto out;
-    if ((st = rs_pipe_run(&pipe, g.h, band, need, keep_rows, &sink, NULL)) != BR_OK) goto out;
+    if ((st = rs_pipe_run(&pipe, g.h, band, need, sink_frame_band, &sink, NULL)) != BR_OK) goto out;
     for (i = 0; i < (size_t)g.w * (size_t)g.h; i++) {
-        const uint32_t id = sink.px[i] & VIS_MAX_ID;
+        const uint32_t id = px[i] & VIS_MAX_ID;
         if (id && id <= nt) seen[id] = 1;
     }
     for (t = 0; t < nt; t++) {
@@ -126,6 +115,6 @@ br_status bd_visibility(const rs_frame *f, bd_vis *acc, br_err *err)
 out:
     if (st != BR_OK) br_err_set(err, st, NULL, st == BR_E_NOMEM ? "visibility: out of memory"
                                                                  : "visibility: frame not drawn again");
-    free(v); free(idx); free(seen); free(g.cache); free(g.chunks); free(sink.px); free(band);
+    free(v); free(idx); free(seen); free(g.cache); free(g.chunks); free(px); free(band);
     return st;
 }

@@ -23,6 +23,7 @@
 #include "platform/cmd.h"
 #include "platform/opt.h"
 #include "platform/png_io.h"
+#include "platform/sink_frame.h"
 #include "raster/frame.h"
 #include "raster/raster.h"
 #include "benchmarks/peer_scene.h"
@@ -50,20 +51,6 @@ __attribute__((noinline)) static br_status warm_frame(rs_frame *f, const rs_pipe
     return s == BR_OK && b->rows != f->h ? BR_E_ARG : s;
 }
 
-/* Band mode's sink: the bands into one frame (colour, w pixels a row), for -o. */
-typedef struct frame_copy {
-    uint8_t *px;
-    size_t row_bytes;
-} frame_copy;
-
-static br_status bench_band_sink(void *user, int32_t y0, int32_t rows, const void *px, size_t stride)
-{
-    const frame_copy *fc = (const frame_copy *)user;
-    int32_t y;
-    for (y = 0; y < rows; y++)
-        memcpy(fc->px + (size_t)(y0 + y) * fc->row_bytes, (const uint8_t *)px + (size_t)y * stride, fc->row_bytes);
-    return BR_OK;
-}
 
 #define BENCH_SYNOPSIS "--scene peer [options]\n" \
     "  the peer benchmark scene of ../shared/bench/PEERS.md, drawn by the rasteriser alone"
@@ -98,7 +85,7 @@ int cmd_bench(int argc, char **argv)
     rs_pass terrain;
     rs_band band = { 0 };
     rs_band_stats st;
-    frame_copy fc;
+    sink_frame fc;
     size_t bpp, memsize;
     void *mem;
     double *ms;
@@ -138,7 +125,7 @@ int cmd_bench(int argc, char **argv)
     memsize = rs_pipe_mem_size(&pipe, band_rows);
     mem = malloc(memsize);
     fc.row_bytes = (size_t)w * bpp;
-    fc.px = (uint8_t *)malloc(fc.row_bytes * (size_t)h);
+    fc.px = malloc(fc.row_bytes * (size_t)h);
     if (!f.cache || !f.chunks || !mem || !fc.px) { fprintf(stderr, "bitrain bench: out of memory\n"); return 1; }
     memset(&st, 0, sizeof st);
     for (i = -warm; i < frames; i++) {   /* i < 0: untimed warm-up, outside bench_frame */
@@ -146,7 +133,7 @@ int cmd_bench(int argc, char **argv)
         br_status s;
         if (bands > 0) {   /* band mode: the driver's band loop into fc */
             s = rs_frame_prepare(&f);
-            if (s == BR_OK) s = rs_pipe_run(&pipe, band_rows, mem, memsize, bench_band_sink, &fc, &st);
+            if (s == BR_OK) s = rs_pipe_run(&pipe, band_rows, mem, memsize, sink_frame_band, &fc, &st);
         } else s = i < 0 ? warm_frame(&f, &pipe, mem, memsize, &band, &st)
                          : bench_frame(&f, &pipe, mem, memsize, &band, &st);
         if (s != BR_OK) { fprintf(stderr, "bitrain bench: render failed (%d)\n", (int)s); return 1; }
@@ -165,8 +152,8 @@ int cmd_bench(int argc, char **argv)
         br_err err;
         uint8_t *rgb = (uint8_t *)malloc((size_t)w * (size_t)h * 3);
         if (!rgb) return 1;
-        if (bands == 0) bench_band_sink(&fc, 0, h, band.color, band.stride);
-        for (i = 0; i < h; i++) rs_to_rgb888(fmt, fc.px + (size_t)i * fc.row_bytes, w, rgb + (size_t)i * (size_t)w * 3);
+        if (bands == 0) sink_frame_band(&fc, 0, h, band.color, band.stride);
+        for (i = 0; i < h; i++) rs_to_rgb888(fmt, (const uint8_t *)fc.px + (size_t)i * fc.row_bytes, w, rgb + (size_t)i * (size_t)w * 3);
         if (png_write_rgb(out, w, h, rgb, (size_t)w * 3, &err) != BR_OK) {
             fprintf(stderr, "bitrain bench: %s\n", err.msg);
             return 1;

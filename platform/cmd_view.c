@@ -24,6 +24,7 @@
 #include "platform/pipe_threads.h"
 #include "platform/png_io.h"
 #include "platform/scene_args.h"
+#include "platform/sink_frame.h"
 #include "platform/view.h"
 #include "platform/water_scene.h"
 
@@ -99,15 +100,6 @@ static rs_pipe *water_pipe(view_app *a, const cam *c, rs_frame *fr)
 
 static double now_s(void) { return (double)SDL_GetPerformanceCounter() / (double)SDL_GetPerformanceFrequency(); }
 
-static br_status sink_frame(void *user, int32_t y0, int32_t rows, const void *px, size_t stride)
-{
-    view_app *a = (view_app *)user;
-    int32_t y;
-    for (y = 0; y < rows; y++)
-        memcpy(a->px + (size_t)(y0 + y) * (size_t)a->w, (const uint8_t *)px + (size_t)y * stride, (size_t)a->w * 4);
-    return BR_OK;
-}
-
 static void smooth(double *acc, double x, int first) { *acc = first ? x : 0.9 * *acc + 0.1 * x; }
 
 /* LOD colouring: the frame draws the mesh as a list of separately tinted triangles
@@ -146,6 +138,7 @@ static int draw_frame(view_app *a)
     rs_pass terrain;
     rs_pipe p, *run;
     rs_band_stats tot;
+    sink_frame sf;
     view_posts posts;
     int first = a->nframe == 0;
     if (a->path.n) {
@@ -208,7 +201,9 @@ static int draw_frame(view_app *a)
         p.post = view_post;
         p.post_user = &a->ov;
     }
-    if (pt_run(a->pool, run, a->band_rows, sink_frame, a, &tot) != BR_OK) {
+    sf.px = a->px;
+    sf.row_bytes = (size_t)a->w * 4;
+    if (pt_run(a->pool, run, a->band_rows, sink_frame_band, &sf, &tot) != BR_OK) {
         fprintf(stderr, "bitrain view: drawing the frame failed\n");
         return 0;
     }
