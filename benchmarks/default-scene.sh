@@ -4,7 +4,8 @@
 # the viewer's 64-row bands, 1 px) on assets/N47E009.hgt.gz along the camera paths of
 # assets/*.cam, at 320x240 and 640x480; instructions per frame by callgrind when valgrind
 # is present (--toggle-collect=bench_default_frame), wall time and triangles per second
-# (whole pipeline, and the rasteriser alone) always.  Run from make bench (./bitrain built).
+# (whole pipeline, and the rasteriser alone) and the share of the triangles that own a
+# pixel (--visibility: docs/benchmarks.md) always.  Run from make bench (./bitrain built).
 # FRAMES=N (default 30) frames per path.
 cd "$(dirname "$0")/.." || exit 1
 FRAMES=${FRAMES:-30}
@@ -13,6 +14,9 @@ mkdir -p benchmarks/out
 for size in 320x240 640x480; do
   for p in default lake alps; do
     ./bitrain bench --scene default --path assets/$p-path.cam --size $size --frames "$FRAMES" || exit 1
+    # (its own run: the frames drawn again between the timed ones would move their times)
+    ./bitrain bench --scene default --path assets/$p-path.cam --size $size --frames "$FRAMES" --visibility \
+      | sed -n 's/^visibility: /  visibility: /p'
     if command -v valgrind >/dev/null 2>&1; then
       out=benchmarks/out/callgrind.default.$p.$size
       valgrind --tool=callgrind --toggle-collect=bench_default_frame --callgrind-out-file=$out \
