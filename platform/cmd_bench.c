@@ -51,7 +51,6 @@ __attribute__((noinline)) static br_status warm_frame(rs_frame *f, const rs_pipe
     return s == BR_OK && b->rows != f->h ? BR_E_ARG : s;
 }
 
-
 #define BENCH_SYNOPSIS "--scene peer [options]\n" \
     "  the peer benchmark scene of ../shared/bench/PEERS.md, drawn by the rasteriser alone"
 
