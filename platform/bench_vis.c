@@ -7,25 +7,23 @@
 
 #define VIS_MAX_ID 0xffffffu
 
-/* The frame's triangles as a list in draw order, each with its own three vertices (a
- * strip's odd triangles with their first two swapped, as the rasteriser draws them),
- * coloured with their number 1, 2, ...; *nt of them. */
+/* The frame's triangles as a list in draw order (rs_prim_tri), each with its own three
+ * vertices, coloured with their number 1, 2, ...; *nt of them. */
 static br_status id_list(const rs_frame *f, rs_vertex **v, br_index **idx, uint32_t *nt)
 {
     uint64_t cap = 0;
     uint32_t n = 0, t;
     int32_t p;
-    for (p = 0; p < f->nprims; p++) cap += f->prims[p].n;
+    for (p = 0; p < f->nprims; p++) cap += rs_prim_tris(&f->prims[p]);
     if (cap > VIS_MAX_ID) return BR_E_ARG;
     *v = malloc(sizeof **v * 3 * (size_t)(cap + 1));
     *idx = malloc(sizeof **idx * 3 * (size_t)(cap + 1));
     if (!*v || !*idx) return BR_E_NOMEM;
     for (p = 0; p < f->nprims; p++) {
         const rs_prim *pr = &f->prims[p];
-        const int strip = pr->kind == RS_STRIP;
-        for (t = 0; t + 2 < pr->n; t += strip ? 1u : 3u) {
-            uint32_t a = pr->idx[t], b = pr->idx[t + 1], c = pr->idx[t + 2], k;
-            if (strip && (t & 1u)) { const uint32_t s = a; a = b; b = s; }
+        for (t = 0; t < rs_prim_tris(pr); t++) {
+            uint32_t a, b, c, k;
+            rs_prim_tri(pr, t, &a, &b, &c);
             if (a == b || b == c || a == c) continue;     /* a strip's line triangle */
             (*v)[3 * n] = f->v[a]; (*v)[3 * n + 1] = f->v[b]; (*v)[3 * n + 2] = f->v[c];
             for (k = 0; k < 3; k++) {

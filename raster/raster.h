@@ -109,6 +109,26 @@ typedef struct rs_prim {
     const br_index *idx;        /* (core/config.h: 32 bits, or 16 with BR_INDEX16) */
 } rs_prim;
 
+/* Triangles of a primitive (a strip's line triangles, whose indices repeat, included). */
+static inline uint32_t rs_prim_tris(const rs_prim *pr)
+{
+    if (pr->n < 3) return 0;
+    return pr->kind == RS_STRIP ? pr->n - 2 : pr->n / 3;
+}
+
+/* Triangle t of pr, its vertices in the order the rasteriser draws them: a strip's even
+ * triangles s[t], s[t + 1], s[t + 2], its odd ones s[t + 1], s[t], s[t + 2]; a list's
+ * s[3t] .. s[3t + 2]. */
+static inline void rs_prim_tri(const rs_prim *pr, uint32_t t, uint32_t *ia, uint32_t *ib, uint32_t *ic)
+{
+    const br_index *s = pr->idx;
+    if (pr->kind == RS_STRIP) {
+        *ia = s[t + (t & 1)]; *ib = s[t + 1 - (t & 1)]; *ic = s[t + 2];
+    } else {
+        *ia = s[3 * t]; *ib = s[3 * t + 1]; *ic = s[3 * t + 2];
+    }
+}
+
 /* Vertex cache entry (32 bytes; 24 without RS_TEX_FIELDS): screen position in
  * sub-pixels, depth, colour with the outcode in the top byte of c, the colour in the
  * rasteriser's packed interpolation form (8-bit R, G, B at bits 42, 21, 0, see

@@ -542,7 +542,7 @@ RSI_INLINE static void draw_strips(band *bd, const int vf)
     for (p = 0; p < f->nprims; p++) {
         const rs_prim *pr = &f->prims[p];
         const br_index *s = pr->idx;
-        uint32_t k, nt = rsi_prim_tris(pr), t0;
+        uint32_t k, nt = rs_prim_tris(pr), t0;
         if (nt == 0) continue;
         for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch = ch ? ch + 2 : ch) {
             uint32_t t1 = nt - t0 < RS_CHUNK ? nt : t0 + RS_CHUNK;

@@ -75,13 +75,6 @@ static inline uint64_t rsi_pack_rgb(uint32_t rgb)
     return ((uint64_t)(rgb & 0xff0000u) << 26) | ((uint64_t)(rgb & 0xff00u) << 13) | (uint64_t)(rgb & 255u);
 }
 
-/* Triangles of a primitive. */
-static inline uint32_t rsi_prim_tris(const rs_prim *pr)
-{
-    if (pr->n < 3) return 0;
-    return pr->kind == RS_STRIP ? pr->n - 2 : pr->n / 3;
-}
-
 /* f in Q8 pixels (f <= 2^20 px for fovy >= 1 deg and h <= 16384, so < 2^28). */
 static inline int64_t rsi_f_q8(const cam_vp *vp) { return (vp->f_q16 + 128) >> 8; }
 

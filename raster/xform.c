@@ -16,24 +16,11 @@ size_t rs_chunk_mem_size(const rs_prim *prims, int32_t nprims)
 {
     size_t n = 0;
     int32_t p;
-    for (p = 0; p < nprims; p++) n += (rsi_prim_tris(&prims[p]) + RS_CHUNK - 1) / RS_CHUNK;
+    for (p = 0; p < nprims; p++) n += (rs_prim_tris(&prims[p]) + RS_CHUNK - 1) / RS_CHUNK;
     return (n ? n : 1) * 2 * sizeof(int16_t);    /* never 0: malloc(0) may give NULL */
 }
 
 size_t rs_clip_mem_size(uint32_t n) { return (size_t)n * sizeof(rs_clip_poly); }
-
-/* Triangle t of primitive pr in the order the draw hands it to the clipper
- * (raster_draw.h: strip_tri's, the list loop's): a strip's even triangles s[t], s[t + 1],
- * s[t + 2], its odd ones s[t + 1], s[t], s[t + 2]; a list's s[3t] .. s[3t + 2]. */
-static inline void clip_triple(const rs_prim *pr, uint32_t t, uint32_t *ia, uint32_t *ib, uint32_t *ic)
-{
-    const br_index *s = pr->idx;
-    if (pr->kind == RS_STRIP) {
-        *ia = s[t + (t & 1)]; *ib = s[t + 1 - (t & 1)]; *ic = s[t + 2];
-    } else {
-        *ia = s[3 * t]; *ib = s[3 * t + 1]; *ic = s[3 * t + 2];
-    }
-}
 
 /* The frame's clip table (rs_frame.clips), emptied, then filled with the polygon of every
  * triangle the bands would clip for the near plane or the guard band (its vertices not
@@ -52,14 +39,14 @@ static void clip_table(rs_frame *f)
     if (f->one_band) return;
     for (p = 0; p < f->nprims; p++) {
         const rs_prim *pr = &f->prims[p];
-        const uint32_t nt = rsi_prim_tris(pr);
+        const uint32_t nt = rs_prim_tris(pr);
         uint32_t t0, t;
         for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch += 2) {
             const uint32_t t1 = nt - t0 < RS_CHUNK ? nt : t0 + RS_CHUNK;
             if (ch[0] != -1 || ch[1] != f->h) continue;
             for (t = t0; t < t1; t++) {
                 uint32_t ia, ib, ic, h, k;
-                clip_triple(pr, t, &ia, &ib, &ic);
+                rs_prim_tri(pr, t, &ia, &ib, &ic);    /* as the draw hands it to the clipper */
                 if ((cache[ia].c & cache[ib].c & cache[ic].c & REJECT)
                     || !((cache[ia].c | cache[ib].c | cache[ic].c) & slow))
                     continue;
@@ -90,7 +77,7 @@ static void chunk_rows(rs_frame *f)
     int32_t p;
     for (p = 0; p < f->nprims; p++) {
         const rs_prim *pr = &f->prims[p];
-        uint32_t nt = rsi_prim_tris(pr), t0;
+        uint32_t nt = rs_prim_tris(pr), t0;
         for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch += 2) {
             uint32_t t1 = nt - t0 < RS_CHUNK ? nt : t0 + RS_CHUNK, i0, i1;
             /* two sets of bounds and outcodes (or, and), one for each vertex of a pair,
@@ -136,7 +123,7 @@ static void chunk_all_rows(rs_frame *f)
     int16_t *ch = f->chunks;
     int32_t p;
     for (p = 0; p < f->nprims; p++) {
-        uint32_t nt = rsi_prim_tris(&f->prims[p]), t0;
+        uint32_t nt = rs_prim_tris(&f->prims[p]), t0;
         for (t0 = 0; t0 < nt; t0 += RS_CHUNK, ch += 2) {
             ch[0] = 0;
             ch[1] = (int16_t)(f->h - 1);
