@@ -454,6 +454,9 @@ uint32_t bt_part_tris(const bt_parts *ps, uint32_t k);
 /* Parts of the last extraction whose mesh was the frame before's with the heights of
  * its moving vertices updated, not walked again (frame coherence; a statistic). */
 uint32_t bt_parts_reused(const bt_parts *ps);
+/* Parts of the last extraction walked again only from their first decision that changed
+ * (the part's records before it kept; a statistic). */
+uint32_t bt_parts_resumed(const bt_parts *ps);
 
 /* Budget mode scratch: bt_extract with BT_BUDGET (or a fallback) needs a heap;
  * it is carved from m (bt_mesh_mem_size includes it).  When the recursive walk

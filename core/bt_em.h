@@ -74,6 +74,20 @@ typedef struct bti_pt { int32_t x, y, z; uint32_t idx; uint16_t morph; uint32_t 
  * vertex's height z and weight morph and its index in the part's vertices (vidx,
  * BTI_NO_IDX when no leaf used it).  A point's ri is the record of the split that
  * made it, or BTI_REF_A / C / B for the part root's corners. */
+/* A leaf waiting to be written: its vertex indices, exit edge {o0, o1} and the
+ * third vertex */
+typedef struct bti_leaf { uint32_t ia, ic, ib, o0, o1, other; } bti_leaf;
+
+/* The walk's output state when a record is made (before its triangle's leaves): the part
+ * mesh's counts and the strip writer's, from which a walk can resume there (core/
+ * bt_replay.c bti_part_resume) */
+typedef struct bti_rec_at {
+    uint64_t count;
+    uint32_t nv, ns, ntri, nline, nz, nsplits, nsnap;
+    int32_t has_pend;
+    bti_leaf pend;
+} bti_rec_at;
+
 typedef struct bti_rec {
     uint64_t w;             /* the answer's memo entry's second word then (0: none) */
     int32_t z;
@@ -90,6 +104,7 @@ typedef struct bti_rec {
     uint32_t wdlo, wdhi;    /* a moving weight: morph0 holds while the box distance stays
                                in [wdlo, wdhi] (bti_coh_weight_run; wdlo > wdhi: make it), */
     uint64_t wexp;          /* so while the eye's travel (coh_acc) stays <= wexp */
+    bti_rec_at at;          /* the walk's state then */
 } bti_rec;
 /* A strip writer's test that reads vertex heights, kept by a part's walk (bt_mesh.zlog)
  * so that a replay can tell whether moved heights change the strip: kind 0 rim_line
@@ -137,7 +152,7 @@ typedef struct bti_extract {
     int nodata_free;        /* the grid as read has none: a sample is valid iff in it */
     int32_t wz_lo[256], wz_hi[256]; /* world z of the quantised height codes (floor, ceil),
                                        within +-CAM_COORD_MAX (bti_setup) */
-    struct bti_leaf { uint32_t ia, ic, ib, o0, o1, other; } pend; /* see bti_leaf */
+    bti_leaf pend;          /* the leaf waiting to be written (has_pend) */
     int has_pend;
     uint32_t plan[BTS_PLAN]; int nplan; /* a bridge's way on to the next leaf */
     uint32_t lim_nv, lim_ns;  /* room for two more leaves: vertices, strip indices */
@@ -166,9 +181,15 @@ typedef struct bti_extract {
     uint32_t nrec, cap_rec; /* recorded, room; nrec > cap_rec: some were not */
 } bti_extract;
 
-/* A leaf waiting to be written: its vertex indices, exit edge {o0, o1} and the
- * third vertex */
-typedef struct bti_leaf bti_leaf;
+static inline void bti_rec_at_take(const bti_extract *e, bti_rec_at *a)
+{
+    const bt_mesh *m = e->m;
+    a->count = e->count;
+    a->nv = m->nv; a->ns = m->ns; a->ntri = m->ntri; a->nline = m->nline; a->nz = m->nz;
+    a->nsplits = m->nsplits; a->nsnap = e->nsnap;
+    a->has_pend = e->has_pend;
+    a->pend = e->pend;
+}
 
 /* The mesh's tail area (core/bt_mesh_mem.c): the split id list (heap_cap entries), then
  * the budget heap (bti_heap_n entries; heap_cap is even, so the heap stays 8-byte aligned); the
@@ -282,6 +303,9 @@ struct bt_parts {
         uint8_t reuse;
         uint8_t done;              /* extracted since this frame's bt_extract_begin */
         uint32_t hbase;            /* vertex hash generation (part_reset) */
+        uint32_t hnv;              /* the most vertices a walk of this generation had */
+        uint32_t hins;             /* slots it wrote (a resumed walk writes again slots of
+                                      vertices past where it resumed, which stay taken) */
         uint32_t hint_nv;          /* vertices last frame: the hash and memo in use */
         /* the first hclean, mclean of the hfull, mfull hash and memo slots are cleared
          * (part_reset): memory a part never needed is never touched */
@@ -294,6 +318,9 @@ struct bt_parts {
     uint32_t *cut_tris, *cut_lo, *cut_hi; /* regroup's counts over a part's records (cap_rec) */
     uint8_t replayed[BT_PARTS];    /* part k's mesh this frame is its last one's (bti_part_replay) */
     uint32_t nreused;              /* parts replayed by the last extraction (bt_extract_end) */
+    uint8_t resumed[BT_PARTS];     /* part k's walk this frame was taken up where its last
+                                      one's first decision changed (bti_part_resume) */
+    uint32_t nresumed;             /* such parts in the last extraction (bt_extract_end) */
     bti_extract fx;                /* the seams' writer (bt_extract_end) */
     /* the decision memo of the walk above the parts (bti_part_roots): a mesh with a memo
      * only, BTI_TOP_MEMO entries */
@@ -324,8 +351,12 @@ int bti_rim_line(const bti_extract *e, uint32_t q, uint32_t z, uint32_t r2);
 /* Walks part root r; ridx gets the indices of r's corners in the part's vertices. */
 void bti_part_walk(bti_extract *e, const bti_root *r, uint32_t ridx[3]);
 /* core/bt_replay.c: part k's mesh of the last frame made this frame's without its walk,
- * 1; 0: it cannot be (walk it) */
-int bti_part_replay(bt_parts *ps, uint32_t k);
+ * 1; 0: it cannot be (walk it), *at then the first record whose answer changed (0: none
+ * found), where bti_part_resume may take up the walk: 1 when it did */
+int bti_part_replay(bt_parts *ps, uint32_t k, uint32_t *at);
+int bti_part_resume(bt_parts *ps, uint32_t k, uint32_t at);
+/* part k's extraction state for a walk with its mesh's tables as they are */
+void bti_part_extract_setup(bt_parts *ps, uint32_t k, bti_extract *e);
 /* decide_memo (core/bt_mesh.c): diamond (x, y) in slot idx under plane mask *mask (then
  * the mask handed on), through the mesh's decision memo: -1 culled, 0 leaf, 1 split. */
 int bti_decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph);
@@ -336,6 +367,11 @@ void bti_morph_terms(const bti_extract *e, int32_t x, int32_t y, uint32_t idx, i
                      int64_t *lhs);
 /* for the box distance d = bti_box_dist(eye, lo, hi) */
 uint16_t bti_morph_at(const bti_extract *e, int64_t lhs, int64_t d);
+/* The walk of triangle (a, c, b) (core/bt_mesh.c rec), for a part's walk resumed
+ * (bti_part_resume) */
+void bti_walk_tri(bti_extract *e, bti_pt *a, bti_pt *c, bti_pt *b, int in_hyp, int out_hyp, unsigned mask);
+/* The index of e->m's vertex at (x, y), BTI_NO_IDX when it has none */
+uint32_t bti_vid_lookup(const bti_extract *e, int32_t x, int32_t y);
 
 /* Height of sample (x, y), 0 outside the grid as read or on a void. */
 static inline int32_t bti_zreal(const bt_tree *t, int32_t x, int32_t y)

@@ -383,20 +383,41 @@ static uint32_t home(uint32_t key, uint32_t mask, int direct)
     return (direct ? key : h ^ (h >> 16)) & mask;
 }
 
-static uint32_t vid_find(bti_extract *e, pt *q)
+/* The index of the vertex at (x, y), or NO_IDX with *hs the free slot where it goes.
+ * A slot reads as free when its index is not below m->nv (a vertex of an earlier walk,
+ * or one past where core/bt_replay.c bti_part_resume cut the mesh back); one below it
+ * that holds another vertex is passed.  Every slot a kept vertex's probe passed held a
+ * vertex numbered before it, so it is passed again while that vertex is kept. */
+static inline uint32_t vid_slot(const bti_extract *e, int32_t x, int32_t y, uint32_t *hs)
 {
-    bt_mesh *m = e->m;
-    uint32_t key = (uint32_t)q->y * (uint32_t)e->n + (uint32_t)q->x;
+    const bt_mesh *m = e->m;
+    uint32_t key = (uint32_t)y * (uint32_t)e->n + (uint32_t)x;
     uint32_t h = home(key, m->hmask, e->direct);
     for (;;) {
         uint32_t s = m->hash[h] - e->hbase;   /* 1 + index; <= 0 (wrapped): empty */
         if (s == 0 || s > m->nv) break;
-        if (m->v[s - 1].x == q->x && m->v[s - 1].y == q->y) return q->idx = s - 1;
+        if (m->v[s - 1].x == x && m->v[s - 1].y == y) return s - 1;
         h = (h + (e->direct ? ((key * 2654435761u) >> 15) | 1u : 1u)) & m->hmask;
     }
+    *hs = h;
+    return NO_IDX;
+}
+
+uint32_t bti_vid_lookup(const bti_extract *e, int32_t x, int32_t y)
+{
+    uint32_t h;
+    return vid_slot(e, x, y, &h);
+}
+
+static uint32_t vid_find(bti_extract *e, pt *q)
+{
+    bt_mesh *m = e->m;
+    uint32_t h = 0, i = vid_slot(e, q->x, q->y, &h);
+    if (i != NO_IDX) return q->idx = i;
     {
-        uint32_t i = m->nv++;
-        bt_vert *v = &m->v[i];
+        bt_vert *v;
+        i = m->nv++;
+        v = &m->v[i];
         v->x = q->x; v->y = q->y; v->z = q->z;
         v->morph = q->morph;
         v->state = q->morph == BT_MORPH_ONE ? BT_S : BT_F;
@@ -456,6 +477,7 @@ static void rec(bti_extract *e, pt *a, pt *c, pt *b, int in_hyp, int out_hyp, un
             r->aref = a->ri; r->bref = b->ri; r->cref = c->ri; r->vidx = NO_IDX; r->terms = 0;
             r->w = bti_memo_w(e->m, id);
             r->wdlo = 1; r->wdhi = 0; r->wexp = 0;
+            bti_rec_at_take(e, &r->at);
         }
     } else {
         uint64_t exp;
@@ -598,6 +620,9 @@ void bti_part_walk(bti_extract *e, const bti_root *r, uint32_t ridx[3])
 int bti_decide_memo(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph)
 { return decide_memo(e, x, y, idx, mask, morph); }
 
+void bti_walk_tri(bti_extract *e, bti_pt *a, bti_pt *c, bti_pt *b, int in_hyp, int out_hyp, unsigned mask)
+{ rec(e, a, c, b, in_hyp, out_hyp, mask); }
+
 /* ------------------------------------------------------------ public */
 br_status bti_setup(bti_extract *e, bt_tree *t, const bt_params *p)
 {
@@ -691,33 +716,6 @@ br_status bt_count(bt_tree *t, const bt_params *p, uint64_t *ntri)
     run(&e);
     *ntri = e.count;
     return BR_OK;
-}
-
-/* Empties the mesh.  The vertex hash is not cleared: a slot holds base + 1 +
- * index, and the base (the word after the table) moves past every value of the
- * previous extraction, so old slots read as empty; cleared only when the base
- * would wrap, or when the scratch was lent out (bt_mesh_lend_scratch: the hash and
- * the memo hold anything then, and the memo's frame coherence starts again). */
-uint32_t bti_reset_mesh(bt_mesh *m)
-{
-    uint32_t *base = &m->hash[m->hmask + 1];
-    if (m->lent) {
-        memset(m->hash, 0, ((size_t)m->hmask + 1) * 4 + 4);
-        bti_memo_clear(m->memo, m->memo_mask + 1);
-        m->memo_gen = 0;
-        m->coh.valid = 0;
-        m->lent = 0;
-    }
-    if (*base > 0xFFFFFFFFu - m->nv - m->cap_v - 1) {
-        memset(m->hash, 0, ((size_t)m->hmask + 1) * 4);
-        *base = 0;
-    } else *base += m->nv;
-    if (++m->memo_gen > 0xFFFFu) {   /* entries of generation 0 were written 2^16 extractions ago */
-        bti_memo_clear(m->memo, m->memo_mask + 1);
-        m->memo_gen = 1;
-    }
-    m->nv = 0; m->ns = 0; m->ntri = 0; m->nline = 0; m->nfict = 0; m->overflow = 0;
-    return *base;
 }
 
 br_status bt_extract(bt_tree *t, const bt_params *p, bt_mesh *m)

@@ -186,3 +186,30 @@ void *bt_mesh_lend_scratch(bt_mesh *m, size_t *bytes)
     if (bytes) *bytes = (size_t)(hi - lo);
     return lo;
 }
+
+/* Empties the mesh.  The vertex hash is not cleared: a slot holds base + 1 +
+ * index, and the base (the word after the table) moves past every value of the
+ * previous extraction, so old slots read as empty; cleared only when the base
+ * would wrap, or when the scratch was lent out (bt_mesh_lend_scratch: the hash and
+ * the memo hold anything then, and the memo's frame coherence starts again). */
+uint32_t bti_reset_mesh(bt_mesh *m)
+{
+    uint32_t *base = &m->hash[m->hmask + 1];
+    if (m->lent) {
+        memset(m->hash, 0, ((size_t)m->hmask + 1) * 4 + 4);
+        bti_memo_clear(m->memo, m->memo_mask + 1);
+        m->memo_gen = 0;
+        m->coh.valid = 0;
+        m->lent = 0;
+    }
+    if (*base > 0xFFFFFFFFu - m->nv - m->cap_v - 1) {
+        memset(m->hash, 0, ((size_t)m->hmask + 1) * 4);
+        *base = 0;
+    } else *base += m->nv;
+    if (++m->memo_gen > 0xFFFFu) {   /* entries of generation 0 were written 2^16 extractions ago */
+        bti_memo_clear(m->memo, m->memo_mask + 1);
+        m->memo_gen = 1;
+    }
+    m->nv = 0; m->ns = 0; m->ntri = 0; m->nline = 0; m->nfict = 0; m->overflow = 0;
+    return *base;
+}

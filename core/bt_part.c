@@ -232,16 +232,20 @@ br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh
  * ms slots, the first ones of the allocated tables.  Only speed depends on the
  * sizes: vertices are numbered in first-use order, and the memo is a cache.  A
  * hash slot holds base + 1 + index (core/bt_mesh.c reset_mesh) with the base of
- * ps->slot[k].hbase, which only grows, so slots of any earlier walk read as empty
+ * ps->slot[k].hbase, which only grows past every index its generation used (hnv: a
+ * resumed walk, bti_part_resume, may end with fewer vertices than slots it left), so
+ * slots of any earlier walk read as empty
  * whatever the size then; both tables are cleared whole when a counter wraps. */
 static void part_reset(bt_parts *ps, uint32_t k, uint32_t hs, uint32_t ms, bti_extract *e)
 {
     bt_mesh *pm = &ps->slot[k].m;
-    uint32_t hl;
-    if (ps->slot[k].hbase > 0xFFFFFFFFu - pm->nv - pm->cap_v - 1) {
+    const uint32_t used = ps->slot[k].hnv > pm->nv ? ps->slot[k].hnv : pm->nv;
+    if (ps->slot[k].hbase > 0xFFFFFFFFu - used - pm->cap_v - 1) {
         memset(pm->hash, 0, (size_t)ps->slot[k].hclean * 4);
         ps->slot[k].hbase = 0;
-    } else ps->slot[k].hbase += pm->nv;
+    } else ps->slot[k].hbase += used;
+    ps->slot[k].hnv = 0;
+    ps->slot[k].hins = 0;
     if (++pm->memo_gen > 0xFFFFu) {
         bti_memo_clear(pm->memo, ps->slot[k].mclean);
         pm->memo_gen = 1;
@@ -252,28 +256,36 @@ static void part_reset(bt_parts *ps, uint32_t k, uint32_t hs, uint32_t ms, bti_e
     pm->nv = 0; pm->ns = 0; pm->ntri = 0; pm->nline = 0; pm->nfict = 0; pm->overflow = 0;
     pm->nsplits = 0;
     pm->nz = 0;
-    *e = ps->e0;
-    e->m = pm;
-    e->snap = ps->slot[k].snap;
-    e->recs = ps->slot[k].rec;
-    e->nrec = 0;
-    e->cap_rec = ps->cap_rec;
-    e->hbase = ps->slot[k].hbase;
-    e->direct = (uint64_t)e->n * (uint64_t)e->n <= 2 * (uint64_t)hs;
-    hl = pm->hmask - (pm->hmask >> 2);
-    e->lim_nv = (hl < pm->cap_v ? hl : pm->cap_v) - 6;
-    e->lim_ns = pm->cap_s - 10;
+    bti_part_extract_setup(ps, k, e);
+}
+
+/* After part k's walk (whole or resumed): what the next frame's replay reads */
+static void walked(bt_parts *ps, uint32_t k, const bti_extract *e)
+{
+    ps->slot[k].hint_nv = ps->slot[k].m.nv;
+    if (ps->slot[k].m.nv > ps->slot[k].hnv) ps->slot[k].hnv = ps->slot[k].m.nv;
+    ps->slot[k].nrec = e->nrec;
+    ps->slot[k].last_root = ps->root[k];
+    ps->slot[k].reuse = BR_COHERENCE && e->recs && !e->full && !e->lost && e->nrec <= e->cap_rec
+                && ps->slot[k].m.nz <= ps->slot[k].m.cap_z;
 }
 
 void bt_extract_part(bt_parts *ps, uint32_t k)
 {
     bti_extract *e;
     uint32_t hs = PART_HASH_MIN, ms;
+    uint32_t at = 0;
     if (!ps || ps->serial || k >= ps->nroot) return;
-    ps->replayed[k] = (uint8_t)bti_part_replay(ps, k);
+    ps->replayed[k] = (uint8_t)bti_part_replay(ps, k, &at);
     ps->slot[k].done = 1;
+    ps->resumed[k] = 0;
     if (ps->replayed[k]) return;
     e = &ps->slot[k].e;
+    if (at && bti_part_resume(ps, k, at)) {
+        ps->resumed[k] = 1;
+        walked(ps, k, e);
+        return;
+    }
     /* tables for twice last frame's vertices (load <= 1/4 of the hash): a part's
      * hash and memo stay in cache where the allocated ones (sized for part_tri)
      * would spread its few thousand vertices over megabytes; the memo has 4 slots a
@@ -287,11 +299,8 @@ void bt_extract_part(bt_parts *ps, uint32_t k)
         part_reset(ps, k, ps->hfull, ps->mfull, e);
         bti_part_walk(e, &ps->root[k], ps->slot[k].ridx);
     }
-    ps->slot[k].hint_nv = ps->slot[k].m.nv;
-    ps->slot[k].nrec = e->nrec;
-    ps->slot[k].last_root = ps->root[k];
-    ps->slot[k].reuse = BR_COHERENCE && e->recs && !e->full && !e->lost && e->nrec <= e->cap_rec
-                && ps->slot[k].m.nz <= ps->slot[k].m.cap_z;
+    ps->slot[k].hins = ps->slot[k].m.nv;
+    walked(ps, k, e);
 }
 
 /* Old marks go, the listed splits become ST_PREV and m's id list (bt_extract
@@ -621,9 +630,11 @@ br_status bt_extract_end(bt_parts *ps, uint32_t *njoin)
     m = ps->m;
     nsp = ps->ntop;
     ps->nreused = 0;
+    ps->nresumed = 0;
     for (k = 0; k < ps->nroot; k++) {
         const bt_mesh *pm = &ps->slot[k].m;
         ps->nreused += ps->replayed[k];
+        ps->nresumed += ps->resumed[k];
         if (ps->slot[k].e.full || ps->slot[k].e.lost) break;
         nsp += pm->nsplits;
         ps->voff[k] = (uint32_t)nv;
@@ -700,4 +711,9 @@ uint32_t bt_part_tris(const bt_parts *ps, uint32_t k)
 uint32_t bt_parts_reused(const bt_parts *ps)
 {
     return ps && !ps->serial ? ps->nreused : 0;
+}
+
+uint32_t bt_parts_resumed(const bt_parts *ps)
+{
+    return ps && !ps->serial ? ps->nresumed : 0;
 }

@@ -96,7 +96,7 @@ static inline int ref_moved(const int moved[3], const bti_rec *R, uint32_t ref)
  * decisions are made again in order, through the memo as the walk would (the same
  * entries result), and the first that differs sends the part to its walk (0, as
  * when it cannot be tried). */
-int bti_part_replay(bt_parts *ps, uint32_t k)
+int bti_part_replay(bt_parts *ps, uint32_t k, uint32_t *at)
 {
     bt_mesh *pm = &ps->slot[k].m;
     bti_rec *R = ps->slot[k].rec;
@@ -124,7 +124,10 @@ int bti_part_replay(bt_parts *ps, uint32_t k)
         uint16_t morph;
         int32_t z;
         int same;
-        if (replay_decide(&e, &ps->wt, r, &mask, &morph, &same) != r->sp) return 0;
+        if (replay_decide(&e, &ps->wt, r, &mask, &morph, &same) != r->sp) {
+            *at = i;
+            return 0;
+        }
         r->m_out = (uint8_t)mask;
         if (r->sp != 1) continue;
         /* the same weight between ends that stayed: the same height (bti_mid_z) */
@@ -157,4 +160,130 @@ int bti_part_replay(bt_parts *ps, uint32_t k)
     ps->slot[k].last_root = *rt;
     ps->slot[k].reuse = 1;
     return 1;
+}
+
+/* Part k's extraction state for a walk with its mesh's tables as they are (the
+ * allocated ones' first hmask + 1 and memo_mask + 1 slots: core/bt_part.c part_reset) */
+void bti_part_extract_setup(bt_parts *ps, uint32_t k, bti_extract *e)
+{
+    bt_mesh *pm = &ps->slot[k].m;
+    const uint32_t hl = pm->hmask - (pm->hmask >> 2);
+    *e = ps->e0;
+    e->m = pm;
+    e->snap = ps->slot[k].snap;
+    e->recs = ps->slot[k].rec;
+    e->nrec = 0;
+    e->cap_rec = ps->cap_rec;
+    e->hbase = ps->slot[k].hbase;
+    e->direct = (uint64_t)e->n * (uint64_t)e->n <= 2 * ((uint64_t)pm->hmask + 1);
+    e->lim_nv = (hl < pm->cap_v ? hl : pm->cap_v) - 6;
+    e->lim_ns = pm->cap_s - 10;
+}
+
+/* The depth of the recursion below a part's root that bti_part_resume follows (the
+ * tree's own depth below a part root is at most 2 BR_MAX_SIDE's 14 bits) */
+#define RESUME_DEPTH 64
+
+/* Part k's walk taken up at record `at`, the first whose answer bti_part_replay found
+ * changed: 1 when done (part k's mesh is then this frame's, as a walk from its root
+ * makes it), 0 when it cannot be (walk it whole).  The replay made every record before
+ * `at` again with the same answer, and their vertices' heights and weights this
+ * frame's; a walk from the root would make the same decisions in the same order up to
+ * `at`, so the same vertices (numbered by first use), strip indices, height tests, split
+ * list and leaves as the last one up to there, whose counts and writer state the record
+ * keeps (bti_rec_at).  So the mesh is cut back to them (the vertex hash needs nothing:
+ * bti_vid_lookup reads a slot past the vertex count as free), the height tests kept are
+ * checked where the heights moved, and the recursion goes on: record `at`'s triangle,
+ * then the second half of every split on its way up whose first half it lies in, as rec
+ * would return through them, each split's record finished as rec finishes it. */
+int bti_part_resume(bt_parts *ps, uint32_t k, uint32_t at)
+{
+    bt_mesh *pm = &ps->slot[k].m;
+    bti_rec *R = ps->slot[k].rec;
+    const bti_root *rt = &ps->root[k], *lr = &ps->slot[k].last_root;
+    bti_extract *e = &ps->slot[k].e;
+    const uint8_t *vm = pm->nv <= ps->vbits ? ps->slot[k].vmoved : NULL;   /* as the replay chose */
+    bti_rec_at s;
+    uint32_t chain[RESUME_DEPTH], d = 0, i, j, stale;
+    bti_pt root[3], mm[RESUME_DEPTH], *ta[RESUME_DEPTH], *tc[RESUME_DEPTH], *tb[RESUME_DEPTH];
+    int32_t in[RESUME_DEPTH], out[RESUME_DEPTH];
+    uint8_t first[RESUME_DEPTH];
+    if (at == 0 || at >= ps->slot[k].nrec || at >= ps->cap_rec) return 0;
+    s = R[at].at;
+    for (j = at;; j = R[j].cref) {                  /* `at` and its splits up to the root's */
+        if (d == RESUME_DEPTH || j >= at + 1) return 0;
+        chain[d++] = j;
+        if (R[j].cref >= BTI_REF_A) break;
+    }
+    if (chain[d - 1] != 0) return 0;
+    /* the root's corners: the replay sets their heights after its records, so a part
+     * whose corners moved is walked whole (none did in tests/test_coherence.c's flights) */
+    root[0] = rt->a; root[1] = rt->c; root[2] = rt->b;
+    for (j = 0; j < 3; j++) {
+        const bti_pt *o = j == 0 ? &lr->a : j == 1 ? &lr->c : &lr->b;
+        if (root[j].z != o->z || root[j].morph != o->morph) return 0;
+    }
+    /* the height tests before `at`: the same answers where the heights moved */
+    bti_part_extract_setup(ps, k, e);
+    for (i = 0; i < s.nz && i < pm->nz; i++) {
+        const bti_ztest *t = &pm->zlog[i];
+        if (vm && !(((vm[t->a >> 3] >> (t->a & 7)) | (vm[t->b >> 3] >> (t->b & 7)) | (vm[t->c >> 3] >> (t->c & 7))) & 1u))
+            continue;
+        if ((t->kind == 0 ? bti_rim_line(e, t->a, t->b, t->c) : bti_flat(&pm->v[t->a], &pm->v[t->b], &pm->v[t->c]))
+            != t->answer)
+            return 0;
+    }
+    if (s.nz > pm->nz) return 0;
+    /* the mesh and the writer as they were at `at` */
+    pm->nv = s.nv; pm->ns = s.ns; pm->ntri = s.ntri; pm->nline = s.nline; pm->nz = s.nz;
+    pm->nsplits = s.nsplits;
+    pm->overflow = 0;
+    pm->nfict = 0;
+    for (i = 0; i < pm->nv; i++) pm->nfict += pm->v[i].state == BT_F;
+    bti_part_extract_setup(ps, k, e);
+    /* the hash's load: the slots of vertices past `at` that earlier walks of its
+     * generation wrote stay taken, so they count against the walk's limit (its table
+     * at most 3/4 full, as a walk from the root keeps it) */
+    stale = ps->slot[k].hins - s.nv;
+    if (ps->slot[k].hins < s.nv || e->lim_nv <= stale + s.nv) return 0;
+    e->lim_nv -= stale;
+    e->nrec = at;
+    e->count = s.count;
+    e->nsnap = s.nsnap;
+    e->has_pend = s.has_pend;
+    e->pend = s.pend;
+    e->nplan = 0;
+    /* the recursion's triangles from the root down to `at`'s (rec's children: (a, m, c)
+     * entered (!in, leg), then (c, m, b) entered (leg, !out)) */
+    for (j = 0; j < 3; j++) {
+        root[j].ri = BTI_REF_A + j;
+        root[j].idx = bti_vid_lookup(e, root[j].x, root[j].y);
+    }
+    ta[0] = &root[0]; tc[0] = &root[1]; tb[0] = &root[2];
+    in[0] = rt->in_hyp; out[0] = rt->out_hyp;
+    for (i = 0; i + 1 < d; i++) {
+        const bti_rec *P = &R[chain[d - 1 - i]], *Q = &R[chain[d - 2 - i]];
+        bti_pt *m = &mm[i];
+        if (P->sp != 1) return 0;
+        m->x = P->x; m->y = P->y; m->z = P->z; m->morph = P->morph;
+        m->ri = chain[d - 1 - i];
+        m->idx = bti_vid_lookup(e, m->x, m->y);
+        first[i] = Q->aref == ta[i]->ri && Q->bref == tc[i]->ri;
+        if (first[i]) { ta[i + 1] = ta[i]; tc[i + 1] = m; tb[i + 1] = tc[i]; in[i + 1] = !in[i]; out[i + 1] = 0; }
+        else if (Q->aref == tc[i]->ri && Q->bref == tb[i]->ri) {
+            ta[i + 1] = tc[i]; tc[i + 1] = m; tb[i + 1] = tb[i]; in[i + 1] = 0; out[i + 1] = !out[i];
+        } else return 0;
+    }
+    bti_walk_tri(e, ta[d - 1], tc[d - 1], tb[d - 1], in[d - 1], out[d - 1],
+                 d > 1 ? R[chain[1]].m_out : rt->mask);
+    for (i = d - 1; i-- > 0;) {                     /* back up through the splits */
+        bti_rec *P = &R[chain[d - 1 - i]];
+        if (first[i]) bti_walk_tri(e, tc[i], &mm[i], tb[i], 0, !out[i], P->m_out);
+        P->z = mm[i].z;
+        P->morph = mm[i].morph;
+        P->vidx = mm[i].idx;
+    }
+    ps->slot[k].ridx[0] = root[0].idx; ps->slot[k].ridx[1] = root[1].idx; ps->slot[k].ridx[2] = root[2].idx;
+    ps->slot[k].hins = stale + pm->nv;
+    return !e->full;
 }

@@ -33,6 +33,7 @@ static scene sc;
 static side A, B;           /* A: coherent, B: from scratch */
 static long frames, differ;
 static long parts_run, parts_reused;   /* A's parts, and those its last mesh served */
+static long parts_resumed;             /* A's parts walked again from a changed decision */
 static uint32_t parts_most;            /* A's most parts in a frame */
 static long serial_frames;             /* A's frames extracted serially after all */
 static uint32_t part_tri = 4096;       /* triangles a part holds (side_open; the scene's) */
@@ -91,6 +92,7 @@ static br_status extract(side *s, const bt_params *p, int parts)
         serial_frames += n == 0;
         parts_run += n;
         parts_reused += bt_parts_reused(s->ps);
+        parts_resumed += bt_parts_resumed(s->ps);
         if (n > parts_most) parts_most = n;
     }
     return st;
@@ -246,7 +248,12 @@ static void test_coherence_paths(void)
      * the parts near the eye are cut finer than depth 4's 32 (core/bt_part.c regroup) */
     CHECK_MSG(parts_reused * 4 > parts_run * 3, "%ld of %ld parts reused", parts_reused, parts_run);
     CHECK_MSG(parts_most > 32, "at most %u parts", parts_most);
+    parts_run = parts_reused = parts_resumed = 0;
     fly_path("assets/lake-path.cam", 1, 300, 256);
+    /* where a part's decision changed, most of its walks took up the last one there
+     * (core/bt_replay.c bti_part_resume): the comparison above proves those meshes */
+    CHECK_MSG(parts_resumed * 2 > parts_run - parts_reused, "%ld parts resumed of %ld walked", parts_resumed,
+              parts_run - parts_reused);
     /* 64 px: a coarse mesh, other parts replayed and other splits moving */
     fly_path("assets/default-path.cam", 1, 300, 64 * 256);
     fly_path("assets/alps-path.cam", 0, 120, 256);     /* its first 120 frames: 18 k triangles each */
