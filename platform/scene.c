@@ -242,7 +242,7 @@ static br_status chunks_reserve(scene *s, size_t n)
     return BR_OK;
 }
 
-/* A part's room: BT_PARTS parts of 4,096 triangles (about 280 MB reserved, touched as
+/* A part's room: BT_PARTS parts of 4,096 triangles (about 380 MB reserved, touched as
  * used; docs/bitree.md "Cutting the parts") */
 #define SCENE_PART_TRI 4096
 
