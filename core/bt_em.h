@@ -67,13 +67,6 @@ static inline void bti_memo_clear(uint64_t *memo, uint32_t entries)
 typedef struct bti_pt { int32_t x, y, z; uint32_t idx; uint16_t morph; uint32_t ri; } bti_pt;
 #define BTI_NO_IDX 0xFFFFFFFFu
 
-/* A part's walk records each decision it makes (core/bt_replay.c bti_part_replay): the
- * diamond (x, y) in slot idx, the answer sp, the plane mask it handed on (m_out);
- * the records of its triangle's apex (cref: the split whose children it is, which
- * handed it its plane mask) and hypotenuse ends (aref, bref); for a split, the split
- * vertex's height z and weight morph and its index in the part's vertices (vidx,
- * BTI_NO_IDX when no leaf used it).  A point's ri is the record of the split that
- * made it, or BTI_REF_A / C / B for the part root's corners. */
 /* A leaf waiting to be written: its vertex indices, exit edge {o0, o1} and the
  * third vertex */
 typedef struct bti_leaf { uint32_t ia, ic, ib, o0, o1, other; } bti_leaf;
@@ -88,6 +81,13 @@ typedef struct bti_rec_at {
     bti_leaf pend;
 } bti_rec_at;
 
+/* A part's walk records each decision it makes (core/bt_replay.c bti_part_replay): the
+ * diamond (x, y) in slot idx, the answer sp, the plane mask it handed on (m_out);
+ * the records of its triangle's apex (cref: the split whose children it is, which
+ * handed it its plane mask) and hypotenuse ends (aref, bref); for a split, the split
+ * vertex's height z and weight morph and its index in the part's vertices (vidx,
+ * BTI_NO_IDX when no leaf used it).  A point's ri is the record of the split that
+ * made it, or BTI_REF_A / C / B for the part root's corners. */
 typedef struct bti_rec {
     uint64_t w;             /* the answer's memo entry's second word then (0: none) */
     int32_t z;
@@ -181,6 +181,7 @@ typedef struct bti_extract {
     uint32_t nrec, cap_rec; /* recorded, room; nrec > cap_rec: some were not */
 } bti_extract;
 
+/* The walk's output state as it stands, into a record's (bti_rec.at) */
 static inline void bti_rec_at_take(const bti_extract *e, bti_rec_at *a)
 {
     const bt_mesh *m = e->m;

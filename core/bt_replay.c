@@ -1,6 +1,7 @@
 /* core/bt_replay.c — a part's mesh of the last frame made this frame's without its
  * walk (bti_part_replay; the proof is docs/bitree.md "Part replay"): its recorded
- * decisions made again, its split vertices' heights and weights updated. */
+ * decisions made again, its split vertices' heights and weights updated; where one
+ * changed, the walk taken up there (bti_part_resume, docs/bitree.md "Resuming a walk"). */
 #include <string.h>
 #include "core/bitree.h"
 #include "core/bt_int.h"
