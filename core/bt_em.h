@@ -304,9 +304,9 @@ struct bt_parts {
         uint8_t reuse;
         uint8_t done;              /* extracted since this frame's bt_extract_begin */
         uint32_t hbase;            /* vertex hash generation (part_reset) */
-        uint32_t hnv;              /* the most vertices a walk of this generation had */
-        uint32_t hins;             /* slots it wrote (a resumed walk writes again slots of
-                                      vertices past where it resumed, which stay taken) */
+        uint32_t hins;             /* hash slots this generation wrote (a resumed walk writes
+                                      again slots of vertices past where it resumed, which
+                                      stay taken); no walk of it had more vertices */
         uint32_t hint_nv;          /* vertices last frame: the hash and memo in use */
         /* the first hclean, mclean of the hfull, mfull hash and memo slots are cleared
          * (part_reset): memory a part never needed is never touched */

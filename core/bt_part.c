@@ -232,19 +232,18 @@ br_status bt_extract_begin(bt_parts *ps, bt_tree *t, const bt_params *p, bt_mesh
  * ms slots, the first ones of the allocated tables.  Only speed depends on the
  * sizes: vertices are numbered in first-use order, and the memo is a cache.  A
  * hash slot holds base + 1 + index (core/bt_mesh.c reset_mesh) with the base of
- * ps->slot[k].hbase, which only grows past every index its generation used (hnv: a
- * resumed walk, bti_part_resume, may end with fewer vertices than slots it left), so
- * slots of any earlier walk read as empty
+ * ps->slot[k].hbase, which only grows past every index its generation used (at most
+ * the slots it wrote, hins: a resumed walk, bti_part_resume, may end with fewer vertices
+ * than an earlier walk of the generation had), so slots of any earlier walk read as empty
  * whatever the size then; both tables are cleared whole when a counter wraps. */
 static void part_reset(bt_parts *ps, uint32_t k, uint32_t hs, uint32_t ms, bti_extract *e)
 {
     bt_mesh *pm = &ps->slot[k].m;
-    const uint32_t used = ps->slot[k].hnv > pm->nv ? ps->slot[k].hnv : pm->nv;
+    const uint32_t used = ps->slot[k].hins > pm->nv ? ps->slot[k].hins : pm->nv;
     if (ps->slot[k].hbase > 0xFFFFFFFFu - used - pm->cap_v - 1) {
         memset(pm->hash, 0, (size_t)ps->slot[k].hclean * 4);
         ps->slot[k].hbase = 0;
     } else ps->slot[k].hbase += used;
-    ps->slot[k].hnv = 0;
     ps->slot[k].hins = 0;
     if (++pm->memo_gen > 0xFFFFu) {
         bti_memo_clear(pm->memo, ps->slot[k].mclean);
@@ -263,7 +262,6 @@ static void part_reset(bt_parts *ps, uint32_t k, uint32_t hs, uint32_t ms, bti_e
 static void walked(bt_parts *ps, uint32_t k, const bti_extract *e)
 {
     ps->slot[k].hint_nv = ps->slot[k].m.nv;
-    if (ps->slot[k].m.nv > ps->slot[k].hnv) ps->slot[k].hnv = ps->slot[k].m.nv;
     ps->slot[k].nrec = e->nrec;
     ps->slot[k].last_root = ps->root[k];
     ps->slot[k].reuse = BR_COHERENCE && e->recs && !e->full && !e->lost && e->nrec <= e->cap_rec

@@ -26,6 +26,22 @@ static void set_height(bt_mesh *pm, uint8_t *moved, uint32_t i, int32_t z, uint1
 /* Vertex i's bit in a replay's moved bits (set_height) */
 static inline unsigned moved_bit(const uint8_t *moved, uint32_t i) { return (moved[i >> 3] >> (i & 7)) & 1u; }
 
+/* 1 when the strip writer's height tests 0 .. n - 1 of part mesh pm give their answers
+ * again; with moved bits (vm, else NULL: all of them) only those that read a moved vertex
+ * are made again (a test of three vertices whose heights stayed gives its answer again) */
+static int ztests_hold(const bti_extract *e, const bt_mesh *pm, const uint8_t *vm, uint32_t n)
+{
+    uint32_t i;
+    for (i = 0; i < n; i++) {
+        const bti_ztest *t = &pm->zlog[i];
+        int now;
+        if (vm && !(moved_bit(vm, t->a) | moved_bit(vm, t->b) | moved_bit(vm, t->c))) continue;
+        now = t->kind == 0 ? bti_rim_line(e, t->a, t->b, t->c) : bti_flat(&pm->v[t->a], &pm->v[t->b], &pm->v[t->c]);
+        if (now != t->answer) return 0;
+    }
+    return 1;
+}
+
 /* Record r's decision made again under plane mask *mask (then the mask handed on): its
  * answer when the entry it holds proves it, as decide_memo's frame coherence would from
  * the memo (an entry is a proof however it is kept), else through the memo.  *same is
@@ -149,15 +165,8 @@ int bti_part_replay(bt_parts *ps, uint32_t k, uint32_t *at)
             nmoved++;
         }
     }
-    /* the strip writer read heights only in these tests: the same answers, the same
-     * strip (a test of three vertices whose heights stayed gives its answer again) */
-    for (i = 0; nmoved && i < pm->nz; i++) {
-        const bti_ztest *t = &pm->zlog[i];
-        int now;
-        if (vm && !(moved_bit(vm, t->a) | moved_bit(vm, t->b) | moved_bit(vm, t->c))) continue;
-        now = t->kind == 0 ? bti_rim_line(&e, t->a, t->b, t->c) : bti_flat(&pm->v[t->a], &pm->v[t->b], &pm->v[t->c]);
-        if (now != t->answer) return 0;
-    }
+    /* the strip writer read heights only in these tests: the same answers, the same strip */
+    if (nmoved && !ztests_hold(&e, pm, vm, pm->nz)) return 0;
     ps->slot[k].last_root = *rt;
     ps->slot[k].reuse = 1;
     return 1;
@@ -219,34 +228,27 @@ int bti_part_resume(bt_parts *ps, uint32_t k, uint32_t at)
     if (chain[d - 1] != 0) return 0;
     /* the root's corners: the replay sets their heights after its records, so a part
      * whose corners moved is walked whole (none did in tests/test_coherence.c's flights) */
-    root[0] = rt->a; root[1] = rt->c; root[2] = rt->b;
     for (j = 0; j < 3; j++) {
-        const bti_pt *o = j == 0 ? &lr->a : j == 1 ? &lr->c : &lr->b;
-        if (root[j].z != o->z || root[j].morph != o->morph) return 0;
+        const bti_pt *q = root_corner(rt, j), *o = root_corner(lr, j);
+        if (q->z != o->z || q->morph != o->morph) return 0;
+        root[j] = *q;
     }
-    /* the height tests before `at`: the same answers where the heights moved */
+    /* the height tests before `at`: the same answers where the heights moved (the
+     * extraction state depends on the mesh's tables, not on its counts) */
     bti_part_extract_setup(ps, k, e);
-    for (i = 0; i < s.nz && i < pm->nz; i++) {
-        const bti_ztest *t = &pm->zlog[i];
-        if (vm && !(((vm[t->a >> 3] >> (t->a & 7)) | (vm[t->b >> 3] >> (t->b & 7)) | (vm[t->c >> 3] >> (t->c & 7))) & 1u))
-            continue;
-        if ((t->kind == 0 ? bti_rim_line(e, t->a, t->b, t->c) : bti_flat(&pm->v[t->a], &pm->v[t->b], &pm->v[t->c]))
-            != t->answer)
-            return 0;
-    }
-    if (s.nz > pm->nz) return 0;
+    if (s.nz > pm->nz || !ztests_hold(e, pm, vm, s.nz)) return 0;
     /* the mesh and the writer as they were at `at` */
     pm->nv = s.nv; pm->ns = s.ns; pm->ntri = s.ntri; pm->nline = s.nline; pm->nz = s.nz;
     pm->nsplits = s.nsplits;
     pm->overflow = 0;
     pm->nfict = 0;
     for (i = 0; i < pm->nv; i++) pm->nfict += pm->v[i].state == BT_F;
-    bti_part_extract_setup(ps, k, e);
     /* the hash's load: the slots of vertices past `at` that earlier walks of its
      * generation wrote stay taken, so they count against the walk's limit (its table
      * at most 3/4 full, as a walk from the root keeps it) */
+    if (ps->slot[k].hins < s.nv) return 0;
     stale = ps->slot[k].hins - s.nv;
-    if (ps->slot[k].hins < s.nv || e->lim_nv <= stale + s.nv) return 0;
+    if (e->lim_nv <= stale + s.nv) return 0;
     e->lim_nv -= stale;
     e->nrec = at;
     e->count = s.count;
