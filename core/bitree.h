@@ -268,8 +268,9 @@ typedef struct bt_coh {
                               at a key change: [BT_COH_EYE] the eye's L1 travel;
                               [BT_COH_PLANE(j)] that of entries with plane j alone to test,
                               [BT_COH_MANY] with two or more (core/bt_coh.c) */
-    uint64_t r[3];         /* floor(2^sh / c) for c = tau_lo, tau, tau + span; 0: none */
-    int32_t sh[3];
+    uint64_t r[4];         /* floor(2^sh / c) for c = tau_lo, tau, tau + span and tau + the
+                              least q whose weight is not 0 (core/bt_coh.c); 0: none */
+    int32_t sh[4];
     int64_t slack;         /* test hook: added to every margin (too generous: other meshes);
                               0 outside tests */
 } bt_coh;

@@ -89,7 +89,11 @@ static int64_t above_r(int64_t L, uint64_t r, int32_t sh, int64_t cv, int strict
     return q;
 }
 
-/* below_r, above_r for threshold k of c (0 tau_lo, 1 tau, 2 tau + span) */
+/* The least q = floor(L / d) - tau whose geomorph weight is not 0 (a step, BT_MORPH_STEP,
+ * rounded up; 1 .. span for span >= 1: morph_at rounds the weight down to a step) */
+static int64_t weight0_q(int64_t span) { return ((int64_t)BT_MORPH_STEP * span + 32767) >> 15; }
+
+/* below_r, above_r for threshold k of c (0 tau_lo, 1 tau, 2 tau + span, 3 tau + weight0_q) */
 static int64_t below(int64_t L, int k, const bt_coh *c, int64_t cv, int strict)
 { return below_r(L, c->r[k], c->sh[k], cv, strict); }
 static int64_t above(int64_t L, int k, const bt_coh *c, int64_t cv, int strict)
@@ -105,7 +109,7 @@ static int64_t margin(const bti_extract *e, int sp, int64_t L, int64_t d, uint16
     int64_t lo = 0, hi = INT64_MAX, m = (int64_t)COH_JUMP - 1;
     if (L == INT64_MAX) return -1;                   /* a saturated L: no exact bound */
     if (L == 0) return sp ? -1 : m;                  /* ew = 0: never split (unless culled) */
-    if (d <= 0) return -1;
+    if (d < 0 || (d == 0 && !sp)) return -1;         /* d = 0: the eye inside, split */
     if (sp) {
         if (e->morph_span > 0 && morph == BT_MORPH_ONE) {
             /* (tau + span) d' <= L implies tau_lo d' < L: tau_lo <= tau < tau + span, L > 0 */
@@ -113,7 +117,10 @@ static int64_t margin(const bti_extract *e, int sp, int64_t L, int64_t d, uint16
         } else {
             *moving = e->morph_span > 0 && morph != 0;
             if (e->tau_lo > 0 && (hi = below(L, 0, c, e->tau_lo, 1)) < 0) return -1;
-            if (e->morph_span > 0 && !*moving && (lo = above(L, 1, c, e->tau, 1)) < 0) return -1;
+            /* weight 0 (morph_at: floor(L / d) - tau below q0 = ceil(BT_MORPH_STEP
+             * span / 2^15), q0 >= 1) while (tau + q0) d' > L */
+            if (e->morph_span > 0 && !*moving && (lo = above(L, 3, c, e->tau + weight0_q(e->morph_span), 1)) < 0)
+                return -1;
         }
     } else {
         if ((lo = above(L, 1, c, e->tau, 0)) < 0) return -1;
@@ -208,20 +215,35 @@ void bti_coh_weight_run(const bti_wtab *wt, int64_t L, uint16_t morph, uint32_t 
     *dhi = (uint32_t)hi;
 }
 
-/* How far a plane's value may have moved at any point within +-CAM_COORD_MAX, over
- * 2^30, rounded up: d + n . p moves by at most |d' - d| + sum |n'_k - n_k|
- * CAM_COORD_MAX, and the volumes' corners lie in that cube (bti_setup).  |d| < 2^63
- * (core/cam.h), so the difference fits 64 bits unsigned; at most COH_JUMP. */
-static uint64_t plane_travel(const cam_plane *a, const cam_plane *b)
+/* How far a plane's value may have moved at any point of box [lo, hi] (the terrain's:
+ * every volume lies in it), over 2^30, rounded up.  d + n . p moves by at most
+ * |d' - d| + sum |n'_k - n_k| CAM_COORD_MAX (every corner lies within CAM_COORD_MAX,
+ * bti_setup), and |d| < 2^63 (core/cam.h), so that difference fits 64 bits unsigned.
+ * Where that bound is below 2^32 the move itself, (d' - d) + (n' - n) . p, linear in p,
+ * is largest at a corner of the box: the corner each sum picks is the one the signs of
+ * n' - n point to, and |d' - d| < 2^62, |(n' - n) . p| < 2^32 2^30, so the sums fit.  A
+ * camera that turns a little moves its normals by a few Q30 units a frame, which the
+ * first bound charges as if the volumes lay CAM_COORD_MAX away.  At most COH_JUMP. */
+static uint64_t plane_travel(const cam_plane *a, const cam_plane *b, const int32_t lo[3], const int32_t hi[3])
 {
     const uint64_t dd = a->d >= b->d ? (uint64_t)a->d - (uint64_t)b->d : (uint64_t)b->d - (uint64_t)a->d;
-    uint64_t t = (dd >> 30) + 1;
+    uint64_t t = (dd >> 30) + 1, m;
+    int64_t up, down;
     int k;
     for (k = 0; k < 3; k++) {
         const int64_t dn = (int64_t)a->n[k] - b->n[k];
         t += (uint64_t)(dn < 0 ? -dn : dn);
     }
-    return t < COH_JUMP ? t : COH_JUMP;
+    if (t >= ((uint64_t)1 << 32)) return t < COH_JUMP ? t : COH_JUMP;
+    up = down = (int64_t)((uint64_t)a->d - (uint64_t)b->d);
+    for (k = 0; k < 3; k++) {
+        const int64_t dn = (int64_t)a->n[k] - b->n[k];
+        up += dn * (dn >= 0 ? hi[k] : lo[k]);
+        down += dn * (dn >= 0 ? lo[k] : hi[k]);
+    }
+    m = up > -down ? (uint64_t)up : (uint64_t)-down;        /* up >= down: m >= 0 */
+    m = (m >> 30) + 1;
+    return m < t ? m : t;
 }
 
 int bti_coh_frame(bti_extract *e, bt_coh *c)
@@ -251,6 +273,7 @@ int bti_coh_frame(bti_extract *e, bt_coh *c)
         recip(c, 0, k.tau_lo);
         recip(c, 1, k.tau);
         recip(c, 2, k.tau + k.span);
+        recip(c, 3, k.span > 0 ? k.tau + weight0_q(k.span) : 0);
     } else {
         /* ctr[BT_COH_EYE] grows by the eye's L1 travel t; ctr[BT_COH_PLANE(j)] by the
          * larger of t / 4 (rounded up) and plane j's travel, ctr[BT_COH_MANY] by the larger
@@ -258,14 +281,22 @@ int bti_coh_frame(bti_extract *e, bt_coh *c)
          * a plane's accumulator whose margin (the distance margin over four, the room to
          * the planes) is at least that accumulator's growth since its frame is within both */
         uint64_t t = 0, ts, pmax = 0;
+        int32_t lo[3], hi[3];
         int i;
+        /* the terrain's box in world units (core/bt_mesh.c bti_setup's checks) */
+        lo[0] = e->p->fr.ox;
+        hi[0] = (int32_t)((int64_t)e->p->fr.ox + (int64_t)e->S * e->p->fr.sx);
+        lo[1] = (int32_t)((int64_t)e->p->fr.oy - (int64_t)e->S * e->p->fr.sy);
+        hi[1] = e->p->fr.oy;
+        lo[2] = e->wz_lo[0];
+        hi[2] = e->wz_hi[255];
         for (i = 0; i < 3; i++) {
             int64_t dv = (int64_t)eye[i] - c->eye[i];
             t += (uint64_t)(dv < 0 ? -dv : dv);
         }
         ts = (t + ((uint64_t)1 << COH_EYE_SH) - 1) >> COH_EYE_SH;
         for (j = 0; j < CAM_NPLANES; j++) {
-            const uint64_t pt = plane_travel(&e->pl[j], &c->pl[j]);
+            const uint64_t pt = plane_travel(&e->pl[j], &c->pl[j], lo, hi);
             c->ctr[BT_COH_PLANE(j)] += pt > ts ? pt : ts;
             if (pt > pmax) pmax = pt;
         }

@@ -248,10 +248,13 @@ static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *
     }
     r = view_err(e, x, y, idx, mask, &ew, &d, &cm);
     if (r != 0) {
-        /* culled (outside a plane, or all void: cm stays INT64_MAX), or split whatever
-         * the distance (BT_CODE_SPLIT; the eye inside the volume: d = 0, not kept) */
+        /* culled (outside a plane, or all void: cm stays INT64_MAX), split whatever
+         * the distance (BT_CODE_SPLIT), or split with the eye inside the volume (d = 0,
+         * weight full: the rule's answer for every distance up to margin's bound) */
         if (e->coh && (r < 0 || BT_NODE_ERR(t->node[idx]) == BT_CODE_SPLIT))
             *exp = bti_coh_entry(e, r, 0, -1, BT_MORPH_ONE, m_in, *mask, cm);
+        else if (e->coh)
+            *exp = bti_coh_entry(e, 1, isat_mul(ew, e->fq8), 0, BT_MORPH_ONE, m_in, *mask, cm);
         return r < 0 ? -1 : 1;
     }
     {
