@@ -228,18 +228,17 @@ static uint64_t plane_travel(const cam_plane *a, const cam_plane *b, const int32
 {
     const uint64_t dd = a->d >= b->d ? (uint64_t)a->d - (uint64_t)b->d : (uint64_t)b->d - (uint64_t)a->d;
     uint64_t t = (dd >> 30) + 1, m;
-    int64_t up, down;
+    int64_t up, down, dn[3];
     int k;
     for (k = 0; k < 3; k++) {
-        const int64_t dn = (int64_t)a->n[k] - b->n[k];
-        t += (uint64_t)(dn < 0 ? -dn : dn);
+        dn[k] = (int64_t)a->n[k] - b->n[k];
+        t += (uint64_t)(dn[k] < 0 ? -dn[k] : dn[k]);
     }
     if (t >= ((uint64_t)1 << 32)) return t < COH_JUMP ? t : COH_JUMP;
     up = down = a->d - b->d;        /* no overflow: |d' - d| < 2^62 where t < 2^32 */
     for (k = 0; k < 3; k++) {
-        const int64_t dn = (int64_t)a->n[k] - b->n[k];
-        up += dn * (dn >= 0 ? hi[k] : lo[k]);
-        down += dn * (dn >= 0 ? lo[k] : hi[k]);
+        up += dn[k] * (dn[k] >= 0 ? hi[k] : lo[k]);
+        down += dn[k] * (dn[k] >= 0 ? lo[k] : hi[k]);
     }
     m = up > -down ? (uint64_t)up : (uint64_t)-down;   /* max(|up|, |down|), as up >= down */
     m = (m >> 30) + 1;

@@ -251,10 +251,10 @@ static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *
         /* culled (outside a plane, or all void: cm stays INT64_MAX), split whatever
          * the distance (BT_CODE_SPLIT), or split with the eye inside the volume (d = 0,
          * weight full: the rule's answer for every distance up to margin's bound) */
-        if (e->coh && (r < 0 || BT_NODE_ERR(t->node[idx]) == BT_CODE_SPLIT))
-            *exp = bti_coh_entry(e, r, 0, -1, BT_MORPH_ONE, m_in, *mask, cm);
-        else if (e->coh)
-            *exp = bti_coh_entry(e, 1, isat_mul(ew, e->fq8), 0, BT_MORPH_ONE, m_in, *mask, cm);
+        if (e->coh)
+            *exp = r < 0 || BT_NODE_ERR(t->node[idx]) == BT_CODE_SPLIT
+                 ? bti_coh_entry(e, r, 0, -1, BT_MORPH_ONE, m_in, *mask, cm)
+                 : bti_coh_entry(e, 1, isat_mul(ew, e->fq8), 0, BT_MORPH_ONE, m_in, *mask, cm);
         return r < 0 ? -1 : 1;
     }
     {

@@ -446,6 +446,57 @@ static void test_coherence_margin_matters(void)
     close_dem();
 }
 
+/* The distance margins of the two kinds of split that got entries last (core/bt_coh.c
+ * margin), taken from bti_coh_entry with no planes to test (the expiry less the eye's
+ * accumulator), against the rule itself at the margin's ends: a split with the eye
+ * inside its volume (d = 0, full weight) stays split with a full weight out to that
+ * distance; a split whose weight is 0 with floor(L / d) at tau or above keeps weight 0
+ * and its split over the whole interval.  The flights cannot show a margin too long
+ * here: these diamonds' rooms to the frustum planes end their entries first. */
+static void test_entry_margins(void)
+{
+    long i, n = t_emulated() ? 20000 : 200000, inside = 0, zero = 0, above = 0, bad = 0;
+    const bt_coh *c;
+    bti_extract e;
+    const double eye[6] = { 20000, 20000, 3000, 23000, 22000, 2000 };
+    knobs k = VIEWER;
+    if (!open_dem("assets/N47E009.hgt.gz")) { CHECK(0); return; }
+    k.parts = 0;
+    (void)frame(eye, &k);             /* the coherent side's state: its thresholds' reciprocals */
+    c = &A.m.coh;
+    memset(&e, 0, sizeof e);
+    e.coh = (bt_coh *)c;
+    e.tau = c->key.tau; e.tau_lo = c->key.tau_lo; e.morph_span = c->key.span;
+    for (i = 0; i < n && BR_COHERENCE; i++) {
+        const unsigned bits = 20 + (unsigned)(t_xs64() % 20);     /* (one draw a statement) */
+        const int64_t L = 1 + (int64_t)(t_xs64() % ((uint64_t)1 << bits));
+        const int64_t d = i & 1 ? 1 + L / (e.tau + (int64_t)(t_xs64() % 8)) : 0;
+        const uint16_t w = d ? bti_morph_at(&e, L, d) : BT_MORPH_ONE;
+        uint64_t x;
+        int64_t m;
+        if (d && (w != 0 || L <= e.tau_lo * d)) continue;   /* not a split of weight 0 */
+        x = bti_coh_entry(&e, 1, L, d, w, 0, 0, INT64_MAX);
+        if (!x) { bad += !d; continue; }                    /* d = 0 always has one */
+        m = (int64_t)((x & BTI_COH_EXP) - c->ctr[BT_COH_EYE]);
+        if (!d) {
+            inside++;
+            bad += bti_morph_at(&e, L, m) != BT_MORPH_ONE || L <= e.tau_lo * m;
+        } else {
+            zero++;
+            above += L / d >= e.tau;                        /* split by the rule, not hysteresis */
+            bad += bti_morph_at(&e, L, d + m) != 0 || L <= e.tau_lo * (d + m);
+            bad += d - m >= 1 && bti_morph_at(&e, L, d - m) != 0;
+        }
+    }
+    printf("  entry margins: %ld splits with the eye inside, %ld of weight 0 (%ld with floor(L / d) >= tau)\n",
+           inside, zero, above);
+    CHECK(inside > n / 4 || !BR_COHERENCE);
+    CHECK(above > n / 20 || !BR_COHERENCE);
+    CHECK(zero > above || !BR_COHERENCE);
+    CHECK_EQ(bad, 0);
+    close_dem();
+}
+
 /* Cameras whose frustum planes move much less than the eye, so that an entry with
  * planes to test is kept by the eye's travel (its distance margin) as much as by the
  * planes' (core/bt_coh.c: each plane accumulator grows by the larger of its planes'
@@ -668,6 +719,7 @@ int main(void)
 {
     T_RUN(test_morph_nodiv);
     T_RUN(test_weight_run);
+    T_RUN(test_entry_margins);
     T_RUN(test_box_dist);
     T_RUN(test_coherence_paths);
     T_RUN(test_coherence_full_parts);
