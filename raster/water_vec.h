@@ -79,6 +79,15 @@ typedef struct wv_row {
     wv_uq gxmax, gymax, isxl, isxh, isyl, isyh, wetw;
     const uint8_t *wet_al;
     int32_t wet_mis;
+    /* plane_cell's values (wv_plane_cell), when cell_lanes (wet_lanes, and a grid whose
+     * steps and sample count fit 31 bits): half a step, the steps, the grid's height, and
+     * low as the aligned words that hold it (NULL: none) */
+    int cell_lanes;
+    wv_q hsx, hsy, sx, sy;
+    wv_uq weth;
+    int64_t sxsy;
+    const uint8_t *low_al;
+    int32_t low_mis;
 } wv_row;
 
 /* v < c (unsigned lanes) */
@@ -150,9 +159,25 @@ static inline void wv_row_make(wv_row *c, const rw_frame *r, const refl_view *rv
         c->wet_al = (const uint8_t *)((uintptr_t)r->p.wet & ~(uintptr_t)3);
         c->wet_mis = (int32_t)((uintptr_t)r->p.wet & 3u);
     }
+    c->cell_lanes = 0;
     WV_OPAQUE(c->lane); WV_OPAQUE(c->toff); WV_OPAQUE(c->m255); WV_OPAQUE(c->m888); WV_OPAQUE(c->mrb);
     WV_OPAQUE(c->mg); WV_OPAQUE(c->k256); WV_OPAQUE(c->hrb); WV_OPAQUE(c->hg); WV_OPAQUE(c->tab);
     WV_OPAQUE(c->wmax); WV_OPAQUE(c->zero);
+}
+
+/* wv_plane_cell's values (cell_lanes), for a row that may hold tested pixels */
+static RW_NOINLINE void wv_cell_make(wv_row *c, const rw_frame *r)
+{
+    const wv_q one = { 1, 1, 1, 1 };
+    c->cell_lanes = c->wet_lanes && r->p.grid_sx > 0 && r->p.grid_sx <= INT32_MAX && r->p.grid_sy > 0
+                    && r->p.grid_sy <= INT32_MAX && (int64_t)r->p.wet_w * r->p.wet_h <= INT32_MAX;
+    if (!c->cell_lanes) return;
+    c->hsx = one * r->half_sx; c->hsy = one * r->half_sy;
+    c->sx = one * r->p.grid_sx; c->sy = one * r->p.grid_sy;
+    c->weth = (wv_uq)(one * r->p.wet_h);
+    c->sxsy = r->p.grid_sx * r->p.grid_sy;
+    c->low_al = r->p.low ? (const uint8_t *)((uintptr_t)r->p.low & ~(uintptr_t)3) : NULL;
+    c->low_mis = (int32_t)((uintptr_t)r->p.low & 3u);
 }
 
 /* v >> n in 64-bit lanes, arithmetic (AVX2 has none): with s = -1 where v < 0, 0 elsewhere,
@@ -226,6 +251,78 @@ static inline wv_i wv_shore(const wv_row *c, const rw_frame *r, int32_t x, wv_i 
         f[i] = (int32_t)shore_point(br[i], (uint32_t)dt[i], (uint32_t)dw[i]);
     }
     return wv_wet(c, r, x, id, f, l & (br != 0));
+}
+
+/* plane_cell_of for the four lanes at aq and f (Q16, below 2^21): the cell's corner
+ * (*ix, *iy, low words), the point's offsets from it (*fx, *fy: within a step of it, as
+ * grid_index rounds up by less than one) and -1 where the whole cell lies on the grid. */
+static inline void wv_cell_half(const wv_row *c, const int32_t *aq, const int32_t *f, wv_q *ix, wv_q *iy, wv_q *fx,
+                                wv_q *fy, wv_q *in)
+{
+    const wv_q a = __builtin_convertvector(*(const wv_i4un *)(const void *)aq, wv_q);
+    const wv_q fq = __builtin_convertvector(*(const wv_i4un *)(const void *)f, wv_q);
+    const wv_q gx = c->gx0 + wv_grid(a, c->ws0, c->wrel0, fq) - c->hsx;
+    const wv_q gy = c->gy0 - wv_grid(a, c->ws1, c->wrel1, fq) - c->hsy;
+    const wv_uq mlo = { 0xffffffffu, 0xffffffffu, 0xffffffffu, 0xffffffffu };
+    *in = ((wv_uq)gx < c->gxmax) & ((wv_uq)gy < c->gymax);       /* (negative: huge) */
+    *ix = (wv_q)(wv_cell((wv_uq)gx, c->isxl, c->isxh) & mlo);
+    *iy = (wv_q)(wv_cell((wv_uq)gy, c->isyl, c->isyh) & mlo);
+    *in &= ((wv_uq)*ix + 1 < c->wetw) & ((wv_uq)*iy + 1 < c->weth);
+    /* ix sx < wet_w 2^31 < 2^63: vpmuludq's exact product (both below 2^32) */
+    *fx = gx - (wv_q)__builtin_ia32_pmuludq256((wv_i)*ix, (wv_i)c->sx);
+    *fy = gy - (wv_q)__builtin_ia32_pmuludq256((wv_i)*iy, (wv_i)c->sy);
+}
+
+/* The bytes of grid g (read as the aligned words at g_al that hold them, g = g_al + mis)
+ * at index idx in the lanes of m, 0 in the others. */
+static inline wv_i wv_byte_at(const uint8_t *g_al, int32_t mis, wv_i idx, wv_i m)
+{
+    const wv_i i = idx + mis;
+    const wv_i w = WV_GATHER(g_al, (wv_i)((wv_u)i >> 2), m, 4);
+    return m & (wv_i)(((wv_u)w >> (((wv_u)i & 3u) << 3)) & 255u);
+}
+
+/* plane_cell in the lanes of m (tested triangles' pixels of group x, body ids id, in a
+ * row with cell_lanes): -1 where the plane's point on the pixel's ray lies in a half cell
+ * emit_cell keeps, as plane_cell says.  The half test's sums: |fx|, |fy| below a step
+ * (< 2^31), so fx sy + fy sx and sx sy lie below 2^63. */
+static RW_INLINE wv_i wv_plane_cell(const wv_row *c, const rw_frame *r, int32_t x, wv_i id, wv_i m)
+{
+    const wv_i br = WV_GATHER(r->bratio, id, m, 4);
+    const int32_t w = r->p.wet_w;
+    int32_t f[8];
+    wv_q ix0, iy0, fx0, fy0, n0, ix1, iy1, fx1, fy1, n1, h0, h1;
+    wv_i ok, ix, iy, i, nw, ne, sw, se, all, pnw, pne, psw, pse, half;
+    *(wv_iun *)(void *)f = br;
+    wv_cell_half(c, &r->aq[x], f, &ix0, &iy0, &fx0, &fy0, &n0);
+    wv_cell_half(c, &r->aq[x + 4], f + 4, &ix1, &iy1, &fx1, &fy1, &n1);
+    ok = m & (br != 0) & __builtin_shufflevector((wv_i)n0, (wv_i)n1, 0, 2, 4, 6, 8, 10, 12, 14);
+    if (!WV_BITS(ok)) return c->zero;
+    ix = __builtin_shufflevector((wv_i)ix0, (wv_i)ix1, 0, 2, 4, 6, 8, 10, 12, 14);
+    iy = __builtin_shufflevector((wv_i)iy0, (wv_i)iy1, 0, 2, 4, 6, 8, 10, 12, 14);
+    i = iy * w + ix;                /* < wet_w wet_h <= 2^31 - 1 */
+    nw = wv_byte_at(c->wet_al, c->wet_mis, i, ok);
+    ne = wv_byte_at(c->wet_al, c->wet_mis, i + 1, ok);
+    sw = wv_byte_at(c->wet_al, c->wet_mis, i + w, ok);
+    se = wv_byte_at(c->wet_al, c->wet_mis, i + w + 1, ok);
+    all = ok & ((nw & ne & sw & se) == id) & ((nw | ne | sw | se) == id);     /* inside the water */
+    ok &= ~all & ((nw == id) | (ne == id) | (sw == id) | (se == id));    /* a corner wet with the body */
+    if (!WV_BITS(ok)) return all;
+    /* corner_passes: wet with the body, or dry and not low */
+    pnw = (nw == id) | (nw == 0); pne = (ne == id) | (ne == 0);
+    psw = (sw == id) | (sw == 0); pse = (se == id) | (se == 0);
+    if (c->low_al) {
+        pnw &= (nw == id) | (wv_byte_at(c->low_al, c->low_mis, i, ok & (nw == 0)) == 0);
+        pne &= (ne == id) | (wv_byte_at(c->low_al, c->low_mis, i + 1, ok & (ne == 0)) == 0);
+        psw &= (sw == id) | (wv_byte_at(c->low_al, c->low_mis, i + w, ok & (sw == 0)) == 0);
+        pse &= (se == id) | (wv_byte_at(c->low_al, c->low_mis, i + w + 1, ok & (se == 0)) == 0);
+    }
+    /* the south-east half (sw se ne) where fx sy + fy sx >= sx sy, else the north-west
+     * one (nw ne sw); vpmuldq: fx, fy signed below 2^31, sx, sy below 2^31 */
+    h0 = (wv_q)__builtin_ia32_pmuldq256((wv_i)fx0, (wv_i)c->sy) + (wv_q)__builtin_ia32_pmuldq256((wv_i)fy0, (wv_i)c->sx);
+    h1 = (wv_q)__builtin_ia32_pmuldq256((wv_i)fx1, (wv_i)c->sy) + (wv_q)__builtin_ia32_pmuldq256((wv_i)fy1, (wv_i)c->sx);
+    half = __builtin_shufflevector((wv_i)(h0 >= c->sxsy), (wv_i)(h1 >= c->sxsy), 0, 2, 4, 6, 8, 10, 12, 14);
+    return all | (ok & pne & psw & ((half & pse) | (~half & pnw)));
 }
 
 /* The colour of the lanes in show (water_px's common case and water_one's fog): the
@@ -320,11 +417,12 @@ static inline int32_t water_row_vec(const rw_frame *r, const refl_view *rv, cons
     int32_t x;
     const int land = r->p.land && k->shore;
     wv_row_make(&c, r, rv, k, sky);
+    if (trows) wv_cell_make(&c, r);
     rw_walk_start(&wk);
     for (x = x0; x + 8 <= xe; x += 8) {
         const wv_u wcv = (wv_u)WV_LD(wc + 4 * (size_t)x);
         const wv_i id = (wv_i)((wcv >> 19) & 31u), nz = id != 0;
-        wv_i dt, dw, gap, sdd, cand, show;
+        wv_i dt, dw, gap, sdd, cand, show, tl = c.zero;
         uint32_t test;
         if (!WV_BITS(nz)) continue;
         dt = WV_LD(drow + 4 * (size_t)x);
@@ -334,7 +432,10 @@ static inline int32_t water_row_vec(const rw_frame *r, const refl_view *rv, cons
         sdd = WV_GATHER(k->sdd, id, nz, 4);
         cand = nz & ~((gap >= (int32_t)RW_DEPTH_TIE) & ((wv_u)gap > (wv_u)sdd));
         show = cand & (dw > dt);
-        if (trows) show &= (wv_i)((wcv & RW_TESTED_RGB) == 0);
+        if (trows) {    /* a tested triangle's pixels: plane_cell (below) */
+            tl = show & (wv_i)((wcv & RW_TESTED_RGB) != 0);
+            show &= ~tl;
+        }
         if (land) {
             /* the land test's lanes (water_shows): the terrain under the plane within
              * the shore bound; those whose plane point's nearest sample is dry (one of
@@ -353,6 +454,10 @@ static inline int32_t water_row_vec(const rw_frame *r, const refl_view *rv, cons
             }
         }
         test = WV_BITS(cand & ~show);
+        if (trows && c.cell_lanes && WV_BITS(tl)) {     /* plane_cell in lanes */
+            show |= wv_plane_cell(&c, r, x, id, tl);
+            test &= ~WV_BITS(tl);
+        }
         if (test && c.wet_lanes) {
             /* the ties and shore tests in lanes where three or more wait (the gap's
              * sign: the others are tested triangles' pixels, plane_cell) */
