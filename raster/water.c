@@ -565,8 +565,9 @@ static RW_INLINE void water_row_px(const rw_frame *r, const refl_view *rv, const
         x0 = water_row_vec(r, rv, k, crow, drow, wc, wd, x0, xe, sky, trows);
 #endif
     rw_walk_start(&wk);
-    for (x = next_water(wc, x0, xe, fmt); x < xe; x = next_water(wc, x + 1, xe, fmt))
-        water_one(r, rv, k, crow, drow, wc, wd, x, sky, &wk, fmt, depth, common, trows);
+    for (x = next_water(wc, x0, xe, fmt); x < xe; x = next_water(wc, x, xe, fmt))
+        for (; x < xe && get_id(fmt, wc, x); x++)       /* a run of water */
+            water_one(r, rv, k, crow, drow, wc, wd, x, sky, &wk, fmt, depth, common, trows);
 }
 
 /* The hook when the terrain frame carries its own fog and sky (rw_fog_vertices): only
