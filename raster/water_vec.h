@@ -12,15 +12,15 @@
  * (dw > dt), not a tested triangle's pixel in a row that may hold them, nor one the land
  * test may make land (within the shore reach with a dry sample nearest its plane point,
  * found in lanes); a lane whose terrain is nearer by more than the row's shore reach
- * (sdd) is dry, as water_shows says.  The ties and shore tests are made in lanes where
- * three or more of a group wait (wv_shore), the rest of them, the tested triangles'
- * pixels (plane_cell) and the land test's candidates one by one with water_shows; the
- * water is then drawn in the lanes, the land one by one.
+ * (sdd) is dry, as water_shows says.  The tested triangles' pixels whose water is nearer
+ * are decided in lanes (wv_plane_cell), the ties and shore tests in lanes where three or
+ * more of a group wait (wv_shore), the rest of them and the land test's candidates one by
+ * one with water_shows; the water is then drawn in the lanes, the land one by one.
  *
  * Table lookups are AVX2 gathers.  A byte table (fres, fog, wsine) is read as the 32-bit
  * word at the entry's byte and masked or sign-extended: the three bytes past an entry
- * lie inside rw_frame (each of those tables is followed by another member); the wet
- * grid's byte as the aligned word that holds it (wv_wet). */
+ * lie inside rw_frame (each of those tables is followed by another member); a byte of
+ * the wet or low grid as the aligned word that holds it (wv_wet, wv_byte_at). */
 #ifndef BR_RWATER_VEC_H
 #define BR_RWATER_VEC_H
 
