@@ -233,22 +233,13 @@ static inline int bti_bits(uint64_t v)
 /* The geomorph weight of a split vertex (core/bt_mesh.c morph_of) for rho =
  * floor(lhs / d), without a 64-bit divide: with q = rho - tau, 0 for q < 0, ONE for
  * q >= span, else floor(q 2^15 / span).  rho >= tau iff lhs >= tau d, rho >= tau +
- * span iff lhs >= (tau + span) d (products in 128 bits by halves, so exact); between
+ * span iff lhs >= (tau + span) d (fx_mul_ge: products in 128 bits, so exact); between
  * them q = floor((lhs - tau d) / d) < span and the two quotients have at most
  * bits(span) and 15 bits.  lhs >= 0, d > 0, tau >= 0, span > 0 (all < 2^63).  When
  * tau + span and d fit 32 bits the products are 32 x 32 -> 64 bits; when lhs - tau d
  * does too and span < 2^17 (q << 15 < 2^32), two 32-bit divisions give the same
  * quotients: one instruction each on Cortex-M3, a short libgcc call where the target
  * has no divide, against the bit steps' 64-bit loop. */
-static inline int bti_mul_ge(uint64_t l, uint64_t a, uint64_t b)   /* l >= a b ? */
-{
-    uint64_t a0 = a & 0xffffffffu, a1 = a >> 32, b0 = b & 0xffffffffu, b1 = b >> 32;
-    uint64_t m1 = a1 * b0, m2 = a0 * b1, lo = a0 * b0, hi = a1 * b1, mid, r;
-    mid = (lo >> 32) + (m1 & 0xffffffffu) + (m2 & 0xffffffffu);
-    hi += (m1 >> 32) + (m2 >> 32) + (mid >> 32);
-    r = (mid << 32) | (lo & 0xffffffffu);
-    return hi == 0 && l >= r;
-}
 static inline uint16_t bti_morph_nodiv(int64_t lhs, int64_t d, int64_t tau, int64_t span)
 {
     uint64_t L = (uint64_t)lhs, D = (uint64_t)d, n, q;
@@ -262,8 +253,8 @@ static inline uint16_t bti_morph_nodiv(int64_t lhs, int64_t d, int64_t tau, int6
         if ((n >> 32) == 0 && ((uint64_t)span >> 17) == 0)
             return (uint16_t)((((uint32_t)n / (uint32_t)D) << 15) / (uint32_t)span);
     } else {
-        if (!bti_mul_ge(L, (uint64_t)tau, D)) return 0;
-        if (bti_mul_ge(L, (uint64_t)(tau + span), D)) return BT_MORPH_ONE;
+        if (!fx_mul_ge(L, (uint64_t)tau, D)) return 0;
+        if (fx_mul_ge(L, (uint64_t)(tau + span), D)) return BT_MORPH_ONE;
         n = L - (uint64_t)tau * D;
     }
     q = fx_udiv_bits(n, D, bti_bits((uint64_t)span));

@@ -214,7 +214,7 @@ static uint16_t morph_exact(const bti_extract *e, int64_t lhs, int64_t d)
         /* the budget rule's tau = -1 (bt_extract): morph_of's q = lhs / d + 1 =
          * floor((lhs + d) / d), below 2^64; q < span < 2^39 needs bti_bits(span) steps */
         uint64_t L = (uint64_t)lhs + (uint64_t)d, D = (uint64_t)d, S = (uint64_t)e->morph_span, q;
-        if (bti_mul_ge(L, S, D)) return BT_MORPH_ONE;
+        if (fx_mul_ge(L, S, D)) return BT_MORPH_ONE;
         q = fx_udiv_bits(L, D, bti_bits(S));
         return (uint16_t)fx_udiv_bits(q << 15, S, 15);
     }

@@ -28,6 +28,23 @@ static inline int32_t fx_mul_shift(int32_t a, int32_t b, int s)
 /* floor(sqrt(v)) for v >= 0; exact for every uint64. */
 uint32_t fx_isqrt64(uint64_t v);
 
+/* l >= a b, exactly for any uint64 l and a, b below 2^63: the 128-bit product where the
+ * compiler has one (64-bit targets: one multiply), else by 32-bit halves (no 64 x 64-bit
+ * multiply on 32-bit targets; a1 b1 < 2^62 there, so the high word's sum cannot wrap). */
+static inline int fx_mul_ge(uint64_t l, uint64_t a, uint64_t b)
+{
+#if defined(__SIZEOF_INT128__)
+    __extension__ typedef unsigned __int128 fx_u128;      /* (GCC's and clang's) */
+    return (fx_u128)a * b <= l;
+#else
+    const uint64_t a0 = a & 0xffffffffu, a1 = a >> 32, b0 = b & 0xffffffffu, b1 = b >> 32;
+    const uint64_t m1 = a1 * b0, m2 = a0 * b1, lo = a0 * b0;
+    const uint64_t mid = (lo >> 32) + (m1 & 0xffffffffu) + (m2 & 0xffffffffu);
+    const uint64_t hi = a1 * b1 + (m1 >> 32) + (m2 >> 32) + (mid >> 32);
+    return hi == 0 && l >= ((mid << 32) | (lo & 0xffffffffu));
+#endif
+}
+
 /* --- added for the camera and the rasteriser (core/cam.h, raster/) --- */
 
 /* Binary angle: uint32, 2^32 = one full turn (wrap-around is free);

@@ -288,32 +288,12 @@ static void water_horizon(rw_frame *r, const cam *c, int64_t f16, int32_t top)
     if (y - 2 > r->wlo) r->wlo = y - 2;
 }
 
-/* a b > k for a, b, k below 2^63, exactly: the 128-bit product where the compiler has
- * one (64-bit targets: one multiply), else in 32-bit halves (no 64-bit overflow, and on
- * 32-bit targets no 64 x 64-bit multiply) */
-static int prod_above(uint64_t a, uint64_t b, uint64_t k)
-{
-#if defined(__SIZEOF_INT128__)
-    __extension__ typedef unsigned __int128 prod128;       /* (GCC's and clang's) */
-    return (prod128)a * b > k;
-#else
-    const uint64_t ah = a >> 32, al = a & 0xffffffffu, bh = b >> 32, bl = b & 0xffffffffu;
-    uint64_t mid, lo, sum;
-    if (ah && bh) return 1;                 /* a b >= 2^64 > k */
-    mid = ah * bl + al * bh;                /* one of the two terms is 0 */
-    if (mid >> 31) return 1;                /* a b >= mid 2^32 >= 2^63 > k */
-    lo = al * bl;
-    sum = (mid << 32) + lo;                 /* mid 2^32 < 2^63: wraps only past 2^64 */
-    return sum < lo || sum > k;
-#endif
-}
-
 /* Fog table: weight by depth d >> fog_sh (d in 30-bit units, D znear / zc).  Entry i stands
  * for d_i = i 2^sh + 2^(sh-1), zc_i = floor(K / d_i), and gets (t_i^2 + 128) >> 8 with
  * t_i = 256 where zc_i >= ze, floor(256 (zc_i - zs) / span) between (span = ze - zs), 0 at
  * or below zs.  So t_i >= t (1 <= t <= 256) exactly when 256 (zc_i - zs) >= t span, that
  * is zc_i >= Z_t = zs + ceil(t span / 256) (zc_i is an integer; Z_256 = ze), that is
- * d_i Z_t <= K.  d_i rises with i and Z_t with t, so one walk down the t, comparing
+ * d_i Z_t <= K (fx_mul_ge).  d_i rises with i and Z_t with t, so one walk down the t, comparing
  * products, gives each entry between K / ze and K / zs its t_i with no quotient. */
 static void fog_table(rw_frame *r, int64_t K)
 {
@@ -330,7 +310,7 @@ static void fog_table(rw_frame *r, int64_t K)
         if (d > dend) {
             /* (t reaches 0 at the latest where d Z_1 > K; 256 span < 2^63 for any range
              * in world coordinates) */
-            while (t > 0 && prod_above((uint64_t)d, (uint64_t)z, (uint64_t)K))
+            while (t > 0 && !fx_mul_ge((uint64_t)K, (uint64_t)d, (uint64_t)z))
                 if (--t > 0) z = zs + ((t * span + 255) >> 8);
         }
         r->fog[i] = (uint8_t)((t * t + 128) >> 8 > 255 ? 255 : (t * t + 128) >> 8);

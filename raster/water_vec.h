@@ -210,16 +210,34 @@ static inline wv_uq wv_cell(wv_uq g, wv_uq l, wv_uq h)
 
 typedef int32_t wv_i4un __attribute__((vector_size(16), aligned(4)));
 
+/* grid_pos for the four lanes at aq and f (Q16, below 2^21): *gx east, *gy south, world
+ * units plus half a step */
+static inline void wv_pos_half(const wv_row *c, const int32_t *aq, const int32_t *f, wv_q *gx, wv_q *gy)
+{
+    const wv_q a = __builtin_convertvector(*(const wv_i4un *)(const void *)aq, wv_q);
+    const wv_q fq = __builtin_convertvector(*(const wv_i4un *)(const void *)f, wv_q);
+    *gx = c->gx0 + wv_grid(a, c->ws0, c->wrel0, fq);
+    *gy = c->gy0 - wv_grid(a, c->ws1, c->wrel1, fq);
+}
+
 /* wet_at for the four lanes at aq and f: the grid index (low words) and -1 where the
  * point lies on the grid */
 static inline void wv_wet_half(const wv_row *c, const int32_t *aq, const int32_t *f, wv_q *idx, wv_q *in)
 {
-    const wv_q a = __builtin_convertvector(*(const wv_i4un *)(const void *)aq, wv_q);
-    const wv_q fq = __builtin_convertvector(*(const wv_i4un *)(const void *)f, wv_q);
-    const wv_q gx = c->gx0 + wv_grid(a, c->ws0, c->wrel0, fq), gy = c->gy0 - wv_grid(a, c->ws1, c->wrel1, fq);
+    wv_q gx, gy;
+    wv_pos_half(c, aq, f, &gx, &gy);
     *in = ((wv_uq)gx < c->gxmax) & ((wv_uq)gy < c->gymax);
     *idx = (wv_q)((wv_uq)__builtin_ia32_pmuludq256((wv_i)wv_cell((wv_uq)gy, c->isyl, c->isyh), (wv_i)c->wetw)
                   + wv_cell((wv_uq)gx, c->isxl, c->isxh));
+}
+
+/* The bytes of grid g (read as the aligned words at g_al that hold them, g = g_al + mis)
+ * at index idx in the lanes of m, 0 in the others. */
+static inline wv_i wv_byte_at(const uint8_t *g_al, int32_t mis, wv_i idx, wv_i m)
+{
+    const wv_i i = idx + mis;
+    const wv_i w = WV_GATHER(g_al, (wv_i)((wv_u)i >> 2), m, 4);
+    return m & (wv_i)(((wv_u)w >> (((wv_u)i & 3u) << 3)) & 255u);
 }
 
 /* wet_at in the lanes of m, f[i] lane i's point along its ray (Q16, below 2^21): -1 where
@@ -229,13 +247,12 @@ static inline void wv_wet_half(const wv_row *c, const int32_t *aq, const int32_t
 static RW_INLINE wv_i wv_wet(const wv_row *c, const rw_frame *r, int32_t x, wv_i id, const int32_t *f, wv_i m)
 {
     wv_q i0, n0, i1, n1;
-    wv_i idx, ok, w;
+    wv_i idx, ok;
     wv_wet_half(c, &r->aq[x], f, &i0, &n0);
     wv_wet_half(c, &r->aq[x + 4], f + 4, &i1, &n1);
-    idx = __builtin_shufflevector((wv_i)i0, (wv_i)i1, 0, 2, 4, 6, 8, 10, 12, 14) + c->wet_mis;
+    idx = __builtin_shufflevector((wv_i)i0, (wv_i)i1, 0, 2, 4, 6, 8, 10, 12, 14);
     ok = m & __builtin_shufflevector((wv_i)n0, (wv_i)n1, 0, 2, 4, 6, 8, 10, 12, 14);
-    w = WV_GATHER(c->wet_al, (wv_i)((wv_u)idx >> 2), ok, 4);
-    return ok & ((wv_i)(((wv_u)w >> (((wv_u)idx & 3u) << 3)) & 255u) == id);
+    return ok & (wv_byte_at(c->wet_al, c->wet_mis, idx, ok) == id);
 }
 
 /* The tie and shore lanes of l (water_shows: the plane's point, plane_wet, or the
@@ -259,11 +276,11 @@ static inline wv_i wv_shore(const wv_row *c, const rw_frame *r, int32_t x, wv_i 
 static inline void wv_cell_half(const wv_row *c, const int32_t *aq, const int32_t *f, wv_q *ix, wv_q *iy, wv_q *fx,
                                 wv_q *fy, wv_q *in)
 {
-    const wv_q a = __builtin_convertvector(*(const wv_i4un *)(const void *)aq, wv_q);
-    const wv_q fq = __builtin_convertvector(*(const wv_i4un *)(const void *)f, wv_q);
-    const wv_q gx = c->gx0 + wv_grid(a, c->ws0, c->wrel0, fq) - c->hsx;
-    const wv_q gy = c->gy0 - wv_grid(a, c->ws1, c->wrel1, fq) - c->hsy;
     const wv_uq mlo = { 0xffffffffu, 0xffffffffu, 0xffffffffu, 0xffffffffu };
+    wv_q gx, gy;
+    wv_pos_half(c, aq, f, &gx, &gy);
+    gx -= c->hsx;                   /* the point's own grid position */
+    gy -= c->hsy;
     *in = ((wv_uq)gx < c->gxmax) & ((wv_uq)gy < c->gymax);       /* (negative: huge) */
     *ix = (wv_q)(wv_cell((wv_uq)gx, c->isxl, c->isxh) & mlo);
     *iy = (wv_q)(wv_cell((wv_uq)gy, c->isyl, c->isyh) & mlo);
@@ -271,15 +288,6 @@ static inline void wv_cell_half(const wv_row *c, const int32_t *aq, const int32_
     /* ix sx < wet_w 2^31 < 2^63: vpmuludq's exact product (both below 2^32) */
     *fx = gx - (wv_q)__builtin_ia32_pmuludq256((wv_i)*ix, (wv_i)c->sx);
     *fy = gy - (wv_q)__builtin_ia32_pmuludq256((wv_i)*iy, (wv_i)c->sy);
-}
-
-/* The bytes of grid g (read as the aligned words at g_al that hold them, g = g_al + mis)
- * at index idx in the lanes of m, 0 in the others. */
-static inline wv_i wv_byte_at(const uint8_t *g_al, int32_t mis, wv_i idx, wv_i m)
-{
-    const wv_i i = idx + mis;
-    const wv_i w = WV_GATHER(g_al, (wv_i)((wv_u)i >> 2), m, 4);
-    return m & (wv_i)(((wv_u)w >> (((wv_u)i & 3u) << 3)) & 255u);
 }
 
 /* plane_cell in the lanes of m (tested triangles' pixels of group x, body ids id, in a
