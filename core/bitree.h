@@ -459,6 +459,44 @@ uint32_t bt_parts_reused(const bt_parts *ps);
  * (the part's records before it kept; a statistic). */
 uint32_t bt_parts_resumed(const bt_parts *ps);
 
+/* ---------------------------------------------------------------- streamed walk (bt_stream.c)
+ * The view selection without a mesh, for a frame drawn band by band in little RAM (the
+ * board, docs/mcu.md): each walk hands the leaves whose volume may reach a window of
+ * the screen to a callback, as their three grid points, and keeps nothing of them.
+ * The selection is bt_extract's view rule WITHOUT hysteresis (hyst_q8 must be 0; the
+ * tree's frame state is neither read nor written, so bt_attach may give it none):
+ * every walk of a frame gives every diamond the same answer, so the walks' leaves
+ * together are one conforming mesh, the real triangles of bt_extract's mesh for the
+ * same camera and hyst_q8 = 0 (same points, same geomorphed heights), met in the
+ * order of its strip; the leaves of one walk are those whose diamond's nested volume
+ * does not lie wholly above or below the window's rows, which covers every triangle
+ * that covers a pixel centre in them (core/bt_stream.c).  A leaf comes apex first, then
+ * counter-clockwise seen from +z, as bt_mesh's strip has its real triangles.
+ * Memory: bt_stream_mem_size(memo_entries) bytes, about 2.6 KB plus 8 (16 with
+ * BR_COHERENCE) a decision memo entry, a power of two >= 16 (a cache: fewer entries
+ * decide more diamonds twice, the same leaves); 0 for a bad count.
+ * Protocol: bt_stream_init once; per frame bt_stream_frame (BR_E_ARG: not BT_VIEW,
+ * hyst_q8 != 0, a window in p, or what bt_extract refuses), then any number of
+ * bt_stream_walk, each with its window (x0, y0, x1, y1 pixels as bt_params.window;
+ * NULL: the whole viewport) and callback.  p and t are copied or read during the
+ * frame's walks only; t must stay unchanged meanwhile. */
+typedef struct bt_svert {
+    int32_t x, y;          /* grid column and row */
+    int32_t z;             /* height after geomorph (bt_vert.z) */
+    uint32_t tag;          /* 0 when the walk makes the point; the callback may keep a
+                              value here: the walk hands the same bt_svert to every leaf
+                              of the triangle that made the point until it leaves it */
+    uint16_t morph;        /* Q15 geomorph weight (bt_vert.morph) */
+} bt_svert;
+typedef void (*bt_stream_leaf)(void *user, bt_svert *v0, bt_svert *v1, bt_svert *v2);
+typedef struct bt_stream bt_stream;
+size_t bt_stream_mem_size(uint32_t memo_entries);
+br_status bt_stream_init(bt_stream **out, uint32_t memo_entries, void *mem, size_t mem_bytes);
+br_status bt_stream_frame(bt_stream *s, bt_tree *t, const bt_params *p);
+/* The leaves for window (NULL: all of them); returns how many went to fn (0 for a
+ * window outside the viewport's bounds). */
+uint32_t bt_stream_walk(bt_stream *s, const int32_t window[4], bt_stream_leaf fn, void *user);
+
 /* Budget mode scratch: bt_extract with BT_BUDGET (or a fallback) needs a heap;
  * it is carved from m (bt_mesh_mem_size includes it).  When the recursive walk
  * broke and p->strip_order asks for it, the strip is written again in a greedy

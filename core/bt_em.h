@@ -455,6 +455,50 @@ static inline int32_t bti_dscale(int32_t x, int32_t y, int32_t S, int *typeD)
     return h;
 }
 
+/* The three corners are valid samples.  Without a void in the grid as read (only the
+ * padding), that is: they lie in it, x < w and y < h. */
+static inline int bti_sample_valid(const hf *f, int32_t x, int32_t y)
+{
+    return x < f->w && y < f->h && f->z[(size_t)y * f->w + x] != HF_NODATA;
+}
+static inline int bti_tri_valid6(const bti_extract *e, int32_t ax, int32_t ay, int32_t cx, int32_t cy, int32_t bx,
+                                 int32_t by)
+{
+    const hf *f = e->t->f;
+    if (e->nonvoid) return 1;
+    if (e->nodata_free) {
+        int32_t mx = ax > bx ? ax : bx, my = ay > by ? ay : by;
+        mx = cx > mx ? cx : mx;
+        my = cy > my ? cy : my;
+        return mx < e->t->w && my < e->t->h;
+    }
+    return bti_sample_valid(f, ax, ay) && bti_sample_valid(f, bx, by) && bti_sample_valid(f, cx, cy);
+}
+static inline int bti_tri_valid(const bti_extract *e, const bti_pt *a, const bti_pt *c, const bti_pt *b)
+{
+    return bti_tri_valid6(e, a->x, a->y, c->x, c->y, b->x, b->y);
+}
+
+/* The nested bounding volume of diamond (x, y) in slot id, world units: the box of
+ * half-side 3h (type D) or 2h around the centre, within the padded grid, times the
+ * node's quantised height range (core/bt_mesh.c view_err) */
+static inline void bti_dvolume(const bti_extract *e, int32_t x, int32_t y, uint32_t id, int32_t lo[3], int32_t hi[3])
+{
+    const bt_frame *fr = &e->p->fr;
+    int typeD;
+    int32_t h = bti_dscale(x, y, e->S, &typeD);
+    int32_t r = typeD ? 3 * h : 2 * h;
+    int32_t x0 = x - r < 0 ? 0 : x - r, x1 = x + r > e->S ? e->S : x + r;
+    int32_t y0 = y - r < 0 ? 0 : y - r, y1 = y + r > e->S ? e->S : y + r;
+    uint32_t nv = e->t->node[id];
+    lo[0] = (int32_t)(fr->ox + (int64_t)x0 * fr->sx);
+    hi[0] = (int32_t)(fr->ox + (int64_t)x1 * fr->sx);
+    lo[1] = (int32_t)(fr->oy - (int64_t)y1 * fr->sy);
+    hi[1] = (int32_t)(fr->oy - (int64_t)y0 * fr->sy);
+    lo[2] = e->wz_lo[BT_NODE_ZLO(nv)];
+    hi[2] = e->wz_hi[BT_NODE_ZHI(nv)];
+}
+
 /* core/bt_budget.c: marks ST_MARK on the diamonds a budget of
  * `budget` nominal triangles buys; the ids it marked go to the mesh's id list
  * (*nid of them, to clear afterwards); sets e->tau to the last split's rho. */

@@ -55,47 +55,9 @@ typedef bti_pt pt;
 #define NO_IDX BTI_NO_IDX
 
 /* ------------------------------------------------------------ samples */
-static int valid(const bt_tree *t, int32_t x, int32_t y)
-{
-    const hf *f = t->f;
-    if (x >= f->w || y >= f->h) return 0;
-    return f->z[(size_t)y * f->w + x] != HF_NODATA;
-}
-
-/* The three corners are valid samples.  Without a void in the grid as read (only the
- * padding), that is: they lie in it, x < w and y < h. */
-static inline int tri_valid(const bti_extract *e, const bti_pt *a, const bti_pt *c, const bti_pt *b)
-{
-    if (e->nonvoid) return 1;
-    if (e->nodata_free) {
-        int32_t mx = a->x > b->x ? a->x : b->x, my = a->y > b->y ? a->y : b->y;
-        mx = c->x > mx ? c->x : mx;
-        my = c->y > my ? c->y : my;
-        return mx < e->t->w && my < e->t->h;
-    }
-    return valid(e->t, a->x, a->y) && valid(e->t, b->x, b->y) && valid(e->t, c->x, c->y);
-}
-
-/* ------------------------------------------------------------ view */
+#define tri_valid bti_tri_valid
+#define dvolume bti_dvolume
 #define isat_mul bti_isat_mul
-
-static inline void dvolume(const bti_extract *e, int32_t x, int32_t y, uint32_t id, int32_t lo[3], int32_t hi[3])
-{
-    const bt_tree *t = e->t;
-    const bt_frame *fr = &e->p->fr;
-    int typeD;
-    int32_t h = bti_dscale(x, y, e->S, &typeD);
-    int32_t r = typeD ? 3 * h : 2 * h;
-    int32_t x0 = x - r < 0 ? 0 : x - r, x1 = x + r > e->S ? e->S : x + r;
-    int32_t y0 = y - r < 0 ? 0 : y - r, y1 = y + r > e->S ? e->S : y + r;
-    uint32_t nv = t->node[id];
-    lo[0] = (int32_t)(fr->ox + (int64_t)x0 * fr->sx);
-    hi[0] = (int32_t)(fr->ox + (int64_t)x1 * fr->sx);
-    lo[1] = (int32_t)(fr->oy - (int64_t)y1 * fr->sy);
-    hi[1] = (int32_t)(fr->oy - (int64_t)y0 * fr->sy);
-    lo[2] = e->wz_lo[BT_NODE_ZLO(nv)];
-    hi[2] = e->wz_hi[BT_NODE_ZHI(nv)];
-}
 
 /* Frustum test of a box against the planes in *mask: 1 when it lies wholly
  * outside one of them (culled); planes it lies wholly inside are removed from

@@ -1,0 +1,246 @@
+/* tests/test_stream.c — the streamed walk (core/bitree.h bt_stream_*) and the stream pass
+ * (raster/terrain_stream.h) on real terrain, a 400 x 300 crop of N47E009 (Lake
+ * Constance's south shore), along a low camera moving 20 m a frame, geomorph on:
+ * - the walk's leaves over the whole viewport are the real triangles of bt_extract's
+ *   mesh without hysteresis, in its strip's order, apex first, same heights;
+ * - the stream pass's frames are that list drawn whole, byte for byte, for bands of
+ *   240, 16 and 7 rows and batches of 1, 256 and 8192 triangles, in both pixel layouts
+ *   (a band that missed a leaf reaching its rows, or a batch that mixed up its
+ *   vertices, differs);
+ * - what it refuses. */
+#include <stdint.h>
+#include <string.h>
+#include "tests/test.h"
+#include "tests/support/btcheck.h"
+#include "core/cam.h"
+#include "raster/terrain_stream.h"
+
+#define W 320
+#define H 240
+#define MAXT 200000
+
+static hf full, crop;
+static bt_tree tree;
+static void *tree_mem;
+static int have;
+
+static int load(void)
+{
+    int32_t x, y;
+    void *scr;
+    if (have) return have > 0;
+    have = -1;
+    if (btc_load("hgt/N47E009.hgt", &full)) return 0;
+    crop = full;
+    crop.w = 400; crop.h = 300;
+    crop.z = malloc((size_t)crop.w * crop.h * 4);
+    for (y = 0; y < crop.h; y++)
+        for (x = 0; x < crop.w; x++) crop.z[(size_t)y * crop.w + x] = full.z[(size_t)(y + 100) * full.w + x + 300];
+    tree_mem = malloc(bt_mem_size(crop.w, crop.h));
+    scr = malloc(bt_scratch_size(crop.w, crop.h));
+    if (bt_build(&tree, &crop, BT_METRIC_EXACT, tree_mem, bt_mem_size(crop.w, crop.h), scr,
+                 bt_scratch_size(crop.w, crop.h)) != BR_OK) { free(scr); return 0; }
+    free(scr);
+    have = 1;
+    return 1;
+}
+
+typedef struct leaves { int32_t *p; uint32_t n; } leaves;   /* 9 ints a leaf: x, y, z thrice */
+
+static void keep(void *user, bt_svert *a, bt_svert *b, bt_svert *c)
+{
+    leaves *l = (leaves *)user;
+    int32_t *q = &l->p[9 * (size_t)l->n++];
+    q[0] = a->x; q[1] = a->y; q[2] = a->z; q[3] = b->x; q[4] = b->y; q[5] = b->z; q[6] = c->x; q[7] = c->y; q[8] = c->z;
+}
+
+/* Mesh m's real triangles in strip order (odd ones' first two swapped), without the
+ * repeated-index and collinear (line) ones, each turned (winding kept) to start at its
+ * right angle: into list (indices) and l (points) */
+static void mesh_leaves(const bt_mesh *m, br_index *list, leaves *l)
+{
+    uint32_t t;
+    l->n = 0;
+    for (t = 0; t + 2 < m->ns; t++) {
+        br_index v[3], r;
+        int k, j;
+        const bt_vert *p[3];
+        v[0] = m->strip[t]; v[1] = m->strip[t + 1]; v[2] = m->strip[t + 2];
+        if (t & 1) { r = v[0]; v[0] = v[1]; v[1] = r; }
+        if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;
+        for (k = 0; k < 3; k++) p[k] = &m->v[v[k]];
+        if ((int64_t)(p[1]->x - p[0]->x) * (p[2]->y - p[0]->y) == (int64_t)(p[1]->y - p[0]->y) * (p[2]->x - p[0]->x))
+            continue;
+        for (k = 0; k < 3; k++) {   /* the right angle: the legs' dot product is 0 */
+            const bt_vert *o = p[k], *u = p[(k + 1) % 3], *w = p[(k + 2) % 3];
+            if ((int64_t)(u->x - o->x) * (w->x - o->x) + (int64_t)(u->y - o->y) * (w->y - o->y) == 0) break;
+        }
+        CHECK(k < 3);
+        for (j = 0; j < 3; j++) {
+            const bt_vert *q = p[(k + j) % 3];
+            int32_t *o = &l->p[9 * (size_t)l->n + 3 * j];
+            list[3 * l->n + j] = v[(k + j) % 3];
+            o[0] = q->x; o[1] = q->y; o[2] = q->z;
+        }
+        l->n++;
+    }
+}
+
+static void frame_of(rs_frame *f, int lay, const cam *c)
+{
+    memset(f, 0, sizeof *f);
+    f->w = W; f->h = H;
+    f->fmt = lay ? RS_FMT_RGB565 : RS_FMT_XRGB8888; f->depth = lay ? RS_DEPTH16 : RS_DEPTH32;
+    f->clear_rgb = 0x99ccffu;
+    cam_viewproj(c, &f->vp);
+}
+
+typedef struct grab { uint8_t *px; size_t row; } grab;
+static br_status grab_band(void *user, int32_t y0, int32_t rows, const void *px, size_t stride)
+{
+    grab *g = (grab *)user;
+    int32_t y;
+    for (y = 0; y < rows; y++) memcpy(g->px + (size_t)(y0 + y) * g->row, (const uint8_t *)px + (size_t)y * stride, g->row);
+    return BR_OK;
+}
+
+/* The stream pass's frame for layout lay in bands of `rows`, batches of cap_t triangles */
+static uint8_t *draw_stream(bt_stream *walk, const rt_scene *sc, const cam *c, int lay, int32_t rows, uint32_t cap_v,
+                            uint32_t cap_t)
+{
+    rt_stream s;
+    rs_pipe pipe;
+    rs_pass pass;
+    grab g;
+    void *mem = malloc(rt_stream_mem_size(cap_v, cap_t)), *band;
+    memset(&s, 0, sizeof s);
+    CHECK_EQ(rt_stream_init(&s, cap_v, cap_t, mem, rt_stream_mem_size(cap_v, cap_t)), BR_OK);
+    s.scene = sc; s.walk = walk;
+    frame_of(&s.fr, lay, c);
+    memset(&pipe, 0, sizeof pipe);
+    pipe.w = W; pipe.h = H; pipe.fmt = s.fr.fmt; pipe.depth = s.fr.depth;
+    CHECK_EQ(rs_pass_stream(&pass, &s), BR_OK);
+    CHECK_EQ(rs_pipe_add(&pipe, &pass), BR_OK);
+    band = malloc(rs_pipe_mem_size(&pipe, rows));
+    g.row = (size_t)W * (lay ? 2 : 4);
+    g.px = calloc(H, g.row);
+    CHECK_EQ(rs_pipe_run(&pipe, rows, band, rs_pipe_mem_size(&pipe, rows), grab_band, &g, NULL), BR_OK);
+    free(band); free(mem);
+    return g.px;
+}
+
+static void test_stream_frames(void)
+{
+    rt_scene sc;
+    rs_ramp ramp;
+    fx_q14 sun[3];
+    bt_params p;
+    bt_mesh m;
+    cam c;
+    bt_stream *walk;
+    void *mesh_mem = NULL, *wmem = malloc(bt_stream_mem_size(512));
+    leaves want = { malloc(sizeof(int32_t) * 9 * MAXT), 0 }, got = { malloc(sizeof(int32_t) * 9 * MAXT), 0 };
+    br_index *list = malloc(sizeof *list * 3 * MAXT);
+    rs_vertex *v = malloc(sizeof *v * MAXT);
+    rs_cvert *cache = malloc(sizeof *cache * MAXT);
+    int16_t *chunks = malloc(rs_chunk_mem_size(&(rs_prim){ RS_LIST, 3u * MAXT, NULL }, 1));
+    uint32_t k, nmorph = 0, ntri = 0;
+    if (!load()) { CHECK(0); return; }
+    rs_ramp_default(&ramp, hf_z_to_mm(&crop, 395), hf_z_to_mm(&crop, 2500));
+    rs_sun_dir(315000, 45000, sun);
+    CHECK_EQ(rt_scene_init(&sc, &crop, &ramp, sun, 4915), BR_OK);
+    CHECK_EQ(bt_stream_init(&walk, 512, wmem, bt_stream_mem_size(512)), BR_OK);
+    memset(&p, 0, sizeof p);
+    p.mode = BT_VIEW; p.fr = sc.fr; p.c = &c; p.morph_q8 = 128; p.pixel_err_q8 = 256;
+    for (k = 0; k < 3; k++) {
+        int32_t eye[3], tgt[3], us = sc.shift, lay;
+        uint32_t i;
+        eye[0] = (3000 + 20 * (int32_t)k) << us; eye[1] = 500 << us; eye[2] = 1200 << us;
+        tgt[0] = (9000 + 20 * (int32_t)k) << us; tgt[1] = 12000 << us; tgt[2] = 700 << us;
+        CHECK_EQ(cam_look_at(&c, eye, tgt, 60000, W, H, 1 << us, 60000 << us), BR_OK);
+        if (k == 0) CHECK_EQ(btc_extract(&tree, &p, MAXT, &m, &mesh_mem), 0);
+        else CHECK_EQ(bt_extract(&tree, &p, &m), BR_OK);
+        if (m.nv > MAXT || m.ns > MAXT) { CHECK(0); break; }
+        mesh_leaves(&m, list, &want);
+        CHECK_EQ(bt_stream_frame(walk, &tree, &p), BR_OK);
+        got.n = 0;
+        CHECK_EQ(bt_stream_walk(walk, NULL, keep, &got), got.n);
+        CHECK_EQ(got.n, want.n);
+        for (i = 0; i < want.n && !memcmp(&want.p[9 * i], &got.p[9 * i], 36); i++) {}
+        CHECK_MSG(i == want.n, "frame %u: leaf %u of %u differs from the mesh's", k, i, want.n);
+        for (i = 0; i < m.nv; i++) nmorph += m.v[i].z != crop.z[(size_t)m.v[i].y * crop.w + m.v[i].x];
+        ntri += want.n;
+        rt_from_mesh(&sc, &m, v);
+        for (lay = 0; lay < 2; lay++) {
+            static const int32_t rows[3] = { H, 16, 7 };
+            static const uint32_t capv[3] = { 3, 128, 4096 }, capt[3] = { 1, 256, 8192 };
+            const size_t n = (size_t)W * H * (lay ? 2 : 4);
+            rs_frame f;
+            rs_prim lp;
+            uint8_t *ref;
+            int r, b;
+            frame_of(&f, lay, &c);
+            f.v = v; f.nv = m.nv; f.cache = cache; f.chunks = chunks;
+            lp.kind = RS_LIST; lp.n = 3 * want.n; lp.idx = list;
+            f.prims = &lp; f.nprims = 1;
+            ref = calloc(n, 1);
+            {
+                void *dep = calloc((size_t)W * H, 4);
+                CHECK_EQ(rs_frame_prepare(&f), BR_OK);
+                CHECK_EQ(rs_draw_band(&f, 0, H, ref, n / H, dep, NULL), BR_OK);
+                free(dep);
+            }
+            for (r = 0; r < 3; r++)
+                for (b = 0; b < 3; b++) {
+                    uint8_t *px = draw_stream(walk, &sc, &c, lay, rows[r], capv[b], capt[b]);
+                    CHECK_MSG(!memcmp(px, ref, n), "frame %u layout %d: %d-row bands, batches of %u differ from the list",
+                              k, lay, rows[r], capt[b]);
+                    free(px);
+                }
+            free(ref);
+        }
+    }
+    printf("3 frames: %u leaves, %u vertices off their real height\n", ntri, nmorph);
+    CHECK(ntri > 3000 && nmorph > 100);
+    free(mesh_mem); free(wmem); free(want.p); free(got.p); free(list); free(v); free(cache); free(chunks);
+}
+
+static void test_stream_refuses(void)
+{
+    uint64_t mem[64];
+    bt_stream *s;
+    bt_params p;
+    cam c;
+    const int32_t eye[3] = { 0, 0, 1 << 20 }, tgt[3] = { 1 << 20, 1 << 20, 0 };
+    const int32_t bad[4] = { 0, 100, 320, 100 };
+    uint64_t *big = malloc(bt_stream_mem_size(16));
+    CHECK_EQ(bt_stream_mem_size(15), 0);
+    CHECK_EQ(bt_stream_mem_size(24), 0);
+    CHECK(bt_stream_mem_size(16) > 0);
+    CHECK_EQ(bt_stream_init(&s, 16, mem, sizeof mem / 4), BR_E_ARG);      /* too small */
+    CHECK_EQ(bt_stream_init(&s, 16, big, bt_stream_mem_size(16)), BR_OK);
+    CHECK_EQ(cam_look_at(&c, eye, tgt, 60000, W, H, 16, 1 << 28), BR_OK);
+    if (!load()) { CHECK(0); free(big); return; }
+    memset(&p, 0, sizeof p);
+    p.mode = BT_VIEW; p.c = &c; p.fr.sx = p.fr.sy = 1 << 10; p.fr.sz_q16 = 1 << 16;
+    p.hyst_q8 = 64;
+    CHECK_EQ(bt_stream_frame(s, &tree, &p), BR_E_ARG);                  /* hysteresis */
+    p.hyst_q8 = 0; p.mode = BT_BUDGET;
+    CHECK_EQ(bt_stream_frame(s, &tree, &p), BR_E_ARG);
+    p.mode = BT_VIEW;
+    CHECK_EQ(bt_stream_frame(s, &tree, &p), BR_OK);
+    CHECK_EQ(bt_stream_walk(s, bad, keep, NULL), 0);                     /* empty window */
+    CHECK_EQ(rt_stream_mem_size(2, 1), 0);
+    CHECK_EQ(rt_stream_mem_size(4097, 1), 0);
+    CHECK_EQ(rt_stream_mem_size(3, 0), 0);
+    free(big);
+}
+
+int main(void)
+{
+    T_RUN(test_stream_refuses);
+    T_RUN(test_stream_frames);
+    free(crop.z);
+    free(tree_mem);
+    return t_finish();
+}
