@@ -368,6 +368,10 @@ void bti_morph_terms(const bti_extract *e, int32_t x, int32_t y, uint32_t idx, i
                      int64_t *lhs);
 /* for the box distance d = bti_box_dist(eye, lo, hi) */
 uint16_t bti_morph_at(const bti_extract *e, int64_t lhs, int64_t d);
+/* decide() itself, without the memo (core/bt_mesh.c) */
+int bti_decide_view(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph);
+/* The weight decide() gives diamond (x, y) in slot idx when it splits it (view rule) */
+uint16_t bti_morph_now(const bti_extract *e, int32_t x, int32_t y, uint32_t idx);
 /* The walk of triangle (a, c, b) (core/bt_mesh.c rec), for a part's walk resumed
  * (bti_part_resume) */
 void bti_walk_tri(bti_extract *e, bti_pt *a, bti_pt *c, bti_pt *b, int in_hyp, int out_hyp, unsigned mask);

@@ -230,7 +230,6 @@ static int decide(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *
     }
 }
 
-#if BR_COHERENCE
 /* The geomorph weight decide() gives diamond (x, y) in slot idx, known to be split
  * and not culled: view_err's distance and object error, decide's morph_at. */
 static inline void morph_terms(const bti_extract *e, int32_t x, int32_t y, uint32_t idx, int32_t lo[3],
@@ -260,7 +259,17 @@ void bti_morph_terms(const bti_extract *e, int32_t x, int32_t y, uint32_t idx, i
 
 uint16_t bti_morph_at(const bti_extract *e, int64_t lhs, int64_t d)
 { return d <= 0 ? BT_MORPH_ONE : morph_at(e, lhs, d); }
-#endif
+
+int bti_decide_view(bti_extract *e, int32_t x, int32_t y, uint32_t idx, unsigned *mask, uint16_t *morph)
+{
+    uint64_t exp;
+    return decide(e, x, y, idx, mask, morph, &exp);
+}
+
+uint16_t bti_morph_now(const bti_extract *e, int32_t x, int32_t y, uint32_t idx)
+{
+    return e->morph_span <= 0 || BT_NODE_ERR(e->t->node[idx]) == BT_CODE_SPLIT ? BT_MORPH_ONE : morph_now(e, x, y, idx);
+}
 
 /* decide() for the view rule, memoised.  Within the frame: a diamond is reached
  * twice, once from each half, and the rule gives both visits the same answer: it

@@ -32,35 +32,43 @@
 
 struct bt_stream {
     bti_extract e;
-    bt_mesh memo;           /* only memo, memo_mask and memo_gen: decide_memo's cache */
     bt_params p;            /* the frame's parameters and camera, copied (e.p points here) */
     cam c;
     cam_plane win[2];       /* the walk's window: its bottom and top planes */
+    uint8_t *ans;           /* this frame's answers: two bit planes of nslot bits */
+    uint32_t nslot;
+    uint32_t *wkey;         /* the weight cache: slot + 1 (0: empty), wmask + 1 entries */
+    uint8_t *wstep;         /* and the weight / BT_MORPH_STEP, or CULLED */
+    uint32_t wmask;
     bt_stream_leaf fn;
     void *user;
     uint32_t count;
 };
+#define CULLED 0xFFu
 
 static size_t head_size(void)
 {
     return (sizeof(bt_stream) + 7) & ~(size_t)7;
 }
 
-size_t bt_stream_mem_size(uint32_t memo_entries)
+size_t bt_stream_mem_size(uint32_t cache_entries, uint32_t nslot)
 {
-    if (memo_entries < 16 || (memo_entries & (memo_entries - 1)) || memo_entries > (1u << 24)) return 0;
-    return head_size() + (size_t)memo_entries * 8u * BTI_MEMO_W;
+    if (cache_entries < 16 || (cache_entries & (cache_entries - 1)) || cache_entries > (1u << 24) || nslot < 1)
+        return 0;
+    return head_size() + (size_t)cache_entries * 5u + 2 * bti_plane_bytes(nslot);
 }
 
-br_status bt_stream_init(bt_stream **out, uint32_t memo_entries, void *mem, size_t mem_bytes)
+br_status bt_stream_init(bt_stream **out, uint32_t cache_entries, uint32_t nslot, void *mem, size_t mem_bytes)
 {
     bt_stream *s = (bt_stream *)mem;
-    const size_t need = bt_stream_mem_size(memo_entries);
+    const size_t need = bt_stream_mem_size(cache_entries, nslot);
     if (!out || !mem || !need || mem_bytes < need || ((uintptr_t)mem & 7)) return BR_E_ARG;
     memset(s, 0, sizeof *s);
-    s->memo.memo = (uint64_t *)(void *)((uint8_t *)mem + head_size());
-    s->memo.memo_mask = memo_entries - 1;
-    bti_memo_clear(s->memo.memo, memo_entries);
+    s->wkey = (uint32_t *)(void *)((uint8_t *)mem + head_size());
+    s->wstep = (uint8_t *)(s->wkey + cache_entries);
+    s->wmask = cache_entries - 1;
+    s->ans = s->wstep + cache_entries;
+    s->nslot = nslot;
     *out = s;
     return BR_OK;
 }
@@ -68,56 +76,135 @@ br_status bt_stream_init(bt_stream **out, uint32_t memo_entries, void *mem, size
 br_status bt_stream_frame(bt_stream *s, bt_tree *t, const bt_params *p)
 {
     br_status st;
-    int i;
-    if (!s || !t || !p || !p->c || p->mode != BT_VIEW || p->hyst_q8 != 0 || p->window) return BR_E_ARG;
+    if (!s || !t || !p || !p->c || p->mode != BT_VIEW || p->hyst_q8 != 0 || p->window || t->nslot > s->nslot)
+        return BR_E_ARG;
     s->p = *p;
     s->c = *p->c;
     s->p.c = &s->c;
     if ((st = bti_setup(&s->e, t, &s->p)) != BR_OK) return st;
-    /* the memo: this frame's answers only (an entry of another generation is a miss;
-     * with frame coherence compiled in, no accumulator proves an older one) */
-    s->e.m = &s->memo;
-    s->e.coh = NULL;
-    s->e.coh_acc = UINT64_MAX;
-    for (i = 0; i < BT_COH_NCTR; i++) s->e.coh_ctr[i] = UINT64_MAX;
-    if (++s->memo.memo_gen > 0xFFFFu) {
-        bti_memo_clear(s->memo.memo, s->memo.memo_mask + 1);
-        s->memo.memo_gen = 1;
-    }
+    memset(s->ans, 0, 2 * bti_plane_bytes(t->nslot));
+    memset(s->wkey, 0, ((size_t)s->wmask + 1) * 4);
     return BR_OK;
 }
 
-/* 1 when diamond (x, y)'s volume lies wholly outside one of the window's planes in
- * *wmask; planes it lies wholly inside leave *wmask (its descendants' volumes nest) */
-static int out_of_window(const bt_stream *s, int32_t x, int32_t y, uint32_t id, unsigned *wmask)
+/* The view rule's answer for diamond (x, y) in slot id (core/bt_mesh.c decide), kept for
+ * the whole frame in the two bit planes: code (plane 0 bit) | (plane 1 bit) << 1 = 1
+ * split with the full weight, 2 leaf, 3 split with a partial weight, 0 not yet decided
+ * or culled (few: the weight cache marks them, else they are decided again).  A partial
+ * weight comes from the weight cache (slot + 1 and the weight's step, direct-mapped)
+ * while it holds it, else is computed again (bti_morph_now: the same weight, without the
+ * frustum test).  The plane mask is handed on only by a first decision; a later visit
+ * keeps its parent's, whose extra planes give the same answers (bt_mesh.c decide_memo). */
+static int decide(bt_stream *s, int32_t x, int32_t y, uint32_t id, unsigned *mask, uint16_t *morph)
 {
-    int32_t lo[3], hi[3];
-    int i, k;
-    bti_dvolume(&s->e, x, y, id, lo, hi);
-    for (i = 0; i < 2; i++) {
-        int64_t sp, sn;
-        if (!(*wmask & (1u << i))) continue;
-        sp = sn = s->win[i].d;
-        for (k = 0; k < 3; k++) {
-            const int32_t nk = s->win[i].n[k];
-            sp += (int64_t)nk * (nk >= 0 ? hi[k] : lo[k]);
-            sn += (int64_t)nk * (nk >= 0 ? lo[k] : hi[k]);
+    bti_extract *e = &s->e;
+    uint8_t *const p0 = &s->ans[id >> 3], *const p1 = p0 + bti_plane_bytes(e->t->nslot);
+    const uint8_t bit = (uint8_t)(1u << (id & 7u));
+    const uint32_t h = (id * 2654435761u >> 8) & s->wmask;
+    const unsigned code = (*p0 & bit ? 1u : 0u) | (*p1 & bit ? 2u : 0u);
+    int sp;
+    switch (code) {
+    case 1: *morph = BT_MORPH_ONE; return 1;
+    case 2: return 0;
+    case 3:
+        *morph = s->wkey[h] == id + 1 ? (uint16_t)(s->wstep[h] * BT_MORPH_STEP) : bti_morph_now(e, x, y, id);
+        return 1;
+    default:
+        if (s->wkey[h] == id + 1 && s->wstep[h] == CULLED) return -1;
+        break;
+    }
+    sp = bti_decide_view(e, x, y, id, mask, morph);
+    if (sp < 0) {
+        s->wkey[h] = id + 1;
+        s->wstep[h] = CULLED;
+    } else if (sp == 0) *p1 |= bit;
+    else {
+        *p0 |= bit;
+        if (*morph != BT_MORPH_ONE) {   /* a multiple of BT_MORPH_STEP (morph_at), below ONE */
+            *p1 |= bit;
+            s->wkey[h] = id + 1;
+            s->wstep[h] = (uint8_t)(*morph / BT_MORPH_STEP);
         }
-        if (sp < 0) return 1;
-        if (sn >= 0) *wmask &= ~(1u << i);
+    }
+    return sp;
+}
+
+/* The window's planes bound the walk.  A plane's value at a world point is affine, so
+ * over the prism of triangle (a, c, b) it lies between the least and the most of its
+ * values at the three corners' (x, y), each plus the height term n2 z at the end of the
+ * prism's height range that lowers or raises it.  The prism holds every descendant: in
+ * x and y the triangle's hull holds their points; in height, a descendant split point
+ * lies between its real height (within the nested volume's range [zlo, zhi] of the
+ * triangle's diamond, slot id, which bounds the real heights below it) and the mean of
+ * its hypotenuse's ends, so by induction within the range widened to the three
+ * corners' own heights (a corner's geomorph weight comes from outside the triangle).
+ * Each point keeps its two planes' values at (x, y, 0) (pa), made once when the walk
+ * makes it: a test is then two products a plane. */
+
+/* 1 when the prism lies wholly outside one of the planes in *wmask; planes it lies
+ * wholly inside leave *wmask */
+static int out_of_window(const bt_stream *s, const bt_svert *a, const bt_svert *c, const bt_svert *b, uint32_t id,
+                         unsigned *wmask)
+{
+    const uint32_t nv = s->e.t->node[id];
+    int32_t zlo = s->e.wz_lo[BT_NODE_ZLO(nv)], zhi = s->e.wz_hi[BT_NODE_ZHI(nv)];
+    int i;
+    if (a->wz < zlo) zlo = a->wz;
+    if (a->wz > zhi) zhi = a->wz;
+    if (b->wz < zlo) zlo = b->wz;
+    if (b->wz > zhi) zhi = b->wz;
+    if (c->wz < zlo) zlo = c->wz;
+    if (c->wz > zhi) zhi = c->wz;
+    for (i = 0; i < 2; i++) {
+        const int64_t n2 = s->win[i].n[2];
+        int64_t mx, mn;
+        if (!(*wmask & (1u << i))) continue;
+        mx = a->pa[i] > b->pa[i] ? a->pa[i] : b->pa[i];
+        mn = a->pa[i] ^ b->pa[i] ^ mx;
+        if (c->pa[i] > mx) mx = c->pa[i];
+        if (c->pa[i] < mn) mn = c->pa[i];
+        if (mx + n2 * (n2 >= 0 ? zhi : zlo) < 0) return 1;
+        if (mn + n2 * (n2 >= 0 ? zlo : zhi) >= 0) *wmask &= ~(1u << i);
+    }
+    return 0;
+}
+
+/* 1 when the three points lie outside one of the planes in wmask: the triangle, their
+ * hull, covers no pixel centre of the window's rows */
+static int tri_out(const bt_stream *s, const bt_svert *a, const bt_svert *c, const bt_svert *b, unsigned wmask)
+{
+    int i;
+    for (i = 0; i < 2; i++) {
+        const int64_t n2 = s->win[i].n[2];
+        if ((wmask & (1u << i)) && a->pa[i] + n2 * a->wz < 0 && b->pa[i] + n2 * b->wz < 0 && c->pa[i] + n2 * c->wz < 0)
+            return 1;
     }
     return 0;
 }
 
 /* Leaf (a, c, b), apex c: to the caller apex first, then counter-clockwise seen from
  * +z (core/bitree.h: cross < 0 in grid (x, row)).  |dx|, |dy| <= 2^14 (BR_MAX_SIDE):
- * the cross product stays below 2^29. */
-static void leaf(bt_stream *s, bt_svert *a, bt_svert *c, bt_svert *b)
+ * the cross product stays below 2^29.  Planes of the window still in wmask are tested
+ * against the triangle's own points (tighter than its box's height range). */
+static void leaf(bt_stream *s, bt_svert *a, bt_svert *c, bt_svert *b, unsigned wmask)
 {
     const int32_t cr = (a->x - c->x) * (b->y - c->y) - (a->y - c->y) * (b->x - c->x);
+    if (wmask && tri_out(s, a, c, b, wmask)) return;
     s->count++;
     if (cr < 0) s->fn(s->user, c, a, b);
     else s->fn(s->user, c, b, a);
+}
+
+/* q's world height and its window planes' values (bt_world's position, inside
+ * CAM_COORD_MAX for a frame bti_setup took: Q30 normals times coordinates below 2^30,
+ * sums below 2^62 as in culled()) */
+static void world(const bt_stream *s, bt_svert *q)
+{
+    const bt_frame *fr = &s->p.fr;
+    const int32_t wx = (int32_t)(fr->ox + (int64_t)q->x * fr->sx), wy = (int32_t)(fr->oy - (int64_t)q->y * fr->sy);
+    int i;
+    q->wz = (int32_t)(fr->oz + (((int64_t)q->z * fr->sz_q16) >> 16));
+    for (i = 0; i < 2; i++) q->pa[i] = (int64_t)s->win[i].n[0] * wx + (int64_t)s->win[i].n[1] * wy + s->win[i].d;
 }
 
 static void walk(bt_stream *s, bt_svert *a, bt_svert *c, bt_svert *b, unsigned mask, unsigned wmask)
@@ -127,29 +214,31 @@ static void walk(bt_stream *s, bt_svert *a, bt_svert *c, bt_svert *b, unsigned m
     uint32_t id;
     int sp;
     if ((a->x + b->x) & 1) {     /* unit legs: the hypotenuse midpoint is no sample */
-        if (bti_tri_valid6(e, a->x, a->y, c->x, c->y, b->x, b->y)) leaf(s, a, c, b);
+        if (bti_tri_valid6(e, a->x, a->y, c->x, c->y, b->x, b->y)) leaf(s, a, c, b, wmask);
         return;
     }
     mm.x = a->x + ((b->x - a->x) >> 1);
     mm.y = a->y + ((b->y - a->y) >> 1);
     id = bti_slot(e->t, mm.x, mm.y);
-    sp = bti_decide_memo(e, mm.x, mm.y, id, &mask, &mm.morph);
-    if (sp < 0 || (wmask && out_of_window(s, mm.x, mm.y, id, &wmask))) return;
+    sp = decide(s, mm.x, mm.y, id, &mask, &mm.morph);
+    if (sp < 0 || (wmask && out_of_window(s, a, c, b, id, &wmask))) return;
     if (!sp) {
         /* as rec: a leaf over padding voids is dropped */
         if (!e->nonvoid && BT_NODE_ERR(e->t->node[id]) == BT_CODE_SPLIT) return;
-        if (bti_tri_valid6(e, a->x, a->y, c->x, c->y, b->x, b->y)) leaf(s, a, c, b);
+        if (bti_tri_valid6(e, a->x, a->y, c->x, c->y, b->x, b->y)) leaf(s, a, c, b, wmask);
         return;
     }
     mm.tag = 0;
     mm.z = bti_mid_z(e, a->z, b->z, mm.x, mm.y, &mm.morph);
+    if (wmask) world(s, &mm);
     walk(s, a, &mm, c, mask, wmask);
     walk(s, c, &mm, b, mask, wmask);
 }
 
-static void corner(const bt_tree *t, int32_t x, int32_t y, bt_svert *q)
+static void corner(const bt_stream *s, int32_t x, int32_t y, bt_svert *q)
 {
-    q->x = x; q->y = y; q->z = bti_zreal(t, x, y); q->morph = BT_MORPH_ONE; q->tag = 0;
+    q->x = x; q->y = y; q->z = bti_zreal(s->e.t, x, y); q->morph = BT_MORPH_ONE; q->tag = 0;
+    world(s, q);
 }
 
 uint32_t bt_stream_walk(bt_stream *s, const int32_t window[4], bt_stream_leaf fn, void *user)
@@ -158,20 +247,17 @@ uint32_t bt_stream_walk(bt_stream *s, const int32_t window[4], bt_stream_leaf fn
     unsigned wmask = 0;
     const int32_t S = s->e.S;
     if (window) {
-        cam_plane pl[CAM_NPLANES];
         if (window[0] < 0 || window[0] >= window[2] || window[2] > s->c.w || window[1] < 0 || window[1] >= window[3]
             || window[3] > s->c.h)
             return 0;
-        cam_frustum_window(&s->c, window, pl);
-        s->win[0] = pl[CAM_BOTTOM];
-        s->win[1] = pl[CAM_TOP];
+        cam_frustum_rows(&s->c, window[1], window[3], &s->win[0], &s->win[1]);
         wmask = 3;
     }
     s->fn = fn;
     s->user = user;
     s->count = 0;
-    corner(s->e.t, 0, 0, &q[0]); corner(s->e.t, S, 0, &q[1]);
-    corner(s->e.t, S, S, &q[2]); corner(s->e.t, 0, S, &q[3]);
+    corner(s, 0, 0, &q[0]); corner(s, S, 0, &q[1]);
+    corner(s, S, S, &q[2]); corner(s, 0, S, &q[3]);
     walk(s, &q[0], &q[1], &q[2], 0x3f, wmask);
     walk(s, &q[2], &q[3], &q[0], 0x3f, wmask);
     return s->count;

@@ -86,6 +86,9 @@ void cam_frustum(const cam *c, cam_plane out[CAM_NPLANES]);
  * 0 <= y0 < y1 <= h) instead of the whole viewport: its side planes pass through the
  * rectangle's edges (cam_frustum is the window 0, 0, w, h). */
 void cam_frustum_window(const cam *c, const int32_t win[4], cam_plane out[CAM_NPLANES]);
+/* cam_frustum_window's CAM_BOTTOM and CAM_TOP planes alone, for rows y0 .. y1 (the same
+ * values; the side planes are a third of its cost each). */
+void cam_frustum_rows(const cam *c, int32_t y0, int32_t y1, cam_plane *bottom, cam_plane *top);
 
 /* Projection scale f (pixels per world unit at distance 1), Q16; same as c->f_q16. */
 int64_t cam_proj_scale_q16(const cam *c);

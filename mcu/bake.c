@@ -15,7 +15,9 @@
  * chooses them (60 degrees, near and far planes), at 320 x 240.  Selection as the
  * viewer's: hysteresis 1/4 and geomorph 1/2 of the threshold.  The frames are also drawn
  * here by the product's own path (scene_frame, then the frame driver in 16-row RGB565
- * bands with 16-bit depth) and their SPI stream checksums baked beside them. */
+ * bands with 16-bit depth) and by the stream path (raster/terrain_stream.h, the same
+ * rule without hysteresis), both with the library's own drawing code, and their SPI
+ * stream checksums baked beside them: what the mesh and the stream boards must give. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -27,6 +29,7 @@
 #include "platform/board/spi_band.h"
 #include "platform/scene.h"
 #include "raster/frame.h"
+#include "raster/terrain_stream.h"
 
 #define FB_W 320
 #define FB_H 240
@@ -121,6 +124,48 @@ static int scene_sums(scene *s, const cam *cams, bake_info *b, br_err *err)
     return 0;
 }
 
+/* The frames through the stream path (the baked tree t, the scene's shading), their
+ * stream checksums into b->stream_sum. */
+static int stream_sums(scene *s, bt_tree *t, const cam *cams, bake_info *b, br_err *err)
+{
+    static uint8_t band[FB_W * 16 * 4 + 64];
+    static uint64_t wmem[16384], bmem[8192];
+    bt_stream *walk;
+    rt_stream rs;
+    int i;
+    memset(&rs, 0, sizeof rs);
+    if (bt_stream_mem_size(512, t->nslot) > sizeof wmem || bt_stream_init(&walk, 512, t->nslot, wmem, sizeof wmem) != BR_OK
+        || rt_stream_mem_size(128, 192) > sizeof bmem || rt_stream_init(&rs, 128, 192, bmem, sizeof bmem) != BR_OK) {
+        br_err_set(err, BR_E_VALUE, NULL, "the stream path's memory");
+        return -1;
+    }
+    rs.scene = &s->rt;
+    rs.walk = walk;
+    for (i = 0; i < b->nframes; i++) {
+        bt_params bp;
+        rs_pipe pipe;
+        rs_pass pass;
+        sum_sink k;
+        memset(&bp, 0, sizeof bp);
+        bp.mode = BT_VIEW; bp.c = &cams[i]; bp.fr = s->rt.fr;
+        bp.pixel_err_q8 = b->pixel_err_q8; bp.morph_q8 = b->morph_q8;
+        memset(&rs.fr, 0, sizeof rs.fr);
+        rs.fr.w = FB_W; rs.fr.h = FB_H; rs.fr.fmt = RS_FMT_RGB565; rs.fr.depth = RS_DEPTH16; rs.fr.clear_rgb = b->clear_rgb;
+        cam_viewproj(&cams[i], &rs.fr.vp);
+        memset(&pipe, 0, sizeof pipe);
+        pipe.w = FB_W; pipe.h = FB_H; pipe.fmt = RS_FMT_RGB565; pipe.depth = RS_DEPTH16;
+        k.sum = SPIB_SUM_INIT; k.dc = -1;
+        if (bt_stream_frame(walk, t, &bp) != BR_OK || rs_pass_stream(&pass, &rs) != BR_OK
+            || rs_pipe_add(&pipe, &pass) != BR_OK || rs_pipe_mem_size(&pipe, 16) > sizeof band
+            || rs_pipe_run(&pipe, 16, band, sizeof band, sum_band, &k, NULL) != BR_OK) {
+            br_err_set(err, BR_E_VALUE, NULL, "frame %d: the stream path failed", i);
+            return -1;
+        }
+        b->stream_sum[i] = k.sum;
+    }
+    return 0;
+}
+
 static int cameras(const scene *s, const char *path, bake_info *b, cam *cams, br_err *err)
 {
     campath cp = { NULL, 0 };
@@ -201,6 +246,8 @@ static int write_c(const char *out, const char *src, const hf *f, const uint32_t
                 (long)b->cam[i].tgt[2], (long)b->cam[i].znear, (long)b->cam[i].zfar);
     fprintf(o, "  },\n  {");
     for (i = 0; i < b->nframes; i++) fprintf(o, " 0x%08lxu,", (unsigned long)b->scene_sum[i]);
+    fprintf(o, " },\n  {");
+    for (i = 0; i < b->nframes; i++) fprintf(o, " 0x%08lxu,", (unsigned long)b->stream_sum[i]);
     fprintf(o, " }\n};\n");
     return fclose(o) == 0 ? 0 : -1;
 }
@@ -267,6 +314,7 @@ int main(int argc, char **argv)
     b.pixel_err_q8 = (int32_t)perr; b.hyst_q8 = 64; b.morph_q8 = 128;
     b.clear_rgb = 0x99ccffu;
     if (cameras(&s, argv[5], &b, cams, &err) != 0) return fail("camera path", &err);
+    if (stream_sums(&s, &t, cams, &b, &err) != 0) return fail("the stream path's frames", &err);
     if (scene_sums(&s, cams, &b, &err) != 0) return fail("the scene's frames", &err);
     if (write_c(argv[6], argv[1], &f, (const uint32_t *)blob, blob_bytes, lvl, ztab, &b) != 0) {
         fprintf(stderr, "bake: %s: cannot write\n", argv[6]);

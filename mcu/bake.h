@@ -49,6 +49,10 @@ typedef struct bake_info {
      * view extraction in parts, the frame driver in 16-row RGB565 bands, 16-bit depth):
      * what the board's frames must give */
     uint32_t scene_sum[BAKE_MAX_FRAMES];
+    /* the same through the stream path on the host (raster/terrain_stream.h: the view
+     * rule without hysteresis, band by band, the library's own drawing code): what the
+     * stream board's frames (platform/board/board_stream.c) must give */
+    uint32_t stream_sum[BAKE_MAX_FRAMES];
 } bake_info;
 
 extern const int32_t bake_z[];

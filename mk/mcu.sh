@@ -21,16 +21,36 @@
 #      also without spib_sum (the checksum only this test computes).
 # Without arm-none-eabi-gcc the whole check is reported as skipped; without
 # qemu-system-arm the runs are (exit 0 both times, the line says so).
-# Environment: MCU_RAM MCU_FLASH MCU_STACK MCU_TIMEOUT MCU_DEM MCU_CROP MCU_PIXEL_ERROR_Q8
+# Environment: MCU_PATH MCU_RAM MCU_FLASH MCU_STACK MCU_TIMEOUT MCU_DEM MCU_CROP MCU_PIXEL_ERROR_Q8
 #              MCU_MAX_TRI MCU_MAX_V B (build dir) CC; MCU_TOP=N also prints the N functions
 #              that take the most instructions a frame on each core
 set -u
 B=${B:-build}
 O=$B/mcu
 CC=${CC:-cc}
-MCU_RAM=${MCU_RAM:-512K}
+# MCU_PATH: the board's frame path, stream (band by band from the tree,
+# platform/board/board_stream.c, linked for a 64 KB board: build/mcu/bitrain-CORE.elf) or
+# mesh (the product's whole-frame mesh and strip and its pixels, platform/board/board.c,
+# 512K: build/mcu/bitrain-CORE-mesh.elf); unset: both, one after the other, one closing
+# line for the two
+if [ -z "${MCU_PATH:-}" ]; then
+  mkdir -p "$O" || exit 1
+  p=0 f=0 s=0
+  for path in stream mesh; do
+    MCU_PATH=$path sh "$0" > "$O/$path.log" 2>&1
+    grep -v '^mcu: [0-9]* passed, [0-9]* failed, [0-9]* skipped$' "$O/$path.log"
+    eval "$(sed -n 's/^mcu: \([0-9]*\) passed, \([0-9]*\) failed, \([0-9]*\) skipped$/p=$((p + \1)) f=$((f + \2)) s=$((s + \3))/p' "$O/$path.log")"
+  done
+  echo "mcu: $p passed, $f failed, $s skipped"
+  [ $f = 0 ]
+  exit
+fi
+case $MCU_PATH in
+  stream) BOARD_PATH_SRC=platform/board/board_stream.c; MCU_RAM=${MCU_RAM:-64K}; MCU_STACK=${MCU_STACK:-8K}; SFX="" ;;
+  mesh) BOARD_PATH_SRC=platform/board/board.c; MCU_RAM=${MCU_RAM:-512K}; MCU_STACK=${MCU_STACK:-12K}; SFX="-mesh" ;;
+  *) echo "mcu: MCU_PATH must be stream or mesh"; exit 1 ;;
+esac
 MCU_FLASH=${MCU_FLASH:-2M}
-MCU_STACK=${MCU_STACK:-12K}
 MCU_TIMEOUT=${MCU_TIMEOUT:-300}
 MCU_DEM=${MCU_DEM:-assets/N47E009.hgt.gz}
 MCU_CROP=${MCU_CROP:-560 880 257}
@@ -43,7 +63,7 @@ SIZES="-DBOARD_MAX_TRI=$MCU_MAX_TRI -DBOARD_MAX_V=$MCU_MAX_V"
 # the board's variants and vertex layout (core/config.h): the desktop build compiles
 # core/ and raster/ with them too, so that both lay out the same RAM
 LAYOUT="-DRS_WITH_888=0 -DRS_WITH_Z32=0 -DRS_WITH_TEX=0 -DRS_TEX_FIELDS=0 -DBR_INDEX16=1 -DBR_COHERENCE=0"
-BOARD_SRC="platform/board/board.c platform/board/spi_band.c mcu/board_tree.c"
+BOARD_SRC="$BOARD_PATH_SRC platform/board/spi_band.c mcu/board_tree.c"
 mkdir -p "$O" || exit 1
 
 if ! command -v $XCC >/dev/null 2>&1; then
@@ -60,13 +80,13 @@ cmp -s "$O/bake_data.c.new" "$O/bake_data.c" 2>/dev/null && rm -f "$O/bake_data.
 
 # ---- 2. desktop
 # shellcheck disable=SC2086
-$CC -std=c99 -O2 -g $WARN $SIZES $LAYOUT -I. $(pkg-config --cflags libpng zlib) -o "$O/bitrain-board-desktop" \
+$CC -std=c99 -O2 -g $WARN $SIZES $LAYOUT -I. $(pkg-config --cflags libpng zlib) -o "$O/bitrain-board-desktop$SFX" \
   platform/board/desktop_main.c $BOARD_SRC "$O/bake_data.c" core/*.c raster/*.c "$B/libbitrain.a" \
   $(pkg-config --libs sdl2 libpng zlib) -lm \
   || { echo "mcu: cannot build the desktop board main"; exit 1; }
-"$O/bitrain-board-desktop" --mem > "$O/desktop.txt" || { cat "$O/desktop.txt"; echo "mcu: the desktop board main failed"; exit 1; }
-arena=$(awk '/arena total/ { print $(NF - 1) }' "$O/desktop.txt")
-grep 'frame 0:' "$O/desktop.txt"
+"$O/bitrain-board-desktop$SFX" --mem > "$O/desktop$SFX.txt" || { cat "$O/desktop$SFX.txt"; echo "mcu: the desktop board main failed"; exit 1; }
+arena=$(awk '/arena total/ { print $(NF - 1) }' "$O/desktop$SFX.txt")
+grep 'frame 0:' "$O/desktop$SFX.txt"
 
 # ---- 3. board builds
 have_qemu=1
@@ -95,8 +115,8 @@ fn_table() {  # elf dir frames: instructions a frame by function (full run - set
 }
 for core in m0plus m3; do
   case $core in m0plus) cpu=cortex-m0plus narrow=48 ;; m3) cpu=cortex-m3 narrow=4 ;; esac
-  d=$O/$core
-  mkdir -p "$d/obj"
+  d=$O/$core$SFX od=$O/$core/obj   # the runs' files per path, the objects shared
+  mkdir -p "$d" "$od"
   # -fbuiltin after -ffreestanding: fixed-size memcpy/memset (raster.c's 8-byte stores)
   # are expanded inline as on a hosted build; libc_min.c itself is built without it
   # (a loop there must not become a call to the function it is in)
@@ -113,16 +133,16 @@ for core in m0plus m3; do
     $LAYOUT -DRS_NARROW=$narrow $SIZES -I."
   objs="" ok=1
   for f in core/*.c raster/*.c; do
-    o=$d/obj/$(echo "$f" | tr / _ | sed 's/\.c$/.o/')
+    o=$od/$(echo "$f" | tr / _ | sed 's/\.c$/.o/')
     if [ ! -f "$o" ] || [ "$f" -nt "$o" ] || [ mk/mcu.sh -nt "$o" ] || [ -n "$(find core raster -name '*.h' -newer "$o" 2>/dev/null | head -1)" ]; then
       # shellcheck disable=SC2086
       $XCC $XFLAGS -c -o "$o" "$f" || { ok=0; break; }
     fi
     objs="$objs $o"
   done
-  [ $ok = 1 ] || { echo "mcu: $core: core/ or raster/ does not build"; fail=$((fail + 1)); continue; }
+  [ $ok = 1 ] || { echo "mcu: $core$SFX: core/ or raster/ does not build"; fail=$((fail + 1)); continue; }
   rm -f "$d/libbitrain.a"; arm-none-eabi-ar rcs "$d/libbitrain.a" $objs
-  elf=$O/bitrain-$core.elf
+  elf=$O/bitrain-$core$SFX.elf
   # shellcheck disable=SC2086
   $XCC $XFLAGS -fno-builtin -fno-tree-loop-distribute-patterns -c -o "$d/libc_min.o" platform/board/libc_min.c || { fail=$((fail + 1)); continue; }
   # shellcheck disable=SC2086
@@ -132,14 +152,14 @@ for core in m0plus m3; do
        -Wl,--defsym=BOARD_RAM="$MCU_RAM" -Wl,--defsym=BOARD_FLASH="$MCU_FLASH" -Wl,--defsym=BOARD_STACK="$MCU_STACK" \
        -Wl,--gc-sections -Wl,-Map="$d/map.txt" -o "$elf" platform/board/mcu_main.c "$d/libc_min.o" "$d/mul64.o" $BOARD_SRC \
        "$O/bake_data.c" "$d/libbitrain.a" -lgcc; then
-    echo "mcu: $core: link failed (RAM $MCU_RAM, flash $MCU_FLASH, stack $MCU_STACK)"; fail=$((fail + 1)); continue
+    echo "mcu: $core$SFX: link failed (RAM $MCU_RAM, flash $MCU_FLASH, stack $MCU_STACK)"; fail=$((fail + 1)); continue
   fi
   fl=$(arm-none-eabi-nm "$elf" | awk '{ print $NF }' | grep -E '^__aeabi_[fd]|^__(add|sub|mul|div|neg|cmp|eq|ne|lt|le|gt|ge|unord|fix|fixuns|float|floatun|extend|trunc)[sdtx]f|^__aeabi_[il]2[fd]|^__aeabi_ui2[fd]|^__aeabi_ul2[fd]' | tr '\n' ' ')
-  if [ -n "$fl" ]; then echo "mcu: $core: floating-point helpers linked: $fl"; fail=$((fail + 1)); continue; fi
+  if [ -n "$fl" ]; then echo "mcu: $core$SFX: floating-point helpers linked: $fl"; fail=$((fail + 1)); continue; fi
   eval "$(arm-none-eabi-size -A "$elf" | awk '$1 == ".text" { t = $2 } $1 == ".data" { d = $2 } $1 == ".bss" { b = $2 } $1 == ".stack" { s = $2 } $1 == ".ARM.exidx" { x = $2 } END { printf "text=%d data=%d bss=%d stk=%d\n", t + x, d, b, s }')"
   ram=$((data + bss + stk))
   baked=$(arm-none-eabi-nm -S --radix=d "$elf" | awk '$NF ~ /^bake(_z|_tree|_lvl|_ztab)?$/ { s += $2 } END { print s + 0 }')
-  line="$core: text $text (code $((text - baked)), baked terrain $baked), data $data, bss $bss"
+  line="$core$SFX: text $text (code $((text - baked)), baked terrain $baked), data $data, bss $bss"
   if [ $have_qemu = 0 ]; then
     echo "mcu: $line; run skipped: no qemu-system-arm"; skip=$((skip + 1)); summary="$summary
 $line"; continue
@@ -147,11 +167,11 @@ $line"; continue
   qrun "$elf" "$d/run.txt"; rc=$?
   grep -q 'mcu stack' "$d/run.txt" || rc=1
   sed -n 's/^mcu frame \([0-9]*\) checksum: /\1 /p' "$d/run.txt" > "$d/sums"
-  sed -n 's/^desktop frame \([0-9]*\) checksum: /\1 /p' "$O/desktop.txt" > "$O/desktop.sums"
+  sed -n 's/^desktop frame \([0-9]*\) checksum: /\1 /p' "$O/desktop$SFX.txt" > "$O/desktop$SFX.sums"
   stack=$(sed -n 's/^mcu stack: \([0-9]*\) of.*/\1/p' "$d/run.txt")
-  if [ $rc != 0 ] || [ ! -s "$d/sums" ] || ! cmp -s "$d/sums" "$O/desktop.sums"; then
-    echo "mcu: $core: FAILED (qemu exit $rc); the board's and the desktop's checksums:"
-    paste "$d/sums" "$O/desktop.sums" 2>/dev/null | head -12
+  if [ $rc != 0 ] || [ ! -s "$d/sums" ] || ! cmp -s "$d/sums" "$O/desktop$SFX.sums"; then
+    echo "mcu: $core$SFX: FAILED (qemu exit $rc); the board's and the desktop's checksums:"
+    paste "$d/sums" "$O/desktop$SFX.sums" 2>/dev/null | head -12
     tail -5 "$d/run.txt"
     fail=$((fail + 1)); continue
   fi
@@ -175,6 +195,6 @@ $line"; continue
   summary="$summary
 $line"; pass=$((pass + 1))
 done
-[ -n "${ram:-}" ] && echo "mcu: RAM: data + bss + stack = $ram bytes (arena $arena); linked for $MCU_RAM; the 64 KB goal: $( [ "$ram" -le 65536 ] && echo met || echo "not met")"
+[ -n "${ram:-}" ] && echo "mcu: RAM ($MCU_PATH path): data + bss + stack = $ram bytes (arena $arena); linked for $MCU_RAM; the 64 KB goal: $( [ "$ram" -le 65536 ] && echo met || echo "not met")"
 echo "mcu: $pass passed, $fail failed, $skip skipped"
 [ $fail = 0 ]

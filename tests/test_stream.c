@@ -19,28 +19,39 @@
 #define H 240
 #define MAXT 200000
 
-static hf full, crop;
-static bt_tree tree;
-static void *tree_mem;
+/* Two crops of N47E009: the south shore of Lake Constance (hills, the lake's flat
+ * water) and the board's (mcu/bake.c: the Alpine Rhine valley and the Raetikon) */
+typedef struct site {
+    int32_t x0, y0, w, h;
+    hf crop;
+    bt_tree tree;
+    void *mem;
+} site;
+static site sites[2] = { { 300, 100, 400, 300, { 0 }, { 0 }, NULL }, { 560, 880, 257, 257, { 0 }, { 0 }, NULL } };
+static hf full;
 static int have;
 
 static int load(void)
 {
-    int32_t x, y;
+    int32_t x, y, i;
     void *scr;
     if (have) return have > 0;
     have = -1;
     if (btc_load("hgt/N47E009.hgt", &full)) return 0;
-    crop = full;
-    crop.w = 400; crop.h = 300;
-    crop.z = malloc((size_t)crop.w * crop.h * 4);
-    for (y = 0; y < crop.h; y++)
-        for (x = 0; x < crop.w; x++) crop.z[(size_t)y * crop.w + x] = full.z[(size_t)(y + 100) * full.w + x + 300];
-    tree_mem = malloc(bt_mem_size(crop.w, crop.h));
-    scr = malloc(bt_scratch_size(crop.w, crop.h));
-    if (bt_build(&tree, &crop, BT_METRIC_EXACT, tree_mem, bt_mem_size(crop.w, crop.h), scr,
-                 bt_scratch_size(crop.w, crop.h)) != BR_OK) { free(scr); return 0; }
-    free(scr);
+    for (i = 0; i < 2; i++) {
+        site *st = &sites[i];
+        hf *f = &st->crop;
+        *f = full;
+        f->w = st->w; f->h = st->h;
+        f->z = malloc((size_t)f->w * f->h * 4);
+        for (y = 0; y < f->h; y++)
+            for (x = 0; x < f->w; x++) f->z[(size_t)y * f->w + x] = full.z[(size_t)(y + st->y0) * full.w + x + st->x0];
+        st->mem = malloc(bt_mem_size(f->w, f->h));
+        scr = malloc(bt_scratch_size(f->w, f->h));
+        if (bt_build(&st->tree, f, BT_METRIC_EXACT, st->mem, bt_mem_size(f->w, f->h), scr,
+                     bt_scratch_size(f->w, f->h)) != BR_OK) { free(scr); return 0; }
+        free(scr);
+    }
     have = 1;
     return 1;
 }
@@ -129,6 +140,37 @@ static uint8_t *draw_stream(bt_stream *walk, const rt_scene *sc, const cam *c, i
     return g.px;
 }
 
+/* The crop's height in metres at (x, y) metres (its sample there) */
+static int32_t ground(const rt_scene *sc, int32_t x, int32_t y)
+{
+    const hf *f = sc->f;
+    const int32_t col = (int32_t)(((int64_t)x << sc->shift) / sc->fr.sx);
+    const int32_t row = f->h - 1 - (int32_t)(((int64_t)y << sc->shift) / sc->fr.sy);
+    return (int32_t)hf_z_to_mm(f, f->z[(size_t)row * f->w + col]) / 1000;
+}
+
+/* Cameras: the site, eye and target in metres over its crop (x east from its west
+ * edge, y north from its south edge), the near plane in metres and the screen error in
+ * 1/256 pixel.  The shore: low over it looking across, 20 m a frame; high looking down
+ * steeply; grazing towards the far edge (the far terrain crowds into a few rows); two
+ * metres above the ground (heights 0; the near plane cuts triangles); looking along the
+ * shore.  The board's: frames 0, 4, 7 and 9 of mcu/board-path.cam, as the board draws
+ * them (1.75 px, its near plane). */
+#define NCAM 11
+static const int32_t cams[NCAM][9] = {
+    { 0, 3000, 500, 1200, 9000, 12000, 700, 1, 256 },
+    { 0, 3020, 500, 1200, 9020, 12000, 700, 1, 256 },
+    { 0, 3040, 500, 1200, 9040, 12000, 700, 1, 256 },
+    { 0, 12000, 8000, 4000, 13000, 14000, 400, 1, 256 },
+    { 0, 2000, 1000, 700, 24000, 27000, 600, 1, 256 },
+    { 0, 15000, 20000, 0, 16000, 22000, 0, 1, 256 },
+    { 0, 500, 14000, 600, 24000, 15000, 400, 1, 256 },
+    { 1, 2500, 20000, 1900, 12000, 4000, 1300, 9, 448 },
+    { 1, 3011, 19140, 1900, 12511, 3140, 1300, 9, 448 },
+    { 1, 3393, 18495, 1900, 12893, 2495, 1300, 9, 448 },
+    { 1, 3649, 18065, 1900, 13149, 2065, 1300, 9, 448 },
+};
+
 static void test_stream_frames(void)
 {
     rt_scene sc;
@@ -137,38 +179,55 @@ static void test_stream_frames(void)
     bt_params p;
     bt_mesh m;
     cam c;
-    bt_stream *walk;
-    void *mesh_mem = NULL, *wmem = malloc(bt_stream_mem_size(512));
+    bt_stream *walk, *walk_planes;
+    void *mesh_mem = NULL, *wmem, *wmem_planes;
     leaves want = { malloc(sizeof(int32_t) * 9 * MAXT), 0 }, got = { malloc(sizeof(int32_t) * 9 * MAXT), 0 };
     br_index *list = malloc(sizeof *list * 3 * MAXT);
     rs_vertex *v = malloc(sizeof *v * MAXT);
     rs_cvert *cache = malloc(sizeof *cache * MAXT);
     int16_t *chunks = malloc(rs_chunk_mem_size(&(rs_prim){ RS_LIST, 3u * MAXT, NULL }, 1));
     uint32_t k, nmorph = 0, ntri = 0;
+    uint32_t nslot;
     if (!load()) { CHECK(0); return; }
-    rs_ramp_default(&ramp, hf_z_to_mm(&crop, 395), hf_z_to_mm(&crop, 2500));
+    nslot = sites[0].tree.nslot > sites[1].tree.nslot ? sites[0].tree.nslot : sites[1].tree.nslot;
     rs_sun_dir(315000, 45000, sun);
-    CHECK_EQ(rt_scene_init(&sc, &crop, &ramp, sun, 4915), BR_OK);
-    CHECK_EQ(bt_stream_init(&walk, 512, wmem, bt_stream_mem_size(512)), BR_OK);
-    memset(&p, 0, sizeof p);
-    p.mode = BT_VIEW; p.fr = sc.fr; p.c = &c; p.morph_q8 = 128; p.pixel_err_q8 = 256;
-    for (k = 0; k < 3; k++) {
-        int32_t eye[3], tgt[3], us = sc.shift, lay;
+    /* two weight caches: 16 entries (most partial weights computed again) and 512 */
+    wmem = malloc(bt_stream_mem_size(16, nslot));
+    wmem_planes = malloc(bt_stream_mem_size(512, nslot));
+    CHECK_EQ(bt_stream_init(&walk, 16, nslot, wmem, bt_stream_mem_size(16, nslot)), BR_OK);
+    CHECK_EQ(bt_stream_init(&walk_planes, 512, nslot, wmem_planes, bt_stream_mem_size(512, nslot)), BR_OK);
+    for (k = 0; k < NCAM; k++) {
+        site *st = &sites[cams[k][0]];
+        const hf *crop = &st->crop;
+        bt_tree *tree = &st->tree;
+        int32_t eye[3], tgt[3], us, lay, j;
+        int r;
         uint32_t i;
-        eye[0] = (3000 + 20 * (int32_t)k) << us; eye[1] = 500 << us; eye[2] = 1200 << us;
-        tgt[0] = (9000 + 20 * (int32_t)k) << us; tgt[1] = 12000 << us; tgt[2] = 700 << us;
-        CHECK_EQ(cam_look_at(&c, eye, tgt, 60000, W, H, 1 << us, 60000 << us), BR_OK);
-        if (k == 0) CHECK_EQ(btc_extract(&tree, &p, MAXT, &m, &mesh_mem), 0);
-        else CHECK_EQ(bt_extract(&tree, &p, &m), BR_OK);
+        rs_ramp_default(&ramp, hf_z_to_mm(crop, 395), hf_z_to_mm(crop, 2500));
+        CHECK_EQ(rt_scene_init(&sc, crop, &ramp, sun, 4915), BR_OK);
+        us = sc.shift;
+        memset(&p, 0, sizeof p);
+        p.mode = BT_VIEW; p.fr = sc.fr; p.c = &c; p.morph_q8 = 128; p.pixel_err_q8 = cams[k][8];
+        for (j = 0; j < 3; j++) { eye[j] = cams[k][1 + j] << us; tgt[j] = cams[k][4 + j] << us; }
+        if (cams[k][3] == 0) {  /* heights 0: 2 m above the ground there, looking at the ground */
+            eye[2] = (ground(&sc, cams[k][1], cams[k][2]) + 2) << us;
+            tgt[2] = ground(&sc, cams[k][4], cams[k][5]) << us;
+        }
+        CHECK_EQ(cam_look_at(&c, eye, tgt, 60000, W, H, cams[k][7] << us, 60000 << us), BR_OK);
+        if (k == 0) CHECK_EQ(btc_extract(tree, &p, MAXT, &m, &mesh_mem), 0);
+        else CHECK_EQ(bt_extract(tree, &p, &m), BR_OK);
         if (m.nv > MAXT || m.ns > MAXT) { CHECK(0); break; }
         mesh_leaves(&m, list, &want);
-        CHECK_EQ(bt_stream_frame(walk, &tree, &p), BR_OK);
-        got.n = 0;
-        CHECK_EQ(bt_stream_walk(walk, NULL, keep, &got), got.n);
-        CHECK_EQ(got.n, want.n);
-        for (i = 0; i < want.n && !memcmp(&want.p[9 * i], &got.p[9 * i], 36); i++) {}
-        CHECK_MSG(i == want.n, "frame %u: leaf %u of %u differs from the mesh's", k, i, want.n);
-        for (i = 0; i < m.nv; i++) nmorph += m.v[i].z != crop.z[(size_t)m.v[i].y * crop.w + m.v[i].x];
+        CHECK_EQ(bt_stream_frame(walk, tree, &p), BR_OK);
+        CHECK_EQ(bt_stream_frame(walk_planes, tree, &p), BR_OK);
+        for (r = 0; r < 2; r++) {
+            got.n = 0;
+            CHECK_EQ(bt_stream_walk(r ? walk_planes : walk, NULL, keep, &got), got.n);
+            CHECK_EQ(got.n, want.n);
+            for (i = 0; i < want.n && !memcmp(&want.p[9 * i], &got.p[9 * i], 36); i++) {}
+            CHECK_MSG(i == want.n, "frame %u: leaf %u of %u differs from the mesh's (cache %d)", k, i, want.n, r ? 512 : 16);
+        }
+        for (i = 0; i < m.nv; i++) nmorph += m.v[i].z != crop->z[(size_t)m.v[i].y * crop->w + m.v[i].x];
         ntri += want.n;
         rt_from_mesh(&sc, &m, v);
         for (lay = 0; lay < 2; lay++) {
@@ -178,7 +237,7 @@ static void test_stream_frames(void)
             rs_frame f;
             rs_prim lp;
             uint8_t *ref;
-            int r, b;
+            int b;
             frame_of(&f, lay, &c);
             f.v = v; f.nv = m.nv; f.cache = cache; f.chunks = chunks;
             lp.kind = RS_LIST; lp.n = 3 * want.n; lp.idx = list;
@@ -192,7 +251,7 @@ static void test_stream_frames(void)
             }
             for (r = 0; r < 3; r++)
                 for (b = 0; b < 3; b++) {
-                    uint8_t *px = draw_stream(walk, &sc, &c, lay, rows[r], capv[b], capt[b]);
+                    uint8_t *px = draw_stream((r + b) & 1 ? walk : walk_planes, &sc, &c, lay, rows[r], capv[b], capt[b]);
                     CHECK_MSG(!memcmp(px, ref, n), "frame %u layout %d: %d-row bands, batches of %u differ from the list",
                               k, lay, rows[r], capt[b]);
                     free(px);
@@ -200,9 +259,9 @@ static void test_stream_frames(void)
             free(ref);
         }
     }
-    printf("3 frames: %u leaves, %u vertices off their real height\n", ntri, nmorph);
-    CHECK(ntri > 3000 && nmorph > 100);
-    free(mesh_mem); free(wmem); free(want.p); free(got.p); free(list); free(v); free(cache); free(chunks);
+    printf("%d frames: %u leaves, %u vertices off their real height\n", NCAM, ntri, nmorph);
+    CHECK(ntri > 10000 && nmorph > 300);
+    free(mesh_mem); free(wmem); free(wmem_planes); free(want.p); free(got.p); free(list); free(v); free(cache); free(chunks);
 }
 
 static void test_stream_refuses(void)
@@ -213,23 +272,31 @@ static void test_stream_refuses(void)
     cam c;
     const int32_t eye[3] = { 0, 0, 1 << 20 }, tgt[3] = { 1 << 20, 1 << 20, 0 };
     const int32_t bad[4] = { 0, 100, 320, 100 };
-    uint64_t *big = malloc(bt_stream_mem_size(16));
-    CHECK_EQ(bt_stream_mem_size(15), 0);
-    CHECK_EQ(bt_stream_mem_size(24), 0);
-    CHECK(bt_stream_mem_size(16) > 0);
-    CHECK_EQ(bt_stream_init(&s, 16, mem, sizeof mem / 4), BR_E_ARG);      /* too small */
-    CHECK_EQ(bt_stream_init(&s, 16, big, bt_stream_mem_size(16)), BR_OK);
+    uint64_t *big = malloc(bt_stream_mem_size(16, 100));
+    CHECK_EQ(bt_stream_mem_size(15, 100), 0);
+    CHECK_EQ(bt_stream_mem_size(24, 100), 0);
+    CHECK_EQ(bt_stream_mem_size(16, 0), 0);
+    CHECK(bt_stream_mem_size(16, 100) > 0);
+    CHECK_EQ(bt_stream_init(&s, 16, 100, mem, sizeof mem / 4), BR_E_ARG);      /* too small */
+    CHECK_EQ(bt_stream_init(&s, 16, 100, big, bt_stream_mem_size(16, 100)), BR_OK);
     CHECK_EQ(cam_look_at(&c, eye, tgt, 60000, W, H, 16, 1 << 28), BR_OK);
     if (!load()) { CHECK(0); free(big); return; }
     memset(&p, 0, sizeof p);
     p.mode = BT_VIEW; p.c = &c; p.fr.sx = p.fr.sy = 1 << 10; p.fr.sz_q16 = 1 << 16;
     p.hyst_q8 = 64;
-    CHECK_EQ(bt_stream_frame(s, &tree, &p), BR_E_ARG);                  /* hysteresis */
+    free(big);
+    big = malloc(bt_stream_mem_size(16, sites[0].tree.nslot));
+    CHECK_EQ(bt_stream_init(&s, 16, sites[0].tree.nslot, big, bt_stream_mem_size(16, sites[0].tree.nslot)), BR_OK);
+    CHECK_EQ(bt_stream_frame(s, &sites[0].tree, &p), BR_E_ARG);                  /* hysteresis */
     p.hyst_q8 = 0; p.mode = BT_BUDGET;
-    CHECK_EQ(bt_stream_frame(s, &tree, &p), BR_E_ARG);
+    CHECK_EQ(bt_stream_frame(s, &sites[0].tree, &p), BR_E_ARG);
     p.mode = BT_VIEW;
-    CHECK_EQ(bt_stream_frame(s, &tree, &p), BR_OK);
+    CHECK_EQ(bt_stream_frame(s, &sites[0].tree, &p), BR_OK);
     CHECK_EQ(bt_stream_walk(s, bad, keep, NULL), 0);                     /* empty window */
+    free(big);
+    big = malloc(bt_stream_mem_size(16, sites[0].tree.nslot - 1));
+    CHECK_EQ(bt_stream_init(&s, 16, sites[0].tree.nslot - 1, big, bt_stream_mem_size(16, sites[0].tree.nslot - 1)), BR_OK);
+    CHECK_EQ(bt_stream_frame(s, &sites[0].tree, &p), BR_E_ARG);                  /* planes too small */
     CHECK_EQ(rt_stream_mem_size(2, 1), 0);
     CHECK_EQ(rt_stream_mem_size(4097, 1), 0);
     CHECK_EQ(rt_stream_mem_size(3, 0), 0);
@@ -240,7 +307,9 @@ int main(void)
 {
     T_RUN(test_stream_refuses);
     T_RUN(test_stream_frames);
-    free(crop.z);
-    free(tree_mem);
+    {
+        int i;
+        for (i = 0; i < 2; i++) { free(sites[i].crop.z); free(sites[i].mem); }
+    }
     return t_finish();
 }

@@ -251,6 +251,11 @@ br_status board_frame(int32_t i, rs_sink tap, void *tap_user, board_frame_info *
     return BR_OK;
 }
 
+uint32_t board_last_triangles(void)
+{
+    return B.mesh.ntri;
+}
+
 void board_last_frame(const rs_cvert **cache, uint32_t *nv, const br_index **strip, uint32_t *ns)
 {
     *cache = B.cache;

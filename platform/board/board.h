@@ -27,7 +27,9 @@
 #ifndef BOARD_MAX_V
 #define BOARD_MAX_V (3 * BOARD_MAX_TRI + 3)
 #endif
+#ifndef BOARD_BAND_ROWS
 #define BOARD_BAND_ROWS 16
+#endif
 
 enum board_part { BP_STATE, BP_MESH, BP_VERTS, BP_CACHE, BP_CHUNKS, BP_BAND, BP_ROW, BP_N };
 
@@ -59,6 +61,9 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N]);
 int32_t board_frames(void);
 /* Draws frame i; each finished band also goes to tap (NULL: none) after the stream. */
 br_status board_frame(int32_t i, rs_sink tap, void *tap_user, board_frame_info *out);
+/* The triangles of the last frame's mesh (the stream path walks the whole view again to
+ * count them: the desktop's figure, not the board's work). */
+uint32_t board_last_triangles(void);
 /* The last frame's transformed vertices (*nv of them) and strip (*ns indices), valid until
  * the next board_frame: what its bands drew, for the desktop build's --band-load. */
 void board_last_frame(const rs_cvert **cache, uint32_t *nv, const br_index **strip, uint32_t *ns);

@@ -130,6 +130,7 @@ int main(int argc, char **argv)
         for (i = 0; i < BP_N; i++) {
             const char *from = "";
             size_t lent = board_part_borrowed(i, &from);
+            if (!*board_part_name(i)) continue;     /* a part this path does not have */
             if (lent) printf("board ram: %-24s %8zu bytes (in %s: %zu)\n", board_part_name(i), size[i], from, lent);
             else printf("board ram: %-24s %8zu bytes\n", board_part_name(i), size[i]);
         }
@@ -151,17 +152,21 @@ int main(int argc, char **argv)
         st = board_frame(i, bare ? NULL : tap_band, &t, &fi);
         if (st != BR_OK) { fprintf(stderr, "board: frame %d failed: %s\n", i, br_status_name(st)); rc = 1; break; }
         printf("desktop frame %d checksum: %08lx\n", i, (unsigned long)fi.sum);
-        printf("desktop frame %d: %lu triangles, %lu vertices, %lu strip indices, %lu pixels%s\n", i,
-               (unsigned long)fi.ntri, (unsigned long)fi.nv, (unsigned long)fi.ns, (unsigned long)fi.pixels,
-               fi.overflow ? ", budget fallback" : "");
-        if (load) {
+        if (fi.ns)
+            printf("desktop frame %d: %lu triangles, %lu vertices, %lu strip indices, %lu pixels%s\n", i,
+                   (unsigned long)fi.ntri, (unsigned long)fi.nv, (unsigned long)fi.ns, (unsigned long)fi.pixels,
+                   fi.overflow ? ", budget fallback" : "");
+        else if (!bare)
+            printf("desktop frame %d: %lu triangles, %lu triangle set-ups in bands, %lu pixels\n", i,
+                   (unsigned long)board_last_triangles(), (unsigned long)fi.ntri, (unsigned long)fi.pixels);
+        if (load && fi.ns) {
             static const int32_t rows[] = { 4, 8, BOARD_BAND_ROWS, 60 };
             size_t k;
             for (k = 0; k < sizeof rows / sizeof rows[0]; k++)
                 if (band_load(i, 240, rows[k])) { rc = 1; break; }     /* 240: bake.fb_h */
         }
         if (fi.sum != fi.expect) {
-            fprintf(stderr, "board: frame %d: %08lx differs from the scene path's %08lx (mcu/bake.h scene_sum)\n", i,
+            fprintf(stderr, "board: frame %d: %08lx differs from the host library's %08lx (mcu/bake.h scene_sum or stream_sum)\n", i,
                     (unsigned long)fi.sum, (unsigned long)fi.expect);
             rc = 1;
         }

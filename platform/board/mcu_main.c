@@ -133,6 +133,7 @@ static int run(void)
     if (!lmul_ok()) { out_s("mcu: __aeabi_lmul differs from board_mul64"); out_end(); return 0; }
     st = board_init(arena, sizeof arena, size);
     for (p = 0; p < BP_N; p++) {
+        if (!*board_part_name(p)) continue;     /* a part this path does not have */
         out_s("mcu ram: "); out_s(board_part_name(p)); out_s(": "); out_u((uint32_t)size[p]); out_s(" bytes"); out_end();
         total += size[p];
     }
@@ -149,12 +150,16 @@ static int run(void)
         if (st != BR_OK) { out_s("mcu: frame "); out_u((uint32_t)i); out_s(" failed, status "); out_u((uint32_t)st); out_end(); return 0; }
         out_s("mcu frame "); out_u((uint32_t)i); out_s(" checksum: "); out_x(fi.sum); out_end();
         if (fi.sum != fi.expect) {
-            out_s("mcu frame "); out_u((uint32_t)i); out_s(": differs from the scene path's "); out_x(fi.expect);
+            out_s("mcu frame "); out_u((uint32_t)i); out_s(": differs from the host library's "); out_x(fi.expect);
             out_end();
             return 0;
         }
-        out_s("mcu frame "); out_u((uint32_t)i); out_s(": "); out_u(fi.ntri); out_s(" triangles, "); out_u(fi.nv);
-        out_s(" vertices, "); out_u(fi.ns); out_s(" strip indices, "); out_u(fi.pixels); out_s(" pixels");
+        out_s("mcu frame "); out_u((uint32_t)i); out_s(": ");
+        if (fi.ns) {
+            out_u(fi.ntri); out_s(" triangles, "); out_u(fi.nv); out_s(" vertices, "); out_u(fi.ns);
+            out_s(" strip indices, ");
+        } else { out_u(fi.ntri); out_s(" triangle set-ups in bands, "); }
+        out_u(fi.pixels); out_s(" pixels");
         if (fi.overflow) out_s(", budget fallback");
         out_end();
     }
