@@ -35,10 +35,12 @@ struct bt_stream {
     bt_params p;            /* the frame's parameters and camera, copied (e.p points here) */
     cam c;
     cam_plane win[2];       /* the walk's window: its bottom and top planes */
+    int32_t last_y1;        /* the last window's bottom row (-1: none this frame) */
     uint8_t *ans;           /* this frame's answers: two bit planes of nslot bits */
     uint32_t nslot;
     uint32_t *wkey;         /* the weight cache: slot + 1 (0: empty), wmask + 1 entries */
-    uint8_t *wstep;         /* and the weight / BT_MORPH_STEP, or CULLED */
+    uint16_t *wval;         /* and the plane mask the split handed on << 8 | its weight /
+                               BT_MORPH_STEP, or CULLED */
     uint32_t wmask;
     bt_stream_leaf fn;
     void *user;
@@ -55,7 +57,7 @@ size_t bt_stream_mem_size(uint32_t cache_entries, uint32_t nslot)
 {
     if (cache_entries < 16 || (cache_entries & (cache_entries - 1)) || cache_entries > (1u << 24) || nslot < 1)
         return 0;
-    return head_size() + (size_t)cache_entries * 5u + 2 * bti_plane_bytes(nslot);
+    return head_size() + (size_t)cache_entries * 6u + 2 * bti_plane_bytes(nslot);
 }
 
 br_status bt_stream_init(bt_stream **out, uint32_t cache_entries, uint32_t nslot, void *mem, size_t mem_bytes)
@@ -65,9 +67,9 @@ br_status bt_stream_init(bt_stream **out, uint32_t cache_entries, uint32_t nslot
     if (!out || !mem || !need || mem_bytes < need || ((uintptr_t)mem & 7)) return BR_E_ARG;
     memset(s, 0, sizeof *s);
     s->wkey = (uint32_t *)(void *)((uint8_t *)mem + head_size());
-    s->wstep = (uint8_t *)(s->wkey + cache_entries);
+    s->wval = (uint16_t *)(void *)(s->wkey + cache_entries);
     s->wmask = cache_entries - 1;
-    s->ans = s->wstep + cache_entries;
+    s->ans = (uint8_t *)(s->wval + cache_entries);
     s->nslot = nslot;
     *out = s;
     return BR_OK;
@@ -82,6 +84,7 @@ br_status bt_stream_frame(bt_stream *s, bt_tree *t, const bt_params *p)
     s->c = *p->c;
     s->p.c = &s->c;
     if ((st = bti_setup(&s->e, t, &s->p)) != BR_OK) return st;
+    s->last_y1 = -1;
     memset(s->ans, 0, 2 * bti_plane_bytes(t->nslot));
     memset(s->wkey, 0, ((size_t)s->wmask + 1) * 4);
     return BR_OK;
@@ -103,28 +106,29 @@ static int decide(bt_stream *s, int32_t x, int32_t y, uint32_t id, unsigned *mas
     const uint32_t h = (id * 2654435761u >> 8) & s->wmask;
     const unsigned code = (*p0 & bit ? 1u : 0u) | (*p1 & bit ? 2u : 0u);
     int sp;
+    const int hit = s->wkey[h] == id + 1;
     switch (code) {
-    case 1: *morph = BT_MORPH_ONE; return 1;
     case 2: return 0;
-    case 3:
-        *morph = s->wkey[h] == id + 1 ? (uint16_t)(s->wstep[h] * BT_MORPH_STEP) : bti_morph_now(e, x, y, id);
+    case 1: case 3:
+        if (hit) {
+            *morph = (uint16_t)((s->wval[h] & 0xFFu) * BT_MORPH_STEP);
+            *mask = s->wval[h] >> 8;
+        } else *morph = code == 1 ? BT_MORPH_ONE : bti_morph_now(e, x, y, id);
         return 1;
     default:
-        if (s->wkey[h] == id + 1 && s->wstep[h] == CULLED) return -1;
+        if (hit && s->wval[h] == CULLED) return -1;
         break;
     }
     sp = bti_decide_view(e, x, y, id, mask, morph);
-    if (sp < 0) {
+    if (sp == 0) *p1 |= bit;
+    else if (sp < 0) {
         s->wkey[h] = id + 1;
-        s->wstep[h] = CULLED;
-    } else if (sp == 0) *p1 |= bit;
-    else {
+        s->wval[h] = CULLED;
+    } else {
+        s->wkey[h] = id + 1;
         *p0 |= bit;
-        if (*morph != BT_MORPH_ONE) {   /* a multiple of BT_MORPH_STEP (morph_at), below ONE */
-            *p1 |= bit;
-            s->wkey[h] = id + 1;
-            s->wstep[h] = (uint8_t)(*morph / BT_MORPH_STEP);
-        }
+        if (*morph != BT_MORPH_ONE) *p1 |= bit;     /* a multiple of BT_MORPH_STEP (morph_at) */
+        s->wval[h] = (uint16_t)(*mask << 8 | *morph / BT_MORPH_STEP);
     }
     return sp;
 }
@@ -250,7 +254,16 @@ uint32_t bt_stream_walk(bt_stream *s, const int32_t window[4], bt_stream_leaf fn
         if (window[0] < 0 || window[0] >= window[2] || window[2] > s->c.w || window[1] < 0 || window[1] >= window[3]
             || window[3] > s->c.h)
             return 0;
-        cam_frustum_rows(&s->c, window[1], window[3], &s->win[0], &s->win[1]);
+        if (window[1] == s->last_y1) {
+            /* bands top to bottom: this top edge is the last bottom edge, whose plane
+             * turned around (an exact negation: the same line, the other side) bounds
+             * this window as well as cam_frustum_rows' own would */
+            int k;
+            for (k = 0; k < 3; k++) s->win[1].n[k] = -s->win[0].n[k];
+            s->win[1].d = -s->win[0].d;
+            cam_frustum_rows(&s->c, window[1], window[3], &s->win[0], NULL);
+        } else cam_frustum_rows(&s->c, window[1], window[3], &s->win[0], &s->win[1]);
+        s->last_y1 = window[3];
         wmask = 3;
     }
     s->fn = fn;

@@ -124,8 +124,8 @@ void cam_frustum_window(const cam *c, const int32_t win[4], cam_plane out[CAM_NP
 void cam_frustum_rows(const cam *c, int32_t y0, int32_t y1, cam_plane *bottom, cam_plane *top)
 {
     const int64_t f = c->f_q16, cy = (int64_t)c->h * (FX_Q16_ONE / 2);
-    side_plane(c, 0, f, (int64_t)y1 * FX_Q16_ONE - cy, bottom);
-    side_plane(c, 0, -f, cy - (int64_t)y0 * FX_Q16_ONE, top);
+    if (bottom) side_plane(c, 0, f, (int64_t)y1 * FX_Q16_ONE - cy, bottom);
+    if (top) side_plane(c, 0, -f, cy - (int64_t)y0 * FX_Q16_ONE, top);
 }
 
 int64_t cam_proj_scale_q16(const cam *c) { return c->f_q16; }

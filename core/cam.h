@@ -87,7 +87,7 @@ void cam_frustum(const cam *c, cam_plane out[CAM_NPLANES]);
  * rectangle's edges (cam_frustum is the window 0, 0, w, h). */
 void cam_frustum_window(const cam *c, const int32_t win[4], cam_plane out[CAM_NPLANES]);
 /* cam_frustum_window's CAM_BOTTOM and CAM_TOP planes alone, for rows y0 .. y1 (the same
- * values; the side planes are a third of its cost each). */
+ * values; each side plane is a third of its cost); NULL leaves one out. */
 void cam_frustum_rows(const cam *c, int32_t y0, int32_t y1, cam_plane *bottom, cam_plane *top);
 
 /* Projection scale f (pixels per world unit at distance 1), Q16; same as c->f_q16. */
