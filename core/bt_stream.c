@@ -224,8 +224,10 @@ static void walk(bt_stream *s, bt_svert *a, bt_svert *c, bt_svert *b, unsigned m
     mm.x = a->x + ((b->x - a->x) >> 1);
     mm.y = a->y + ((b->y - a->y) >> 1);
     id = bti_slot(e->t, mm.x, mm.y);
+    /* the window first: a triangle outside it needs no answer in this walk */
+    if (wmask && out_of_window(s, a, c, b, id, &wmask)) return;
     sp = decide(s, mm.x, mm.y, id, &mask, &mm.morph);
-    if (sp < 0 || (wmask && out_of_window(s, a, c, b, id, &wmask))) return;
+    if (sp < 0) return;
     if (!sp) {
         /* as rec: a leaf over padding voids is dropped */
         if (!e->nonvoid && BT_NODE_ERR(e->t->node[id]) == BT_CODE_SPLIT) return;
