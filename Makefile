@@ -83,7 +83,7 @@ DIV32_LIB_OBJ = $(LIB_SRC:%.c=$(B)/div32/%.o)
 DIV32_SUP_OBJ = $(SUPPORT_SRC:%.c=$(B)/div32/%.o)
 DIV32_TEST_BIN = $(B)/div32-tests/test_raster $(B)/div32-tests/test_raster_render $(B)/div32-tests/test_fx \
                  $(B)/div32-tests/test_framecost $(B)/div32-tests/test_terrain $(B)/div32-tests/test_water \
-                 $(B)/div32-tests/test_water_setup $(B)/div32-tests/test_coherence
+                 $(B)/div32-tests/test_water_setup $(B)/div32-tests/test_coherence $(B)/div32-tests/test_stream
 
 .SECONDARY:
 .PHONY: all run test test-fast cross-test bench fuzz clean deps check-nofloat install mcu FORCE
