@@ -128,14 +128,14 @@ static int scene_sums(scene *s, const cam *cams, bake_info *b, br_err *err)
  * stream checksums into b->stream_sum. */
 static int stream_sums(scene *s, bt_tree *t, const cam *cams, bake_info *b, br_err *err)
 {
-    static uint8_t band[FB_W * 16 * 4 + 64];
+    static uint8_t band[FB_W * BAKE_STREAM_ROWS * 4 + 64];
     static uint64_t wmem[16384], bmem[8192];
     bt_stream *walk;
     rt_stream rs;
     int i;
     memset(&rs, 0, sizeof rs);
     if (bt_stream_mem_size(512, t->nslot) > sizeof wmem || bt_stream_init(&walk, 512, t->nslot, wmem, sizeof wmem) != BR_OK
-        || rt_stream_mem_size(128, 192) > sizeof bmem || rt_stream_init(&rs, 128, 192, bmem, sizeof bmem) != BR_OK) {
+        || rt_stream_mem_size(64, 96) > sizeof bmem || rt_stream_init(&rs, 64, 96, bmem, sizeof bmem) != BR_OK) {
         br_err_set(err, BR_E_VALUE, NULL, "the stream path's memory");
         return -1;
     }
@@ -156,8 +156,8 @@ static int stream_sums(scene *s, bt_tree *t, const cam *cams, bake_info *b, br_e
         pipe.w = FB_W; pipe.h = FB_H; pipe.fmt = RS_FMT_RGB565; pipe.depth = RS_DEPTH16;
         k.sum = SPIB_SUM_INIT; k.dc = -1;
         if (bt_stream_frame(walk, t, &bp) != BR_OK || rs_pass_stream(&pass, &rs) != BR_OK
-            || rs_pipe_add(&pipe, &pass) != BR_OK || rs_pipe_mem_size(&pipe, 16) > sizeof band
-            || rs_pipe_run(&pipe, 16, band, sizeof band, sum_band, &k, NULL) != BR_OK) {
+            || rs_pipe_add(&pipe, &pass) != BR_OK || rs_pipe_mem_size(&pipe, BAKE_STREAM_ROWS) > sizeof band
+            || rs_pipe_run(&pipe, BAKE_STREAM_ROWS, band, sizeof band, sum_band, &k, NULL) != BR_OK) {
             br_err_set(err, BR_E_VALUE, NULL, "frame %d: the stream path failed", i);
             return -1;
         }

@@ -16,14 +16,16 @@
 #include "raster/ramp.h"
 #include "raster/terrain_stream.h"
 
+/* Sizes (RAM against instructions, docs/mcu.md: a band row is 1,280 bytes and saves more
+ * than the bytes of a larger batch or cache would) */
 #ifndef BOARD_WCACHE
-#define BOARD_WCACHE 512        /* the walk's cache of partial geomorph weights */
+#define BOARD_WCACHE 512        /* the walk's cache of split weights and masks */
 #endif
 #ifndef BOARD_BATCH_V
-#define BOARD_BATCH_V 128       /* vertices of a batch */
+#define BOARD_BATCH_V 64        /* vertices of a batch */
 #endif
 #ifndef BOARD_BATCH_T
-#define BOARD_BATCH_T 192       /* triangles of a batch */
+#define BOARD_BATCH_T 96        /* triangles of a batch */
 #endif
 
 struct board_state {
@@ -123,7 +125,7 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
     for (i = 0; i < BP_N; i++) sz[i] = 0;
     sz[BP_STATE] = up8(bt_stream_mem_size(BOARD_WCACHE, bake.nslot));
     sz[BP_VERTS] = up8(rt_stream_mem_size(BOARD_BATCH_V, BOARD_BATCH_T));
-    sz[BP_BAND] = up8(rs_pipe_mem_size(&pipe, BOARD_BAND_ROWS));
+    sz[BP_BAND] = up8(rs_pipe_mem_size(&pipe, BAKE_STREAM_ROWS));
     sz[BP_ROW] = up8((size_t)bake.fb_w * 2);
     for (i = 0; i < BP_N; i++) {
         if (size) size[i] = sz[i];
@@ -173,7 +175,7 @@ br_status board_frame(int32_t i, rs_sink tap, void *tap_user, board_frame_info *
     pipe_of(&pipe);
     if ((st = rs_pass_stream(&pass, &B.batch)) != BR_OK || (st = rs_pipe_add(&pipe, &pass)) != BR_OK) return st;
     s.sum = SPIB_SUM_INIT; s.dc = -1; s.tap = tap; s.tap_user = tap_user;
-    st = rs_pipe_run(&pipe, BOARD_BAND_ROWS, B.band, B.band_bytes, band_sink, &s, &total);
+    st = rs_pipe_run(&pipe, BAKE_STREAM_ROWS, B.band, B.band_bytes, band_sink, &s, &total);
     if (st != BR_OK) return st;
     out->sum = s.sum;
     out->expect = bake.stream_sum[i];
