@@ -125,10 +125,14 @@ static int decide(bt_stream *s, int32_t x, int32_t y, uint32_t id, unsigned *mas
         s->wkey[h] = id + 1;
         s->wval[h] = CULLED;
     } else {
-        s->wkey[h] = id + 1;
         *p0 |= bit;
         if (*morph != BT_MORPH_ONE) *p1 |= bit;     /* a multiple of BT_MORPH_STEP (morph_at) */
-        s->wval[h] = (uint16_t)(*mask << 8 | *morph / BT_MORPH_STEP);
+        /* a full weight's entry (only its mask to keep) does not push out a partial
+         * weight's, which would have to be computed again */
+        if (*morph != BT_MORPH_ONE || !s->wkey[h] || (s->wval[h] & 0xFFu) >= BT_MORPH_ONE / BT_MORPH_STEP) {
+            s->wkey[h] = id + 1;
+            s->wval[h] = (uint16_t)(*mask << 8 | *morph / BT_MORPH_STEP);
+        }
     }
     return sp;
 }
