@@ -63,7 +63,7 @@ SIZES="-DBOARD_MAX_TRI=$MCU_MAX_TRI -DBOARD_MAX_V=$MCU_MAX_V"
 # the board's variants and vertex layout (core/config.h): the desktop build compiles
 # core/ and raster/ with them too, so that both lay out the same RAM
 LAYOUT="-DRS_WITH_888=0 -DRS_WITH_Z32=0 -DRS_WITH_TEX=0 -DRS_TEX_FIELDS=0 -DBR_INDEX16=1 -DBR_COHERENCE=0"
-BOARD_SRC="$BOARD_PATH_SRC platform/board/spi_band.c mcu/board_tree.c"
+BOARD_SRC="$BOARD_PATH_SRC platform/board/board_scene.c platform/board/spi_band.c mcu/board_tree.c"
 mkdir -p "$O" || exit 1
 
 if ! command -v $XCC >/dev/null 2>&1; then

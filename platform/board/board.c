@@ -5,7 +5,7 @@
 #include "core/bitree.h"
 #include "mcu/bake.h"
 #include "mcu/board_tree.h"
-#include "platform/board/spi_band.h"
+#include "platform/board/board_scene.h"
 #include "raster/frame.h"
 #include "raster/ramp.h"
 #include "raster/terrain.h"
@@ -31,13 +31,6 @@ struct board_state {
 };
 
 static struct board_state B;
-
-typedef struct stream {
-    uint32_t sum;
-    int dc;
-    rs_sink tap;
-    void *tap_user;
-} stream;
 
 static const char *const part_name[BP_N] = {
     "LOD state (bt_tree.st)", "mesh (bt_mesh)", "raster vertices", "vertex cache", "chunk table",
@@ -67,28 +60,6 @@ size_t board_state_size(void)
     return sizeof B;
 }
 
-int32_t board_frames(void)
-{
-    return bake.nframes;
-}
-
-static void put(void *user, int dc, const uint8_t *p, size_t n)
-{
-    stream *s = (stream *)user;
-    s->sum = spib_sum(s->sum, &s->dc, dc, p, n);
-}
-
-static br_status band_sink(void *user, int32_t y0, int32_t rows, const void *px, size_t stride)
-{
-    stream *s = (stream *)user;
-    spib_band(put, s, bake.fb_w, y0, rows, px, stride, B.row);
-    return s->tap ? s->tap(s->tap_user, y0, rows, px, stride) : BR_OK;
-}
-
-static size_t up8(size_t n)
-{
-    return (n + 7) & ~(size_t)7;
-}
 
 /* The mesh's vertex capacity (core/bitree.h bt_mesh_init_v) */
 static uint32_t mesh_cap_v(void)
@@ -116,34 +87,21 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
 {
     size_t sz[BP_N], total = 0, parts = 0;
     uint8_t *p = (uint8_t *)arena;
-    fx_q14 sun[3];
     rs_pipe pipe;
     rs_prim longest;
     int i, first, last;
     memset(&B, 0, sizeof B);
-    B.f.w = bake.w; B.f.h = bake.h;
-    B.f.z = (int32_t *)(uintptr_t)bake_z;     /* read only: no path writes hf.z */
-    B.f.z_num = bake.z_num; B.f.z_den = bake.z_den;
-    B.f.dx_um = bake.dx_um; B.f.dy_um = bake.dy_um;
-    B.f.geo.kind = bake.geo_kind;
-    B.f.geo.x0 = bake.geo_x0; B.f.geo.y0 = bake.geo_y0; B.f.geo.sx = bake.geo_sx; B.f.geo.sy = bake.geo_sy;
-    rs_ramp_default(&B.ramp, bake.ramp_zmin_mm, bake.ramp_zmax_mm);
-    rs_sun_dir(bake.sun_az_mdeg, bake.sun_alt_mdeg, sun);
-    if (rt_scene_init(&B.rt, &B.f, &B.ramp, sun, bake.ambient_q14) != BR_OK) return BR_E_ARG;
-    /* the shading cache is baked for every valid sample, so rt_vertex only reads it */
-    B.rt.lvl = (uint16_t *)(uintptr_t)bake_lvl;
-    B.rt.ztab = (uint32_t *)(uintptr_t)bake_ztab;
-    B.rt.nz = bake.nz;
+    if (board_scene(&B.f, &B.ramp, &B.rt) != BR_OK) return BR_E_ARG;
     B.vcap = BOARD_MAX_V;
     memset(&pipe, 0, sizeof pipe);
     pipe.w = bake.fb_w; pipe.h = bake.fb_h; pipe.fmt = RS_FMT_RGB565; pipe.depth = RS_DEPTH16;
     longest.kind = RS_STRIP; longest.n = 5u * BOARD_MAX_TRI + 8u; longest.idx = NULL;
-    sz[BP_STATE] = up8(board_tree_ram_size(&bake));
-    sz[BP_VERTS] = up8(sizeof(rs_vertex) * B.vcap);
-    sz[BP_CACHE] = up8(rs_cache_mem_size(B.vcap));
-    sz[BP_CHUNKS] = up8(rs_chunk_mem_size(&longest, 1));
-    sz[BP_BAND] = up8(rs_pipe_mem_size(&pipe, BOARD_BAND_ROWS));
-    sz[BP_ROW] = up8((size_t)bake.fb_w * 2);
+    sz[BP_STATE] = board_up8(board_tree_ram_size(&bake));
+    sz[BP_VERTS] = board_up8(sizeof(rs_vertex) * B.vcap);
+    sz[BP_CACHE] = board_up8(rs_cache_mem_size(B.vcap));
+    sz[BP_CHUNKS] = board_up8(rs_chunk_mem_size(&longest, 1));
+    sz[BP_BAND] = board_up8(rs_pipe_mem_size(&pipe, BOARD_BAND_ROWS));
+    sz[BP_ROW] = board_up8((size_t)bake.fb_w * 2);
     /* The raster's per-frame parts are written after the selection and read before the
      * next one, so they may take mesh memory that only an extraction reads (core/bitree.h):
      * - the raster vertices the mesh's vertex array itself when the two layouts have one
@@ -157,7 +115,7 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
     last = B.in_place ? BP_ROW : BP_CHUNKS;
     for (i = first; i <= last; i++) parts += sz[i];
     B.budget = budget_for(parts);
-    sz[BP_MESH] = up8(bt_mesh_mem_size_vb(BOARD_MAX_TRI, BOARD_MAX_V, B.budget));
+    sz[BP_MESH] = board_up8(bt_mesh_mem_size_vb(BOARD_MAX_TRI, BOARD_MAX_V, B.budget));
     if (B.in_place) {
         B.borrowed[BP_VERTS] = sz[BP_VERTS];
         sz[BP_VERTS] = 0;
@@ -212,7 +170,7 @@ br_status board_frame(int32_t i, rs_sink tap, void *tap_user, board_frame_info *
     rs_pipe pipe;
     rs_pass terrain;
     rs_band_stats total;
-    stream s;
+    board_sum s;
     br_status st;
     if (i < 0 || i >= bake.nframes || !B.row) return BR_E_ARG;
     bc = &bake.cam[i];
@@ -240,8 +198,8 @@ br_status board_frame(int32_t i, rs_sink tap, void *tap_user, board_frame_info *
     memset(&pipe, 0, sizeof pipe);
     pipe.w = fr.w; pipe.h = fr.h; pipe.fmt = fr.fmt; pipe.depth = fr.depth;
     if ((st = rs_pass_terrain(&terrain, &fr)) != BR_OK || (st = rs_pipe_add(&pipe, &terrain)) != BR_OK) return st;
-    s.sum = SPIB_SUM_INIT; s.dc = -1; s.tap = tap; s.tap_user = tap_user;
-    st = rs_pipe_run(&pipe, BOARD_BAND_ROWS, B.band, B.band_bytes, band_sink, &s, &total);
+    board_sum_start(&s, B.row, tap, tap_user);
+    st = rs_pipe_run(&pipe, BOARD_BAND_ROWS, B.band, B.band_bytes, board_sum_band, &s, &total);
     if (st != BR_OK) return st;
     out->sum = s.sum;
     out->expect = bake.scene_sum[i];

@@ -11,7 +11,7 @@
 #include <string.h>
 #include "core/bitree.h"
 #include "mcu/bake.h"
-#include "platform/board/spi_band.h"
+#include "platform/board/board_scene.h"
 #include "raster/frame.h"
 #include "raster/ramp.h"
 #include "raster/terrain_stream.h"
@@ -43,13 +43,6 @@ struct board_state {
 
 static struct board_state B;
 
-typedef struct stream {
-    uint32_t sum;
-    int dc;
-    rs_sink tap;
-    void *tap_user;
-} stream;
-
 static const char *const part_name[BP_N] = {
     "walk (bt_stream, answers)", "", "batch (raster/terrain_stream.h)", "", "", "band colour + depth", "SPI row buffer"
 };
@@ -71,28 +64,6 @@ size_t board_state_size(void)
     return sizeof B;
 }
 
-int32_t board_frames(void)
-{
-    return bake.nframes;
-}
-
-static void put(void *user, int dc, const uint8_t *p, size_t n)
-{
-    stream *s = (stream *)user;
-    s->sum = spib_sum(s->sum, &s->dc, dc, p, n);
-}
-
-static br_status band_sink(void *user, int32_t y0, int32_t rows, const void *px, size_t stride)
-{
-    stream *s = (stream *)user;
-    spib_band(put, s, bake.fb_w, y0, rows, px, stride, B.row);
-    return s->tap ? s->tap(s->tap_user, y0, rows, px, stride) : BR_OK;
-}
-
-static size_t up8(size_t n)
-{
-    return (n + 7) & ~(size_t)7;
-}
 
 static void pipe_of(rs_pipe *pipe)
 {
@@ -104,29 +75,16 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
 {
     size_t sz[BP_N], total = 0;
     uint8_t *p = (uint8_t *)arena;
-    fx_q14 sun[3];
     rs_pipe pipe;
     int i;
     memset(&B, 0, sizeof B);
-    B.f.w = bake.w; B.f.h = bake.h;
-    B.f.z = (int32_t *)(uintptr_t)bake_z;     /* read only: no path writes hf.z */
-    B.f.z_num = bake.z_num; B.f.z_den = bake.z_den;
-    B.f.dx_um = bake.dx_um; B.f.dy_um = bake.dy_um;
-    B.f.geo.kind = bake.geo_kind;
-    B.f.geo.x0 = bake.geo_x0; B.f.geo.y0 = bake.geo_y0; B.f.geo.sx = bake.geo_sx; B.f.geo.sy = bake.geo_sy;
-    rs_ramp_default(&B.ramp, bake.ramp_zmin_mm, bake.ramp_zmax_mm);
-    rs_sun_dir(bake.sun_az_mdeg, bake.sun_alt_mdeg, sun);
-    if (rt_scene_init(&B.rt, &B.f, &B.ramp, sun, bake.ambient_q14) != BR_OK) return BR_E_ARG;
-    /* the shading cache is baked for every valid sample, so rt_vertex only reads it */
-    B.rt.lvl = (uint16_t *)(uintptr_t)bake_lvl;
-    B.rt.ztab = (uint32_t *)(uintptr_t)bake_ztab;
-    B.rt.nz = bake.nz;
+    if (board_scene(&B.f, &B.ramp, &B.rt) != BR_OK) return BR_E_ARG;
     pipe_of(&pipe);
     for (i = 0; i < BP_N; i++) sz[i] = 0;
-    sz[BP_STATE] = up8(bt_stream_mem_size(BOARD_WCACHE, bake.nslot));
-    sz[BP_VERTS] = up8(rt_stream_mem_size(BOARD_BATCH_V, BOARD_BATCH_T));
-    sz[BP_BAND] = up8(rs_pipe_mem_size(&pipe, BAKE_STREAM_ROWS));
-    sz[BP_ROW] = up8((size_t)bake.fb_w * 2);
+    sz[BP_STATE] = board_up8(bt_stream_mem_size(BOARD_WCACHE, bake.nslot));
+    sz[BP_VERTS] = board_up8(rt_stream_mem_size(BOARD_BATCH_V, BOARD_BATCH_T));
+    sz[BP_BAND] = board_up8(rs_pipe_mem_size(&pipe, BAKE_STREAM_ROWS));
+    sz[BP_ROW] = board_up8((size_t)bake.fb_w * 2);
     for (i = 0; i < BP_N; i++) {
         if (size) size[i] = sz[i];
         total += sz[i];
@@ -154,7 +112,7 @@ br_status board_frame(int32_t i, rs_sink tap, void *tap_user, board_frame_info *
     rs_pipe pipe;
     rs_pass pass;
     rs_band_stats total;
-    stream s;
+    board_sum s;
     br_status st;
     uint32_t leaves0 = B.batch.leaves;
     if (i < 0 || i >= bake.nframes || !B.row) return BR_E_ARG;
@@ -174,8 +132,8 @@ br_status board_frame(int32_t i, rs_sink tap, void *tap_user, board_frame_info *
     cam_viewproj(&B.c, &fr->vp);
     pipe_of(&pipe);
     if ((st = rs_pass_stream(&pass, &B.batch)) != BR_OK || (st = rs_pipe_add(&pipe, &pass)) != BR_OK) return st;
-    s.sum = SPIB_SUM_INIT; s.dc = -1; s.tap = tap; s.tap_user = tap_user;
-    st = rs_pipe_run(&pipe, BAKE_STREAM_ROWS, B.band, B.band_bytes, band_sink, &s, &total);
+    board_sum_start(&s, B.row, tap, tap_user);
+    st = rs_pipe_run(&pipe, BAKE_STREAM_ROWS, B.band, B.band_bytes, board_sum_band, &s, &total);
     if (st != BR_OK) return st;
     out->sum = s.sum;
     out->expect = bake.stream_sum[i];
