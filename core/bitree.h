@@ -468,16 +468,17 @@ uint32_t bt_parts_resumed(const bt_parts *ps);
  * every walk of a frame gives every diamond the same answer, so the walks' leaves
  * together are one conforming mesh, the real triangles of bt_extract's mesh for the
  * same camera and hyst_q8 = 0 (same points, same geomorphed heights), met in the
- * order of its strip; the leaves of one walk are those whose diamond's nested volume
- * does not lie wholly above or below the window's rows, which covers every triangle
- * that covers a pixel centre in them (core/bt_stream.c).  A leaf comes apex first, then
- * counter-clockwise seen from +z, as bt_mesh's strip has its real triangles.
- * Memory: bt_stream_mem_size(memo_entries, nslot) bytes, about 2.6 KB plus 8 (16 with
- * BR_COHERENCE) a decision memo entry, a power of two >= 16 (a cache: fewer entries
- * decide more diamonds twice, the same leaves), plus 2 bits a slot for nslot slots
- * (bt_slot_count; 0: none) and 5 bytes a memo entry: each diamond's answer kept for the
- * frame, and a cache of partial geomorph weights, so that the frame's walks decide each
- * diamond about once (trees of up to nslot slots); 0 for a bad count.
+ * order of its strip; the leaves of one walk are those not shown to lie wholly above or
+ * below the window's rows (a subtree by its triangle's prism, a leaf by its own points),
+ * which covers every triangle that covers a pixel centre in them (core/bt_stream.c).  A
+ * leaf comes apex first, then counter-clockwise seen from +z, as bt_mesh's strip has its
+ * real triangles.
+ * Memory: bt_stream_mem_size(cache_entries, nslot) bytes: about 2.8 KB of state, 2 bits a
+ * slot for trees of up to nslot slots (bt_slot_count; >= 1): each diamond's answer kept
+ * for the frame, so that the frame's walks decide each diamond about once; and 6 bytes a
+ * cache entry, a power of two >= 16, for split diamonds' geomorph weights and plane
+ * masks (a cache: fewer entries compute more weights again, the same leaves); 0 for bad
+ * counts.
  * Protocol: bt_stream_init once; per frame bt_stream_frame (BR_E_ARG: not BT_VIEW,
  * hyst_q8 != 0, a window in p, a tree of more than nslot slots, or what bt_extract
  * refuses), then any number of
@@ -487,8 +488,8 @@ uint32_t bt_parts_resumed(const bt_parts *ps);
 typedef struct bt_svert {
     int32_t x, y;          /* grid column and row */
     int32_t z;             /* height after geomorph (bt_vert.z) */
-    int32_t wz;            /* world height (bt_world) */
-    int64_t pa[2];         /* the walk's window planes at the world point (x, y, 0) */
+    int32_t wz;            /* world height (bt_world); made only while the walk has */
+    int64_t pa[2];         /* a window plane to test: their values at world (x, y, 0) */
     uint32_t tag;          /* 0 when the walk makes the point; the callback may keep a
                               value here: the walk hands the same bt_svert to every leaf
                               of the triangle that made the point until it leaves it */
@@ -496,8 +497,8 @@ typedef struct bt_svert {
 } bt_svert;
 typedef void (*bt_stream_leaf)(void *user, bt_svert *v0, bt_svert *v1, bt_svert *v2);
 typedef struct bt_stream bt_stream;
-size_t bt_stream_mem_size(uint32_t memo_entries, uint32_t nslot);
-br_status bt_stream_init(bt_stream **out, uint32_t memo_entries, uint32_t nslot, void *mem, size_t mem_bytes);
+size_t bt_stream_mem_size(uint32_t cache_entries, uint32_t nslot);
+br_status bt_stream_init(bt_stream **out, uint32_t cache_entries, uint32_t nslot, void *mem, size_t mem_bytes);
 br_status bt_stream_frame(bt_stream *s, bt_tree *t, const bt_params *p);
 /* The leaves for window (NULL: all of them); returns how many went to fn (0 for a
  * window outside the viewport's bounds). */

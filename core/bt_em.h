@@ -459,12 +459,13 @@ static inline int32_t bti_dscale(int32_t x, int32_t y, int32_t S, int *typeD)
     return h;
 }
 
-/* The three corners are valid samples.  Without a void in the grid as read (only the
- * padding), that is: they lie in it, x < w and y < h. */
+/* Sample (x, y) lies in the grid as read and is not a void */
 static inline int bti_sample_valid(const hf *f, int32_t x, int32_t y)
 {
     return x < f->w && y < f->h && f->z[(size_t)y * f->w + x] != HF_NODATA;
 }
+/* The three corners are valid samples.  Without a void in the grid as read (only the
+ * padding), that is: they lie in it, x < w and y < h. */
 static inline int bti_tri_valid6(const bti_extract *e, int32_t ax, int32_t ay, int32_t cx, int32_t cy, int32_t bx,
                                  int32_t by)
 {

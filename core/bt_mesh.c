@@ -54,7 +54,8 @@
 typedef bti_pt pt;
 #define NO_IDX BTI_NO_IDX
 
-/* ------------------------------------------------------------ samples */
+/* ------------------------------------------------------------ samples and volumes
+ * (core/bt_em.h: shared with the streamed walk, core/bt_stream.c) */
 #define tri_valid bti_tri_valid
 #define dvolume bti_dvolume
 #define isat_mul bti_isat_mul

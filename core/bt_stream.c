@@ -1,10 +1,11 @@
 /* core/bt_stream.c — the view selection streamed to a callback, one window of the
  * screen at a time, without a mesh (contract: core/bitree.h "streamed walk").
  *
- * The walk is core/bt_mesh.c's rec with the view rule (decide, memoised): the same
- * diamonds split, the same geomorph heights (bti_mid_z), the same leaves in the same
- * order.  What it leaves out is the output: no vertex array, no strip, no vertex hash,
- * no split list.  Each leaf goes to the caller as its three grid points.
+ * The walk is core/bt_mesh.c's rec with the view rule (decide): the same diamonds
+ * split, the same geomorph heights (bti_mid_z), the same leaves in the same order.  What
+ * it leaves out is the output: no vertex array, no strip, no vertex hash, no split list.
+ * Each leaf goes to the caller as its three grid points.  What it keeps is the frame's
+ * answers (decide below), so that the walks of a frame decide each diamond about once.
  *
  * Why no hysteresis.  A split's answer depends on ST_PREV only through tau_lo; with
  * hyst_q8 = 0 (tau_lo = tau) the rule reads the diamond and the camera alone, so every
@@ -18,12 +19,13 @@
  * answer at the threshold (a vertex there sits at its fictitious height), which is what
  * hysteresis is for.
  *
- * The window.  A walk for rows [y0, y1) of the screen tests each diamond's nested
- * volume (the box view_err tests against the frustum) against the two planes through
- * the window's top and bottom edges (cam_frustum_window) and skips the subtree of one
- * that lies wholly outside either: none of its triangles can cover a pixel centre of
- * those rows.  The plane test only prunes; the decision is the whole frustum's, so the
- * same diamond splits in every window that reaches it. */
+ * The window.  A walk for rows [y0, y1) of the screen tests each triangle's prism (below:
+ * out_of_window) against the two planes through the window's top and bottom edges
+ * (cam_frustum_rows) and skips the subtree of one that lies wholly outside either, and
+ * each leaf's own three points: none of those triangles can cover a pixel centre of the
+ * rows (the planes' rounding, about 2^-30 of a distance, is far below the half pixel
+ * between a row's edge and its centres).  The plane test only prunes; the decision is
+ * the whole frustum's, so the same diamond splits in every window that reaches it. */
 #include <string.h>
 #include "core/bitree.h"
 #include "core/bt_int.h"
@@ -203,9 +205,10 @@ static void leaf(bt_stream *s, bt_svert *a, bt_svert *c, bt_svert *b, unsigned w
     else s->fn(s->user, c, b, a);
 }
 
-/* q's world height and its window planes' values (bt_world's position, inside
- * CAM_COORD_MAX for a frame bti_setup took: Q30 normals times coordinates below 2^30,
- * sums below 2^62 as in culled()) */
+/* q's world height and its window planes' values at (x, y, 0) (bt_world's position,
+ * inside CAM_COORD_MAX for a frame bti_setup took: Q30 normals times coordinates below
+ * 2^30, and d = -n . eye, so |pa| < 2^62 and with the height term n2 wz (< 2^60) the
+ * tests' sums stay below 2^63) */
 static void world(const bt_stream *s, bt_svert *q)
 {
     const bt_frame *fr = &s->p.fr;

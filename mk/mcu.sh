@@ -37,9 +37,13 @@ if [ -z "${MCU_PATH:-}" ]; then
   mkdir -p "$O" || exit 1
   p=0 f=0 s=0
   for path in stream mesh; do
-    MCU_PATH=$path sh "$0" > "$O/$path.log" 2>&1
+    MCU_PATH=$path sh "$0" > "$O/$path.log" 2>&1; rc=$?
     grep -v '^mcu: [0-9]* passed, [0-9]* failed, [0-9]* skipped$' "$O/$path.log"
-    eval "$(sed -n 's/^mcu: \([0-9]*\) passed, \([0-9]*\) failed, \([0-9]*\) skipped$/p=$((p + \1)) f=$((f + \2)) s=$((s + \3))/p' "$O/$path.log")"
+    # the counts end its closing line (or the line that says why it was skipped); a run
+    # that failed before it counts as one failure
+    f0=$f
+    eval "$(sed -n 's/^mcu: .*\b\([0-9][0-9]*\) passed, \([0-9][0-9]*\) failed, \([0-9][0-9]*\) skipped$/p=$((p + \1)) f=$((f + \2)) s=$((s + \3))/p' "$O/$path.log")"
+    [ $rc != 0 ] && [ $f = $f0 ] && f=$((f + 1))
   done
   echo "mcu: $p passed, $f failed, $s skipped"
   [ $f = 0 ]

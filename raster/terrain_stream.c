@@ -47,12 +47,17 @@ br_status rt_stream_init(rt_stream *s, uint32_t cap_v, uint32_t cap_t, void *mem
     return BR_OK;
 }
 
-/* Draws the batch into the band (the first of a band clears it), then empties it. */
+/* Draws the batch into the band (the first of a band clears it), then empties it.  After
+ * an error the band draws nothing more (its batches are emptied, s->err kept). */
 static void flush(rt_stream *s)
 {
     rs_frame *f = &s->fr;
     br_status st;
-    if ((s->nt == 0 && s->cleared) || s->err != BR_OK) return;
+    if (s->err != BR_OK) {
+        s->nv = s->nt = 0;
+        return;
+    }
+    if (s->nt == 0 && s->cleared) return;
     s->prim.kind = RS_LIST; s->prim.n = 3 * s->nt; s->prim.idx = s->idx;
     f->v = s->v; f->nv = s->nv; f->cache = s->cache;
     f->prims = &s->prim; f->nprims = 1; f->chunks = s->chunks;

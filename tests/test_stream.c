@@ -1,6 +1,6 @@
 /* tests/test_stream.c — the streamed walk (core/bitree.h bt_stream_*) and the stream pass
- * (raster/terrain_stream.h) on real terrain, a 400 x 300 crop of N47E009 (Lake
- * Constance's south shore), along a low camera moving 20 m a frame, geomorph on:
+ * (raster/terrain_stream.h) on real terrain, two crops of N47E009 (Lake Constance's south
+ * shore; the board's Alpine Rhine valley) at 11 cameras (cams below), geomorph on:
  * - the walk's leaves over the whole viewport are the real triangles of bt_extract's
  *   mesh without hysteresis, in its strip's order, apex first, same heights;
  * - the stream pass's frames are that list drawn whole, byte for byte, for bands of

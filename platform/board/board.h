@@ -1,17 +1,20 @@
 /* platform/board/board.h — the board main's frames, shared by the bare-metal build
  * (platform/board/mcu_main.c, Cortex-M) and its desktop build (desktop_main.c): the
  * baked terrain (mcu/bake.h) flown along its camera path, each frame selected by the
- * bitree, drawn by the one frame driver (raster/frame.h) in bands of BOARD_BAND_ROWS
- * rows of RGB565 with 16-bit depth, and each band streamed as platform/sink_spi.h's byte
- * stream into a checksum.
+ * bitree, drawn by the one frame driver (raster/frame.h) in bands of RGB565 with 16-bit
+ * depth, and each band streamed as platform/sink_spi.h's byte stream into a checksum.
+ * Two files implement it, one linked (mk/mcu.sh MCU_PATH): board_stream.c draws each band
+ * of BAKE_STREAM_ROWS rows straight from the tree, board.c the whole frame's mesh and
+ * strip in bands of BOARD_BAND_ROWS rows (docs/mcu.md).
  *
  * RAM: everything the frames write lies in the arena the caller hands to board_init
- * (carved in the parts of enum board_part; board_init's size[] says how much each takes,
- * and the raster's per-frame parts live in the mesh's memory when it holds them,
- * board_part_borrowed) plus the board's own state (struct board_state, sizeof in
- * board_state_size) and the stack.  Build-time sizes: BOARD_MAX_TRI triangles a mesh (beyond: the bitree's budget
- * rule, a coarser conforming mesh), BOARD_MAX_V raster vertices (a frame whose mesh has
- * more fails with BR_E_NOMEM, never writes past them).
+ * (carved in the parts of enum board_part; board_init's size[] says how much each takes;
+ * a part a path does not have has the name "" and no bytes; the mesh path's raster parts
+ * live in the mesh's memory when it holds them, board_part_borrowed) plus the board's own
+ * state (struct board_state, sizeof in board_state_size) and the stack.  Build-time sizes
+ * of the mesh path: BOARD_MAX_TRI triangles a mesh (beyond: the bitree's budget rule, a
+ * coarser conforming mesh), BOARD_MAX_V raster vertices (a frame whose mesh has more
+ * fails with BR_E_NOMEM, never writes past them).
  *
  * Checksum: spib_sum (platform/board/spi_band.h) over each frame's stream. */
 #ifndef BR_BOARD_H
@@ -37,7 +40,9 @@ typedef struct board_frame_info {
     uint32_t sum;               /* the checksum of the frame's stream */
     uint32_t expect;            /* the same frame's checksum through the product's frame
                                    path on the host (mcu/bake.h scene_sum) */
-    uint32_t ntri, nv, ns;      /* the mesh: triangles, vertices, strip indices */
+    uint32_t ntri, nv, ns;      /* the mesh: triangles, vertices, strip indices; the stream
+                                   path (ns 0): triangles set up in its bands (one reaching
+                                   two bands counts twice), nv 0 */
     int32_t overflow;           /* the selection fell back to the budget rule */
     uint32_t pixels;            /* pixels written (depth test passed) */
 } board_frame_info;

@@ -1,10 +1,10 @@
 /* platform/board/board_stream.c — the board's frames drawn band by band straight from
- * the tree (board.h; `make mcu`'s default, MCU_PATH=stream): no mesh is kept.  Each
- * 16-row band walks the baked hierarchy for its rows (core/bitree.h bt_stream_walk: the
- * view rule without hysteresis) and draws the leaves it meets in small batches
- * (raster/terrain_stream.h), then goes to the SPI stream.  What a frame writes is the
- * band, one batch, the walk's state and its decision memo: RAM that does not grow with
- * the frame's triangles (docs/mcu.md).  platform/board/board.c is the other path
+ * the tree (board.h; MCU_PATH=stream, build/mcu/bitrain-CORE.elf): no mesh is kept.
+ * Each band of BAKE_STREAM_ROWS rows walks the baked hierarchy for its rows (core/
+ * bitree.h bt_stream_walk: the view rule without hysteresis) and draws the leaves it
+ * meets in small batches (raster/terrain_stream.h), then goes to the SPI stream.  What a
+ * frame writes is the band, one batch, the walk's state, its answer planes and its
+ * weight cache: RAM that does not grow with the frame's triangles (docs/mcu.md).  platform/board/board.c is the other path
  * (MCU_PATH=mesh): the product's whole-frame mesh and strip, its pixels, 201 KB.
  * Freestanding: core/, raster/, the baked arrays and memset/memcpy, nothing else. */
 #include "platform/board/board.h"
@@ -63,7 +63,6 @@ size_t board_state_size(void)
 {
     return sizeof B;
 }
-
 
 static void pipe_of(rs_pipe *pipe)
 {

@@ -122,6 +122,10 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--band-load")) load = 1;
         else { fprintf(stderr, "usage: %s [-o DIR] [--mem] [--bare] [--band-load]\n", argv[0]); return 2; }
     }
+    if (load && !*board_part_name(BP_MESH)) {
+        fprintf(stderr, "%s: --band-load counts the mesh path's strip (bitrain-board-desktop-mesh)\n", argv[0]);
+        return 2;
+    }
     board_init(NULL, 0, size);
     for (i = 0; i < BP_N; i++) total += size[i];
     arena = malloc(total);
