@@ -264,6 +264,88 @@ static void test_stream_frames(void)
     free(mesh_mem); free(wmem); free(wmem_planes); free(want.p); free(got.p); free(list); free(v); free(cache); free(chunks);
 }
 
+/* Grids with voids inside the data (core/bitree.h: a leaf over a void is left out): the
+ * walk's leaves are the mesh's, point for point, and a frame of 16-row bands is the list
+ * drawn whole, at three cameras over each DEM. */
+static void test_stream_voids(void)
+{
+    static const char *const dems[2] = { "tif/mt_rainier_90m.tif", "asc/hugo_site.asc" };
+    leaves want = { malloc(sizeof(int32_t) * 9 * MAXT), 0 }, got = { malloc(sizeof(int32_t) * 9 * MAXT), 0 };
+    br_index *list = malloc(sizeof *list * 3 * MAXT);
+    rs_vertex *v = malloc(sizeof *v * MAXT);
+    rs_cvert *cache = malloc(sizeof *cache * MAXT);
+    int16_t *chunks = malloc(rs_chunk_mem_size(&(rs_prim){ RS_LIST, 3u * MAXT, NULL }, 1));
+    int d, k;
+    uint32_t nleaf = 0;
+    for (d = 0; d < 2; d++) {
+        hf f;
+        bt_tree t;
+        bt_mesh m;
+        bt_stream *walk;
+        rt_scene sc;
+        rs_ramp ramp;
+        fx_q14 sun[3];
+        bt_params p;
+        cam c;
+        void *tmem, *scr, *wmem, *mesh_mem = NULL;
+        int64_t nvoid = 0, i;
+        if (btc_load(dems[d], &f)) { CHECK(0); continue; }
+        for (i = 0; i < (int64_t)f.w * f.h; i++) nvoid += f.z[i] == HF_NODATA;
+        CHECK_MSG(nvoid > 0, "%s: no void", dems[d]);
+        tmem = malloc(bt_mem_size(f.w, f.h));
+        scr = malloc(bt_scratch_size(f.w, f.h));
+        CHECK_EQ(bt_build(&t, &f, BT_METRIC_EXACT, tmem, bt_mem_size(f.w, f.h), scr, bt_scratch_size(f.w, f.h)), BR_OK);
+        free(scr);
+        wmem = malloc(bt_stream_mem_size(64, t.nslot));
+        CHECK_EQ(bt_stream_init(&walk, 64, t.nslot, wmem, bt_stream_mem_size(64, t.nslot)), BR_OK);
+        rs_ramp_default(&ramp, 0, 4000000);
+        rs_sun_dir(315000, 45000, sun);
+        CHECK_EQ(rt_scene_init(&sc, &f, &ramp, sun, 4915), BR_OK);
+        for (k = 0; k < 3; k++) {
+            /* from the south-west corner at three heights, looking at the middle */
+            const int64_t ex = (int64_t)(f.w - 1) * sc.fr.sx, ey = (int64_t)(f.h - 1) * sc.fr.sy;
+            const int32_t eye[3] = { (int32_t)(ex / 8 + k * ex / 10), (int32_t)(ey / 10),
+                                     (int32_t)((int64_t)(2000 + 800 * k) << sc.shift) };
+            const int32_t tgt[3] = { (int32_t)(ex / 2), (int32_t)(ey / 2), (int32_t)((int64_t)1500 << sc.shift) };
+            rs_frame fr;
+            rs_prim lp;
+            uint8_t *ref, *px;
+            void *dep;
+            uint32_t j;
+            CHECK_EQ(cam_look_at(&c, eye, tgt, 60000, W, H, 1 << sc.shift, 1 << 29), BR_OK);
+            memset(&p, 0, sizeof p);
+            p.mode = BT_VIEW; p.fr = sc.fr; p.c = &c; p.morph_q8 = 128; p.pixel_err_q8 = 256;
+            if (k == 0) CHECK_EQ(btc_extract(&t, &p, MAXT, &m, &mesh_mem), 0);
+            else CHECK_EQ(bt_extract(&t, &p, &m), BR_OK);
+            if (m.nv > MAXT || m.ns > MAXT) { CHECK(0); break; }
+            mesh_leaves(&m, list, &want);
+            CHECK_EQ(bt_stream_frame(walk, &t, &p), BR_OK);
+            got.n = 0;
+            (void)bt_stream_walk(walk, NULL, keep, &got);
+            CHECK_EQ(got.n, want.n);
+            for (j = 0; j < want.n && !memcmp(&want.p[9 * j], &got.p[9 * j], 36); j++) {}
+            CHECK_MSG(j == want.n, "%s camera %d: leaf %u of %u differs from the mesh's", dems[d], k, j, want.n);
+            nleaf += want.n;
+            rt_from_mesh(&sc, &m, v);
+            frame_of(&fr, 1, &c);
+            fr.v = v; fr.nv = m.nv; fr.cache = cache; fr.chunks = chunks;
+            lp.kind = RS_LIST; lp.n = 3 * want.n; lp.idx = list;
+            fr.prims = &lp; fr.nprims = 1;
+            ref = calloc((size_t)W * H, 2);
+            dep = calloc((size_t)W * H, 2);
+            CHECK_EQ(rs_frame_prepare(&fr), BR_OK);
+            CHECK_EQ(rs_draw_band(&fr, 0, H, ref, (size_t)W * 2, dep, NULL), BR_OK);
+            px = draw_stream(walk, &sc, &c, 1, 16, 128, 256);
+            CHECK_MSG(!memcmp(px, ref, (size_t)W * H * 2), "%s camera %d: 16-row bands differ from the list", dems[d], k);
+            free(px); free(ref); free(dep);
+        }
+        free(mesh_mem); free(wmem); free(tmem); free(f.z);
+    }
+    printf("voids: %u leaves over 6 cameras\n", nleaf);
+    CHECK(nleaf > 5000);
+    free(want.p); free(got.p); free(list); free(v); free(cache); free(chunks);
+}
+
 static void test_stream_refuses(void)
 {
     uint64_t mem[64];
@@ -307,6 +389,7 @@ int main(void)
 {
     T_RUN(test_stream_refuses);
     T_RUN(test_stream_frames);
+    T_RUN(test_stream_voids);
     {
         int i;
         for (i = 0; i < 2; i++) { free(sites[i].crop.z); free(sites[i].mem); }
