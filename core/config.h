@@ -88,6 +88,11 @@
 #ifndef RS_WITH_COUNT
 #define RS_WITH_COUNT 0
 #endif
+/* The variants without a depth buffer (RS_DEPTH_NONE: triangle lists drawn in the
+ * caller's back-to-front order, the board's stream path) */
+#ifndef RS_WITH_NOZ
+#define RS_WITH_NOZ 1
+#endif
 /* BR_INDEX16 1 makes strip indices 16 bits (br_index: core/bitree.h bt_mesh.strip,
  * raster/raster.h rs_prim.idx): half the strip's RAM on a board, for meshes of at most
  * 65,536 vertices (bt_mesh_init refuses a larger vertex capacity).  A layout, as

@@ -8,7 +8,7 @@
 static size_t align_up(size_t n) { return (n + (PART_ALIGN - 1)) & ~(size_t)(PART_ALIGN - 1); }
 
 static size_t bytes_per_px(int32_t fmt) { return fmt == RS_FMT_RGB565 ? 2u : 4u; }
-static size_t depth_bytes(int32_t depth) { return depth == RS_DEPTH16 ? 2u : 4u; }
+static size_t depth_bytes(int32_t depth) { return depth == RS_DEPTH_NONE ? 0u : depth == RS_DEPTH16 ? 2u : 4u; }
 
 /* Rows of a scratch band for bands of `rows` rows: the margins above and below, at most
  * the frame's height (a margin beyond the frame is clipped away). */

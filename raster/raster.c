@@ -53,7 +53,7 @@ typedef struct band {
 size_t rs_band_mem_size(int32_t w, int32_t rows, int32_t fmt, int32_t depth)
 {
     size_t px = (size_t)w * (size_t)rows;
-    return px * (fmt == RS_FMT_RGB565 ? 2u : 4u) + px * (depth == RS_DEPTH16 ? 2u : 4u);
+    return px * (fmt == RS_FMT_RGB565 ? 2u : 4u) + px * (depth == RS_DEPTH_NONE ? 0u : depth == RS_DEPTH16 ? 2u : 4u);
 }
 
 /* ---------------------------------------------------------------- set-up helpers */
@@ -234,6 +234,10 @@ static draw_fn draw_for(int32_t fmt, int32_t depth, int tex, int count)
 {
     const int z16 = depth == RS_DEPTH16, c565 = fmt == RS_FMT_RGB565;
     if (count) return fmt == RS_FMT_XRGB8888 && RS_BUILT(V_COUNT) ? draw_count : (draw_fn)0;
+    if (depth == RS_DEPTH_NONE) {
+        if (tex) return (draw_fn)0;
+        return c565 ? (RS_BUILT(V_565_NOZ) ? draw_565_noz : (draw_fn)0) : (RS_BUILT(V_888_NOZ) ? draw_888_noz : (draw_fn)0);
+    }
     if (tex) {
         if (c565) return z16 ? (RS_BUILT(V_565_Z16_TEX) ? draw_565_z16_tex : (draw_fn)0)
                              : (RS_BUILT(V_565_Z32_TEX) ? draw_565_z32_tex : (draw_fn)0);
@@ -344,8 +348,16 @@ br_status rs_draw_band(const rs_frame *f, int32_t y0, int32_t rows, void *color,
     band bd;
     int32_t y;
     uint32_t dfar;
-    if (!f->cache || !color || !depth || y0 < 0 || rows < 1 || y0 + rows > f->h) return BR_E_ARG;
+    const int noz = f->depth == RS_DEPTH_NONE;
+    if (!f->cache || !color || (!depth && !noz) || y0 < 0 || rows < 1 || y0 + rows > f->h) return BR_E_ARG;
     if (!draw) return BR_E_UNSUPPORTED;
+    if (noz) {
+        /* without depth the triangles' order is the picture's: lists only (a strip's order
+         * is its walk's), and no depth rows (band.depth: a valid address never read) */
+        for (y = 0; y < f->nprims; y++)
+            if (f->prims[y].kind != RS_LIST) return BR_E_ARG;
+        depth = color;
+    }
     memset(&bd, 0, sizeof bd);
     bd.f = f; bd.y0 = y0; bd.y1 = y0 + rows; bd.w = f->w;
     bd.color = (uint8_t *)color; bd.stride = stride; bd.depth = depth;
@@ -370,7 +382,7 @@ br_status rs_draw_band(const rs_frame *f, int32_t y0, int32_t rows, void *color,
         else if (f->fmt == RS_FMT_RGB565) cv = PACK24_565(f->clear_rgb) * 0x10001u;
         else cv = f->clear_rgb & 0xffffffu;
         zv = f->depth == RS_DEPTH16 ? (dfar >> 14) * 0x10001u : dfar;
-        fill32((uint8_t *)depth, w * (size_t)rows * (f->depth == RS_DEPTH16 ? 2u : 4u), zv);
+        if (!noz) fill32((uint8_t *)depth, w * (size_t)rows * (f->depth == RS_DEPTH16 ? 2u : 4u), zv);
         if (f->clear_rows && !f->debug_count) {
             for (y = 0; y < rows; y++) clear_row_pattern(bd.color + (size_t)y * stride, f->w, f->fmt,
                                                          f->clear_rows + 4 * (size_t)(y0 + y));

@@ -44,7 +44,8 @@
  * MEMORY (caller-owned; nothing is allocated here)
  * - vertex cache: rs_cache_mem_size(nv) = 32 bytes per vertex (one transform per vertex
  *   per frame, shared by all bands);
- * - band: rs_band_mem_size(w, rows, fmt, depth) = w * rows * (2 or 4 colour + 2 or 4 depth);
+ * - band: rs_band_mem_size(w, rows, fmt, depth) = w * rows * (2 or 4 colour + 2, 4 or no
+ *   depth);
  * - chunk table: rs_chunk_mem_size(prims, nprims) = 4 bytes per RS_CHUNK = 64 triangles.
  *   REQUIRED: rs_frame_prepare refuses a frame without it (BR_E_ARG), so no caller can
  *   forget it; with it a band skips every chunk that cannot touch its rows, and a chunk
@@ -73,7 +74,13 @@
                            optional world plane z >= clip_z of rs_frame) */
 
 enum { RS_FMT_XRGB8888 = 0, RS_FMT_RGB565 = 1 };
-enum { RS_DEPTH32 = 0, RS_DEPTH16 = 1 };
+/* RS_DEPTH_NONE: no depth buffer; each covered pixel centre is written, so a pixel shows
+ * the last triangle drawn over it: the caller draws back to front (painter's order, as
+ * core/bitree.h's streamed walk hands its leaves with BT_STREAM_BACK_TO_FRONT).  Lists
+ * only (rs_draw_band: BR_E_ARG for a strip), no textures; no far plane test per pixel
+ * (the far plane's depth is the buffer's clear value): the caller draws nothing beyond
+ * it.  Half the band's bytes at RGB565. */
+enum { RS_DEPTH32 = 0, RS_DEPTH16 = 1, RS_DEPTH_NONE = 2 };
 enum { RS_STRIP = 0, RS_LIST = 1 };
 
 /* Input vertex: world position, colour 0x00RRGGBB (shaded per vertex by the caller or
@@ -168,7 +175,7 @@ typedef struct rs_clip_poly {
 typedef struct rs_frame {
     int32_t w, h;               /* viewport, 1 .. RS_MAX_DIM */
     int32_t fmt;                /* RS_FMT_* */
-    int32_t depth;              /* RS_DEPTH32 or RS_DEPTH16 */
+    int32_t depth;              /* RS_DEPTH32, RS_DEPTH16 or RS_DEPTH_NONE */
     int32_t no_cull;            /* 1: draw back faces too */
     uint32_t clear_rgb;         /* background (sky) colour 0xRRGGBB */
     const rs_vertex *v;         /* nv vertices */
@@ -255,7 +262,8 @@ typedef struct rs_band_stats {
 } rs_band_stats;
 
 /* Renders rows [y0, y0+rows) into caller buffers: colour (stride bytes per row) and a
- * depth buffer of w*rows entries (uint32 or uint16).  Clears both first (unless
+ * depth buffer of w*rows entries (uint32 or uint16; RS_DEPTH_NONE: none, depth may be
+ * NULL).  Clears both first (unless
  * f->no_clear).  Reads f only
  * (several threads may draw bands of one prepared frame at once) and ADDS the band's
  * cost to *st (st may be NULL).

@@ -70,6 +70,8 @@ RSI_NOINLINE static void tri_raster(band *bd, const rs_cvert *a, const rs_cvert 
     TRI_RASTER_CASE(V_888_Z16);
     TRI_RASTER_CASE(V_565_Z16);
     TRI_RASTER_CASE(V_565_Z32);
+    TRI_RASTER_CASE(V_888_NOZ);
+    TRI_RASTER_CASE(V_565_NOZ);
     TRI_RASTER_CASE(V_888_Z32_TEX);
     TRI_RASTER_CASE(V_888_Z16_TEX);
     TRI_RASTER_CASE(V_565_Z16_TEX);
@@ -548,6 +550,8 @@ RSI_INLINE static void draw_strips(band *bd, const int vf)
             uint32_t t1 = nt - t0 < RS_CHUNK ? nt : t0 + RS_CHUNK;
             if (ch && (ch[1] < bd->y0 || ch[0] >= bd->y1)) continue;   /* chunk misses the band */
             if (pr->kind == RS_STRIP) {
+                if (vf & VF_NOZ) break;     /* (refused by rs_draw_band: no strip order is
+                                               back to front) */
                 /* sliding window: one new vertex per triangle; triangle t = (s[t], s[t+1],
                  * s[t+2]), the first two swapped for odd t */
                 {
@@ -653,5 +657,7 @@ PP_SCHED static void draw_888_z16_tex(band *bd) { draw_strips(bd, V_888_Z16_TEX)
 PP_SCHED static void draw_565_z16_tex(band *bd) { draw_strips(bd, V_565_Z16_TEX); }
 PP_SCHED static void draw_565_z32_tex(band *bd) { draw_strips(bd, V_565_Z32_TEX); }
 PP_SCHED static void draw_count(band *bd) { draw_strips(bd, V_COUNT); }
+PP_SCHED static void draw_888_noz(band *bd) { draw_strips(bd, V_888_NOZ); }
+PP_SCHED static void draw_565_noz(band *bd) { draw_strips(bd, V_565_NOZ); }
 
 #endif

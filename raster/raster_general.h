@@ -433,6 +433,8 @@ RSI_NOINLINE static void tri_gen_any(band *bd, const rs_cvert *a, const rs_cvert
     GEN_CASE(V_888_Z16, small, wide, 0);
     GEN_CASE(V_565_Z16, small, wide, 0);
     GEN_CASE(V_565_Z32, small, wide, 0);
+    GEN_CASE(V_888_NOZ, small, wide, 0);
+    GEN_CASE(V_565_NOZ, small, wide, 0);
 #endif
     GEN_CASE(V_888_Z32_TEX, small, wide, 0);
     GEN_CASE(V_888_Z16_TEX, small, wide, 0);
@@ -452,6 +454,8 @@ RSI_NOINLINE static void tri_gen_sw(band *bd, const rs_cvert *a, const rs_cvert 
     GEN_CASE(V_888_Z16, 1, 1, 0);
     GEN_CASE(V_565_Z16, 1, 1, 0);
     GEN_CASE(V_565_Z32, 1, 1, 0);
+    GEN_CASE(V_888_NOZ, 1, 1, 0);
+    GEN_CASE(V_565_NOZ, 1, 1, 0);
     default: return;
     }
 }
@@ -465,6 +469,8 @@ RSI_NOINLINE static void tri_gen_sw1(band *bd, const rs_cvert *a, const rs_cvert
     GEN_CASE(V_888_Z16, 1, 1, 1);
     GEN_CASE(V_565_Z16, 1, 1, 1);
     GEN_CASE(V_565_Z32, 1, 1, 1);
+    GEN_CASE(V_888_NOZ, 1, 1, 1);
+    GEN_CASE(V_565_NOZ, 1, 1, 1);
     default: return;
     }
 }
@@ -477,6 +483,8 @@ RSI_NOINLINE static void tri_gen_sn(band *bd, const rs_cvert *a, const rs_cvert 
     GEN_CASE(V_888_Z16, 1, 0, 0);
     GEN_CASE(V_565_Z16, 1, 0, 0);
     GEN_CASE(V_565_Z32, 1, 0, 0);
+    GEN_CASE(V_888_NOZ, 1, 0, 0);
+    GEN_CASE(V_565_NOZ, 1, 0, 0);
     default: return;
     }
 }
@@ -489,6 +497,8 @@ RSI_NOINLINE static void tri_gen_l(band *bd, const rs_cvert *a, const rs_cvert *
     GEN_CASE(V_888_Z16, 0, wide, 0);
     GEN_CASE(V_565_Z16, 0, wide, 0);
     GEN_CASE(V_565_Z32, 0, wide, 0);
+    GEN_CASE(V_888_NOZ, 0, wide, 0);
+    GEN_CASE(V_565_NOZ, 0, wide, 0);
     default: return;
     }
 }

@@ -28,21 +28,27 @@ enum {
     VF_565 = 1,         /* colour RGB565 (else XRGB8888) */
     VF_Z16 = 2,         /* 16-bit depth, d >> 14 (else 32-bit d) */
     VF_TEX = 4,         /* textured: perspective-correct texel times the Gouraud colour */
-    VF_COUNT = 8        /* the tests' write counting: no depth test, each covered pixel's
+    VF_COUNT = 8,       /* the tests' write counting: no depth test, each covered pixel's
                            XRGB8888 value is incremented (RS_WITH_COUNT builds only) */
+    VF_NOZ = 16         /* no depth buffer (RS_DEPTH_NONE): every covered centre is written,
+                           so the last triangle drawn over a pixel is the one it shows
+                           (the caller's order: back to front) */
 };
-/* The nine variants: pixel format x depth size, each plain or textured, and counting. */
+/* The eleven variants: pixel format x depth size, each plain or textured; counting; and
+ * each pixel format without depth (lists only: rs_draw_band refuses strips). */
 enum {
     V_888_Z32 = 0, V_888_Z16 = VF_Z16, V_565_Z16 = VF_565 | VF_Z16, V_565_Z32 = VF_565,
     V_888_Z32_TEX = VF_TEX, V_888_Z16_TEX = VF_Z16 | VF_TEX,
     V_565_Z16_TEX = VF_565 | VF_Z16 | VF_TEX, V_565_Z32_TEX = VF_565 | VF_TEX,
-    V_COUNT = VF_COUNT
+    V_COUNT = VF_COUNT,
+    V_888_NOZ = VF_NOZ, V_565_NOZ = VF_565 | VF_NOZ
 };
 
 /* 1 when this build compiles variant vf (core/config.h RS_WITH_*): a constant, so a
  * `case` for a left-out variant folds to nothing. */
 #define RS_BUILT(vf) ((((vf) & VF_COUNT) ? RS_WITH_COUNT && RS_WITH_888 && RS_WITH_Z32 :                \
-                       (((vf) & VF_565) ? RS_WITH_565 : RS_WITH_888) && (((vf) & VF_Z16) ? RS_WITH_Z16 : RS_WITH_Z32) \
+                       (((vf) & VF_565) ? RS_WITH_565 : RS_WITH_888)                                  \
+                       && (((vf) & VF_NOZ) ? RS_WITH_NOZ : ((vf) & VF_Z16) ? RS_WITH_Z16 : RS_WITH_Z32) \
                        && (((vf) & VF_TEX) ? RS_WITH_TEX : 1)))
 
 /* ORIENTATION AND FILL RULE (raster.h CONVENTIONS), the one place they are spelled.
@@ -77,7 +83,7 @@ RSI_INLINE static int64_t tl_bias64(int64_t A, int64_t B)
 #define VF_SLOW(vf) (((vf) & (VF_TEX | VF_COUNT)) != 0)
 
 RSI_INLINE static size_t px_bytes(const int vf) { return (vf & VF_565) ? 2u : 4u; }
-RSI_INLINE static size_t z_bytes(const int vf) { return (vf & VF_Z16) ? 2u : 4u; }
+RSI_INLINE static size_t z_bytes(const int vf) { return (vf & VF_NOZ) ? 0u : (vf & VF_Z16) ? 2u : 4u; }
 
 /* Entry i of a colour or depth row (i may be negative: rows walked from their end). */
 RSI_INLINE static void *px_at(void *row, ptrdiff_t i, const int vf)
@@ -90,18 +96,23 @@ RSI_INLINE static void *z_at(void *row, ptrdiff_t i, const int vf)
 }
 
 /* The depth a 32-bit d is stored as: d itself, or (16-bit buffers) d >> 14 truncated to
- * 16 bits (d < 2^30, so nothing is lost by the truncation). */
+ * 16 bits (d < 2^30, so nothing is lost by the truncation).  Without depth (VF_NOZ) the
+ * test `z_store(d) > z_get(p)` is the constant 1 > 0 and nothing is read or stored, so
+ * the compiler drops the depth's interpolation with them. */
 RSI_INLINE static uint32_t z_store(uint32_t d, const int vf)
 {
+    if (vf & VF_NOZ) { (void)d; return 1; }
     return (vf & VF_Z16) ? (uint32_t)(uint16_t)(d >> 14) : d;
 }
 RSI_INLINE static uint32_t z_get(const void *p, const int vf)
 {
+    if (vf & VF_NOZ) { (void)p; return 0; }
     return (vf & VF_Z16) ? *(const uint16_t *)p : *(const uint32_t *)p;
 }
 RSI_INLINE static void z_put(void *p, uint32_t z, const int vf)
 {
-    if (vf & VF_Z16) *(uint16_t *)p = (uint16_t)z;
+    if (vf & VF_NOZ) { (void)p; (void)z; }
+    else if (vf & VF_Z16) *(uint16_t *)p = (uint16_t)z;
     else *(uint32_t *)p = z;
 }
 RSI_INLINE static void px_put(void *p, uint32_t px, const int vf)

@@ -174,7 +174,7 @@ RSI_INLINE static void gen_span_plain(void *const ze, void *const ce, int32_t n,
 {
     ptrdiff_t j = -(ptrdiff_t)n;      /* n >= 1; one counter to 0 */
 #if GS_MASKED
-    if (!(vf & (VF_565 | VF_Z16)) && n >= GS_MASK_MIN) {
+    if (!(vf & (VF_565 | VF_Z16 | VF_NOZ)) && n >= GS_MASK_MIN) {
         const gs_v4u io = { 0, 1, 2, 3, 4, 5, 6, 7 };
         gs_v4u zv, rv, gv, bv, m, k80, kr, kg;
         if (!*lanes) { gs_lanes_make(L, gzu, gc, 3); *lanes = 1; }
@@ -206,7 +206,8 @@ RSI_INLINE static void gen_span_plain(void *const ze, void *const ce, int32_t n,
     }
 #endif
 #if RS_SPANV
-    if (n >= 8) {       /* (>= GS_N: the groups need GS_N pixels) */
+    if (n >= 8 && !(vf & VF_NOZ)) {    /* (>= GS_N: the groups need GS_N pixels; without
+                                           depth the scalar loop's stores alone) */
         const size_t zb = z_bytes(vf), cb = px_bytes(vf);
         const int rl = (vf & VF_565) ? 0 : 3;     /* R << 3: see GS_PX */
         const uint32_t tl = (uint32_t)n - GS_N;

@@ -313,6 +313,8 @@ RSI_NOINLINE static void tri_tiny_own(band *bd, const rs_cvert *a, const rs_cver
     TINY_OWN_CASE(V_888_Z16);
     TINY_OWN_CASE(V_565_Z16);
     TINY_OWN_CASE(V_565_Z32);
+    TINY_OWN_CASE(V_888_NOZ);
+    TINY_OWN_CASE(V_565_NOZ);
     TINY_OWN_CASE(V_888_Z32_TEX);
     TINY_OWN_CASE(V_888_Z16_TEX);
     TINY_OWN_CASE(V_565_Z16_TEX);

@@ -530,7 +530,7 @@ br_status rs_frame_prepare(rs_frame *f)
     int32_t w = f->w, h = f->h;
     if (w < 1 || h < 1 || w > RS_MAX_DIM || h > RS_MAX_DIM || !f->cache || !f->chunks || (f->nv && !f->v)
         || (f->fmt != RS_FMT_XRGB8888 && f->fmt != RS_FMT_RGB565)
-        || (f->depth != RS_DEPTH32 && f->depth != RS_DEPTH16) || vp->znear <= 0
+        || (f->depth != RS_DEPTH32 && f->depth != RS_DEPTH16 && f->depth != RS_DEPTH_NONE) || vp->znear <= 0
         || vp->zfar <= vp->znear || vp->cx_q16 != w * (FX_Q16_ONE / 2)
         || vp->cy_q16 != h * (FX_Q16_ONE / 2) || f8 <= 0 || f8 >= ((int64_t)1 << 28)
         || (f->tex && (!f->tex->px || f->tex->w < 1 || f->tex->h < 1 || f->tex->w > RS_MAX_TEX

@@ -141,6 +141,12 @@ static void test_refused(void)
             CHECK_EQ(min_variant_built(fmt, dep, 0), fmt == RS_FMT_RGB565 && dep == RS_DEPTH16);
             CHECK_EQ(min_variant_built(fmt, dep, 1), 0);
         }
+    /* without depth (RS_DEPTH_NONE): both formats, no textures; the reduced copy RGB565 */
+    for (fmt = 0; fmt < 2; fmt++) {
+        CHECK_EQ(rs_variant_built(fmt, RS_DEPTH_NONE, 0), 1);
+        CHECK_EQ(rs_variant_built(fmt, RS_DEPTH_NONE, 1), 0);
+        CHECK_EQ(min_variant_built(fmt, RS_DEPTH_NONE, 0), fmt == RS_FMT_RGB565);
+    }
     CHECK(setup(&f, 'A', min_frame_prepare, 0));
     if (!f.cache) return;
     f.fmt = RS_FMT_XRGB8888;
@@ -159,6 +165,15 @@ static void test_refused(void)
     /* the shipped library has no counting variant (tests/support/raster_count.c has) */
     CHECK_EQ(rs_draw_band(&f, 0, H, colour, W * 2, zb, NULL), BR_E_UNSUPPORTED);
     f.debug_count = 0;
+    /* without depth a frame's order is its picture's: strips (the peer scene's) refused,
+     * nothing drawn or cleared */
+    f.depth = RS_DEPTH_NONE;
+    memset(colour, 0x5a, sizeof colour);
+    CHECK_EQ(rs_draw_band(&f, 0, H, colour, W * 2, NULL, NULL), BR_E_ARG);
+    CHECK_EQ(min_draw_band(&f, 0, H, colour, W * 2, NULL, NULL), BR_E_ARG);
+    CHECK(colour[0] == 0x5a5a5a5au && colour[W * H - 1] == 0x5a5a5a5au);
+    f.depth = RS_DEPTH16;
+    CHECK_EQ(min_draw_band(&f, 0, H, colour, W * 2, NULL, NULL), BR_E_ARG);     /* depth needed */
     CHECK_EQ(min_draw_band(&f, 0, H, colour, W * 2, zb, NULL), BR_OK);
     free(f.cache);
 }
