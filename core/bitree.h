@@ -468,7 +468,7 @@ uint32_t bt_parts_resumed(const bt_parts *ps);
  * every walk of a frame gives every diamond the same answer, so the walks' leaves
  * together are one conforming mesh, the real triangles of bt_extract's mesh for the
  * same camera and hyst_q8 = 0 (same points, same geomorphed heights), met in the
- * order of its strip; the leaves of one walk are those not shown to lie wholly above or
+ * order of its strip (or back to front: bt_stream_order); the leaves of one walk are those not shown to lie wholly above or
  * below the window's rows (a subtree by its triangle's prism, a leaf by its own points),
  * which covers every triangle that covers a pixel centre in them (core/bt_stream.c).  A
  * leaf comes apex first, then counter-clockwise seen from +z, as bt_mesh's strip has its
@@ -499,6 +499,13 @@ typedef void (*bt_stream_leaf)(void *user, bt_svert *v0, bt_svert *v1, bt_svert 
 typedef struct bt_stream bt_stream;
 size_t bt_stream_mem_size(uint32_t cache_entries, uint32_t nslot);
 br_status bt_stream_init(bt_stream **out, uint32_t cache_entries, uint32_t nslot, void *mem, size_t mem_bytes);
+/* The order the leaves come in (from the next walk on): BT_STREAM_STRIP (bt_stream_init's)
+ * is bt_extract's strip order; BT_STREAM_BACK_TO_FRONT a visibility order for the frame's
+ * eye, each split's child on the far side of its split line from the eye first, so that
+ * no leaf can hide part of a leaf that comes after it (painter's order: a frame drawn in
+ * it needs no depth buffer, raster.h RS_DEPTH_NONE).  The same leaves either way. */
+enum { BT_STREAM_STRIP = 0, BT_STREAM_BACK_TO_FRONT = 1 };
+br_status bt_stream_order(bt_stream *s, int order);
 br_status bt_stream_frame(bt_stream *s, bt_tree *t, const bt_params *p);
 /* The leaves for window (NULL: all of them); returns how many went to fn (0 for a
  * window outside the viewport's bounds). */

@@ -42,6 +42,7 @@ struct bt_stream {
                                (0xFF, 0), or the whole tree's (0, 0xFF) on a grid with
                                voids inside its data */
     uint8_t *ans;           /* this frame's answers: two bit planes of nslot bits */
+    size_t plane;           /* the frame's tree's plane bytes: plane 1 at ans + plane */
     uint32_t nslot;
     uint32_t *wkey;         /* the weight cache: slot + 1 (0: empty), wmask + 1 entries */
     uint16_t *wval;         /* and the plane mask the split handed on << 8 | its weight /
@@ -50,6 +51,7 @@ struct bt_stream {
     bt_stream_leaf fn;
     void *user;
     uint32_t count;
+    int order;              /* BT_STREAM_STRIP or BT_STREAM_BACK_TO_FRONT */
 };
 #define CULLED 0xFFu
 
@@ -80,6 +82,13 @@ br_status bt_stream_init(bt_stream **out, uint32_t cache_entries, uint32_t nslot
     return BR_OK;
 }
 
+br_status bt_stream_order(bt_stream *s, int order)
+{
+    if (!s || (order != BT_STREAM_STRIP && order != BT_STREAM_BACK_TO_FRONT)) return BR_E_ARG;
+    s->order = order;
+    return BR_OK;
+}
+
 br_status bt_stream_frame(bt_stream *s, bt_tree *t, const bt_params *p)
 {
     br_status st;
@@ -92,7 +101,8 @@ br_status bt_stream_frame(bt_stream *s, bt_tree *t, const bt_params *p)
     s->last_y1 = -1;
     s->zlo_and = s->e.nodata_free ? 0xFFu : 0u;
     s->zhi_or = s->e.nodata_free ? 0u : 0xFFu;
-    memset(s->ans, 0, 2 * bti_plane_bytes(t->nslot));
+    s->plane = bti_plane_bytes(t->nslot);
+    memset(s->ans, 0, 2 * s->plane);
     memset(s->wkey, 0, ((size_t)s->wmask + 1) * 4);
     return BR_OK;
 }
@@ -105,13 +115,19 @@ br_status bt_stream_frame(bt_stream *s, bt_tree *t, const bt_params *p)
  * while it holds it, else is computed again (bti_morph_now: the same weight, without the
  * frustum test).  The plane mask is handed on only by a first decision; a later visit
  * keeps its parent's, whose extra planes give the same answers (bt_mesh.c decide_memo). */
-static int decide(bt_stream *s, int32_t x, int32_t y, uint32_t id, unsigned *mask, uint16_t *morph)
+static unsigned answer(const bt_stream *s, uint32_t id)
+{
+    const uint8_t *const p0 = &s->ans[id >> 3];
+    return ((*p0 >> (id & 7u)) & 1u) | ((p0[s->plane] >> (id & 7u)) & 1u) << 1;
+}
+
+/* code: answer(s, id) */
+static int decide(bt_stream *s, int32_t x, int32_t y, uint32_t id, unsigned code, unsigned *mask, uint16_t *morph)
 {
     bti_extract *e = &s->e;
-    uint8_t *const p0 = &s->ans[id >> 3], *const p1 = p0 + bti_plane_bytes(e->t->nslot);
+    uint8_t *const p0 = &s->ans[id >> 3], *const p1 = p0 + s->plane;
     const uint8_t bit = (uint8_t)(1u << (id & 7u));
     const uint32_t h = (id * 2654435761u >> 8) & s->wmask;
-    const unsigned code = (*p0 & bit ? 1u : 0u) | (*p1 & bit ? 2u : 0u);
     int sp;
     const int hit = s->wkey[h] == id + 1;
     switch (code) {
@@ -161,6 +177,23 @@ static int decide(bt_stream *s, int32_t x, int32_t y, uint32_t id, unsigned *mas
  * height range (codes 0 and 255: the least and most valid heights, which bound every
  * point's height, real or geomorphed between real ones). */
 
+/* Plane i (a constant: the two planes' code apart) of out_of_window's test, the
+ * prism's heights zlo .. zhi */
+static inline int plane_out(const bt_stream *s, const int i, const bt_svert *a, const bt_svert *c, const bt_svert *b,
+                            int32_t zlo, int32_t zhi, unsigned *wmask)
+{
+    const int64_t n2 = s->win[i].n[2];
+    int64_t mx, mn;
+    if (!(*wmask & (1u << i))) return 0;
+    mx = a->pa[i] > b->pa[i] ? a->pa[i] : b->pa[i];
+    mn = a->pa[i] ^ b->pa[i] ^ mx;
+    if (c->pa[i] > mx) mx = c->pa[i];
+    if (c->pa[i] < mn) mn = c->pa[i];
+    if (mx + n2 * (n2 >= 0 ? zhi : zlo) < 0) return 1;
+    if (mn + n2 * (n2 >= 0 ? zlo : zhi) >= 0) *wmask &= ~(1u << i);
+    return 0;
+}
+
 /* 1 when the prism lies wholly outside one of the planes in *wmask; planes it lies
  * wholly inside leave *wmask */
 static int out_of_window(const bt_stream *s, const bt_svert *a, const bt_svert *c, const bt_svert *b, uint32_t id,
@@ -168,25 +201,13 @@ static int out_of_window(const bt_stream *s, const bt_svert *a, const bt_svert *
 {
     const uint32_t nv = s->e.t->node[id];
     int32_t zlo = s->e.wz_lo[BT_NODE_ZLO(nv) & s->zlo_and], zhi = s->e.wz_hi[BT_NODE_ZHI(nv) | s->zhi_or];
-    int i;
     if (a->wz < zlo) zlo = a->wz;
     if (a->wz > zhi) zhi = a->wz;
     if (b->wz < zlo) zlo = b->wz;
     if (b->wz > zhi) zhi = b->wz;
     if (c->wz < zlo) zlo = c->wz;
     if (c->wz > zhi) zhi = c->wz;
-    for (i = 0; i < 2; i++) {
-        const int64_t n2 = s->win[i].n[2];
-        int64_t mx, mn;
-        if (!(*wmask & (1u << i))) continue;
-        mx = a->pa[i] > b->pa[i] ? a->pa[i] : b->pa[i];
-        mn = a->pa[i] ^ b->pa[i] ^ mx;
-        if (c->pa[i] > mx) mx = c->pa[i];
-        if (c->pa[i] < mn) mn = c->pa[i];
-        if (mx + n2 * (n2 >= 0 ? zhi : zlo) < 0) return 1;
-        if (mn + n2 * (n2 >= 0 ? zlo : zhi) >= 0) *wmask &= ~(1u << i);
-    }
-    return 0;
+    return plane_out(s, 0, a, c, b, zlo, zhi, wmask) || plane_out(s, 1, a, c, b, zlo, zhi, wmask);
 }
 
 /* 1 when the three points lie outside one of the planes in wmask: the triangle, their
@@ -215,17 +236,43 @@ static void leaf(bt_stream *s, bt_svert *a, bt_svert *c, bt_svert *b, unsigned w
     else s->fn(s->user, c, b, a);
 }
 
-/* q's world height and its window planes' values at (x, y, 0) (bt_world's position,
- * inside CAM_COORD_MAX for a frame bti_setup took: Q30 normals times coordinates below
- * 2^30, and d = -n . eye, so |pa| < 2^62 and with the height term n2 wz (< 2^60) the
- * tests' sums stay below 2^63) */
-static void world(const bt_stream *s, bt_svert *q)
+/* q's world height and the values at (x, y, 0) of the window planes in wmask (a split
+ * point's triangles test no other) (bt_world's position, inside CAM_COORD_MAX for a
+ * frame bti_setup took: Q30 normals times coordinates below 2^30, and d = -n . eye, so
+ * |pa| < 2^62 and with the height term n2 wz (< 2^60) the tests' sums stay below 2^63) */
+static void world(const bt_stream *s, bt_svert *q, unsigned wmask)
 {
     const bt_frame *fr = &s->p.fr;
     const int32_t wx = (int32_t)(fr->ox + (int64_t)q->x * fr->sx), wy = (int32_t)(fr->oy - (int64_t)q->y * fr->sy);
-    int i;
     q->wz = (int32_t)(fr->oz + (((int64_t)q->z * fr->sz_q16) >> 16));
-    for (i = 0; i < 2; i++) q->pa[i] = (int64_t)s->win[i].n[0] * wx + (int64_t)s->win[i].n[1] * wy + s->win[i].d;
+    if (wmask & 1u) q->pa[0] = (int64_t)s->win[0].n[0] * wx + (int64_t)s->win[0].n[1] * wy + s->win[0].d;
+    if (wmask & 2u) q->pa[1] = (int64_t)s->win[1].n[0] * wx + (int64_t)s->win[1].n[1] * wy + s->win[1].d;
+}
+
+/* Back to front (painter's order).  Split (a, c, b) -> (a, m, c), (c, m, b): the vertical
+ * plane through c and m separates the children (each lies, in x and y, on its own side of
+ * the line c m), so nothing of the child on the far side of it from the eye can hide
+ * anything of the near child (a ray from the eye to a point on the eye's side stays on
+ * that side), and by induction on the walk, drawing the far child's leaves before the
+ * near child's draws every pair of leaves back to front (their lowest common ancestor's
+ * plane separates them).  Geomorphing moves points vertically only: the same planes.  An
+ * eye on the plane sees either order the same.
+ * 1 when the child (a, m, c) is the near one: the eye E and a on the same side of c m.
+ * In world x, y (x = ox + col sx, y = oy - row sy, sx, sy > 0), E's side is the sign of
+ * d x (E - c) = dx sx (Ey - cy') + dy sy (Ex - cx') with d = m - c in grid units and c'
+ * c's world position: grid and eye lie inside +-CAM_COORD_MAX = 2^30 - 1 (bti_setup),
+ * so each factor is below 2^31 in magnitude (an int32) and each product below 2^62.
+ * a's side in world coordinates is -sx sy times its side in grid coordinates (the row
+ * axis points south): the sign of -(dx (ay - cy) - dy (ax - cx)), grid values below
+ * 2^29. */
+static inline int near_is_a(const bt_stream *s, const bt_svert *a, const bt_svert *c, const bt_svert *m)
+{
+    const bt_frame *fr = &s->p.fr;
+    const int32_t dx = m->x - c->x, dy = m->y - c->y;
+    const int32_t ex = s->c.eye[0] - (fr->ox + c->x * fr->sx), ey = s->c.eye[1] - (fr->oy - c->y * fr->sy);
+    const int64_t se = (int64_t)(dx * fr->sx) * ey + (int64_t)(dy * fr->sy) * ex;
+    const int32_t ga = dx * (a->y - c->y) - dy * (a->x - c->x);
+    return se > 0 ? ga < 0 : se < 0 && ga > 0;
 }
 
 static void walk(bt_stream *s, bt_svert *a, bt_svert *c, bt_svert *b, unsigned mask, unsigned wmask)
@@ -233,6 +280,7 @@ static void walk(bt_stream *s, bt_svert *a, bt_svert *c, bt_svert *b, unsigned m
     bti_extract *e = &s->e;
     bt_svert mm;
     uint32_t id;
+    unsigned code;
     int sp;
     if ((a->x + b->x) & 1) {     /* unit legs: the hypotenuse midpoint is no sample */
         if (bti_tri_valid6(e, a->x, a->y, c->x, c->y, b->x, b->y)) leaf(s, a, c, b, wmask);
@@ -241,10 +289,16 @@ static void walk(bt_stream *s, bt_svert *a, bt_svert *c, bt_svert *b, unsigned m
     mm.x = a->x + ((b->x - a->x) >> 1);
     mm.y = a->y + ((b->y - a->y) >> 1);
     id = bti_slot(e->t, mm.x, mm.y);
-    /* the window first: a triangle outside it needs no answer in this walk */
-    if (wmask && out_of_window(s, a, c, b, id, &wmask)) return;
-    sp = decide(s, mm.x, mm.y, id, &mask, &mm.morph);
-    if (sp < 0) return;
+    code = answer(s, id);
+    /* the window first: a triangle outside it needs no answer in this walk; but a leaf
+     * already found this frame (code 2) goes straight to its own points' test (leaf),
+     * which the prism, holding them, passes whenever they do */
+    if (code == 2) sp = 0;
+    else {
+        if (wmask && out_of_window(s, a, c, b, id, &wmask)) return;
+        sp = decide(s, mm.x, mm.y, id, code, &mask, &mm.morph);
+        if (sp < 0) return;
+    }
     if (!sp) {
         /* as rec: a leaf over padding voids is dropped */
         if (!e->nonvoid && BT_NODE_ERR(e->t->node[id]) == BT_CODE_SPLIT) return;
@@ -253,7 +307,12 @@ static void walk(bt_stream *s, bt_svert *a, bt_svert *c, bt_svert *b, unsigned m
     }
     mm.tag = 0;
     mm.z = bti_mid_z(e, a->z, b->z, mm.x, mm.y, &mm.morph);
-    if (wmask) world(s, &mm);
+    if (wmask) world(s, &mm, wmask);
+    if (s->order == BT_STREAM_BACK_TO_FRONT && near_is_a(s, a, c, &mm)) {
+        walk(s, c, &mm, b, mask, wmask);
+        walk(s, a, &mm, c, mask, wmask);
+        return;
+    }
     walk(s, a, &mm, c, mask, wmask);
     walk(s, c, &mm, b, mask, wmask);
 }
@@ -261,7 +320,7 @@ static void walk(bt_stream *s, bt_svert *a, bt_svert *c, bt_svert *b, unsigned m
 static void corner(const bt_stream *s, int32_t x, int32_t y, bt_svert *q)
 {
     q->x = x; q->y = y; q->z = bti_zreal(s->e.t, x, y); q->morph = BT_MORPH_ONE; q->tag = 0;
-    world(s, q);
+    world(s, q, 3);
 }
 
 uint32_t bt_stream_walk(bt_stream *s, const int32_t window[4], bt_stream_leaf fn, void *user)
@@ -290,7 +349,14 @@ uint32_t bt_stream_walk(bt_stream *s, const int32_t window[4], bt_stream_leaf fn
     s->count = 0;
     corner(s, 0, 0, &q[0]); corner(s, S, 0, &q[1]);
     corner(s, S, S, &q[2]); corner(s, 0, S, &q[3]);
-    walk(s, &q[0], &q[1], &q[2], 0x3f, wmask);
-    walk(s, &q[2], &q[3], &q[0], 0x3f, wmask);
+    /* the roots' diagonal (0, 0) - (S, S) separates them as a split's line does: the
+     * first root, with (S, 0), is the near one when (S, 0) lies on the eye's side */
+    if (s->order == BT_STREAM_BACK_TO_FRONT && near_is_a(s, &q[1], &q[0], &q[2])) {
+        walk(s, &q[2], &q[3], &q[0], 0x3f, wmask);
+        walk(s, &q[0], &q[1], &q[2], 0x3f, wmask);
+    } else {
+        walk(s, &q[0], &q[1], &q[2], 0x3f, wmask);
+        walk(s, &q[2], &q[3], &q[0], 0x3f, wmask);
+    }
     return s->count;
 }
