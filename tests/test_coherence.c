@@ -631,6 +631,19 @@ static void test_box_dist(void)
         if (ex > 1000 && (double)d / ex < worst) worst = (double)d / ex;
     }
     printf("  box distance: %ld eyes and boxes, worst %.4f of the Euclidean distance\n", n, worst);
+    /* bti_norm2_lo's 45-degree form from the 32-bit sum and its carry against the 64-bit
+     * sum's product, as written before (its arguments below 2^31.5; the sum carries for
+     * about half of these) */
+    for (i = 0; i < n; i++) {
+        const uint32_t a = (uint32_t)(t_xs64() % 3037000500u) >> (t_xs64() & 1 ? 0 : t_xs64() % 32);
+        const uint32_t b = (uint32_t)(t_xs64() % 3037000500u) >> (t_xs64() & 1 ? 0 : t_xs64() % 32);
+        const uint32_t h = a > b ? a : b, l = a > b ? b : a;
+        uint32_t want = h, v = (uint32_t)(((uint64_t)h * 3784u + (uint64_t)l * 1567u) >> 12);
+        if (v > want) want = v;
+        v = (uint32_t)(((uint64_t)h * 2896u + (uint64_t)l * 2896u) >> 12);
+        if (v > want) want = v;
+        bad_lo += bti_norm2_lo(a, b) != want;
+    }
     CHECK_EQ(bad_lo, 0);
     CHECK_EQ(bad_near, 0);
     CHECK_EQ(bad_lip, 0);
