@@ -135,6 +135,7 @@ static int stream_sums(scene *s, bt_tree *t, const cam *cams, bake_info *b, br_e
     int i;
     memset(&rs, 0, sizeof rs);
     if (bt_stream_mem_size(512, t->nslot) > sizeof wmem || bt_stream_init(&walk, 512, t->nslot, wmem, sizeof wmem) != BR_OK
+        || bt_stream_order(walk, BT_STREAM_BACK_TO_FRONT) != BR_OK
         || rt_stream_mem_size(64, 96) > sizeof bmem || rt_stream_init(&rs, 64, 96, bmem, sizeof bmem) != BR_OK) {
         br_err_set(err, BR_E_VALUE, NULL, "the stream path's memory");
         return -1;
@@ -150,10 +151,10 @@ static int stream_sums(scene *s, bt_tree *t, const cam *cams, bake_info *b, br_e
         bp.mode = BT_VIEW; bp.c = &cams[i]; bp.fr = s->rt.fr;
         bp.pixel_err_q8 = b->pixel_err_q8; bp.morph_q8 = b->morph_q8;
         memset(&rs.fr, 0, sizeof rs.fr);
-        rs.fr.w = FB_W; rs.fr.h = FB_H; rs.fr.fmt = RS_FMT_RGB565; rs.fr.depth = RS_DEPTH16; rs.fr.clear_rgb = b->clear_rgb;
+        rs.fr.w = FB_W; rs.fr.h = FB_H; rs.fr.fmt = RS_FMT_RGB565; rs.fr.depth = RS_DEPTH_NONE; rs.fr.clear_rgb = b->clear_rgb;
         cam_viewproj(&cams[i], &rs.fr.vp);
         memset(&pipe, 0, sizeof pipe);
-        pipe.w = FB_W; pipe.h = FB_H; pipe.fmt = RS_FMT_RGB565; pipe.depth = RS_DEPTH16;
+        pipe.w = FB_W; pipe.h = FB_H; pipe.fmt = RS_FMT_RGB565; pipe.depth = RS_DEPTH_NONE;
         k.sum = SPIB_SUM_INIT; k.dc = -1;
         if (bt_stream_frame(walk, t, &bp) != BR_OK || rs_pass_stream(&pass, &rs) != BR_OK
             || rs_pipe_add(&pipe, &pass) != BR_OK || rs_pipe_mem_size(&pipe, BAKE_STREAM_ROWS) > sizeof band

@@ -19,8 +19,9 @@
 
 #define BAKE_MAX_FRAMES 16
 /* Rows of the stream path's bands (platform/board/board_stream.c; the SPI stream, and so
- * its checksum, has a window a band): 12 bands of 20 rows at 320 x 240 */
-#define BAKE_STREAM_ROWS 20
+ * its checksum, has a window a band): 6 bands of 40 rows at 320 x 240, RGB565 without a
+ * depth buffer, the walk's leaves back to front */
+#define BAKE_STREAM_ROWS 40
 
 typedef struct bake_cam {
     int32_t eye[3], tgt[3];     /* world units */

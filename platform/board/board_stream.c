@@ -2,7 +2,9 @@
  * the tree (board.h; MCU_PATH=stream, build/mcu/bitrain-CORE.elf): no mesh is kept.
  * Each band of BAKE_STREAM_ROWS rows walks the baked hierarchy for its rows (core/
  * bitree.h bt_stream_walk: the view rule without hysteresis) and draws the leaves it
- * meets in small batches (raster/terrain_stream.h), then goes to the SPI stream.  What a
+ * meets in small batches (raster/terrain_stream.h), back to front and without a depth
+ * buffer (RS_DEPTH_NONE: twice the rows in the band's bytes), then goes to the SPI
+ * stream.  What a
  * frame writes is the band, one batch, the walk's state, its answer planes and its
  * weight cache: RAM that does not grow with the frame's triangles (docs/mcu.md).  platform/board/board.c is the other path
  * (MCU_PATH=mesh): the product's whole-frame mesh and strip, its pixels, 201 KB.
@@ -44,7 +46,7 @@ struct board_state {
 static struct board_state B;
 
 static const char *const part_name[BP_N] = {
-    "walk (bt_stream, answers)", "", "batch (raster/terrain_stream.h)", "", "", "band colour + depth", "SPI row buffer"
+    "walk (bt_stream, answers)", "", "batch (raster/terrain_stream.h)", "", "", "band colour (no depth: leaves back to front)", "SPI row buffer"
 };
 
 const char *board_part_name(int part)
@@ -67,7 +69,7 @@ size_t board_state_size(void)
 static void pipe_of(rs_pipe *pipe)
 {
     memset(pipe, 0, sizeof *pipe);
-    pipe->w = bake.fb_w; pipe->h = bake.fb_h; pipe->fmt = RS_FMT_RGB565; pipe->depth = RS_DEPTH16;
+    pipe->w = bake.fb_w; pipe->h = bake.fb_h; pipe->fmt = RS_FMT_RGB565; pipe->depth = RS_DEPTH_NONE;
 }
 
 br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
@@ -91,7 +93,9 @@ br_status board_init(void *arena, size_t arena_bytes, size_t size[BP_N])
     if (!arena || ((uintptr_t)arena & 7) != 0 || total > arena_bytes) return BR_E_NOMEM;
     /* no frame state: the stream's view rule has no hysteresis */
     if (bt_attach(&B.tree, &B.f, bake_tree, bake_tree_bytes, NULL, 0) != BR_OK) return BR_E_ARG;
-    if (bt_stream_init(&B.walk, BOARD_WCACHE, bake.nslot, p, sz[BP_STATE]) != BR_OK) return BR_E_ARG;
+    if (bt_stream_init(&B.walk, BOARD_WCACHE, bake.nslot, p, sz[BP_STATE]) != BR_OK
+        || bt_stream_order(B.walk, BT_STREAM_BACK_TO_FRONT) != BR_OK)
+        return BR_E_ARG;
     p += sz[BP_STATE];
     if (rt_stream_init(&B.batch, BOARD_BATCH_V, BOARD_BATCH_T, p, sz[BP_VERTS]) != BR_OK) return BR_E_ARG;
     p += sz[BP_VERTS];
@@ -126,7 +130,7 @@ br_status board_frame(int32_t i, rs_sink tap, void *tap_user, board_frame_info *
     bp.morph_q8 = bake.morph_q8;
     if ((st = bt_stream_frame(B.walk, &B.tree, &bp)) != BR_OK) return st;
     memset(fr, 0, sizeof *fr);
-    fr->w = bake.fb_w; fr->h = bake.fb_h; fr->fmt = RS_FMT_RGB565; fr->depth = RS_DEPTH16;
+    fr->w = bake.fb_w; fr->h = bake.fb_h; fr->fmt = RS_FMT_RGB565; fr->depth = RS_DEPTH_NONE;
     fr->clear_rgb = bake.clear_rgb;
     cam_viewproj(&B.c, &fr->vp);
     pipe_of(&pipe);
