@@ -117,15 +117,19 @@ static inline uint32_t bti_norm2_lo(uint32_t a, uint32_t b)
     const uint32_t h = a > b ? a : b, l = a > b ? b : a;
     uint32_t n = h, v;
     v = (uint32_t)(((uint64_t)h * 3784u + (uint64_t)l * 1567u) >> 12); if (v > n) n = v;
+#if BR_REG64
+    v = (uint32_t)((((uint64_t)h + l) * 2896u) >> 12);
+#else
     {
         /* the 45-degree form (h + l) 2896 / 2^12 from the 32-bit sum s = h + l: a carry
          * out of it (h + l = s + 2^32) adds 2896 2^20 to the quotient exactly (a multiple
          * of 2^12 taken out of the floor), and the form is below 2^32; one 32 x 32 -> 64
-         * product (GCC makes the 64-bit sum times 2896 a chain of shifts and adds) */
+         * product (GCC makes the 64-bit sum times 2896 a chain of shifts and adds there) */
         const uint32_t s = h + l;
         v = (uint32_t)(((uint64_t)s * 2896u) >> 12) + (s < h ? 2896u << 20 : 0u);
-        if (v > n) n = v;
     }
+#endif
+    if (v > n) n = v;
     return n;
 }
 
