@@ -1,5 +1,5 @@
 /* tests/fuzz_raster.c — libFuzzer harness for raster/ (see tests/fuzz.sh): the input
- * chooses a small frame (size, pixel format, depth size, culling, texture, chunk table,
+ * chooses a small frame (size, pixel format, depth size or none, culling, texture, chunk table,
  * band height), a camera and a few vertices with strip or list indices, anywhere within
  * the documented limits (|coord| <= CAM_COORD_MAX, texture coordinates 0 .. w * 256).
  * Findings: any sanitizer report, and a banded frame whose bytes differ from the whole
@@ -73,6 +73,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     f.no_cull = (k >> 2) & 1;
     tex.w = 4; tex.h = 3; tex.px = texels;
     if (k & 8) f.tex = &tex;
+    else if (k & 16) f.depth = RS_DEPTH_NONE;   /* no depth: lists only, drawn in order */
     rows = 1 + (int32_t)(u8(&r) % (uint32_t)f.h);
     f.clear_rgb = u32(&r) & 0xffffffu;
     for (i = 0; i < 3; i++) eye[i] = coord(&r);
@@ -92,7 +93,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     f.nprims = 1 + (int32_t)(u8(&r) & 1);
     for (k = 0; k < f.nprims; k++) {
-        pr[k].kind = u8(&r) & 1 ? RS_LIST : RS_STRIP;
+        pr[k].kind = (u8(&r) & 1) || f.depth == RS_DEPTH_NONE ? RS_LIST : RS_STRIP;
         pr[k].n = u8(&r) % (MAXI + 1);
         for (i = 0; i < (int32_t)pr[k].n; i++) idx[k][i] = u8(&r) % nv;
         pr[k].idx = idx[k];
@@ -110,7 +111,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     mem = malloc(rs_band_mem_size(f.w, rows, f.fmt, f.depth));
     if (!f.cache || !f.chunks || !full || !band || !zb || !mem) abort();
     if (rs_frame_prepare(&f) != BR_OK) abort();        /* every input here is within the contract */
-    if (rs_draw_band(&f, 0, f.h, full, (size_t)f.w * bpp, zb, NULL) != BR_OK) abort();
+    if (rs_draw_band(&f, 0, f.h, full, (size_t)f.w * bpp, f.depth == RS_DEPTH_NONE ? NULL : zb, NULL) != BR_OK) abort();
     for (k = 0; k < f.h; k += rows) {
         int32_t n = f.h - k < rows ? f.h - k : rows;
         if (rs_draw_band(&f, k, n, band + (size_t)k * (size_t)f.w * bpp, (size_t)f.w * bpp, mem, NULL) != BR_OK) abort();
