@@ -145,19 +145,14 @@ static int stream_sums(scene *s, bt_tree *t, const cam *cams, bake_info *b, br_e
     for (i = 0; i < b->nframes; i++) {
         bt_params bp;
         rs_pipe pipe;
-        rs_pass pass;
         sum_sink k;
         memset(&bp, 0, sizeof bp);
         bp.mode = BT_VIEW; bp.c = &cams[i]; bp.fr = s->rt.fr;
         bp.pixel_err_q8 = b->pixel_err_q8; bp.morph_q8 = b->morph_q8;
-        memset(&rs.fr, 0, sizeof rs.fr);
-        rs.fr.w = FB_W; rs.fr.h = FB_H; rs.fr.fmt = RS_FMT_RGB565; rs.fr.depth = RS_DEPTH_NONE; rs.fr.clear_rgb = b->clear_rgb;
-        cam_viewproj(&cams[i], &rs.fr.vp);
-        memset(&pipe, 0, sizeof pipe);
-        pipe.w = FB_W; pipe.h = FB_H; pipe.fmt = RS_FMT_RGB565; pipe.depth = RS_DEPTH_NONE;
         k.sum = SPIB_SUM_INIT; k.dc = -1;
-        if (bt_stream_frame(walk, t, &bp) != BR_OK || rs_pass_stream(&pass, &rs) != BR_OK
-            || rs_pipe_add(&pipe, &pass) != BR_OK || rs_pipe_mem_size(&pipe, BAKE_STREAM_ROWS) > sizeof band
+        if (bt_stream_frame(walk, t, &bp) != BR_OK
+            || rt_stream_pipe(&rs, &cams[i], RS_FMT_RGB565, RS_DEPTH_NONE, b->clear_rgb, &pipe) != BR_OK
+            || rs_pipe_mem_size(&pipe, BAKE_STREAM_ROWS) > sizeof band
             || rs_pipe_run(&pipe, BAKE_STREAM_ROWS, band, sizeof band, sum_band, &k, NULL) != BR_OK) {
             br_err_set(err, BR_E_VALUE, NULL, "frame %d: the stream path failed", i);
             return -1;

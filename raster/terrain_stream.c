@@ -128,6 +128,21 @@ static br_status stream_run(const void *user, rs_band *b, int32_t self, rs_band_
     return s->err;
 }
 
+br_status rt_stream_pipe(rt_stream *s, const cam *c, int32_t fmt, int32_t depth, uint32_t clear_rgb, rs_pipe *pipe)
+{
+    rs_pass pass;
+    br_status st;
+    if (!s || !c || !pipe) return BR_E_ARG;
+    memset(&s->fr, 0, sizeof s->fr);
+    s->fr.w = c->w; s->fr.h = c->h; s->fr.fmt = fmt; s->fr.depth = depth;
+    s->fr.clear_rgb = clear_rgb;
+    cam_viewproj(c, &s->fr.vp);
+    memset(pipe, 0, sizeof *pipe);
+    pipe->w = c->w; pipe->h = c->h; pipe->fmt = fmt; pipe->depth = depth;
+    if ((st = rs_pass_stream(&pass, s)) != BR_OK) return st;
+    return rs_pipe_add(pipe, &pass);
+}
+
 br_status rs_pass_stream(rs_pass *pass, rt_stream *s)
 {
     if (!pass || !s || !s->scene || !s->walk || !s->v) return BR_E_ARG;

@@ -63,5 +63,10 @@ br_status rt_stream_init(rt_stream *s, uint32_t cap_v, uint32_t cap_t, void *mem
 /* The pass that draws the stream into each band (raster/frame.h); the pipe's format and
  * depth must be s->fr's.  The pass's run fails with the first error of a batch. */
 br_status rs_pass_stream(rs_pass *pass, rt_stream *s);
+/* A frame of camera c (its w, h) in pixel format fmt and depth (RS_DEPTH_*; RS_DEPTH_NONE
+ * for a walk that hands its leaves back to front, bt_stream_order) over the sky colour
+ * clear_rgb: sets s->fr, and *pipe to draw it with s's pass alone (rs_pipe_run; the
+ * walk's bt_stream_frame for c is the caller's). */
+br_status rt_stream_pipe(rt_stream *s, const cam *c, int32_t fmt, int32_t depth, uint32_t clear_rgb, rs_pipe *pipe);
 
 #endif

@@ -123,18 +123,15 @@ static uint8_t *draw_stream(bt_stream *walk, const rt_scene *sc, const cam *c, i
                             uint32_t cap_t)
 {
     rt_stream s;
+    rs_frame f;
     rs_pipe pipe;
-    rs_pass pass;
     grab g;
     void *mem = malloc(rt_stream_mem_size(cap_v, cap_t)), *band;
     memset(&s, 0, sizeof s);
     CHECK_EQ(rt_stream_init(&s, cap_v, cap_t, mem, rt_stream_mem_size(cap_v, cap_t)), BR_OK);
     s.scene = sc; s.walk = walk;
-    frame_of(&s.fr, lay, c);
-    memset(&pipe, 0, sizeof pipe);
-    pipe.w = W; pipe.h = H; pipe.fmt = s.fr.fmt; pipe.depth = s.fr.depth;
-    CHECK_EQ(rs_pass_stream(&pass, &s), BR_OK);
-    CHECK_EQ(rs_pipe_add(&pipe, &pass), BR_OK);
+    frame_of(&f, lay, c);
+    CHECK_EQ(rt_stream_pipe(&s, c, f.fmt, f.depth, f.clear_rgb, &pipe), BR_OK);
     band = malloc(rs_pipe_mem_size(&pipe, rows));
     g.row = (size_t)W * (lay & 1 ? 2 : 4);
     g.px = calloc(H, g.row);
@@ -502,6 +499,7 @@ static void test_stream_refuses(void)
     big = malloc(bt_stream_mem_size(16, sites[0].tree.nslot - 1));
     CHECK_EQ(bt_stream_init(&s, 16, sites[0].tree.nslot - 1, big, bt_stream_mem_size(16, sites[0].tree.nslot - 1)), BR_OK);
     CHECK_EQ(bt_stream_frame(s, &sites[0].tree, &p), BR_E_ARG);                  /* planes too small */
+    CHECK_EQ(rt_stream_pipe(NULL, &c, RS_FMT_RGB565, RS_DEPTH_NONE, 0, NULL), BR_E_ARG);
     CHECK_EQ(rt_stream_mem_size(2, 1), 0);
     CHECK_EQ(rt_stream_mem_size(4097, 1), 0);
     CHECK_EQ(rt_stream_mem_size(3, 0), 0);

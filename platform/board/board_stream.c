@@ -111,9 +111,7 @@ br_status board_frame(int32_t i, rs_sink tap, void *tap_user, board_frame_info *
 {
     const bake_cam *bc;
     bt_params bp;
-    rs_frame *fr = &B.batch.fr;
     rs_pipe pipe;
-    rs_pass pass;
     rs_band_stats total;
     board_sum s;
     br_status st;
@@ -128,13 +126,9 @@ br_status board_frame(int32_t i, rs_sink tap, void *tap_user, board_frame_info *
     bp.fr = B.rt.fr;
     bp.pixel_err_q8 = bake.pixel_err_q8;
     bp.morph_q8 = bake.morph_q8;
-    if ((st = bt_stream_frame(B.walk, &B.tree, &bp)) != BR_OK) return st;
-    memset(fr, 0, sizeof *fr);
-    fr->w = bake.fb_w; fr->h = bake.fb_h; fr->fmt = RS_FMT_RGB565; fr->depth = RS_DEPTH_NONE;
-    fr->clear_rgb = bake.clear_rgb;
-    cam_viewproj(&B.c, &fr->vp);
-    pipe_of(&pipe);
-    if ((st = rs_pass_stream(&pass, &B.batch)) != BR_OK || (st = rs_pipe_add(&pipe, &pass)) != BR_OK) return st;
+    if ((st = bt_stream_frame(B.walk, &B.tree, &bp)) != BR_OK
+        || (st = rt_stream_pipe(&B.batch, &B.c, RS_FMT_RGB565, RS_DEPTH_NONE, bake.clear_rgb, &pipe)) != BR_OK)
+        return st;
     board_sum_start(&s, B.row, tap, tap_user);
     st = rs_pipe_run(&pipe, BAKE_STREAM_ROWS, B.band, B.band_bytes, board_sum_band, &s, &total);
     if (st != BR_OK) return st;
