@@ -24,12 +24,16 @@ uint32_t spib_sum(uint32_t h, int *dc_last, int dc, const uint8_t *p, size_t n)
         h = (h ^ (uint32_t)(0x100 + dc)) * prime;
         *dc_last = dc;
     }
-    /* four bytes a step: one loop test for four (the same sum) */
-    for (i = 0; i + 4 <= n; i += 4) {
+    /* eight bytes a step: one loop test for eight (the same sum) */
+    for (i = 0; i + 8 <= n; i += 8) {
         h = (h ^ p[i]) * prime;
         h = (h ^ p[i + 1]) * prime;
         h = (h ^ p[i + 2]) * prime;
         h = (h ^ p[i + 3]) * prime;
+        h = (h ^ p[i + 4]) * prime;
+        h = (h ^ p[i + 5]) * prime;
+        h = (h ^ p[i + 6]) * prime;
+        h = (h ^ p[i + 7]) * prime;
     }
     for (; i < n; i++) h = (h ^ p[i]) * prime;
     return h;
