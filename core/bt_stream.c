@@ -2,7 +2,8 @@
  * screen at a time, without a mesh (contract: core/bitree.h "streamed walk").
  *
  * The walk is core/bt_mesh.c's rec with the view rule (decide): the same diamonds
- * split, the same geomorph heights (bti_mid_z), the same leaves in the same order.  What
+ * split, the same geomorph heights (bti_mid_z), the same leaves in the same order (or,
+ * asked, back to front: near_is_a).  What
  * it leaves out is the output: no vertex array, no strip, no vertex hash, no split list.
  * Each leaf goes to the caller as its three grid points.  What it keeps is the frame's
  * answers (decide below), so that the walks of a frame decide each diamond about once.

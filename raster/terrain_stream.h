@@ -12,7 +12,8 @@
  * Pixels.  The triangles each band draws are the walk's leaves that may reach its rows,
  * in the walk's order, each apex first: a pixel is the one the whole leaf list drawn in
  * that order gives, whatever the band height and the batch size (a batch boundary only
- * splits the list; the depth test sees the same triangles in the same order).  They are
+ * splits the list; the depth test sees the same triangles in the same order, and without
+ * depth, RS_DEPTH_NONE, the last drawn over a pixel is the same triangle).  They are
  * the real triangles of bt_extract's mesh without hysteresis, so the frame is that mesh
  * drawn as a list with each triangle's first vertex at its apex; the strip's own
  * frames differ from it by the rasteriser's rounding from another first vertex and by
