@@ -4,10 +4,10 @@
  * bitree.h bt_stream_walk: the view rule without hysteresis) and draws the leaves it
  * meets in small batches (raster/terrain_stream.h), back to front and without a depth
  * buffer (RS_DEPTH_NONE: twice the rows in the band's bytes), then goes to the SPI
- * stream.  What a
- * frame writes is the band, one batch, the walk's state, its answer planes and its
- * weight cache: RAM that does not grow with the frame's triangles (docs/mcu.md).  platform/board/board.c is the other path
- * (MCU_PATH=mesh): the product's whole-frame mesh and strip, its pixels, 201 KB.
+ * stream.  What a frame writes is the band, one batch, the walk's state, its answer
+ * planes and its weight cache: RAM that does not grow with the frame's triangles
+ * (docs/mcu.md).  platform/board/board.c is the other path (MCU_PATH=mesh): the
+ * product's whole-frame mesh and strip, its pixels, 201 KB.
  * Freestanding: core/, raster/, the baked arrays and memset/memcpy, nothing else. */
 #include "platform/board/board.h"
 #include <string.h>
