@@ -468,11 +468,11 @@ uint32_t bt_parts_resumed(const bt_parts *ps);
  * every walk of a frame gives every diamond the same answer, so the walks' leaves
  * together are one conforming mesh, the real triangles of bt_extract's mesh for the
  * same camera and hyst_q8 = 0 (same points, same geomorphed heights), met in the
- * order of its strip (or back to front: bt_stream_order); the leaves of one walk are those not shown to lie wholly above or
- * below the window's rows (a subtree by its triangle's prism, a leaf by its own points),
- * which covers every triangle that covers a pixel centre in them (core/bt_stream.c).  A
- * leaf comes apex first, then counter-clockwise seen from +z, as bt_mesh's strip has its
- * real triangles.
+ * order of its strip (or back to front: bt_stream_order); the leaves of one walk are
+ * those not shown to lie wholly above or below the window's rows (a subtree by its
+ * triangle's prism, a leaf by its own points), which covers every triangle that covers a
+ * pixel centre in them (core/bt_stream.c).  A leaf comes apex first, then
+ * counter-clockwise seen from +z, as bt_mesh's strip has its real triangles.
  * Memory: bt_stream_mem_size(cache_entries, nslot) bytes: about 2.8 KB of state, 2 bits a
  * slot for trees of up to nslot slots (bt_slot_count; >= 1): each diamond's answer kept
  * for the frame, so that the frame's walks decide each diamond about once; and 6 bytes a

@@ -3,9 +3,9 @@
  *
  * The walk is core/bt_mesh.c's rec with the view rule (decide): the same diamonds
  * split, the same geomorph heights (bti_mid_z), the same leaves in the same order (or,
- * asked, back to front: near_is_a).  What
- * it leaves out is the output: no vertex array, no strip, no vertex hash, no split list.
- * Each leaf goes to the caller as its three grid points.  What it keeps is the frame's
+ * asked, back to front: near_is_a).  What it leaves out is the output: no vertex array,
+ * no strip, no vertex hash, no split list.  Each leaf goes to the caller as its three
+ * grid points.  What it keeps is the frame's
  * answers (decide below), so that the walks of a frame decide each diamond about once.
  *
  * Why no hysteresis.  A split's answer depends on ST_PREV only through tau_lo; with
@@ -108,6 +108,13 @@ br_status bt_stream_frame(bt_stream *s, bt_tree *t, const bt_params *p)
     return BR_OK;
 }
 
+/* Diamond id's code in the answer planes (decide below) */
+static unsigned answer(const bt_stream *s, uint32_t id)
+{
+    const uint8_t *const p0 = &s->ans[id >> 3];
+    return ((*p0 >> (id & 7u)) & 1u) | ((p0[s->plane] >> (id & 7u)) & 1u) << 1;
+}
+
 /* The view rule's answer for diamond (x, y) in slot id (core/bt_mesh.c decide), kept for
  * the whole frame in the two bit planes: code (plane 0 bit) | (plane 1 bit) << 1 = 1
  * split with the full weight, 2 leaf, 3 split with a partial weight, 0 not yet decided
@@ -115,14 +122,8 @@ br_status bt_stream_frame(bt_stream *s, bt_tree *t, const bt_params *p)
  * weight comes from the weight cache (slot + 1 and the weight's step, direct-mapped)
  * while it holds it, else is computed again (bti_morph_now: the same weight, without the
  * frustum test).  The plane mask is handed on only by a first decision; a later visit
- * keeps its parent's, whose extra planes give the same answers (bt_mesh.c decide_memo). */
-static unsigned answer(const bt_stream *s, uint32_t id)
-{
-    const uint8_t *const p0 = &s->ans[id >> 3];
-    return ((*p0 >> (id & 7u)) & 1u) | ((p0[s->plane] >> (id & 7u)) & 1u) << 1;
-}
-
-/* code: answer(s, id) */
+ * keeps its parent's, whose extra planes give the same answers (bt_mesh.c decide_memo).
+ * code: answer(s, id). */
 static int decide(bt_stream *s, int32_t x, int32_t y, uint32_t id, unsigned code, unsigned *mask, uint16_t *morph)
 {
     bti_extract *e = &s->e;

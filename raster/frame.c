@@ -8,7 +8,6 @@
 static size_t align_up(size_t n) { return (n + (PART_ALIGN - 1)) & ~(size_t)(PART_ALIGN - 1); }
 
 static size_t bytes_per_px(int32_t fmt) { return fmt == RS_FMT_RGB565 ? 2u : 4u; }
-static size_t depth_bytes(int32_t depth) { return depth == RS_DEPTH_NONE ? 0u : depth == RS_DEPTH16 ? 2u : 4u; }
 
 /* Rows of a scratch band for bands of `rows` rows: the margins above and below, at most
  * the frame's height (a margin beyond the frame is clipped away). */
@@ -21,13 +20,14 @@ static int32_t scratch_rows(const rs_pipe *p, const rs_pass *pass, int32_t rows)
 static size_t part_size(const rs_pipe *p, int32_t rows)
 {
     return align_up((size_t)p->w * (size_t)rows * bytes_per_px(p->fmt))
-         + align_up((size_t)p->w * (size_t)rows * depth_bytes(p->depth));
+         + align_up((size_t)p->w * (size_t)rows * rs_depth_bytes(p->depth));
 }
 
 br_status rs_pipe_add(rs_pipe *p, const rs_pass *pass)
 {
     if (!p || !pass || !pass->run || p->npasses < 0 || p->npasses >= RS_PIPE_MAX_PASSES
-        || pass->margin < 0 || pass->margin > RS_MAX_DIM || (pass->scratch != 0 && pass->scratch != 1))
+        || pass->margin < 0 || pass->margin > RS_MAX_DIM || (pass->scratch != 0 && pass->scratch != 1)
+        || (pass->scratch && p->depth == RS_DEPTH_NONE))    /* a scratch is colour and depth */
         return BR_E_ARG;
     p->passes[p->npasses++] = *pass;
     return BR_OK;

@@ -53,7 +53,7 @@ typedef struct band {
 size_t rs_band_mem_size(int32_t w, int32_t rows, int32_t fmt, int32_t depth)
 {
     size_t px = (size_t)w * (size_t)rows;
-    return px * (fmt == RS_FMT_RGB565 ? 2u : 4u) + px * (depth == RS_DEPTH_NONE ? 0u : depth == RS_DEPTH16 ? 2u : 4u);
+    return px * (fmt == RS_FMT_RGB565 ? 2u : 4u) + px * rs_depth_bytes(depth);
 }
 
 /* ---------------------------------------------------------------- set-up helpers */
@@ -346,7 +346,7 @@ br_status rs_draw_band(const rs_frame *f, int32_t y0, int32_t rows, void *color,
 {
     const draw_fn draw = draw_for(f->fmt, f->depth, f->tex != 0, f->debug_count != 0);
     band bd;
-    int32_t y;
+    int32_t y, k;
     uint32_t dfar;
     const int noz = f->depth == RS_DEPTH_NONE;
     if (!f->cache || !color || (!depth && !noz) || y0 < 0 || rows < 1 || y0 + rows > f->h) return BR_E_ARG;
@@ -354,8 +354,8 @@ br_status rs_draw_band(const rs_frame *f, int32_t y0, int32_t rows, void *color,
     if (noz) {
         /* without depth the triangles' order is the picture's: lists only (a strip's order
          * is its walk's), and no depth rows (band.depth: a valid address never read) */
-        for (y = 0; y < f->nprims; y++)
-            if (f->prims[y].kind != RS_LIST) return BR_E_ARG;
+        for (k = 0; k < f->nprims; k++)
+            if (f->prims[k].kind != RS_LIST) return BR_E_ARG;
         depth = color;
     }
     memset(&bd, 0, sizeof bd);
@@ -382,7 +382,7 @@ br_status rs_draw_band(const rs_frame *f, int32_t y0, int32_t rows, void *color,
         else if (f->fmt == RS_FMT_RGB565) cv = PACK24_565(f->clear_rgb) * 0x10001u;
         else cv = f->clear_rgb & 0xffffffu;
         zv = f->depth == RS_DEPTH16 ? (dfar >> 14) * 0x10001u : dfar;
-        if (!noz) fill32((uint8_t *)depth, w * (size_t)rows * (f->depth == RS_DEPTH16 ? 2u : 4u), zv);
+        if (!noz) fill32((uint8_t *)depth, w * (size_t)rows * rs_depth_bytes(f->depth), zv);
         if (f->clear_rows && !f->debug_count) {
             for (y = 0; y < rows; y++) clear_row_pattern(bd.color + (size_t)y * stride, f->w, f->fmt,
                                                          f->clear_rows + 4 * (size_t)(y0 + y));

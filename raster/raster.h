@@ -81,6 +81,11 @@ enum { RS_FMT_XRGB8888 = 0, RS_FMT_RGB565 = 1 };
  * (the far plane's depth is the buffer's clear value): the caller draws nothing beyond
  * it.  Half the band's bytes at RGB565. */
 enum { RS_DEPTH32 = 0, RS_DEPTH16 = 1, RS_DEPTH_NONE = 2 };
+/* Bytes of one depth entry: 4, 2, or 0 without depth */
+static inline size_t rs_depth_bytes(int32_t depth)
+{
+    return depth == RS_DEPTH_NONE ? 0u : depth == RS_DEPTH16 ? 2u : 4u;
+}
 enum { RS_STRIP = 0, RS_LIST = 1 };
 
 /* Input vertex: world position, colour 0x00RRGGBB (shaded per vertex by the caller or

@@ -221,8 +221,9 @@ br_status rw_mirror_vp(const cam_vp *vp, int32_t plane_z, int32_t res_shift, int
  * time, so that no frame pays for them. */
 void rw_tables(rw_frame *r);
 
-/* Fills r for one frame: terrain (prepared), water and refl (prepared frames or NULL),
- * camera c (the terrain's).  BR_E_ARG on inconsistent sizes or parameters. */
+/* Fills r for one frame: terrain (prepared, with depth: water reads it), water and refl
+ * (prepared frames or NULL), camera c (the terrain's).  BR_E_ARG on inconsistent sizes
+ * or parameters, or a terrain frame without depth (RS_DEPTH_NONE). */
 br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame *terrain,
                    const rs_frame *water, const rs_frame *refl);
 

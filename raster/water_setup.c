@@ -335,6 +335,7 @@ br_status rw_setup(rw_frame *r, const rw_params *p, const cam *c, const rs_frame
     wdiv df, dtint;
     int dither;
     if (!r || !p || !c || !terrain || terrain->w != c->w || terrain->h != c->h
+        || (terrain->depth != RS_DEPTH32 && terrain->depth != RS_DEPTH16)    /* water reads it */
         || p->res_shift < 0 || p->res_shift > 2
         || (p->fog_on && !(p->fog_start > 0 && p->fog_end > p->fog_start))
         || (p->water_on && (p->tint_len <= 0 || p->wave_len <= 0 || p->wave_amp < 0))

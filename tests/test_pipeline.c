@@ -305,6 +305,9 @@ static void test_margin_scratch_skip(void)
         CHECK_EQ(rs_pipe_add(&p, &q), BR_E_ARG);
         q.margin = 0; q.scratch = 2;
         CHECK_EQ(rs_pipe_add(&p, &q), BR_E_ARG);
+        q.scratch = 1; p.depth = RS_DEPTH_NONE;
+        CHECK_EQ(rs_pipe_add(&p, &q), BR_E_ARG);            /* scratch without depth */
+        p.depth = RS_DEPTH32;
         q.scratch = 0;
         for (i = 0; i < RS_PIPE_MAX_PASSES; i++) CHECK_EQ(rs_pipe_add(&p, &q), BR_OK);
         CHECK_EQ(rs_pipe_add(&p, &q), BR_E_ARG);            /* full */

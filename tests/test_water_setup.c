@@ -49,6 +49,11 @@ static void test_fog_table(void)
         memset(&tf, 0, sizeof tf);
         tf.w = 64; tf.h = 48; tf.fmt = RS_FMT_XRGB8888; tf.depth = RS_DEPTH32;
         cam_viewproj(&c, &tf.vp);
+        if (n == 0) {   /* water reads the terrain's depth: a frame without it is refused */
+            tf.depth = RS_DEPTH_NONE;
+            CHECK_EQ(rw_setup(r, &p, &c, &tf, NULL, NULL), BR_E_ARG);
+            tf.depth = RS_DEPTH32;
+        }
         if (rw_setup(r, &p, &c, &tf, NULL, NULL) != BR_OK) { CHECK(0); break; }
         K = (int64_t)RS_DEPTH_ONE * tf.vp.znear;
         while ((K / p.fog_start) >> sh > RW_TAB) sh++;      /* the table reaches K / zs */
